@@ -1,0 +1,143 @@
+"""Fanuc machining centres (ISO 6983 with Custom Macro B).
+
+Two modes for a textured engraving:
+
+* baked (``FanucPost``): the texture depths were drawn by the add-on and are written
+  literally, so the program cuts exactly what the preview shows;
+* controller macro (``FanucMacroPost``): the paper's method.  The roughing path is written
+  untextured, called block by block through ``G66.1 P7023``; program O7023 reads the
+  millisecond clock ``#3001``, takes its last digit and applies the depth rule on the
+  controller, so each run of the program cuts a different texture.
+
+O7023 follows the published macro with its two defects fixed: ``IF[#28GT5]`` sent d = 5 to
+the shallow branch (depth -1.0, outside the stated range), here ``GE``; and
+``IF[#24+#25]EQ#0]`` had unbalanced brackets and tested a sum (0, never vacant), here each
+word is tested for vacancy on its own.  Beyond the paper, one loop with a signed step
+serves both X directions, a move with a Z word (approach, retract, ramp) passes through
+untouched, and a move with both X and Y is split with Y interpolated along it.
+"""
+from __future__ import annotations
+
+from toolpath.engrave import GougeTexture
+
+from .gcode import GcodePost, PostError, fmt
+
+MACRO_PROGRAM = 7023
+
+
+class FanucPost(GcodePost):
+    name = "fanuc"
+    extension = ".nc"
+    decimals = 3
+    program_number = "O0001"
+
+    def length_offset(self, op):
+        return [f"G43 Z{self.n(op.safe_z)} H{op.tool.number:02d}", f"Z{self.n(op.clearance_z)}"]
+
+    def tool_change(self, op, first):
+        return [f"T{op.tool.number:02d} M06"]
+
+    def ending(self, program):
+        return ["M05", "G91 G28 Z0.", "G28 X0. Y0.", "G90", "M30"]
+
+
+class FanucMacroPost(FanucPost):
+    name = "fanuc-macro"
+
+    def check(self, program):
+        textured = [op for op in program.operations if op.texture is not None]
+        if not textured:
+            raise PostError("the controller-macro post needs an operation with a gouge texture; "
+                            "use the baked Fanuc post for this program")
+        for op in textured:
+            texture = op.texture
+            if not isinstance(texture, GougeTexture):
+                raise PostError(f"operation {op.name!r}: the macro post knows only the gouge texture")
+            if abs(texture.raster_angle) > 1e-9:
+                raise PostError(f"operation {op.name!r}: O7023 splits X moves only; set the raster angle "
+                                "to 0 or use the baked Fanuc post")
+            if texture.motion != "ramp" or texture.spacing_jitter:
+                raise PostError(f"operation {op.name!r}: scoop motion and spacing jitter exist only in "
+                                "baked programs; use the baked Fanuc post")
+        if len({(op.texture.base_depth, op.texture.quantum, op.texture.amplitude, op.texture.spacing)
+                for op in textured}) > 1:
+            raise PostError("all textured operations must share one texture: O7023 is one program")
+        untextured = [op for op in program.operations if op.texture is None]
+        super().check(program.__class__(program.name, untextured))
+
+    def operation_moves(self, op):
+        if op.texture is None:
+            return super().operation_moves(op)
+        return [f"G66.1 P{MACRO_PROGRAM}"] + self.moves(op, op.start) + ["G67"]
+
+    def header(self, program):
+        return super().header(program) + [
+            "(GOUGE TEXTURE: RANDOM DEPTHS DRAWN ON THE CONTROLLER BY O7023 FROM CLOCK #3001)"]
+
+    def to_text(self, program):
+        main = super().to_text(program)
+        texture = next(op.texture for op in program.operations if op.texture is not None)
+        return main[:-2] + macro_program(texture, self.decimals) + "%\n"
+
+
+def macro_program(texture: GougeTexture, decimals: int = 3) -> str:
+    """Program O7023, called modally by G66.1 for every block of the roughing path.
+
+    Arguments: #24/#25/#26 = X/Y/Z of the calling block, #4/#5 = I/J, #9 = F; #4001 its
+    motion G-code.  Commons #110..#114 hold the texture settings and the drawn depth.
+    """
+    n = lambda value: fmt(value, decimals)  # noqa: E731
+    lines = [
+        f"O{MACRO_PROGRAM} (KEZURI GOUGE TEXTURE)",
+        "#1=#4001",
+        "IF[#1EQ0]GOTO10 (RAPID: AS PROGRAMMED)",
+        "IF[#1GT1]GOTO10 (ARC: AS PROGRAMMED)",
+        "IF[#26NE#0]GOTO10 (Z GIVEN: APPROACH, RETRACT OR RAMP)",
+        "IF[#24NE#0]GOTO1",
+        "IF[#25NE#0]GOTO20 (Y ONLY: STEPOVER AT THE CURRENT DEPTH)",
+        "GOTO10",
+        "N1",
+        f"#110={n(texture.base_depth)} (BASE DEPTH)",
+        f"#111={n(texture.quantum)} (DEPTH QUANTUM)",
+        f"#112={n(texture.amplitude)} (AMPLITUDE)",
+        f"#113={n(texture.spacing)} (GOUGE SPACING ALONG X)",
+        "#15=#5001 (X BEFORE THE BLOCK)",
+        "#17=#5002 (Y BEFORE THE BLOCK)",
+        "#6=#24-#15",
+        "IF[ABS[#6]LE#113]GOTO10 (SHORT MOVE: AS PROGRAMMED)",
+        "#8=1",
+        "IF[#6GT0]GOTO2",
+        "#8=-1",
+        "N2",
+        "#16=#15+#8*#113",
+        "WHILE[[#24-#16]*#8GE0]DO1",
+        "#32=#3001 (MILLISECOND CLOCK)",
+        "#30=FIX[#32/10]*10",
+        "#28=#32-#30 (LAST DIGIT 0..9)",
+        "IF[#28GE5]GOTO3",
+        "#114=#110+#111*ROUND[#28*#112/[4*#111]] (0..4: SHALLOWER)",
+        "GOTO4",
+        "N3",
+        "#114=#110-#111*ROUND[[#28-5]*#112/[4*#111]] (5..9: DEEPER)",
+        "N4",
+        "IF[#25EQ#0]GOTO5",
+        "#33=#17+[#25-#17]*[#16-#15]/#6",
+        "G#1X#16Y#33Z#114F#9",
+        "GOTO6",
+        "N5",
+        "G#1X#16Z#114F#9",
+        "N6",
+        "#16=#16+#8*#113",
+        "END1",
+        "G#1X#24Y#25F#9 (REST OF THE MOVE AT THE LAST DEPTH)",
+        "GOTO30",
+        "N10",
+        "G#1X#24Y#25Z#26I#4J#5F#9",
+        "GOTO30",
+        "N20",
+        "G#1Y#25F#9",
+        "N30",
+        "M99",
+    ]
+    return "\n".join(lines) + "\n"
+

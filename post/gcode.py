@@ -1,0 +1,142 @@
+"""The ISO 6983 writer the milling posts share; dialects override a few hooks.
+
+Output is deterministic: the same Program gives byte-identical text (no dates, no run-time
+values).  Words are modal: X/Y/Z/F are written only when they change, G0/G1 only when the
+motion mode changes, as CAM posts and hand-written programs both do.
+"""
+from __future__ import annotations
+
+
+import numpy as np
+
+from toolpath.program import ARC_CW, FEED, RAPID, Operation, Program
+
+
+class PostError(ValueError):
+    """A program the chosen controller cannot run (the message says why and what to change)."""
+
+
+def fmt(value: float, decimals: int) -> str:
+    """``106.`` / ``-2.5`` / ``0.125``: always a decimal point (Fanuc reads ``X106`` as microns)."""
+    text = f"{value:.{decimals}f}".rstrip("0")
+    if text in ("-0.", "-."):
+        text = "0."
+    return text
+
+
+def format_duration(seconds: float) -> str:
+    minutes, secs = divmod(int(round(seconds)), 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours} H {minutes:02d} MIN {secs:02d} S" if hours else f"{minutes} MIN {secs:02d} S"
+
+
+def comment_text(text: str) -> str:
+    """Parentheses cannot nest in a G-code comment; keep it printable ASCII and upper case."""
+    clean = "".join(ch if 32 <= ord(ch) < 127 else "?" for ch in str(text))
+    return clean.replace("(", "[").replace(")", "]").upper()
+
+
+class GcodePost:
+    """Program -> text for one controller family.  Subclasses set the class attributes and
+    override the hooks (preamble, tool change, ending)."""
+
+    name = "iso"
+    extension = ".nc"
+    decimals = 3
+    program_number = None        # "O0001" for Fanuc
+    percent_wrapped = True
+
+    def __init__(self, work_offset: str | None = None):
+        self.work_offset = work_offset
+
+    # ----- hooks -------------------------------------------------------------------
+    def preamble(self, program: Program) -> list:
+        return ["G21 G17 G40 G49 G80 G90"]
+
+    def tool_change(self, op: Operation, first: bool) -> list:
+        return [f"T{op.tool.number} M06"]
+
+    def spindle_on(self, op: Operation) -> str:
+        return f"S{int(round(op.spindle_rpm))} {'M03' if op.spindle_cw else 'M04'}"
+
+    def length_offset(self, op: Operation) -> list:
+        return [f"G43 H{op.tool.number} Z{self.n(op.safe_z)}"]
+
+    def ending(self, program: Program) -> list:
+        return ["M05", "G91 G28 Z0.", "G90", "M30"]
+
+    def check(self, program: Program):
+        for op in program.operations:
+            if op.texture is not None:
+                raise PostError(f"operation {op.name!r} still carries an unbaked texture: bake it first "
+                                f"(the {self.name} post writes the cut depths literally)")
+            if op.rotary:
+                raise PostError(f"the {self.name} post is for 3-axis milling; operation {op.name!r} "
+                                f"moves rotary axes {sorted(op.rotary)}")
+
+    # ----- the writer --------------------------------------------------------------
+    def n(self, value: float) -> str:
+        return fmt(value, self.decimals)
+
+    def header(self, program: Program) -> list:
+        lines = [f"(KEZURI CAM - {comment_text(program.name)})", f"(POST: {comment_text(self.name)})",
+                 "(UNITS: MM)"]
+        for tool in program.tools():
+            lines.append(f"(TOOL: {comment_text(tool.describe())})")
+        for op in program.operations:
+            lines.append(f"(OPERATION: {comment_text(op.name)} - T{op.tool.number} - "
+                         f"{format_duration(op.cycle_time(program.rapid_rate))})")
+        lines.append(f"(ESTIMATED CYCLE TIME: {format_duration(program.cycle_time())})")
+        for note in program.notes:
+            lines.append(f"(NOTE: {comment_text(note)})")
+        return lines
+
+    def to_text(self, program: Program) -> str:
+        self.check(program)
+        if not program.operations:
+            raise PostError("the program has no operations")
+        lines = []
+        if self.program_number:
+            lines.append(f"{self.program_number} ({comment_text(program.name)[:30]})")
+        lines += self.header(program)
+        lines += self.preamble(program)
+        work_offset = self.work_offset or program.work_offset
+        for index, op in enumerate(program.operations):
+            lines.append(f"(OPERATION {index + 1}: {comment_text(op.name)})")
+            lines += self.tool_change(op, index == 0)
+            lines.append(f"G00 G90 {work_offset} X{self.n(op.start[0])} Y{self.n(op.start[1])} {self.spindle_on(op)}")
+            lines += self.length_offset(op)
+            lines += self.operation_moves(op)
+            lines.append(f"G00 Z{self.n(op.safe_z)}")
+        lines += self.ending(program)
+        body = "\n".join(lines) + "\n"
+        return f"%\n{body}%\n" if self.percent_wrapped else body
+
+    def operation_moves(self, op: Operation) -> list:
+        return self.moves(op, op.start)
+
+    def moves(self, op: Operation, start) -> list:
+        """Modal motion blocks for the operation's moves; zero-length moves are dropped."""
+        lines = []
+        last = {"X": self.n(start[0]), "Y": self.n(start[1]), "Z": self.n(start[2])}
+        position = np.array(start, float)
+        mode, feed_word = None, None
+        for kind, xyz, f, centre in zip(op.kind.tolist(), op.xyz.tolist(), op.feed.tolist(), op.center.tolist()):
+            arc = kind not in (RAPID, FEED)
+            code = {RAPID: "G00", FEED: "G01"}.get(kind, "G02" if kind == ARC_CW else "G03")
+            axes = [(axis, self.n(value)) for axis, value in zip("XYZ", xyz)]
+            motion = [f"{axis}{text}" for axis, text in axes if text != last[axis] or (arc and axis in "XY")]
+            if not motion:
+                continue
+            words = [code] if (code != mode or arc) else []
+            words += motion
+            if arc:
+                words += [f"I{self.n(centre[0] - position[0])}", f"J{self.n(centre[1] - position[1])}"]
+            if kind != RAPID and fmt(f, 1) != feed_word:
+                feed_word = fmt(f, 1)
+                words.append(f"F{feed_word}")
+            lines.append(" ".join(words))
+            mode = code
+            last.update(axes)
+            position = np.array(xyz)
+        return lines

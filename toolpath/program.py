@@ -1,0 +1,286 @@
+"""The toolpath intermediate representation (IR).
+
+A :class:`Program` is a list of :class:`Operation`.  An operation holds one tool, its
+spindle and feeds, its clearance heights and its moves, kept as numpy arrays because a
+texture job has 10^5 moves.  Every coordinate is in millimetres in the work coordinate
+system; Z is the tool tip (the point a G43 tool-length offset refers to).
+
+Posts (``post/``) read this and alone decide which controller words to write.
+"""
+from __future__ import annotations
+
+import dataclasses
+import enum
+from dataclasses import dataclass, field
+
+import numpy as np
+
+RAPID, FEED, ARC_CW, ARC_CCW = 0, 1, 2, 3
+
+
+class MoveKind(enum.IntEnum):
+    RAPID = RAPID
+    FEED = FEED
+    ARC_CW = ARC_CW
+    ARC_CCW = ARC_CCW
+
+
+TOOL_KINDS = ("ball", "flat", "bull", "drill", "vbit")
+
+
+@dataclass(frozen=True)
+class Tool:
+    """A cutter.  ``kind`` is one of TOOL_KINDS; lengths in mm."""
+
+    number: int
+    kind: str
+    diameter: float
+    corner_radius: float = 0.0
+    flute_length: float = 20.0
+    name: str = ""
+
+    def __post_init__(self):
+        if self.kind not in TOOL_KINDS:
+            raise ValueError(f"tool kind {self.kind!r} is not one of {TOOL_KINDS}")
+        if not (np.isfinite(self.diameter) and self.diameter > 0):
+            raise ValueError(f"tool diameter must be a positive number, got {self.diameter}")
+        if not (isinstance(self.number, int) and 0 <= self.number <= 999):
+            raise ValueError(f"tool number must be an integer 0..999, got {self.number!r}")
+        if self.kind == "ball" and self.corner_radius == 0.0:
+            object.__setattr__(self, "corner_radius", self.diameter / 2)
+        if not 0 <= self.corner_radius <= self.diameter / 2 + 1e-9:
+            raise ValueError(f"corner radius {self.corner_radius} does not fit a {self.diameter} mm tool")
+
+    @property
+    def radius(self) -> float:
+        return self.diameter / 2
+
+    def describe(self) -> str:
+        label = {"ball": "ball end mill", "flat": "flat end mill", "bull": "bull nose end mill",
+                 "drill": "drill", "vbit": "V-bit"}[self.kind]
+        text = f"T{self.number} {self.diameter:g} mm {label}"
+        if self.kind == "bull":
+            text += f" R{self.corner_radius:g}"
+        return text + (f" ({self.name})" if self.name else "")
+
+
+@dataclass
+class Operation:
+    """One tool's worth of cutting.
+
+    Moves are parallel arrays of length n:
+      kind    int8      RAPID, FEED, ARC_CW, ARC_CCW
+      xyz     (n, 3)    end point
+      center  (n, 3)    arc centre (NaN for straight moves); arcs lie in the XY plane
+      feed    (n,)      mm/min for cutting moves, NaN for rapids
+      rotary  {axis: (n,)}  end positions of rotary axes in degrees, e.g. {"c": ...}
+    ``start`` is where the tool is before the first move (normally above the clearance plane).
+    ``texture`` carries a request a post may honour itself (e.g. the gouge texture that a
+    controller macro applies at run time); the moves are then the untextured path.
+    """
+
+    name: str
+    tool: Tool
+    spindle_rpm: float
+    kind: np.ndarray
+    xyz: np.ndarray
+    feed: np.ndarray
+    center: np.ndarray | None = None
+    rotary: dict = field(default_factory=dict)
+    spindle_cw: bool = True
+    clearance_z: float = 20.0
+    safe_z: float = 100.0
+    start: np.ndarray | None = None
+    texture: object | None = None
+    coolant: bool = False
+    comment: str = ""
+
+    def __post_init__(self):
+        self.kind = np.ascontiguousarray(self.kind, dtype=np.int8)
+        self.xyz = np.ascontiguousarray(self.xyz, dtype=float).reshape(-1, 3)
+        self.feed = np.ascontiguousarray(self.feed, dtype=float)
+        n = len(self.kind)
+        if self.center is None:
+            self.center = np.full((n, 3), np.nan)
+        self.center = np.ascontiguousarray(self.center, dtype=float).reshape(-1, 3)
+        self.rotary = {k: np.ascontiguousarray(v, dtype=float) for k, v in self.rotary.items()}
+        if self.start is None:
+            first = self.xyz[0] if n else np.zeros(3)
+            self.start = np.array([first[0], first[1], self.safe_z])
+        self.start = np.asarray(self.start, dtype=float)
+        self.validate()
+
+    def validate(self):
+        n = len(self.kind)
+        if self.xyz.shape != (n, 3) or self.feed.shape != (n,) or self.center.shape != (n, 3):
+            raise ValueError(f"operation {self.name!r}: move arrays have different lengths")
+        for axis, values in self.rotary.items():
+            if values.shape != (n,):
+                raise ValueError(f"operation {self.name!r}: rotary axis {axis} has {values.shape} values for {n} moves")
+            if not np.all(np.isfinite(values)):
+                raise ValueError(f"operation {self.name!r}: rotary axis {axis} has a non-finite value")
+        if n and not np.all(np.isin(self.kind, (RAPID, FEED, ARC_CW, ARC_CCW))):
+            raise ValueError(f"operation {self.name!r}: unknown move kind")
+        if not np.all(np.isfinite(self.xyz)):
+            bad = int(np.flatnonzero(~np.isfinite(self.xyz).all(axis=1))[0])
+            raise ValueError(f"operation {self.name!r}: move {bad} has a non-finite coordinate")
+        cutting = self.kind != RAPID
+        if np.any(cutting & ~(self.feed > 0)):
+            bad = int(np.flatnonzero(cutting & ~(self.feed > 0))[0])
+            raise ValueError(f"operation {self.name!r}: cutting move {bad} has no positive feed")
+        arcs = (self.kind == ARC_CW) | (self.kind == ARC_CCW)
+        if np.any(arcs & ~np.isfinite(self.center[:, :2]).all(axis=1)):
+            raise ValueError(f"operation {self.name!r}: an arc has no centre")
+        if not (np.isfinite(self.spindle_rpm) and self.spindle_rpm >= 0):
+            raise ValueError(f"operation {self.name!r}: spindle speed must be >= 0")
+
+    def __len__(self):
+        return len(self.kind)
+
+    def replace(self, **changes) -> "Operation":
+        return dataclasses.replace(self, **changes)
+
+    # ----- derived quantities -------------------------------------------------------
+    def start_points(self) -> np.ndarray:
+        """The point each move starts from, (n, 3)."""
+        if not len(self):
+            return np.empty((0, 3))
+        return np.vstack([self.start[None, :], self.xyz[:-1]])
+
+    def move_lengths(self) -> np.ndarray:
+        """Path length of every move in mm (arcs measured along the arc, helical included)."""
+        a = self.start_points()
+        b = self.xyz
+        length = np.linalg.norm(b - a, axis=1)
+        arcs = np.flatnonzero((self.kind == ARC_CW) | (self.kind == ARC_CCW))
+        if len(arcs):
+            c = self.center[arcs, :2]
+            r = np.linalg.norm(a[arcs, :2] - c, axis=1)
+            sweep = arc_sweep(a[arcs, :2], b[arcs, :2], c, self.kind[arcs] == ARC_CW)
+            planar = np.abs(sweep) * r
+            length[arcs] = np.hypot(planar, b[arcs, 2] - a[arcs, 2])
+        return length
+
+    def feed_length(self) -> float:
+        return float(self.move_lengths()[self.kind != RAPID].sum())
+
+    def rapid_length(self) -> float:
+        return float(self.move_lengths()[self.kind == RAPID].sum())
+
+    def cycle_time(self, rapid_rate: float) -> float:
+        """Estimated seconds: cutting at the programmed feed, rapids at ``rapid_rate`` mm/min."""
+        lengths = self.move_lengths()
+        cutting = self.kind != RAPID
+        seconds = float(np.sum(lengths[cutting] / self.feed[cutting]) * 60.0)
+        seconds += float(lengths[~cutting].sum() / rapid_rate * 60.0)
+        return seconds
+
+    def feed_z_range(self) -> tuple[float, float]:
+        cutting = self.kind != RAPID
+        if not cutting.any():
+            return (float("nan"), float("nan"))
+        z = self.xyz[cutting, 2]
+        return (float(z.min()), float(z.max()))
+
+    def summary(self, rapid_rate: float) -> dict:
+        zmin, zmax = self.feed_z_range()
+        return {"name": self.name, "tool": self.tool.describe(), "tool_number": self.tool.number,
+                "moves": len(self), "feed_length_mm": round(self.feed_length(), 3),
+                "cycle_time_s": round(self.cycle_time(rapid_rate), 1),
+                "min_feed_z_mm": round(zmin, 4), "max_feed_z_mm": round(zmax, 4)}
+
+
+def arc_sweep(a: np.ndarray, b: np.ndarray, c: np.ndarray, clockwise: np.ndarray) -> np.ndarray:
+    """Signed sweep angle (radians) from a to b about c; a full circle when a == b."""
+    ang_a = np.arctan2(a[:, 1] - c[:, 1], a[:, 0] - c[:, 0])
+    ang_b = np.arctan2(b[:, 1] - c[:, 1], b[:, 0] - c[:, 0])
+    ccw = np.mod(ang_b - ang_a, 2 * np.pi)
+    ccw = np.where(ccw < 1e-12, 2 * np.pi, ccw)
+    return np.where(clockwise, ccw - 2 * np.pi, ccw)
+
+
+@dataclass
+class Program:
+    """What a post turns into one NC file."""
+
+    name: str
+    operations: list
+    units: str = "mm"
+    work_offset: str = "G54"
+    rapid_rate: float = 5000.0  # mm/min, for cycle-time estimates
+    notes: list = field(default_factory=list)  # warnings worth writing into the header
+
+    def cycle_time(self) -> float:
+        return sum(op.cycle_time(self.rapid_rate) for op in self.operations)
+
+    def tools(self) -> list:
+        seen = {}
+        for op in self.operations:
+            seen.setdefault(op.tool.number, op.tool)
+        return list(seen.values())
+
+    def summary(self) -> list:
+        return [op.summary(self.rapid_rate) for op in self.operations]
+
+
+class PathBuilder:
+    """Collects moves for one operation, then freezes them into arrays.
+
+    ``retract_to_clearance`` and ``plunge`` keep the approach/retract logic in one place so
+    every workflow moves between cuts the same way: up to the clearance plane, rapid
+    across, rapid down to just above the work, feed in.
+    """
+
+    def __init__(self, clearance_z: float, feed: float, plunge_feed: float, approach_gap: float = 2.0,
+                 surface_z: float = 0.0):
+        self.clearance_z = clearance_z
+        self.feed = feed
+        self.plunge_feed = plunge_feed
+        self.approach_z = surface_z + approach_gap
+        self._kind: list = []
+        self._xyz: list = []
+        self._feed: list = []
+        self._center: list = []
+        self.position = None
+
+    def _add(self, kind, xyz, feed, center=(np.nan, np.nan, np.nan)):
+        self._kind.append(kind)
+        self._xyz.append(tuple(float(v) for v in xyz))
+        self._feed.append(feed)
+        self._center.append(center)
+        self.position = self._xyz[-1]
+
+    def rapid(self, x, y, z):
+        self._add(RAPID, (x, y, z), np.nan)
+
+    def line(self, x, y, z, feed=None):
+        self._add(FEED, (x, y, z), self.feed if feed is None else feed)
+
+    def polyline(self, points: np.ndarray, feed=None):
+        points = np.asarray(points, dtype=float)
+        f = self.feed if feed is None else feed
+        for p in points:
+            self._add(FEED, p, f)
+
+    def arc(self, x, y, z, cx, cy, clockwise: bool, feed=None):
+        self._add(ARC_CW if clockwise else ARC_CCW, (x, y, z), self.feed if feed is None else feed,
+                  (cx, cy, z))
+
+    def retract(self):
+        if self.position is not None and self.position[2] < self.clearance_z:
+            self.rapid(self.position[0], self.position[1], self.clearance_z)
+
+    def plunge(self, x, y, z):
+        """Go from anywhere to (x, y, z): retract, rapid over, rapid to the approach gap, feed down."""
+        if self.position is not None and np.allclose(self.position, (x, y, z)):
+            return
+        self.retract()
+        self.rapid(x, y, self.clearance_z)
+        if self.approach_z < self.clearance_z and z < self.approach_z:
+            self.rapid(x, y, self.approach_z)
+        self.line(x, y, z, self.plunge_feed)
+
+    def arrays(self):
+        n = len(self._kind)
+        return dict(kind=np.array(self._kind, dtype=np.int8), xyz=np.array(self._xyz, dtype=float).reshape(n, 3),
+                    feed=np.array(self._feed, dtype=float), center=np.array(self._center, dtype=float).reshape(n, 3))

@@ -1,0 +1,322 @@
+"""2-D regions on ``manifold3d.CrossSection``: build, offset, clip, raster-fill, contour rings.
+
+A region is a CrossSection (Clipper2 inside).  Loops coming from the scene are validated
+here, once, so the workflows can trust what they get.  Outer boundaries of the loops that
+CrossSection returns run counter-clockwise, holes clockwise.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from manifold3d import CrossSection, FillRule, JoinType
+
+# Round joins: chord error of an offset arc stays below this (mm).
+ARC_TOLERANCE = 0.01
+# Pieces of a region smaller than this (mm^2) are numerical dust, not islands.
+MIN_AREA = 0.01
+
+
+class RegionError(ValueError):
+    """Bad 2-D input: open or degenerate outlines, NaN, empty regions."""
+
+
+def validate_loop(loop, what: str) -> np.ndarray:
+    """Return a clean (k, 2) float array of a closed loop, or raise RegionError naming ``what``."""
+    pts = np.asarray(loop, dtype=float)
+    if pts.ndim != 2 or pts.shape[1] < 2:
+        raise RegionError(f"{what}: an outline must be a list of (x, y) points")
+    pts = pts[:, :2]
+    if not np.all(np.isfinite(pts)):
+        raise RegionError(f"{what}: outline has a non-finite coordinate (NaN or infinity)")
+    if len(pts) > 1 and np.allclose(pts[0], pts[-1]):
+        pts = pts[:-1]
+    keep = np.ones(len(pts), bool)
+    keep[1:] = np.any(np.abs(np.diff(pts, axis=0)) > 1e-9, axis=1)
+    pts = pts[keep]
+    if len(pts) < 3:
+        raise RegionError(f"{what}: outline has fewer than 3 distinct points")
+    if abs(signed_area(pts)) < 1e-9:
+        raise RegionError(f"{what}: outline encloses no area")
+    return pts
+
+
+def signed_area(loop: np.ndarray) -> float:
+    x, y = loop[:, 0], loop[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def from_loops(loops, what: str = "outline") -> CrossSection:
+    """Region bounded by closed loops, even-odd: a loop inside another is a hole (glyph counters)."""
+    clean = [validate_loop(loop, what) for loop in loops]
+    if not clean:
+        raise RegionError(f"{what}: no closed outline")
+    return CrossSection(clean, FillRule.EvenOdd)
+
+
+def rectangle(x0: float, y0: float, x1: float, y1: float) -> CrossSection:
+    return CrossSection([np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], float)])
+
+
+def _segments_for(radius: float) -> int:
+    """Circle segments so the chord error is at most ARC_TOLERANCE."""
+    r = abs(radius)
+    if r <= ARC_TOLERANCE:
+        return 8
+    n = math.pi / math.acos(1 - ARC_TOLERANCE / r)
+    return int(min(max(8, math.ceil(n)), 720))
+
+
+def offset(region: CrossSection, delta: float) -> CrossSection:
+    """Grow (delta > 0) or shrink (delta < 0) with round joins, within ARC_TOLERANCE."""
+    if delta == 0:
+        return region
+    return region.offset(delta, JoinType.Round, 2.0, _segments_for(delta))
+
+
+def loops(region: CrossSection) -> list:
+    """The boundary loops as (k, 2) arrays (outer CCW, holes CW)."""
+    return [np.asarray(p, dtype=float) for p in region.to_polygons() if len(p) >= 3]
+
+
+def area(region: CrossSection) -> float:
+    return float(region.area())
+
+
+def components(region: CrossSection, min_area: float = MIN_AREA) -> list:
+    """Connected pieces (each with its holes), dust dropped, largest first."""
+    parts = [p for p in region.decompose() if p.area() >= min_area]
+    return sorted(parts, key=lambda p: -p.area())
+
+
+def centroid(region: CrossSection) -> tuple:
+    total, cx, cy = 0.0, 0.0, 0.0
+    for loop in loops(region):
+        x, y = loop[:, 0], loop[:, 1]
+        xn, yn = np.roll(x, -1), np.roll(y, -1)
+        cross = x * yn - xn * y
+        total += cross.sum() / 2
+        cx += ((x + xn) * cross).sum() / 6
+        cy += ((y + yn) * cross).sum() / 6
+    if abs(total) < 1e-12:
+        (x0, y0), (x1, y1) = region.bounds()[:2], region.bounds()[2:]
+        return ((x0 + x1) / 2, (y0 + y1) / 2)
+    return (cx / total, cy / total)
+
+
+def is_inside(inner: CrossSection, outer: CrossSection, tolerance_area: float = MIN_AREA) -> bool:
+    return (inner - outer).area() <= tolerance_area
+
+
+def _edges(region: CrossSection) -> np.ndarray:
+    """All boundary edges as (m, 4) rows x0, y0, x1, y1."""
+    rows = []
+    for loop in loops(region):
+        nxt = np.roll(loop, -1, axis=0)
+        rows.append(np.hstack([loop, nxt]))
+    return np.vstack(rows) if rows else np.empty((0, 4))
+
+
+def contains_points(region: CrossSection, points: np.ndarray) -> np.ndarray:
+    """Even-odd point-in-region test for (n, 2) points."""
+    points = np.asarray(points, float).reshape(-1, 2)
+    edges = _edges(region)
+    inside = np.zeros(len(points), bool)
+    for start in range(0, len(points), 2048):
+        p = points[start:start + 2048]
+        px, py = p[:, 0:1], p[:, 1:2]
+        x0, y0, x1, y1 = (edges[:, k][None, :] for k in range(4))
+        crosses = (y0 > py) != (y1 > py)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xi = x0 + (py - y0) * (x1 - x0) / (y1 - y0)
+        inside[start:start + 2048] = (np.count_nonzero(crosses & (px < xi), axis=1) % 2) == 1
+    return inside
+
+
+def _rotation(angle_deg: float) -> np.ndarray:
+    a = math.radians(angle_deg)
+    return np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+
+
+def raster_rows(region: CrossSection, stepover: float) -> list:
+    """Scan the region with lines parallel to X.
+
+    Rows are spread evenly over the region's height, at most ``stepover`` apart, the first and
+    last just inside the bottom and top so a thin piece is never missed.  Returns
+    ``[(y, [(x_start, x_end), ...]), ...]`` with intervals sorted along X.
+    """
+    if not (np.isfinite(stepover) and stepover > 0):
+        raise RegionError(f"stepover must be a positive number, got {stepover}")
+    edges = _edges(region)
+    if not len(edges):
+        return []
+    y_lo, y_hi = edges[:, [1, 3]].min(), edges[:, [1, 3]].max()
+    height = y_hi - y_lo
+    inset = min(0.01, height / 4)
+    span = height - 2 * inset
+    count = max(1, math.ceil(span / stepover - 1e-9) + 1) if span > 0 else 1
+    ys = np.linspace(y_lo + inset, y_hi - inset, count) if count > 1 else np.array([(y_lo + y_hi) / 2])
+    x0, y0, x1, y1 = edges.T
+    rows = []
+    for y in ys:
+        crosses = (y0 > y) != (y1 > y)
+        xi = np.sort(x0[crosses] + (y - y0[crosses]) * (x1[crosses] - x0[crosses]) / (y1[crosses] - y0[crosses]))
+        intervals = [(xi[k], xi[k + 1]) for k in range(0, len(xi) - 1, 2) if xi[k + 1] - xi[k] > 1e-6]
+        if intervals:
+            rows.append((float(y), intervals))
+    return rows
+
+
+def _crosses_boundary(a: np.ndarray, b: np.ndarray, edges: np.ndarray, eps: float = 1e-6) -> bool:
+    """True when segment a-b properly crosses a boundary edge (touching at a or b does not count)."""
+    d = b - a
+    e0, e1 = edges[:, :2], edges[:, 2:]
+    f = e1 - e0
+    denom = d[0] * f[:, 1] - d[1] * f[:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = ((e0[:, 0] - a[0]) * f[:, 1] - (e0[:, 1] - a[1]) * f[:, 0]) / denom
+        u = ((e0[:, 0] - a[0]) * d[1] - (e0[:, 1] - a[1]) * d[0]) / denom
+    hit = (np.abs(denom) > 1e-12) & (t > eps) & (t < 1 - eps) & (u > eps) & (u < 1 - eps)
+    return bool(hit.any())
+
+
+def zigzag(region: CrossSection, stepover: float, angle_deg: float = 0.0) -> list:
+    """Zigzag (bidirectional raster) fill of ``region`` for a tool centre.
+
+    Raster lines run at ``angle_deg`` from +X, ``stepover`` apart.  Each connected piece of
+    the region is filled on its own; within a piece, a row links to the overlapping row
+    above it by a short straight move when that move stays inside the region, otherwise a
+    new chain starts.  Returns a list of chains, each an (k, 2) array of points to visit
+    with the tool down.
+    """
+    rot = _rotation(angle_deg)
+    chains = []
+    for piece in components(region):
+        local = piece.transform(np.hstack([rot.T, np.zeros((2, 1))])) if angle_deg else piece
+        edges = _edges(local)
+        rows = raster_rows(local, stepover)
+        visited = [[False] * len(iv) for _, iv in rows]
+        for first_row in range(len(rows)):
+            for first_seg in range(len(rows[first_row][1])):
+                if visited[first_row][first_seg]:
+                    continue
+                chain = []
+                row, seg, forward = first_row, first_seg, True
+                while True:
+                    visited[row][seg] = True
+                    y = rows[row][0]
+                    xa, xb = rows[row][1][seg]
+                    start, end = ((xa, y), (xb, y)) if forward else ((xb, y), (xa, y))
+                    chain += [start, end]
+                    nxt = _next_segment(rows, visited, row, (xa, xb), forward, np.array(end), edges)
+                    if nxt is None:
+                        break
+                    row, seg = nxt
+                    forward = not forward
+                pts = np.array(chain, float)
+                chains.append(pts @ rot.T if angle_deg else pts)
+    return chains
+
+
+def _next_segment(rows, visited, row, interval, going_right, end, edges):
+    """The unvisited overlapping interval of the next row to link to, entered at the end on
+    the side this row finished (the zigzag turns back), or None."""
+    if row + 1 >= len(rows):
+        return None
+    y_next, intervals = rows[row + 1]
+    best = None
+    for k, (xa, xb) in enumerate(intervals):
+        if visited[row + 1][k] or xb < interval[0] or xa > interval[1]:
+            continue
+        entry = np.array([xb if going_right else xa, y_next])
+        if _crosses_boundary(end, entry, edges):
+            continue
+        dist = abs(entry[0] - end[0])
+        if best is None or dist < best[0]:
+            best = (dist, k)
+    return None if best is None else (row + 1, best[1])
+
+
+def contour_rings(base: CrossSection, distances, clip: CrossSection | None = None) -> list:
+    """Tool-centre loops at each distance outside ``base`` (negative: inside), in the given order.
+
+    Returns ``[(distance, loop), ...]``; a loop is a closed (k, 2) array whose last point repeats
+    the first.  With ``clip``, loops are cut to the parts inside ``clip`` (then they may be open).
+    """
+    rings = []
+    for d in distances:
+        for loop in loops(offset(base, d)):
+            closed = np.vstack([loop, loop[:1]])
+            if clip is None:
+                rings.append((d, closed))
+            else:
+                rings += [(d, piece) for piece in clip_polyline(closed, clip)]
+    return rings
+
+
+def clip_polyline(points: np.ndarray, region: CrossSection) -> list:
+    """Parts of a polyline that lie inside ``region``, as a list of (k, 2) arrays."""
+    points = np.asarray(points, float)
+    edges = _edges(region)
+    pieces, current = [], []
+    for a, b in zip(points[:-1], points[1:]):
+        cuts = _intersection_params(a, b, edges)
+        params = np.concatenate([[0.0], cuts, [1.0]])
+        for t0, t1 in zip(params[:-1], params[1:]):
+            if t1 - t0 < 1e-12:
+                continue
+            mid = a + (b - a) * (t0 + t1) / 2
+            p0, p1 = a + (b - a) * t0, a + (b - a) * t1
+            if contains_points(region, mid[None, :])[0]:
+                if not current:
+                    current = [p0]
+                current.append(p1)
+            elif current:
+                pieces.append(np.array(current))
+                current = []
+    if current:
+        pieces.append(np.array(current))
+    # A closed loop cut once: join the last piece to the first.
+    if len(pieces) > 1 and np.allclose(points[0], points[-1]) and np.allclose(pieces[0][0], points[0]) \
+            and np.allclose(pieces[-1][-1], points[-1]):
+        pieces[0] = np.vstack([pieces.pop()[:-1], pieces[0]])
+    return [p for p in pieces if len(p) >= 2]
+
+
+def _intersection_params(a, b, edges) -> np.ndarray:
+    d = b - a
+    e0, f = edges[:, :2], edges[:, 2:] - edges[:, :2]
+    denom = d[0] * f[:, 1] - d[1] * f[:, 0]
+    ok = np.abs(denom) > 1e-15
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = ((e0[:, 0] - a[0]) * f[:, 1] - (e0[:, 1] - a[1]) * f[:, 0]) / denom
+        u = ((e0[:, 0] - a[0]) * d[1] - (e0[:, 1] - a[1]) * d[0]) / denom
+    hit = ok & (t > 0) & (t < 1) & (u >= 0) & (u <= 1)
+    return np.unique(t[hit])
+
+
+def order_loops_nearest(items: list, start_xy, key=lambda item: item) -> list:
+    """Greedy nearest-neighbour order of closed loops; each loop is rotated to start nearest."""
+    remaining = list(items)
+    here = np.asarray(start_xy, float)
+    ordered = []
+    while remaining:
+        best = None
+        for k, item in enumerate(remaining):
+            pts = key(item)
+            d = np.linalg.norm(pts[:, :2] - here, axis=1)
+            j = int(np.argmin(d))
+            if best is None or d[j] < best[0]:
+                best = (d[j], k, j)
+        _, k, j = best
+        item = remaining.pop(k)
+        ordered.append((item, j))
+        here = key(item)[j, :2]
+    return ordered
+
+
+def rotate_closed(loop: np.ndarray, start_index: int) -> np.ndarray:
+    """A closed loop (last == first) re-started at ``start_index``."""
+    body = loop[:-1]
+    body = np.roll(body, -start_index, axis=0)
+    return np.vstack([body, body[:1]])
