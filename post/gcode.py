@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from toolpath.program import ARC_CW, FEED, RAPID, Operation, Program
+from ..toolpath.program import ARC_CW, FEED, RAPID, Operation, Program
 
 
 class PostError(ValueError):

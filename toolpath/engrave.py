@@ -147,6 +147,7 @@ class EngraveResult:
     skipped: list = field(default_factory=list)   # [{operation, area_mm2, at: [x, y]}]
     texture_area_mm2: float = 0.0
     band_area_mm2: float = 0.0
+    corner_leftover_mm2: float = 0.0    # left by round tools in sharp inside corners
 
 
 def plan(plate_loops, letters, settings: EngraveSettings = EngraveSettings(), name: str = "engrave",
@@ -202,13 +203,18 @@ def _finish(builder: PathBuilder, settings, name, tool, rpm, texture=None) -> Op
                      texture=texture, **arrays)
 
 
-def _report_skipped(result, operation, target, reached, min_area):
-    # A round tool always leaves r^2 (1 - pi/4) in a sharp inside corner: not worth a warning.
-    for piece in rg.components(target - reached, min_area=min_area):
+def _report_skipped(result, operation, target, reached):
+    """Warn about islands of ``target`` the tool cannot enter at all (e.g. a counter narrower than
+    the tool).  What a round tool leaves in sharp inside corners is not an island: it is summed
+    into ``corner_leftover_mm2`` instead."""
+    for piece in rg.components(target):
+        if rg.area(piece ^ reached) > rg.MIN_AREA:
+            result.corner_leftover_mm2 += rg.area(piece - reached)
+            continue
         x, y = rg.centroid(piece)
         result.skipped.append({"operation": operation, "area_mm2": round(rg.area(piece), 3),
                                "at": [round(x, 2), round(y, 2)]})
-        result.warnings.append(f"{operation}: the tool cannot reach a gap of {rg.area(piece):.2f} mm^2 "
+        result.warnings.append(f"{operation}: the tool is too big to enter a gap of {rg.area(piece):.2f} mm^2 "
                                f"near X{x:.1f} Y{y:.1f}; it is left uncut")
 
 
@@ -219,7 +225,7 @@ def _roughing(plate, glyphs, settings, result) -> Operation | None:
     result.texture_area_mm2 = rg.area(texture_area)
     chains = rg.zigzag(centre_region, settings.stepover, settings.raster_angle)
     reached = rg.offset(centre_region, tool.radius) if chains else rg.CrossSection()
-    _report_skipped(result, "roughing", texture_area, reached, tool.radius ** 2)
+    _report_skipped(result, "roughing", texture_area, reached)
     builder = _builder(settings, settings.rough_feed)
     z = settings.texture.base_depth
     for chain in chains:
@@ -241,7 +247,7 @@ def _band_finishing(plate, glyphs, settings, result) -> Operation | None:
         distances.append(r)
     centre_region = rg.offset(glyphs, settings.band_width - r) - rg.offset(glyphs, r)
     centre_region = centre_region ^ plate
-    _report_skipped(result, "band finishing", band, rg.offset(centre_region, r), r ** 2)
+    _report_skipped(result, "band finishing", band, rg.offset(centre_region, r))
     builder = _builder(settings, settings.finish_feed)
     here = (0.0, 0.0)
     for d in distances:

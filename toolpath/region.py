@@ -245,9 +245,11 @@ def contour_rings(base: CrossSection, distances, clip: CrossSection | None = Non
     """
     rings = []
     for d in distances:
-        for loop in loops(offset(base, d)):
+        grown = offset(base, d)
+        inside = clip is None or is_inside(grown, clip, tolerance_area=1e-9)
+        for loop in loops(grown):
             closed = np.vstack([loop, loop[:1]])
-            if clip is None:
+            if inside:
                 rings.append((d, closed))
             else:
                 rings += [(d, piece) for piece in clip_polyline(closed, clip)]
@@ -255,44 +257,42 @@ def contour_rings(base: CrossSection, distances, clip: CrossSection | None = Non
 
 
 def clip_polyline(points: np.ndarray, region: CrossSection) -> list:
-    """Parts of a polyline that lie inside ``region``, as a list of (k, 2) arrays."""
+    """Parts of a polyline that lie inside ``region``, as a list of (k, 2) arrays.
+
+    The polyline is split at every boundary crossing; a piece between two splits is kept when
+    its midpoint is inside.  A closed loop cut open is re-joined across its start point.
+    """
     points = np.asarray(points, float)
     edges = _edges(region)
-    pieces, current = [], []
-    for a, b in zip(points[:-1], points[1:]):
-        cuts = _intersection_params(a, b, edges)
-        params = np.concatenate([[0.0], cuts, [1.0]])
-        for t0, t1 in zip(params[:-1], params[1:]):
-            if t1 - t0 < 1e-12:
-                continue
-            mid = a + (b - a) * (t0 + t1) / 2
-            p0, p1 = a + (b - a) * t0, a + (b - a) * t1
-            if contains_points(region, mid[None, :])[0]:
-                if not current:
-                    current = [p0]
-                current.append(p1)
-            elif current:
-                pieces.append(np.array(current))
-                current = []
-    if current:
-        pieces.append(np.array(current))
-    # A closed loop cut once: join the last piece to the first.
-    if len(pieces) > 1 and np.allclose(points[0], points[-1]) and np.allclose(pieces[0][0], points[0]) \
-            and np.allclose(pieces[-1][-1], points[-1]):
+    starts, vectors = points[:-1], np.diff(points, axis=0)
+    params = [np.arange(len(points), dtype=float)]
+    e0, f = edges[:, :2], edges[:, 2:] - edges[:, :2]
+    for first in range(0, len(starts), 1024):
+        a, d = starts[first:first + 1024, None, :], vectors[first:first + 1024, None, :]
+        denom = d[..., 0] * f[None, :, 1] - d[..., 1] * f[None, :, 0]
+        rel = e0[None, :, :] - a
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (rel[..., 0] * f[None, :, 1] - rel[..., 1] * f[None, :, 0]) / denom
+            u = (rel[..., 0] * d[..., 1] - rel[..., 1] * d[..., 0]) / denom
+        hit = (np.abs(denom) > 1e-15) & (t > 0) & (t < 1) & (u >= 0) & (u <= 1)
+        rows, cols = np.nonzero(hit)
+        params.append(first + rows + t[rows, cols])
+    u = np.unique(np.concatenate(params))
+    segment = np.minimum(np.floor(u).astype(int), len(starts) - 1)
+    refined = starts[segment] + vectors[segment] * (u - segment)[:, None]
+    keep = contains_points(region, (refined[:-1] + refined[1:]) / 2)
+    pieces = []
+    run_start = None
+    for index, inside in enumerate(np.append(keep, False)):
+        if inside and run_start is None:
+            run_start = index
+        elif not inside and run_start is not None:
+            pieces.append(refined[run_start:index + 1])
+            run_start = None
+    closed = np.allclose(points[0], points[-1])
+    if closed and len(pieces) > 1 and keep[0] and keep[-1]:
         pieces[0] = np.vstack([pieces.pop()[:-1], pieces[0]])
     return [p for p in pieces if len(p) >= 2]
-
-
-def _intersection_params(a, b, edges) -> np.ndarray:
-    d = b - a
-    e0, f = edges[:, :2], edges[:, 2:] - edges[:, :2]
-    denom = d[0] * f[:, 1] - d[1] * f[:, 0]
-    ok = np.abs(denom) > 1e-15
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = ((e0[:, 0] - a[0]) * f[:, 1] - (e0[:, 1] - a[1]) * f[:, 0]) / denom
-        u = ((e0[:, 0] - a[0]) * d[1] - (e0[:, 1] - a[1]) * d[0]) / denom
-    hit = ok & (t > 0) & (t < 1) & (u >= 0) & (u <= 1)
-    return np.unique(t[hit])
 
 
 def order_loops_nearest(items: list, start_xy, key=lambda item: item) -> list:

@@ -1,0 +1,250 @@
+"""Scene <-> arrays.  The only place that converts Blender units to millimetres (and back).
+
+Everything handed to the core is in millimetres in the work coordinate system; everything
+shown in the viewport goes back through :class:`WorkFrame`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import bpy
+import numpy as np
+
+COLLECTION = "Kezuri"
+
+
+class SceneInputError(ValueError):
+    """The scene does not hold what the job needs; the message names the object."""
+
+
+def mm_per_unit(scene) -> float:
+    """Millimetres per Blender unit: ``scale_length`` says how many metres one unit is."""
+    scale = scene.unit_settings.scale_length
+    if not scale > 0:
+        raise SceneInputError(f"scene unit scale must be positive, got {scale}")
+    return scale * 1000.0
+
+
+@dataclass(frozen=True)
+class WorkFrame:
+    """World (Blender units) <-> work coordinates (mm).  Work origin at ``origin_mm`` in world mm."""
+
+    mm_per_unit: float
+    origin_mm: tuple
+
+    def to_work(self, world_points) -> np.ndarray:
+        return np.asarray(world_points, float) * self.mm_per_unit - np.asarray(self.origin_mm)
+
+    def to_world(self, work_points) -> np.ndarray:
+        return (np.asarray(work_points, float) + np.asarray(self.origin_mm)) / self.mm_per_unit
+
+
+def evaluated_mesh_arrays(obj, depsgraph):
+    """World-space vertices (Blender units), polygons and edges of the evaluated object."""
+    evaluated = obj.evaluated_get(depsgraph)
+    try:
+        mesh = evaluated.to_mesh()
+    except RuntimeError as error:
+        raise SceneInputError(f"object {obj.name!r} cannot be turned into a mesh: {error}") from None
+    if mesh is None:
+        raise SceneInputError(f"object {obj.name!r} ({obj.type}) has no geometry")
+    try:
+        count = len(mesh.vertices)
+        co = np.empty(count * 3)
+        mesh.vertices.foreach_get("co", co)
+        co = co.reshape(count, 3)
+        matrix = np.array(obj.matrix_world)
+        world = co @ matrix[:3, :3].T + matrix[:3, 3]
+        edges = np.empty(len(mesh.edges) * 2, dtype=np.int64)
+        mesh.edges.foreach_get("vertices", edges)
+        loop_starts = np.empty(len(mesh.polygons), dtype=np.int64)
+        loop_totals = np.empty(len(mesh.polygons), dtype=np.int64)
+        mesh.polygons.foreach_get("loop_start", loop_starts)
+        mesh.polygons.foreach_get("loop_total", loop_totals)
+        loop_vertices = np.empty(len(mesh.loops), dtype=np.int64)
+        mesh.loops.foreach_get("vertex_index", loop_vertices)
+        polygons = [loop_vertices[s:s + t] for s, t in zip(loop_starts, loop_totals)]
+    finally:
+        evaluated.to_mesh_clear()
+    return world, polygons, edges.reshape(-1, 2)
+
+
+def boundary_loops(vertices: np.ndarray, polygons, edges: np.ndarray, name: str) -> list:
+    """Closed outlines of an object: the boundary of its faces, or its closed edge loops.
+
+    A text object or a filled curve gives faces; a curve without fill or a wire mesh gives
+    edges, which must form closed loops (an open outline cannot bound a region).
+    """
+    if polygons:
+        counts: dict = {}
+        for poly in polygons:
+            for a, b in zip(poly, np.roll(poly, -1)):
+                key = (min(a, b), max(a, b))
+                counts[key] = counts.get(key, 0) + 1
+        boundary = np.array([key for key, count in counts.items() if count == 1], dtype=np.int64).reshape(-1, 2)
+    else:
+        boundary = edges
+    if not len(boundary):
+        raise SceneInputError(f"object {name!r} has no outline (no faces and no edges)")
+    neighbours: dict = {}
+    for a, b in boundary:
+        neighbours.setdefault(int(a), []).append(int(b))
+        neighbours.setdefault(int(b), []).append(int(a))
+    open_ends = [v for v, n in neighbours.items() if len(n) != 2]
+    if open_ends:
+        p = vertices[open_ends[0]]
+        raise SceneInputError(f"object {name!r} has an open or branching outline near "
+                              f"({p[0]:.3g}, {p[1]:.3g}, {p[2]:.3g}): close it (or fill the curve)")
+    loops, seen = [], set()
+    for start in neighbours:
+        if start in seen:
+            continue
+        loop, previous, current = [start], None, start
+        seen.add(start)
+        while True:
+            a, b = neighbours[current]
+            nxt = b if a == previous else a
+            if nxt == start:
+                break
+            loop.append(nxt)
+            seen.add(nxt)
+            previous, current = current, nxt
+        loops.append(vertices[loop])
+    return loops
+
+
+def object_outlines(obj, depsgraph) -> list:
+    """Closed outlines (world, Blender units, (k, 3) arrays) of a Text, curve or mesh object."""
+    if obj.type not in {"MESH", "CURVE", "FONT", "SURFACE"}:
+        raise SceneInputError(f"object {obj.name!r} is a {obj.type.lower()}; use a Text, curve or mesh")
+    vertices, polygons, edges = evaluated_mesh_arrays(obj, depsgraph)
+    if not np.all(np.isfinite(vertices)):
+        raise SceneInputError(f"object {obj.name!r} has a vertex with a non-finite coordinate")
+    return boundary_loops(vertices, polygons, edges, obj.name)
+
+
+@dataclass
+class Plate:
+    """A plate (stock) in work coordinates: top face outline (mm) and thickness."""
+
+    outline: list      # [(k, 2) arrays] in work mm
+    size: tuple        # (x, y, z) bounding-box size in mm
+    frame: WorkFrame
+
+
+def plate_from_object(obj, depsgraph, scene, origin: str = "CENTER") -> Plate:
+    """The plate's top face, in a work frame with Z = 0 on the top.
+
+    origin: "CENTER" (centre of the top face, as the paper programs its name plate) or
+    "CORNER" (front-left corner of the top face, the usual router zero).
+    """
+    if obj is None:
+        raise SceneInputError("no plate: pick the stock object (a mesh) in the CAM panel")
+    if obj.type != "MESH":
+        raise SceneInputError(f"plate {obj.name!r} must be a mesh object, not a {obj.type.lower()}")
+    vertices, polygons, edges = evaluated_mesh_arrays(obj, depsgraph)
+    if len(vertices) < 3 or not polygons:
+        raise SceneInputError(f"plate {obj.name!r} has no faces")
+    if not np.all(np.isfinite(vertices)):
+        raise SceneInputError(f"plate {obj.name!r} has a vertex with a non-finite coordinate")
+    scale = mm_per_unit(scene)
+    lo, hi = vertices.min(axis=0) * scale, vertices.max(axis=0) * scale
+    if origin == "CENTER":
+        origin_mm = ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2])
+    elif origin == "CORNER":
+        origin_mm = (lo[0], lo[1], hi[2])
+    else:
+        raise SceneInputError(f"unknown work origin {origin!r}")
+    frame = WorkFrame(scale, origin_mm)
+    top_z = hi[2] / scale
+    tolerance = max(1e-6, (hi[2] - lo[2]) / scale * 1e-4)
+    top_faces = [p for p in polygons if np.all(np.abs(vertices[p, 2] - top_z) <= tolerance)]
+    if top_faces:
+        loops = boundary_loops(vertices, top_faces, np.empty((0, 2), np.int64), obj.name)
+        outline = [frame.to_work(loop)[:, :2] for loop in loops]
+    else:
+        outline = [np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]]) - origin_mm[:2]]
+    return Plate(outline, tuple(hi - lo), frame)
+
+
+def outlines_in_work(obj, depsgraph, frame: WorkFrame) -> list:
+    return [frame.to_work(loop)[:, :2] for loop in object_outlines(obj, depsgraph)]
+
+
+# ----------------------------------------------------------------------------------------
+# Results -> scene
+# ----------------------------------------------------------------------------------------
+
+def result_collection(scene):
+    collection = bpy.data.collections.get(COLLECTION)
+    if collection is None:
+        collection = bpy.data.collections.new(COLLECTION)
+    if collection.name not in scene.collection.children:
+        scene.collection.children.link(collection)
+    return collection
+
+
+def remove_objects(prefix: str):
+    """Remove earlier results (objects and their data) whose names start with ``prefix``."""
+    for obj in [o for o in bpy.data.objects if o.name.startswith(prefix)]:
+        data = obj.data
+        bpy.data.objects.remove(obj, do_unlink=True)
+        if data is not None and data.users == 0:
+            if isinstance(data, bpy.types.Mesh):
+                bpy.data.meshes.remove(data)
+            elif isinstance(data, bpy.types.Curve):
+                bpy.data.curves.remove(data)
+
+
+def polyline_object(scene, name: str, paths, frame: WorkFrame, color=(1, 1, 1, 1)):
+    """A wire mesh through each (k, 3) work-mm path: how toolpaths are shown in the viewport."""
+    points, edges, base = [], [], 0
+    for path in paths:
+        if len(path) < 2:
+            continue
+        points.append(frame.to_world(path))
+        k = len(path)
+        edges.append(np.column_stack([np.arange(base, base + k - 1), np.arange(base + 1, base + k)]))
+        base += k
+    mesh = bpy.data.meshes.new(name)
+    if points:
+        vertices = np.vstack(points)
+        mesh.vertices.add(len(vertices))
+        mesh.vertices.foreach_set("co", vertices.ravel())
+        all_edges = np.vstack(edges)
+        mesh.edges.add(len(all_edges))
+        mesh.edges.foreach_set("vertices", all_edges.ravel())
+        mesh.update()
+    obj = bpy.data.objects.new(name, mesh)
+    obj.color = color
+    obj.show_in_front = True
+    result_collection(scene).objects.link(obj)
+    return obj
+
+
+def operation_paths(op) -> tuple:
+    """Split an operation's moves into cutting polylines and rapid polylines (work mm)."""
+    from ..toolpath.program import RAPID
+
+    points = np.vstack([op.start[None, :], op.xyz])
+    cutting, rapid = [], []
+    kinds = op.kind
+    start = 0
+    for index in range(1, len(kinds) + 1):
+        if index == len(kinds) or (kinds[index] == RAPID) != (kinds[start] == RAPID):
+            run = points[start:index + 1]
+            (rapid if kinds[start] == RAPID else cutting).append(run)
+            start = index
+    return cutting, rapid
+
+
+def mesh_object(scene, name: str, vertices_mm, faces, frame: WorkFrame, color=(0.8, 0.7, 0.5, 1)):
+    """A mesh from work-mm vertices and triangle/polygon indices (simulated stock, flat patterns)."""
+    mesh = bpy.data.meshes.new(name)
+    vertices = frame.to_world(np.asarray(vertices_mm, float))
+    mesh.from_pydata(vertices.tolist(), [], np.asarray(faces).tolist())
+    mesh.update()
+    obj = bpy.data.objects.new(name, mesh)
+    obj.color = color
+    result_collection(scene).objects.link(obj)
+    return obj

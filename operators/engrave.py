@@ -1,0 +1,171 @@
+"""W1 in Blender: gather the plate and the letters, plan, show the toolpaths, export.
+
+``run_engrave`` is the one job function: the operators, ``batch.py`` and the tests all call
+it, so the panel, batch and tests cut the same program.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+import bpy
+from bpy.props import EnumProperty, StringProperty
+from bpy_extras.io_utils import ExportHelper
+
+from ..post import milling_post, write_atomic
+from ..toolpath import engrave as core
+from ..toolpath.program import Tool
+from . import convert
+from .common import Progress, run_reported
+from .properties import POST_ITEMS
+
+PREFIX = "Kezuri Engrave"
+COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "band": (0.1, 0.6, 1.0, 1.0), "burr": (0.2, 0.9, 0.3, 1.0),
+           "rapid": (0.9, 0.1, 0.1, 1.0)}
+
+
+@dataclass
+class EngraveJob:
+    result: core.EngraveResult      # planned (roughing untextured, with its texture request)
+    baked: object                   # Program with the texture applied (what the baked posts write)
+    depths: list                    # gouge target depths of the baked roughing, in order
+    plate: convert.Plate
+
+
+def settings_from(props) -> core.EngraveSettings:
+    texture = core.GougeTexture(base_depth=props.base_depth, quantum=props.quantum, amplitude=props.amplitude,
+                                spacing=props.spacing, motion=props.motion, spacing_jitter=props.spacing_jitter,
+                                seed=props.seed)
+    return core.EngraveSettings(
+        rough_tool=Tool(props.rough_tool_number, "ball", props.rough_diameter, name="roughing ball"),
+        finish_tool=Tool(props.finish_tool_number, "flat", props.finish_diameter, name="band finishing"),
+        stepover=props.stepover, raster_angle=props.raster_angle, letter_clearance=props.letter_clearance,
+        band_width=props.band_width, band_depth=props.band_depth, band_stepover=props.band_stepover,
+        burr_depth=props.band_depth, texture=texture, rough_rpm=props.rough_rpm, finish_rpm=props.finish_rpm,
+        rough_feed=props.rough_feed, finish_feed=props.finish_feed, plunge_feed=props.plunge_feed,
+        clearance_z=props.clearance_z, safe_z=props.safe_z)
+
+
+def letter_objects(props) -> list:
+    objects = [props.letters] if props.letters is not None else []
+    if props.letters_collection is not None:
+        objects += [o for o in props.letters_collection.all_objects
+                    if o.type in {"MESH", "CURVE", "FONT"} and o not in objects]
+    return objects
+
+
+def run_engrave(scene, depsgraph, progress=None) -> EngraveJob:
+    settings = scene.kezuri
+    props = settings.engrave
+    plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, settings.stock.origin)
+    objects = [o for o in letter_objects(props) if o != settings.stock.plate]
+    if not objects:
+        raise convert.SceneInputError("no letters: pick a Text, curve or mesh object as Letters in the Engrave panel")
+    letters = [(obj.name, convert.outlines_in_work(obj, depsgraph, plate.frame)) for obj in objects]
+    result = core.plan(plate.outline, letters, settings_from(props), name=scene.name, progress=progress)
+    result.program.work_offset = settings.machine.work_offset
+    result.program.rapid_rate = settings.machine.rapid_rate
+    result.program.notes = list(result.warnings)
+    baked, depths = core.bake(result.program)
+    return EngraveJob(result, baked, depths, plate)
+
+
+def show_engrave(scene, job: EngraveJob, show_rapids: bool = True) -> list:
+    """Replace the previous engrave preview with this job's toolpaths (baked: what will be cut)."""
+    convert.remove_objects(PREFIX)
+    objects = []
+    for op, key in zip(job.baked.operations, ("roughing", "band", "burr")):
+        cutting, rapid = convert.operation_paths(op)
+        objects.append(convert.polyline_object(scene, f"{PREFIX} {op.name}", cutting, job.plate.frame, COLOURS[key]))
+        if show_rapids and rapid:
+            objects.append(convert.polyline_object(scene, f"{PREFIX} {op.name} rapids", rapid, job.plate.frame,
+                                                   COLOURS["rapid"]))
+    return objects
+
+
+def program_for_post(job: EngraveJob, post_name: str):
+    """The macro post writes the untextured path and lets the controller draw the depths."""
+    return job.result.program if post_name == "fanuc-macro" else job.baked
+
+
+def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str | None = None) -> str:
+    post = milling_post(post_name, work_offset)
+    text = post.to_text(program_for_post(job, post_name))
+    return write_atomic(path, text)
+
+
+def extension_for(post_name: str) -> str:
+    return ".ngc" if post_name == "linuxcnc" else ".nc"
+
+
+class KEZURI_OT_engrave_generate(bpy.types.Operator):
+    """Plan the gouge-texture roughing, band finishing and burr contour, and show the toolpaths"""
+
+    bl_idname = "kezuri.engrave_generate"
+    bl_label = "Generate Engraving"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        settings = context.scene.kezuri
+        if settings.stock.plate is None:
+            cls.poll_message_set("Pick the plate (stock) object first")
+            return False
+        if settings.engrave.letters is None and settings.engrave.letters_collection is None:
+            cls.poll_message_set("Pick the letters (Text, curve or mesh) first")
+            return False
+        return True
+
+    def execute(self, context):
+        def work():
+            progress = Progress(context, "engrave")
+            try:
+                job = run_engrave(context.scene, context.evaluated_depsgraph_get(), progress)
+            finally:
+                progress.end()
+            show_engrave(context.scene, job, context.scene.kezuri.engrave.show_rapids)
+            for warning in job.result.warnings:
+                self.report({"WARNING"}, warning)
+            minutes = job.baked.cycle_time() / 60
+            self.report({"INFO"}, f"Engraving planned: {sum(len(op) for op in job.baked.operations)} moves, "
+                                  f"about {minutes:.1f} min")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_engrave_export(bpy.types.Operator, ExportHelper):
+    """Write the engraving NC program for the chosen controller"""
+
+    bl_idname = "kezuri.engrave_export"
+    bl_label = "Export Engraving NC"
+    bl_options = {"REGISTER"}
+
+    filename_ext = ".nc"
+    filter_glob: StringProperty(default="*.nc;*.ngc;*.tap", options={"HIDDEN"})
+    post: EnumProperty(name="Post", items=POST_ITEMS, default="fanuc")
+
+    @classmethod
+    def poll(cls, context):
+        return KEZURI_OT_engrave_generate.poll(context)
+
+    def invoke(self, context, event):
+        self.post = context.scene.kezuri.machine.post
+        self.filename_ext = extension_for(self.post)
+        folder = bpy.path.abspath(context.scene.kezuri.machine.output_dir or "//")
+        self.filepath = os.path.join(folder, bpy.path.clean_name(context.scene.name) + self.filename_ext)
+        return ExportHelper.invoke(self, context, event)
+
+    def check(self, context):
+        self.filename_ext = extension_for(self.post)
+        return ExportHelper.check(self, context)
+
+    def execute(self, context):
+        def work():
+            job = run_engrave(context.scene, context.evaluated_depsgraph_get())
+            path = export_engrave(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset)
+            self.report({"INFO"}, f"Wrote {path}")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+CLASSES = (KEZURI_OT_engrave_generate, KEZURI_OT_engrave_export)

@@ -1,0 +1,91 @@
+"""View3D > Sidebar > CAM: the machine panel and one panel per workflow."""
+from __future__ import annotations
+
+import bpy
+
+
+class KezuriPanel:
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "CAM"
+
+
+class KEZURI_PT_machine(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_machine"
+    bl_label = "Machine & Stock"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        settings = context.scene.kezuri
+        layout.prop(settings.machine, "post")
+        layout.prop(settings.machine, "work_offset")
+        layout.prop(settings.machine, "rapid_rate")
+        layout.prop(settings.machine, "output_dir")
+        layout.separator()
+        layout.prop(settings.stock, "plate")
+        layout.prop(settings.stock, "origin")
+
+
+class KEZURI_PT_engrave(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_engrave"
+    bl_label = "Engrave"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = context.scene.kezuri.engrave
+        layout.prop(props, "letters")
+        layout.prop(props, "letters_collection")
+        row = layout.row(align=True)
+        row.scale_y = 1.4
+        row.operator("kezuri.engrave_generate", icon="MOD_NOISE")
+        layout.operator("kezuri.engrave_export", icon="EXPORT")
+
+
+class KEZURI_PT_engrave_texture(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_engrave_texture"
+    bl_label = "Gouge Texture (Roughing)"
+    bl_parent_id = "KEZURI_PT_engrave"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = context.scene.kezuri.engrave
+        for name in ("rough_diameter", "rough_tool_number", "stepover", "raster_angle", "letter_clearance",
+                     "base_depth", "quantum", "amplitude", "spacing", "motion", "spacing_jitter", "seed"):
+            layout.prop(props, name)
+
+
+class KEZURI_PT_engrave_finish(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_engrave_finish"
+    bl_label = "Band & Burr Finishing"
+    bl_parent_id = "KEZURI_PT_engrave"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = context.scene.kezuri.engrave
+        for name in ("finish_diameter", "finish_tool_number", "band_width", "band_depth", "band_stepover"):
+            layout.prop(props, name)
+
+
+class KEZURI_PT_engrave_feeds(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_engrave_feeds"
+    bl_label = "Feeds & Heights"
+    bl_parent_id = "KEZURI_PT_engrave"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = context.scene.kezuri.engrave
+        for name in ("rough_rpm", "rough_feed", "finish_rpm", "finish_feed", "plunge_feed", "clearance_z",
+                     "safe_z", "show_rapids"):
+            layout.prop(props, name)
+
+
+CLASSES = (KEZURI_PT_machine, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
+           KEZURI_PT_engrave_feeds)

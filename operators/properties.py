@@ -1,0 +1,126 @@
+"""Scene properties: machine, stock and one settings group per workflow (``scene.kezuri``).
+
+Defaults are the source papers' values; every length is in millimetres whatever the scene
+units (a CNC user thinks in the machine's units, and G-code coming out 1000x too large is the
+commonest complaint about Blender CAM add-ons).
+"""
+from __future__ import annotations
+
+import bpy
+from bpy.props import (BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty,
+                       StringProperty)
+
+POST_ITEMS = [
+    ("fanuc", "Fanuc (baked texture)", "Fanuc machining centre, ISO 6983; texture depths written literally"),
+    ("fanuc-macro", "Fanuc (controller macro)",
+     "Fanuc Custom Macro B: G66.1 P7023 draws the depths on the controller from clock #3001"),
+    ("linuxcnc", "LinuxCNC", "LinuxCNC / rs274ngc router or mill (.ngc)"),
+    ("grbl", "GRBL", "GRBL 1.1 hobby router: no tool changer, M00 pause at each tool change"),
+]
+
+WORK_OFFSET_ITEMS = [(f"G{n}", f"G{n}", f"Work coordinate system G{n}") for n in range(54, 60)]
+
+ORIGIN_ITEMS = [
+    ("CENTER", "Top centre", "Work zero at the centre of the plate's top face (as the paper programs it)"),
+    ("CORNER", "Top front-left corner", "Work zero at the front-left corner of the plate's top face"),
+]
+
+
+def _mesh_poll(self, obj):
+    return obj.type == "MESH"
+
+
+def _outline_poll(self, obj):
+    return obj.type in {"MESH", "CURVE", "FONT"}
+
+
+def mm(name, default, description, minimum=None, maximum=None, soft_min=None, soft_max=None):
+    """A length in millimetres (shown as a plain number: the NC is in mm whatever the scene)."""
+    options = {"name": name, "default": default, "description": description + " (mm)", "precision": 3,
+               "step": 10}
+    for key, value in (("min", minimum), ("max", maximum), ("soft_min", soft_min), ("soft_max", soft_max)):
+        if value is not None:
+            options[key] = value
+    return FloatProperty(**options)
+
+
+class KezuriMachine(bpy.types.PropertyGroup):
+    post: EnumProperty(name="Post", items=POST_ITEMS, default="fanuc",
+                       description="Controller the NC program is written for")
+    work_offset: EnumProperty(name="Work Offset", items=WORK_OFFSET_ITEMS, default="G54",
+                              description="Work coordinate system selected at the program start")
+    rapid_rate: FloatProperty(name="Rapid Rate", default=5000.0, min=1.0,
+                              description="Rapid traverse speed used for cycle-time estimates (mm/min)")
+    output_dir: StringProperty(name="Output Folder", subtype="DIR_PATH", default="//nc/",
+                               description="Default folder for exported NC programs")
+
+
+class KezuriStock(bpy.types.PropertyGroup):
+    plate: PointerProperty(name="Plate", type=bpy.types.Object, poll=_mesh_poll,
+                           description="The stock: a mesh whose top face is machined")
+    origin: EnumProperty(name="Work Zero", items=ORIGIN_ITEMS, default="CENTER",
+                         description="Where the program's X0 Y0 Z0 is on the plate")
+
+
+class KezuriEngrave(bpy.types.PropertyGroup):
+    letters: PointerProperty(name="Letters", type=bpy.types.Object, poll=_outline_poll,
+                             description="Text, curve or mesh object with the lettering to leave standing")
+    letters_collection: PointerProperty(name="More Letters", type=bpy.types.Collection,
+                                        description="Optional: every Text, curve or mesh in this collection "
+                                                    "is lettering too")
+    # Roughing with the gouge texture
+    rough_diameter: mm("Ball Diameter", 6.0, "Roughing ball end mill diameter", minimum=0.1)
+    rough_tool_number: IntProperty(name="Ball Tool No.", default=2, min=0, max=999)
+    stepover: mm("Stepover", 3.0, "Distance between zigzag rows", minimum=0.0)
+    raster_angle: FloatProperty(name="Raster Angle", default=0.0, min=-180, max=180,
+                                description="Direction of the zigzag rows from the X axis (degrees); the "
+                                            "controller macro needs 0")
+    letter_clearance: mm("Letter Clearance", 4.0, "How far the ball's centre keeps from the letters",
+                         minimum=0.0)
+    base_depth: mm("Base Depth", -2.0, "Depth the random gouges vary around", maximum=0.0)
+    quantum: mm("Depth Step", 0.2, "Gouge depths are multiples of this", minimum=0.001)
+    amplitude: mm("Amplitude", 0.8, "Largest gouge depth above or below the base depth", minimum=0.0)
+    spacing: mm("Gouge Spacing", 20.0, "A new random depth every this much travel along a row", minimum=0.1)
+    motion: EnumProperty(name="Gouge Motion", default="ramp",
+                         items=[("ramp", "Ramp", "Straight lines from one depth to the next (the paper)"),
+                                ("scoop", "Scoop", "Dive to the depth, then push up, like a hand gouge")])
+    spacing_jitter: FloatProperty(name="Spacing Jitter", default=0.0, min=0.0, max=0.5, subtype="FACTOR",
+                                  description="Vary each gouge length by up to this fraction (baked only)")
+    seed: IntProperty(name="Seed", default=0, min=0,
+                      description="Random seed of the baked texture: same seed, same program")
+    # Band finishing and burr contour
+    finish_diameter: mm("Flat Diameter", 1.0, "Band finishing flat end mill diameter", minimum=0.05)
+    finish_tool_number: IntProperty(name="Flat Tool No.", default=3, min=0, max=999)
+    band_width: mm("Band Width", 4.0, "Width of the flat band cut around every letter", minimum=0.0)
+    band_depth: mm("Band Depth", -2.0, "Depth of the band around the letters", maximum=0.0)
+    band_stepover: mm("Band Stepover", 0.5, "Distance between the band's contour passes", minimum=0.0)
+    # Feeds and heights
+    rough_rpm: FloatProperty(name="Ball Spindle", default=6000.0, min=0.0, description="Spindle speed (rpm)")
+    finish_rpm: FloatProperty(name="Flat Spindle", default=12000.0, min=0.0, description="Spindle speed (rpm)")
+    rough_feed: FloatProperty(name="Ball Feed", default=1200.0, min=0.0, description="Cutting feed (mm/min)")
+    finish_feed: FloatProperty(name="Flat Feed", default=600.0, min=0.0, description="Cutting feed (mm/min)")
+    plunge_feed: FloatProperty(name="Plunge Feed", default=300.0, min=0.0, description="Plunge feed (mm/min)")
+    clearance_z: mm("Clearance Plane", 20.0, "Height of rapid moves between cuts", minimum=0.0)
+    safe_z: mm("Safe Z", 100.0, "Height for tool changes and the program end", minimum=0.0)
+    show_rapids: BoolProperty(name="Show Rapids", default=True, description="Show rapid moves as well")
+
+
+class KezuriSettings(bpy.types.PropertyGroup):
+    machine: PointerProperty(type=KezuriMachine)
+    stock: PointerProperty(type=KezuriStock)
+    engrave: PointerProperty(type=KezuriEngrave)
+
+
+CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSettings)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+    bpy.types.Scene.kezuri = PointerProperty(type=KezuriSettings)
+
+
+def unregister():
+    del bpy.types.Scene.kezuri
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)

@@ -1,0 +1,50 @@
+"""Built-in sample parts, built in the scene, for the demo, batch runs and tests."""
+from __future__ import annotations
+
+import bpy
+
+
+def clear_scene(scene):
+    for obj in list(scene.objects):
+        bpy.data.objects.remove(obj, do_unlink=True)
+
+
+def set_millimetres(scene):
+    scene.unit_settings.system = "METRIC"
+    scene.unit_settings.scale_length = 0.001
+    scene.unit_settings.length_unit = "MILLIMETERS"
+
+
+def box_mesh(name: str, x0, y0, z0, x1, y1, z1):
+    verts = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0),
+             (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
+    faces = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata(verts, [], faces)
+    mesh.update()
+    return mesh
+
+
+def name_plate(scene, word: str = "Kezuri", unit_mm: float = 1.0):
+    """A 200 x 100 x 20 mm plate (top at Z = 0) with ``word`` in Blender's default font.
+
+    ``unit_mm`` is how many millimetres one Blender unit is: 1.0 for a millimetre scene,
+    1000.0 for a metre scene; the geometry is the same physical size either way.
+    """
+    s = 1.0 / unit_mm
+    plate = bpy.data.objects.new("Plate", box_mesh("Plate", -100 * s, -50 * s, -20 * s, 100 * s, 50 * s, 0.0))
+    plate.color = (0.85, 0.72, 0.52, 1.0)
+    scene.collection.objects.link(plate)
+    curve = bpy.data.curves.new("Letters", type="FONT")
+    curve.body = word
+    curve.size = 48 * s
+    curve.align_x = "CENTER"
+    curve.align_y = "CENTER"
+    letters = bpy.data.objects.new("Letters", curve)
+    letters.location.z = 0.05 * s  # just above the plate top, so the viewport shows it cleanly
+    letters.color = (0.3, 0.2, 0.1, 1.0)
+    scene.collection.objects.link(letters)
+    settings = scene.kezuri
+    settings.stock.plate = plate
+    settings.engrave.letters = letters
+    return plate, letters
