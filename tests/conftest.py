@@ -6,8 +6,9 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-if HERE not in sys.path:
-    sys.path.insert(0, HERE)
+for path in (HERE, ROOT):  # ROOT: transitional, until every test imports through ``kezuri``
+    if path not in sys.path:
+        sys.path.insert(0, path)
 if "kezuri" not in sys.modules:
     spec = importlib.util.spec_from_file_location("kezuri", os.path.join(ROOT, "__init__.py"),
                                                   submodule_search_locations=[ROOT])

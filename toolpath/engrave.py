@@ -37,6 +37,9 @@ class EngraveError(ValueError):
 
 
 GOUGE_MOTIONS = ("ramp", "scoop")
+# A row whose length is a whole number of gouges to within this (mm) gets its last gouge:
+# float32 scene geometry must not add or drop a gouge and shift every depth after it.
+TRAVEL_TOLERANCE = 1e-4
 
 
 @dataclass(frozen=True)
@@ -360,13 +363,13 @@ def apply_texture(op: Operation, texture: GougeTexture, digits, jitter_rng=None)
             step = spacing
             if texture.spacing_jitter and jitter_rng is not None:
                 step = spacing * (1 + texture.spacing_jitter * jitter_rng.uniform(-1, 1))
-            if along + step > abs(travel) + 1e-9:
+            if along + step > abs(travel) + TRAVEL_TOLERANCE:
                 break
             previous_along = along
             along += step
             z_next = float(texture.depth(next(digits)))
             depths.append(z_next)
-            piece_end = start[:2] + (target[:2] - start[:2]) * (along / abs(travel))
+            piece_end = start[:2] + (target[:2] - start[:2]) * min(1.0, along / abs(travel))
             if texture.motion == "scoop":
                 dive_at = previous_along + step * texture.scoop_dive
                 dive_xy = start[:2] + (target[:2] - start[:2]) * (dive_at / abs(travel))
@@ -374,7 +377,7 @@ def apply_texture(op: Operation, texture: GougeTexture, digits, jitter_rng=None)
                 z_next = min(texture.shallowest, z_next + texture.amplitude)
             emit(FEED, (piece_end[0], piece_end[1], z_next), feed)
             z_now = z_next
-        if abs(travel) - along > 1e-9:
+        if abs(travel) - along > TRAVEL_TOLERANCE:
             emit(FEED, (target[0], target[1], z_now), feed)
         position = target.copy()
     textured = op.replace(kind=np.array(kinds, np.int8), xyz=np.array(points).reshape(-1, 3),

@@ -195,8 +195,10 @@ def arc_sweep(a: np.ndarray, b: np.ndarray, c: np.ndarray, clockwise: np.ndarray
     ang_a = np.arctan2(a[:, 1] - c[:, 1], a[:, 0] - c[:, 0])
     ang_b = np.arctan2(b[:, 1] - c[:, 1], b[:, 0] - c[:, 0])
     ccw = np.mod(ang_b - ang_a, 2 * np.pi)
+    cw = np.mod(ang_a - ang_b, 2 * np.pi)
     ccw = np.where(ccw < 1e-12, 2 * np.pi, ccw)
-    return np.where(clockwise, ccw - 2 * np.pi, ccw)
+    cw = np.where(cw < 1e-12, 2 * np.pi, cw)
+    return np.where(clockwise, -cw, ccw)
 
 
 @dataclass

@@ -1,0 +1,206 @@
+"""The Blender shell, run for real with the bpy wheel in background mode."""
+import re
+
+import numpy as np
+import pytest
+
+bpy = pytest.importorskip("bpy")
+
+import kezuri  # noqa: E402  (loaded by conftest from the repository root)
+import rs274  # noqa: E402
+from kezuri.operators import engrave as shell  # noqa: E402
+from kezuri.operators import panels, samples  # noqa: E402
+
+
+@pytest.fixture(scope="module", autouse=True)
+def registered():
+    if not hasattr(bpy.types.Scene, "kezuri"):
+        kezuri.register()
+    yield
+
+
+@pytest.fixture
+def scene():
+    scene = bpy.context.scene
+    samples.clear_scene(scene)
+    samples.set_millimetres(scene)
+    samples.name_plate(scene)
+    return scene
+
+
+def test_register_and_unregister_twice_cleanly():
+    for _ in range(2):
+        kezuri.unregister()
+        assert not hasattr(bpy.types.Scene, "kezuri")
+        assert not hasattr(bpy.ops.kezuri, "engrave_generate") or \
+            "engrave_generate" not in dir(bpy.types)
+        kezuri.register()
+        assert hasattr(bpy.types.Scene, "kezuri")
+        assert bpy.ops.kezuri.engrave_generate.get_rna_type() is not None
+
+
+def test_generate_operator_builds_the_preview_and_rerun_replaces_it(scene):
+    assert bpy.ops.kezuri.engrave_generate() == {"FINISHED"}
+    first = sorted(o.name for o in bpy.data.collections["Kezuri"].objects)
+    assert "Kezuri Engrave roughing (gouge texture)" in first
+    assert "Kezuri Engrave band finishing" in first
+    assert "Kezuri Engrave burr contour" in first
+    assert any(name.endswith("rapids") for name in first)
+    rough = bpy.data.objects["Kezuri Engrave roughing (gouge texture)"]
+    z = np.array([v.co.z for v in rough.data.vertices])
+    # mm scene: 1 unit = 1 mm; cutting runs start with the feed plunge from the 2 mm approach gap.
+    assert z.min() == pytest.approx(-2.8, abs=1e-5) and z.max() == pytest.approx(2.0, abs=1e-5)
+    assert bpy.ops.kezuri.engrave_generate() == {"FINISHED"}
+    assert sorted(o.name for o in bpy.data.collections["Kezuri"].objects) == first
+
+
+def test_export_operator_writes_a_program_rs274_accepts(scene, tmp_path):
+    path = str(tmp_path / "plate.ngc")
+    assert bpy.ops.kezuri.engrave_export(filepath=path, post="linuxcnc") == {"FINISHED"}
+    text = open(path).read()
+    if rs274.available():
+        kinds, points, _ = rs274.motion_endpoints(rs274.run(text))
+        feed_z = points[np.array(kinds) == "feed"][:, 2]
+        assert feed_z.min() == pytest.approx(-2.8, abs=1e-3)
+
+
+def test_letters_never_cut_in_the_blender_sample(scene):
+    from kezuri.toolpath import region
+    job = shell.run_engrave(scene, bpy.context.evaluated_depsgraph_get())
+    glyph_loops = [loop for _, loops in
+                   [(o.name, shell.convert.outlines_in_work(o, bpy.context.evaluated_depsgraph_get(), job.plate.frame))
+                    for o in [scene.kezuri.engrave.letters]] for loop in loops]
+    glyphs = region.from_loops(glyph_loops)
+    assert region.area(glyphs) > 1000          # the word "Kezuri" at 48 mm is a real area
+    for op in job.baked.operations:
+        below = op.xyz[op.xyz[:, 2] < 0]
+        assert not region.contains_points(glyphs, below[:, :2]).any(), op.name
+
+
+def nc_for_units(unit_mm, system="METRIC"):
+    scene = bpy.context.scene
+    samples.clear_scene(scene)
+    scene.unit_settings.system = system
+    scene.unit_settings.scale_length = unit_mm / 1000.0
+    samples.name_plate(scene, unit_mm=unit_mm)
+    job = shell.run_engrave(scene, bpy.context.evaluated_depsgraph_get())
+    from kezuri.post import milling_post
+    return milling_post("linuxcnc").to_text(job.baked)
+
+
+def same_program(a: str, b: str, tolerance: float = 2e-4):
+    """Same blocks and words; numbers equal to the last written digit.
+
+    Blender stores vertices in float32, so the same letters modelled in metres and in
+    millimetres differ by ~1e-6 mm, which can flip the 4th decimal of a coordinate.
+    """
+    lines_a, lines_b = a.splitlines(), b.splitlines()
+    assert len(lines_a) == len(lines_b)
+    number = re.compile(r"-?\d+\.\d*|-?\d+")
+    for la, lb in zip(lines_a, lines_b):
+        assert number.sub("#", la) == number.sub("#", lb), (la, lb)
+        va = np.array([float(v) for v in number.findall(la)])
+        vb = np.array([float(v) for v in number.findall(lb)])
+        assert np.all(np.abs(va - vb) <= tolerance), (la, lb)
+
+
+def test_metres_millimetres_and_inches_give_the_same_nc():
+    in_mm = nc_for_units(1.0)
+    in_m = nc_for_units(1000.0)
+    in_inch = nc_for_units(25.4, "IMPERIAL")
+    same_program(in_mm, in_m)
+    same_program(in_mm, in_inch)
+    assert "X-100." in in_mm      # the plate edge at -100 mm, not -0.1 or -100000
+
+
+class RecordingLayout:
+    """Stands in for UILayout (background mode cannot draw): records what a panel shows."""
+
+    def __init__(self):
+        self.props, self.operators = [], []
+        self.use_property_split = False
+        self.scale_y = 1.0
+
+    def prop(self, data, name, **_):
+        assert hasattr(data, name), name
+        self.props.append(name)
+
+    def operator(self, idname, **_):
+        self.operators.append(idname)
+
+    def row(self, **_):
+        return self
+
+    column = box = row
+
+    def separator(self, **_):
+        pass
+
+    def label(self, **_):
+        pass
+
+
+@pytest.mark.parametrize("panel, expected_props, expected_ops", [
+    (panels.KEZURI_PT_machine, {"post", "work_offset", "plate", "origin"}, set()),
+    (panels.KEZURI_PT_engrave, {"letters"}, {"kezuri.engrave_generate", "kezuri.engrave_export"}),
+    (panels.KEZURI_PT_engrave_texture, {"stepover", "base_depth", "quantum", "amplitude", "spacing", "seed",
+                                        "motion"}, set()),
+    (panels.KEZURI_PT_engrave_finish, {"finish_diameter", "band_width", "band_depth", "band_stepover"}, set()),
+])
+def test_panels_draw_their_properties(scene, panel, expected_props, expected_ops):
+    holder = type("PanelSelf", (), {})()
+    holder.layout = RecordingLayout()
+    panel.draw(holder, bpy.context)
+    assert expected_props <= set(holder.layout.props)
+    assert expected_ops <= set(holder.layout.operators)
+    assert panel.bl_category == "CAM" and panel.bl_region_type == "UI"
+
+
+def test_no_plate_is_a_clear_error_and_writes_nothing(scene, tmp_path):
+    scene.kezuri.stock.plate = None
+    path = tmp_path / "x.nc"
+    with pytest.raises(RuntimeError, match="plate"):
+        bpy.ops.kezuri.engrave_export(filepath=str(path), post="fanuc")
+    assert not path.exists()
+
+
+def test_open_outline_names_the_object(scene, tmp_path):
+    curve = bpy.data.curves.new("OpenStroke", type="CURVE")
+    spline = curve.splines.new("POLY")
+    spline.points.add(2)
+    for p, co in zip(spline.points, [(-30, 0, 0, 1), (0, 10, 0, 1), (30, 0, 0, 1)]):
+        p.co = co
+    obj = bpy.data.objects.new("OpenStroke", curve)
+    scene.collection.objects.link(obj)
+    scene.kezuri.engrave.letters = obj
+    path = tmp_path / "x.nc"
+    with pytest.raises(RuntimeError, match="OpenStroke.*open"):
+        bpy.ops.kezuri.engrave_export(filepath=str(path), post="fanuc")
+    assert not path.exists()
+
+
+def test_letters_outside_the_plate_are_refused(scene):
+    scene.kezuri.engrave.letters.location.x = 150
+    with pytest.raises(RuntimeError, match="outside the plate"):
+        bpy.ops.kezuri.engrave_generate()
+
+
+def test_nan_vertex_is_refused(scene):
+    mesh = bpy.data.meshes.new("Broken")
+    mesh.from_pydata([(0, 0, 0), (10, 0, 0), (float("nan"), 10, 0)], [], [(0, 1, 2)])
+    obj = bpy.data.objects.new("Broken", mesh)
+    scene.collection.objects.link(obj)
+    scene.kezuri.engrave.letters = obj
+    with pytest.raises(RuntimeError, match="Broken.*non-finite"):
+        bpy.ops.kezuri.engrave_generate()
+
+
+def test_zero_stepover_is_refused(scene):
+    scene.kezuri.engrave.stepover = 0.0
+    with pytest.raises(RuntimeError, match="stepover"):
+        bpy.ops.kezuri.engrave_generate()
+
+
+def test_export_path_uses_the_post_extension():
+    assert shell.extension_for("linuxcnc") == ".ngc"
+    assert shell.extension_for("fanuc-macro") == ".nc"

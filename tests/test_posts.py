@@ -1,0 +1,156 @@
+"""Milling posts: every LinuxCNC program goes through LinuxCNC's own rs274 interpreter."""
+import os
+import re
+
+import numpy as np
+import pytest
+
+import rs274
+from kezuri import post
+from kezuri.post.gcode import PostError, fmt
+from kezuri.toolpath import engrave
+from kezuri.toolpath.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool
+from test_engrave import LETTERS, PLATE
+
+needs_rs274 = pytest.mark.skipif(not rs274.available(), reason="LinuxCNC rs274 is not installed (.ci/run installs it)")
+
+
+def sample_job():
+    return engrave.plan(PLATE, LETTERS)
+
+
+def expected_endpoints(program: Program, decimals=4):
+    """Every move of the IR in order, dropping the ones that round to zero length, as the post does."""
+    points, kinds = [], []
+    for op in program.operations:
+        last = np.round(op.start, decimals)
+        for kind, xyz in zip(op.kind, op.xyz):
+            p = np.round(xyz, decimals)
+            if np.array_equal(p, last):
+                continue
+            points.append(xyz)
+            kinds.append({RAPID: "rapid", FEED: "feed", ARC_CW: "cw", ARC_CCW: "ccw"}[int(kind)])
+            last = p
+    return kinds, np.array(points)
+
+
+@needs_rs274
+def test_linuxcnc_engraving_passes_rs274_and_matches_the_ir():
+    baked, depths = engrave.bake(sample_job().program)
+    text = post.milling_post("linuxcnc").to_text(baked)
+    kinds, points, _ = rs274.motion_endpoints(rs274.run(text))
+    want_kinds, want_points = expected_endpoints(baked)
+    # rs274 also reports the moves the post adds around each operation (safe Z, the start
+    # position): the IR's moves must appear in order, each within 1e-3 mm.
+    cutting = [i for i, k in enumerate(kinds) if k == "feed"]
+    want_cutting = [i for i, k in enumerate(want_kinds) if k == "feed"]
+    assert len(cutting) == len(want_cutting)
+    assert np.max(np.abs(points[cutting] - want_points[want_cutting])) < 1e-3
+    feed_z = points[cutting][:, 2]
+    assert feed_z.min() == pytest.approx(-2.8, abs=1e-3)
+
+
+@needs_rs274
+def test_linuxcnc_arcs_and_helices_pass_rs274():
+    # A full circle, a half circle counter-clockwise and a helical quarter.
+    xyz = [[10, 0, -1], [10, 0, -1], [-10, 0, -1], [0, 10, -2]]
+    kind = [FEED, ARC_CW, ARC_CCW, ARC_CW]
+    centre = [[np.nan] * 3, [0, 0, -1], [0, 0, -1], [0, 0, -2]]
+    op = Operation("arcs", Tool(1, "flat", 3.0), 10000, kind, xyz, [500] * 4, center=centre,
+                   start=[10, 0, 5])
+    program = Program("arcs", [op])
+    calls = rs274.run(post.milling_post("linuxcnc").to_text(program))
+    arcs = [(name, [float(v) for v in args]) for name, args in calls if name == "ARC_FEED"]
+    assert len(arcs) == 3
+    assert arcs[0][1][:5] == pytest.approx([10, 0, 0, 0, -1])     # full circle, clockwise
+    assert arcs[1][1][:5] == pytest.approx([-10, 0, 0, 0, 1])
+    assert arcs[2][1][5] == pytest.approx(-2)                      # helical end Z
+    # The IR's arc length: 2 pi 10 + pi 10 + quarter helix.
+    lengths = op.move_lengths()
+    assert lengths[1] == pytest.approx(2 * np.pi * 10)
+    assert lengths[2] == pytest.approx(np.pi * 10)
+    assert lengths[3] == pytest.approx(np.hypot(np.pi * 5, 1))
+
+
+def test_same_input_same_bytes_and_no_timestamp():
+    job = sample_job()
+    for name in post.MILLING_POSTS:
+        program = job.program if name == "fanuc-macro" else engrave.bake(job.program)[0]
+        a = post.milling_post(name).to_text(program)
+        b = post.milling_post(name).to_text(program)
+        assert a == b
+        assert not re.search(r"20\d\d-\d\d-\d\d|\d\d:\d\d:\d\d", a)
+
+
+def test_header_names_job_tools_and_cycle_time():
+    baked, _ = engrave.bake(sample_job().program)
+    text = post.milling_post("fanuc").to_text(baked)
+    header = text.split("G21")[0]
+    assert "T2 6 MM BALL END MILL" in header and "T3 1 MM FLAT END MILL" in header
+    minutes = baked.cycle_time() / 60
+    match = re.search(r"ESTIMATED CYCLE TIME: (\d+) MIN (\d+) S", header)
+    assert match and int(match.group(1)) + int(match.group(2)) / 60 == pytest.approx(minutes, abs=1 / 60)
+
+
+def test_fanuc_frame_follows_the_paper():
+    baked, _ = engrave.bake(sample_job().program)
+    lines = post.milling_post("fanuc", "G59").to_text(baked).splitlines()
+    assert lines[0] == "%" and lines[1].startswith("O0001") and lines[-1] == "%"
+    assert "T02 M06" in lines
+    start = next(line for line in lines if line.startswith("G00 G90 G59"))
+    assert start.endswith("S6000 M03")
+    assert lines[lines.index(start) + 1] == "G43 Z100. H02"
+    assert lines[-5:-1] == ["G91 G28 Z0.", "G28 X0. Y0.", "G90", "M30"]
+    # Every coordinate carries a decimal point (Fanuc reads X106 as 0.106 mm).
+    for word in re.findall(r"\b[XYZIJ]-?[\d.]+", "\n".join(lines)):
+        assert "." in word, word
+
+
+def test_grbl_has_no_tool_changer_words():
+    baked, _ = engrave.bake(sample_job().program)
+    text = post.milling_post("grbl").to_text(baked)
+    assert "M06" not in text and "G43" not in text and "G28" not in text
+    assert text.count("M00") == 2      # two tool changes after the first tool
+    assert "%" not in text
+
+
+def test_macro_post_writes_o7023_with_the_fixes():
+    text = post.milling_post("fanuc-macro").to_text(sample_job().program)
+    assert "G66.1 P7023" in text and "G67" in text and "#3001" in text
+    assert "GT5" not in text and "IF[#28GE5]" in text
+    assert "#24+#25" not in text
+    for line in text.splitlines():
+        assert line.count("[") == line.count("]"), line
+    main, macro = text.split("O7023 (")
+    assert main.count("M30") == 1 and macro.strip().endswith("M99\n%".strip())
+
+
+def test_macro_post_refuses_what_it_cannot_do():
+    job = engrave.plan(PLATE, LETTERS, engrave.EngraveSettings(raster_angle=30))
+    with pytest.raises(PostError, match="raster angle"):
+        post.milling_post("fanuc-macro").to_text(job.program)
+    baked, _ = engrave.bake(sample_job().program)
+    with pytest.raises(PostError, match="gouge texture"):
+        post.milling_post("fanuc-macro").to_text(baked)
+    with pytest.raises(PostError, match="unbaked texture"):
+        post.milling_post("linuxcnc").to_text(sample_job().program)
+    with pytest.raises(PostError, match="unknown post"):
+        post.milling_post("heidenhain")
+
+
+def test_number_format():
+    assert fmt(106.0, 3) == "106."
+    assert fmt(-2.0, 3) == "-2."
+    assert fmt(0.5, 3) == "0.5"
+    assert fmt(-0.0001, 3) == "0."
+    assert fmt(12.34567, 4) == "12.3457"
+
+
+def test_atomic_write_leaves_no_partial_file(tmp_path):
+    target = tmp_path / "job.nc"
+    post.write_atomic(str(target), "G0 X1.\n")
+    assert target.read_text() == "G0 X1.\n"
+    with pytest.raises(UnicodeEncodeError):
+        post.write_atomic(str(target), "G0 X2. (\u524a)\n")   # not ASCII: the write fails midway
+    assert target.read_text() == "G0 X1.\n"                   # the old program is intact
+    assert sorted(os.listdir(tmp_path)) == ["job.nc"]         # and no temp file is left
