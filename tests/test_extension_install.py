@@ -1,0 +1,43 @@
+"""The extension as users get it: built into a zip with its wheels, installed by Blender."""
+import glob
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+@pytest.fixture(scope="module")
+def linux_zip(tmp_path_factory):
+    out = tmp_path_factory.mktemp("dist")
+    subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "build_extension.py"), "--platforms", "linux-x64",
+                    "--out", str(out)], check=True, capture_output=True, timeout=900)
+    zips = glob.glob(str(out / "kezuri-*-linux_x64.zip"))
+    assert len(zips) == 1
+    return zips[0]
+
+
+def test_manifest_passes_blenders_validator():
+    import site
+    tool = [p for folder in site.getsitepackages() for p in
+            glob.glob(os.path.join(folder, "bpy", "*", "scripts", "addons_core", "bl_pkg", "cli", "blender_ext.py"))]
+    done = subprocess.run([sys.executable, tool[0], "validate", ROOT], capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
+
+
+def test_installed_zip_runs_on_its_bundled_wheels_and_disables_cleanly(linux_zip, tmp_path):
+    env = dict(os.environ, BLENDER_USER_RESOURCES=str(tmp_path / "user"))
+    done = subprocess.run([sys.executable, os.path.join(ROOT, "tests", "install_check.py"), linux_zip],
+                          capture_output=True, text=True, env=env, timeout=600)
+    lines = [line for line in done.stdout.splitlines() if line.startswith("RESULT ")]
+    assert done.returncode == 0 and lines, done.stdout[-2000:] + done.stderr[-3000:]
+    result = json.loads(lines[0][len("RESULT "):])
+    assert result["install"] == ["FINISHED"]
+    assert result["manifold3d"].startswith(str(tmp_path / "user"))
+    assert result["trimesh"].startswith(str(tmp_path / "user"))
+    assert result["registered"] is True
+    assert result["engrave_generate"] == ["FINISHED"] and result["kezuri_objects"] >= 3
+    assert result["registered_after_disable"] is False
