@@ -1,0 +1,141 @@
+"""NC for an Amada turret punch press (04P-style controller): a closed flat contour cut by nibbling.
+
+Program layout (after the seed paper's Table 2)::
+
+    N000 G92 X1000.00 Y1040.00                      sheet coordinate system (origin position)
+    N001 G72 X0.93 Y147.66                          pattern reference point = segment start
+    G69 I20.29 J-5.32 P0.00 Q2.00 T302              nibbling line from that point
+    ...
+    G50                                             end of program: home return, work released
+
+G69 (nibbling line): I = length (mm), J = angle in degrees from +X, + = counter-clockwise,
+P = tool diameter with the offset side (+ = tool to the left of travel, - = right, 0 = the contour
+is already the tool-centre path), Q = nibbling pitch, T = turret station (3 digits).  When the sheet is
+thicker than 3.2 mm the punching line G79 is used instead, with D = thickness, and the pitch must be
+at least the thickness.
+
+Number format: two decimals everywhere, address and value written together (the spaces and the
+suppressed leading zero in the paper, "X .93", are N88-BASIC PRINT artefacts, not controller syntax),
+sequence numbers N000..N999.  The angle comes from atan2, so all four quadrants and vertical segments
+are right (the seed's ATN(dy/dx) loses the quadrant and divides by zero on vertical segments).
+
+Program end: G50 by default, the Amada turret-punch program end (home return: the carriage goes back
+to the position set by G92 so the sheet can be unloaded), which is what these punching programs end
+with rather than the milling M30; ``end_code="M30"`` is offered for controllers set up otherwise.
+Check against the machine's programming manual before the first run.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .gcode import PostError
+
+THICK_SHEET = 3.2          # mm: above this, G79 punching line instead of G69 nibbling
+MIN_SEGMENT = 0.01         # mm: the output resolution; shorter segments cannot be written
+TOOL_SIDES = ("left", "right", "outside", "inside")
+END_CODES = ("G50", "M30")
+
+
+def _num(value: float) -> str:
+    text = f"{value:.2f}"
+    return "0.00" if text == "-0.00" else text
+
+
+def _positive(value, what: str, allow_zero: bool = False) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise PostError(f"{what} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v < 0 or (v == 0 and not allow_zero):
+        raise PostError(f"{what} must be a finite number {'>= 0' if allow_zero else '> 0'}, got {value!r}")
+    return v
+
+
+def contour_points(contour) -> np.ndarray:
+    """Clean (k, 2) points of a closed contour: repeated closing point and duplicates removed."""
+    pts = np.asarray(contour, dtype=float)
+    if pts.ndim != 2 or pts.shape[1] != 2:
+        raise PostError(f"a contour must be a list of (x, y) points, got shape {pts.shape}")
+    if not np.all(np.isfinite(pts)):
+        raise PostError("contour has a non-finite coordinate (NaN or infinity)")
+    keep = [0]
+    for i in range(1, len(pts)):
+        if np.hypot(*(pts[i] - pts[keep[-1]])) > 1e-9:
+            keep.append(i)
+    pts = pts[keep]
+    if len(pts) > 1 and np.hypot(*(pts[0] - pts[-1])) <= 1e-9:
+        pts = pts[:-1]
+    if len(pts) < 3:
+        raise PostError("a closed contour needs at least 3 distinct points")
+    return pts
+
+
+def segments(contour):
+    """(start (k, 2), length (k,), angle in degrees (k,)) of every segment, the last closing the loop."""
+    pts = contour_points(contour)
+    delta = np.roll(pts, -1, axis=0) - pts
+    length = np.hypot(delta[:, 0], delta[:, 1])
+    angle = np.degrees(np.arctan2(delta[:, 1], delta[:, 0]))
+    return pts, length, angle
+
+
+def _offset_word(tool_diameter: float, tool_side: str, pts: np.ndarray) -> float:
+    if tool_diameter == 0.0:
+        return 0.0
+    if tool_side not in TOOL_SIDES:
+        raise PostError(f"tool side must be one of {TOOL_SIDES}, got {tool_side!r}")
+    x, y = pts[:, 0], pts[:, 1]
+    ccw = float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y)) > 0
+    if tool_side in ("outside", "inside"):
+        # travelling CCW the outside is on the right
+        left = (tool_side == "outside") != ccw
+    else:
+        left = tool_side == "left"
+    return tool_diameter if left else -tool_diameter
+
+
+def to_text(contour, *, station: int, pitch: float, thickness: float, tool_diameter: float = 0.0,
+            tool_side: str = "outside", origin=(1000.0, 1040.0), end_code: str = "G50") -> str:
+    """The NC program that nibbles (or punches) round ``contour``, one G72 + G69/G79 per segment.
+
+    ``contour``: closed 2-D polygon in sheet coordinates (mm).  With ``tool_diameter`` 0 it is taken
+    as the tool-centre path already (compensated, P0); otherwise the controller offsets the tool by
+    its radius to ``tool_side``: "left" / "right" of travel, or "outside" / "inside" of the contour.
+    """
+    pts, length, angle = segments(contour)
+    station_ok = isinstance(station, (int, np.integer)) and not isinstance(station, bool)
+    if not station_ok or not 1 <= station <= 999:
+        raise PostError(f"turret station must be an integer 1..999, got {station!r}")
+    q = _positive(pitch, "nibbling pitch Q")
+    t = _positive(thickness, "sheet thickness")
+    tool_diameter = _positive(tool_diameter, "tool diameter", allow_zero=True)
+    if end_code not in END_CODES:
+        raise PostError(f"end code must be one of {END_CODES}, got {end_code!r}")
+    ox, oy = (float(v) for v in origin)
+    if not (math.isfinite(ox) and math.isfinite(oy)):
+        raise PostError("G92 origin must be finite")
+    if len(pts) > 999:
+        raise PostError(f"{len(pts)} segments do not fit sequence numbers N001..N999")
+    short = np.flatnonzero(length < MIN_SEGMENT)
+    if len(short):
+        raise PostError(f"segment {int(short[0]) + 1} is {length[short[0]]:.4f} mm long, "
+                             f"shorter than the {MIN_SEGMENT} mm output resolution")
+    thick = t > THICK_SHEET
+    if thick and q < t:
+        raise PostError(f"G79 punching line: pitch Q {q} must be at least the thickness {t} mm")
+    p = _offset_word(tool_diameter, tool_side, pts)
+
+    lines = [f"N000 G92 X{_num(ox)} Y{_num(oy)}"]
+    for i, ((x, y), m, theta) in enumerate(zip(pts, length, angle), start=1):
+        j = _num(theta)
+        if j == "-180.00":
+            j = "180.00"
+        lines.append(f"N{i:03d} G72 X{_num(x)} Y{_num(y)}")
+        if thick:
+            lines.append(f"G79 I{_num(m)} J{j} P{_num(p)} Q{_num(q)} D{_num(t)} T{station:03d}")
+        else:
+            lines.append(f"G69 I{_num(m)} J{j} P{_num(p)} Q{_num(q)} T{station:03d}")
+    lines.append(end_code)
+    return "\n".join(lines) + "\n"
