@@ -3,11 +3,13 @@
     python batch.py <command> [options]                      (the bpy wheel from PyPI)
     blender -b [file.blend] --python batch.py -- <command> [options]
 
-Commands:
-    engrave [--blend FILE] [--post fanuc|fanuc-macro|linuxcnc|grbl] [--seed N] --out DIR
-    demo --out DIR        every workflow on its built-in sample part
+Commands (``python batch.py <command> --help`` for the options):
+    engrave   gouge-texture name plate (W1)
+    unfold    twisted quad -> flat pattern, turret-punch NC, DXF, SVG (W5)
+    elbow     segmented pipe elbow -> flat patterns, DXF, SVG (W5)
+    demo      every workflow on its built-in sample part, each into a sub-folder of --out
 
-Each command writes its NC file(s), ``report.json`` and a preview PNG into DIR.
+Each command writes its output files, ``report.json`` and a preview PNG into --out.
 Exit status: 0 on success, 2 on bad input (the message says what to fix).
 """
 from __future__ import annotations
@@ -43,12 +45,19 @@ def script_arguments(argv: list) -> list:
 
 
 def open_blend(path: str | None):
+    """The scene to work on: the given .blend's, or a fresh empty one in millimetres."""
     import bpy
+
+    from kezuri.operators import samples
     if path:
         if not os.path.isfile(path):
             raise FileNotFoundError(f"no such .blend file: {path}")
         bpy.ops.wm.open_mainfile(filepath=os.path.abspath(path))
-    return bpy.context.scene
+        return bpy.context.scene
+    scene = bpy.context.scene
+    samples.clear_scene(scene)
+    samples.set_millimetres(scene)
+    return scene
 
 
 def write_report(out_dir: str, report: dict) -> str:
@@ -56,16 +65,29 @@ def write_report(out_dir: str, report: dict) -> str:
     return write_atomic(os.path.join(out_dir, "report.json"), json.dumps(report, indent=2, sort_keys=True) + "\n")
 
 
+def rounded(array, digits: int = 6):
+    import numpy as np
+    return np.round(np.asarray(array, float), digits).tolist()
+
+
+# ----------------------------------------------------------------------------------------
+# W1 engrave
+
+def engrave_arguments(p):
+    p.add_argument("--blend", help="a .blend whose scene has the Kezuri plate and letters set")
+    p.add_argument("--post", choices=["fanuc", "fanuc-macro", "linuxcnc", "grbl"])
+    p.add_argument("--seed", type=int)
+
+
 def engrave(args) -> dict:
     import bpy
+
     from kezuri.operators import engrave as shell
     from kezuri.operators import preview, samples
     from kezuri.operators.common import Progress
 
     scene = open_blend(args.blend)
     if not args.blend:
-        samples.clear_scene(scene)
-        samples.set_millimetres(scene)
         samples.name_plate(scene)
     props = scene.kezuri
     if args.seed is not None:
@@ -79,7 +101,6 @@ def engrave(args) -> dict:
     wires = shell.show_engrave(scene, job, show_rapids=False)
     png = preview.render_preview(scene, [props.stock.plate, *shell.letter_objects(props.engrave)], wires,
                                  os.path.join(args.out, "engrave.png"))
-    written_program = shell.program_for_post(job, post_name)
     return {
         "workflow": "engrave",
         "post": post_name,
@@ -87,7 +108,7 @@ def engrave(args) -> dict:
         "files": [nc_path],
         "preview": png,
         "toolpath_seconds": round(seconds, 3),
-        "operations": written_program.summary(),
+        "operations": shell.program_for_post(job, post_name).summary(),
         "cycle_time_s": round(job.baked.cycle_time(), 1),
         "gouge_depths": [round(d, 4) for d in job.depths],
         "warnings": job.result.warnings,
@@ -95,35 +116,139 @@ def engrave(args) -> dict:
     }
 
 
-COMMANDS = {"engrave": engrave}
+# ----------------------------------------------------------------------------------------
+# W5 unfold and elbow
+
+def unfold_arguments(p):
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--cdl", help="CADKEY .CDL file with the quad's four LINE records")
+    source.add_argument("--corners", help='"x,y,z;x,y,z;x,y,z;x,y,z" in mm (default: the paper\'s test quad)')
+    source.add_argument("--blend", help="a .blend whose Kezuri sheet settings hold the corners")
+    p.add_argument("--divisions", type=int)
+    p.add_argument("--direction", choices=["horizontal", "vertical"])
+    p.add_argument("--tool-diameter", type=float)
+    p.add_argument("--thickness", type=float)
+    p.add_argument("--pitch", type=float)
+    p.add_argument("--station", type=int)
+
+
+def parse_corners(text: str):
+    import numpy as np
+    try:
+        corners = np.array([[float(v) for v in corner.split(",")] for corner in text.split(";")])
+    except ValueError:
+        raise ValueError(f"--corners: not numbers: {text!r}") from None
+    if corners.shape != (4, 3):
+        raise ValueError(f'--corners needs four "x,y,z" corners separated by ";", got {text!r}')
+    return corners
+
+
+def unfold(args) -> dict:
+    from kezuri.operators import preview
+    from kezuri.operators import sheetmetal as shell
+    from kezuri.toolpath import unfold as core
+
+    scene = open_blend(args.blend)
+    sheet = scene.kezuri.sheet
+    for option, name in (("divisions", "divisions"), ("direction", "direction"), ("tool_diameter", "tool_diameter"),
+                         ("thickness", "thickness"), ("pitch", "pitch"), ("station", "station")):
+        if getattr(args, option) is not None:
+            setattr(sheet, name, getattr(args, option))
+    if args.cdl:
+        if not os.path.isfile(args.cdl):
+            raise FileNotFoundError(f"no such CDL file: {args.cdl}")
+        with open(args.cdl, encoding="latin-1") as stream:
+            corners = core.read_cdl(stream.read())
+    elif args.corners:
+        corners = parse_corners(args.corners)
+    else:
+        corners = shell.corners_mm(sheet)
+    job = shell.run_unfold(corners, sheet)
+    files = shell.unfold_files(job, os.path.join(args.out, "unfold.nc"))
+    part, flat, cut = shell.show_unfold(scene, job)
+    png = preview.render_preview(scene, [part, flat], [cut], os.path.join(args.out, "unfold.png"), see_through=False)
+    pattern = job.quad.pattern
+    return {
+        "workflow": "unfold",
+        "files": files,
+        "preview": png,
+        "divisions": job.quad.divisions,
+        "direction": job.quad.direction,
+        "corners": rounded(job.quad.corners),
+        "edge_lengths": rounded(job.quad.edge_lengths, 6),
+        "diagonals": rounded(job.quad.diagonals, 6),
+        "triangles": [{"3d": rounded(pattern.vertices_3d[t]), "2d": rounded(pattern.vertices_2d[t])}
+                      for t in pattern.triangles],
+        "outline": rounded(pattern.outline),
+        "cut_contour": rounded(job.contour),
+    }
+
+
+def elbow_arguments(p):
+    p.add_argument("--diameter", type=float)
+    p.add_argument("--bend-radius", type=float)
+    p.add_argument("--angle", type=float)
+    p.add_argument("--pieces", type=int)
+
+
+def elbow(args) -> dict:
+    from kezuri.operators import preview
+    from kezuri.operators import sheetmetal as shell
+
+    scene = open_blend(None)
+    sheet = scene.kezuri.sheet
+    for option, name in (("diameter", "elbow_diameter"), ("bend_radius", "elbow_radius"),
+                         ("angle", "elbow_angle"), ("pieces", "elbow_pieces")):
+        if getattr(args, option) is not None:
+            setattr(sheet, name, getattr(args, option))
+    result = shell.run_elbow(sheet)
+    files = shell.elbow_files(result, os.path.join(args.out, "elbow.dxf"))
+    objects = shell.show_elbow(scene, result)
+    solids = [o for o in objects if o.type == "MESH" and len(o.data.polygons)]
+    wires = [o for o in objects if o not in solids]
+    png = preview.render_preview(scene, solids, wires, os.path.join(args.out, "elbow.png"), see_through=False)
+    return {
+        "workflow": "elbow",
+        "files": files,
+        "preview": png,
+        "diameter": result.diameter, "bend_radius": result.bend_radius, "angle": result.bend_angle,
+        "pieces": [{"index": piece.index + 1, "angle_deg": round(piece.angle, 6),
+                    "outline": rounded(piece.outline),
+                    "shortest_mm": round(float(piece.generatrix_lengths.min()), 6),
+                    "longest_mm": round(float(piece.generatrix_lengths.max()), 6)} for piece in result.pieces],
+    }
+
+
+COMMANDS = {
+    "engrave": ("gouge-texture name plate (W1)", engrave_arguments, engrave),
+    "unfold": ("twisted quad: flat pattern, turret-punch NC, DXF, SVG (W5)", unfold_arguments, unfold),
+    "elbow": ("segmented pipe elbow: flat patterns, DXF, SVG (W5)", elbow_arguments, elbow),
+}
+DEMO_POSTS = {"engrave": ["--post", "linuxcnc"]}
 
 
 def demo(args) -> dict:
     """Every workflow on its built-in sample, each into its own sub-folder of --out."""
     results = {}
     for name in COMMANDS:
-        sub = argparse.Namespace(**{**DEFAULTS[name], "out": os.path.join(args.out, name)})
+        sub = parser().parse_args([name, *DEMO_POSTS.get(name, []), "--out", os.path.join(args.out, name)])
         os.makedirs(sub.out, exist_ok=True)
-        report = COMMANDS[name](sub)
+        report = COMMANDS[name][2](sub)
         write_report(sub.out, report)
         results[name] = {"files": report["files"], "preview": report.get("preview")}
         print(f"{name}: wrote {', '.join(report['files'])}")
     return {"workflow": "demo", "files": [f for r in results.values() for f in r["files"]], "workflows": results}
 
 
-DEFAULTS = {"engrave": {"blend": None, "post": "linuxcnc", "seed": None}}
-
-
 def parser() -> argparse.ArgumentParser:
     main = argparse.ArgumentParser(prog="batch.py", description="Kezuri CAM batch runs")
     commands = main.add_subparsers(dest="command", required=True)
-    p = commands.add_parser("engrave", help="gouge-texture name plate (W1)")
-    p.add_argument("--blend", help="a .blend whose scene has the Kezuri plate and letters set")
-    p.add_argument("--post", choices=["fanuc", "fanuc-macro", "linuxcnc", "grbl"])
-    p.add_argument("--seed", type=int)
-    p.add_argument("--out", required=True)
+    for name, (text, add_arguments, _) in COMMANDS.items():
+        p = commands.add_parser(name, help=text)
+        add_arguments(p)
+        p.add_argument("--out", required=True, help="output folder")
     p = commands.add_parser("demo", help="every workflow on its built-in sample")
-    p.add_argument("--out", required=True)
+    p.add_argument("--out", required=True, help="output folder")
     return main
 
 
@@ -134,7 +259,7 @@ def main(argv: list) -> int:
     load_extension()
     from kezuri.operators.common import user_errors
     try:
-        report = demo(args) if args.command == "demo" else COMMANDS[args.command](args)
+        report = demo(args) if args.command == "demo" else COMMANDS[args.command][2](args)
     except user_errors() as error:
         print(f"kezuri: {error}", file=sys.stderr)
         return 2

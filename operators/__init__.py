@@ -3,18 +3,23 @@ from __future__ import annotations
 
 import bpy
 
-from . import engrave, panels, properties
+from . import engrave, panels, properties, sheetmetal
 
-CLASSES = (*engrave.CLASSES, *panels.CLASSES)
+CLASSES = (*engrave.CLASSES, *sheetmetal.CLASSES, *panels.CLASSES)
+MENUS = (*sheetmetal.MENUS,)
 
 
 def register():
     properties.register()
     for cls in CLASSES:
         bpy.utils.register_class(cls)
+    for menu, draw in MENUS:
+        menu.append(draw)
 
 
 def unregister():
+    for menu, draw in reversed(MENUS):
+        menu.remove(draw)
     for cls in reversed(CLASSES):
         bpy.utils.unregister_class(cls)
     properties.unregister()

@@ -87,5 +87,46 @@ class KEZURI_PT_engrave_feeds(KezuriPanel, bpy.types.Panel):
             layout.prop(props, name)
 
 
+class KEZURI_PT_sheet(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_sheet"
+    bl_label = "Sheet Metal"
+
+    def draw(self, context):
+        layout = self.layout
+        sheet = context.scene.kezuri.sheet
+        layout.label(text="Twisted quad corners (mm)")
+        grid = layout.column(align=True)
+        for corner in range(4):
+            row = grid.row(align=True)
+            row.label(text=f"P{corner + 1}")
+            for axis in range(3):
+                row.prop(sheet, "corners", index=3 * corner + axis, text="XYZ"[axis])
+        row = layout.row(align=True)
+        row.operator("kezuri.quad_from_selection", icon="FACESEL")
+        row.operator("kezuri.import_cdl", text="CDL", icon="IMPORT")
+        layout.use_property_split = True
+        for name in ("divisions", "direction", "tool_diameter", "thickness", "pitch", "station"):
+            layout.prop(sheet, name)
+        row = layout.row(align=True)
+        row.scale_y = 1.4
+        row.operator("kezuri.unfold_quad", icon="MOD_UVPROJECT")
+        layout.operator("kezuri.sheet_export", icon="EXPORT")
+
+
+class KEZURI_PT_sheet_elbow(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_sheet_elbow"
+    bl_label = "Pipe Elbow"
+    bl_parent_id = "KEZURI_PT_sheet"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        sheet = context.scene.kezuri.sheet
+        for name in ("elbow_diameter", "elbow_radius", "elbow_angle", "elbow_pieces"):
+            layout.prop(sheet, name)
+        layout.operator("kezuri.add_elbow", icon="MESH_CYLINDER")
+        layout.operator("kezuri.elbow_export", icon="EXPORT")
+
+
 CLASSES = (KEZURI_PT_machine, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
-           KEZURI_PT_engrave_feeds)
+           KEZURI_PT_engrave_feeds, KEZURI_PT_sheet, KEZURI_PT_sheet_elbow)

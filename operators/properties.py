@@ -7,8 +7,8 @@ commonest complaint about Blender CAM add-ons).
 from __future__ import annotations
 
 import bpy
-from bpy.props import (BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty,
-                       StringProperty)
+from bpy.props import (BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty,
+                       PointerProperty, StringProperty)
 
 POST_ITEMS = [
     ("fanuc", "Fanuc (baked texture)", "Fanuc machining centre, ISO 6983; texture depths written literally"),
@@ -105,13 +105,56 @@ class KezuriEngrave(bpy.types.PropertyGroup):
     show_rapids: BoolProperty(name="Show Rapids", default=True, description="Show rapid moves as well")
 
 
+# Shared by the Sheet Metal panel (scene settings) and the operators' redo panels.
+UNFOLD_SETTINGS = {
+    "divisions": IntProperty(name="Divisions N", default=5, min=1, max=500,
+                             description="Every edge of the quad is divided into N equal parts"),
+    "direction": EnumProperty(name="Strips", default="horizontal", items=[
+        ("horizontal", "Horizontal (YR)", "Strips joining edges L1 and L3"),
+        ("vertical", "Vertical (TR)", "Strips joining edges L2 and L4")]),
+    "tool_diameter": mm("Tool Diameter", 10.0, "Punch diameter: the cut contour is offset by its radius",
+                        minimum=0.0),
+    "thickness": mm("Thickness", 1.6, "Sheet thickness; above 3.2 mm the punching line G79 is used",
+                    minimum=0.01),
+    "pitch": mm("Nibbling Pitch", 2.0, "Distance between punch hits (Q word)", minimum=0.01),
+    "station": IntProperty(name="Station", default=302, min=1, max=999, description="Turret station (T word)"),
+}
+ELBOW_SETTINGS = {
+    "elbow_diameter": mm("Pipe Diameter", 100.0, "Neutral diameter of the pipe", minimum=0.1),
+    "elbow_radius": mm("Bend Radius", 150.0, "Radius of the elbow's centre line", minimum=0.1),
+    "elbow_angle": FloatProperty(name="Bend Angle", default=90.0, min=1.0, max=180.0,
+                                 description="Angle the elbow turns the pipe through (degrees)"),
+    "elbow_pieces": IntProperty(name="Pieces", default=5, min=2, max=60,
+                                description="Pieces in all, the two half pieces at the ends included"),
+}
+
+
+def copies(settings: dict) -> dict:
+    """Fresh property definitions for another class (an operator's redo panel): Blender binds a
+    definition to the class it is registered with, so two classes cannot share one."""
+    return {name: prop.function(**prop.keywords) for name, prop in settings.items()}
+
+
+# The paper's test quad: P1 (0,0,0), P2 (0,30,100), P3 (100,50,100), P4 (100,40,0).
+PAPER_CORNERS = (0.0, 0.0, 0.0, 0.0, 30.0, 100.0, 100.0, 50.0, 100.0, 100.0, 40.0, 0.0)
+
+
+class KezuriSheet(bpy.types.PropertyGroup):
+    __annotations__ = {
+        "corners": FloatVectorProperty(name="Corners", size=12, default=PAPER_CORNERS,
+                                       description="P1..P4 of the twisted quad, x y z each (mm)"),
+        **UNFOLD_SETTINGS, **ELBOW_SETTINGS,
+    }
+
+
 class KezuriSettings(bpy.types.PropertyGroup):
     machine: PointerProperty(type=KezuriMachine)
     stock: PointerProperty(type=KezuriStock)
     engrave: PointerProperty(type=KezuriEngrave)
+    sheet: PointerProperty(type=KezuriSheet)
 
 
-CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSettings)
+CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriSettings)
 
 
 def register():

@@ -441,3 +441,8 @@ def test_elbow_rejects_bad_input():
         unfold_elbow(KD, RT, -1.0, 4)
     with pytest.raises(UnfoldError, match="circumference divisions"):
         unfold_elbow(KD, RT, D, 4, divisions=2)
+
+
+def test_three_collinear_corners_are_refused():
+    with pytest.raises(UnfoldError, match="P1, P2 and P3 are collinear"):
+        unfold_twisted_quad([[0, 0, 0], [10, 0, 0], [20, 0, 0], [0, 10, 5]], 5)

@@ -70,6 +70,14 @@ def _check_corners(corners) -> np.ndarray:
             if np.linalg.norm(pts[i] - pts[j]) <= POINT_TOL:
                 kind = "edge" if (j - i) in (1, 3) else "diagonal"
                 raise UnfoldError(f"corners P{i + 1} and P{j + 1} coincide (zero-length {kind})")
+    # Three corners on one straight line make a triangle, not a quad: two edges fold onto one line.
+    scale = max(np.ptp(pts, axis=0).max(), POINT_TOL)
+    for i in range(4):
+        a, b, c = pts[i - 1], pts[i], pts[(i + 1) % 4]
+        if np.linalg.norm(np.cross(b - a, c - b)) <= 1e-9 * scale * scale:
+            before, here, after = (i - 1) % 4 + 1, i + 1, (i + 1) % 4 + 1
+            raise UnfoldError(f"corners P{before}, P{here} and P{after} are collinear: the edges meeting at "
+                              f"P{here} lie on one straight line")
     return pts
 
 

@@ -1,0 +1,282 @@
+"""W5 in Blender: twisted quads and pipe elbows unfolded, turret-punch NC, DXF and SVG.
+
+The quad's corners live in ``scene.kezuri.sheet.corners`` (mm): typed in the panel, taken from a
+selected quad face, or imported from a CADKEY .CDL file.  ``run_unfold`` and ``run_elbow`` are the
+job functions the operators, batch.py and the tests share.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+import bpy
+import numpy as np
+from bpy.props import StringProperty
+from bpy_extras.io_utils import ExportHelper, ImportHelper
+
+from ..post import amada_punch, flat_export, write_atomic
+from ..toolpath import unfold as core
+from . import convert
+from .common import run_reported
+from .properties import ELBOW_SETTINGS, UNFOLD_SETTINGS, copies
+
+PREFIX = "Kezuri Sheet"
+ELBOW_PREFIX = "Kezuri Elbow"
+GAP_MM = 20.0   # flat patterns are laid out this far beside the part
+
+
+@dataclass
+class UnfoldJob:
+    quad: core.TwistedQuad
+    contour: np.ndarray        # tool-centre contour around the flat pattern (mm)
+    nc: str                    # the turret-punch program
+
+
+def corners_mm(props) -> np.ndarray:
+    return np.array(props.corners, float).reshape(4, 3)
+
+
+def run_unfold(corners, props) -> UnfoldJob:
+    quad = core.unfold_twisted_quad(corners, props.divisions, props.direction)
+    contour = core.compensate_outline(quad.pattern.outline, props.tool_diameter)
+    nc = amada_punch.to_text(contour, station=props.station, pitch=props.pitch, thickness=props.thickness)
+    return UnfoldJob(quad, contour, nc)
+
+
+def unfold_files(job: UnfoldJob, base_path: str) -> list:
+    """NC (.nc), DXF and SVG beside each other; each written atomically."""
+    outline = job.quad.pattern.outline
+    bends = job.quad.pattern.bend_lines()
+    stem = os.path.splitext(base_path)[0]
+    files = [write_atomic(stem + ".nc", job.nc),
+             write_atomic(stem + ".dxf", flat_export.to_dxf([outline], [job.contour], bends)),
+             write_atomic(stem + ".svg", flat_export.to_svg([outline], [job.contour], bends))]
+    return files
+
+
+def _frame_beside(scene, part_max_x_mm: float, pattern_min_x_mm: float) -> convert.WorkFrame:
+    """World placement of a flat pattern: to the right of the part, on the ground plane."""
+    shift = part_max_x_mm + GAP_MM - pattern_min_x_mm
+    return convert.WorkFrame(convert.mm_per_unit(scene), (shift, 0.0, 0.0))
+
+
+def show_unfold(scene, job: UnfoldJob) -> list:
+    convert.remove_objects(PREFIX)
+    scale = convert.mm_per_unit(scene)
+    pattern = job.quad.pattern
+    world = convert.WorkFrame(scale, (0.0, 0.0, 0.0))
+    part = convert.mesh_object(scene, f"{PREFIX} part (triangulated)", pattern.vertices_3d, pattern.triangles,
+                               world, color=(0.7, 0.75, 0.8, 1.0))
+    flat_frame = _frame_beside(scene, pattern.vertices_3d[:, 0].max(), job.contour[:, 0].min())
+    flat = np.column_stack([pattern.vertices_2d, np.zeros(len(pattern.vertices_2d))])
+    flat_obj = convert.mesh_object(scene, f"{PREFIX} flat pattern", flat, pattern.triangles, flat_frame,
+                                   color=(0.85, 0.85, 0.9, 1.0))
+    cut = np.column_stack([job.contour, np.zeros(len(job.contour))])
+    cut_obj = convert.polyline_object(scene, f"{PREFIX} cut contour", [np.vstack([cut, cut[:1]])], flat_frame,
+                                      color=(1.0, 0.3, 0.1, 1.0))
+    return [part, flat_obj, cut_obj]
+
+
+def run_elbow(props) -> core.Elbow:
+    return core.unfold_elbow(props.elbow_angle, props.elbow_radius, props.elbow_diameter, props.elbow_pieces)
+
+
+def elbow_layout(elbow: core.Elbow) -> list:
+    """Each piece's flat outline (mm), placed one above the other with a gap."""
+    placed, y = [], 0.0
+    for piece in elbow.pieces:
+        outline = np.asarray(piece.outline, float)
+        outline = outline - [0.0, outline[:, 1].min() - y]
+        placed.append(outline)
+        y = outline[:, 1].max() + GAP_MM / 2
+    return placed
+
+
+def elbow_files(elbow: core.Elbow, base_path: str) -> list:
+    stem = os.path.splitext(base_path)[0]
+    outlines = elbow_layout(elbow)
+    return [write_atomic(stem + ".dxf", flat_export.to_dxf(outlines)),
+            write_atomic(stem + ".svg", flat_export.to_svg(outlines))]
+
+
+def show_elbow(scene, elbow: core.Elbow) -> list:
+    convert.remove_objects(ELBOW_PREFIX)
+    scale = convert.mm_per_unit(scene)
+    world = convert.WorkFrame(scale, (0.0, 0.0, 0.0))
+    objects = []
+    for piece in elbow.pieces:
+        objects.append(convert.mesh_object(scene, f"{ELBOW_PREFIX} piece {piece.index + 1}", piece.vertices,
+                                           piece.faces, world, color=(0.75, 0.78, 0.82, 1.0)))
+    max_x = max(p.vertices[:, 0].max() for p in elbow.pieces)
+    frame = _frame_beside(scene, max_x, 0.0)
+    for piece, outline in zip(elbow.pieces, elbow_layout(elbow)):
+        closed = np.column_stack([np.vstack([outline, outline[:1]]), np.zeros(len(outline) + 1)])
+        objects.append(convert.polyline_object(scene, f"{ELBOW_PREFIX} pattern {piece.index + 1}", [closed], frame,
+                                               color=(1.0, 0.3, 0.1, 1.0)))
+    return objects
+
+
+def quad_corners_from_object(obj, scene) -> np.ndarray:
+    """World corners (mm) of the active mesh's selected quad face (or its only face)."""
+    if obj is None or obj.type != "MESH":
+        raise convert.SceneInputError("select a mesh object with a quad face (four straight edges)")
+    mesh = obj.data
+    faces = [p for p in mesh.polygons if p.select] or list(mesh.polygons)
+    if len(faces) != 1 or len(faces[0].vertices) != 4:
+        raise convert.SceneInputError(f"object {obj.name!r}: select exactly one quad face (found "
+                                      f"{len(faces)} face(s), the first with {len(faces[0].vertices) if faces else 0} "
+                                      "corners)")
+    matrix = np.array(obj.matrix_world)
+    local = np.array([mesh.vertices[i].co for i in faces[0].vertices], float)
+    world = local @ matrix[:3, :3].T + matrix[:3, 3]
+    return world * convert.mm_per_unit(scene)
+
+
+class KEZURI_OT_unfold_quad(bpy.types.Operator):
+    """Unfold the twisted quad by triangulation and lay the flat pattern beside it"""
+
+    bl_idname = "kezuri.unfold_quad"
+    bl_label = "Unfold Twisted Quad"
+    bl_options = {"REGISTER", "UNDO"}
+    __annotations__ = copies(UNFOLD_SETTINGS)   # the panel's settings, in the redo panel
+
+    def invoke(self, context, event):
+        sheet = context.scene.kezuri.sheet
+        for name in UNFOLD_SETTINGS:
+            setattr(self, name, getattr(sheet, name))
+        return self.execute(context)
+
+    def execute(self, context):
+        def work():
+            sheet = context.scene.kezuri.sheet
+            for name in UNFOLD_SETTINGS:
+                setattr(sheet, name, getattr(self, name))
+            job = run_unfold(corners_mm(sheet), sheet)
+            show_unfold(context.scene, job)
+            lengths = ", ".join(f"{v:.3f}" for v in job.quad.edge_lengths)
+            self.report({"INFO"}, f"Unfolded into {2 * job.quad.divisions} triangles; edges {lengths} mm")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_quad_from_selection(bpy.types.Operator):
+    """Take the twisted quad's corners from the selected quad face of the active mesh"""
+
+    bl_idname = "kezuri.quad_from_selection"
+    bl_label = "Corners from Selected Face"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        if obj is None or obj.type != "MESH":
+            cls.poll_message_set("Make a mesh with a quad face the active object")
+            return False
+        return True
+
+    def execute(self, context):
+        def work():
+            if context.active_object.mode == "EDIT":
+                context.active_object.update_from_editmode()
+            corners = quad_corners_from_object(context.active_object, context.scene)
+            context.scene.kezuri.sheet.corners = corners.ravel()
+            self.report({"INFO"}, "Corners taken from the selected face")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_import_cdl(bpy.types.Operator, ImportHelper):
+    """Import a twisted quad from a CADKEY CDL intermediate file (four LINE records)"""
+
+    bl_idname = "kezuri.import_cdl"
+    bl_label = "Import CADKEY CDL"
+    bl_options = {"REGISTER", "UNDO"}
+
+    filename_ext = ".cdl"
+    filter_glob: StringProperty(default="*.cdl;*.CDL", options={"HIDDEN"})
+
+    def execute(self, context):
+        def work():
+            with open(self.filepath, encoding="latin-1") as stream:
+                corners = core.read_cdl(stream.read())
+            scene = context.scene
+            scene.kezuri.sheet.corners = corners.ravel()
+            convert.remove_objects(f"{PREFIX} imported quad")
+            world = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+            convert.mesh_object(scene, f"{PREFIX} imported quad", corners, [[0, 1, 2, 3]], world,
+                                color=(0.7, 0.75, 0.8, 1.0))
+            self.report({"INFO"}, f"Read the quad from {os.path.basename(self.filepath)}")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_sheet_export(bpy.types.Operator, ExportHelper):
+    """Write the turret-punch program (.nc) with the flat pattern as DXF and SVG beside it"""
+
+    bl_idname = "kezuri.sheet_export"
+    bl_label = "Export Punch NC, DXF, SVG"
+    bl_options = {"REGISTER"}
+
+    filename_ext = ".nc"
+    filter_glob: StringProperty(default="*.nc", options={"HIDDEN"})
+
+    def execute(self, context):
+        def work():
+            job = run_unfold(corners_mm(context.scene.kezuri.sheet), context.scene.kezuri.sheet)
+            files = unfold_files(job, self.filepath)
+            self.report({"INFO"}, "Wrote " + ", ".join(os.path.basename(f) for f in files))
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_add_elbow(bpy.types.Operator):
+    """Add a segmented pipe elbow and the flat pattern of every piece"""
+
+    bl_idname = "kezuri.add_elbow"
+    bl_label = "Pipe Elbow"
+    bl_options = {"REGISTER", "UNDO"}
+
+    __annotations__ = copies(ELBOW_SETTINGS)
+
+    def invoke(self, context, event):
+        for name in ELBOW_SETTINGS:
+            setattr(self, name, getattr(context.scene.kezuri.sheet, name))
+        return self.execute(context)
+
+    def execute(self, context):
+        def work():
+            sheet = context.scene.kezuri.sheet
+            for name in ELBOW_SETTINGS:
+                setattr(sheet, name, getattr(self, name))
+            elbow = run_elbow(sheet)
+            show_elbow(context.scene, elbow)
+            self.report({"INFO"}, f"Elbow of {len(elbow.pieces)} pieces, {elbow.piece_angle:.2f} deg each")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_elbow_export(bpy.types.Operator, ExportHelper):
+    """Write the elbow pieces' flat patterns as DXF and SVG"""
+
+    bl_idname = "kezuri.elbow_export"
+    bl_label = "Export Elbow Patterns"
+    bl_options = {"REGISTER"}
+
+    filename_ext = ".dxf"
+    filter_glob: StringProperty(default="*.dxf;*.svg", options={"HIDDEN"})
+
+    def execute(self, context):
+        def work():
+            files = elbow_files(run_elbow(context.scene.kezuri.sheet), self.filepath)
+            self.report({"INFO"}, "Wrote " + ", ".join(os.path.basename(f) for f in files))
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+def menu_import(self, context):
+    self.layout.operator(KEZURI_OT_import_cdl.bl_idname, text="CADKEY CDL (.cdl)")
+
+
+CLASSES = (KEZURI_OT_unfold_quad, KEZURI_OT_quad_from_selection, KEZURI_OT_import_cdl, KEZURI_OT_sheet_export,
+           KEZURI_OT_add_elbow, KEZURI_OT_elbow_export)
+MENUS = ((bpy.types.TOPBAR_MT_file_import, menu_import),)
