@@ -85,6 +85,7 @@ def engrave(args) -> dict:
     from kezuri.operators import engrave as shell
     from kezuri.operators import preview, samples
     from kezuri.operators.common import Progress
+    from kezuri.operators.preferences import scene_post
 
     scene = open_blend(args.blend)
     if not args.blend:
@@ -92,7 +93,7 @@ def engrave(args) -> dict:
     props = scene.kezuri
     if args.seed is not None:
         props.engrave.seed = args.seed
-    post_name = args.post or props.machine.post
+    post_name = args.post or scene_post(scene)
     started = time.perf_counter()
     job = shell.run_engrave(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "engrave"))
     seconds = time.perf_counter() - started

@@ -17,7 +17,8 @@ from ..toolpath import engrave as core
 from ..toolpath.program import Tool
 from . import convert
 from .common import Progress, run_reported
-from .properties import POST_ITEMS
+from .preferences import scene_output_dir, scene_post
+from .properties import MILLING_POST_ITEMS
 
 PREFIX = "Kezuri Engrave"
 COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "band": (0.1, 0.6, 1.0, 1.0), "burr": (0.2, 0.9, 0.3, 1.0),
@@ -142,16 +143,16 @@ class KEZURI_OT_engrave_export(bpy.types.Operator, ExportHelper):
 
     filename_ext = ".nc"
     filter_glob: StringProperty(default="*.nc;*.ngc;*.tap", options={"HIDDEN"})
-    post: EnumProperty(name="Post", items=POST_ITEMS, default="fanuc")
+    post: EnumProperty(name="Post", items=MILLING_POST_ITEMS, default="fanuc")
 
     @classmethod
     def poll(cls, context):
         return KEZURI_OT_engrave_generate.poll(context)
 
     def invoke(self, context, event):
-        self.post = context.scene.kezuri.machine.post
+        self.post = scene_post(context.scene, context)
         self.filename_ext = extension_for(self.post)
-        folder = bpy.path.abspath(context.scene.kezuri.machine.output_dir or "//")
+        folder = scene_output_dir(context.scene, context)
         self.filepath = os.path.join(folder, bpy.path.clean_name(context.scene.name) + self.filename_ext)
         return ExportHelper.invoke(self, context, event)
 

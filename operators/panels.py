@@ -53,6 +53,7 @@ class KEZURI_PT_engrave_texture(KezuriPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         props = context.scene.kezuri.engrave
+        layout.menu("KEZURI_MT_library_tools", icon="TOOL_SETTINGS")
         for name in ("rough_diameter", "rough_tool_number", "stepover", "raster_angle", "letter_clearance",
                      "base_depth", "quantum", "amplitude", "spacing", "motion", "spacing_jitter", "seed"):
             layout.prop(props, name)

@@ -10,13 +10,16 @@ import bpy
 from bpy.props import (BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty,
                        PointerProperty, StringProperty)
 
-POST_ITEMS = [
+MILLING_POST_ITEMS = [
     ("fanuc", "Fanuc (baked texture)", "Fanuc machining centre, ISO 6983; texture depths written literally"),
     ("fanuc-macro", "Fanuc (controller macro)",
      "Fanuc Custom Macro B: G66.1 P7023 draws the depths on the controller from clock #3001"),
     ("linuxcnc", "LinuxCNC", "LinuxCNC / rs274ngc router or mill (.ngc)"),
     ("grbl", "GRBL", "GRBL 1.1 hobby router: no tool changer, M00 pause at each tool change"),
 ]
+
+SCENE_POST_ITEMS = [("DEFAULT", "Preferences Default", "The default post of the extension preferences"),
+                    *MILLING_POST_ITEMS]
 
 WORK_OFFSET_ITEMS = [(f"G{n}", f"G{n}", f"Work coordinate system G{n}") for n in range(54, 60)]
 
@@ -45,14 +48,14 @@ def mm(name, default, description, minimum=None, maximum=None, soft_min=None, so
 
 
 class KezuriMachine(bpy.types.PropertyGroup):
-    post: EnumProperty(name="Post", items=POST_ITEMS, default="fanuc",
+    post: EnumProperty(name="Post", items=SCENE_POST_ITEMS, default="DEFAULT",
                        description="Controller the NC program is written for")
     work_offset: EnumProperty(name="Work Offset", items=WORK_OFFSET_ITEMS, default="G54",
                               description="Work coordinate system selected at the program start")
     rapid_rate: FloatProperty(name="Rapid Rate", default=5000.0, min=1.0,
                               description="Rapid traverse speed used for cycle-time estimates (mm/min)")
-    output_dir: StringProperty(name="Output Folder", subtype="DIR_PATH", default="//nc/",
-                               description="Default folder for exported NC programs")
+    output_dir: StringProperty(name="Output Folder", subtype="DIR_PATH", default="",
+                               description="Folder for exported NC programs (empty: the preferences' folder)")
 
 
 class KezuriStock(bpy.types.PropertyGroup):

@@ -46,6 +46,16 @@ samples.set_millimetres(scene)
 samples.name_plate(scene)
 result["engrave_generate"] = sorted(bpy.ops.kezuri.engrave_generate())
 result["kezuri_objects"] = len(bpy.data.collections["Kezuri"].objects)
+# Preferences: the tool library and the default post.
+prefs = bpy.context.preferences.addons[package].preferences
+bpy.ops.kezuri.tool_add()
+tool = prefs.tools[-1]
+tool.kind, tool.diameter, tool.number = "ball", 8.0, 7
+bpy.ops.kezuri.use_library_tool(slot="rough", index=len(prefs.tools) - 1)
+result["rough_from_library"] = [scene.kezuri.engrave.rough_diameter, scene.kezuri.engrave.rough_tool_number]
+prefs.default_post = "grbl"
+preferences_module = importlib.import_module(package + ".operators.preferences")
+result["scene_post"] = preferences_module.scene_post(scene)
 bpy.ops.preferences.addon_disable(module=package)
 result["registered_after_disable"] = hasattr(bpy.types.Scene, "kezuri")
 print("RESULT " + json.dumps(result))

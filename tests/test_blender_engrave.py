@@ -133,6 +133,9 @@ class RecordingLayout:
 
     column = box = row
 
+    def menu(self, idname, **_):
+        self.operators.append(idname)
+
     def separator(self, **_):
         pass
 

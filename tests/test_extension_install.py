@@ -40,4 +40,6 @@ def test_installed_zip_runs_on_its_bundled_wheels_and_disables_cleanly(linux_zip
     assert result["trimesh"].startswith(str(tmp_path / "user"))
     assert result["registered"] is True
     assert result["engrave_generate"] == ["FINISHED"] and result["kezuri_objects"] >= 3
+    assert result["rough_from_library"] == [8.0, 7]
+    assert result["scene_post"] == "grbl"      # "Preferences Default" resolves to the preferences' post
     assert result["registered_after_disable"] is False
