@@ -10,6 +10,8 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
+from ..toolpath import region
+
 COLLECTION = "Kezuri"
 
 
@@ -69,25 +71,15 @@ def evaluated_mesh_arrays(obj, depsgraph):
     return world, polygons, edges.reshape(-1, 2)
 
 
-def boundary_loops(vertices: np.ndarray, polygons, edges: np.ndarray, name: str) -> list:
-    """Closed outlines of an object: the boundary of its faces, or its closed edge loops.
+def edge_loops(vertices: np.ndarray, edges: np.ndarray, name: str) -> list:
+    """Closed loops of a wire (a curve without fill, or a mesh of edges only).
 
-    A text object or a filled curve gives faces; a curve without fill or a wire mesh gives
-    edges, which must form closed loops (an open outline cannot bound a region).
+    Every vertex must join exactly two edges: an open outline cannot bound a region.
     """
-    if polygons:
-        counts: dict = {}
-        for poly in polygons:
-            for a, b in zip(poly, np.roll(poly, -1)):
-                key = (min(a, b), max(a, b))
-                counts[key] = counts.get(key, 0) + 1
-        boundary = np.array([key for key, count in counts.items() if count == 1], dtype=np.int64).reshape(-1, 2)
-    else:
-        boundary = edges
-    if not len(boundary):
+    if not len(edges):
         raise SceneInputError(f"object {name!r} has no outline (no faces and no edges)")
     neighbours: dict = {}
-    for a, b in boundary:
+    for a, b in edges:
         neighbours.setdefault(int(a), []).append(int(b))
         neighbours.setdefault(int(b), []).append(int(a))
     open_ends = [v for v, n in neighbours.items() if len(n) != 2]
@@ -113,14 +105,21 @@ def boundary_loops(vertices: np.ndarray, polygons, edges: np.ndarray, name: str)
     return loops
 
 
-def object_outlines(obj, depsgraph) -> list:
-    """Closed outlines (world, Blender units, (k, 3) arrays) of a Text, curve or mesh object."""
+def outlines_in_work(obj, depsgraph, frame: "WorkFrame") -> list:
+    """Closed outlines (work mm, (k, 2) arrays) of a Text, curve or mesh object, seen from above.
+
+    Faces (a Text object, a filled curve, mesh faces) are merged into one region, so T-junctions
+    and faces of either winding are fine; a wire must form closed loops.
+    """
     if obj.type not in {"MESH", "CURVE", "FONT", "SURFACE"}:
         raise SceneInputError(f"object {obj.name!r} is a {obj.type.lower()}; use a Text, curve or mesh")
     vertices, polygons, edges = evaluated_mesh_arrays(obj, depsgraph)
     if not np.all(np.isfinite(vertices)):
         raise SceneInputError(f"object {obj.name!r} has a vertex with a non-finite coordinate")
-    return boundary_loops(vertices, polygons, edges, obj.name)
+    work = frame.to_work(vertices)
+    if polygons:
+        return region.loops(region.union_of_faces([work[p, :2] for p in polygons], f"object {obj.name!r}"))
+    return [loop[:, :2] for loop in edge_loops(work, edges, obj.name)]
 
 
 @dataclass
@@ -160,15 +159,11 @@ def plate_from_object(obj, depsgraph, scene, origin: str = "CENTER") -> Plate:
     tolerance = max(1e-6, (hi[2] - lo[2]) / scale * 1e-4)
     top_faces = [p for p in polygons if np.all(np.abs(vertices[p, 2] - top_z) <= tolerance)]
     if top_faces:
-        loops = boundary_loops(vertices, top_faces, np.empty((0, 2), np.int64), obj.name)
-        outline = [frame.to_work(loop)[:, :2] for loop in loops]
+        work = frame.to_work(vertices)
+        outline = region.loops(region.union_of_faces([work[p, :2] for p in top_faces], f"plate {obj.name!r}"))
     else:
         outline = [np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]]) - origin_mm[:2]]
     return Plate(outline, tuple(hi - lo), frame)
-
-
-def outlines_in_work(obj, depsgraph, frame: WorkFrame) -> list:
-    return [frame.to_work(loop)[:, :2] for loop in object_outlines(obj, depsgraph)]
 
 
 # ----------------------------------------------------------------------------------------

@@ -5,8 +5,17 @@ import bpy
 
 
 def clear_scene(scene):
+    """Remove every object and put the scene's Kezuri settings back to their defaults."""
     for obj in list(scene.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
+    for collection in list(scene.collection.children):
+        bpy.data.collections.remove(collection)
+    settings = scene.kezuri
+    groups = [getattr(settings, p.identifier) for p in settings.bl_rna.properties if p.type == "POINTER"]
+    for group in groups:
+        for prop in group.bl_rna.properties:
+            if prop.identifier != "rna_type":
+                group.property_unset(prop.identifier)
 
 
 def set_millimetres(scene):

@@ -207,3 +207,37 @@ def test_zero_stepover_is_refused(scene):
 def test_export_path_uses_the_post_extension():
     assert shell.extension_for("linuxcnc") == ".ngc"
     assert shell.extension_for("fanuc-macro") == ".nc"
+
+
+def test_letters_from_mesh_faces_and_closed_curves(scene):
+    """An 'L' as mesh faces (two quads) and an 'O' as two closed curve loops: both engrave."""
+    mesh = bpy.data.meshes.new("MeshL")
+    mesh.from_pydata([(-60, -20, 0), (-50, -20, 0), (-50, 20, 0), (-60, 20, 0), (-30, -20, 0), (-30, -10, 0),
+                      (-50, -10, 0)], [], [(0, 1, 2, 3), (1, 4, 5, 6)])
+    mesh_obj = bpy.data.objects.new("MeshL", mesh)
+    curve = bpy.data.curves.new("CurveO", type="CURVE")
+    for size in (20, 10):
+        spline = curve.splines.new("POLY")
+        spline.points.add(3)
+        for p, (x, y) in zip(spline.points, [(0, 0), (size, 0), (size, size), (0, size)]):
+            p.co = (x + 20 - size / 2, y - size / 2, 0, 1)
+        spline.use_cyclic_u = True
+    curve_obj = bpy.data.objects.new("CurveO", curve)
+    collection = bpy.data.collections.new("Lettering")
+    scene.collection.children.link(collection)
+    for obj in (mesh_obj, curve_obj):
+        collection.objects.link(obj)
+    scene.kezuri.engrave.letters = None
+    scene.kezuri.engrave.letters_collection = collection
+    job = shell.run_engrave(scene, bpy.context.evaluated_depsgraph_get())
+    from kezuri.toolpath import region
+    band = job.baked.operations[1]
+    ring_points = band.xyz[band.xyz[:, 2] < 0][:, :2]
+    # The band runs inside the O's counter (a 10 mm hole) and around the L.
+    assert region.contains_points(region.rectangle(15.6, -4.4, 24.4, 4.4), ring_points).any()
+    assert region.contains_points(region.rectangle(-65, -25, -25, 25), ring_points).any()
+    l_shape = region.from_loops([[(-60, -20), (-30, -20), (-30, -10), (-50, -10), (-50, 20), (-60, 20)]])
+    o_ring = region.from_loops([[(10, -10), (30, -10), (30, 10), (10, 10)], [(15, -5), (25, -5), (25, 5), (15, 5)]])
+    for op in job.baked.operations:
+        below = op.xyz[op.xyz[:, 2] < 0][:, :2]
+        assert not region.contains_points(l_shape + o_ring, below).any(), op.name

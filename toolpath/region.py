@@ -54,6 +54,18 @@ def from_loops(loops, what: str = "outline") -> CrossSection:
     return CrossSection(clean, FillRule.EvenOdd)
 
 
+def union_of_faces(faces, what: str = "faces") -> CrossSection:
+    """The region covered by planar faces (either winding); slivers of no area are ignored."""
+    polygons = []
+    for face in faces:
+        pts = np.asarray(face, dtype=float)[:, :2]
+        if len(pts) >= 3 and np.all(np.isfinite(pts)) and abs(signed_area(pts)) > 1e-12:
+            polygons.append(pts)
+    if not polygons:
+        raise RegionError(f"{what}: no faces with an area when seen from above")
+    return CrossSection(polygons, FillRule.NonZero)
+
+
 def rectangle(x0: float, y0: float, x1: float, y1: float) -> CrossSection:
     return CrossSection([np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], float)])
 
