@@ -11,7 +11,8 @@ def clear_scene(scene):
     for collection in list(scene.collection.children):
         bpy.data.collections.remove(collection)
     settings = scene.kezuri
-    groups = [getattr(settings, p.identifier) for p in settings.bl_rna.properties if p.type == "POINTER"]
+    groups = [getattr(settings, p.identifier) for p in settings.bl_rna.properties
+              if p.type == "POINTER" and p.identifier != "rna_type"]
     for group in groups:
         for prop in group.bl_rna.properties:
             if prop.identifier != "rna_type":
