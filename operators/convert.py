@@ -191,30 +191,33 @@ def remove_objects(prefix: str):
                 bpy.data.curves.remove(data)
 
 
-def polyline_object(scene, name: str, paths, frame: WorkFrame, color=(1, 1, 1, 1)):
-    """A wire mesh through each (k, 3) work-mm path: how toolpaths are shown in the viewport."""
-    points, edges, base = [], [], 0
+def polyline_object(scene, name: str, paths, frame: WorkFrame, color=(1, 1, 1, 1), tube_mm: float = 0.3):
+    """A thin tube through each (k, 3) work-mm path: how toolpaths and contours are shown.
+
+    A curve with a small bevel, not a wire mesh: the viewport draws it in the object's colour
+    in Solid mode and it renders in the batch preview pictures.
+    """
+    curve = bpy.data.curves.new(name, type="CURVE")
+    curve.dimensions = "3D"
+    curve.bevel_depth = tube_mm / frame.mm_per_unit
+    curve.bevel_resolution = 0
     for path in paths:
         if len(path) < 2:
             continue
-        points.append(frame.to_world(path))
-        k = len(path)
-        edges.append(np.column_stack([np.arange(base, base + k - 1), np.arange(base + 1, base + k)]))
-        base += k
-    mesh = bpy.data.meshes.new(name)
-    if points:
-        vertices = np.vstack(points)
-        mesh.vertices.add(len(vertices))
-        mesh.vertices.foreach_set("co", vertices.ravel())
-        all_edges = np.vstack(edges)
-        mesh.edges.add(len(all_edges))
-        mesh.edges.foreach_set("vertices", all_edges.ravel())
-        mesh.update()
-    obj = bpy.data.objects.new(name, mesh)
+        points = frame.to_world(path)
+        spline = curve.splines.new("POLY")
+        spline.points.add(len(points) - 1)
+        spline.points.foreach_set("co", np.hstack([points, np.ones((len(points), 1))]).ravel())
+    obj = bpy.data.objects.new(name, curve)
     obj.color = color
-    obj.show_in_front = True
+    obj.show_in_front = True   # toolpaths run below the stock's top: draw them over it
     result_collection(scene).objects.link(obj)
     return obj
+
+
+def curve_points(obj) -> np.ndarray:
+    """World coordinates (Blender units) of every point of a polyline_object."""
+    return np.array([p.co[:3] for spline in obj.data.splines for p in spline.points])
 
 
 def operation_paths(op) -> tuple:

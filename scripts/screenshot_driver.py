@@ -33,16 +33,43 @@ def maximise_viewport():
     window, area, region, _ = view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
         bpy.ops.screen.screen_full_area()
+    area = view3d()[1]
+    area.spaces.active.show_region_ui = True
 
 
-def show_cam_tab(panels_open=()):
+def click_cam_tab():
+    """Blender 4.3 cannot set the sidebar tab from Python: click it.  The tabs (Tool, View, CAM)
+    run down the sidebar's right edge; CAM is the third, about 115 px below the sidebar's top."""
+    window, area, region, sidebar = view3d()
+    try:
+        sidebar.active_panel_category = "CAM"
+        return
+    except AttributeError:
+        pass
+    x = sidebar.x + sidebar.width - 9
+    y = window.height - (sidebar.y + sidebar.height) + 115
+    subprocess.run(["xdotool", "mousemove", str(x), str(y), "click", "1", "mousemove", "800", "500"], check=True)
+
+
+def only_panels(*prefixes):
+    """Show only the Machine panel and the panels of one workflow (so the picture shows them
+    without scrolling): the others are unregistered for this picture and registered again after."""
+    panels = module("operators.panels")
+    for cls in reversed(panels.CLASSES):
+        if cls.is_registered:
+            bpy.utils.unregister_class(cls)
+    for cls in panels.CLASSES:
+        if cls.__name__ == "KEZURI_PT_machine" or cls.__name__.startswith(prefixes):
+            bpy.utils.register_class(cls)
+
+
+def show_cam_tab():
     window, area, region, sidebar = view3d()
     space = area.spaces.active
     space.show_region_ui = True
     space.overlay.show_overlays = True
     space.shading.type = "SOLID"
     space.shading.color_type = "OBJECT"
-    sidebar.active_panel_category = "CAM"
     area.tag_redraw()
 
 
@@ -73,9 +100,11 @@ def engrave_step():
     samples.clear_scene(scene)
     samples.set_millimetres(scene)
     samples.name_plate(scene)
+    scene.kezuri.engrave.show_rapids = False     # a cleaner picture: the cuts only
     window, area, region, _ = view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
         bpy.ops.kezuri.engrave_generate()
+    only_panels("KEZURI_PT_engrave")
     show_cam_tab()
     frame_all()
 
@@ -86,6 +115,7 @@ def sheet_step():
     window, area, region, _ = view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
         bpy.ops.kezuri.unfold_quad()
+    only_panels("KEZURI_PT_sheet")
     show_cam_tab()
     frame_all()
 
@@ -96,11 +126,12 @@ def elbow_step():
     window, area, region, _ = view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
         bpy.ops.kezuri.add_elbow()
+    only_panels("KEZURI_PT_sheet")
     show_cam_tab()
     frame_all()
 
 
-STEPS = [("setup", maximise_viewport, None), ("engrave", engrave_step, "engrave"),
+STEPS = [("setup", maximise_viewport, None), ("cam tab", click_cam_tab, None), ("engrave", engrave_step, "engrave"),
          ("sheet", sheet_step, "sheet-metal"), ("elbow", elbow_step, "elbow")]
 state = {"index": 0, "pending": None}
 
@@ -111,6 +142,7 @@ def tick():
         shoot(state["pending"])
         state["pending"] = None
     if state["index"] >= len(STEPS):
+        only_panels("KEZURI_PT")                 # every panel back, so the extension unregisters cleanly
         bpy.ops.wm.quit_blender()
         return None
     name, action, picture = STEPS[state["index"]]

@@ -12,12 +12,13 @@ REPO=$(pwd)
 CHROOT=${1:-$REPO/build/trixie}
 MIRROR=${MIRROR:-http://deb.debian.org/debian}
 
-if [ ! -x "$CHROOT/usr/bin/blender" ]; then
+if [ ! -e "$CHROOT/usr/lib/x86_64-linux-gnu/libEGL.so.1" ]; then
   command -v debootstrap >/dev/null || apt-get install -y -q debootstrap
   [ -d "$CHROOT/usr" ] || debootstrap --variant=minbase trixie "$CHROOT" "$MIRROR"
   chroot "$CHROOT" apt-get update -q
   DEBIAN_FRONTEND=noninteractive chroot "$CHROOT" apt-get install -y -q --no-install-recommends \
-    blender xvfb xauth x11-apps imagemagick libgl1-mesa-dri python3-numpy fonts-dejavu-core
+    blender xvfb xauth x11-apps xdotool imagemagick libgl1-mesa-dri libegl1 libegl-mesa0 python3-numpy \
+    fonts-dejavu-core
 fi
 
 ./scripts/setup.sh
@@ -41,3 +42,8 @@ run xvfb-run -a -s "-screen 0 1600x1000x24" env KEZURI_SCREENSHOTS=/tmp/screensh
 mkdir -p docs/screenshots
 cp "$CHROOT"/tmp/screenshots/*.png docs/screenshots/
 ls -l docs/screenshots
+
+# The same Blender in batch mode: blender -b --python batch.py -- demo, on the installed wheels.
+rm -rf "$CHROOT/tmp/repo" && mkdir -p "$CHROOT/tmp/repo"
+git ls-files -z | xargs -0 tar -cf - | tar -x -C "$CHROOT/tmp/repo"
+run blender -b --python /tmp/repo/batch.py -- demo --out /tmp/blender-demo 2>&1 | grep -E "wrote|kezuri:" || true

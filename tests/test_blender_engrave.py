@@ -47,7 +47,7 @@ def test_generate_operator_builds_the_preview_and_rerun_replaces_it(scene):
     assert "Kezuri Engrave burr contour" in first
     assert any(name.endswith("rapids") for name in first)
     rough = bpy.data.objects["Kezuri Engrave roughing (gouge texture)"]
-    z = np.array([v.co.z for v in rough.data.vertices])
+    z = shell.convert.curve_points(rough)[:, 2]
     # mm scene: 1 unit = 1 mm; cutting runs start with the feed plunge from the 2 mm approach gap.
     assert z.min() == pytest.approx(-2.8, abs=1e-5) and z.max() == pytest.approx(2.0, abs=1e-5)
     assert bpy.ops.kezuri.engrave_generate() == {"FINISHED"}

@@ -96,7 +96,9 @@ def test_elbow_operator_adds_pieces_and_patterns(scene):
     pieces = [o for o in bpy.data.objects if o.name.startswith("Kezuri Elbow piece")]
     patterns = [o for o in bpy.data.objects if o.name.startswith("Kezuri Elbow pattern")]
     assert len(pieces) == len(patterns) == 5
-    width = max(v.co.x for v in patterns[0].data.vertices) - min(v.co.x for v in patterns[0].data.vertices)
+    from kezuri.operators.convert import curve_points
+    xs = curve_points(patterns[0])[:, 0]
+    width = xs.max() - xs.min()
     assert width == pytest.approx(np.pi * 100, rel=1e-5)
 
 
