@@ -326,7 +326,7 @@ def test_awkward_outlines_are_cut_without_gouge(outline, angle):
     result = rotary.plan(Block(), [pocket])
     assert result.reports[0]["max_gouge_mm"] == 0.0
     kinds, points, abc = canonical(LinuxCNCRotaryPost().to_text(result.program))
-    centres = interpolated_tips(points, abc, kinds) + np.array([0, 0, R])
+    centres = interpolated_tips(points, abc, kinds, samples=3) + np.array([0, 0, R])
     below = centres[:, 2] - R * math.sin(math.radians(angle)) < 0
     need = R / math.cos(math.radians(angle)) - centres[below, 2] * math.tan(math.radians(angle))
     assert np.all(polygon_distance(outline, centres[below, :2]) >= need - 1e-6)

@@ -74,6 +74,10 @@ class Operation:
       center  (n, 3)    arc centre (NaN for straight moves); arcs lie in the XY plane
       feed    (n,)      mm/min for cutting moves, NaN for rapids
       rotary  {axis: (n,)}  end positions of rotary axes in degrees, e.g. {"c": ...}
+    Rotary axis "c" is a table turning the part about Z: with the table at C, the tool at
+    machine (x, y) touches the part point R(C) (x, y) (R = rotation by C, counter-clockwise).
+    The axes move linearly in machine coordinates, so a move traces a curve on the part, and
+    lengths and times are measured along that curve.
     ``start`` is where the tool is before the first move (normally above the clearance plane).
     ``texture`` carries a request a post may honour itself (e.g. the gouge texture that a
     controller macro applies at run time); the moves are then the untextured path.
@@ -148,9 +152,13 @@ class Operation:
         return np.vstack([self.start[None, :], self.xyz[:-1]])
 
     def move_lengths(self) -> np.ndarray:
-        """Path length of every move in mm (arcs measured along the arc, helical included)."""
+        """Path length of every move on the part in mm (arcs along the arc, helical included;
+        with a C table along the curve the linear machine motion traces on the part)."""
         a = self.start_points()
         b = self.xyz
+        if "c" in self.rotary and len(self):
+            c = self.rotary["c"]
+            return table_move_lengths(a, b, np.concatenate([[c[0]], c[:-1]]), c)
         length = np.linalg.norm(b - a, axis=1)
         arcs = np.flatnonzero((self.kind == ARC_CW) | (self.kind == ARC_CCW))
         if len(arcs):
@@ -188,6 +196,27 @@ class Operation:
                 "moves": len(self), "feed_length_mm": round(self.feed_length(), 3),
                 "cycle_time_s": round(self.cycle_time(rapid_rate), 1),
                 "min_feed_z_mm": round(zmin, 4), "max_feed_z_mm": round(zmax, 4)}
+
+
+# 8-point Gauss-Legendre nodes on [0, 1] and weights: the speed along a table move is smooth.
+_GAUSS_X, _GAUSS_W = np.polynomial.legendre.leggauss(8)
+_GAUSS_T, _GAUSS_W = (_GAUSS_X + 1) / 2, _GAUSS_W / 2
+
+
+def table_move_lengths(a: np.ndarray, b: np.ndarray, c0: np.ndarray, c1: np.ndarray) -> np.ndarray:
+    """Length on the part of moves from a to b (machine xyz) while the C table turns c0 -> c1 (deg).
+
+    The part point is p = R(C) m with m the machine point, so |dp/dt|^2 =
+    |m'|^2 + C'^2 |m|^2 + 2 C' (m_x m'_y - m_y m'_x) + z'^2, integrated by Gauss-Legendre.
+    """
+    d = b - a
+    dc = np.radians(c1 - c0)[:, None]
+    mx = a[:, 0:1] + d[:, 0:1] * _GAUSS_T[None, :]
+    my = a[:, 1:2] + d[:, 1:2] * _GAUSS_T[None, :]
+    planar = (d[:, 0:1] ** 2 + d[:, 1:2] ** 2 + dc ** 2 * (mx ** 2 + my ** 2)
+              + 2 * dc * (mx * d[:, 1:2] - my * d[:, 0:1]))
+    speed = np.sqrt(np.maximum(planar, 0.0) + d[:, 2:3] ** 2)
+    return speed @ _GAUSS_W
 
 
 def arc_sweep(a: np.ndarray, b: np.ndarray, c: np.ndarray, clockwise: np.ndarray) -> np.ndarray:

@@ -70,12 +70,12 @@ def rectangle(x0: float, y0: float, x1: float, y1: float) -> CrossSection:
     return CrossSection([np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], float)])
 
 
-def _segments_for(radius: float) -> int:
-    """Circle segments so the chord error is at most ARC_TOLERANCE."""
+def circle_segments(radius: float, tolerance: float = ARC_TOLERANCE) -> int:
+    """Segments for a full circle so the chord error is at most ``tolerance``."""
     r = abs(radius)
-    if r <= ARC_TOLERANCE:
+    if r <= tolerance:
         return 8
-    n = math.pi / math.acos(1 - ARC_TOLERANCE / r)
+    n = math.pi / math.acos(1 - tolerance / r)
     return int(min(max(8, math.ceil(n)), 720))
 
 
@@ -83,7 +83,7 @@ def offset(region: CrossSection, delta: float) -> CrossSection:
     """Grow (delta > 0) or shrink (delta < 0) with round joins, within ARC_TOLERANCE."""
     if delta == 0:
         return region
-    return region.offset(delta, JoinType.Round, 2.0, _segments_for(delta))
+    return region.offset(delta, JoinType.Round, 2.0, circle_segments(delta))
 
 
 def loops(region: CrossSection) -> list:

@@ -1,0 +1,155 @@
+"""C-X-Z rotary-table posts (W2): the board turns on C, the bit moves in X (= -R) and Z.
+
+Moves come from :mod:`toolpath.rotary`: xyz = (X word, 0, tool-tip Z), rotary["c"] in
+degrees (continuous), feed in mm/min along the path on the part.  Cutting moves are written
+in inverse-time feed, ``G93``, with ``F`` = 1 / minutes for the block on every G01 (both
+controllers require it there), so a move that turns the table is timed by the distance the
+bit travels over the wood and never read as degrees per minute.  ``G94`` is restored after
+every operation.  Rapids are ``G00``.  Words are written in the paper's order
+``X-R C<deg> Z<z>``, modal (only when they change).  The header carries the cycle-time
+estimate (true path lengths, the table's speed limit, rapids at the program's rapid rate).
+
+Flavours:
+
+* ``LinuxCNCRotaryPost`` (.ngc): checked by LinuxCNC's ``rs274`` in the tests; ``G64 P0.01``
+  blending, ``G43 H<n>``, C to 4 decimals.
+* ``FanucRotaryPost`` (.nc): for a milling-type Fanuc control with the inverse-time option
+  and C set as a rotary axis without roll-over (C may run past 360): ``%`` / ``O0001``
+  frame, 3 decimals on every axis and always a decimal point, ``T01 M06``,
+  ``G43 Z.. H01``, no ``G64``, ends ``G91 G28 Z0.`` (no X/Y reference return: the machine
+  has no Y, and X homes outside the board).  Fanuc limits the G93 F value (a parameter of
+  the control); very short moves near the rotation axis give large F values.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..toolpath import rotary
+from ..toolpath.program import FEED, RAPID, Operation, Program
+from .fanuc import FanucPost
+from .gcode import GcodePost, PostError, comment_text, fmt, format_duration
+from .linuxcnc import LinuxCNCPost
+
+
+class RotaryCXZPost(GcodePost):
+    """The C-X-Z writer; a flavour mixes this in front of its milling post for the hooks
+    (preamble, tool change, length offset, ending)."""
+
+    angle_decimals = 4
+    feed_decimals = 4
+
+    def __init__(self, work_offset: str | None = None, max_table_rpm: float = rotary.DEFAULT_MAX_TABLE_RPM):
+        super().__init__(work_offset)
+        self.max_table_rpm = max_table_rpm
+
+    def a(self, value: float) -> str:
+        return fmt(value, self.angle_decimals)
+
+    def check(self, program: Program):
+        for op in program.operations:
+            what = f"operation {op.name!r}"
+            if op.texture is not None:
+                raise PostError(f"{what} carries a texture; the {self.name} post writes C-X-Z pockets only")
+            if set(op.rotary) != {"c"}:
+                raise PostError(f"{what}: the {self.name} post needs C positions for every move "
+                                f"(got rotary axes {sorted(op.rotary)}); plan it with toolpath.rotary")
+            if np.any((op.kind != RAPID) & (op.kind != FEED)):
+                raise PostError(f"{what} has arcs; a C-X-Z machine cuts straight X/C/Z moves only")
+            if np.any(op.xyz[:, 0] > 1e-9) or op.start[0] > 1e-9:
+                raise PostError(f"{what}: X must stay on the negative side of the rotation centre (X = -R)")
+            if np.any(np.abs(op.xyz[:, 1]) > 1e-9):
+                raise PostError(f"{what}: the machine has no Y axis; Y must be 0")
+
+    def header(self, program: Program) -> list:
+        lines = [f"(KEZURI CAM - {comment_text(program.name)})", f"(POST: {comment_text(self.name)})",
+                 "(UNITS: MM)",
+                 "(MACHINE: C-X-Z ROTARY TABLE. X = -R FROM THE AXIS. +C TURNS THE TABLE CLOCKWISE SEEN FROM THE TOOL)",
+                 "(FEED: G93 INVERSE TIME, F = 1/MIN FROM THE PATH LENGTH ON THE PART. Z = TOOL TIP)"]
+        for tool in program.tools():
+            lines.append(f"(TOOL: {comment_text(tool.describe())})")
+        total = 0.0
+        for op in program.operations:
+            seconds = rotary.cycle_time(op, program.rapid_rate, self.max_table_rpm)
+            total += seconds
+            lines.append(f"(OPERATION: {comment_text(op.name)} - T{op.tool.number} - {format_duration(seconds)})")
+        lines.append(f"(ESTIMATED CYCLE TIME: {format_duration(total)})")
+        for note in program.notes:
+            lines.append(f"(NOTE: {comment_text(note)})")
+        return lines
+
+    def to_text(self, program: Program) -> str:
+        self.check(program)
+        if not program.operations:
+            raise PostError("the program has no operations")
+        lines = []
+        if self.program_number:
+            lines.append(f"{self.program_number} ({comment_text(program.name)[:30]})")
+        lines += self.header(program)
+        lines += self.preamble(program)
+        work_offset = self.work_offset or program.work_offset
+        tool = None
+        for index, op in enumerate(program.operations):
+            lines.append(f"(OPERATION {index + 1}: {comment_text(op.name)})")
+            if op.tool != tool:
+                lines += self.tool_change(op, tool is None)
+                tool = op.tool
+            lines.append(f"G00 G90 {work_offset} X{self.n(op.start[0])} C{self.a(op.rotary['c'][0])} "
+                         f"{self.spindle_on(op)}")
+            lines += self.length_offset(op)
+            lines.append("G93")
+            lines += self.rotary_moves(op)
+            lines += ["G94", f"G00 Z{self.n(op.safe_z)}"]
+        lines += self.ending(program)
+        body = "\n".join(lines) + "\n"
+        return f"%\n{body}%\n" if self.percent_wrapped else body
+
+    def rotary_moves(self, op: Operation) -> list:
+        """Modal X C Z blocks; every G01 carries its inverse-time F; unchanged blocks dropped."""
+        inverse_time = rotary.inverse_time_feed(op, self.max_table_rpm)
+        last = {"X": self.n(op.start[0]), "C": self.a(op.rotary["c"][0]), "Z": self.n(op.start[2])}
+        lines, mode = [], None
+        for kind, x, z, c, f in zip(op.kind.tolist(), op.xyz[:, 0].tolist(), op.xyz[:, 2].tolist(),
+                                    op.rotary["c"].tolist(), inverse_time.tolist()):
+            words = {"X": self.n(x), "C": self.a(c), "Z": self.n(z)}
+            motion = [f"{axis}{text}" for axis, text in words.items() if text != last[axis]]
+            if not motion:
+                continue
+            code = "G00" if kind == RAPID else "G01"
+            block = ([code] if code != mode else []) + motion
+            if kind != RAPID:
+                block.append(f"F{fmt(f, self.feed_decimals)}")
+            lines.append(" ".join(block))
+            mode = code
+            last = words
+        return lines
+
+
+class LinuxCNCRotaryPost(RotaryCXZPost, LinuxCNCPost):
+    name = "linuxcnc-cxz"
+    extension = ".ngc"
+    decimals = 4
+
+
+class FanucRotaryPost(RotaryCXZPost, FanucPost):
+    name = "fanuc-cxz"
+    extension = ".nc"
+    decimals = 3
+    angle_decimals = 3
+    feed_decimals = 3
+
+    def preamble(self, program):
+        return ["G21 G17 G40 G49 G80 G90 G94"]
+
+    def ending(self, program):
+        return ["M05", "G91 G28 Z0.", "G90", "M30"]
+
+
+ROTARY_POSTS = {"linuxcnc": LinuxCNCRotaryPost, "fanuc": FanucRotaryPost}
+
+
+def rotary_post(name: str, work_offset: str | None = None,
+                max_table_rpm: float = rotary.DEFAULT_MAX_TABLE_RPM) -> RotaryCXZPost:
+    try:
+        return ROTARY_POSTS[name](work_offset, max_table_rpm)
+    except KeyError:
+        raise PostError(f"unknown rotary post {name!r}; choose one of {', '.join(ROTARY_POSTS)}") from None
