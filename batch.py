@@ -5,6 +5,7 @@
 
 Commands (``python batch.py <command> --help`` for the options):
     engrave   gouge-texture name plate (W1)
+    rotary    bento-block pockets on a rotating table, C-X-Z (W2)
     unfold    twisted quad -> flat pattern, turret-punch NC, DXF, SVG (W5)
     elbow     segmented pipe elbow -> flat patterns, DXF, SVG (W5)
     demo      every workflow on its built-in sample part, each into a sub-folder of --out
@@ -118,6 +119,43 @@ def engrave(args) -> dict:
 
 
 # ----------------------------------------------------------------------------------------
+# W2 rotary pockets
+
+def rotary_arguments(p):
+    p.add_argument("--blend", help="a .blend with the block as Kezuri stock and pocket outlines marked")
+    p.add_argument("--post", choices=["linuxcnc", "fanuc"])
+
+
+def rotary(args) -> dict:
+    import bpy
+
+    from kezuri.operators import preview, samples
+    from kezuri.operators import rotary as shell
+    from kezuri.operators.common import Progress
+
+    scene = open_blend(args.blend)
+    if not args.blend:
+        samples.rotary_block(scene)
+    post_name = args.post or scene.kezuri.rotary.post
+    started = time.perf_counter()
+    job = shell.run_rotary(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "rotary"))
+    seconds = time.perf_counter() - started
+    nc_path = shell.export_rotary(job, post_name, os.path.join(args.out, f"rotary{shell.extension_for(post_name)}"))
+    paths = shell.show_rotary(scene, job)
+    png = preview.render_preview(scene, [scene.kezuri.stock.plate], paths, os.path.join(args.out, "rotary.png"))
+    return {
+        "workflow": "rotary",
+        "post": post_name,
+        "files": [nc_path],
+        "preview": png,
+        "toolpath_seconds": round(seconds, 3),
+        "cycle_time_s": job.result.cycle_time_s,
+        "operations": job.result.program.summary(),
+        "pockets": job.result.reports,
+    }
+
+
+# ----------------------------------------------------------------------------------------
 # W5 unfold and elbow
 
 def unfold_arguments(p):
@@ -222,6 +260,7 @@ def elbow(args) -> dict:
 
 COMMANDS = {
     "engrave": ("gouge-texture name plate (W1)", engrave_arguments, engrave),
+    "rotary": ("pockets on a rotating table, C-X-Z (W2)", rotary_arguments, rotary),
     "unfold": ("twisted quad: flat pattern, turret-punch NC, DXF, SVG (W5)", unfold_arguments, unfold),
     "elbow": ("segmented pipe elbow: flat patterns, DXF, SVG (W5)", elbow_arguments, elbow),
 }

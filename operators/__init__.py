@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import bpy
 
-from . import engrave, panels, preferences, properties, sheetmetal
+from . import engrave, panels, preferences, properties, rotary, sheetmetal
 
-CLASSES = (*preferences.CLASSES, *engrave.CLASSES, *sheetmetal.CLASSES, *panels.CLASSES)
+CLASSES = (*preferences.CLASSES, *engrave.CLASSES, *rotary.CLASSES, *sheetmetal.CLASSES, *panels.CLASSES)
 MENUS = (*sheetmetal.MENUS,)
 
 

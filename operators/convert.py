@@ -220,13 +220,14 @@ def curve_points(obj) -> np.ndarray:
     return np.array([p.co[:3] for spline in obj.data.splines for p in spline.points])
 
 
-def operation_paths(op) -> tuple:
-    """Split an operation's moves into cutting polylines and rapid polylines (work mm)."""
+def split_runs(kinds, points) -> tuple:
+    """Split a path into cutting polylines and rapid polylines.
+
+    ``points`` has one more row than ``kinds``: the start, then each move's end point.
+    """
     from ..toolpath.program import RAPID
 
-    points = np.vstack([op.start[None, :], op.xyz])
     cutting, rapid = [], []
-    kinds = op.kind
     start = 0
     for index in range(1, len(kinds) + 1):
         if index == len(kinds) or (kinds[index] == RAPID) != (kinds[start] == RAPID):
@@ -234,6 +235,11 @@ def operation_paths(op) -> tuple:
             (rapid if kinds[start] == RAPID else cutting).append(run)
             start = index
     return cutting, rapid
+
+
+def operation_paths(op) -> tuple:
+    """Cutting and rapid polylines of a 3-axis operation (work mm)."""
+    return split_runs(op.kind, np.vstack([op.start[None, :], op.xyz]))
 
 
 def mesh_object(scene, name: str, vertices_mm, faces, frame: WorkFrame, color=(0.8, 0.7, 0.5, 1)):

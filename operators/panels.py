@@ -88,6 +88,48 @@ class KEZURI_PT_engrave_feeds(KezuriPanel, bpy.types.Panel):
             layout.prop(props, name)
 
 
+class KEZURI_PT_rotary(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_rotary"
+    bl_label = "Rotary Pockets"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        scene = context.scene
+        pockets = [o for o in scene.objects if o.kezuri_pocket.enabled]
+        layout.label(text=f"Block: the stock object; {len(pockets)} pocket(s)", icon="INFO")
+        obj = context.active_object
+        if obj is not None and obj.type in {"MESH", "CURVE"} and obj != scene.kezuri.stock.plate:
+            box = layout.box()
+            box.prop(obj.kezuri_pocket, "enabled", text=f"{obj.name} is a pocket")
+            if obj.kezuri_pocket.enabled:
+                for name in ("depth", "wall_angle", "bottom"):
+                    box.prop(obj.kezuri_pocket, name)
+                if obj.kezuri_pocket.bottom == "sphere":
+                    box.prop(obj.kezuri_pocket, "sphere_radius")
+        layout.operator("kezuri.mark_pocket", icon="ADD")
+        row = layout.row(align=True)
+        row.scale_y = 1.4
+        row.operator("kezuri.rotary_generate", icon="DRIVER_ROTATIONAL_DIFFERENCE")
+        layout.prop(scene.kezuri.rotary, "post")
+        layout.operator("kezuri.rotary_export", icon="EXPORT")
+
+
+class KEZURI_PT_rotary_settings(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_rotary_settings"
+    bl_label = "Bit, Feeds & Pitch"
+    bl_parent_id = "KEZURI_PT_rotary"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = context.scene.kezuri.rotary
+        for name in ("tool_diameter", "tool_number", "flute_length", "spindle_rpm", "cutting_speed", "plunge_speed",
+                     "spacing", "stepover", "step_down", "allowance", "wall_stepover", "max_table_rpm"):
+            layout.prop(props, name)
+
+
 class KEZURI_PT_sheet(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_sheet"
     bl_label = "Sheet Metal"
@@ -130,4 +172,5 @@ class KEZURI_PT_sheet_elbow(KezuriPanel, bpy.types.Panel):
 
 
 CLASSES = (KEZURI_PT_machine, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
-           KEZURI_PT_engrave_feeds, KEZURI_PT_sheet, KEZURI_PT_sheet_elbow)
+           KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_sheet,
+           KEZURI_PT_sheet_elbow)

@@ -150,23 +150,61 @@ class KezuriSheet(bpy.types.PropertyGroup):
     }
 
 
+class KezuriPocket(bpy.types.PropertyGroup):
+    """A rotary-table pocket, on the object that outlines it."""
+
+    enabled: BoolProperty(name="Rotary Pocket", default=False,
+                          description="This closed curve or mesh outlines a pocket on the rotating table")
+    depth: mm("Depth", 10.0, "Depth of the pocket below the block's top", minimum=0.01)
+    wall_angle: FloatProperty(name="Wall Angle", default=0.0, min=0.0, max=75.0,
+                              description="Wall slope from vertical (degrees); 0 = vertical wall")
+    bottom: EnumProperty(name="Bottom", default="flat", items=[
+        ("flat", "Flat", "A flat floor, cleared by one spiral"),
+        ("sphere", "Spherical Bowl", "A concave spherical bowl, cut by a spiral on the sphere")])
+    sphere_radius: mm("Sphere Radius", 25.0, "Radius of the spherical bowl", minimum=0.1)
+
+
+class KezuriRotary(bpy.types.PropertyGroup):
+    tool_diameter: mm("Bit Diameter", 6.0, "Ball-nose (pencil) bit diameter", minimum=0.1)
+    tool_number: IntProperty(name="Bit Tool No.", default=1, min=0, max=999)
+    flute_length: mm("Flute Length", 25.0, "Cutting length of the bit: pockets may not be deeper", minimum=0.1)
+    spindle_rpm: FloatProperty(name="Spindle", default=18000.0, min=0.0, description="Router speed (rpm)")
+    cutting_speed: FloatProperty(name="Cutting Speed", default=1500.0, min=1.0,
+                                 description="Feed along the path on the wood (mm/min); written as "
+                                             "inverse-time G93 feeds")
+    plunge_speed: FloatProperty(name="Plunge Speed", default=300.0, min=1.0, description="mm/min")
+    spacing: mm("Point Spacing", 1.0, "Distance between path points (the paper's alpha)", minimum=0.01)
+    stepover: mm("Helix Pitch", 1.0, "Pitch of the floor and bowl spirals (the paper's P)", minimum=0.01)
+    step_down: mm("Step-Down", 3.0, "Deepest roughing layer", minimum=0.01)
+    allowance: mm("Allowance", 0.5, "Stock roughing leaves for finishing", minimum=0.0)
+    wall_stepover: mm("Wall Stepover", 0.5, "Wall finishing pitch along the wall", minimum=0.01)
+    max_table_rpm: FloatProperty(name="Table Speed Limit", default=60.0, min=0.1,
+                                 description="Fastest the face plate turns (rpm), for feeds and times")
+    post: EnumProperty(name="Post", default="linuxcnc", items=[
+        ("linuxcnc", "LinuxCNC", "X Z C words, G93 inverse-time feed"),
+        ("fanuc", "Fanuc", "Fanuc flavour of the same program")])
+
+
 class KezuriSettings(bpy.types.PropertyGroup):
     machine: PointerProperty(type=KezuriMachine)
     stock: PointerProperty(type=KezuriStock)
     engrave: PointerProperty(type=KezuriEngrave)
     sheet: PointerProperty(type=KezuriSheet)
+    rotary: PointerProperty(type=KezuriRotary)
 
 
-CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriSettings)
+CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriPocket, KezuriRotary, KezuriSettings)
 
 
 def register():
     for cls in CLASSES:
         bpy.utils.register_class(cls)
     bpy.types.Scene.kezuri = PointerProperty(type=KezuriSettings)
+    bpy.types.Object.kezuri_pocket = PointerProperty(type=KezuriPocket)
 
 
 def unregister():
+    del bpy.types.Object.kezuri_pocket
     del bpy.types.Scene.kezuri
     for cls in reversed(CLASSES):
         bpy.utils.unregister_class(cls)

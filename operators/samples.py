@@ -8,6 +8,8 @@ def clear_scene(scene):
     """Remove every object and put the scene's Kezuri settings back to their defaults."""
     for obj in list(scene.objects):
         bpy.data.objects.remove(obj, do_unlink=True)
+    for curve in [c for c in bpy.data.curves if c.users == 0]:
+        bpy.data.curves.remove(curve)
     for collection in list(scene.collection.children):
         bpy.data.collections.remove(collection)
     settings = scene.kezuri
@@ -58,3 +60,36 @@ def name_plate(scene, word: str = "Kezuri", unit_mm: float = 1.0):
     settings.stock.plate = plate
     settings.engrave.letters = letters
     return plate, letters
+
+
+def rotary_block(scene):
+    """The paper's bento block: 105 x 105 x 30 mm (top at Z = 0, centred on the rotation axis)
+    with three non-circular pockets as closed curves: slanted walls, vertical walls, a bowl."""
+    import numpy as np
+
+    from ..toolpath import rotary
+
+    block, pockets = rotary.sample_job()
+    hx, hy = block.size_x / 2, block.size_y / 2
+    plate = bpy.data.objects.new("Block", box_mesh("Block", -hx, -hy, -block.thickness, hx, hy, 0.0))
+    plate.color = (0.85, 0.72, 0.52, 1.0)
+    scene.collection.objects.link(plate)
+    scene.kezuri.stock.plate = plate
+    objects = []
+    for pocket in pockets:
+        curve = bpy.data.curves.new(pocket.name, type="CURVE")
+        spline = curve.splines.new("POLY")
+        outline = np.asarray(pocket.outline, float)
+        spline.points.add(len(outline) - 1)
+        spline.points.foreach_set("co", np.column_stack([outline, np.full(len(outline), 0.05),
+                                                         np.ones(len(outline))]).ravel())
+        spline.use_cyclic_u = True
+        obj = bpy.data.objects.new(pocket.name, curve)
+        scene.collection.objects.link(obj)
+        props = obj.kezuri_pocket
+        props.enabled, props.depth, props.wall_angle, props.bottom = True, pocket.depth, pocket.wall_angle_deg, \
+            pocket.bottom
+        if pocket.sphere_radius:
+            props.sphere_radius = pocket.sphere_radius
+        objects.append(obj)
+    return plate, objects

@@ -1,0 +1,181 @@
+"""W2 in Blender: pockets on a rotating table (CNC wood lathe), C-X-Z.
+
+The block is the stock object (its top centre is on the rotation axis); each pocket is an
+object whose Kezuri pocket settings are on (Object properties > Kezuri Pocket, or the Rotary
+Pockets panel): its outline (a closed curve or mesh), depth, wall angle and bottom.
+``run_rotary`` is the job function shared by the operators, batch.py and the tests.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import bpy
+import numpy as np
+from bpy.props import EnumProperty, StringProperty
+from bpy_extras.io_utils import ExportHelper
+
+from ..post import rotary_post, write_atomic
+from ..toolpath import rotary as core
+from ..toolpath.program import Tool
+from . import convert
+from .common import Progress, run_reported
+
+PREFIX = "Kezuri Rotary"
+COLOURS = ((0.95, 0.45, 0.1, 1.0), (0.1, 0.6, 1.0, 1.0), (0.2, 0.9, 0.3, 1.0), (0.9, 0.8, 0.1, 1.0))
+ROTARY_POST_ITEMS = [("linuxcnc", "LinuxCNC", "X Z C words, G93 inverse-time feed (.ngc)"),
+                     ("fanuc", "Fanuc", "Fanuc flavour of the same program (.nc)")]
+
+
+@dataclass
+class RotaryJob:
+    result: core.RotaryResult
+    settings: core.RotarySettings
+    frame: convert.WorkFrame
+    block: core.Block
+
+
+def settings_from(props) -> core.RotarySettings:
+    return core.RotarySettings(
+        tool=Tool(props.tool_number, "ball", props.tool_diameter, flute_length=props.flute_length,
+                  name="pencil bit"),
+        spindle_rpm=props.spindle_rpm, cutting_speed=props.cutting_speed, plunge_speed=props.plunge_speed,
+        spacing=props.spacing, stepover=props.stepover, step_down=props.step_down, allowance=props.allowance,
+        wall_stepover=props.wall_stepover, max_table_rpm=props.max_table_rpm)
+
+
+def pocket_objects(scene) -> list:
+    return sorted((o for o in scene.objects if o.kezuri_pocket.enabled), key=lambda o: o.name)
+
+
+def run_rotary(scene, depsgraph, progress=None) -> RotaryJob:
+    settings = scene.kezuri
+    plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, "CENTER")
+    size_x, size_y, thickness = plate.size
+    block = core.Block(size_x, size_y, thickness)
+    pockets = []
+    for obj in pocket_objects(scene):
+        loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
+        if len(loops) != 1:
+            raise convert.SceneInputError(f"pocket {obj.name!r}: the outline must be one closed loop, "
+                                          f"found {len(loops)}")
+        props = obj.kezuri_pocket
+        pockets.append(core.Pocket(obj.name, loops[0], props.depth, props.wall_angle, props.bottom,
+                                   props.sphere_radius if props.bottom == "sphere" else None))
+    if not pockets:
+        raise convert.SceneInputError("no pockets: mark outline objects as pockets in the Rotary Pockets panel")
+    rotary_settings = settings_from(settings.rotary)
+    result = core.plan(block, pockets, rotary_settings, name=scene.name, progress=progress)
+    result.program.work_offset = settings.machine.work_offset
+    return RotaryJob(result, rotary_settings, plate.frame, block)
+
+
+def part_frame_paths(op) -> tuple:
+    """Cutting and rapid polylines of a C-X-Z operation, back in the part frame (work mm)."""
+    points = core.part_points(op)
+    start = core.from_cylindrical([op.start[0]], [op.rotary["c"][0]])[0]
+    return convert.split_runs(op.kind, np.vstack([[start[0], start[1], op.start[2]], points]))
+
+
+def show_rotary(scene, job: RotaryJob) -> list:
+    convert.remove_objects(PREFIX)
+    objects = []
+    for index, path in enumerate(job.result.pockets):
+        cutting, rapid = part_frame_paths(path.operation)
+        objects.append(convert.polyline_object(scene, f"{PREFIX} {path.pocket.name}", cutting, job.frame,
+                                               COLOURS[index % len(COLOURS)]))
+    return objects
+
+
+def extension_for(post_name: str) -> str:
+    return ".ngc" if post_name == "linuxcnc" else ".nc"
+
+
+def export_rotary(job: RotaryJob, post_name: str, path: str) -> str:
+    post = rotary_post(post_name, job.result.program.work_offset, max_table_rpm=job.settings.max_table_rpm)
+    return write_atomic(path, post.to_text(job.result.program))
+
+
+class KEZURI_OT_rotary_generate(bpy.types.Operator):
+    """Plan the roughing, wall finishing and bottom spirals of every pocket, in C-X-Z"""
+
+    bl_idname = "kezuri.rotary_generate"
+    bl_label = "Generate Rotary Pockets"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        if context.scene.kezuri.stock.plate is None:
+            cls.poll_message_set("Pick the block (stock) object first")
+            return False
+        return True
+
+    def execute(self, context):
+        def work():
+            progress = Progress(context, "rotary")
+            try:
+                job = run_rotary(context.scene, context.evaluated_depsgraph_get(), progress)
+            finally:
+                progress.end()
+            show_rotary(context.scene, job)
+            minutes, seconds = divmod(int(round(job.result.cycle_time_s)), 60)
+            self.report({"INFO"}, f"{len(job.result.pockets)} pockets planned; estimated cycle time "
+                                  f"{minutes} min {seconds:02d} s")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_rotary_export(bpy.types.Operator, ExportHelper):
+    """Write the C-X-Z program for the wood lathe"""
+
+    bl_idname = "kezuri.rotary_export"
+    bl_label = "Export Rotary NC"
+    bl_options = {"REGISTER"}
+
+    filename_ext = ".ngc"
+    filter_glob: StringProperty(default="*.ngc;*.nc", options={"HIDDEN"})
+    post: EnumProperty(name="Post", items=ROTARY_POST_ITEMS, default="linuxcnc")
+
+    @classmethod
+    def poll(cls, context):
+        return KEZURI_OT_rotary_generate.poll(context)
+
+    def check(self, context):
+        self.filename_ext = extension_for(self.post)
+        return ExportHelper.check(self, context)
+
+    def execute(self, context):
+        def work():
+            job = run_rotary(context.scene, context.evaluated_depsgraph_get())
+            path = export_rotary(job, self.post, self.filepath)
+            self.report({"INFO"}, f"Wrote {path}")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_mark_pocket(bpy.types.Operator):
+    """Mark the selected outline objects as rotary pockets (or unmark them)"""
+
+    bl_idname = "kezuri.mark_pocket"
+    bl_label = "Mark as Pocket"
+    bl_options = {"REGISTER", "UNDO"}
+
+    enable: bpy.props.BoolProperty(name="Pocket", default=True)
+
+    @classmethod
+    def poll(cls, context):
+        if not any(o.type in {"MESH", "CURVE"} for o in context.selected_objects):
+            cls.poll_message_set("Select closed curves or meshes that outline the pockets")
+            return False
+        return True
+
+    def execute(self, context):
+        count = 0
+        for obj in context.selected_objects:
+            if obj.type in {"MESH", "CURVE"} and obj != context.scene.kezuri.stock.plate:
+                obj.kezuri_pocket.enabled = self.enable
+                count += 1
+        self.report({"INFO"}, f"{count} object(s) {'marked as' if self.enable else 'no longer'} pockets")
+        return {"FINISHED"}
+
+
+CLASSES = (KEZURI_OT_rotary_generate, KEZURI_OT_rotary_export, KEZURI_OT_mark_pocket)
