@@ -6,6 +6,7 @@
 Commands (``python batch.py <command> --help`` for the options):
     engrave   gouge-texture name plate (W1)
     rotary    bento-block pockets on a rotating table, C-X-Z (W2)
+    stepnc    ISO 14649 (STEP-NC) workplan to G-code (W3)
     unfold    twisted quad -> flat pattern, turret-punch NC, DXF, SVG (W5)
     elbow     segmented pipe elbow -> flat patterns, DXF, SVG (W5)
     demo      every workflow on its built-in sample part, each into a sub-folder of --out
@@ -156,6 +157,83 @@ def rotary(args) -> dict:
 
 
 # ----------------------------------------------------------------------------------------
+# W3 STEP-NC
+
+def stepnc_arguments(p):
+    p.add_argument("--input", help="ISO 14649 Part 21 file (.stp, .p21); default: a built-in two-pocket plate")
+    p.add_argument("--post", choices=["fanuc", "linuxcnc", "grbl"])
+    p.add_argument("--order", help="workingstep instance ids in the order to cut, e.g. 13,14,10 (default: "
+                                   "the workplan's order); workingsteps left out are not cut")
+
+
+def stepnc_sample(out_dir: str) -> str:
+    """A 120 x 80 x 20 mm plate with a rectangular and an L-shaped pocket, as ISO 14649."""
+    from kezuri.post import write_atomic
+    from kezuri.toolpath import stepnc
+    from kezuri.toolpath.program import Tool
+
+    pockets = [stepnc.PocketSpec("POCKET1", ((10, 10), (50, 10), (50, 40), (10, 40)), 8.0),
+               stepnc.PocketSpec("POCKET2", ((65, 15), (110, 15), (110, 35), (85, 35), (85, 70), (65, 70)), 5.0)]
+    text = stepnc.pockets_to_part21(((0, 0, -20), (120, 80, 0)), pockets, Tool(1, "flat", 6.0, flute_length=20.0),
+                                    name="KEZURI SAMPLE PLATE")
+    return write_atomic(os.path.join(out_dir, "sample.stp"), text)
+
+
+def stepnc_job(args) -> dict:
+    import bpy
+
+    from kezuri.operators import preview
+    from kezuri.operators import stepnc as shell
+    from kezuri.toolpath import stepnc
+
+    scene = open_blend(None)
+    path = args.input or stepnc_sample(args.out)
+    if not os.path.isfile(path):
+        raise FileNotFoundError(f"no such ISO 14649 file: {path}")
+    loaded = stepnc.load_workplan(path)
+    shell.fill_workplan_list(scene, os.path.abspath(path), loaded)
+    if args.order:
+        try:
+            wanted = [int(v.strip().lstrip("#")) for v in args.order.split(",") if v.strip()]
+        except ValueError:
+            raise ValueError(f"--order: instance ids separated by commas, got {args.order!r}") from None
+        steps = scene.kezuri.stepnc.steps
+        known = [item.ident for item in steps]
+        for ident in wanted:
+            if ident not in known:
+                raise ValueError(f"--order: #{ident} is not a workingstep of {path} ({known})")
+        for target, ident in enumerate(wanted):
+            steps.move([item.ident for item in steps].index(ident), target)
+        for item in steps:
+            item.enabled = item.ident in wanted
+    post_name = args.post or "fanuc"
+    extension = ".ngc" if post_name == "linuxcnc" else ".nc"
+    nc_path, program = shell.export_nc(scene, post_name, os.path.join(args.out, f"stepnc{extension}"))
+    objects = shell.show_workplan(scene, loaded, program)
+    solids = [o for o in objects if o.type == "MESH"]
+    paths = [o for o in objects if o.type == "CURVE"]
+    png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "stepnc.png"))
+    steps = {step.id: step for step in loaded.workingsteps}
+    order = [item.ident for item in scene.kezuri.stepnc.steps if item.enabled]
+    workingsteps = []
+    for ident, op in zip(order, program.operations):
+        entry = shell.describe_step(steps[ident])
+        entry.update(tool=op.tool.describe(), moves=len(op))
+        workingsteps.append(entry)
+    return {
+        "workflow": "stepnc",
+        "input": os.path.abspath(path),
+        "post": post_name,
+        "files": [nc_path],
+        "preview": png,
+        "workingsteps": workingsteps,
+        "operations": program.summary(),
+        "warnings": list(program.notes),
+        "cycle_time_s": round(program.cycle_time(), 1),
+    }
+
+
+# ----------------------------------------------------------------------------------------
 # W5 unfold and elbow
 
 def unfold_arguments(p):
@@ -261,6 +339,7 @@ def elbow(args) -> dict:
 COMMANDS = {
     "engrave": ("gouge-texture name plate (W1)", engrave_arguments, engrave),
     "rotary": ("pockets on a rotating table, C-X-Z (W2)", rotary_arguments, rotary),
+    "stepnc": ("ISO 14649 (STEP-NC) workplan to G-code (W3)", stepnc_arguments, stepnc_job),
     "unfold": ("twisted quad: flat pattern, turret-punch NC, DXF, SVG (W5)", unfold_arguments, unfold),
     "elbow": ("segmented pipe elbow: flat patterns, DXF, SVG (W5)", elbow_arguments, elbow),
 }

@@ -3,10 +3,11 @@ from __future__ import annotations
 
 import bpy
 
-from . import engrave, panels, preferences, properties, rotary, sheetmetal
+from . import engrave, panels, preferences, properties, rotary, sheetmetal, stepnc
 
-CLASSES = (*preferences.CLASSES, *engrave.CLASSES, *rotary.CLASSES, *sheetmetal.CLASSES, *panels.CLASSES)
-MENUS = (*sheetmetal.MENUS,)
+CLASSES = (*preferences.CLASSES, *engrave.CLASSES, *rotary.CLASSES, *stepnc.CLASSES, *sheetmetal.CLASSES,
+           *panels.CLASSES)
+MENUS = (*stepnc.MENUS, *sheetmetal.MENUS)
 
 
 def register():

@@ -6,13 +6,10 @@ import traceback
 
 
 def user_errors():
-    """Exception types whose message is meant for the user (no traceback)."""
-    from ..post.gcode import PostError
-    from ..toolpath.engrave import EngraveError
-    from ..toolpath.region import RegionError
-
-    from .convert import SceneInputError
-    return (SceneInputError, EngraveError, RegionError, PostError, ValueError, OSError)
+    """Exception types whose message is meant for the user (no traceback): every input error of
+    the core and the shell, and file-system errors (a missing file, a folder not writable)."""
+    from ..toolpath.errors import InputError
+    return (InputError, OSError)
 
 
 def run_reported(operator, work):

@@ -11,11 +11,12 @@ import bpy
 import numpy as np
 
 from ..toolpath import region
+from ..toolpath.errors import InputError
 
 COLLECTION = "Kezuri"
 
 
-class SceneInputError(ValueError):
+class SceneInputError(InputError):
     """The scene does not hold what the job needs; the message names the object."""
 
 
@@ -246,7 +247,7 @@ def mesh_object(scene, name: str, vertices_mm, faces, frame: WorkFrame, color=(0
     """A mesh from work-mm vertices and triangle/polygon indices (simulated stock, flat patterns)."""
     mesh = bpy.data.meshes.new(name)
     vertices = frame.to_world(np.asarray(vertices_mm, float))
-    mesh.from_pydata(vertices.tolist(), [], np.asarray(faces).tolist())
+    mesh.from_pydata(vertices.tolist(), [], [[int(i) for i in face] for face in faces])
     mesh.update()
     obj = bpy.data.objects.new(name, mesh)
     obj.color = color

@@ -130,6 +130,43 @@ class KEZURI_PT_rotary_settings(KezuriPanel, bpy.types.Panel):
             layout.prop(props, name)
 
 
+class KEZURI_PT_stepnc(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_stepnc"
+    bl_label = "STEP-NC Workplan"
+
+    def draw(self, context):
+        layout = self.layout
+        props = context.scene.kezuri.stepnc
+        layout.operator("kezuri.import_stepnc", icon="IMPORT")
+        if props.filepath:
+            layout.label(text=bpy.path.basename(props.filepath), icon="FILE")
+        row = layout.row()
+        row.template_list("KEZURI_UL_workingsteps", "", props, "steps", props, "active_step", rows=5)
+        column = row.column(align=True)
+        column.operator("kezuri.workingstep_move", icon="TRIA_UP", text="").direction = "UP"
+        column.operator("kezuri.workingstep_move", icon="TRIA_DOWN", text="").direction = "DOWN"
+        row = layout.row(align=True)
+        row.scale_y = 1.4
+        row.operator("kezuri.stepnc_generate", icon="SEQ_STRIP_DUPLICATE")
+        layout.operator("kezuri.stepnc_export", icon="EXPORT")
+
+
+class KEZURI_PT_stepnc_write(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_stepnc_write"
+    bl_label = "Write Pockets as ISO 14649"
+    bl_parent_id = "KEZURI_PT_stepnc"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = context.scene.kezuri.stepnc
+        layout.label(text="Pockets: outline objects marked as pockets, on the stock")
+        for name in ("tool_diameter", "tool_number", "flute_length", "feed", "spindle_rpm"):
+            layout.prop(props, name)
+        layout.operator("kezuri.export_stepnc", icon="EXPORT")
+
+
 class KEZURI_PT_sheet(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_sheet"
     bl_label = "Sheet Metal"
@@ -172,5 +209,6 @@ class KEZURI_PT_sheet_elbow(KezuriPanel, bpy.types.Panel):
 
 
 CLASSES = (KEZURI_PT_machine, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
-           KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_sheet,
+           KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_stepnc,
+           KEZURI_PT_stepnc_write, KEZURI_PT_sheet,
            KEZURI_PT_sheet_elbow)

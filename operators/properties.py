@@ -7,8 +7,8 @@ commonest complaint about Blender CAM add-ons).
 from __future__ import annotations
 
 import bpy
-from bpy.props import (BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty,
-                       PointerProperty, StringProperty)
+from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty,
+                       IntProperty, PointerProperty, StringProperty)
 
 MILLING_POST_ITEMS = [
     ("fanuc", "Fanuc (baked texture)", "Fanuc machining centre, ISO 6983; texture depths written literally"),
@@ -185,15 +185,39 @@ class KezuriRotary(bpy.types.PropertyGroup):
         ("fanuc", "Fanuc", "Fanuc flavour of the same program")])
 
 
+class KezuriWorkingstep(bpy.types.PropertyGroup):
+    """One MACHINING_WORKINGSTEP of the imported workplan, in the order it will be cut."""
+
+    ident: IntProperty(name="Instance", description="Instance number (#id) in the Part 21 file")
+    name: StringProperty(name="Name")
+    feature: StringProperty(name="Feature")
+    operation: StringProperty(name="Operation")
+    enabled: BoolProperty(name="Cut", default=True, description="Include this workingstep in the NC program")
+
+
+class KezuriStepNC(bpy.types.PropertyGroup):
+    filepath: StringProperty(name="ISO 14649 File", subtype="FILE_PATH",
+                             description="The imported Part 21 file; export converts it again")
+    steps: CollectionProperty(type=KezuriWorkingstep)
+    active_step: IntProperty(name="Active Workingstep", default=0)
+    tool_diameter: mm("End Mill Diameter", 6.0, "Flat end mill for pockets written as ISO 14649", minimum=0.1)
+    tool_number: IntProperty(name="End Mill Tool No.", default=1, min=0, max=999)
+    flute_length: mm("Flute Length", 20.0, "Cutting length of the end mill", minimum=0.1)
+    feed: FloatProperty(name="Feed", default=600.0, min=1.0, description="Cutting feed (mm/min)")
+    spindle_rpm: FloatProperty(name="Spindle", default=10000.0, min=1.0, description="Spindle speed (rpm)")
+
+
 class KezuriSettings(bpy.types.PropertyGroup):
     machine: PointerProperty(type=KezuriMachine)
     stock: PointerProperty(type=KezuriStock)
     engrave: PointerProperty(type=KezuriEngrave)
     sheet: PointerProperty(type=KezuriSheet)
     rotary: PointerProperty(type=KezuriRotary)
+    stepnc: PointerProperty(type=KezuriStepNC)
 
 
-CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriPocket, KezuriRotary, KezuriSettings)
+CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriPocket, KezuriRotary, KezuriWorkingstep,
+           KezuriStepNC, KezuriSettings)
 
 
 def register():

@@ -12,13 +12,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..toolpath.errors import InputError
+
 
 LAYER_PATTERN = "PATTERN"
 LAYER_CUT = "CUT"
 _LAYER_COLOURS = {"0": 7, LAYER_PATTERN: 7, LAYER_CUT: 1}  # ACI: white/black, red
 
 
-class ExportError(ValueError):
+class ExportError(InputError):
     """A contour the exporters cannot write."""
 
 

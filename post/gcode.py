@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..toolpath.errors import InputError
 from ..toolpath.program import ARC_CW, FEED, RAPID, Operation, Program
 
 
-class PostError(ValueError):
+class PostError(InputError):
     """A program the chosen controller cannot run (the message says why and what to change)."""
 
 

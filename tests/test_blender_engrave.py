@@ -1,5 +1,6 @@
 """The Blender shell, run for real with the bpy wheel in background mode."""
 import re
+import types
 
 import numpy as np
 import pytest
@@ -127,6 +128,11 @@ class RecordingLayout:
 
     def operator(self, idname, **_):
         self.operators.append(idname)
+        return types.SimpleNamespace()      # the operator's properties, which panels may set
+
+    def template_list(self, list_type, list_id, data, name, active_data, active_name, **_):
+        assert hasattr(data, name) and hasattr(active_data, active_name), (name, active_name)
+        self.props.append(name)
 
     def row(self, **_):
         return self

@@ -29,10 +29,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import region as rg
+from .errors import InputError
 from .program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, PathBuilder, Program, Tool
 
 
-class EngraveError(ValueError):
+class EngraveError(InputError):
     """Input the engrave workflow cannot use; the message names what is wrong."""
 
 

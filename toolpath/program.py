@@ -15,7 +15,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .errors import InputError
+
 RAPID, FEED, ARC_CW, ARC_CCW = 0, 1, 2, 3
+
+
+class ProgramError(InputError):
+    """A tool or a move that cannot be machined (no feed, NaN, a tool that does not exist)."""
 
 
 class MoveKind(enum.IntEnum):
@@ -41,15 +47,15 @@ class Tool:
 
     def __post_init__(self):
         if self.kind not in TOOL_KINDS:
-            raise ValueError(f"tool kind {self.kind!r} is not one of {TOOL_KINDS}")
+            raise ProgramError(f"tool kind {self.kind!r} is not one of {TOOL_KINDS}")
         if not (np.isfinite(self.diameter) and self.diameter > 0):
-            raise ValueError(f"tool diameter must be a positive number, got {self.diameter}")
+            raise ProgramError(f"tool diameter must be a positive number, got {self.diameter}")
         if not (isinstance(self.number, int) and 0 <= self.number <= 999):
-            raise ValueError(f"tool number must be an integer 0..999, got {self.number!r}")
+            raise ProgramError(f"tool number must be an integer 0..999, got {self.number!r}")
         if self.kind == "ball" and self.corner_radius == 0.0:
             object.__setattr__(self, "corner_radius", self.diameter / 2)
         if not 0 <= self.corner_radius <= self.diameter / 2 + 1e-9:
-            raise ValueError(f"corner radius {self.corner_radius} does not fit a {self.diameter} mm tool")
+            raise ProgramError(f"corner radius {self.corner_radius} does not fit a {self.diameter} mm tool")
 
     @property
     def radius(self) -> float:
@@ -117,26 +123,26 @@ class Operation:
     def validate(self):
         n = len(self.kind)
         if self.xyz.shape != (n, 3) or self.feed.shape != (n,) or self.center.shape != (n, 3):
-            raise ValueError(f"operation {self.name!r}: move arrays have different lengths")
+            raise ProgramError(f"operation {self.name!r}: move arrays have different lengths")
         for axis, values in self.rotary.items():
             if values.shape != (n,):
-                raise ValueError(f"operation {self.name!r}: rotary axis {axis} has {values.shape} values for {n} moves")
+                raise ProgramError(f"operation {self.name!r}: rotary axis {axis} has {values.shape} values for {n} moves")
             if not np.all(np.isfinite(values)):
-                raise ValueError(f"operation {self.name!r}: rotary axis {axis} has a non-finite value")
+                raise ProgramError(f"operation {self.name!r}: rotary axis {axis} has a non-finite value")
         if n and not np.all(np.isin(self.kind, (RAPID, FEED, ARC_CW, ARC_CCW))):
-            raise ValueError(f"operation {self.name!r}: unknown move kind")
+            raise ProgramError(f"operation {self.name!r}: unknown move kind")
         if not np.all(np.isfinite(self.xyz)):
             bad = int(np.flatnonzero(~np.isfinite(self.xyz).all(axis=1))[0])
-            raise ValueError(f"operation {self.name!r}: move {bad} has a non-finite coordinate")
+            raise ProgramError(f"operation {self.name!r}: move {bad} has a non-finite coordinate")
         cutting = self.kind != RAPID
         if np.any(cutting & ~(self.feed > 0)):
             bad = int(np.flatnonzero(cutting & ~(self.feed > 0))[0])
-            raise ValueError(f"operation {self.name!r}: cutting move {bad} has no positive feed")
+            raise ProgramError(f"operation {self.name!r}: cutting move {bad} has no positive feed")
         arcs = (self.kind == ARC_CW) | (self.kind == ARC_CCW)
         if np.any(arcs & ~np.isfinite(self.center[:, :2]).all(axis=1)):
-            raise ValueError(f"operation {self.name!r}: an arc has no centre")
+            raise ProgramError(f"operation {self.name!r}: an arc has no centre")
         if not (np.isfinite(self.spindle_rpm) and self.spindle_rpm >= 0):
-            raise ValueError(f"operation {self.name!r}: spindle speed must be >= 0")
+            raise ProgramError(f"operation {self.name!r}: spindle speed must be >= 0")
 
     def __len__(self):
         return len(self.kind)

@@ -11,13 +11,17 @@ import math
 import numpy as np
 from manifold3d import CrossSection, FillRule, JoinType
 
+from .errors import InputError
+
 # Round joins: chord error of an offset arc stays below this (mm).
 ARC_TOLERANCE = 0.01
+# A raster fill with more rows than this is a mistake (a stepover in metres, or 1e-9), not a job.
+MAX_ROWS = 100_000
 # Pieces of a region smaller than this (mm^2) are numerical dust, not islands.
 MIN_AREA = 0.01
 
 
-class RegionError(ValueError):
+class RegionError(InputError):
     """Bad 2-D input: open or degenerate outlines, NaN, empty regions."""
 
 
@@ -167,6 +171,8 @@ def raster_rows(region: CrossSection, stepover: float) -> list:
     inset = min(0.01, height / 4)
     span = height - 2 * inset
     count = max(1, math.ceil(span / stepover - 1e-9) + 1) if span > 0 else 1
+    if count > MAX_ROWS:
+        raise RegionError(f"{count} raster rows ({height:.1f} mm at a {stepover:g} mm stepover): more than {MAX_ROWS}")
     ys = np.linspace(y_lo + inset, y_hi - inset, count) if count > 1 else np.array([(y_lo + y_hi) / 2])
     x0, y0, x1, y1 = edges.T
     rows = []

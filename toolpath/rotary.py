@@ -69,6 +69,7 @@ import numpy as np
 from manifold3d import CrossSection
 
 from . import region as rg
+from .errors import InputError
 from .program import RAPID, Operation, PathBuilder, Program, Tool
 
 BOTTOMS = ("flat", "sphere")
@@ -77,7 +78,7 @@ DEFAULT_MAX_TABLE_RPM = 60.0   # the face plate as a C axis, for feeds and time 
 _ON_AXIS = 1e-9                # mm: points closer to the axis than this have no angle of their own
 
 
-class RotaryError(ValueError):
+class RotaryError(InputError):
     """Input the rotary-pocket workflow cannot use; the message names what is wrong."""
 
 

@@ -23,6 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .errors import InputError
+
 # Points closer than this (mm) are the same point (rails that stand still, CDL line ends).
 POINT_TOL = 1e-9
 # The seed: "LINE, start X Y Z, end X Y Z, colour, line type, ... 14 data in all" counting the word;
@@ -32,7 +34,7 @@ DIRECTIONS = ("vertical", "horizontal")
 DIAGONALS = ("a_next", "b_next", "shorter")
 
 
-class UnfoldError(ValueError):
+class UnfoldError(InputError):
     """Bad unfolding input: unreadable CDL, degenerate corners, impossible elbow, bad counts."""
 
 

@@ -30,6 +30,7 @@ from typing import Union
 import numpy as np
 
 from .. import region as rg
+from ..errors import InputError
 from .part21 import UNKNOWN, UNSET, Enum, Instance, Part21File, Ref, Typed
 
 # Chord error (mm) when arcs and circles of an outline are turned into polygons.
@@ -38,7 +39,7 @@ CHORD_TOLERANCE = 0.001
 Vec3 = tuple  # (x, y, z)
 
 
-class StepNcError(ValueError):
+class StepNcError(InputError):
     """Malformed ISO 14649 data; the message names the instance and the attribute."""
 
 
@@ -638,6 +639,7 @@ class Project:
 
 
 PLANE_TYPES = ("PLANE", "ELEMENTARY_SURFACE")
+MAX_LENGTH = 1.0e5   # mm: 100 m, larger than any machine
 DIMENSION_TYPES = ("MILLING_TOOL_DIMENSION", "TOOL_DIMENSION")
 MILLING_TOOL_BODIES = ("ENDMILL", "TAPERED_ENDMILL", "BALL_ENDMILL", "BULLNOSE_ENDMILL", "FACEMILL")
 DRILLING_TOOL_BODIES = ("TWIST_DRILL", "TAPERED_DRILL", "CENTER_DRILL", "REAMER", "TAPERED_REAMER")
@@ -714,7 +716,7 @@ class _Reader:
             targets.append(target)
         return targets
 
-    def number(self, inst, index, name, optional=False) -> float | None:
+    def number(self, inst, index, name, optional=False, positive=False) -> float | None:
         value = self.value(inst, index, name, optional)
         if isinstance(value, Typed):
             value = value.value
@@ -722,17 +724,24 @@ class _Reader:
             return None
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise StepNcError(f"#{inst.id} {inst.type_name}: attribute {name} must be a number, found {value!r}")
+        if not math.isfinite(value) or (positive and value <= 0):
+            raise StepNcError(f"#{inst.id} {inst.type_name}: attribute {name} must be a "
+                              f"{'positive' if positive else 'finite'} number, found {value!r}")
         return float(value)
 
     def length(self, inst, index, name, optional=False) -> float | None:
-        """A number, or a TOLERANCED_LENGTH_MEASURE / NUMERIC_PARAMETER holding one."""
+        """A number, or a TOLERANCED_LENGTH_MEASURE / NUMERIC_PARAMETER holding one; at most
+        MAX_LENGTH mm, so a mistyped exponent is an error rather than an hours-long toolpath."""
         value = self.value(inst, index, name, optional)
         if not isinstance(value, Ref):
-            return self.number(inst, index, name, optional)
-        target = self.entity(inst, index, name, LENGTH_TYPES)
-        if target.type_name == "TOLERANCED_LENGTH_MEASURE":
-            return self.number(target, 0, "theoretical_size")
-        return self.number(target, 1, "its_parameter_value")
+            size, holder = self.number(inst, index, name, optional), inst
+        else:
+            holder = self.entity(inst, index, name, LENGTH_TYPES)
+            size = self.number(holder, 0, "theoretical_size") if holder.type_name == "TOLERANCED_LENGTH_MEASURE" \
+                else self.number(holder, 1, "its_parameter_value")
+        if size is not None and abs(size) > MAX_LENGTH:
+            raise StepNcError(f"#{holder.id} {holder.type_name}: {name} {size:g} mm is larger than {MAX_LENGTH:g} mm")
+        return size
 
     def text(self, inst, index, name) -> str:
         value = self.value(inst, index, name, optional=True)
@@ -1019,7 +1028,7 @@ class _Reader:
         if target is None:
             return None
         return self.memoised(target, lambda t: DrillingTypeStrategy(*(
-            self.number(t, i, n, optional=True) for i, n in enumerate(
+            self.number(t, i, n, optional=True, positive=True) for i, n in enumerate(
                 ("reduced_cut_at_start", "reduced_feed_at_start", "depth_of_start", "reduced_cut_at_end",
                  "reduced_feed_at_end", "depth_of_end")))))
 

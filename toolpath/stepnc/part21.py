@@ -42,6 +42,8 @@ import re
 from dataclasses import dataclass, field
 from typing import Any, Iterable, Iterator, Mapping, NoReturn, Union
 
+from ..errors import InputError
+
 __all__ = [
     "Part21Error", "Ref", "Enum", "Typed", "Unset", "Derived", "UNSET", "DERIVED", "UNKNOWN",
     "Entity", "Instance", "ComplexInstance", "Part21File", "Part21Writer",
@@ -53,7 +55,7 @@ __all__ = [
 # --------------------------------------------------------------------------- values
 
 
-class Part21Error(ValueError):
+class Part21Error(InputError):
     """A syntax or consistency error, located by 1-based line and column."""
 
     def __init__(self, message: str, line: int, column: int, instance_id: int | None = None):

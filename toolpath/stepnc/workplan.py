@@ -28,6 +28,7 @@ import numpy as np
 from manifold3d import CrossSection, JoinType
 
 from .. import region as rg
+from ..errors import InputError
 from ..program import ARC_CCW, ARC_CW, FEED, Operation, PathBuilder, Program, Tool
 from .model import (
     CHORD_TOLERANCE, DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourParallel,
@@ -40,6 +41,10 @@ from .part21 import UNSET, Enum, Part21Writer, parse_part21, read_part21
 APPROACH_GAP = 2.0
 # A facing stroke starts and ends this far (mm) beyond the tool radius outside the face.
 FACING_RUNOUT = 2.0
+# Guards against values that would run for hours (a mistyped 1.E-9 radial depth): no stepover below
+# MIN_STEPOVER mm, no more than MAX_PASSES layers or contour passes in one operation.
+MIN_STEPOVER = 0.01
+MAX_PASSES = 5000
 # Stepover as a ratio of the tool diameter when the strategy gives neither overlap nor radial depth.
 DEFAULT_STEPOVER_RATIO = 0.5
 # A move at cutting depth between two paths is allowed when it stays this close (mm) to the region.
@@ -97,7 +102,7 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
         missing = sorted(set(steps) - set(order))
         unknown = sorted(set(order) - set(steps))
         if missing or unknown or len(order) != len(steps):
-            raise ValueError(f"order must list every workingstep once; missing {missing}, unknown {unknown}, "
+            raise StepNcError(f"order must list every workingstep once; missing {missing}, unknown {unknown}, "
                              f"given {order}")
         sequence = [steps[ident] for ident in order]
     enabled = set(steps) if enabled is None else set(enabled)
@@ -115,8 +120,11 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
             if rough.id not in enabled or position[rough.id] > position[step.id]:
                 notes.append(f"workingstep #{step.id} '{step.its_id}' assumes roughing #{rough.id} "
                              f"'{rough.its_id}' was done before it")
-        tool = tool_for(step.its_operation.its_tool, numbers[step.its_operation.its_tool.id])
-        operation = plan_workingstep(step, tool, [rough.its_operation for rough in roughings], notes)
+        try:
+            tool = tool_for(step.its_operation.its_tool, numbers[step.its_operation.its_tool.id])
+            operation = plan_workingstep(step, tool, [rough.its_operation for rough in roughings], notes)
+        except InputError as error:
+            raise StepNcError(f"workingstep #{step.id} '{step.its_id}': {error}") from None
         if operation is not None:
             operations.append(operation)
     return Program(name or model.project.its_id or "STEP-NC", operations, notes=notes)
@@ -364,6 +372,9 @@ def _levels(top: float, floor: float, step: float | None) -> list:
     if height <= 1e-9:
         return []
     count = max(1, math.ceil(height / step - 1e-9)) if step else 1
+    if count > MAX_PASSES:
+        raise StepNcError(f"{height:g} mm cut {step:g} mm at a time needs {count} layers (more than {MAX_PASSES}): "
+                          "check axial_cutting_depth")
     return [top - height * k / count for k in range(1, count + 1)]
 
 
@@ -382,8 +393,9 @@ def _stepover(diameter: float, overlap: float | None, radial: float | None) -> f
     if radial:
         candidates.append(radial)
     stepover = min(candidates) if candidates else diameter * DEFAULT_STEPOVER_RATIO
-    if stepover <= 0:
-        raise StepNcError(f"stepover {stepover:g} mm (overlap {overlap}, radial depth {radial}) is not positive")
+    if stepover < MIN_STEPOVER:
+        raise StepNcError(f"stepover {stepover:g} mm (overlap {overlap}, radial depth {radial}) is below "
+                          f"{MIN_STEPOVER} mm")
     return stepover
 
 
@@ -461,6 +473,8 @@ def _ring_distances(region: CrossSection, stepover: float) -> list:
     distances = []
     while not _empty(_offset(region, -len(distances) * stepover)):
         distances.append(len(distances) * stepover)
+        if len(distances) > MAX_PASSES:
+            raise StepNcError(f"more than {MAX_PASSES} contour passes at a {stepover:g} mm stepover")
     return distances
 
 
@@ -543,7 +557,11 @@ def _facing_strokes(face: PlanarFace, strategy, radius: float, stepover: float) 
     if last <= first:
         offsets = np.array([(across.min() + across.max()) / 2])
     else:
-        offsets = np.linspace(first, last, math.ceil((last - first) / stepover - 1e-9) + 1)
+        count = math.ceil((last - first) / stepover - 1e-9) + 1
+        if count > MAX_PASSES:
+            raise StepNcError(f"planar face #{face.id}: {count} facing strokes (more than {MAX_PASSES}) at a "
+                              f"{stepover:g} mm stepover")
+        offsets = np.linspace(first, last, count)
     if getattr(strategy, "stepover_direction", None) == "RIGHT":
         offsets = offsets[::-1]
     return [np.array([start * direction + o * left, end * direction + o * left]) for o in offsets]
@@ -586,6 +604,8 @@ def _pocket_finishing(operation, pocket, tool, clearance_z, feed, spindle_clockw
         distances = []
         while _sweeps(centres, len(distances) * stepover, tool.radius, leftover):
             distances.append(len(distances) * stepover)
+            if len(distances) > MAX_PASSES:
+                raise StepNcError(f"more than {MAX_PASSES} finishing passes at a {stepover:g} mm stepover")
         ccw = _counter_clockwise(strategy, spindle_clockwise)
         wall_paths = _rings(centres, (distances or [0.0])[::-1], ccw, rg.centroid(centres))
     motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres)
@@ -693,26 +713,26 @@ def pockets_to_part21(stock_box, pockets, tool: Tool, *, feed: float = 600.0, sp
     """
     (x0, y0, z0), (x1, y1, z1) = (tuple(map(float, corner)) for corner in stock_box)
     if not (x1 > x0 and y1 > y0 and z1 > z0):
-        raise ValueError(f"stock box {stock_box} has no volume: give (min corner, max corner)")
+        raise StepNcError(f"stock box {stock_box} has no volume: give (min corner, max corner)")
     if tool.kind not in ("flat", "ball", "bull"):
-        raise ValueError(f"pockets need an end mill, not a {tool.kind}")
+        raise StepNcError(f"pockets need an end mill, not a {tool.kind}")
     for value, what in ((feed, "feed"), (spindle_rpm, "spindle speed"), (retract_height, "retract height"),
                         (security_height, "security height")):
         if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{what} must be a positive number, got {value}")
+            raise StepNcError(f"{what} must be a positive number, got {value}")
     if not 0 <= overlap < 1:
-        raise ValueError(f"overlap is a ratio of the tool diameter, 0 <= overlap < 1; got {overlap}")
+        raise StepNcError(f"overlap is a ratio of the tool diameter, 0 <= overlap < 1; got {overlap}")
     if not 0 <= ramp_angle <= 90:
-        raise ValueError(f"ramp angle must be 0..90 degrees, got {ramp_angle}")
+        raise StepNcError(f"ramp angle must be 0..90 degrees, got {ramp_angle}")
     axial_depth = tool.radius if axial_depth is None else axial_depth
     pockets = list(pockets)
     for pocket in pockets:
         rg.validate_loop(pocket.outline, f"pocket {pocket.name!r}")
         if not 0 < pocket.depth <= z1 - z0:
-            raise ValueError(f"pocket {pocket.name!r}: depth {pocket.depth} must be above 0 and at most the stock "
+            raise StepNcError(f"pocket {pocket.name!r}: depth {pocket.depth} must be above 0 and at most the stock "
                              f"height {z1 - z0:g}")
         if pocket.corner_radius < 0:
-            raise ValueError(f"pocket {pocket.name!r}: corner radius must not be negative")
+            raise StepNcError(f"pocket {pocket.name!r}: corner radius must not be negative")
 
     w = Part21Writer()
     project, workplan, workpiece = w.reserve(), w.reserve(), w.reserve()

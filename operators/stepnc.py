@@ -1,0 +1,290 @@
+"""W3 in Blender: import an ISO 14649 (STEP-NC) file, reorder its workingsteps, export G-code;
+export pockets modelled in Blender as an ISO 14649 file.
+
+The imported file stays the source of truth: the scene keeps its path and the workingstep
+list (order and on/off); export reads the file again and converts it in the list's order.
+"""
+from __future__ import annotations
+
+import os
+
+import bpy
+import numpy as np
+from bpy.props import EnumProperty, StringProperty
+from bpy_extras.io_utils import ExportHelper, ImportHelper
+
+from ..post import milling_post, write_atomic
+from ..toolpath import stepnc
+from ..toolpath.program import Tool
+from ..toolpath.stepnc.model import ClosedPocket, PlanarFace, RoundHole
+from . import convert
+from .common import run_reported
+from .properties import MILLING_POST_ITEMS
+
+PREFIX = "Kezuri STEP-NC"
+FEATURE_COLOURS = {"ClosedPocket": (0.2, 0.6, 1.0, 1.0), "PlanarFace": (0.9, 0.8, 0.2, 1.0),
+                   "RoundHole": (0.9, 0.3, 0.3, 1.0)}
+TOOLPATH_COLOUR = (0.95, 0.45, 0.1, 1.0)
+
+
+def describe_step(step) -> dict:
+    feature, operation = step.its_feature, step.its_operation
+    return {"id": step.id, "name": step.its_id, "feature": f"{type(feature).__name__} {feature.its_id}",
+            "operation": type(operation).__name__ + (" (finishing)" if getattr(operation, "finishing", False) else "")}
+
+
+def fill_workplan_list(scene, path: str, loaded) -> None:
+    props = scene.kezuri.stepnc
+    props.filepath = path
+    props.steps.clear()
+    for step in loaded.workingsteps:
+        item = props.steps.add()
+        info = describe_step(step)
+        item.ident, item.name, item.feature, item.operation = info["id"], info["name"], info["feature"], \
+            info["operation"]
+        item.enabled = True
+    props.active_step = 0
+
+
+def load_scene_workplan(scene):
+    path = bpy.path.abspath(scene.kezuri.stepnc.filepath)
+    if not path:
+        raise convert.SceneInputError("no ISO 14649 file: use File > Import > ISO 14649 first")
+    if not os.path.isfile(path):
+        raise convert.SceneInputError(f"the imported ISO 14649 file is gone: {path}")
+    return stepnc.load_workplan(path)
+
+
+def scene_program(scene, loaded):
+    props = scene.kezuri.stepnc
+    order = [item.ident for item in props.steps]
+    enabled = [item.ident for item in props.steps if item.enabled]
+    if not enabled:
+        raise convert.SceneInputError("every workingstep is switched off: nothing to export")
+    program = stepnc.to_program(loaded, order=order, enabled=enabled, name=scene.name)
+    program.notes = list(loaded.warnings) + list(program.notes)
+    return program
+
+
+def _prism(outline: np.ndarray, top: float, bottom: float):
+    """Vertices and faces of a vertical prism over a closed (k, 2) outline."""
+    k = len(outline)
+    vertices = np.vstack([np.column_stack([outline, np.full(k, top)]),
+                          np.column_stack([outline, np.full(k, bottom)])])
+    faces = [list(range(k))[::-1], list(range(k, 2 * k))]
+    faces += [[i, (i + 1) % k, k + (i + 1) % k, k + i] for i in range(k)]
+    return vertices, faces
+
+
+def feature_solid(feature):
+    """A prism showing where a feature removes material (work mm)."""
+    top, bottom = feature.top_z, feature.bottom_z
+    if isinstance(feature, ClosedPocket):
+        outline = np.asarray(feature.outline(), float)[:, :2]
+    elif isinstance(feature, PlanarFace):
+        outline = np.asarray(feature.corners(), float)
+    elif isinstance(feature, RoundHole):
+        angles = np.linspace(0, 2 * np.pi, 48, endpoint=False)
+        outline = np.column_stack([np.cos(angles), np.sin(angles)]) * feature.diameter / 2 + feature.centre
+    else:
+        return None
+    if abs(top - bottom) < 1e-9:
+        bottom = top - 0.1
+    return _prism(outline, top, bottom)
+
+
+def show_workplan(scene, loaded, program=None) -> list:
+    convert.remove_objects(PREFIX)
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    objects = []
+    workpiece = loaded.project.its_workpieces[0] if getattr(loaded.project, "its_workpieces", None) else None
+    block = getattr(workpiece, "its_bounding_geometry", None) if workpiece is not None else None
+    if block is not None:
+        (x0, y0, z0), (x1, y1, z1) = block.box()
+        vertices, faces = _prism(np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]), z1, z0)
+        stock = convert.mesh_object(scene, f"{PREFIX} stock", vertices, faces, frame, (0.85, 0.72, 0.52, 1.0))
+        stock.display_type = "WIRE"
+        objects.append(stock)
+    seen = set()
+    for step in loaded.workingsteps:
+        feature = step.its_feature
+        if feature.id in seen:
+            continue
+        seen.add(feature.id)
+        solid = feature_solid(feature)
+        if solid is not None:
+            objects.append(convert.mesh_object(scene, f"{PREFIX} {feature.its_id}", *solid, frame,
+                                               FEATURE_COLOURS.get(type(feature).__name__, (0.7, 0.7, 0.7, 1.0))))
+    if program is not None:
+        for op in program.operations:
+            cutting, _ = convert.operation_paths(op)
+            objects.append(convert.polyline_object(scene, f"{PREFIX} path {op.name}", cutting, frame,
+                                                   TOOLPATH_COLOUR))
+    return objects
+
+
+def export_nc(scene, post_name: str, path: str) -> tuple:
+    loaded = load_scene_workplan(scene)
+    program = scene_program(scene, loaded)
+    post = milling_post(post_name, scene.kezuri.machine.work_offset)
+    return write_atomic(path, post.to_text(program)), program
+
+
+def pockets_part21(scene, depsgraph) -> str:
+    """ISO 14649 text for the pockets modelled in the scene (outline objects marked as pockets,
+    on the stock plate), roughed and finished with the STEP-NC panel's end mill."""
+    settings = scene.kezuri
+    plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, settings.stock.origin)
+    specs = []
+    for obj in sorted((o for o in scene.objects if o.kezuri_pocket.enabled), key=lambda o: o.name):
+        loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
+        if len(loops) != 1:
+            raise convert.SceneInputError(f"pocket {obj.name!r}: the outline must be one closed loop")
+        specs.append(stepnc.PocketSpec(obj.name, tuple(map(tuple, loops[0])), obj.kezuri_pocket.depth))
+    if not specs:
+        raise convert.SceneInputError("no pockets: mark closed outline objects as pockets (with a depth)")
+    outline = np.vstack(plate.outline)
+    (x0, y0), (x1, y1) = outline.min(axis=0), outline.max(axis=0)
+    props = settings.stepnc
+    tool = Tool(props.tool_number, "flat", props.tool_diameter, flute_length=props.flute_length, name="end mill")
+    return stepnc.pockets_to_part21(((x0, y0, -plate.size[2]), (x1, y1, 0.0)), specs, tool, feed=props.feed,
+                                    spindle_rpm=props.spindle_rpm, name=scene.name.upper())
+
+
+class KEZURI_OT_import_stepnc(bpy.types.Operator, ImportHelper):
+    """Import an ISO 14649 (STEP-NC) Part 21 file: stock, features and the workplan"""
+
+    bl_idname = "kezuri.import_stepnc"
+    bl_label = "Import ISO 14649"
+    bl_options = {"REGISTER", "UNDO"}
+
+    filename_ext = ".stp"
+    filter_glob: StringProperty(default="*.stp;*.step;*.p21;*.STP;*.P21", options={"HIDDEN"})
+
+    def execute(self, context):
+        def work():
+            loaded = stepnc.load_workplan(self.filepath)
+            fill_workplan_list(context.scene, self.filepath, loaded)
+            show_workplan(context.scene, loaded)
+            for warning in loaded.warnings:
+                self.report({"WARNING"}, warning)
+            self.report({"INFO"}, f"{len(loaded.workingsteps)} workingsteps from {os.path.basename(self.filepath)}")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_stepnc_generate(bpy.types.Operator):
+    """Convert the workplan, in the list's order, and show the toolpaths"""
+
+    bl_idname = "kezuri.stepnc_generate"
+    bl_label = "Generate Workplan Toolpaths"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        if not len(context.scene.kezuri.stepnc.steps):
+            cls.poll_message_set("Import an ISO 14649 file first")
+            return False
+        return True
+
+    def execute(self, context):
+        def work():
+            loaded = load_scene_workplan(context.scene)
+            program = scene_program(context.scene, loaded)
+            show_workplan(context.scene, loaded, program)
+            for note in program.notes:
+                self.report({"WARNING"}, note)
+            self.report({"INFO"}, f"{len(program.operations)} operations, about {program.cycle_time() / 60:.1f} min")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_stepnc_export(bpy.types.Operator, ExportHelper):
+    """Write the G-code of the workplan, in the list's order, without the switched-off workingsteps"""
+
+    bl_idname = "kezuri.stepnc_export"
+    bl_label = "Export Workplan NC"
+    bl_options = {"REGISTER"}
+
+    filename_ext = ".nc"
+    filter_glob: StringProperty(default="*.nc;*.ngc", options={"HIDDEN"})
+    post: EnumProperty(name="Post", items=[i for i in MILLING_POST_ITEMS if i[0] != "fanuc-macro"], default="fanuc")
+
+    @classmethod
+    def poll(cls, context):
+        return KEZURI_OT_stepnc_generate.poll(context)
+
+    def check(self, context):
+        self.filename_ext = ".ngc" if self.post == "linuxcnc" else ".nc"
+        return ExportHelper.check(self, context)
+
+    def execute(self, context):
+        def work():
+            path, _ = export_nc(context.scene, self.post, self.filepath)
+            self.report({"INFO"}, f"Wrote {path}")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_export_stepnc(bpy.types.Operator, ExportHelper):
+    """Write the pockets modelled in Blender as an ISO 14649 (STEP-NC) Part 21 file"""
+
+    bl_idname = "kezuri.export_stepnc"
+    bl_label = "Export ISO 14649"
+    bl_options = {"REGISTER"}
+
+    filename_ext = ".stp"
+    filter_glob: StringProperty(default="*.stp;*.p21", options={"HIDDEN"})
+
+    def execute(self, context):
+        def work():
+            text = pockets_part21(context.scene, context.evaluated_depsgraph_get())
+            path = write_atomic(self.filepath, text)
+            self.report({"INFO"}, f"Wrote {path}")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_workingstep_move(bpy.types.Operator):
+    """Move the selected workingstep up or down in the workplan"""
+
+    bl_idname = "kezuri.workingstep_move"
+    bl_label = "Move Workingstep"
+    bl_options = {"REGISTER", "UNDO"}
+
+    direction: EnumProperty(items=[("UP", "Up", ""), ("DOWN", "Down", "")])
+
+    @classmethod
+    def poll(cls, context):
+        return len(context.scene.kezuri.stepnc.steps) > 1
+
+    def execute(self, context):
+        props = context.scene.kezuri.stepnc
+        index = props.active_step
+        target = index - 1 if self.direction == "UP" else index + 1
+        if not (0 <= index < len(props.steps) and 0 <= target < len(props.steps)):
+            return {"CANCELLED"}
+        props.steps.move(index, target)
+        props.active_step = target
+        return {"FINISHED"}
+
+
+class KEZURI_UL_workingsteps(bpy.types.UIList):
+    def draw_item(self, context, layout, data, item, icon, active_data, active_property, index=0, flt_flag=0):
+        row = layout.row(align=True)
+        row.prop(item, "enabled", text="")
+        row.label(text=f"#{item.ident} {item.name}")
+        row.label(text=item.operation)
+
+
+def menu_import(self, context):
+    self.layout.operator(KEZURI_OT_import_stepnc.bl_idname, text="ISO 14649 STEP-NC (.stp, .p21)")
+
+
+def menu_export(self, context):
+    self.layout.operator(KEZURI_OT_export_stepnc.bl_idname, text="ISO 14649 STEP-NC (.stp)")
+
+
+CLASSES = (KEZURI_OT_import_stepnc, KEZURI_OT_stepnc_generate, KEZURI_OT_stepnc_export, KEZURI_OT_export_stepnc,
+           KEZURI_OT_workingstep_move, KEZURI_UL_workingsteps)
+MENUS = ((bpy.types.TOPBAR_MT_file_import, menu_import), (bpy.types.TOPBAR_MT_file_export, menu_export))

@@ -1,0 +1,10 @@
+"""The one base class of every error that means "this input cannot be used".
+
+Each workflow raises its own subclass with a message that names the object, line or value at
+fault; the Blender shell and batch.py show exactly these to the user, and treat anything else
+as a bug (with its traceback).  A ValueError, so plain Python callers can catch it as one.
+"""
+
+
+class InputError(ValueError):
+    """Bad input: the message says what is wrong and where."""
