@@ -7,6 +7,7 @@ Commands (``python batch.py <command> --help`` for the options):
     engrave   gouge-texture name plate (W1)
     rotary    bento-block pockets on a rotating table, C-X-Z (W2)
     stepnc    ISO 14649 (STEP-NC) workplan to G-code (W3)
+    turnmill  4.5-axis turn-mill: radial/axial classification and paths, X-Z-C (W4)
     unfold    twisted quad -> flat pattern, turret-punch NC, DXF, SVG (W5)
     elbow     segmented pipe elbow -> flat patterns, DXF, SVG (W5)
     demo      every workflow on its built-in sample part, each into a sub-folder of --out
@@ -234,6 +235,75 @@ def stepnc_job(args) -> dict:
 
 
 # ----------------------------------------------------------------------------------------
+# W4 turn-mill
+
+def turnmill_arguments(p):
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--blend", help="a .blend whose Turn-Mill panel names the part and the stock")
+    source.add_argument("--mesh", help="an STL/OBJ/PLY of the part in mm, around the Z axis (stock from its size)")
+    p.add_argument("--engine", choices=["BVH", "TRIMESH"], help="ray engine (default: BVH, trimesh for --mesh)")
+
+
+def turnmill_job(args) -> dict:
+    import bpy
+    import numpy as np
+
+    from kezuri.operators import convert, preview, samples
+    from kezuri.operators import turnmill as shell
+    from kezuri.toolpath import turnmill as core
+
+    scene = open_blend(args.blend)
+    if args.mesh:
+        import trimesh
+        if not os.path.isfile(args.mesh):
+            raise FileNotFoundError(f"no such mesh file: {args.mesh}")
+        try:
+            loaded = trimesh.load(args.mesh, force="mesh")
+        except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file
+            raise core.TurnMillError(f"{args.mesh}: not a readable mesh ({error})") from None
+        vertices, faces = np.asarray(loaded.vertices, float), np.asarray(loaded.faces)
+        radius = float(np.hypot(vertices[:, 0], vertices[:, 1]).max()) if len(vertices) else 0.0
+        stock = core.Stock(radius, float(vertices[:, 2].min()), float(vertices[:, 2].max())) if len(vertices) \
+            else core.Stock(1.0, 0.0, 1.0)
+        props = scene.kezuri.turnmill
+        frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+        job = shell.run_on_mesh(vertices, faces, stock, shell.settings_from(props), args.engine or "TRIMESH", frame,
+                                name=os.path.basename(args.mesh))
+        labels = job.plan.labels
+        face_centroids = job.vertices[job.faces].mean(axis=1)
+        solids = [convert.mesh_object(scene, "Kezuri Turn-Mill part", job.vertices, job.faces, frame)]
+    else:
+        if not args.blend:
+            samples.turnmill_part(scene)
+        if args.engine:
+            scene.kezuri.turnmill.engine = args.engine
+        job = shell.run_turnmill(scene, bpy.context.evaluated_depsgraph_get())
+        part = scene.kezuri.turnmill.part
+        labels = shell.polygon_labels(job.plan.labels, job.owner, len(part.data.polygons))
+        shell.colour_faces(part, labels)
+        face_centroids = np.array([job.frame.to_work([p.center])[0] for p in part.data.polygons]) if \
+            part.matrix_world.is_identity else np.array([job.frame.to_work([part.matrix_world @ p.center])[0]
+                                                         for p in part.data.polygons])
+        solids = [part]
+    files = [shell.export_turnmill(job, post, os.path.join(args.out, f"turnmill{shell.extension_for(post)}"))
+             for post in ("xzc", "linuxcnc", "cldata")]
+    paths = shell.show_turnmill(scene, job)
+    png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "turnmill.png"))
+    return {
+        "workflow": "turnmill",
+        "files": files,
+        "preview": png,
+        "engine": job.engine,
+        "rays": job.rays,
+        "classification_seconds": round(job.classification_seconds, 3),
+        "faces": [{"centroid": rounded(c, 4), "label": shell.REPORT_LABELS[int(k)]}
+                  for c, k in zip(face_centroids, labels)],
+        "operations": job.plan.program.summary(),
+        "cycle_time_s": round(job.plan.program.cycle_time(), 1),
+    }
+
+
+# ----------------------------------------------------------------------------------------
 # W5 unfold and elbow
 
 def unfold_arguments(p):
@@ -340,6 +410,8 @@ COMMANDS = {
     "engrave": ("gouge-texture name plate (W1)", engrave_arguments, engrave),
     "rotary": ("pockets on a rotating table, C-X-Z (W2)", rotary_arguments, rotary),
     "stepnc": ("ISO 14649 (STEP-NC) workplan to G-code (W3)", stepnc_arguments, stepnc_job),
+    "turnmill": ("4.5-axis turn-mill: reach classification, radial/axial paths, X-Z-C (W4)", turnmill_arguments,
+                 turnmill_job),
     "unfold": ("twisted quad: flat pattern, turret-punch NC, DXF, SVG (W5)", unfold_arguments, unfold),
     "elbow": ("segmented pipe elbow: flat patterns, DXF, SVG (W5)", elbow_arguments, elbow),
 }

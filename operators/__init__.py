@@ -3,10 +3,10 @@ from __future__ import annotations
 
 import bpy
 
-from . import engrave, panels, preferences, properties, rotary, sheetmetal, stepnc
+from . import engrave, panels, preferences, properties, rotary, sheetmetal, stepnc, translations, turnmill
 
-CLASSES = (*preferences.CLASSES, *engrave.CLASSES, *rotary.CLASSES, *stepnc.CLASSES, *sheetmetal.CLASSES,
-           *panels.CLASSES)
+CLASSES = (*preferences.CLASSES, *engrave.CLASSES, *rotary.CLASSES, *stepnc.CLASSES, *turnmill.CLASSES,
+           *sheetmetal.CLASSES, *panels.CLASSES)
 MENUS = (*stepnc.MENUS, *sheetmetal.MENUS)
 
 
@@ -16,9 +16,11 @@ def register():
         bpy.utils.register_class(cls)
     for menu, draw in MENUS:
         menu.append(draw)
+    translations.register()
 
 
 def unregister():
+    translations.unregister()
     for menu, draw in reversed(MENUS):
         menu.remove(draw)
     for cls in reversed(CLASSES):

@@ -18,10 +18,11 @@ def run_reported(operator, work):
     Input errors are shown as they are; anything else is a bug: a short message in the
     status bar and the traceback in the system console, never an exception out of execute().
     """
+    from bpy.app.translations import pgettext_rpt
     try:
         return work()
     except user_errors() as error:
-        operator.report({"ERROR"}, str(error))
+        operator.report({"ERROR"}, pgettext_rpt(str(error)))
     except Exception as error:  # noqa: BLE001 - the last line of defence of the UI
         traceback.print_exc(file=sys.stderr)
         operator.report({"ERROR"}, f"Kezuri internal error ({type(error).__name__}): {error}; "

@@ -167,6 +167,38 @@ class KEZURI_PT_stepnc_write(KezuriPanel, bpy.types.Panel):
         layout.operator("kezuri.export_stepnc", icon="EXPORT")
 
 
+class KEZURI_PT_turnmill(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_turnmill"
+    bl_label = "Turn-Mill"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = context.scene.kezuri.turnmill
+        for name in ("part", "selected_only", "stock_radius", "stock_z_min", "stock_z_max", "engine"):
+            layout.prop(props, name)
+        row = layout.row(align=True)
+        row.operator("kezuri.turnmill_classify", icon="SHADING_RENDERED")
+        row = layout.row(align=True)
+        row.scale_y = 1.4
+        row.operator("kezuri.turnmill_generate", icon="MOD_SCREW")
+        layout.operator("kezuri.turnmill_export", icon="EXPORT")
+
+
+class KEZURI_PT_turnmill_settings(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_turnmill_settings"
+    bl_label = "Tool & Tolerance"
+    bl_parent_id = "KEZURI_PT_turnmill"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = context.scene.kezuri.turnmill
+        for name in ("tool_diameter", "tolerance", "sample_spacing", "feed", "spindle_rpm"):
+            layout.prop(props, name)
+
+
 class KEZURI_PT_sheet(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_sheet"
     bl_label = "Sheet Metal"
@@ -210,5 +242,5 @@ class KEZURI_PT_sheet_elbow(KezuriPanel, bpy.types.Panel):
 
 CLASSES = (KEZURI_PT_machine, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
            KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_stepnc,
-           KEZURI_PT_stepnc_write, KEZURI_PT_sheet,
+           KEZURI_PT_stepnc_write, KEZURI_PT_turnmill, KEZURI_PT_turnmill_settings, KEZURI_PT_sheet,
            KEZURI_PT_sheet_elbow)

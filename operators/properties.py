@@ -207,6 +207,26 @@ class KezuriStepNC(bpy.types.PropertyGroup):
     spindle_rpm: FloatProperty(name="Spindle", default=10000.0, min=1.0, description="Spindle speed (rpm)")
 
 
+class KezuriTurnMill(bpy.types.PropertyGroup):
+    part: PointerProperty(name="Part", type=bpy.types.Object, poll=_mesh_poll,
+                          description="The part: a mesh around the Z axis (the C axis)")
+    selected_only: BoolProperty(name="Selected Faces Only", default=False,
+                                description="Machine only the faces selected in Edit Mode (all faces still "
+                                            "block the rays)")
+    stock_radius: mm("Stock Radius", 42.5, "Radius of the round bar stock (85 mm chemical wood: 42.5)",
+                     minimum=0.1)
+    stock_z_min: mm("Stock Z Min", -60.0, "Chuck side of the stock")
+    stock_z_max: mm("Stock Z Max", 0.0, "End face of the stock")
+    tool_diameter: mm("Ball Diameter", 6.0, "Ball end mill on both turret stations", minimum=0.1)
+    tolerance: mm("Chordal Tolerance", 0.01, "Point spacing and scallops follow this tolerance", minimum=0.0001)
+    sample_spacing: mm("Ray Sample Spacing", 2.0, "Distance between ray samples on each face", minimum=0.01)
+    feed: FloatProperty(name="Feed", default=500.0, min=1.0, description="Cutting feed (mm/min)")
+    spindle_rpm: FloatProperty(name="Spindle", default=4000.0, min=1.0, description="Driven tool speed (rpm)")
+    engine: EnumProperty(name="Ray Engine", default="BVH", items=[
+        ("BVH", "Blender BVH", "Blender's BVHTree"),
+        ("TRIMESH", "trimesh", "trimesh (Embree when bundled), as in batch runs")])
+
+
 class KezuriSettings(bpy.types.PropertyGroup):
     machine: PointerProperty(type=KezuriMachine)
     stock: PointerProperty(type=KezuriStock)
@@ -214,10 +234,11 @@ class KezuriSettings(bpy.types.PropertyGroup):
     sheet: PointerProperty(type=KezuriSheet)
     rotary: PointerProperty(type=KezuriRotary)
     stepnc: PointerProperty(type=KezuriStepNC)
+    turnmill: PointerProperty(type=KezuriTurnMill)
 
 
 CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriPocket, KezuriRotary, KezuriWorkingstep,
-           KezuriStepNC, KezuriSettings)
+           KezuriStepNC, KezuriTurnMill, KezuriSettings)
 
 
 def register():

@@ -93,3 +93,21 @@ def rotary_block(scene):
             props.sphere_radius = pocket.sphere_radius
         objects.append(obj)
     return plate, objects
+
+
+def turnmill_part(scene):
+    """An 85 mm chemical-wood bar, 60 mm long (end face at Z = 0), with a flat and a groove on its
+    side and two pockets in its end face, one of them exactly 20 mm wide."""
+    from ..toolpath import turnmill
+
+    vertices, faces, stock = turnmill.sample_part()
+    mesh = bpy.data.meshes.new("Turned part")
+    mesh.from_pydata(vertices.tolist(), [], faces.tolist())
+    mesh.update()
+    part = bpy.data.objects.new("Turned part", mesh)
+    part.color = (0.85, 0.72, 0.52, 1.0)
+    scene.collection.objects.link(part)
+    props = scene.kezuri.turnmill
+    props.part = part
+    props.stock_radius, props.stock_z_min, props.stock_z_max = stock.radius, stock.z_min, stock.z_max
+    return part

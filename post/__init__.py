@@ -7,6 +7,7 @@ from .grbl import GrblPost
 from .linuxcnc import LinuxCNCPost
 from .output import write_atomic
 from .rotary_cxz import ROTARY_POSTS, rotary_post
+from .turnmill_xzc import TurnMillLinuxCNCPost, TurnMillXZCPost
 
 MILLING_POSTS = {"fanuc": FanucPost, "fanuc-macro": FanucMacroPost, "linuxcnc": LinuxCNCPost, "grbl": GrblPost}
 
@@ -18,4 +19,5 @@ def milling_post(name: str, work_offset: str | None = None) -> GcodePost:
         raise PostError(f"unknown post {name!r}; choose one of {', '.join(MILLING_POSTS)}") from None
 
 
-__all__ = ["MILLING_POSTS", "milling_post", "ROTARY_POSTS", "rotary_post", "PostError", "write_atomic"]
+__all__ = ["MILLING_POSTS", "milling_post", "ROTARY_POSTS", "rotary_post", "TurnMillXZCPost", "TurnMillLinuxCNCPost",
+           "PostError", "write_atomic"]

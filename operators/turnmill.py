@@ -1,0 +1,266 @@
+"""W4 in Blender: turn-mill reach classification (face colours) and radial/axial paths, X-Z-C NC.
+
+The part is a mesh around the Z axis (= the C axis) of the work frame; the stock a round bar
+given in the Turn-Mill panel.  Inside Blender the rays are cast with mathutils' BVHTree; the
+core's trimesh engine is the other choice (and the one batch runs use without Blender).
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import bpy
+import numpy as np
+from bpy.props import EnumProperty, StringProperty
+from bpy_extras.io_utils import ExportHelper
+from mathutils import Vector
+from mathutils.bvhtree import BVHTree
+
+from ..post import write_atomic
+from ..post.cldata import CLDataPost
+from ..post.turnmill_xzc import TurnMillLinuxCNCPost, TurnMillXZCPost
+from ..toolpath import turnmill as core
+from . import convert
+from .common import Progress, run_reported
+
+PREFIX = "Kezuri Turn-Mill"
+ATTRIBUTE = "Kezuri reach"
+LABEL_COLOURS = {core.NEITHER: (0.45, 0.45, 0.45, 1.0), core.RADIAL: (0.15, 0.45, 1.0, 1.0),
+                 core.AXIAL: (0.2, 0.85, 0.3, 1.0), core.BOTH: (0.75, 0.3, 0.95, 1.0)}
+REPORT_LABELS = {core.NEITHER: "none", core.RADIAL: "radial", core.AXIAL: "axial", core.BOTH: "both"}
+PATH_COLOURS = {"radial": (0.95, 0.45, 0.1, 1.0), "axial": (1.0, 0.9, 0.1, 1.0)}
+
+
+class BVHRayEngine:
+    """The core's RayEngine on Blender's BVHTree: does any ray hit the mesh?"""
+
+    backend = "bvhtree"
+
+    def __init__(self, vertices, faces):
+        self.tree = BVHTree.FromPolygons([tuple(v) for v in np.asarray(vertices, float)],
+                                         [tuple(int(i) for i in f) for f in np.asarray(faces)], epsilon=0.0)
+
+    def intersects_any(self, origins, directions) -> np.ndarray:
+        cast = self.tree.ray_cast
+        return np.array([cast(Vector(o), Vector(d))[0] is not None
+                         for o, d in zip(np.asarray(origins, float), np.asarray(directions, float))], dtype=bool)
+
+
+def engine_for(name: str, vertices, faces):
+    return BVHRayEngine(vertices, faces) if name == "BVH" else core.TrimeshRayEngine(vertices, faces)
+
+
+def triangulated(vertices: np.ndarray, polygons) -> tuple:
+    """Triangles (fan) of the polygons, and the polygon each triangle came from."""
+    triangles, owner = [], []
+    for index, poly in enumerate(polygons):
+        for k in range(1, len(poly) - 1):
+            triangles.append((poly[0], poly[k], poly[k + 1]))
+            owner.append(index)
+    return np.array(triangles, dtype=np.int64).reshape(-1, 3), np.array(owner, dtype=np.int64)
+
+
+@dataclass
+class TurnMillJob:
+    plan: core.TurnMillPlan
+    vertices: np.ndarray       # work mm
+    faces: np.ndarray          # triangles
+    owner: np.ndarray          # triangle -> polygon of the Blender mesh (or itself)
+    frame: convert.WorkFrame
+    rays: int
+    classification_seconds: float
+    engine: str
+
+
+def settings_from(props) -> core.TurnMillSettings:
+    return core.TurnMillSettings(tool_diameter=props.tool_diameter, tolerance=props.tolerance, feed=props.feed,
+                                 spindle_rpm=props.spindle_rpm, sample_spacing=props.sample_spacing)
+
+
+def run_on_mesh(vertices, faces, stock: core.Stock, settings: core.TurnMillSettings, engine_name: str,
+                frame: convert.WorkFrame, owner=None, selected=None, name="turn-mill") -> TurnMillJob:
+    """Classify (timed), then plan.  ``selected``: a face mask; unselected faces still block rays
+    but get no paths."""
+    vertices, faces = core.check_mesh(vertices, faces)
+    engine = engine_for(engine_name, vertices, faces)
+    started = time.perf_counter()
+    labels = core.classify_faces(vertices, faces, engine, settings.sample_spacing)
+    seconds = time.perf_counter() - started
+    samples, _ = core.face_samples(vertices[faces], settings.sample_spacing)
+    machined = labels if selected is None else np.where(selected, labels, core.NEITHER)
+    result = core.plan(vertices, faces, stock, settings, engine, labels=machined, name=name)
+    result.labels = labels
+    owner = np.arange(len(faces)) if owner is None else owner
+    return TurnMillJob(result, vertices, faces, owner, frame, 2 * len(samples), seconds, engine_name)
+
+
+def run_turnmill(scene, depsgraph, progress=None) -> TurnMillJob:
+    props = scene.kezuri.turnmill
+    obj = props.part
+    if obj is None or obj.type != "MESH":
+        raise convert.SceneInputError("pick the part (a mesh around the Z axis) in the Turn-Mill panel")
+    world, polygons, _ = convert.evaluated_mesh_arrays(obj, depsgraph)
+    if not polygons:
+        raise convert.SceneInputError(f"part {obj.name!r} has no faces")
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    vertices = frame.to_work(world)
+    faces, owner = triangulated(vertices, polygons)
+    selected = None
+    if props.selected_only:
+        selected_polygons = np.array([p.select for p in obj.data.polygons], bool)
+        if not selected_polygons.any():
+            raise convert.SceneInputError(f"part {obj.name!r}: no faces are selected (select them in Edit Mode, "
+                                          "or switch off Selected Faces Only)")
+        selected = selected_polygons[owner]
+    stock = core.Stock(props.stock_radius, props.stock_z_min, props.stock_z_max)
+    if progress:
+        progress(0.1, "classifying faces")
+    job = run_on_mesh(vertices, faces, stock, settings_from(props), props.engine, frame, owner, selected,
+                      name=scene.name)
+    if progress:
+        progress(1.0, "done")
+    return job
+
+
+def polygon_labels(triangle_labels: np.ndarray, owner: np.ndarray, polygon_count: int) -> np.ndarray:
+    """Per Blender polygon: the directions that reach all of its triangles (the labels are bit
+    sets: radial 1, axial 2, both 3)."""
+    labels = np.full(polygon_count, core.BOTH, dtype=np.int8)
+    np.bitwise_and.at(labels, owner, triangle_labels.astype(np.int8))
+    return labels
+
+
+def colour_faces(obj, labels: np.ndarray):
+    """Face colours in a colour attribute (Solid shading > Attribute shows it).  Colour
+    attributes live on points or face corners: every corner of a face gets the face's colour."""
+    mesh = obj.data
+    attribute = mesh.color_attributes.get(ATTRIBUTE)
+    if attribute is None:
+        attribute = mesh.color_attributes.new(ATTRIBUTE, "FLOAT_COLOR", "CORNER")
+    totals = np.empty(len(mesh.polygons), dtype=np.int64)
+    mesh.polygons.foreach_get("loop_total", totals)
+    colours = np.array([LABEL_COLOURS[int(k)] for k in labels], dtype=np.float32)
+    attribute.data.foreach_set("color", np.repeat(colours, totals, axis=0).ravel())
+    mesh.color_attributes.active_color = attribute
+    mesh.update()
+
+
+def show_turnmill(scene, job: TurnMillJob) -> list:
+    convert.remove_objects(PREFIX)
+    objects = []
+    for op in job.plan.program.operations:
+        points = op.part_points()
+        start = points[:1]
+        cutting, _ = convert.split_runs(op.kind, np.vstack([start, points]))
+        objects.append(convert.polyline_object(scene, f"{PREFIX} {op.name}", cutting, job.frame,
+                                               PATH_COLOURS.get(op.direction, (1, 1, 1, 1))))
+    return objects
+
+
+def export_turnmill(job: TurnMillJob, post_name: str, path: str) -> str:
+    post = {"xzc": TurnMillXZCPost, "linuxcnc": TurnMillLinuxCNCPost, "cldata": CLDataPost}[post_name]()
+    return write_atomic(path, post.to_text(job.plan.program))
+
+
+def extension_for(post_name: str) -> str:
+    return {"xzc": ".nc", "linuxcnc": ".ngc", "cldata": ".cl"}[post_name]
+
+
+def _poll_part(cls, context) -> bool:
+    part = context.scene.kezuri.turnmill.part
+    if part is None or part.type != "MESH":
+        cls.poll_message_set("Pick the part (a mesh) in the Turn-Mill panel")
+        return False
+    return True
+
+
+class KEZURI_OT_turnmill_classify(bpy.types.Operator):
+    """Cast rays from every face: colour it by the tool directions that reach it (blue radial,
+    green axial, purple both, grey neither)"""
+
+    bl_idname = "kezuri.turnmill_classify"
+    bl_label = "Classify Faces"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return _poll_part(cls, context)
+
+    def execute(self, context):
+        def work():
+            props = context.scene.kezuri.turnmill
+            obj = props.part
+            world, polygons, _ = convert.evaluated_mesh_arrays(obj, context.evaluated_depsgraph_get())
+            vertices = world * convert.mm_per_unit(context.scene)
+            faces, owner = triangulated(vertices, polygons)
+            vertices, faces = core.check_mesh(vertices, faces)
+            engine = engine_for(props.engine, vertices, faces)
+            labels = core.classify_faces(vertices, faces, engine, props.sample_spacing)
+            per_polygon = polygon_labels(labels, owner, len(obj.data.polygons))
+            colour_faces(obj, per_polygon)
+            if context.space_data is not None and context.space_data.type == "VIEW_3D":
+                context.space_data.shading.color_type = "VERTEX"
+            counts = {REPORT_LABELS[k]: int(np.count_nonzero(per_polygon == k)) for k in REPORT_LABELS}
+            self.report({"INFO"}, "Faces: " + ", ".join(f"{v} {k}" for k, v in counts.items()))
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_turnmill_generate(bpy.types.Operator):
+    """Classify the faces, then plan radial and axial roughing and finishing paths"""
+
+    bl_idname = "kezuri.turnmill_generate"
+    bl_label = "Generate Turn-Mill Paths"
+    bl_options = {"REGISTER", "UNDO"}
+
+    @classmethod
+    def poll(cls, context):
+        return _poll_part(cls, context)
+
+    def execute(self, context):
+        def work():
+            progress = Progress(context, "turn-mill")
+            try:
+                job = run_turnmill(context.scene, context.evaluated_depsgraph_get(), progress)
+            finally:
+                progress.end()
+            obj = context.scene.kezuri.turnmill.part
+            colour_faces(obj, polygon_labels(job.plan.labels, job.owner, len(obj.data.polygons)))
+            show_turnmill(context.scene, job)
+            ops = job.plan.program.operations
+            self.report({"INFO"}, f"{len(ops)} operations, about {job.plan.program.cycle_time() / 60:.1f} min")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_turnmill_export(bpy.types.Operator, ExportHelper):
+    """Write the X-Z-C program (or its CL data) for the turn-mill centre"""
+
+    bl_idname = "kezuri.turnmill_export"
+    bl_label = "Export Turn-Mill NC"
+    bl_options = {"REGISTER"}
+
+    filename_ext = ".nc"
+    filter_glob: StringProperty(default="*.nc;*.ngc;*.cl", options={"HIDDEN"})
+    post: EnumProperty(name="Post", default="xzc", items=[
+        ("xzc", "Turn-Mill X-Z-C", "X (diameter), Z, C words with the machine's C-axis and turret codes"),
+        ("linuxcnc", "LinuxCNC X-Z-C", "X (radius), Z, C words only"),
+        ("cldata", "APT CL Data", "Cutter location data in part coordinates, for a post-processor")])
+
+    @classmethod
+    def poll(cls, context):
+        return _poll_part(cls, context)
+
+    def check(self, context):
+        self.filename_ext = extension_for(self.post)
+        return ExportHelper.check(self, context)
+
+    def execute(self, context):
+        def work():
+            job = run_turnmill(context.scene, context.evaluated_depsgraph_get())
+            self.report({"INFO"}, f"Wrote {export_turnmill(job, self.post, self.filepath)}")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+CLASSES = (KEZURI_OT_turnmill_classify, KEZURI_OT_turnmill_generate, KEZURI_OT_turnmill_export)

@@ -1,0 +1,100 @@
+"""APT CL data (the cutter-location source a post-processor reads), in part coordinates.
+
+The seed paper's system is split into a main processor that writes CL data and a
+post-processor that turns CL data into NC.  This writer gives the same hand-over from our
+Operations.  A turn-mill program's machine X/Z/C moves are turned back into part coordinates:
+the tool tip, and the tool axis as a unit vector from the tip toward the holder.  That is
+(cos C, sin C, 0) for a radial tool and (0, 0, 1) for an axial tool.  A plain 3-axis operation
+(no rotary axes) is written as it is, with the axis (0, 0, 1).
+
+    PARTNO/SAMPLE
+    $$ KEZURI CAM - APT CL DATA, PART COORDINATES, MM
+    UNITS/MM
+    MULTAX/ON
+    $$ OPERATION 1: RADIAL ROUGHING - RADIAL TOOL
+    CUTTER/6.0000,3.0000
+    LOADTL/1
+    SPINDL/RPM,4000,CLW
+    FROM/44.5000,0.0000,2.0000
+    RAPID
+    GOTO/44.5000,0.0000,-15.0000,1.000000,0.000000,0.000000
+    FEDRAT/MMPM,150.0
+    GOTO/...
+    SPINDL/OFF
+    FINI
+
+There is one GOTO per move, zero-length moves included, so the CL data and the IR stay
+in step.  RAPID applies to the GOTO that follows it.  FEDRAT is written when the feed changes.
+Lines stay within APT's 72 columns.  Output is deterministic.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..toolpath.program import FEED, RAPID, Operation, Program
+from ..toolpath.turnmill import TurnMillOperation, machine_to_part
+from .gcode import PostError, comment_text, format_duration
+
+
+def _num(value: float, decimals: int) -> str:
+    text = f"{value:.{decimals}f}"
+    return text[1:] if text.startswith("-") and float(text) == 0 else text
+
+
+class CLDataPost:
+    """Program -> APT CL data text."""
+
+    name = "cldata"
+    extension = ".cls"
+
+    def __init__(self, decimals: int = 4, axis_decimals: int = 6):
+        self.decimals = decimals
+        self.axis_decimals = axis_decimals
+
+    def to_text(self, program: Program) -> str:
+        if not program.operations:
+            raise PostError("the program has no operations")
+        lines = [f"PARTNO/{comment_text(program.name)[:66]}",
+                 "$$ KEZURI CAM - APT CL DATA, PART COORDINATES, MM",
+                 "$$ TOOL AXIS I,J,K: UNIT VECTOR FROM THE TIP TOWARD THE HOLDER",
+                 f"$$ ESTIMATED CYCLE TIME: {format_duration(program.cycle_time())}",
+                 "UNITS/MM", "MULTAX/ON"]
+        for index, op in enumerate(program.operations):
+            lines += self.operation(index, op)
+        lines.append("FINI")
+        return "\n".join(lines) + "\n"
+
+    def operation(self, index: int, op: Operation) -> list:
+        start, points, axes = self.part_moves(op)
+        direction = getattr(op, "direction", "3-axis")
+        lines = [f"$$ OPERATION {index + 1}: {comment_text(op.name)} - {direction.upper()} TOOL"[:72],
+                 f"CUTTER/{_num(op.tool.diameter, 4)},{_num(op.tool.corner_radius, 4)}",
+                 f"LOADTL/{op.tool.number}",
+                 f"SPINDL/RPM,{int(round(op.spindle_rpm))},{'CLW' if op.spindle_cw else 'CCLW'}"]
+        if op.coolant:
+            lines.append("COOLNT/ON")
+        lines.append("FROM/" + ",".join(_num(v, self.decimals) for v in start))
+        feed_word = None
+        for kind, point, axis, feed in zip(op.kind.tolist(), points, axes, op.feed.tolist()):
+            if kind == RAPID:
+                lines.append("RAPID")
+            elif _num(feed, 1) != feed_word:
+                feed_word = _num(feed, 1)
+                lines.append(f"FEDRAT/MMPM,{feed_word}")
+            lines.append("GOTO/" + ",".join([_num(v, self.decimals) for v in point] +
+                                            [_num(v, self.axis_decimals) for v in axis]))
+        if op.coolant:
+            lines.append("COOLNT/OFF")
+        lines.append("SPINDL/OFF")
+        return lines
+
+    def part_moves(self, op: Operation) -> tuple:
+        """(start, tip points (n, 3), tool axes (n, 3)) in part coordinates."""
+        if not np.all(np.isin(op.kind, (RAPID, FEED))):
+            raise PostError(f"operation {op.name!r} has arc moves; the CL data writer writes GOTO points only")
+        if isinstance(op, TurnMillOperation):
+            return machine_to_part(op.start, op.rotary["c"][:1])[0], op.part_points(), op.tool_axes()
+        if op.rotary:
+            raise PostError(f"operation {op.name!r} moves rotary axes {sorted(op.rotary)} without a tool direction; "
+                            f"the CL data writer knows X-Z-C turn-mill and 3-axis operations")
+        return op.start, op.xyz, np.tile([0.0, 0.0, 1.0], (len(op), 1))

@@ -1,0 +1,193 @@
+"""NC for a turn-mill centre moving X, Z and C (no Y), from :class:`TurnMillOperation` s.
+
+Each operation is one turret tool, radial or axial.  Its block:
+
+    (OPERATION 1: RADIAL ROUGHING)
+    (TURRET: RADIAL TOOL, T1 6 MM BALL END MILL [RADIAL])
+    G28 U0. W0.                      home before indexing the turret
+    T0101                            select the station (tool and offset)
+    G19                              milling plane of the tool: radial G19, axial G17
+    M154                             C axis on: the main spindle becomes a positioning axis
+    M133 P4000                       driven tool on, forward, at 4000 rpm
+    G00 X89. Z2. C0.                 the safe corner outside the stock
+    G93                              inverse-time feed for the X-Z-C moves
+    G01 X81.6 Z-15. C12.5 F3.2 ...
+    G98                              back to feed per minute
+    M135                             driven tool off
+    M155                             C axis off
+
+Words are written in machine terms.  X is the tool tip's distance from the axis: a diameter by
+default, as lathes program X; ``x_diameter=False`` writes the radius.  Z is the tool tip.  C is
+the part angle brought to the tool, in degrees, unwrapped (continuous, never a jump of more than
+180 degrees between blocks).
+
+Feed: with C turning during a cut, a feed per minute would be applied to the linear axes alone
+and the cutting speed at the part would be wrong.  So cutting moves are written in inverse time
+(G93): F = 1 / minutes for the block, from the part-space length at the programmed feed.
+``inverse_time=False`` writes plain feeds per minute, for controls that handle rotary feed
+themselves.
+
+The default codes are Haas-style lathe codes.  G93 is an option on many lathe controls; where
+it is missing, set ``inverse_time=False``.  Check the codes against the machine's programming
+manual, and pass a :class:`TurnMillCodes` with the machine's own:
+
+    C axis on / off        M154 / M155
+    driven tool fwd / rev  M133 P<rpm> / M134 P<rpm>, stop M135
+    tool select            T<station><offset>, both two digits
+    planes                 radial G19 (Y-Z, side milling), axial G17 (X-Y, face milling)
+    feed modes             inverse time G93, per minute G98
+    home                   G28 U0. W0.
+
+:class:`TurnMillLinuxCNCPost` is the checking variant.  LinuxCNC's rs274 interpreter can run its
+output: X Z C words only, G0/G1, X as a radius, standard M3/M5/M6, and the machine-specific
+switches written as comments.
+
+Output is deterministic: the same program gives byte-identical text.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..toolpath.program import FEED, RAPID, Operation, Program
+from ..toolpath.turnmill import TurnMillOperation
+from .gcode import GcodePost, PostError, comment_text, fmt
+
+# mm: a move shorter than this in the part (C turning with the tool on the axis) is timed as this long
+MIN_INVERSE_TIME_LENGTH = 1e-3
+
+
+@dataclass(frozen=True)
+class TurnMillCodes:
+    """The machine-specific words; ``{station}`` and ``{rpm}`` are filled in.  An empty string
+    writes nothing."""
+
+    preamble: str = "G21 G18 G40 G80"
+    home: str = "G28 U0. W0."
+    tool_select: str = "T{station:02d}{station:02d}"
+    radial_plane: str = "G19"
+    axial_plane: str = "G17"
+    c_axis_on: str = "M154"
+    c_axis_off: str = "M155"
+    tool_on_cw: str = "M133 P{rpm}"
+    tool_on_ccw: str = "M134 P{rpm}"
+    tool_off: str = "M135"
+    inverse_time: str = "G93"
+    per_minute: str = "G98"
+    program_end: str = "M30"
+
+
+LINUXCNC_CODES = TurnMillCodes(
+    preamble="G21 G17 G40 G49 G80 G90 G94", home="", tool_select="T{station} M06 G43 H{station}",
+    c_axis_on="(C AXIS ON: SPINDLE IN POSITIONING MODE)", c_axis_off="(C AXIS OFF)",
+    tool_on_cw="S{rpm} M03", tool_on_ccw="S{rpm} M04", tool_off="M05", inverse_time="G93", per_minute="G94",
+    program_end="M30")
+
+
+class TurnMillXZCPost(GcodePost):
+    """Program of :class:`TurnMillOperation` s -> X-Z-C NC text."""
+
+    name = "turnmill-xzc"
+    extension = ".nc"
+    decimals = 3
+    program_number = "O0001"
+
+    def __init__(self, codes: TurnMillCodes | None = None, x_diameter: bool = True, inverse_time: bool = True):
+        super().__init__(None)
+        self.codes = TurnMillCodes() if codes is None else codes
+        self.x_diameter = x_diameter
+        self.inverse_time = inverse_time
+
+    def check(self, program: Program):
+        for op in program.operations:
+            if not isinstance(op, TurnMillOperation):
+                raise PostError(f"operation {op.name!r} is not an X-Z-C turn-mill operation (it has no radial/axial "
+                                f"tool direction): plan it with toolpath.turnmill")
+            if not np.all(np.isin(op.kind, (RAPID, FEED))):
+                raise PostError(f"operation {op.name!r} has arc moves; the {self.name} post writes straight moves only")
+
+    def _lines(self, *codes: str) -> list:
+        return [code for code in codes if code]
+
+    def header(self, program: Program) -> list:
+        lines = super().header(program)
+        lines.insert(3, f"(X: TOOL TIP {'DIAMETER' if self.x_diameter else 'RADIUS'}, Z: TOOL TIP, "
+                        f"C: PART ANGLE AT THE TOOL IN DEGREES)")
+        return lines
+
+    def tool_change(self, op: Operation, first: bool) -> list:
+        c = self.codes
+        plane = c.radial_plane if op.direction == "radial" else c.axial_plane
+        spindle = (c.tool_on_cw if op.spindle_cw else c.tool_on_ccw).format(rpm=int(round(op.spindle_rpm)))
+        return self._lines(f"(TURRET: {op.direction.upper()} TOOL, {comment_text(op.tool.describe())})", c.home,
+                           c.tool_select.format(station=op.tool.number), plane, c.c_axis_on, spindle)
+
+    def operation_end(self, op: Operation) -> list:
+        return self._lines(self.codes.tool_off, self.codes.c_axis_off)
+
+    def ending(self, program: Program) -> list:
+        return self._lines(self.codes.home, self.codes.program_end)
+
+    def to_text(self, program: Program) -> str:
+        self.check(program)
+        if not program.operations:
+            raise PostError("the program has no operations")
+        lines = []
+        if self.program_number:
+            lines.append(f"{self.program_number} ({comment_text(program.name)[:30]})")
+        lines += self.header(program)
+        lines += self._lines(self.codes.preamble)
+        for index, op in enumerate(program.operations):
+            lines.append(f"(OPERATION {index + 1}: {comment_text(op.name)})")
+            lines += self.tool_change(op, index == 0)
+            lines += self.operation_moves(op)
+            lines += self.operation_end(op)
+        lines += self.ending(program)
+        body = "\n".join(lines) + "\n"
+        return f"%\n{body}%\n" if self.percent_wrapped else body
+
+    def operation_moves(self, op: Operation) -> list:
+        """The rapid to the operation's start, then its moves: modal X/Z/C, G00/G01 when the mode
+        changes, F on every cutting block in inverse time (modal otherwise).  Moves that round to no
+        motion are dropped."""
+        scale = 2.0 if self.x_diameter else 1.0
+        c_values = op.rotary["c"]
+        words = {"X": self.n(op.start[0] * scale), "Z": self.n(op.start[2]), "C": self.n(c_values[0])}
+        lines = [f"G00 X{words['X']} Z{words['Z']} C{words['C']}"]
+        if self.inverse_time:
+            lines.append(self.codes.inverse_time)
+        mode, feed_word = "G00", None
+        lengths = op.move_lengths()
+        for kind, xyz, c, feed, length in zip(op.kind.tolist(), op.xyz.tolist(), c_values.tolist(), op.feed.tolist(),
+                                              lengths.tolist()):
+            new = {"X": self.n(xyz[0] * scale), "Z": self.n(xyz[2]), "C": self.n(c)}
+            motion = [f"{axis}{text}" for axis, text in new.items() if text != words[axis]]
+            if not motion:
+                continue
+            code = "G00" if kind == RAPID else "G01"
+            block = ([code] if code != mode else []) + motion
+            if kind == FEED:
+                if self.inverse_time:
+                    block.append(f"F{fmt(feed / max(length, MIN_INVERSE_TIME_LENGTH), 3)}")
+                elif fmt(feed, 1) != feed_word:
+                    feed_word = fmt(feed, 1)
+                    block.append(f"F{feed_word}")
+            lines.append(" ".join(block))
+            mode = code
+            words = new
+        if self.inverse_time:
+            lines.append(self.codes.per_minute)
+        return lines
+
+
+class TurnMillLinuxCNCPost(TurnMillXZCPost):
+    """The checking variant: LinuxCNC words only, X as a radius, machine switches as comments."""
+
+    name = "turnmill-linuxcnc"
+    extension = ".ngc"
+    decimals = 4
+    program_number = None
+
+    def __init__(self, inverse_time: bool = True):
+        super().__init__(LINUXCNC_CODES, x_diameter=False, inverse_time=inverse_time)

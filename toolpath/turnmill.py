@@ -1,0 +1,1083 @@
+"""W4: 4.5-axis turn-mill CAM (seed 003, Yano and Asakawa, Kanazawa University).
+
+The machine is a turn-mill centre: an NC lathe whose turret carries driven tools.  It moves X, Z
+and C (no Y).  The part turns about Z, the C axis.  A turret station holds either a radial tool,
+whose axis lies along machine X (perpendicular to the part axis), or an axial tool along Z.  The
+paper calls this 4-axis motion plus the switch between the two tools by turret indexing
+"4.5-axis".
+
+Part coordinates are the mesh in mm.  The C axis is the Z axis, and the stock is a bar about Z
+(:class:`Stock`).  The built-in sample puts the end face at z = 0 and the chuck side at z = -60.
+This follows the paper, where the axial layers stop once their lowest point clears Z = tool radius.
+
+The workflow, after the paper:
+
+1. :func:`classify_faces`.  Each face gets area-weighted sample points.  Each point is lifted a
+   little along the face normal and casts a ray in the candidate direction.  For the radial tool
+   that direction is the point's position projected onto XY, pointing away from the axis.  For the
+   axial tool it is +Z.  A face is reachable from a direction when every sample faces it
+   (normal . direction > 0) and no sample's ray hits the mesh.  One blocked sample turns the face
+   down, as in the paper.  Labels: NEITHER, RADIAL, AXIAL, BOTH.
+2. :func:`radial_layers`.  Planes parallel to XY slice the radial faces.  The section points are
+   offset to the ball centre, then offset again step by step along the normal projected onto XY,
+   out to the stock (the roughing layers).  Centres whose ball would not cut stock are deleted and
+   the rest are joined into passes.  In each layer, runs are taken nearest first, and neighbours
+   whose straight link keeps the ball clear of the part become one pass.
+3. :func:`axial_layers`.  Points on the axial faces at the stepover are offset to the ball centre
+   and put on a grid (cell = stepover).  They are chained from a start cell by searching the
+   neighbouring cells in the paper's order: outward, counter-clockwise, inward, clockwise.  That
+   path is then copied upward in +Z by the roughing step until it no longer cuts stock (the
+   paper: until its lowest Z clears the tool radius).  The copies are executed from the top down.
+4. :func:`plan`.  Four operations in the IR (:class:`TurnMillOperation`): radial roughing and
+   finishing on the radial turret station, axial roughing and finishing on the axial one.  A
+   face labelled BOTH is cut once, from the direction it faces more squarely
+   (:func:`path_faces`).  Between passes the tool retracts along its own axis to a clearance
+   outside the stock and turns C there.
+
+Ball centres are exact.  Every centre is pushed clear of the whole mesh to the tool radius,
+against walls, shoulders and other faces, and deleted if it cannot be.  The extreme centres of a
+feature therefore land on its boundary, whatever the point spacing.  The paper's 20 mm axial
+feature came out 19.8 mm because its points were too far apart.  The spacings follow the chordal
+``tolerance`` (default 0.01 mm):
+
+- stepover (slices, grid): the ball's scallop height equals the tolerance;
+- arcs where the normal turns: the chord under a rolling ball stays within the tolerance;
+- polar interpolation: the machine interpolates X, Z and C linearly, which bends a straight
+  part-space segment into a spiral.  Segments are split until that bend is within the tolerance.
+
+Machine coordinates (the IR): ``xyz = (X, 0, Z)``, ``rotary = {"c": degrees}``.
+
+- C is the part angle atan2(y, x) of the ball centre.  The control turns the part to bring that
+  angle to the tool on the machine's +X side: machine point = Rz(-C) . part point.  C is
+  unwrapped: neighbouring moves never differ by more than 180 degrees.
+- X is the distance of the tool tip from the axis (a radius; the post may write a diameter).
+  Z is the tip height.  Radial tool: tip = ball centre - r along the radial direction.  Axial
+  tool: tip = ball centre - r in Z.
+- Axial milling with X-Z-C only, the tool along Z, is polar interpolation done in machine
+  coordinates: a part point (x, y) is reached with X = its radius and C = its angle.  A path
+  through the axis itself turns C by 180 degrees there, with the tool on the axis.
+
+Limits: the gouge check covers the ball (against the whole mesh), not the shank or holder.
+The approach and retract lines along the tool axis are not re-checked: classification found the
+face clear in that direction.  A ball centre pushed through a wall thinner than the tool radius is
+not detected.  The roughing copies of an axial feature stand on its floor, as in the paper.  They
+follow vertical walls; a tapered wall gets its own grid only if it faces +Z.
+"""
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from .errors import InputError
+from .program import FEED, RAPID, Operation, Program, Tool
+
+
+class TurnMillError(InputError):
+    """Input the turn-mill workflow cannot use; the message names what is wrong."""
+
+
+NEITHER, RADIAL, AXIAL, BOTH = 0, 1, 2, 3      # face labels: bit 1 = radial, bit 2 = axial
+LABEL_NAMES = ("neither", "radial", "axial", "both")
+DIRECTIONS = ("radial", "axial")
+
+FACING = 1e-6            # normal . direction above this counts as facing the tool
+LIFT = 1e-4              # ray origins are lifted this fraction of the part size along the normal
+MAX_SUBDIVISION = 16     # at most 16 x 16 classification samples per face
+PAIR_BUDGET = 1 << 20    # (query, triangle) pairs handled at once: bounds the memory
+QUERY_CHUNK = 256        # at most this many nearby queries are culled against the triangles together
+PUSH_ITERATIONS = 8      # rounds of pushing a ball centre clear of the surface (corners need 2-3)
+
+# The grid search order of the axial chaining (paper 4.4): outward, counter-clockwise, inward,
+# clockwise, as (step along the outward axis, step along the counter-clockwise axis).
+NEIGHBOUR_ORDER = ((1, 0), (0, 1), (-1, 0), (0, -1))
+
+
+# ----- inputs ---------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Stock:
+    """Round bar stock on the C axis: its radius and the Z range it occupies (z_max = end face)."""
+
+    radius: float
+    z_min: float
+    z_max: float
+
+    def __post_init__(self):
+        values = (self.radius, self.z_min, self.z_max)
+        if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in values):
+            raise TurnMillError(f"stock radius and Z range must be finite numbers, got {values}")
+        if self.radius <= 0:
+            raise TurnMillError(f"stock radius must be > 0, got {self.radius}")
+        if self.z_min >= self.z_max:
+            raise TurnMillError(f"stock z_min ({self.z_min}) must be below z_max ({self.z_max})")
+
+    def distance(self, points: np.ndarray) -> np.ndarray:
+        """Distance of each point from the solid stock (0 inside)."""
+        rho = np.hypot(points[:, 0], points[:, 1])
+        radial = np.maximum(rho - self.radius, 0.0)
+        axial = np.maximum(np.maximum(points[:, 2] - self.z_max, self.z_min - points[:, 2]), 0.0)
+        return np.hypot(radial, axial)
+
+
+@dataclass(frozen=True)
+class TurnMillSettings:
+    """Tooling and path parameters (mm, mm/min, rpm).  Both turret stations carry the same ball
+    end mill, as in the paper (6 mm)."""
+
+    tool_diameter: float = 6.0
+    tolerance: float = 0.01        # chordal tolerance: scallops, rolling arcs, polar interpolation
+    stepover: float | None = None  # slice / grid spacing; None = scallop height equal to the tolerance
+    roughing_step: float = 1.0     # depth of each roughing layer
+    sample_spacing: float = 2.0    # spacing of the classification samples
+    clearance: float = 2.0         # retract this far outside the stock (radial: X, axial: Z)
+    feed: float = 500.0
+    plunge_feed: float = 150.0
+    spindle_rpm: float = 4000.0
+    radial_station: int = 1
+    axial_station: int = 2
+    rapid_rate: float = 5000.0     # for the cycle-time estimate
+
+    def __post_init__(self):
+        def positive(value):
+            return isinstance(value, (int, float)) and math.isfinite(value) and value > 0
+
+        if not positive(self.tool_diameter):
+            raise TurnMillError(f"the tool radius must be > 0, got a tool diameter of {self.tool_diameter!r}")
+        for name in ("tolerance", "roughing_step", "sample_spacing", "clearance", "feed", "plunge_feed",
+                     "spindle_rpm", "rapid_rate"):
+            if not positive(getattr(self, name)):
+                raise TurnMillError(f"{name.replace('_', ' ')} must be a number > 0, got {getattr(self, name)!r}")
+        if self.tolerance >= self.radius:
+            raise TurnMillError(f"tolerance {self.tolerance} must be smaller than the tool radius {self.radius}")
+        if self.stepover is not None and not (positive(self.stepover) and self.stepover <= self.tool_diameter):
+            raise TurnMillError(f"stepover must be > 0 and at most the tool diameter, got {self.stepover!r}")
+        if self.radial_station == self.axial_station:
+            raise TurnMillError("the radial and axial tools need different turret stations")
+        for direction in DIRECTIONS:
+            try:
+                self.tool(direction)
+            except ValueError as error:
+                raise TurnMillError(str(error)) from None
+
+    @property
+    def radius(self) -> float:
+        return self.tool_diameter / 2
+
+    @property
+    def pick_feed(self) -> float:
+        """The stepover: given, or the one whose ball scallop is exactly the tolerance."""
+        if self.stepover is not None:
+            return float(self.stepover)
+        r, h = self.radius, self.tolerance
+        return 2.0 * math.sqrt(2.0 * r * h - h * h)
+
+    @property
+    def max_turn(self) -> float:
+        """Largest normal turn (radians) between ball centres whose chord stays within the tolerance."""
+        return 2.0 * math.acos(1.0 - self.tolerance / self.radius)
+
+    def tool(self, direction: str) -> Tool:
+        station = self.radial_station if direction == "radial" else self.axial_station
+        return Tool(station, "ball", float(self.tool_diameter), name=direction)
+
+
+def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
+    """(vertices (n, 3) float, faces (m, 3) int) after the checks the workflow relies on:
+    finite coordinates, valid indices, no edge shared by more than two faces (slicing chains
+    sections edge to edge), consistent winding, and outward normals when the mesh is closed."""
+    try:
+        v = np.asarray(vertices, dtype=float)
+        f = np.asarray(faces)
+    except (TypeError, ValueError):
+        raise TurnMillError("vertices and faces must be numeric arrays") from None
+    if v.size == 0 or f.size == 0:
+        raise TurnMillError("the mesh is empty: it needs vertices and triangles")
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise TurnMillError(f"vertices must have shape (n, 3), got {v.shape}")
+    if f.ndim != 2 or f.shape[1] != 3:
+        raise TurnMillError(f"faces must be triangles, shape (m, 3), got {f.shape}")
+    if not np.all(np.isfinite(v)):
+        raise TurnMillError("the mesh has NaN or infinite vertex coordinates")
+    if not np.issubdtype(f.dtype, np.integer):
+        raise TurnMillError(f"face indices must be integers, got {f.dtype}")
+    if f.min() < 0 or f.max() >= len(v):
+        raise TurnMillError(f"face indices must lie in 0..{len(v) - 1}")
+    f = f.astype(np.int64)
+    if np.any((f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])):
+        raise TurnMillError("a face uses the same vertex twice")
+    directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    _, counts = np.unique(directed.min(axis=1) * len(v) + directed.max(axis=1), return_counts=True)
+    if np.any(counts > 2):
+        raise TurnMillError(f"the mesh is non-manifold: {int(np.sum(counts > 2))} edge(s) are shared by more "
+                            f"than two faces")
+    if len(np.unique(directed[:, 0] * len(v) + directed[:, 1])) < len(directed):
+        raise TurnMillError("the faces are wound inconsistently (some normals are flipped): recalculate normals")
+    if np.all(counts == 2):
+        tri = v[f]
+        volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0
+        if volume < 0:
+            raise TurnMillError("the face normals point inward: flip them so they point out of the part")
+    return v, f
+
+
+def _face_normals(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unit normals (zero for degenerate faces) and areas."""
+    cross = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    length = np.linalg.norm(cross, axis=1)
+    normals = np.divide(cross, length[:, None], out=np.zeros_like(cross), where=length[:, None] > 0)
+    return normals, 0.5 * length
+
+
+def _face_ids(face_ids, face_count: int) -> np.ndarray:
+    ids = np.unique(np.asarray(face_ids, dtype=np.int64).reshape(-1))
+    if len(ids) and (ids[0] < 0 or ids[-1] >= face_count):
+        raise TurnMillError(f"face indices must lie in 0..{face_count - 1}")
+    return ids
+
+
+# ----- ray casting ----------------------------------------------------------------------------
+class RayEngine(Protocol):
+    """What classification needs from a ray caster.  The Blender shell adds a
+    mathutils.bvhtree engine with the same method."""
+
+    def intersects_any(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
+        """(k,) bool: does the ray from each origin along each direction hit any face?"""
+
+
+class _Triangles:
+    """The mesh triangles with bounding boxes, for the numpy ray and nearest-point queries.
+    Queries are paired with triangles whose boxes overlap theirs, a chunk at a time."""
+
+    def __init__(self, triangles: np.ndarray):
+        normals, areas = _face_normals(triangles)
+        size = max(float(np.ptp(triangles.reshape(-1, 3), axis=0).max()), 1e-9)
+        tri = triangles[areas > 1e-14 * size * size]
+        self.a, self.b, self.c = tri[:, 0], tri[:, 1], tri[:, 2]
+        self.normal = normals[areas > 1e-14 * size * size]
+        self.lo = tri.min(axis=1)
+        self.hi = tri.max(axis=1)
+        pad = 1e-6 * size
+        self.box_lo = self.lo.min(axis=0) - pad
+        self.box_hi = self.hi.max(axis=0) + pad
+
+    def _pairs(self, lo: np.ndarray, hi: np.ndarray):
+        """Yield (query index, triangle index) arrays for overlapping boxes.  Queries are grouped by
+        the cell (1/16 of the part size) their box centre lies in, at most QUERY_CHUNK together.
+        Only the triangles meeting a group's box are tested pairwise.  Each group holds whole
+        queries."""
+        extent = self.box_hi - self.box_lo
+        cells = np.clip(np.floor((0.5 * (lo + hi) - self.box_lo) / (extent.max() / 16)), 0, 1023).astype(np.int64)
+        key = (cells[:, 0] * 1024 + cells[:, 1]) * 1024 + cells[:, 2]
+        order = np.argsort(key, kind="stable")
+        key = key[order]
+        first = np.r_[0, np.flatnonzero(np.diff(key)) + 1]
+        rank = np.arange(len(key)) - np.repeat(first, np.diff(np.r_[first, len(key)]))
+        bounds = np.r_[np.flatnonzero((np.r_[1, np.diff(key)] != 0) | (rank % QUERY_CHUNK == 0)), len(key)]
+        for begin, stop in zip(bounds[:-1], bounds[1:]):
+            query = order[begin:stop]
+            chunk_lo, chunk_hi = lo[query].min(axis=0), hi[query].max(axis=0)
+            near = np.flatnonzero(np.all((self.lo <= chunk_hi) & (self.hi >= chunk_lo), axis=1))
+            if not len(near):
+                continue
+            overlap = np.all((lo[query, None, :] <= self.hi[near][None]) & (hi[query, None, :] >= self.lo[near][None]),
+                             axis=2)
+            q, t = np.nonzero(overlap)
+            yield query[q], near[t]
+
+    def intersects_any(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
+        # Clip each ray where it leaves the mesh box, so it has a finite box to cull with.
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t1 = (self.box_lo - origins) / directions
+            t2 = (self.box_hi - origins) / directions
+            exit_t = np.where(directions != 0, np.maximum(t1, t2), np.inf).min(axis=1)
+        end = origins + directions * np.clip(exit_t, 0.0, None)[:, None]
+        hit = np.zeros(len(origins), dtype=bool)
+        for query, tri in self._pairs(np.minimum(origins, end), np.maximum(origins, end)):
+            found = _ray_hits(origins[query], directions[query], self.a[tri], self.b[tri], self.c[tri])
+            hit[query[found]] = True
+        return hit
+
+    def nearest(self, points: np.ndarray, reach: float) -> tuple[np.ndarray, np.ndarray]:
+        """Distance to the nearest surface point within ``reach`` (inf beyond) and that point."""
+        distance = np.full(len(points), np.inf)
+        closest = points.copy()
+        batch: list = []
+
+        def settle():
+            query = np.concatenate([q for q, _ in batch])
+            tri = np.concatenate([t for _, t in batch])
+            p = points[query]
+            box_gap = np.maximum(np.maximum(self.lo[tri] - p, p - self.hi[tri]), 0.0)
+            plane = np.abs(np.einsum("ij,ij->i", p - self.a[tri], self.normal[tri]))
+            near = (np.einsum("ij,ij->i", box_gap, box_gap) <= reach * reach) & (plane <= reach)
+            query, tri = query[near], tri[near]
+            batch.clear()
+            if not len(query):
+                return
+            q = _closest_on_triangles(points[query], self.a[tri], self.b[tri], self.c[tri])
+            d2 = np.einsum("ij,ij->i", points[query] - q, points[query] - q)
+            order = np.lexsort((d2, query))
+            first = order[np.r_[True, query[order][1:] != query[order][:-1]]]
+            distance[query[first]] = np.sqrt(d2[first])
+            closest[query[first]] = q[first]
+
+        pending = 0
+        for pair in self._pairs(points - reach, points + reach):
+            batch.append(pair)
+            pending += len(pair[0])
+            if pending >= PAIR_BUDGET // 4:
+                settle()
+                pending = 0
+        if batch:
+            settle()
+        return distance, closest
+
+
+def _ray_hits(o, d, a, b, c) -> np.ndarray:
+    """Moller-Trumbore for ray/triangle pairs; hits strictly in front of the origin."""
+    e1, e2 = b - a, c - a
+    p = np.cross(d, e2)
+    det = np.einsum("ij,ij->i", e1, p)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv = 1.0 / det
+        s = o - a
+        u = np.einsum("ij,ij->i", s, p) * inv
+        q = np.cross(s, e1)
+        v = np.einsum("ij,ij->i", d, q) * inv
+        t = np.einsum("ij,ij->i", e2, q) * inv
+        return (det != 0) & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 0)
+
+
+def _closest_on_triangles(p, a, b, c) -> np.ndarray:
+    """Closest point on each triangle to each point (pairwise), Ericson's region test."""
+    def dot(x, y):
+        return np.einsum("ij,ij->i", x, y)
+
+    ab, ac = b - a, c - a
+    d1, d2 = dot(ab, p - a), dot(ac, p - a)
+    d3, d4 = dot(ab, p - b), dot(ac, p - b)
+    d5, d6 = dot(ab, p - c), dot(ac, p - c)
+    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        denom = va + vb + vc
+        result = a + ab * (vb / denom)[:, None] + ac * (vc / denom)[:, None]
+        # Later regions override earlier ones: Ericson tests A, B, AB, C, AC, BC, then the face.
+        on_bc = (va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)
+        result = np.where(on_bc[:, None], b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))[:, None], result)
+        on_ac = (vb <= 0) & (d2 >= 0) & (d6 <= 0)
+        result = np.where(on_ac[:, None], a + ac * (d2 / (d2 - d6))[:, None], result)
+        result = np.where(((d6 >= 0) & (d5 <= d6))[:, None], c, result)
+        on_ab = (vc <= 0) & (d1 >= 0) & (d3 <= 0)
+        result = np.where(on_ab[:, None], a + ab * (d1 / (d1 - d3))[:, None], result)
+        result = np.where(((d3 >= 0) & (d4 <= d3))[:, None], b, result)
+        return np.where(((d1 <= 0) & (d2 <= 0))[:, None], a, result)
+
+
+class TrimeshRayEngine:
+    """The default :class:`RayEngine`.  It uses Embree through trimesh when embreex is installed.
+    Otherwise it uses a numpy Moller-Trumbore with bounding-box culling: trimesh's own numpy
+    intersector needs rtree, which is neither bundled nor installed.  Rays go ``chunk_size`` at a
+    time, because a large batch exhausts memory."""
+
+    def __init__(self, vertices, faces, chunk_size: int = 20000):
+        if not (isinstance(chunk_size, int) and chunk_size > 0):
+            raise TurnMillError(f"ray chunk size must be a positive integer, got {chunk_size!r}")
+        v, f = check_mesh(vertices, faces)
+        self.chunk_size = chunk_size
+        try:
+            import trimesh
+            from trimesh.ray.ray_pyembree import RayMeshIntersector
+        except ImportError:
+            self._cast = _Triangles(v[f]).intersects_any
+            self.backend = "numpy"
+        else:
+            self._cast = RayMeshIntersector(trimesh.Trimesh(v, f, process=False)).intersects_any
+            self.backend = "embree"
+
+    def intersects_any(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
+        origins = np.asarray(origins, dtype=float).reshape(-1, 3)
+        directions = np.asarray(directions, dtype=float).reshape(-1, 3)
+        hit = np.zeros(len(origins), dtype=bool)
+        for start in range(0, len(origins), self.chunk_size):
+            stop = start + self.chunk_size
+            hit[start:stop] = self._cast(origins[start:stop], directions[start:stop])
+        return hit
+
+
+# ----- classification -------------------------------------------------------------------------
+def _subtriangle_centroids(k: int) -> np.ndarray:
+    """(k*k, 2) barycentric weights of vertices 1 and 2: the centroids of the k*k sub-triangles."""
+    i, j = np.meshgrid(np.arange(k), np.arange(k), indexing="ij")
+    up = (i + j) <= k - 1
+    down = (i + j) <= k - 2
+    return np.vstack([np.column_stack([i[up] + 1 / 3, j[up] + 1 / 3]),
+                      np.column_stack([i[down] + 2 / 3, j[down] + 2 / 3])]) / k
+
+
+def face_samples(triangles: np.ndarray, spacing: float) -> tuple[np.ndarray, np.ndarray]:
+    """Deterministic area-weighted samples: each face is cut into k x k similar sub-triangles
+    (k from its area and ``spacing``, 2..16) and sampled at their centroids.  Returns the
+    points and the face each belongs to; degenerate faces get none."""
+    _, areas = _face_normals(triangles)
+    k = np.clip(np.ceil(np.sqrt(2.0 * areas) / spacing), 2, MAX_SUBDIVISION).astype(int)
+    k[areas <= 0] = 0
+    points, owner = [np.empty((0, 3))], [np.empty(0, dtype=np.int64)]
+    for level in np.unique(k[k > 0]):
+        ids = np.flatnonzero(k == level)
+        weights = _subtriangle_centroids(int(level))
+        tri = triangles[ids]
+        pts = (tri[:, None, 0] * (1 - weights.sum(axis=1))[None, :, None] + tri[:, None, 1] * weights[None, :, 0, None]
+               + tri[:, None, 2] * weights[None, :, 1, None])
+        points.append(pts.reshape(-1, 3))
+        owner.append(np.repeat(ids, len(weights)))
+    return np.vstack(points), np.concatenate(owner)
+
+
+def classify_faces(vertices, faces, engine: RayEngine | None = None, sample_spacing: float = 2.0) -> np.ndarray:
+    """Label each face NEITHER / RADIAL / AXIAL / BOTH ((m,) int8) by casting rays from its samples."""
+    v, f = check_mesh(vertices, faces)
+    if not (isinstance(sample_spacing, (int, float)) and math.isfinite(sample_spacing) and sample_spacing > 0):
+        raise TurnMillError(f"sample spacing must be a number > 0, got {sample_spacing!r}")
+    engine = TrimeshRayEngine(v, f) if engine is None else engine
+    triangles = v[f]
+    normals, _ = _face_normals(triangles)
+    points, owner = face_samples(triangles, sample_spacing)
+    n = normals[owner]
+    origins = points + LIFT * float(np.ptp(v, axis=0).max()) * n
+
+    rho = np.hypot(points[:, 0], points[:, 1])
+    radial = np.zeros_like(points)
+    on_axis = rho <= 1e-9
+    radial[~on_axis, :2] = points[~on_axis, :2] / rho[~on_axis, None]
+    axial = np.broadcast_to(np.array([0.0, 0.0, 1.0]), points.shape)
+
+    labels = np.zeros(len(f), dtype=np.int8)
+    for bit, directions in ((RADIAL, radial), (AXIAL, axial)):
+        facing = np.einsum("ij,ij->i", n, directions) > FACING
+        labels[_reachable(engine, origins, directions, facing, owner, len(f))] |= bit
+    return labels
+
+
+def _reachable(engine, origins, directions, facing, owner, face_count) -> np.ndarray:
+    """Faces all of whose samples face the direction and see out along it unblocked."""
+    samples = np.bincount(owner, minlength=face_count)
+    all_facing = np.bincount(owner, weights=(~facing).astype(float), minlength=face_count) == 0
+    cast = np.flatnonzero(all_facing[owner])
+    hits = np.asarray(engine.intersects_any(origins[cast], directions[cast]))
+    if hits.shape != (len(cast),):
+        raise TurnMillError(f"the ray engine returned {hits.shape} results for {len(cast)} rays")
+    blocked = np.bincount(owner[cast], weights=hits.astype(bool).astype(float), minlength=face_count)
+    return (samples > 0) & all_facing & (blocked == 0)
+
+
+def path_faces(vertices, faces, labels) -> tuple[np.ndarray, np.ndarray]:
+    """(radial face ids, axial face ids) to machine.  A face labelled BOTH goes to the direction
+    it faces more squarely (at its centroid), so it is cut once."""
+    v, f = check_mesh(vertices, faces)
+    labels = np.asarray(labels)
+    if labels.shape != (len(f),) or not np.all(np.isin(labels, (NEITHER, RADIAL, AXIAL, BOTH))):
+        raise TurnMillError(f"labels must be {len(f)} values from NEITHER, RADIAL, AXIAL, BOTH")
+    triangles = v[f]
+    normals, _ = _face_normals(triangles)
+    centre = triangles.mean(axis=1)
+    rho = np.maximum(np.hypot(centre[:, 0], centre[:, 1]), 1e-12)
+    radial_facing = (normals[:, 0] * centre[:, 0] + normals[:, 1] * centre[:, 1]) / rho
+    radial = (labels == RADIAL) | ((labels == BOTH) & (radial_facing >= normals[:, 2]))
+    axial = (labels == AXIAL) | ((labels == BOTH) & ~radial)
+    return np.flatnonzero(radial), np.flatnonzero(axial)
+
+
+# ----- ball centres -----------------------------------------------------------------------------
+def _dedupe(points: np.ndarray, *others: np.ndarray):
+    keep = np.r_[True, np.linalg.norm(np.diff(points, axis=0), axis=1) > 1e-9]
+    return (points[keep],) + tuple(o[keep] for o in others) if others else points[keep]
+
+
+def _subdivide(points: np.ndarray, counts: np.ndarray, normals: np.ndarray | None = None):
+    """Split segment i of the polyline into counts[i] equal parts (normals interpolated)."""
+    idx = np.repeat(np.arange(len(counts)), counts)
+    starts = np.repeat(np.cumsum(counts) - counts, counts)
+    frac = ((np.arange(len(idx)) - starts) / np.repeat(counts, counts))[:, None]
+    out = np.vstack([points[idx] + frac * (points[idx + 1] - points[idx]), points[-1:]])
+    if normals is None:
+        return out
+    n = np.vstack([normals[idx] + frac * (normals[idx + 1] - normals[idx]), normals[-1:]])
+    return out, n / np.maximum(np.linalg.norm(n, axis=1), 1e-12)[:, None]
+
+
+def _densify(points: np.ndarray, spacing: float, normals: np.ndarray):
+    """Points at most ``spacing`` apart along the polyline (normals interpolated)."""
+    counts = np.maximum(1, np.ceil(np.linalg.norm(np.diff(points, axis=0), axis=1) / spacing)).astype(int)
+    return _subdivide(points, counts, normals)
+
+
+def densify_polar(points: np.ndarray, tolerance: float) -> np.ndarray:
+    """Split part-space segments so that linear X-C interpolation between the points bends away
+    from the straight segment by at most ``tolerance``.  A sweep of d radians at radius R bends
+    by R (1 - cos(d / 2))."""
+    if len(points) < 2:
+        return points
+    rho = np.hypot(points[:, 0], points[:, 1])
+    theta = np.arctan2(points[:, 1], points[:, 0])
+    sweep = np.abs((np.diff(theta) + np.pi) % (2 * np.pi) - np.pi)
+    reach = np.maximum(rho[:-1], rho[1:])
+    limit = 2.0 * np.arccos(np.clip(1.0 - tolerance / np.maximum(reach, 1e-12), -1.0, 1.0))
+    counts = np.maximum(1, np.ceil(sweep / limit - 1e-9)).astype(int)
+    return _subdivide(points, counts)
+
+
+def _clear_ball(surface: _Triangles, centres: np.ndarray, r: float, allowance: float):
+    """Push ball centres straight away from their nearest surface point until no surface is closer
+    than r.  This is how centres slide into a corner or stop at a wall.  Returns the centres and
+    whether each is clear (nothing closer than r - allowance)."""
+    centres = centres.copy()
+    gap = np.full(len(centres), np.inf)         # distance to the surface where it is below r
+    active = np.arange(len(centres))
+    for _ in range(PUSH_ITERATIONS):
+        distance, closest = surface.nearest(centres[active], r)
+        gap[active] = distance
+        close = (distance < r - 1e-7) & (distance > 1e-12)
+        if not close.any():
+            break
+        active, closest, distance = active[close], closest[close], distance[close]
+        centres[active] = closest + (centres[active] - closest) * (r / distance)[:, None]
+    else:
+        gap[active], _ = surface.nearest(centres[active], r)
+    return centres, gap >= r - allowance
+
+
+def _run_indices(keep: np.ndarray, closed: bool) -> list:
+    """Index arrays of the runs of kept points; on a closed polyline (last point = first) a run
+    through the seam is one run."""
+    idx = np.flatnonzero(keep)
+    if not len(idx):
+        return []
+    runs = np.split(idx, np.flatnonzero(np.diff(idx) > 1) + 1)
+    if closed and len(runs) > 1 and keep[0] and keep[-1]:
+        runs = runs[1:-1] + [np.concatenate([runs[-1], runs[0][1:]])]
+    return runs
+
+
+def _fit_runs(polylines: list, closed: list, surface, stock, settings, max_z_shift: list | None = None) -> list:
+    """For each polyline of ball centres, the runs that cut stock (penetrate it by more than the
+    tolerance) and sit clear of the part after pushing.  Centres of polyline i pushed in Z by
+    ``max_z_shift[i]`` or more are dropped.  All polylines are pushed in one batch."""
+    r, tol = settings.radius, settings.tolerance
+    points = np.vstack(polylines)
+    limits = [np.inf] * len(polylines) if max_z_shift is None else max_z_shift
+    shift_limit = np.repeat(limits, [len(p) for p in polylines])
+    touching = np.flatnonzero(stock.distance(points) < r - tol)
+    fitted = points.copy()
+    fitted[touching], clear = _clear_ball(surface, points[touching], r, tol / 10)
+    keep = np.zeros(len(points), dtype=bool)
+    keep[touching] = (clear & (stock.distance(fitted[touching]) < r - tol)
+                      & (np.abs(fitted[touching, 2] - points[touching, 2]) < shift_limit[touching]))
+    runs, start = [], 0
+    for polyline, is_closed in zip(polylines, closed):
+        part = slice(start, start + len(polyline))
+        runs.append([_dedupe(fitted[part][run]) for run in _run_indices(keep[part], is_closed)])
+        start += len(polyline)
+    return runs
+
+
+def _link_clear(a: np.ndarray, b: np.ndarray, surface, settings) -> bool:
+    """Can the ball feed straight from centre a to centre b?  Points a stepover apart along the
+    link must each be clear by r: between them the ball then dips by at most the scallop height,
+    the tolerance, as along the passes."""
+    count = max(1, math.ceil(np.linalg.norm(b - a) / settings.pick_feed))
+    points = a + (b - a) * (np.arange(1, count)[:, None] / count)
+    if not len(points):
+        return True
+    distance, _ = surface.nearest(points, settings.radius)
+    return bool(np.all(distance >= settings.radius - settings.tolerance / 10))
+
+
+def _join(runs: list, surface, settings) -> list:
+    """Order the runs of one layer nearest first (a run may be reversed), and join a run to the
+    one before it into a pass when the gap is at most four stepovers and the straight link is clear."""
+    if not runs:
+        return []
+    remaining = list(runs[1:])
+    passes = [runs[0]]
+    for _ in range(len(remaining)):
+        end = passes[-1][-1]
+        to_start = np.array([np.linalg.norm(r[0] - end) for r in remaining])
+        to_end = np.array([np.linalg.norm(r[-1] - end) for r in remaining])
+        i = int(np.argmin(np.minimum(to_start, to_end)))
+        run = remaining.pop(i)
+        if to_end[i] < to_start[i]:
+            run = run[::-1]
+        if min(to_start[i], to_end[i]) <= 4 * settings.pick_feed and _link_clear(end, run[0], surface, settings):
+            passes[-1] = np.vstack([passes[-1], run])
+        else:
+            passes.append(run)
+    return passes
+
+
+# ----- radial paths ---------------------------------------------------------------------------
+def _sections(v, faces, normals, zlo, zhi, z) -> list:
+    """Polylines where the plane at height z cuts the faces: (points, segment normals, closed).
+    A triangle's segment runs from the edge that crosses the plane going down to the one going up.
+    With outward normals that is counter-clockwise about +Z.  Segments are chained through shared
+    mesh edges, so neighbouring faces meet exactly."""
+    cut = np.flatnonzero((zlo <= z) & (zhi > z))
+    if not len(cut):
+        return []
+    fv = faces[cut]
+    above = v[fv, 2] > z
+    after = np.roll(above, -1, axis=1)
+    rows = np.arange(len(cut))
+
+    def crossing(edge):
+        i, j = fv[rows, edge], fv[rows, (edge + 1) % 3]
+        lo, hi = np.minimum(i, j), np.maximum(i, j)
+        t = (z - v[lo, 2]) / (v[hi, 2] - v[lo, 2])
+        return v[lo] + t[:, None] * (v[hi] - v[lo]), lo * len(v) + hi
+
+    start, start_key = crossing(np.argmax(above & ~after, axis=1))
+    end, end_key = crossing(np.argmax(~above & after, axis=1))
+    successor = dict(zip(start_key.tolist(), range(len(cut))))
+    end_keys = end_key.tolist()
+    ends = set(end_keys)
+    seeds = [s for s in range(len(cut)) if start_key[s] not in ends] + list(range(len(cut)))
+    used = np.zeros(len(cut), dtype=bool)
+    chains = []
+    for seed in seeds:
+        if used[seed]:
+            continue
+        chain = [seed]
+        used[seed] = True
+        while (nxt := successor.get(end_keys[chain[-1]])) is not None and not used[nxt]:
+            chain.append(nxt)
+            used[nxt] = True
+        closed = end_key[chain[-1]] == start_key[chain[0]]
+        chains.append((np.vstack([start[chain[0]], end[chain]]), normals[cut[chain]], closed))
+    return chains
+
+
+def _arc_normals(n1: np.ndarray, n2: np.ndarray, max_turn: float) -> np.ndarray:
+    """Normals strictly between n1 and n2 (great-circle steps of at most max_turn)."""
+    angle = math.acos(min(1.0, max(-1.0, float(n1 @ n2))))
+    steps = math.ceil(angle / max_turn)
+    if steps <= 1 or math.sin(angle) < 1e-9:
+        return np.empty((0, 3))
+    t = np.arange(1, steps)[:, None] / steps
+    return (np.sin((1 - t) * angle) * n1 + np.sin(t * angle) * n2) / math.sin(angle)
+
+
+def _offset_section(points, normals, closed, r, max_turn):
+    """Ball centres along a section: each segment offset by r along its face normal (segments
+    of one plane merged).  Where the normal turns by more than max_turn, the ball rolls around the
+    joint on arc points.  At concave joints those points are pushed clear later."""
+    straight = np.einsum("ij,ij->i", normals[:-1], normals[1:]) >= 1 - 1e-12
+    points, normals = points[np.r_[True, ~straight, True]], normals[np.r_[True, ~straight]]
+    ends = np.stack([points[:-1] + r * normals, points[1:] + r * normals], axis=1).reshape(-1, 3)
+    end_normals = np.repeat(normals, 2, axis=0)
+    following = np.roll(normals, -1, axis=0)
+    turns = np.arccos(np.clip(np.einsum("ij,ij->i", normals, following), -1.0, 1.0))
+    if not closed:
+        turns[-1] = 0.0
+    centres, centre_normals, begin = [], [], 0
+    for i in np.flatnonzero(turns > max_turn):
+        arc = _arc_normals(normals[i], following[i], max_turn)
+        centres += [ends[begin:2 * i + 2], points[i + 1] + r * arc]
+        centre_normals += [end_normals[begin:2 * i + 2], arc]
+        begin = 2 * i + 2
+    centres.append(ends[begin:])
+    centre_normals.append(end_normals[begin:])
+    if closed:
+        centres.append(ends[:1])
+        centre_normals.append(end_normals[:1])
+    return _dedupe(np.vstack(centres), np.vstack(centre_normals))
+
+
+def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings) -> list:
+    """Ball-centre passes (part coordinates, (k, 3) arrays) for the radial tool, one list per
+    layer: the outermost roughing layer first, the finishing layer (on the surface) last.
+
+    The finishing slices are at most ``pick_feed`` apart in Z.  A section point's ball centre is
+    the point plus r times its face's normal.  This is the full 3-D normal, so a sloped face is
+    not gouged; on a vertical face it is the paper's normal projected onto XY.
+
+    Each roughing layer is the finishing layer moved out by ``roughing_step`` along the
+    XY-projected normal.  It uses every n-th slice, about ``roughing_step`` apart (a 3 mm ball
+    1 mm apart leaves 0.04 mm).  Layers stop where they no longer reach the stock.
+
+    Near a shoulder, centres are pushed off their slice.  Those pushed in Z by a slice spacing or
+    more are dropped: they belong to the slice nearest the shoulder, which is always within a
+    spacing.  So each shoulder gets one pass at exactly the right height.
+    """
+    v, f = check_mesh(vertices, faces)
+    ids = _face_ids(face_ids, len(f))
+    if not len(ids):
+        return []
+    r, tol, step = settings.radius, settings.tolerance, settings.roughing_step
+    sub = f[ids]
+    normals, _ = _face_normals(v[sub])
+    zlo, zhi = v[sub, 2].min(axis=1), v[sub, 2].max(axis=1)
+    count = max(1, math.ceil((zhi.max() - zlo.min()) / settings.pick_feed - 1e-9))
+    spacing = (zhi.max() - zlo.min()) / count
+    levels = zlo.min() + (np.arange(count) + 0.5) * spacing
+    every = max(1, round(step / spacing))
+    max_layers = math.ceil(2 * (stock.radius + r) / step) + 1
+    layer_of, polylines, closed_flags, shifts = [], [], [], []
+    for number, z in enumerate(levels[::-1]):
+        for points, seg_normals, closed in _sections(v, sub, normals, zlo, zhi, z):
+            centres, centre_normals = _offset_section(points, seg_normals, closed, r, settings.max_turn)
+            if len(centres) < 2:
+                continue
+            centres, centre_normals = _densify(centres, settings.pick_feed, centre_normals)
+            outward = np.zeros_like(centres)
+            outward[:, :2] = centre_normals[:, :2]
+            outward /= np.maximum(np.linalg.norm(outward, axis=1), 1e-12)[:, None]
+            for k in range(1 if number % every else max_layers):
+                layer = centres + k * step * outward
+                if not np.any(stock.distance(layer) < r - tol):
+                    break
+                layer_of.append(k)
+                polylines.append(layer)
+                closed_flags.append(closed)
+                shifts.append((1 if k == 0 else every) * spacing - 1e-9)
+    if not polylines:
+        return []
+    surface = _Triangles(v[f])
+    layers: dict = {}
+    for k, runs in zip(layer_of, _fit_runs(polylines, closed_flags, surface, stock, settings, shifts)):
+        layers.setdefault(k, []).extend(runs)
+    return [_join(layers.get(k, []), surface, settings) for k in range(max(layers), -1, -1)]
+
+
+# ----- axial paths ----------------------------------------------------------------------------
+def _components(faces: np.ndarray, ids: np.ndarray) -> list:
+    """Groups of the given faces connected through shared edges (each a feature such as a pocket floor)."""
+    edges = np.sort(faces[ids][:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    keys = edges[:, 0] * (faces.max() + 1) + edges[:, 1]
+    owner = np.repeat(np.arange(len(ids)), 3)
+    order = np.argsort(keys, kind="stable")
+    same = keys[order][1:] == keys[order][:-1]
+    parent = list(range(len(ids)))
+
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for a, b in zip(owner[order][:-1][same].tolist(), owner[order][1:][same].tolist()):
+        parent[root(a)] = root(b)
+    groups: dict = {}
+    for i in range(len(ids)):
+        groups.setdefault(root(i), []).append(i)
+    return [ids[np.array(g)] for g in sorted(groups.values(), key=lambda g: g[0])]
+
+
+def _project_down(xy: np.ndarray, triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Height and face of the highest triangle above/below each XY point (NaN, -1 where none)."""
+    z = np.full(len(xy), np.nan)
+    face = np.full(len(xy), -1)
+    flat = triangles[:, :, :2]
+    lo, hi = flat.min(axis=1), flat.max(axis=1)
+    step = max(1, PAIR_BUDGET // len(triangles))
+    for start in range(0, len(xy), step):
+        chunk = xy[start:start + step]
+        query, tri = np.nonzero(np.all((chunk[:, None] >= lo[None] - 1e-9) & (chunk[:, None] <= hi[None] + 1e-9),
+                                       axis=2))
+        a, b, c = triangles[tri, 0], triangles[tri, 1], triangles[tri, 2]
+        e1, e2, p = b[:, :2] - a[:, :2], c[:, :2] - a[:, :2], chunk[query] - a[:, :2]
+        det = e1[:, 0] * e2[:, 1] - e2[:, 0] * e1[:, 1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            l1 = (p[:, 0] * e2[:, 1] - e2[:, 0] * p[:, 1]) / det
+            l2 = (e1[:, 0] * p[:, 1] - p[:, 0] * e1[:, 1]) / det
+        inside = (np.abs(det) > 1e-12) & (l1 >= -1e-9) & (l2 >= -1e-9) & (l1 + l2 <= 1 + 1e-9)
+        query, tri, height = query[inside], tri[inside], (a[:, 2] + l1 * (b[:, 2] - a[:, 2])
+                                                          + l2 * (c[:, 2] - a[:, 2]))[inside]
+        order = np.lexsort((-height, query))
+        first = order[np.r_[True, query[order][1:] != query[order][:-1]]] if len(order) else order
+        z[start + query[first]] = height[first]
+        face[start + query[first]] = tri[first]
+    return z, face
+
+
+def chain_cells(occupied: np.ndarray) -> list:
+    """Chain the occupied cells of a grid (axis 0 = outward, axis 1 = counter-clockwise) into
+    paths.  From the start cell (the most clockwise, then innermost), each step takes the first
+    free neighbour in the order outward, counter-clockwise, inward, clockwise.  When none is free
+    the path ends, and the next starts at the nearest free cell.  Returns lists of (i, j)."""
+    free = np.array(occupied, dtype=bool)
+    cells = np.argwhere(free)
+    if not len(cells):
+        return []
+    current = tuple(int(x) for x in cells[np.lexsort((cells[:, 0], cells[:, 1]))[0]])
+    paths = []
+    while True:
+        path = [current]
+        free[current] = False
+        while True:
+            for di, dj in NEIGHBOUR_ORDER:
+                i, j = current[0] + di, current[1] + dj
+                if 0 <= i < free.shape[0] and 0 <= j < free.shape[1] and free[i, j]:
+                    break
+            else:
+                break
+            current = (i, j)
+            free[current] = False
+            path.append(current)
+        paths.append(path)
+        remaining = np.argwhere(free)
+        if not len(remaining):
+            return paths
+        nearest = np.argmin(((remaining - np.array(current)) ** 2).sum(axis=1))
+        current = tuple(int(x) for x in remaining[nearest])
+
+
+def _grid_passes(v, faces, surface, stock, settings) -> list:
+    """The finishing passes of one axial feature: grid points on its faces, pushed clear, chained."""
+    r, tol = settings.radius, settings.tolerance
+    triangles = v[faces]
+    normals, areas = _face_normals(triangles)
+    centroid = (triangles.mean(axis=1)[:, :2] * areas[:, None]).sum(axis=0) / max(areas.sum(), 1e-300)
+    length = float(np.hypot(*centroid))
+    outward = centroid / length if length > 1e-6 else np.array([1.0, 0.0])
+    ccw = np.array([-outward[1], outward[0]])
+    xy = triangles[:, :, :2].reshape(-1, 2)
+    s, w = xy @ outward, xy @ ccw
+    h = settings.pick_feed
+    ns = max(1, math.ceil((s.max() - s.min()) / h - 1e-9))
+    nw = max(1, math.ceil((w.max() - w.min()) / h - 1e-9))
+    si = s.min() + (np.arange(ns) + 0.5) * (s.max() - s.min()) / ns
+    wj = w.min() + (np.arange(nw) + 0.5) * (w.max() - w.min()) / nw
+    nodes = (si[:, None, None] * outward + wj[None, :, None] * ccw).reshape(-1, 2)
+    z, face = _project_down(nodes, triangles)
+    found = np.flatnonzero(~np.isnan(z))
+    centres = np.full((len(nodes), 3), np.nan)
+    centres[found] = np.column_stack([nodes[found], z[found]]) + r * normals[face[found]]
+    occupied = np.zeros(len(nodes), dtype=bool)
+    touching = found[stock.distance(centres[found]) < r - tol]
+    if len(touching):
+        centres[touching], clear = _clear_ball(surface, centres[touching], r, tol / 10)
+        occupied[touching] = clear & (stock.distance(centres[touching]) < r - tol)
+    grid = centres.reshape(ns, nw, 3)
+    return [_dedupe(np.array([grid[c] for c in path])) for path in chain_cells(occupied.reshape(ns, nw))]
+
+
+def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings) -> list:
+    """Ball-centre passes for the axial tool, one list per layer: the highest roughing copy first,
+    the finishing layer (on the faces) last.
+
+    Each connected group of faces (a feature) gets its own grid.  The grid is aligned with the
+    feature's direction from the axis, so "outward" is a grid axis.  The finishing passes are
+    copied up by ``roughing_step`` at a time until no copy reaches the stock (the paper: until
+    the path's lowest Z clears the tool radius above the end face).  Copies are pushed clear like
+    the finishing passes, so the walls above a floor are respected."""
+    v, f = check_mesh(vertices, faces)
+    ids = _face_ids(face_ids, len(f))
+    if not len(ids):
+        return []
+    surface = _Triangles(v[f])
+    r, tol = settings.radius, settings.tolerance
+    finishing = [p for group in _components(f, ids) for p in _grid_passes(v, f[group], surface, stock, settings)]
+    if not finishing:
+        return []
+    layer_of, copies = [], []
+    for k in itertools.count(1):
+        lifted = [p + np.array([0.0, 0.0, k * settings.roughing_step]) for p in finishing]
+        touching = [c for c in lifted if np.any(stock.distance(c) < r - tol)]
+        if not touching:
+            break
+        layer_of += [k] * len(touching)
+        copies += touching
+    layers: dict = {0: finishing}
+    if copies:
+        for k, runs in zip(layer_of, _fit_runs(copies, [False] * len(copies), surface, stock, settings)):
+            layers.setdefault(k, []).extend(runs)
+    return [_join(layers.get(k, []), surface, settings) for k in range(max(layers), -1, -1)]
+
+
+# ----- machine coordinates and operations ------------------------------------------------------
+def machine_to_part(xyz: np.ndarray, c_degrees: np.ndarray) -> np.ndarray:
+    """Machine (X, 0, Z) at C -> part coordinates: the point at radius X, part angle C."""
+    xyz = np.asarray(xyz, dtype=float).reshape(-1, 3)
+    angle = np.radians(np.asarray(c_degrees, dtype=float))
+    return np.column_stack([xyz[:, 0] * np.cos(angle), xyz[:, 0] * np.sin(angle), xyz[:, 2]])
+
+
+@dataclass
+class TurnMillOperation(Operation):
+    """An X-Z-C operation: ``xyz`` = (X, 0, Z) of the tool tip, X the radius from the axis,
+    ``rotary = {"c": degrees}``.  ``direction`` is the turret tool: "radial" (along machine X,
+    pointing at the axis) or "axial" (along Z, pointing down).  Lengths and cycle times are
+    measured in part coordinates, where the tool actually cuts."""
+
+    direction: str = "radial"
+
+    def validate(self):
+        super().validate()
+        if self.direction not in DIRECTIONS:
+            raise TurnMillError(f"operation {self.name!r}: direction must be one of {DIRECTIONS}")
+        if set(self.rotary) != {"c"}:
+            raise TurnMillError(f"operation {self.name!r}: an X-Z-C operation moves exactly the C axis")
+        if np.any(self.xyz[:, 1] != 0):
+            raise TurnMillError(f"operation {self.name!r}: the machine has no Y axis (Y must be 0)")
+
+    def part_points(self) -> np.ndarray:
+        """Tool-tip positions in part coordinates."""
+        return machine_to_part(self.xyz, self.rotary["c"])
+
+    def tool_axes(self) -> np.ndarray:
+        """Unit tool-axis vectors (tip towards holder) in part coordinates."""
+        if self.direction == "axial":
+            return np.tile([0.0, 0.0, 1.0], (len(self), 1))
+        angle = np.radians(self.rotary["c"])
+        return np.column_stack([np.cos(angle), np.sin(angle), np.zeros(len(self))])
+
+    def ball_centres(self) -> np.ndarray:
+        return self.part_points() + self.tool.radius * self.tool_axes()
+
+    def move_lengths(self) -> np.ndarray:
+        if not len(self):
+            return np.empty(0)
+        points = self.part_points()
+        start = machine_to_part(self.start, self.rotary["c"][:1])
+        return np.linalg.norm(np.diff(np.vstack([start, points]), axis=0), axis=1)
+
+
+def _machine(centres: np.ndarray, direction: str, r: float):
+    """Tool-tip machine X, Z and the part angle (radians) for ball centres.  On the axis, where
+    the angle is undefined, the previous angle is kept."""
+    rho = np.hypot(centres[:, 0], centres[:, 1])
+    angle = np.arctan2(centres[:, 1], centres[:, 0])
+    defined = rho > 1e-9
+    if not defined.all():
+        last = np.maximum.accumulate(np.where(defined, np.arange(len(rho)), 0))
+        angle = np.where(defined, angle, angle[last])
+    if direction == "radial":
+        return rho - r, centres[:, 2], angle
+    return rho, centres[:, 2] - r, angle
+
+
+def _operation(name, direction, layers, stock, settings) -> TurnMillOperation | None:
+    """Moves through the passes, layer by layer.  Between passes the tool retracts along its own
+    axis to the clearance outside the stock, turns C there, and feeds back in."""
+    passes = [p for layer in layers for p in layer]
+    if not passes:
+        return None
+    r = settings.radius
+    x_clear = stock.radius + settings.clearance
+    z_clear = stock.z_max + settings.clearance
+    kind, x, z, angle, feed = [], [], [], [], []
+
+    def add(k, xs, zs, angles, f):
+        n = len(np.atleast_1d(xs))
+        if not n:
+            return
+        kind.append(np.full(n, k))
+        x.append(np.atleast_1d(xs))
+        z.append(np.atleast_1d(zs))
+        angle.append(np.atleast_1d(angles))
+        feed.append(np.full(n, f))
+
+    for centres in passes:
+        px, pz, pa = _machine(densify_polar(centres, settings.tolerance), direction, r)
+        if direction == "radial":
+            if kind:
+                add(RAPID, x_clear, z[-1][-1], angle[-1][-1], np.nan)
+            add(RAPID, x_clear, pz[0], pa[0], np.nan)
+        else:
+            if kind:
+                add(RAPID, x[-1][-1], z_clear, angle[-1][-1], np.nan)
+            add(RAPID, px[0], z_clear, pa[0], np.nan)
+        add(FEED, px[0], pz[0], pa[0], settings.plunge_feed)
+        add(FEED, px[1:], pz[1:], pa[1:], settings.feed)
+    if direction == "radial":
+        add(RAPID, x_clear, z[-1][-1], angle[-1][-1], np.nan)
+    else:
+        add(RAPID, x[-1][-1], z_clear, angle[-1][-1], np.nan)
+    xs = np.concatenate(x)
+    xyz = np.column_stack([xs, np.zeros(len(xs)), np.concatenate(z)])
+    c = np.degrees(np.unwrap(np.concatenate(angle)))
+    return TurnMillOperation(name, settings.tool(direction), settings.spindle_rpm, np.concatenate(kind), xyz,
+                             np.concatenate(feed), rotary={"c": c}, clearance_z=z_clear, safe_z=z_clear,
+                             start=np.array([x_clear, 0.0, z_clear]), direction=direction)
+
+
+@dataclass
+class TurnMillPlan:
+    """The result of :func:`plan`.  It holds the program and the face labels (for the viewport
+    colours).  It also holds which faces each tool machines, and the ball-centre layers in part
+    coordinates (for the preview).  Each list of layers runs roughing first, finishing last."""
+
+    program: Program
+    labels: np.ndarray
+    radial_faces: np.ndarray
+    axial_faces: np.ndarray
+    radial_layers: list
+    axial_layers: list
+
+
+def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None, engine: RayEngine | None = None,
+         labels=None, name: str = "turn-mill") -> TurnMillPlan:
+    """Classify the faces (or use ``labels``), generate the radial and axial layers, and build the
+    program: radial roughing, radial finishing (radial station), axial roughing, axial finishing
+    (axial station).  Operations with nothing to cut are left out."""
+    settings = TurnMillSettings() if settings is None else settings
+    if not isinstance(stock, Stock):
+        raise TurnMillError(f"stock must be a Stock, got {type(stock).__name__}")
+    v, f = check_mesh(vertices, faces)
+    outside = (np.hypot(v[:, 0], v[:, 1]) > stock.radius + settings.tolerance) | \
+              (v[:, 2] < stock.z_min - settings.tolerance) | (v[:, 2] > stock.z_max + settings.tolerance)
+    if outside.any():
+        raise TurnMillError(f"the part does not fit in the stock: {int(outside.sum())} vertices lie outside the "
+                            f"{2 * stock.radius:g} mm bar from z = {stock.z_min:g} to {stock.z_max:g}")
+    if labels is None:
+        labels = classify_faces(v, f, engine, settings.sample_spacing)
+    radial_ids, axial_ids = path_faces(v, f, labels)
+    radial = radial_layers(v, f, radial_ids, stock, settings)
+    axial = axial_layers(v, f, axial_ids, stock, settings)
+    operations = []
+    for direction, layers in (("radial", radial), ("axial", axial)):
+        for label, part in (("roughing", layers[:-1]), ("finishing", layers[-1:])):
+            op = _operation(f"{direction} {label}", direction, part, stock, settings)
+            if op is not None:
+                operations.append(op)
+    if not operations:
+        raise TurnMillError("nothing to machine: no radially or axially reachable face lies inside the stock")
+    # Each operation starts at the turn of C nearest to where the last one ended, so the table
+    # never unwinds whole turns between operations.
+    for previous, op in zip(operations, operations[1:]):
+        c = op.rotary["c"]
+        c += 360.0 * np.round((previous.rotary["c"][-1] - c[0]) / 360.0)
+    notes = ["X = tool tip radius from the C axis, C = part angle brought to the tool at +X",
+             f"tolerance {settings.tolerance:g} mm, stepover {settings.pick_feed:.3f} mm, "
+             f"roughing step {settings.roughing_step:g} mm"]
+    program = Program(name, operations, rapid_rate=settings.rapid_rate, notes=notes)
+    return TurnMillPlan(program, np.asarray(labels, dtype=np.int8), radial_ids, axial_ids, radial, axial)
+
+
+# ----- the built-in sample ---------------------------------------------------------------------
+SAMPLE_SLOT_X = (10.0, 30.0)     # the axial pocket spans x 10..30: the paper's 20 mm check
+
+
+def sample_part(segments: int = 192) -> tuple[np.ndarray, np.ndarray, Stock]:
+    """The demo part: a 85 mm bar, 60 mm long, end face at z = 0, chuck side at z = -60.
+
+    The paper's Fig. 8 is not in the seed, so this part is our own, with the same features.
+    Radial features: a flat at x = 35 from z = -45 to -30 (with shoulders), and a groove 8 mm
+    wide with floor radius 36 from z = -20 to -12.  Axial features on the end face: a pocket
+    x 10..30, y -15..15, 6 mm deep (exactly 20 mm wide radially), and a 16 mm round pocket,
+    4 mm deep, at (-20, 0).  192 segments keep the facets within 0.006 mm of the true bar.
+    Returns (vertices, faces, stock).
+    """
+    from manifold3d import Manifold
+
+    stock = Stock(radius=42.5, z_min=-60.0, z_max=0.0)
+    bar = Manifold.cylinder(60.0, 42.5, 42.5, segments).translate((0.0, 0.0, -60.0))
+    flat = Manifold.cube((20.0, 120.0, 15.0)).translate((35.0, -60.0, -45.0))
+    groove = (Manifold.cylinder(8.0, 50.0, 50.0, segments)
+              - Manifold.cylinder(10.0, 36.0, 36.0, segments).translate((0.0, 0.0, -1.0))).translate((0.0, 0.0, -20.0))
+    slot = Manifold.cube((20.0, 30.0, 7.0)).translate((10.0, -15.0, -6.0))
+    round_pocket = Manifold.cylinder(5.0, 8.0, 8.0, segments // 3).translate((-20.0, 0.0, -4.0))
+    mesh = (bar - flat - groove - slot - round_pocket).to_mesh64()
+    return (np.array(mesh.vert_properties[:, :3], dtype=float), np.array(mesh.tri_verts, dtype=np.int64), stock)
