@@ -10,6 +10,7 @@ Commands (``python batch.py <command> --help`` for the options):
     turnmill  4.5-axis turn-mill: radial/axial classification and paths, X-Z-C (W4)
     unfold    twisted quad -> flat pattern, turret-punch NC, DXF, SVG (W5)
     elbow     segmented pipe elbow -> flat patterns, DXF, SVG (W5)
+    simulate  material removal and safety checks of any NC file we can read (W6)
     demo      every workflow on its built-in sample part, each into a sub-folder of --out
 
 Each command writes its output files, ``report.json`` and a preview PNG into --out.
@@ -68,6 +69,19 @@ def write_report(out_dir: str, report: dict) -> str:
     return write_atomic(os.path.join(out_dir, "report.json"), json.dumps(report, indent=2, sort_keys=True) + "\n")
 
 
+def simulation_entry(scene, workflow: str, out_dir: str, stem: str) -> tuple:
+    """Simulate the scene's job, render the carved stock to <stem>.png; (report entry, png)."""
+    from kezuri.operators import preview
+    from kezuri.operators import simulate as shell
+    from kezuri.operators.common import Progress
+
+    job = shell.simulate_job(scene, workflow, "heightfield", 0.1, Progress(None, "simulate"))
+    carved = shell.show_simulation(scene, job)
+    png = preview.render_preview(scene, [carved], [], os.path.join(out_dir, f"{stem}.png"), see_through=False,
+                                 color_type="VERTEX")
+    return shell.report_of(job.result), png
+
+
 def rounded(array, digits: int = 6):
     import numpy as np
     return np.round(np.asarray(array, float), digits).tolist()
@@ -103,9 +117,12 @@ def engrave(args) -> dict:
     nc_path = os.path.join(args.out, f"engrave{shell.extension_for(post_name)}")
     shell.export_engrave(job, post_name, nc_path, props.machine.work_offset)
     wires = shell.show_engrave(scene, job, show_rapids=False)
-    png = preview.render_preview(scene, [props.stock.plate, *shell.letter_objects(props.engrave)], wires,
-                                 os.path.join(args.out, "engrave.png"))
+    toolpaths_png = preview.render_preview(scene, [props.stock.plate, *shell.letter_objects(props.engrave)], wires,
+                                           os.path.join(args.out, "engrave-toolpaths.png"))
+    simulation, png = simulation_entry(scene, "ENGRAVE", args.out, "engrave")
     return {
+        "simulation": simulation,
+        "toolpaths_preview": toolpaths_png,
         "workflow": "engrave",
         "post": post_name,
         "seed": props.engrave.seed,
@@ -144,8 +161,12 @@ def rotary(args) -> dict:
     seconds = time.perf_counter() - started
     nc_path = shell.export_rotary(job, post_name, os.path.join(args.out, f"rotary{shell.extension_for(post_name)}"))
     paths = shell.show_rotary(scene, job)
-    png = preview.render_preview(scene, [scene.kezuri.stock.plate], paths, os.path.join(args.out, "rotary.png"))
+    toolpaths_png = preview.render_preview(scene, [scene.kezuri.stock.plate], paths,
+                                           os.path.join(args.out, "rotary-toolpaths.png"))
+    simulation, png = simulation_entry(scene, "ROTARY", args.out, "rotary")
     return {
+        "simulation": simulation,
+        "toolpaths_preview": toolpaths_png,
         "workflow": "rotary",
         "post": post_name,
         "files": [nc_path],
@@ -213,7 +234,8 @@ def stepnc_job(args) -> dict:
     objects = shell.show_workplan(scene, loaded, program)
     solids = [o for o in objects if o.type == "MESH"]
     paths = [o for o in objects if o.type == "CURVE"]
-    png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "stepnc.png"))
+    toolpaths_png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "stepnc-toolpaths.png"))
+    simulation, png = simulation_entry(scene, "STEPNC", args.out, "stepnc")
     steps = {step.id: step for step in loaded.workingsteps}
     order = [item.ident for item in scene.kezuri.stepnc.steps if item.enabled]
     workingsteps = []
@@ -223,6 +245,8 @@ def stepnc_job(args) -> dict:
         workingsteps.append(entry)
     return {
         "workflow": "stepnc",
+        "simulation": simulation,
+        "toolpaths_preview": toolpaths_png,
         "input": os.path.abspath(path),
         "post": post_name,
         "files": [nc_path],
@@ -406,6 +430,68 @@ def elbow(args) -> dict:
     }
 
 
+# ----------------------------------------------------------------------------------------
+# W6 simulate any NC file we can read
+
+def simulate_arguments(p):
+    p.add_argument("--nc", required=True, help="G-code in our posts' LinuxCNC/Fanuc dialect")
+    p.add_argument("--tool", required=True, help="ball:D, flat:D or bull:D,R (mm)")
+    p.add_argument("--stock", required=True, help="box:x0,y0,z0,x1,y1,z1 or cylinder:R,H (axis Z, top at z = 0)")
+    p.add_argument("--rotary", choices=["c"], help="C words turn the part about Z")
+    p.add_argument("--design", help="the finished part as STL/OBJ/PLY, for the gouge check")
+    p.add_argument("--engine", choices=["heightfield", "manifold"], default="heightfield")
+    p.add_argument("--cell", type=float, default=0.1, help="height-field cell (mm)")
+
+
+def parse_stock(text: str):
+    from kezuri.toolpath import simulate
+    kind, _, sizes = text.partition(":")
+    try:
+        numbers = [float(v) for v in sizes.split(",")]
+    except ValueError:
+        raise simulate.SimulationError(f"--stock {text!r}: not numbers") from None
+    if kind == "box" and len(numbers) == 6:
+        return simulate.BoxStock(*numbers)
+    if kind == "cylinder" and len(numbers) == 2:
+        return simulate.CylinderStock(*numbers)
+    raise simulate.SimulationError(f"--stock {text!r}: give box:x0,y0,z0,x1,y1,z1 or cylinder:R,H")
+
+
+def simulate_nc(args) -> dict:
+    from kezuri.operators import convert, preview
+    from kezuri.operators import simulate as shell
+    from kezuri.post import write_atomic
+    from kezuri.toolpath import ncread, simulate
+
+    if not os.path.isfile(args.nc):
+        raise FileNotFoundError(f"no such NC file: {args.nc}")
+    with open(args.nc, encoding="latin-1") as stream:
+        op, lines = ncread.read_nc(stream.read(), ncread.parse_tool(args.tool), os.path.basename(args.nc))
+    if not args.rotary:
+        op.rotary = {}
+    design = None
+    if args.design:
+        import trimesh
+        if not os.path.isfile(args.design):
+            raise FileNotFoundError(f"no such design file: {args.design}")
+        design = trimesh.load(args.design, force="mesh")
+    result = simulate.simulate([op], parse_stock(args.stock), engine=args.engine, cell=args.cell, design=design)
+    report = shell.report_of(result)
+    for entry in report["gouges"] + report["rapid_collisions"] + report["other_findings"]:
+        entry["line"] = lines[entry["move"]]
+    import trimesh
+    vertices, faces = result.mesh()
+    mesh_path = write_atomic(os.path.join(args.out, "simulated.stl"),
+                             trimesh.Trimesh(vertices, faces, process=False).export(file_type="stl"))
+    scene = open_blend(None)
+    job = shell.SimulationJob(result, convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0)), "nc")
+    carved = shell.show_simulation(scene, job)
+    png = preview.render_preview(scene, [carved], [], os.path.join(args.out, "simulated.png"), see_through=False,
+                                 color_type="VERTEX")
+    return {"workflow": "simulate", "files": [mesh_path], "preview": png, "nc": os.path.abspath(args.nc),
+            "moves": len(op), "simulation": report}
+
+
 COMMANDS = {
     "engrave": ("gouge-texture name plate (W1)", engrave_arguments, engrave),
     "rotary": ("pockets on a rotating table, C-X-Z (W2)", rotary_arguments, rotary),
@@ -413,6 +499,7 @@ COMMANDS = {
     "turnmill": ("4.5-axis turn-mill: reach classification, radial/axial paths, X-Z-C (W4)", turnmill_arguments,
                  turnmill_job),
     "unfold": ("twisted quad: flat pattern, turret-punch NC, DXF, SVG (W5)", unfold_arguments, unfold),
+    "simulate": ("material removal and safety checks of an NC file (W6)", simulate_arguments, simulate_nc),
     "elbow": ("segmented pipe elbow: flat patterns, DXF, SVG (W5)", elbow_arguments, elbow),
 }
 DEMO_POSTS = {"engrave": ["--post", "linuxcnc"]}
@@ -421,7 +508,7 @@ DEMO_POSTS = {"engrave": ["--post", "linuxcnc"]}
 def demo(args) -> dict:
     """Every workflow on its built-in sample, each into its own sub-folder of --out."""
     results = {}
-    for name in COMMANDS:
+    for name in [n for n in COMMANDS if n != "simulate"]:
         sub = parser().parse_args([name, *DEMO_POSTS.get(name, []), "--out", os.path.join(args.out, name)])
         os.makedirs(sub.out, exist_ok=True)
         report = COMMANDS[name][2](sub)

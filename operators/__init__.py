@@ -3,10 +3,11 @@ from __future__ import annotations
 
 import bpy
 
-from . import engrave, panels, preferences, properties, rotary, sheetmetal, stepnc, translations, turnmill
+from . import (engrave, panels, preferences, properties, rotary, sheetmetal, simulate, stepnc, translations,
+               turnmill)
 
 CLASSES = (*preferences.CLASSES, *engrave.CLASSES, *rotary.CLASSES, *stepnc.CLASSES, *turnmill.CLASSES,
-           *sheetmetal.CLASSES, *panels.CLASSES)
+           *sheetmetal.CLASSES, *simulate.CLASSES, *panels.CLASSES)
 MENUS = (*stepnc.MENUS, *sheetmetal.MENUS)
 
 

@@ -240,7 +240,33 @@ class KEZURI_PT_sheet_elbow(KezuriPanel, bpy.types.Panel):
         layout.operator("kezuri.elbow_export", icon="EXPORT")
 
 
+class KEZURI_PT_simulate(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_simulate"
+    bl_label = "Simulate & Check"
+
+    def draw(self, context):
+        layout = self.layout
+        props = context.scene.kezuri.simulation
+        layout.use_property_split = True
+        layout.prop(props, "engine")
+        if props.engine == "heightfield":
+            layout.prop(props, "cell")
+        layout.use_property_split = False
+        row = layout.row(align=True)
+        for key, text in (("ENGRAVE", "Engraving"), ("ROTARY", "Rotary"), ("STEPNC", "STEP-NC")):
+            row.operator("kezuri.simulate", text=text).workflow = key
+        if len(props.findings):
+            box = layout.box()
+            box.label(text=f"{len(props.findings)} finding(s)", icon="ERROR")
+            for index, finding in enumerate(props.findings[:20]):
+                row = box.row(align=True)
+                row.label(text=finding.message)
+                row.operator("kezuri.frame_finding", text="", icon="ZOOM_SELECTED").index = index
+        else:
+            layout.label(text="No findings", icon="CHECKMARK")
+
+
 CLASSES = (KEZURI_PT_machine, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
            KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_stepnc,
            KEZURI_PT_stepnc_write, KEZURI_PT_turnmill, KEZURI_PT_turnmill_settings, KEZURI_PT_sheet,
-           KEZURI_PT_sheet_elbow)
+           KEZURI_PT_sheet_elbow, KEZURI_PT_simulate)

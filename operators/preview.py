@@ -11,7 +11,8 @@ import bpy
 from mathutils import Vector
 
 
-def render_preview(scene, solids, paths, path: str, resolution=(1200, 800), see_through: bool = True):
+def render_preview(scene, solids, paths, path: str, resolution=(1200, 800), see_through: bool = True,
+                   color_type: str = "OBJECT"):
     """Render ``solids`` (stock, parts) and ``paths`` (toolpath curves) to ``path`` (PNG).
 
     ``see_through`` renders the solids half transparent, so toolpaths below the stock's top
@@ -48,7 +49,7 @@ def render_preview(scene, solids, paths, path: str, resolution=(1200, 800), see_
         render.filepath = path
         shading = scene.display.shading
         shading.light = "STUDIO"
-        shading.color_type = "OBJECT"
+        shading.color_type = color_type      # "VERTEX": the colour attribute (simulated stock by depth)
         shading.show_cavity = True
         shading.show_xray = see_through
         shading.xray_alpha = 0.55

@@ -227,6 +227,22 @@ class KezuriTurnMill(bpy.types.PropertyGroup):
         ("TRIMESH", "trimesh", "trimesh (Embree when bundled), as in batch runs")])
 
 
+class KezuriFinding(bpy.types.PropertyGroup):
+    kind: StringProperty(name="Kind")
+    message: StringProperty(name="Message")
+    operation: IntProperty(name="Operation")
+    move: IntProperty(name="Move")
+    location: FloatVectorProperty(name="Location", size=3, subtype="XYZ")
+
+
+class KezuriSimulation(bpy.types.PropertyGroup):
+    engine: EnumProperty(name="Engine", default="heightfield", items=[
+        ("heightfield", "Height Field", "Fast Z-map of the exact tool envelope (3-axis and C-X-Z jobs)"),
+        ("manifold", "Exact Solid", "manifold3d booleans of the swept tools: exact, slower")])
+    cell: mm("Cell Size", 0.1, "Height-field grid spacing", minimum=0.01)
+    findings: CollectionProperty(type=KezuriFinding)
+
+
 class KezuriSettings(bpy.types.PropertyGroup):
     machine: PointerProperty(type=KezuriMachine)
     stock: PointerProperty(type=KezuriStock)
@@ -235,10 +251,11 @@ class KezuriSettings(bpy.types.PropertyGroup):
     rotary: PointerProperty(type=KezuriRotary)
     stepnc: PointerProperty(type=KezuriStepNC)
     turnmill: PointerProperty(type=KezuriTurnMill)
+    simulation: PointerProperty(type=KezuriSimulation)
 
 
 CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriPocket, KezuriRotary, KezuriWorkingstep,
-           KezuriStepNC, KezuriTurnMill, KezuriSettings)
+           KezuriStepNC, KezuriTurnMill, KezuriFinding, KezuriSimulation, KezuriSettings)
 
 
 def register():

@@ -123,6 +123,23 @@ def show_workplan(scene, loaded, program=None) -> list:
     return objects
 
 
+def stock_box(loaded, program):
+    """The workpiece's BLOCK when the file gives one, else a box around the features and the
+    cuts (a tool radius beyond them), from the lowest cut to the highest feature top."""
+    from ..toolpath.simulate import BoxStock
+
+    workpiece = loaded.project.its_workpieces[0] if loaded.project.its_workpieces else None
+    block = getattr(workpiece, "its_bounding_geometry", None)
+    if block is not None:
+        (x0, y0, z0), (x1, y1, z1) = block.box()
+        return BoxStock(x0, y0, z0, x1, y1, z1)
+    cuts = np.vstack([op.xyz[op.kind != 0] for op in program.operations])
+    margin = max(op.tool.radius for op in program.operations) + 1.0
+    top = max(step.its_feature.top_z for step in loaded.workingsteps)
+    (x0, y0, z0), (x1, y1, _) = cuts.min(axis=0), cuts.max(axis=0)
+    return BoxStock(x0 - margin, y0 - margin, min(z0, top) - 1.0, x1 + margin, y1 + margin, top)
+
+
 def export_nc(scene, post_name: str, path: str) -> tuple:
     loaded = load_scene_workplan(scene)
     program = scene_program(scene, loaded)

@@ -5,8 +5,15 @@ import os
 import tempfile
 
 
-def write_atomic(path: str, text: str) -> str:
-    """Write ``text`` to ``path`` through a temporary file in the same folder, then rename.
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def write_atomic(path: str, text: str | bytes) -> str:
+    """Write ``text`` (ASCII) or ``bytes`` to ``path`` through a temporary file in the same folder,
+    then rename.
 
     A crash or a full disk leaves the previous file (or none), never a half-written program.
     """
@@ -15,10 +22,13 @@ def write_atomic(path: str, text: str) -> str:
     os.makedirs(folder, exist_ok=True)
     handle, temp = tempfile.mkstemp(prefix=".kezuri-", suffix=".part", dir=folder)
     try:
-        with os.fdopen(handle, "w", encoding="ascii", newline="\n") as stream:
+        binary = isinstance(text, bytes)
+        with os.fdopen(handle, "wb" if binary else "w", **({} if binary else {"encoding": "ascii",
+                                                                                 "newline": "\n"})) as stream:
             stream.write(text)
             stream.flush()
             os.fsync(stream.fileno())
+        os.chmod(temp, 0o666 & ~_umask())          # mkstemp makes 0600; give the usual permissions
         os.replace(temp, path)
     except BaseException:
         if os.path.exists(temp):

@@ -154,3 +154,12 @@ def test_atomic_write_leaves_no_partial_file(tmp_path):
         post.write_atomic(str(target), "G0 X2. (\u524a)\n")   # not ASCII: the write fails midway
     assert target.read_text() == "G0 X1.\n"                   # the old program is intact
     assert sorted(os.listdir(tmp_path)) == ["job.nc"]         # and no temp file is left
+
+
+def test_written_files_get_ordinary_permissions(tmp_path):
+    path = post.write_atomic(str(tmp_path / "job.nc"), "M30\n")
+    mask = os.umask(0)
+    os.umask(mask)
+    assert os.stat(path).st_mode & 0o777 == 0o666 & ~mask
+    post.write_atomic(str(tmp_path / "mesh.stl"), b"\x00\x01")
+    assert (tmp_path / "mesh.stl").read_bytes() == b"\x00\x01"

@@ -1,0 +1,169 @@
+"""W6 in Blender: the carved stock before any NC is written, and the safety findings.
+
+``simulate_job`` runs the material-removal simulation for the job of one workflow (engrave,
+rotary pockets, STEP-NC) on its stock, with that workflow's design limits; the Simulate
+operator shows the result as a mesh coloured by depth and lists the findings in the panel.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import bpy
+import numpy as np
+from bpy.props import EnumProperty, IntProperty
+
+from ..toolpath import region
+from ..toolpath import simulate as core
+from . import convert
+from .common import Progress, run_reported
+
+PREFIX = "Kezuri Simulated"
+WORKFLOW_ITEMS = [("ENGRAVE", "Engraving", "The gouge-texture name plate"),
+                  ("ROTARY", "Rotary Pockets", "The pockets on the rotating table"),
+                  ("STEPNC", "STEP-NC Workplan", "The imported ISO 14649 workplan")]
+# Offsets are polygons within region.ARC_TOLERANCE of the true curve: a keep region is checked
+# this much inside its outline, so chord sag is not reported as a gouge.
+KEEP_MARGIN = 2 * region.ARC_TOLERANCE
+
+
+@dataclass
+class SimulationJob:
+    result: core.SimulationResult
+    frame: convert.WorkFrame
+    name: str
+
+
+def box_stock_of(outline_loops, thickness: float) -> core.BoxStock:
+    points = np.vstack(outline_loops)
+    (x0, y0), (x1, y1) = points.min(axis=0), points.max(axis=0)
+    return core.BoxStock(float(x0), float(y0), -float(thickness), float(x1), float(y1), 0.0)
+
+
+def simulate_job(scene, workflow: str, engine: str = "heightfield", cell: float = 0.1, progress=None) -> SimulationJob:
+    """Plan the workflow's job from the scene and cut its stock with it."""
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    if workflow == "ENGRAVE":
+        from . import engrave
+        job = engrave.run_engrave(scene, depsgraph)
+        letters = [loop for obj in engrave.letter_objects(scene.kezuri.engrave)
+                   for loop in convert.outlines_in_work(obj, depsgraph, job.plate.frame)]
+        keep = [region.offset(region.from_loops(letters, "letters"), -KEEP_MARGIN)]
+        texture = job.result.program.operations[0].texture
+        floor = min(texture.deepest, scene.kezuri.engrave.band_depth) if texture is not None else \
+            scene.kezuri.engrave.band_depth
+        result = core.simulate(job.baked, box_stock_of(job.plate.outline, job.plate.size[2]), engine=engine,
+                               cell=cell, design=floor - KEEP_MARGIN, keep_regions=keep, progress=progress)
+        return SimulationJob(result, job.plate.frame, "engrave")
+    if workflow == "ROTARY":
+        from . import rotary
+        job = rotary.run_rotary(scene, depsgraph)
+        b = job.block
+        stock = core.BoxStock(-b.size_x / 2, -b.size_y / 2, -b.thickness, b.size_x / 2, b.size_y / 2, 0.0)
+        result = core.simulate(job.result.program, stock, engine=engine, cell=cell, progress=progress)
+        return SimulationJob(result, job.frame, "rotary")
+    if workflow == "STEPNC":
+        from . import stepnc
+        loaded = stepnc.load_scene_workplan(scene)
+        program = stepnc.scene_program(scene, loaded)
+        result = core.simulate(program, stepnc.stock_box(loaded, program), engine=engine, cell=cell,
+                               progress=progress)
+        return SimulationJob(result, convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0)), "stepnc")
+    raise convert.SceneInputError(f"no simulation for {workflow!r}")
+
+
+def report_of(result: core.SimulationResult) -> dict:
+    """The ``simulation`` entry of a batch report."""
+    gouges = result.findings_of("gouge")
+    rapids = result.findings_of("rapid_in_material")
+    finding = lambda f: {"operation": f.operation, "move": f.move, "message": f.message,  # noqa: E731
+                         "xy": None if f.xy is None else [round(float(v), 3) for v in f.xy],
+                         "depth_mm": None if f.depth_mm is None else round(float(f.depth_mm), 4)}
+    return {
+        "engine": result.engine,
+        "cell_mm": result.cell,
+        "tolerance_mm": result.tolerance,
+        "seconds": round(result.seconds, 3),
+        "removed_volume_mm3": round(result.removed_volume_mm3, 1),
+        "gouges": [finding(f) for f in gouges],
+        "max_gouge_mm": round(max((f.depth_mm or 0.0 for f in gouges), default=0.0), 4),
+        "rapid_collisions": [finding(f) for f in rapids],
+        "other_findings": [finding(f) for f in result.findings if f.kind not in ("gouge", "rapid_in_material")],
+    }
+
+
+def show_simulation(scene, job: SimulationJob, max_cells: int = 250_000):
+    """The simulated stock as a mesh in the Kezuri collection, coloured by depth (replaces the last one)."""
+    convert.remove_objects(PREFIX)
+    vertices, faces = job.result.mesh(max_cells)
+    obj = convert.mesh_object(scene, f"{PREFIX} stock ({job.name})", vertices, faces, job.frame,
+                              color=(0.85, 0.72, 0.52, 1.0))
+    z = np.asarray(vertices, float)[:, 2]
+    top, depth = z.max(), max(float(z.max() - z.min()), 1e-9)
+    shade = np.clip((top - z) / depth, 0, 1)[:, None]
+    light, dark = np.array([0.92, 0.80, 0.60, 1.0]), np.array([0.35, 0.20, 0.08, 1.0])
+    colours = (light * (1 - shade) + dark * shade).astype(np.float32)
+    attribute = obj.data.color_attributes.new("Kezuri depth", "FLOAT_COLOR", "POINT")
+    attribute.data.foreach_set("color", colours.ravel())
+    obj.data.color_attributes.active_color = attribute
+    return obj
+
+
+def store_findings(scene, job: SimulationJob):
+    items = scene.kezuri.simulation.findings
+    items.clear()
+    for f in job.result.findings:
+        item = items.add()
+        item.kind, item.message = f.kind, f.message
+        item.operation, item.move = f.operation, f.move
+        if f.xy is not None:
+            item.location = job.frame.to_world([(float(f.xy[0]), float(f.xy[1]), 0.0)])[0]
+
+
+class KEZURI_OT_simulate(bpy.types.Operator):
+    """Cut the stock with the job's toolpaths and check for gouges, rapids through material and
+    moves outside the machine"""
+
+    bl_idname = "kezuri.simulate"
+    bl_label = "Simulate"
+    bl_options = {"REGISTER", "UNDO"}
+
+    workflow: EnumProperty(name="Job", items=WORKFLOW_ITEMS, default="ENGRAVE")
+
+    def execute(self, context):
+        def work():
+            props = context.scene.kezuri.simulation
+            progress = Progress(context, "simulate")
+            try:
+                job = simulate_job(context.scene, self.workflow, props.engine, props.cell, progress)
+            finally:
+                progress.end()
+            show_simulation(context.scene, job)
+            store_findings(context.scene, job)
+            for finding in job.result.findings[:10]:
+                self.report({"WARNING"}, finding.message)
+            self.report({"INFO"}, f"Removed {job.result.removed_volume_mm3 / 1000:.1f} cm^3 in "
+                                  f"{job.result.seconds:.1f} s; {len(job.result.findings)} finding(s)")
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_frame_finding(bpy.types.Operator):
+    """Put the 3D cursor on a finding and centre the view on it"""
+
+    bl_idname = "kezuri.frame_finding"
+    bl_label = "Show Finding"
+    bl_options = {"REGISTER"}
+
+    index: IntProperty(default=0, min=0)
+
+    def execute(self, context):
+        items = context.scene.kezuri.simulation.findings
+        if self.index >= len(items):
+            return {"CANCELLED"}
+        context.scene.cursor.location = items[self.index].location
+        if context.area is not None and context.area.type == "VIEW_3D":
+            bpy.ops.view3d.view_center_cursor()
+        return {"FINISHED"}
+
+
+CLASSES = (KEZURI_OT_simulate, KEZURI_OT_frame_finding)

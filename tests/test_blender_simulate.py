@@ -1,0 +1,105 @@
+"""W6 in Blender and batch: the carved stock of each job, its findings, and any NC file."""
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+bpy = pytest.importorskip("bpy")
+
+import kezuri  # noqa: E402
+from kezuri.operators import panels, samples  # noqa: E402
+from kezuri.toolpath import ncread  # noqa: E402
+from kezuri.toolpath.program import Tool  # noqa: E402
+from test_blender_engrave import RecordingLayout  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+@pytest.fixture(scope="module", autouse=True)
+def registered():
+    if not hasattr(bpy.types.Scene, "kezuri"):
+        kezuri.register()
+
+
+@pytest.fixture
+def scene():
+    scene = bpy.context.scene
+    samples.clear_scene(scene)
+    samples.set_millimetres(scene)
+    return scene
+
+
+def test_simulated_name_plate_is_carved_around_untouched_letters(scene):
+    samples.name_plate(scene)
+    assert bpy.ops.kezuri.simulate(workflow="ENGRAVE") == {"FINISHED"}
+    carved = next(o for o in bpy.data.collections["Kezuri"].objects if o.name.startswith("Kezuri Simulated"))
+    z = np.array([v.co.z for v in carved.data.vertices])
+    assert z.max() == pytest.approx(0.0, abs=1e-6)           # the letters stand at the plate top
+    assert z.min() == pytest.approx(-20.0, abs=1e-6)         # the stock's bottom
+    floor = z[(z < -0.5) & (z > -5)]
+    assert floor.min() >= -2.8 - 0.05                        # nothing deeper than the deepest gouge
+    assert len(scene.kezuri.simulation.findings) == 0
+
+
+def test_rotary_simulation_has_no_findings(scene):
+    samples.rotary_block(scene)
+    assert bpy.ops.kezuri.simulate(workflow="ROTARY") == {"FINISHED"}
+    assert len(scene.kezuri.simulation.findings) == 0
+
+
+def test_a_gouge_is_listed_and_framed(scene):
+    """The name plate checked against a design 1 mm below the top: every cut deeper is a gouge."""
+    from kezuri.operators import engrave, simulate
+    from kezuri.toolpath import simulate as core
+    samples.name_plate(scene)
+    job = engrave.run_engrave(scene, bpy.context.evaluated_depsgraph_get())
+    result = core.simulate(job.baked, simulate.box_stock_of(job.plate.outline, 20.0), cell=0.25, design=-1.0)
+    simulate.store_findings(scene, simulate.SimulationJob(result, job.plate.frame, "engrave"))
+    findings = scene.kezuri.simulation.findings
+    gouges = [f for f in findings if f.kind == "gouge"]
+    assert gouges and max(f.depth_mm for f in result.findings_of("gouge")) == pytest.approx(1.8, abs=0.01)
+    holder = type("PanelSelf", (), {})()
+    holder.layout = RecordingLayout()
+    panels.KEZURI_PT_simulate.draw(holder, bpy.context)
+    assert "kezuri.frame_finding" in holder.layout.operators
+    assert bpy.ops.kezuri.frame_finding(index=0) == {"FINISHED"}
+    assert tuple(scene.cursor.location) == pytest.approx(tuple(findings[0].location))
+
+
+def test_nc_reader_follows_our_own_linuxcnc_program():
+    text = "%\n(slot)\nG21 G90\nG0 X0 Y0 Z5\nG1 Z-2 F100\nX50\nG2 X60 Y10 I0 J10\nG91 G1 X5\nG90 G0 Z20\nM2\n%\n"
+    op, lines = ncread.read_nc(text, Tool(1, "flat", 6.0))
+    assert np.allclose(op.xyz, [[0, 0, 5], [0, 0, -2], [50, 0, -2], [60, 10, -2], [65, 10, -2], [65, 10, 20]])
+    assert lines == [4, 5, 6, 7, 8, 9]
+    assert np.allclose(op.center[3, :2], [50, 10])
+    with pytest.raises(ncread.NCReadError, match="line 2"):
+        ncread.read_nc("G0 X0\nG2 X10 Y0 R5\n", Tool(1, "flat", 6.0))
+
+
+def test_batch_simulate_reports_the_nc_line_of_a_rapid_through_the_stock(tmp_path):
+    nc = tmp_path / "slot.ngc"
+    nc.write_text("G21 G90\nG0 X0 Y0 Z5\nG1 Z-2 F100\nX50\nG0 Z-1\nX100\nM2\n")
+    done = subprocess.run([sys.executable, os.path.join(ROOT, "batch.py"), "simulate", "--nc", str(nc), "--tool",
+                           "flat:6", "--stock", "box:-10,-10,-10,110,10,0", "--out", str(tmp_path / "out")],
+                          capture_output=True, text=True, timeout=600, cwd=ROOT)
+    assert done.returncode == 0, done.stderr[-3000:]
+    report = json.loads((tmp_path / "out" / "report.json").read_text())
+    simulation = report["simulation"]
+    # The slot (flat 6 mm, 50 mm, 2 deep) plus the rapid's 1 mm deep trench: closed forms.
+    slot = (50 * 6 + np.pi * 9) * 2
+    trench = 50 * 6 * 1
+    assert simulation["removed_volume_mm3"] == pytest.approx(slot + trench, rel=0.01)
+    assert [r["line"] for r in simulation["rapid_collisions"]] == [6]
+    assert (tmp_path / "out" / "simulated.stl").stat().st_size > 1000
+
+
+def test_batch_engrave_report_has_the_simulation(tmp_path):
+    done = subprocess.run([sys.executable, os.path.join(ROOT, "batch.py"), "engrave", "--out", str(tmp_path)],
+                          capture_output=True, text=True, timeout=600, cwd=ROOT)
+    assert done.returncode == 0, done.stderr[-3000:]
+    simulation = json.loads((tmp_path / "report.json").read_text())["simulation"]
+    assert simulation["engine"] == "heightfield" and simulation["removed_volume_mm3"] > 1000
+    assert simulation["gouges"] == [] and simulation["max_gouge_mm"] == 0 and simulation["rapid_collisions"] == []

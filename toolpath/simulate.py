@@ -1,0 +1,1336 @@
+"""W6: material-removal simulation and safety checks.
+
+One call, :func:`simulate`, with two engines behind it:
+
+``"heightfield"`` (Z-map)
+    The stock is a grid of columns; each column keeps the lowest Z any tool reached over
+    its centre.  The tool axis is Z (3-axis jobs, and C-X-Z jobs where the tool is parallel
+    to the table axis).  Per cell the value is the *exact* lower envelope of the tool swept
+    along each straight move (closed forms, no sampling along the move):
+
+    * ball: the capsule (the ball centre's segment thickened by R);
+    * flat end: the swept disc, lowest at one end of the contact range;
+    * bull nose: the flat disc of radius R - r plus the torus, the torus taken as a ring of
+      spheres (spaced so the surface error stays within ``tolerance``);
+    * drill / V-bit: cones stamped at the points and along the moves within ``tolerance``.
+
+    Speed comes from taking the tool path as one chain.  The envelope of a convex tool over
+    one move, g(t) = z(t) + h(|P - C(t)|), is convex in t, so at a cell P the lowest value
+    over the whole chain is either an interior minimum of one move (a band of width ~ the
+    move's length beside the move: the cylinder part of the capsule, or the leading edge
+    of the flat disc) or sits at a vertex where the incoming move still falls and the
+    outgoing one rises (for a raster that is a thin sliver).  Each of these regions is cut
+    per grid column into exact y-intervals (roots of a quadratic), so a short raster move
+    costs ~2R*L/cell^2 cells instead of the ~pi*R^2/cell^2 of stamping the whole tool.
+
+``"manifold"``
+    Exact solids: for every straight move the hull of the (faceted, inscribed) tool at both
+    ends, unioned in chunks with ``Manifold.batch_boolean`` and subtracted from the stock.
+    Facets are chosen from ``tolerance`` and lie inside the true tool, so the error is always
+    material left.  Runs of short, nearly collinear moves (a raster over a curved surface)
+    become one hull of a slightly smaller tool, which still lies inside the true sweep.
+
+Rotary C (SPEC W2, C-X-Z): the table turns about Z; a machine position (X, Y, C) is the part
+point ``Rot(C) @ (X, Y)`` (X = -R, C = the angle of the part point from the -X axis).
+Moves are interpolated in machine coordinates (X, Y, Z and C linear; G2/G3 arcs in machine
+XY), cut into chords within :data:`CHORD_TOLERANCE` and converted to part coordinates.
+
+Safety checks (:func:`check`, also part of every :func:`simulate` result): gouges below a
+design surface, rapids touching material (moves processed in order against the stock as it
+is at that moment), moves outside the machine travel, and plunges with tools that cannot
+plunge.  Every :class:`Finding` names the operation and the move index within it.
+
+Coordinates are millimetres, Z is the tool tip.  Stock: a box, or a cylinder about the Z
+axis with its top face at z = 0 (a board on a rotary table).
+"""
+from __future__ import annotations
+
+import math
+import numbers
+import time
+from dataclasses import dataclass
+
+import numpy as np
+from manifold3d import CrossSection, Manifold, Mesh, OpType
+
+from . import region as rg
+from .errors import InputError
+from .program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool, arc_sweep
+
+ENGINES = ("heightfield", "manifold")
+CHORD_TOLERANCE = 0.01     # mm: arcs and rotary moves are cut into chords this close to the path
+TOUCH_TOLERANCE = 1e-3     # mm: a rapid must go this deep into material to count as touching it
+GOUGE_TOLERANCE = 1e-3     # mm: cutting this far below the design is reported
+MAX_CELLS = 60_000_000     # a finer grid than this is refused (memory)
+# A move shorter than this in XY is taken as vertical: its ends are stamped whole instead.
+MIN_XY_LENGTH = 1e-3
+TIP_ANGLE_DEG = {"drill": 118.0, "vbit": 90.0}  # included angle; Tool does not carry one yet
+PLUNGING_KINDS = ("drill", "ball", "flat")
+_ITEM_BATCH = 2048         # triangles per numpy batch when rasterising a design mesh
+_PAIR_BATCH = 32768        # (item, grid column) pairs per numpy batch
+_CELL_CHUNK = 1 << 17      # cells per evaluation chunk, in reused buffers
+_COMMON_RUNS = 1024        # runs of one length this many get a chunk without padding
+_EPS = 1e-6                # mm: regions are widened by this so no cell falls between two of them
+
+
+class SimulationError(InputError):
+    """A stock, design or setting the simulation cannot use."""
+
+
+class SimulationCancelled(Exception):
+    """The progress callback asked to stop."""
+
+
+# ----- input ------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class BoxStock:
+    """A block of material, x0..x1, y0..y1, z0..z1 (mm)."""
+
+    x0: float
+    y0: float
+    z0: float
+    x1: float
+    y1: float
+    z1: float
+
+    def __post_init__(self):
+        values = (self.x0, self.y0, self.z0, self.x1, self.y1, self.z1)
+        if not all(isinstance(v, (int, float, np.floating, np.integer)) and math.isfinite(v) for v in values):
+            raise SimulationError(f"stock box needs six finite numbers, got {values}")
+        if not (self.x1 > self.x0 and self.y1 > self.y0 and self.z1 > self.z0):
+            raise SimulationError(f"stock box ({self.x0}, {self.y0}, {self.z0})..({self.x1}, {self.y1}, {self.z1}) "
+                             "encloses no volume: every max must be above its min")
+
+    @property
+    def top(self) -> float:
+        return float(self.z1)
+
+    @property
+    def bottom(self) -> float:
+        return float(self.z0)
+
+    def volume(self) -> float:
+        return (self.x1 - self.x0) * (self.y1 - self.y0) * (self.z1 - self.z0)
+
+
+@dataclass(frozen=True)
+class CylinderStock:
+    """A disc of material on the rotary table: axis Z through the origin, top face at z = 0."""
+
+    radius: float
+    height: float
+
+    def __post_init__(self):
+        for name in ("radius", "height"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float, np.floating, np.integer)) and math.isfinite(v) and v > 0):
+                raise SimulationError(f"stock cylinder {name} must be a positive number, got {v!r}")
+
+    @property
+    def top(self) -> float:
+        return 0.0
+
+    @property
+    def bottom(self) -> float:
+        return -float(self.height)
+
+    def volume(self) -> float:
+        return math.pi * self.radius ** 2 * self.height
+
+
+def as_stock(stock) -> BoxStock | CylinderStock:
+    """A stock object from a BoxStock, a CylinderStock or six numbers (x0, y0, z0, x1, y1, z1)."""
+    if isinstance(stock, (BoxStock, CylinderStock)):
+        return stock
+    try:
+        values = [float(v) for v in stock]
+    except (TypeError, ValueError):
+        raise SimulationError(f"stock must be a BoxStock, a CylinderStock or (x0, y0, z0, x1, y1, z1), got {stock!r}")
+    if len(values) != 6:
+        raise SimulationError(f"a stock box needs six numbers (x0, y0, z0, x1, y1, z1), got {len(values)}")
+    return BoxStock(*values)
+
+
+def can_plunge(tool: Tool, no_plunge_tools=()) -> bool:
+    """Whether the tool may feed straight down into material (centre-cutting).
+
+    Drills, ball and flat end mills can, unless their tool number is in ``no_plunge_tools``
+    (e.g. a flat end mill that is not centre-cutting)."""
+    return tool.kind in PLUNGING_KINDS and tool.number not in set(no_plunge_tools)
+
+
+def _operations(program_or_operations) -> list:
+    if isinstance(program_or_operations, Program):
+        ops = list(program_or_operations.operations)
+    elif isinstance(program_or_operations, Operation):
+        ops = [program_or_operations]
+    else:
+        try:
+            ops = list(program_or_operations)
+        except TypeError:
+            raise SimulationError("simulate needs a Program, an Operation or a list of Operations")
+    for op in ops:
+        if not isinstance(op, Operation):
+            raise SimulationError(f"not an Operation: {op!r}")
+        op.validate()
+        if not np.all(np.isfinite(op.start)):
+            raise SimulationError(f"operation {op.name!r}: start point has a non-finite coordinate")
+        unknown = set(op.rotary) - {"c"}
+        if unknown:
+            raise SimulationError(f"operation {op.name!r}: rotary axes {sorted(unknown)} are not simulated "
+                             "(only C, a table turning about Z)")
+    if not any(len(op) for op in ops):
+        raise SimulationError("nothing to simulate: the program has no moves")
+    return ops
+
+
+# ----- output -----------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Finding:
+    """One safety problem.  ``operation`` indexes the program's operations, ``move`` the
+    operation's move arrays (a post maps it to an NC line)."""
+
+    kind: str                 # "gouge", "rapid_in_material", "plunge", "travel"
+    message: str
+    operation: int
+    move: int
+    xy: tuple | None = None   # where (part coordinates, mm)
+    depth_mm: float | None = None
+
+
+@dataclass
+class HeightField:
+    """Z-map: ``heights[i, j]`` is the lowest the tool reached over the centre of cell (i, j),
+    (x0 + (i + 0.5) * cell_x, y0 + (j + 0.5) * cell_y), or the stock top where it never cut;
+    the material top is that clamped to [bottom, top].  ``inside`` marks cells of the stock
+    (outside a cylinder stock heights are -inf)."""
+
+    x0: float
+    y0: float
+    cell_x: float
+    cell_y: float
+    heights: np.ndarray
+    inside: np.ndarray
+    top: float
+    bottom: float
+
+    @property
+    def shape(self):
+        return self.heights.shape
+
+    def x(self) -> np.ndarray:
+        return self.x0 + (np.arange(self.shape[0]) + 0.5) * self.cell_x
+
+    def y(self) -> np.ndarray:
+        return self.y0 + (np.arange(self.shape[1]) + 0.5) * self.cell_y
+
+    def removed_volume(self) -> float:
+        depth = self.top - np.clip(self.heights, self.bottom, self.top)
+        return float(np.sum(depth, where=self.inside, dtype=np.float64) * self.cell_x * self.cell_y)
+
+
+@dataclass
+class SimulationResult:
+    engine: str
+    removed_volume_mm3: float
+    seconds: float
+    cell: float | None          # height field cell (mm); None for the manifold engine
+    tolerance: float            # mm: tool-shape approximation (facets, torus ring, cones)
+    findings: list
+    stock: BoxStock | CylinderStock
+    heightfield: HeightField | None = None
+    solid: Manifold | None = None
+
+    def findings_of(self, kind: str) -> list:
+        return [f for f in self.findings if f.kind == kind]
+
+    def mesh(self, max_cells: int | None = 250_000):
+        """The simulated stock as a closed triangle mesh: (vertices (k, 3), faces (f, 3)).
+
+        A height field is min-pooled to at most ``max_cells`` cells first (None: full
+        resolution), so the viewport shows the deepest cut of every pooled block."""
+        if self.solid is not None:
+            return _manifold_arrays(self.solid)
+        return _heightfield_mesh(self.heightfield, self.stock, max_cells)
+
+
+# ----- the path as the simulation sees it ---------------------------------------------------
+
+@dataclass
+class _Chain:
+    """One operation's tool tip path in part coordinates: points[s] -> points[s + 1] is
+    segment s, cut by move ``move[s]``; ``checked`` segments are tested against the material
+    before they are applied (rapids, plunges of tools that cannot plunge)."""
+
+    op_index: int
+    tool: Tool
+    points: np.ndarray
+    move: np.ndarray
+    rapid: np.ndarray
+    checked: np.ndarray
+
+
+def _machine_samples(op: Operation):
+    """Points along every move in machine coordinates: (xyz (k, 3), c (k,), move (k,)), ending
+    at each move's end point.
+
+    Each move is cut into chords within CHORD_TOLERANCE of the true path: G2/G3 arcs in XY,
+    and moves that turn C (a straight machine move is an arc on the part)."""
+    n = len(op)
+    a = op.start_points()
+    b = op.xyz
+    has_c = "c" in op.rotary
+    c_end = op.rotary["c"] if has_c else np.zeros(n)
+    c_start = np.concatenate([[c_end[0]], c_end[:-1]]) if n else c_end
+    arcs = (op.kind == ARC_CW) | (op.kind == ARC_CCW)
+    sweep = np.zeros(n)
+    radius_a = np.zeros(n)
+    radius_b = np.zeros(n)
+    pieces = np.ones(n, dtype=np.int64)
+    if arcs.any():
+        centre = op.center[arcs, :2]
+        sweep[arcs] = arc_sweep(a[arcs, :2], b[arcs, :2], centre, op.kind[arcs] == ARC_CW)
+        radius_a[arcs] = np.linalg.norm(a[arcs, :2] - centre, axis=1)
+        radius_b[arcs] = np.linalg.norm(b[arcs, :2] - centre, axis=1)
+        pieces[arcs] = _chords(np.abs(sweep[arcs]), np.maximum(radius_a[arcs], radius_b[arcs]))
+    if has_c:
+        reach = np.maximum(np.hypot(a[:, 0], a[:, 1]), np.hypot(b[:, 0], b[:, 1]))
+        pieces = np.maximum(pieces, _chords(np.radians(np.abs(c_end - c_start)), reach))
+    move = np.repeat(np.arange(n), pieces)
+    t = (np.arange(len(move)) - np.repeat(np.cumsum(pieces) - pieces, pieces) + 1) / pieces[move]
+    xyz = a[move] + t[:, None] * (b - a)[move]
+    on_arc = arcs[move]
+    if on_arc.any():
+        m = move[on_arc]
+        centre = op.center[m, :2]
+        start_angle = np.arctan2(a[m, 1] - centre[:, 1], a[m, 0] - centre[:, 0])
+        angle = start_angle + t[on_arc] * sweep[m]
+        r = radius_a[m] + t[on_arc] * (radius_b[m] - radius_a[m])
+        xyz[on_arc, 0] = centre[:, 0] + r * np.cos(angle)
+        xyz[on_arc, 1] = centre[:, 1] + r * np.sin(angle)
+    c = c_start[move] + t * (c_end - c_start)[move]
+    return xyz, c, move
+
+
+def _chords(angle: np.ndarray, radius: np.ndarray) -> np.ndarray:
+    """Chords needed to follow an arc of ``angle`` radians at ``radius`` within CHORD_TOLERANCE."""
+    ratio = np.clip(1.0 - CHORD_TOLERANCE / np.maximum(radius, 1e-12), -1.0, 1.0)
+    step = 2.0 * np.arccos(ratio)
+    return np.maximum(1, np.ceil(angle / np.maximum(step, 1e-9) - 1e-9)).astype(np.int64)
+
+
+def _to_part(xyz: np.ndarray, c_deg: np.ndarray) -> np.ndarray:
+    """Machine (X, Y, Z) at table angle C -> part coordinates: (X, Y) turned by +C."""
+    angle = np.radians(c_deg)
+    cos, sin = np.cos(angle), np.sin(angle)
+    return np.column_stack([xyz[:, 0] * cos - xyz[:, 1] * sin, xyz[:, 0] * sin + xyz[:, 1] * cos, xyz[:, 2]])
+
+
+def _chains(ops: list, no_plunge_tools) -> list:
+    chains = []
+    for index, op in enumerate(ops):
+        if not len(op):
+            continue
+        xyz, c, move = _machine_samples(op)
+        start_c = op.rotary["c"][0] if "c" in op.rotary else 0.0
+        machine = np.vstack([op.start[None, :], xyz])
+        c_all = np.concatenate([[start_c], c])
+        points = _to_part(machine, c_all)
+        # Drop repeated points: every segment then has a length.
+        keep = np.ones(len(points), bool)
+        keep[1:] = np.any(np.abs(np.diff(points, axis=0)) > 1e-9, axis=1)
+        seg_move = move[keep[1:]]
+        points = points[keep]
+        if len(points) < 2:
+            continue
+        rapid = op.kind[seg_move] == RAPID
+        checked = rapid.copy()
+        if not can_plunge(op.tool, no_plunge_tools):
+            # A plunge: a feed move along -Z alone (no X, Y or C travel) in machine coordinates.
+            a = op.start_points()
+            straight_down = ((op.kind == FEED) & (np.abs(op.xyz[:, 0] - a[:, 0]) < 1e-9)
+                             & (np.abs(op.xyz[:, 1] - a[:, 1]) < 1e-9) & (op.xyz[:, 2] < a[:, 2]))
+            if "c" in op.rotary:
+                c_end = op.rotary["c"]
+                straight_down &= np.abs(c_end - np.concatenate([[c_end[0]], c_end[:-1]])) < 1e-9
+            checked |= straight_down[seg_move]
+        chains.append(_Chain(index, op.tool, points, seg_move, rapid, checked))
+    return chains
+
+
+# ----- tool shapes ------------------------------------------------------------------------
+
+def _profile(tool: Tool, d):
+    """Height of the tool's underside above its tip at distance d from the axis (d <= R)."""
+    r = tool.radius
+    if tool.kind == "flat":
+        return np.zeros_like(d)
+    if tool.kind in TIP_ANGLE_DEG:
+        return d / math.tan(math.radians(TIP_ANGLE_DEG[tool.kind]) / 2)
+    rc = tool.corner_radius
+    flat = r - rc
+    off = np.maximum(d - flat, 0)
+    return rc - np.sqrt(np.maximum(rc * rc - off * off, 0))
+
+
+def _ring_count(flat_radius: float, corner_radius: float, tolerance: float) -> int:
+    """Spheres on the torus ring so that a ring of them stays within ``tolerance`` of the torus:
+    at the inner edge of the corner the underside sags (a*d/2)^2 / (2 r) between two spheres
+    (d = 2 pi / N), at the rim the reach falls short by about (a/8)(1 + a/r) d^2."""
+    a, r = flat_radius, corner_radius
+    if a <= 0:
+        return 1
+    step = min(2 * math.sqrt(2 * r * tolerance) / a, math.sqrt(8 * tolerance / (a * (1 + a / r))))
+    return int(min(max(math.ceil(2 * math.pi / step), 8), 720))
+
+
+# ----- height field: cells of a region, column by column -----------------------------------
+
+def _halfline(a, b):
+    """Where a + b*y >= 0: (lo, hi), possibly everything or nothing."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        root = -a / b
+    up = b > 1e-15
+    down = b < -1e-15
+    level_ok = ~(up | down) & (a >= 0)
+    lo = np.where(up, root, np.where(down | level_ok, -np.inf, np.inf))
+    hi = np.where(down, root, np.where(up | level_ok, np.inf, -np.inf))
+    return lo, hi
+
+
+def _sqrt_condition(a, b, c, q, p, g, dlo, dhi):
+    """Where a + b*y >= c * sqrt(q - (p + g*y)^2), for y in the domain [dlo, dhi].
+
+    The answer is an interval minus an open hole: (lo, hi, hole_lo, hole_hi).  With c <= 0
+    the set is a single interval, with c > 0 it is the half-line a + b*y >= 0 outside the
+    roots of (a + b*y)^2 = c^2 (q - (p + g*y)^2)."""
+    h_lo, h_hi = _halfline(a, b)
+    h_lo = np.maximum(h_lo, dlo)
+    h_hi = np.minimum(h_hi, dhi)
+    c2 = c * c
+    qa = b * b + c2 * g * g
+    qb = 2.0 * (a * b + c2 * p * g)
+    qc = a * a + c2 * (p * p - q)
+    disc = qb * qb - 4.0 * qa * qc
+    real = (disc >= 0) & (qa > 1e-30) & (np.abs(c) > 1e-12)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = np.sqrt(np.where(real, disc, 0.0))
+        r1 = np.where(real, (-qb - s) / (2.0 * qa), np.inf)
+        r2 = np.where(real, (-qb + s) / (2.0 * qa), -np.inf)
+    falls = c < -1e-12
+    rises = c > 1e-12
+    half_empty = h_lo > h_hi
+    lo = np.where(falls, np.where(half_empty, r1, np.minimum(h_lo, r1)), h_lo)
+    hi = np.where(falls, np.where(half_empty, r2, np.maximum(h_hi, r2)), h_hi)
+    hole_lo = np.where(rises, r1, np.inf)
+    hole_hi = np.where(rises, r2, -np.inf)
+    return lo, hi, hole_lo, hole_hi
+
+
+def _pieces(dlo, dhi, conditions):
+    """Intersect a domain with conditions from _sqrt_condition: up to two (lo, hi) pieces.
+
+    Where two conditions both have holes only the first is kept (a superset, used only for
+    tool positions, whose values are right anywhere)."""
+    lo, hi = dlo, dhi
+    hole_lo = np.full_like(dlo, np.inf)
+    hole_hi = np.full_like(dlo, -np.inf)
+    for c_lo, c_hi, c_hole_lo, c_hole_hi in conditions:
+        lo = np.maximum(lo, c_lo)
+        hi = np.minimum(hi, c_hi)
+        free = hole_lo >= hole_hi
+        hole_lo = np.where(free, c_hole_lo, hole_lo)
+        hole_hi = np.where(free, c_hole_hi, hole_hi)
+    lo = lo - _EPS
+    hi = hi + _EPS
+    hole = (hole_lo + _EPS) < (hole_hi - _EPS)
+    first_hi = np.where(hole, np.minimum(hi, hole_lo + _EPS), hi)
+    second_lo = np.where(hole, np.maximum(lo, hole_hi - _EPS), np.inf)
+    second_hi = np.where(hole, hi, -np.inf)
+    return [(lo, first_hi), (second_lo, second_hi)]
+
+
+def _disk_span(dx, r):
+    half = np.sqrt(np.maximum(r * r - dx * dx, 0.0))
+    inside = np.abs(dx) <= r
+    return np.where(inside, -half, np.inf), np.where(inside, half, -np.inf)
+
+
+class _Family:
+    """Items of one kind (bands or tool positions): their reference point (ox, oy), the
+    segment each belongs to, and named per-item arrays."""
+
+    def __init__(self, segment, ox, oy, **arrays):
+        self.segment = np.asarray(segment)
+        self.ox = np.asarray(ox, float)
+        self.oy = np.asarray(oy, float)
+        self.arrays = {k: np.asarray(v) for k, v in arrays.items()}
+
+    def __len__(self):
+        return len(self.segment)
+
+    def __getattr__(self, name):
+        try:
+            return self.__dict__["arrays"][name]
+        except KeyError:
+            raise AttributeError(name)
+
+    def take(self, sel) -> "_Family":
+        clone = object.__new__(type(self))
+        clone.__dict__.update(self.__dict__)
+        clone.segment = self.segment[sel]
+        clone.ox = self.ox[sel]
+        clone.oy = self.oy[sel]
+        clone.arrays = {k: v[sel] for k, v in self.arrays.items()}
+        return clone
+
+
+def _row(values):
+    """Per-run values as a float32 row, broadcast down the cells of each run."""
+    return np.asarray(values, np.float32)[None, :]
+
+
+class _Bands(_Family):
+    """Cells beside a move whose lowest value lies strictly inside it, where
+
+        value = z + a*q - b*sqrt(r^2 - e^2)
+
+    with q the distance along the move from its start, e across it, both in XY, and the band
+    0 <= q - s*sqrt(r^2 - e^2) <= length.  Two tools use this:
+
+    * ball (the cylinder part of the capsule): z = centre Z at the start, a = dz/l,
+      b = L/l, s = dz/L (l the XY length, L the 3-D length);
+    * flat disc (moves turned to run downhill, so the disc's rim leaves a cell at its lowest):
+      z = tip Z at the start, a = dz/l, b = -dz/l, s = -1.
+
+    Arrays: ux, uy (unit XY direction), length, s, z, a, b, r."""
+
+    def xrange(self):
+        return _band_span(self.ox, self.ux, self.uy, self.length, self.r * np.minimum(self.s, 0),
+                          self.r * np.maximum(self.s, 0), self.r)
+
+    def yrange(self):
+        ends = self.oy + self.uy * self.length
+        return np.minimum(self.oy, ends) - self.r - _EPS, np.maximum(self.oy, ends) + self.r + _EPS
+
+    def intervals(self, k, dx):
+        return _band_intervals(dx, self.ux[k], self.uy[k], self.length[k], self.s[k], self.r[k])
+
+    def values(self, k, dx, dy0, cell_y, j, out, tmp):
+        ux, uy, a, b, r = (self.arrays[n][k] for n in ("ux", "uy", "a", "b", "r"))
+        # e*b and z + a*q are affine in the cell number j along the run (dy = dy0 + j*cell_y).
+        np.multiply(j, _row(cell_y * ux * b), out=tmp)
+        tmp += _row((dy0 * ux - dx * uy) * b)
+        _sqrt_of_r2_minus_square(tmp, _row(r * b))         # b >= 0 for both tools
+        np.multiply(j, _row(cell_y * uy * a), out=out)
+        out += _row((dx * ux + dy0 * uy) * a + self.z[k])
+        out -= tmp
+
+
+def _sqrt_of_r2_minus_square(x, r):
+    """x <- sqrt(r^2 - x^2) in place; the cells of a region have |x| <= r up to rounding."""
+    np.multiply(x, x, out=x)
+    np.subtract(r * r, x, out=x)
+    np.abs(x, out=x)
+    np.sqrt(x, out=x)
+
+
+def _band_span(o, along, across, length, q_lo, q_hi, r):
+    """Range of one world coordinate over the rectangle q in [q_lo, length + q_hi], e in [-r, r]
+    (q along the move, e across it); ``along``/``across`` are that coordinate's components."""
+    a = o + np.minimum(q_lo * along, (length + q_hi) * along)
+    b = o + np.maximum(q_lo * along, (length + q_hi) * along)
+    spread = r * np.abs(across)
+    return a - spread - _EPS, b + spread + _EPS
+
+
+def _band_intervals(dx, ux, uy, length, s, r):
+    """Cells of a band: |e| <= r and 0 <= q - s*sqrt(r^2 - e^2) <= length, with
+    q = dx*ux + dy*uy and e = dy*ux - dx*uy (dy the unknown)."""
+    across = np.abs(ux) > 1e-12
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e1 = np.where(across, (-r + dx * uy) / ux, -np.inf)
+        e2 = np.where(across, (r + dx * uy) / ux, np.inf)
+    lie_in = across | (np.abs(dx * uy) <= r)
+    dlo = np.where(lie_in, np.minimum(e1, e2), np.inf)
+    dhi = np.where(lie_in, np.maximum(e1, e2), -np.inf)
+    p = -dx * uy
+    rr = r * r
+    start = _sqrt_condition(dx * ux, uy, s, rr, p, ux, dlo, dhi)
+    end = _sqrt_condition(length - dx * ux, -uy, -s, rr, p, ux, dlo, dhi)
+    return _pieces(dlo, dhi, [start, end])
+
+
+class _SphereVertices(_Family):
+    """Ball (or torus-ring sphere) centres at the chain's points, only where the lowest value of
+    the chain can sit there: the incoming move still falls towards the cell (d1 . D >= dz1 w)
+    and the outgoing one rises (-d2 . D >= -dz2 w), w = sqrt(r^2 - |D|^2), D = cell - point.
+    Arrays: d1x, d1y, dz1, d2x, d2y, dz2 (zero where there is no such move), z (centre), r."""
+
+    def xrange(self):
+        return _cut_disk_span(self.ox, self.r, self.d1x, self.d1y, self.dz1, self.d2x, self.d2y, self.dz2)
+
+    def yrange(self):
+        return self.oy - self.r - _EPS, self.oy + self.r + _EPS
+
+    def intervals(self, k, dx):
+        r = self.r[k]
+        dlo, dhi = _disk_span(dx, r)
+        q = r * r - dx * dx
+        zero = np.zeros_like(dx)
+        incoming = _sqrt_condition(dx * self.d1x[k], self.d1y[k], self.dz1[k], q, zero, 1.0, dlo, dhi)
+        outgoing = _sqrt_condition(-dx * self.d2x[k], -self.d2y[k], -self.dz2[k], q, zero, 1.0, dlo, dhi)
+        return _pieces(dlo, dhi, [incoming, outgoing])
+
+    def values(self, k, dx, dy0, cell_y, j, out, tmp):
+        """value = centre z - sqrt(r^2 - |D|^2)."""
+        np.multiply(j, np.float32(cell_y), out=out)
+        out += _row(dy0)
+        _sqrt_of_r2_minus_square(out, _row(np.sqrt(np.maximum(self.r[k] ** 2 - dx * dx, 0))))
+        np.subtract(_row(self.z[k]), out, out=out)
+
+
+def _cut_disk_span(o, r, n1a, n1b, dz1, n2a, n2b, dz2):
+    """Range of one coordinate (component a; b the other) over the disk of radius r cut by
+    n1 . D >= min(0, dz1 r) and -n2 . D >= min(0, -dz2 r): a superset of the vertex region."""
+    normals = [(n1a, n1b, np.minimum(0, dz1 * r)), (-n2a, -n2b, np.minimum(0, -dz2 * r))]
+    candidates = [np.zeros_like(o), -r, r]     # the centre and the disk's extremes
+    valid = [np.ones(len(o), bool)]
+    for extreme in (-r, r):
+        valid.append(np.all([na * extreme >= c - 1e-9 for na, nb, c in normals], axis=0))
+    for i, (na, nb, c) in enumerate(normals):
+        other = normals[1 - i]
+        norm2 = na * na + nb * nb
+        with np.errstate(divide="ignore", invalid="ignore"):
+            foot = c / norm2
+            half = np.sqrt(np.maximum(r * r - c * c / norm2, 0) / norm2)
+        for sign in (-1, 1):
+            pa = foot * na - sign * half * nb
+            pb = foot * nb + sign * half * na
+            ok = (norm2 > 1e-24) & (c * c <= r * r * norm2) & (other[0] * pa + other[1] * pb >= other[2] - 1e-9)
+            candidates.append(np.where(ok, pa, 0.0))
+            valid.append(ok)
+    (n1a_, n1b_, c1), (n2a_, n2b_, c2) = normals
+    det = n1a_ * n2b_ - n1b_ * n2a_
+    with np.errstate(divide="ignore", invalid="ignore"):
+        pa = (c1 * n2b_ - c2 * n1b_) / det
+        pb = (n1a_ * c2 - n2a_ * c1) / det
+    ok = (np.abs(det) > 1e-24) & (pa * pa + pb * pb <= r * r)
+    candidates.append(np.where(ok, pa, 0.0))
+    valid.append(ok)
+    cand = np.array([np.broadcast_to(c, o.shape) for c in candidates])
+    ok = np.array(valid)
+    lo = np.min(np.where(ok, cand, np.inf), axis=0)
+    hi = np.max(np.where(ok, cand, -np.inf), axis=0)
+    return o + lo - _EPS, o + hi + _EPS
+
+
+class _Stamps(_Family):
+    """The whole tool standing at a point (its full underside over the disk of radius R).
+    Arrays: z (tip)."""
+
+    def __init__(self, segment, ox, oy, tool, **arrays):
+        super().__init__(segment, ox, oy, **arrays)
+        self.tool = tool
+        self.r = tool.radius
+
+    def xrange(self):
+        return self.ox - self.r - _EPS, self.ox + self.r + _EPS
+
+    def yrange(self):
+        return self.oy - self.r - _EPS, self.oy + self.r + _EPS
+
+    def intervals(self, k, dx):
+        dlo, dhi = _disk_span(dx, self.r)
+        return [(dlo - _EPS, dhi + _EPS)]
+
+    def values(self, k, dx, dy0, cell_y, j, out, tmp):
+        np.multiply(j, np.float32(cell_y), out=tmp)
+        tmp += _row(dy0)
+        np.multiply(tmp, tmp, out=tmp)
+        tmp += _row(dx * dx)
+        np.sqrt(tmp, out=tmp)
+        np.minimum(tmp, np.float32(self.r), out=tmp)
+        out[...] = _profile(self.tool, tmp)
+        out += _row(self.z[k])
+
+
+# ----- height field: which items a chain needs ------------------------------------------------
+
+def _families(chain: _Chain, top: float, tolerance: float) -> list:
+    """The bands, vertex spheres and whole-tool stamps whose union is the chain's envelope."""
+    tool = chain.tool
+    p = chain.points
+    m = len(p) - 1
+    delta = np.diff(p, axis=0)
+    length = np.hypot(delta[:, 0], delta[:, 1])
+    steep = length < MIN_XY_LENGTH
+    low = np.minimum(p[:-1, 2], p[1:, 2]) < top
+    seg_of_vertex = np.maximum(np.arange(m + 1) - 1, 0)
+
+    stamped = np.zeros(m + 1, bool)        # points that get the whole tool
+    stamped[:-1] |= steep
+    stamped[1:] |= steep | chain.checked
+    if tool.kind in ("flat", "bull"):
+        # The flat disc's lowest value sits at a point only where the path turns upward.
+        dz_in = np.concatenate([[0.0], delta[:, 2]])
+        dz_out = np.concatenate([delta[:, 2], [1.0]])
+        stamped |= (dz_in <= 0) & (dz_out > 0)
+    families = []
+    bands = ~steep & low
+    if tool.kind == "ball":
+        families += _sphere_chain(p, delta, length, bands, ~stamped & (p[:, 2] < top), seg_of_vertex,
+                                  tool.radius, (0.0, 0.0))
+    elif tool.kind in ("flat", "bull"):
+        rc = tool.corner_radius if tool.kind == "bull" else 0.0
+        flat = tool.radius - rc
+        if flat > 0:
+            families.append(_disc_bands(p, delta, length, bands, flat))
+        if rc > 0:
+            n = _ring_count(flat, rc, tolerance)
+            for angle in np.arange(n) * (2 * math.pi / n):
+                families += _sphere_chain(p, delta, length, bands, ~stamped & (p[:, 2] < top), seg_of_vertex,
+                                          rc, (flat * math.cos(angle), flat * math.sin(angle)))
+    else:  # cones: the whole tool at every point and along the moves
+        stamped[:] = True
+    points = np.flatnonzero(stamped & (p[:, 2] < top))
+    seg = seg_of_vertex[points]
+    xy = p[points, :2]
+    z = p[points, 2]
+    if tool.kind in TIP_ANGLE_DEG:
+        slope = 1 / math.tan(math.radians(TIP_ANGLE_DEG[tool.kind]) / 2)
+        spacing = 2 * tolerance / slope   # a cone's V-groove between two stamps is slope*spacing/2 deep
+        count = np.where(bands, np.ceil(length / spacing).astype(np.int64) - 1, 0)
+        count = np.maximum(count, 0)
+        s = np.repeat(np.arange(m), count)
+        t = (np.arange(len(s)) - np.repeat(np.cumsum(count) - count, count) + 1) / (count[s] + 1)
+        samples = p[s] + t[:, None] * delta[s]
+        seg = np.concatenate([seg, s])
+        xy = np.vstack([xy, samples[:, :2]])
+        z = np.concatenate([z, samples[:, 2]])
+        order = np.argsort(seg, kind="stable")
+        seg, xy, z = seg[order], xy[order], z[order]
+    families.append(_Stamps(seg, xy[:, 0], xy[:, 1], tool, z=z))
+    return [f for f in families if len(f)]
+
+
+def _sphere_chain(p, delta, length, bands, vertices, seg_of_vertex, r, offset):
+    """Bands and vertex spheres for a sphere of radius r whose centre is offset (dx, dy) from
+    the tool axis, r above the tip."""
+    ox, oy = offset
+    s = np.flatnonzero(bands)
+    d = delta[s]
+    l = length[s]
+    big = np.linalg.norm(d, axis=1)
+    sphere_bands = _Bands(s, p[s, 0] + ox, p[s, 1] + oy, ux=d[:, 0] / l, uy=d[:, 1] / l, length=l,
+                          s=d[:, 2] / big, z=p[s, 2] + r, a=d[:, 2] / l, b=big / l, r=np.full(len(s), r))
+    m = len(delta)
+    # Where the path runs straight on in XY and its slope does not increase, the ball at the
+    # point is inside the two capsules beside it: no cell needs it.
+    d_in, d_out = delta[:-1], delta[1:]
+    straight = (np.abs(d_in[:, 0] * d_out[:, 1] - d_in[:, 1] * d_out[:, 0]) <= 1e-12 * length[:-1] * length[1:]) \
+        & (d_in[:, 0] * d_out[:, 0] + d_in[:, 1] * d_out[:, 1] > 0)
+    bends_down = straight & (d_out[:, 2] * length[:-1] <= d_in[:, 2] * length[1:])
+    vertices = vertices & ~np.concatenate([[False], bends_down, [False]])
+    v = np.flatnonzero(vertices)
+    zero = np.zeros(len(v))
+    has_in = v > 0
+    has_out = v < m
+    d_in = delta[np.maximum(v - 1, 0)]
+    d_out = delta[np.minimum(v, m - 1)]
+    sphere_vertices = _SphereVertices(seg_of_vertex[v], p[v, 0] + ox, p[v, 1] + oy,
+                                      d1x=np.where(has_in, d_in[:, 0], zero), d1y=np.where(has_in, d_in[:, 1], zero),
+                                      dz1=np.where(has_in, d_in[:, 2], zero),
+                                      d2x=np.where(has_out, d_out[:, 0], zero),
+                                      d2y=np.where(has_out, d_out[:, 1], zero),
+                                      dz2=np.where(has_out, d_out[:, 2], zero), z=p[v, 2] + r,
+                                      r=np.full(len(v), r))
+    return [sphere_bands, sphere_vertices]
+
+
+def _disc_bands(p, delta, length, bands, r):
+    s = np.flatnonzero(bands)
+    # Turn every move to run downhill; the swept disc is the same.
+    down = delta[s, 2] <= 0
+    start = np.where(down[:, None], p[s], p[s + 1])
+    d = np.where(down[:, None], delta[s], -delta[s])
+    l = length[s]
+    return _Bands(s, start[:, 0], start[:, 1], ux=d[:, 0] / l, uy=d[:, 1] / l, length=l, s=np.full(len(s), -1.0),
+                  z=start[:, 2], a=d[:, 2] / l, b=-d[:, 2] / l, r=np.full(len(s), r))
+
+
+# ----- height field: evaluation -------------------------------------------------------------
+
+def _grid(stock, cell: float) -> HeightField:
+    if isinstance(stock, BoxStock):
+        x0, y0, x1, y1 = stock.x0, stock.y0, stock.x1, stock.y1
+    else:
+        x0 = y0 = -stock.radius
+        x1 = y1 = stock.radius
+    nx = max(1, math.ceil((x1 - x0) / cell - 1e-9))
+    ny = max(1, math.ceil((y1 - y0) / cell - 1e-9))
+    if nx * ny > MAX_CELLS:
+        raise SimulationError(f"a {cell} mm cell gives {nx} x {ny} cells over the stock (more than {MAX_CELLS}); "
+                         "use a coarser cell")
+    hf = HeightField(x0, y0, (x1 - x0) / nx, (y1 - y0) / ny, np.full((nx, ny), stock.top, np.float32),
+                     np.ones((nx, ny), bool), stock.top, stock.bottom)
+    if isinstance(stock, CylinderStock):
+        hf.inside = np.hypot(hf.x()[:, None], hf.y()[None, :]) <= stock.radius
+        hf.heights[~hf.inside] = -np.inf    # no material: nothing to cut or touch
+    return hf
+
+
+class _Scratch:
+    """Buffers reused for every chunk of cells: fresh temporaries of this size would cost more
+    in page faults than the arithmetic done in them."""
+
+    def __init__(self):
+        self.size = 0
+        self.width = 0
+
+    def views(self, width: int, runs: int):
+        need = runs * width
+        if need > self.size:
+            self.size = max(need, _CELL_CHUNK)
+            self.float = [np.empty(self.size, np.float32) for _ in range(2)]
+            self.index = np.empty(self.size, np.int64)
+            self.pad = np.empty(self.size, bool)
+        if width > self.width:
+            self.width = width
+            self.j = np.arange(width)[:, None]
+            self.jf = self.j.astype(np.float32)
+        out, tmp = (f[:need].reshape(width, runs) for f in self.float)
+        return out, tmp, self.index[:need].reshape(width, runs), self.pad[:need].reshape(width, runs)
+
+
+def _cells(hf: HeightField, family: _Family, scratch: _Scratch):
+    """Yield (family batch, item index per run, cell index, values) for every cell of every
+    item, chunk by chunk.
+
+    A chunk is a block of column runs of one length (or padded to a multiple of 8) laid out
+    run-minor, so per-run constants broadcast along contiguous rows.  Padding has value +inf
+    and an index up to ``ny + 8`` past the run's start (possibly past the grid: index a buffer
+    with that margin).  The arrays live in ``scratch`` and are overwritten by the next chunk."""
+    nx, ny = hf.shape
+    xlo, xhi = family.xrange()
+    ylo, yhi = family.yrange()
+    c0 = np.clip(np.ceil((xlo - hf.x0) / hf.cell_x - 0.5), 0, nx).astype(np.int64)
+    c1 = np.clip(np.floor((xhi - hf.x0) / hf.cell_x - 0.5), -1, nx - 1).astype(np.int64)
+    ncol = np.maximum(c1 - c0 + 1, 0)
+    ncol[(yhi < hf.y0) | (ylo > hf.y0 + ny * hf.cell_y)] = 0
+    items = np.flatnonzero(ncol)
+    if not len(items):
+        return
+    # Batches of items with about _PAIR_BATCH (item, column) pairs each.
+    cum = np.cumsum(ncol[items])
+    cuts = np.searchsorted(cum, np.arange(_PAIR_BATCH, cum[-1], _PAIR_BATCH), side="right")
+    for sel in np.split(items, cuts):
+        if not len(sel):
+            continue
+        batch = family.take(sel)
+        n = ncol[sel]
+        k = np.repeat(np.arange(len(sel)), n)
+        col = np.arange(len(k)) - np.repeat(np.cumsum(n) - n, n) + c0[sel][k]
+        dx = hf.x0 + (col + 0.5) * hf.cell_x - batch.ox[k]
+        oy = batch.oy[k]
+        parts = []
+        for lo, hi in batch.intervals(k, dx):
+            r0 = np.clip(np.ceil((oy + lo - hf.y0) / hf.cell_y - 0.5), 0, ny).astype(np.int64)
+            r1 = np.clip(np.floor((oy + hi - hf.y0) / hf.cell_y - 0.5), -1, ny - 1).astype(np.int64)
+            count = r1 - r0 + 1
+            use = count > 0
+            parts.append((k[use], col[use], dx[use], r0[use], count[use], oy[use]))
+        k, col, dx, r0, count, oy = (np.concatenate(p) for p in zip(*parts))
+        if not len(k):
+            continue
+        start = col * ny + r0
+        dy0 = hf.y0 + (r0 + 0.5) * hf.cell_y - oy
+        # Runs of one length together; lengths that fewer than _COMMON_RUNS runs share are
+        # padded to a multiple of 8 cells instead (a raster's bands mostly share a few lengths).
+        lengths, runs_of = np.unique(count, return_counts=True)
+        common = np.isin(count, lengths[runs_of >= _COMMON_RUNS])
+        width = np.where(common, count, 8 * ((count + 7) // 8))
+        for w in np.unique(width).tolist():
+            group = np.flatnonzero(width == w)
+            step = max(1, _CELL_CHUNK // w)
+            for g in range(0, len(group), step):
+                runs = group[g:g + step]
+                out, tmp, index, pad = scratch.views(w, len(runs))
+                batch.values(k[runs], dx[runs], dy0[runs], hf.cell_y, scratch.jf[:w], out, tmp)
+                if count[runs].min() < w:
+                    np.greater_equal(scratch.j[:w], count[runs][None, :], out=pad)
+                    np.copyto(out, np.inf, where=pad)
+                np.add(scratch.j[:w], start[runs][None, :], out=index)
+                yield batch, k[runs], index.reshape(-1), out.reshape(-1)
+
+
+def _runs(chain: _Chain, families: list, longest: int = 5000):
+    """Split the chain into runs of segments applied together (at most ``longest``, so progress
+    is reported); every checked segment that reaches below the stock top is a run of its own,
+    tested against the material before it is applied."""
+    m = len(chain.move)
+    reaching = np.zeros(m, bool)
+    for fam in families:
+        reaching[fam.segment] = True
+    checked = np.flatnonzero(chain.checked & reaching)
+    edges = np.unique(np.concatenate([np.arange(0, m, longest), [m], checked, checked + 1]))
+    return [(int(a), int(b), bool(b - a == 1 and chain.checked[a] and reaching[a]))
+            for a, b in zip(edges[:-1], edges[1:])]
+
+
+class _Simulation:
+    """The height field engine: runs the chains in order and records what it finds."""
+
+    def __init__(self, hf: HeightField, tolerance: float, progress=None):
+        self.hf = hf
+        self.tolerance = tolerance
+        self.progress = progress
+        self.touches = []       # (chain, segment, depth, xy) of checked moves that met material
+        self.scratch = _Scratch()
+
+    def run(self, chains: list):
+        nx, ny = self.hf.shape
+        flat = np.full(nx * ny + ny + 8, np.inf, np.float32)    # margin for the runs' padding
+        flat[:nx * ny] = self.hf.heights.reshape(-1)
+        total = sum(len(ch.move) for ch in chains) or 1
+        done = 0
+        for chain in chains:
+            families = _families(chain, self.hf.top, self.tolerance)
+            for a, b, checked in _runs(chain, families):
+                parts = [fam.take(slice(*np.searchsorted(fam.segment, [a, b]))) for fam in families]
+                if checked:
+                    self._checked(flat, chain, a, parts)
+                else:
+                    for fam in parts:
+                        for _, _, index, values in _cells(self.hf, fam, self.scratch):
+                            np.minimum.at(flat, index, values)
+                done += b - a
+                if self.progress is not None and self.progress(done / total) is False:
+                    raise SimulationCancelled("simulation cancelled")
+        self.hf.heights[...] = flat[:nx * ny].reshape(nx, ny)
+
+    def _checked(self, flat, chain, segment, families):
+        """Apply one checked move, recording it if it reaches into the material as it is
+        before the move."""
+        cells = [(index.copy(), values.copy()) for fam in families
+                 for _, _, index, values in _cells(self.hf, fam, self.scratch)]
+        if not cells:
+            return
+        index = np.concatenate([c[0] for c in cells])
+        values = np.concatenate([c[1] for c in cells])
+        depth = flat[index] - values
+        worst = int(np.argmax(depth))
+        if depth[worst] > TOUCH_TOLERANCE:
+            i, j = divmod(int(index[worst]), self.hf.shape[1])
+            xy = (float(self.hf.x0 + (i + 0.5) * self.hf.cell_x), float(self.hf.y0 + (j + 0.5) * self.hf.cell_y))
+            self.touches.append((chain, segment, float(depth[worst]), xy))
+        np.minimum.at(flat, index, values)
+
+
+def _lowest_move(chains: list, hf: HeightField, i: int, j: int, tolerance: float):
+    """(chain, segment, value) of the move that went lowest over cell (i, j)."""
+    probe = HeightField(hf.x0 + i * hf.cell_x, hf.y0 + j * hf.cell_y, hf.cell_x, hf.cell_y,
+                        np.zeros((1, 1), np.float32), np.ones((1, 1), bool), hf.top, hf.bottom)
+    scratch = _Scratch()
+    best = (None, -1, np.inf)
+    for chain in chains:
+        for fam in _families(chain, hf.top, tolerance):
+            for batch, k, index, values in _cells(probe, fam, scratch):
+                w = int(np.argmin(values))
+                if values[w] < best[2]:
+                    best = (chain, int(batch.segment[k[w % len(k)]]), float(values[w]))
+    return best
+
+
+# ----- design surface ---------------------------------------------------------------------------
+
+def _design_heights(hf: HeightField, design, keep_regions) -> np.ndarray | None:
+    """Lowest Z the finished part allows per cell (-inf: anything may be cut), or None."""
+    if design is None and not keep_regions:
+        return None
+    allowed = np.full(hf.shape, -np.inf)
+    if design is not None:
+        if callable(design):
+            gx, gy = np.meshgrid(hf.x(), hf.y(), indexing="ij")
+            values = np.asarray(design(gx, gy), float)
+            allowed = np.broadcast_to(values, hf.shape).copy()
+        elif hasattr(design, "vertices") and hasattr(design, "faces"):
+            allowed = _mesh_top(hf, np.asarray(design.vertices, float), np.asarray(design.faces, np.int64))
+        else:
+            try:
+                allowed[:] = float(design)
+            except (TypeError, ValueError):
+                raise SimulationError("design must be a function z(x, y), a mesh with vertices and faces, or a number")
+        if np.isnan(allowed).any():
+            raise SimulationError("design surface has NaN heights")
+    for item in keep_regions or ():
+        shape, z_min = (item if isinstance(item, tuple) else (item, hf.top))
+        area = _keep_area(shape)
+        x0, y0, x1, y1 = area.bounds()
+        i0, i1 = _index_range(hf.x0, hf.cell_x, hf.shape[0], x0, x1)
+        j0, j1 = _index_range(hf.y0, hf.cell_y, hf.shape[1], y0, y1)
+        if i0 >= i1 or j0 >= j1:
+            continue
+        gx, gy = np.meshgrid(hf.x()[i0:i1], hf.y()[j0:j1], indexing="ij")
+        inside = rg.contains_points(area, np.column_stack([gx.ravel(), gy.ravel()])).reshape(gx.shape)
+        block = allowed[i0:i1, j0:j1]
+        block[inside] = np.maximum(block[inside], float(z_min))
+    return allowed
+
+
+def _keep_area(shape) -> CrossSection:
+    """A keep region: a CrossSection, one closed loop ((k, 2) points), or a list of loops read
+    even-odd (letters with their counters: the counters are not kept)."""
+    if isinstance(shape, CrossSection):
+        return shape
+    array = np.asarray(shape, dtype=object if isinstance(shape, list) else float)
+    if array.dtype != object and array.ndim == 2:
+        return rg.from_loops([array], "keep region")
+    return rg.from_loops(list(shape), "keep region")
+
+
+def _index_range(origin, cell, n, lo, hi):
+    return (int(np.clip(math.ceil((lo - origin) / cell - 0.5), 0, n)),
+            int(np.clip(math.floor((hi - origin) / cell - 0.5) + 1, 0, n)))
+
+
+def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Upper envelope of a triangle mesh over the grid (a z-buffer seen from above)."""
+    top = np.full(hf.shape, -np.inf)
+    flat = top.reshape(-1)
+    nx, ny = hf.shape
+    tri = vertices[faces]
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    area2 = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    keep = np.abs(area2) > 1e-12
+    tri, area2 = tri[keep], area2[keep]
+    for start in range(0, len(tri), _ITEM_BATCH):
+        t = tri[start:start + _ITEM_BATCH]
+        sign = np.sign(area2[start:start + _ITEM_BATCH])
+        c0 = np.clip(np.ceil((t[:, :, 0].min(1) - hf.x0) / hf.cell_x - 0.5), 0, nx).astype(np.int64)
+        c1 = np.clip(np.floor((t[:, :, 0].max(1) - hf.x0) / hf.cell_x - 0.5), -1, nx - 1).astype(np.int64)
+        ncol = np.maximum(c1 - c0 + 1, 0)
+        k = np.repeat(np.arange(len(t)), ncol)
+        col = np.arange(len(k)) - np.repeat(np.cumsum(ncol) - ncol, ncol) + c0[k]
+        x = hf.x0 + (col + 0.5) * hf.cell_x
+        lo = np.full(len(k), -np.inf)
+        hi = np.full(len(k), np.inf)
+        for e in range(3):
+            p, q = t[k, e], t[k, (e + 1) % 3]
+            # inside: sign * cross(q - p, X - p) >= 0, linear in y
+            ex, ey = q[:, 0] - p[:, 0], q[:, 1] - p[:, 1]
+            e_lo, e_hi = _halfline(sign[k] * (ex * (-p[:, 1]) - ey * (x - p[:, 0])) + 1e-9, sign[k] * ex)
+            lo, hi = np.maximum(lo, e_lo), np.minimum(hi, e_hi)
+        r0 = np.clip(np.ceil((lo - hf.y0) / hf.cell_y - 0.5), 0, ny).astype(np.int64)
+        r1 = np.clip(np.floor((hi - hf.y0) / hf.cell_y - 0.5), -1, ny - 1).astype(np.int64)
+        cnt = np.maximum(r1 - r0 + 1, 0)
+        total = int(cnt.sum())
+        if not total:
+            continue
+        j = np.arange(total) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+        row = np.repeat(r0, cnt) + j
+        ke = np.repeat(k, cnt)
+        xe = np.repeat(x, cnt)
+        ye = hf.y0 + (row + 0.5) * hf.cell_y
+        p0, p1, p2 = t[ke, 0], t[ke, 1], t[ke, 2]
+        # z on the triangle's plane
+        u1, u2 = p1 - p0, p2 - p0
+        normal = np.cross(u1, u2)
+        z = p0[:, 2] - (normal[:, 0] * (xe - p0[:, 0]) + normal[:, 1] * (ye - p0[:, 1])) / normal[:, 2]
+        np.maximum.at(flat, np.repeat(col, cnt) * ny + row, z)
+    return top
+
+
+# ----- safety checks ------------------------------------------------------------------------------
+
+def _travel_findings(ops: list, travel: dict) -> list:
+    limits = {}
+    for axis, bounds in travel.items():
+        name = str(axis).lower()
+        if name not in ("x", "y", "z", "c"):
+            raise SimulationError(f"travel limits: unknown axis {axis!r} (use x, y, z, c)")
+        lo, hi = (float(v) for v in bounds)
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
+            raise SimulationError(f"travel limits for {axis}: need finite (min, max) with min <= max, got {bounds!r}")
+        limits[name] = (lo, hi)
+    findings = []
+    for index, op in enumerate(ops):
+        if not len(op):
+            continue
+        xyz, c, move = _machine_samples(op)
+        values = {"x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2], "c": c}
+        for axis, (lo, hi) in limits.items():
+            if axis == "c" and "c" not in op.rotary:
+                continue
+            v = values[axis]
+            for side, bad in (("below", v < lo - 1e-9), ("above", v > hi + 1e-9)):
+                if bad.any():
+                    first = int(np.flatnonzero(bad)[0])
+                    worst = float(v[bad].min() if side == "below" else v[bad].max())
+                    moves = np.unique(move[bad])
+                    limit = lo if side == "below" else hi
+                    findings.append(Finding(
+                        "travel", f"{op.name}: move {move[first]} goes {side} the {axis.upper()} travel limit "
+                        f"{limit:g} (reaches {worst:.3f}; {len(moves)} move(s))", index, int(move[first])))
+    return findings
+
+
+def _findings(sim: _Simulation, chains: list, ops: list, design_z) -> list:
+    findings = []
+    for chain, segment, depth, xy in sim.touches:
+        op = ops[chain.op_index]
+        move = int(chain.move[segment])
+        if chain.rapid[segment]:
+            findings.append(Finding("rapid_in_material", f"{op.name}: rapid move {move} runs {depth:.3f} mm into "
+                                    f"material at ({xy[0]:.2f}, {xy[1]:.2f})", chain.op_index, move, xy, depth))
+        else:
+            findings.append(Finding("plunge", f"{op.name}: {op.tool.describe()} cannot plunge, but move {move} "
+                                    f"feeds {depth:.3f} mm straight down into material at ({xy[0]:.2f}, {xy[1]:.2f})",
+                                    chain.op_index, move, xy, depth))
+    hf = sim.hf
+    if design_z is not None:
+        material_floor = np.minimum(design_z, hf.top)
+        depth = np.where(hf.inside, material_floor - np.maximum(hf.heights, hf.bottom), -np.inf)
+        gouged = depth > GOUGE_TOLERANCE
+        if gouged.any():
+            i, j = np.unravel_index(int(np.argmax(depth)), hf.shape)
+            worst = float(depth[i, j])
+            xy = (float(hf.x()[i]), float(hf.y()[j]))
+            chain, segment, _ = _lowest_move(chains, hf, int(i), int(j), sim.tolerance)
+            move = int(chain.move[segment])
+            area = float(gouged.sum() * hf.cell_x * hf.cell_y)
+            findings.append(Finding("gouge", f"{ops[chain.op_index].name}: move {move} cuts {worst:.3f} mm below the "
+                                    f"design at ({xy[0]:.2f}, {xy[1]:.2f}); {area:.1f} mm^2 gouged in all",
+                                    chain.op_index, move, xy, worst))
+    return findings
+
+
+def check(program_or_operations, stock, *, cell: float = 0.1, tolerance: float = 0.03, design=None,
+          keep_regions=None, travel: dict | None = None, no_plunge_tools=(), progress=None) -> list:
+    """Safety findings alone (runs the height field engine); see :func:`simulate`."""
+    return simulate(program_or_operations, stock, engine="heightfield", cell=cell, tolerance=tolerance,
+                    design=design, keep_regions=keep_regions, travel=travel, no_plunge_tools=no_plunge_tools,
+                    progress=progress).findings
+
+
+# ----- manifold engine -----------------------------------------------------------------------------
+
+def _segments_for(radius: float, tolerance: float) -> int:
+    """Polygon sides (a multiple of 4) so a faceted sphere of this radius stays within
+    ``tolerance`` of the true one (a facet's centre sags about twice the edge's sagitta)."""
+    ratio = max(-1.0, 1.0 - tolerance / (2.0 * radius))
+    n = math.ceil(math.pi / max(math.acos(ratio), 1e-6))
+    return int(min(max(4 * math.ceil(n / 4), 8), 720))
+
+
+def _tool_points(tool: Tool, tolerance: float, height: float, inset: float = 0.0) -> np.ndarray:
+    """Vertices of the tool, tip at the origin, up to ``height`` above the tip, on the surface
+    of the tool shrunk by ``inset`` all round (so their hull lies inside the tool).
+
+    Ball, flat and bull are a flat disc rounded by a corner radius; shrinking by ``inset``
+    lifts the bottom by ``inset`` and takes ``inset`` off the corner radius (a corner sharper
+    than ``inset`` becomes square on a disc ``inset`` smaller)."""
+    r = tool.radius
+    n = _segments_for(r, tolerance)
+    around = np.arange(n) * (2 * math.pi / n)
+    if tool.kind in TIP_ANGLE_DEG:
+        rings = [(0.0, 0.0), (r, r / math.tan(math.radians(TIP_ANGLE_DEG[tool.kind]) / 2))]
+    else:
+        rc = max(tool.corner_radius - inset, 0.0)
+        flat = r - inset - rc
+        rings = [(flat, inset)]                 # (radius, z)
+        steps = max(1, _segments_for(rc, tolerance) // 4) if rc > 0 else 0
+        for beta in np.arange(1, steps + 1) * (math.pi / 2 / max(steps, 1)):
+            rings.append((flat + rc * math.sin(beta), inset + rc - rc * math.cos(beta)))
+    rings.append((rings[-1][0], max(height, rings[-1][1] + 1.0)))
+    pts = []
+    for radius, z in rings:
+        if radius < 1e-12:
+            pts.append(np.array([[0.0, 0.0, z]]))
+        else:
+            pts.append(np.column_stack([radius * np.cos(around), radius * np.sin(around), np.full(n, z)]))
+    return np.vstack(pts)
+
+
+def _straight_runs(points: np.ndarray, deviation: float) -> list:
+    """Split a polyline into runs of consecutive points that all lie within ``deviation`` of
+    the chord of their run; returns the indices where runs start and end (greedy: the run
+    length is doubled, then bisected)."""
+
+    def fits(i, j):
+        a, d = points[i], points[j] - points[i]
+        inner = points[i + 1:j] - a
+        t = np.clip(inner @ d / max(d @ d, 1e-300), 0.0, 1.0)
+        return not len(inner) or float(np.max(np.linalg.norm(inner - t[:, None] * d, axis=1))) <= deviation
+
+    ends = [0]
+    last = len(points) - 1
+    i = 0
+    while i < last:
+        good = 1
+        while i + 2 * good <= last and fits(i, i + 2 * good):
+            good *= 2
+        bad = min(2 * good, last - i + 1)
+        while bad - good > 1:
+            mid = (good + bad) // 2
+            if fits(i, i + mid):
+                good = mid
+            else:
+                bad = mid
+        i += good
+        ends.append(i)
+    return ends
+
+
+def _stock_solid(stock, tolerance: float) -> Manifold:
+    if isinstance(stock, BoxStock):
+        return Manifold.cube([stock.x1 - stock.x0, stock.y1 - stock.y0, stock.z1 - stock.z0]).translate(
+            [stock.x0, stock.y0, stock.z0])
+    n = _segments_for(stock.radius, tolerance / 2)
+    return Manifold.cylinder(stock.height, stock.radius, stock.radius, n).translate([0, 0, -stock.height])
+
+
+def _manifold_sweep(stock, chains: list, tolerance: float, chunk: int, progress) -> Manifold:
+    """Stock minus the swept tool, in chunks of ``chunk`` swept pieces.
+
+    A piece is the hull of the tool at both ends of a move.  A nearly straight run of moves
+    (within a sixth of ``tolerance`` of its chord, so the hull of its points is within a third
+    of the path) makes one piece, with the tool shrunk by that third so the piece stays inside
+    the true sweep; its facets take the other two thirds."""
+    solid = _stock_solid(stock, tolerance)
+    (bx0, by0, _), (bx1, by1, _) = _stock_box(stock)
+    lowest = min(float(ch.points[:, 2].min()) for ch in chains)
+    height = stock.top + 1.0 - lowest         # the shank reaches above the stock from any depth
+    merge = tolerance / 3
+    pieces = []
+    for chain in chains:
+        p = chain.points
+        r = chain.tool.radius
+        whole = _tool_points(chain.tool, tolerance, height)
+        shrunk = _tool_points(chain.tool, tolerance - merge, height, inset=merge)
+        # cones are never merged: only the disc-and-corner tools are shrunk here
+        ends = list(range(len(p))) if chain.tool.kind in TIP_ANGLE_DEG else _straight_runs(p, merge / 2)
+        for i, j in zip(ends[:-1], ends[1:]):
+            run = p[i:j + 1]
+            lo, hi = run.min(axis=0), run.max(axis=0)
+            if lo[2] < stock.top and hi[0] + r > bx0 and lo[0] - r < bx1 and hi[1] + r > by0 and lo[1] - r < by1:
+                pieces.append((whole if j == i + 1 else shrunk, run))
+    for start in range(0, len(pieces), chunk):
+        swept = [Manifold.hull_points((run[:, None, :] + tool[None, :, :]).reshape(-1, 3))
+                 for tool, run in pieces[start:start + chunk]]
+        solid = solid - Manifold.batch_boolean(swept, OpType.Add)
+        solid.num_tri()                        # evaluate now: a natural progress point
+        if progress is not None and progress(min(1.0, (start + chunk) / len(pieces))) is False:
+            raise SimulationCancelled("simulation cancelled")
+    return solid
+
+
+def _stock_box(stock):
+    if isinstance(stock, BoxStock):
+        return (stock.x0, stock.y0, stock.z0), (stock.x1, stock.y1, stock.z1)
+    return (-stock.radius, -stock.radius, -stock.height), (stock.radius, stock.radius, 0.0)
+
+
+def _manifold_arrays(solid: Manifold):
+    mesh = solid.to_mesh()
+    return np.asarray(mesh.vert_properties[:, :3], float), np.asarray(mesh.tri_verts, np.int64)
+
+
+# ----- height field -> mesh -------------------------------------------------------------------------
+
+def _heightfield_mesh(hf: HeightField, stock, max_cells):
+    heights = np.where(hf.inside, hf.heights, hf.top)
+    heights = np.clip(heights, hf.bottom + 1e-3, hf.top).astype(float)
+    nx, ny = heights.shape
+    block = 1
+    if max_cells is not None and nx * ny > max_cells:
+        block = math.ceil(math.sqrt(nx * ny / max_cells))
+        px, py = -nx % block, -ny % block
+        padded = np.pad(heights, ((0, px), (0, py)), mode="edge")
+        heights = padded.reshape(padded.shape[0] // block, block, padded.shape[1] // block, block).min(axis=(1, 3))
+    (x0, y0, _), (x1, y1, _) = _stock_box(stock)
+    cx, cy = block * hf.cell_x, block * hf.cell_y
+    # Vertices at cell centres plus a ring on the stock's edge (heights copied outward).
+    xs = np.concatenate([[x0], np.minimum(x0 + (np.arange(heights.shape[0]) + 0.5) * cx, x1), [x1]])
+    ys = np.concatenate([[y0], np.minimum(y0 + (np.arange(heights.shape[1]) + 0.5) * cy, y1), [y1]])
+    z = np.pad(heights, 1, mode="edge")
+    gx, gy = np.meshgrid(xs, ys, indexing="ij")
+    top_vertices = np.column_stack([gx.ravel(), gy.ravel(), z.ravel()])
+    w, h = len(xs), len(ys)
+    ids = np.arange(w * h).reshape(w, h)
+    a, b, c, d = ids[:-1, :-1].ravel(), ids[1:, :-1].ravel(), ids[1:, 1:].ravel(), ids[:-1, 1:].ravel()
+    top_faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    # The boundary ring, counter-clockwise seen from above, then walls and a bottom fan.
+    ring = np.concatenate([ids[:, 0], ids[-1, 1:], ids[-2::-1, -1], ids[0, -2:0:-1]])
+    bottom = top_vertices[ring].copy()
+    bottom[:, 2] = hf.bottom
+    n_top = len(top_vertices)
+    low = n_top + np.arange(len(ring))
+    centre = n_top + len(ring)
+    nxt = np.roll(np.arange(len(ring)), -1)
+    walls = np.concatenate([np.column_stack([ring, low, low[nxt]]), np.column_stack([ring, low[nxt], ring[nxt]])])
+    fan = np.column_stack([np.full(len(ring), centre), low[nxt], low])
+    vertices = np.vstack([top_vertices, bottom, [[(x0 + x1) / 2, (y0 + y1) / 2, hf.bottom]]])
+    faces = np.vstack([top_faces, walls, fan])
+    if isinstance(stock, CylinderStock):
+        block_solid = Manifold(Mesh(vert_properties=vertices.astype(np.float32), tri_verts=faces.astype(np.uint32)))
+        return _manifold_arrays(block_solid ^ _stock_solid(stock, max(cx, cy) / 4))
+    return vertices, faces
+
+
+# ----- the one call -----------------------------------------------------------------------------------
+
+def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell: float = 0.1,
+             tolerance: float = 0.03, design=None, keep_regions=None, travel: dict | None = None,
+             no_plunge_tools=(), progress=None, chunk: int = 1000) -> SimulationResult:
+    """Cut the stock with the program and check it.
+
+    ``stock``: a BoxStock, a CylinderStock or (x0, y0, z0, x1, y1, z1).
+    ``engine``: "heightfield" (Z-map with ``cell`` mm columns) or "manifold" (exact solids;
+    its safety checks still run on a height field of ``cell``).
+    ``tolerance``: how far the tool shape may be approximated (manifold facets, the bull
+    nose's torus ring, cone stamps); always on the side of leaving material.
+    ``design``: the finished part, for gouge checks: a function z(x, y) on arrays, a mesh
+    (anything with ``vertices`` and ``faces``, e.g. trimesh.Trimesh: its upper envelope), or
+    a number (a floor plane).  ``keep_regions``: 2-D loops where nothing may be cut, or
+    (loop, z_min) pairs.  ``travel``: {"x": (min, max), ...} machine limits (x, y, z, c).
+    ``no_plunge_tools``: tool numbers that cannot feed straight down (see :func:`can_plunge`).
+    ``progress(fraction)`` is called as work completes; returning False cancels
+    (:class:`SimulationCancelled`).
+    """
+    started = time.perf_counter()
+    if engine not in ENGINES:
+        raise SimulationError(f"engine must be one of {ENGINES}, got {engine!r}")
+    for name, value in (("cell", cell), ("tolerance", tolerance)):
+        if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
+            raise SimulationError(f"{name} must be a positive number of mm, got {value!r}")
+    if not (isinstance(chunk, int) and chunk > 0):
+        raise SimulationError(f"chunk must be a positive number of moves, got {chunk!r}")
+    stock = as_stock(stock)
+    ops = _operations(program_or_operations)
+    chains = _chains(ops, no_plunge_tools)
+    hf = _grid(stock, float(cell))
+    design_z = _design_heights(hf, design, keep_regions)
+    findings = _travel_findings(ops, travel) if travel else []
+    solid = None
+    if engine == "manifold":
+        solid = _manifold_sweep(stock, chains, tolerance, chunk, _part_of(progress, 0.0, 0.8))
+        progress = _part_of(progress, 0.8, 1.0)      # the safety checks still run on a height field
+    sim = _Simulation(hf, tolerance, progress)
+    sim.run(chains)
+    findings += _findings(sim, chains, ops, design_z)
+    seconds = time.perf_counter() - started
+    if solid is not None:
+        removed = _stock_solid(stock, tolerance).volume() - solid.volume()
+        return SimulationResult("manifold", float(removed), seconds, None, tolerance, findings, stock, solid=solid)
+    return SimulationResult("heightfield", hf.removed_volume(), seconds, hf.cell_x, tolerance, findings, stock,
+                            heightfield=hf)
+
+
+def _part_of(progress, start: float, end: float):
+    """A progress callback reporting into [start, end] of the caller's."""
+    if progress is None:
+        return None
+    return lambda fraction: progress(start + (end - start) * fraction)
