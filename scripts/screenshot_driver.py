@@ -63,13 +63,15 @@ def only_panels(*prefixes):
             bpy.utils.register_class(cls)
 
 
-def show_cam_tab():
+def show_cam_tab(color_type="OBJECT"):
+    """Sidebar open on CAM; Solid shading by object colour, or by the colour attribute ("VERTEX":
+    the simulated stock by depth, the turn-mill reach)."""
     window, area, region, sidebar = view3d()
     space = area.spaces.active
     space.show_region_ui = True
     space.overlay.show_overlays = True
     space.shading.type = "SOLID"
-    space.shading.color_type = "OBJECT"
+    space.shading.color_type = color_type
     area.tag_redraw()
 
 
@@ -131,7 +133,76 @@ def elbow_step():
     frame_all()
 
 
+def run_in_view(operator, **kwargs):
+    window, area, region, _ = view3d()
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        operator(**kwargs)
+
+
+def simulate_step():
+    scene = bpy.context.scene
+    samples = module("operators.samples")
+    samples.clear_scene(scene)
+    samples.set_millimetres(scene)
+    samples.name_plate(scene)
+    run_in_view(bpy.ops.kezuri.simulate, workflow="ENGRAVE")
+    scene.kezuri.stock.plate.hide_set(True)
+    scene.objects["Letters"].hide_set(True)
+    only_panels("KEZURI_PT_simulate")
+    show_cam_tab("VERTEX")
+    frame_all()
+
+
+def rotary_step():
+    scene = bpy.context.scene
+    samples = module("operators.samples")
+    samples.clear_scene(scene)
+    samples.set_millimetres(scene)
+    samples.rotary_block(scene)
+    bpy.context.view_layer.objects.active = scene.objects["bowl"]
+    run_in_view(bpy.ops.kezuri.rotary_generate)
+    only_panels("KEZURI_PT_rotary")
+    show_cam_tab()
+    frame_all()
+
+
+def stepnc_step():
+    scene = bpy.context.scene
+    samples = module("operators.samples")
+    samples.clear_scene(scene)
+    samples.set_millimetres(scene)
+    stepnc = module("toolpath.stepnc")
+    program = module("toolpath.program")
+    pockets = [stepnc.PocketSpec("POCKET1", ((10, 10), (50, 10), (50, 40), (10, 40)), 8.0),
+               stepnc.PocketSpec("POCKET2", ((65, 15), (110, 15), (110, 35), (85, 35), (85, 70), (65, 70)), 5.0)]
+    path = os.path.join(OUT, "sample.stp")
+    os.makedirs(OUT, exist_ok=True)
+    with open(path, "w") as stream:
+        stream.write(stepnc.pockets_to_part21(((0, 0, -20), (120, 80, 0)), pockets,
+                                              program.Tool(1, "flat", 6.0, flute_length=20.0), name="SAMPLE PLATE"))
+    run_in_view(bpy.ops.kezuri.import_stepnc, filepath=path)
+    scene.kezuri.stepnc.active_step = 1
+    run_in_view(bpy.ops.kezuri.stepnc_generate)
+    only_panels("KEZURI_PT_stepnc")
+    show_cam_tab()
+    frame_all()
+
+
+def turnmill_step():
+    scene = bpy.context.scene
+    samples = module("operators.samples")
+    samples.clear_scene(scene)
+    samples.set_millimetres(scene)
+    samples.turnmill_part(scene)
+    run_in_view(bpy.ops.kezuri.turnmill_classify)
+    only_panels("KEZURI_PT_turnmill")
+    show_cam_tab("VERTEX")
+    frame_all()
+
+
 STEPS = [("setup", maximise_viewport, None), ("cam tab", click_cam_tab, None), ("engrave", engrave_step, "engrave"),
+         ("simulate", simulate_step, "simulate"), ("rotary", rotary_step, "rotary"),
+         ("stepnc", stepnc_step, "stepnc"), ("turnmill", turnmill_step, "turnmill"),
          ("sheet", sheet_step, "sheet-metal"), ("elbow", elbow_step, "elbow")]
 state = {"index": 0, "pending": None}
 
