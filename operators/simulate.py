@@ -120,8 +120,7 @@ def store_findings(scene, job: SimulationJob):
 
 
 class KEZURI_OT_simulate(bpy.types.Operator):
-    """Cut the stock with the job's toolpaths and check for gouges, rapids through material and
-    moves outside the machine"""
+    """Cut the stock with the job's toolpaths and check for gouges, rapids through material and moves outside the machine"""  # noqa: E501
 
     bl_idname = "kezuri.simulate"
     bl_label = "Simulate"

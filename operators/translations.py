@@ -25,6 +25,9 @@ OPERATOR = "Operator"   # bpy.app.translations.contexts.operator_default
 
 # Operator labels (bl_label): entered in both the "Operator" and the default context.
 OPERATOR_LABELS = {
+    # simulate.py
+    "Simulate": "シミュレーション",
+    "Show Finding": "指摘箇所を表示",
     # preferences.py
     "Add Tool": "工具を追加",
     "Remove Tool": "工具を削除",
@@ -65,6 +68,9 @@ OPERATOR_TEXTS = {
 
 # Operator tooltips (the operator classes' docstrings).
 OPERATOR_DESCRIPTIONS = {
+    "Cut the stock with the job's toolpaths and check for gouges, rapids through material and moves outside "
+    "the machine": "ジョブの工具経路で素材を削り、削り込み・材料内の早送り・機械のストローク外の移動を調べます",
+    "Put the 3D cursor on a finding and centre the view on it": "指摘箇所に3Dカーソルを置き、ビューの中心に表示します",
     "Add a tool to the library": "工具ライブラリに工具を追加します",
     "Remove the selected tool from the library": "選択した工具を工具ライブラリから削除します",
     "Use a tool from the library for the engraving's roughing ball or finishing flat":
@@ -111,6 +117,8 @@ OPERATOR_DESCRIPTIONS = {
 
 # Panel and menu labels (bl_label), and the fixed texts of layout.label().
 PANEL_TEXTS = {
+    "Simulate & Check": "シミュレーションと検査",
+    "No findings": "指摘なし",
     "Machine & Stock": "機械と素材",
     "Engrave": "彫刻",
     "Gouge Texture (Roughing)": "彫刻刀跡（荒加工）",
@@ -134,6 +142,24 @@ PANEL_TEXTS = {
 # Property names and descriptions, enum items (operators/properties.py, preferences.py and the
 # operators' own properties).
 PROPERTY_TEXTS = {
+    # Simulation
+    "Job": "ジョブ",
+    "Engraving": "彫刻",
+    "The gouge-texture name plate": "彫刻刀跡の表札",
+    "The pockets on the rotating table": "回転テーブルのポケット",
+    "The imported ISO 14649 workplan": "読み込んだISO 14649ワークプラン",
+    "Kind": "種類",
+    "Location": "位置",
+    "Message": "メッセージ",
+    "Move": "移動",
+    "Cell Size": "セルサイズ",
+    "Height-field grid spacing (mm)": "ハイトフィールドの格子間隔（mm）",
+    "Engine": "エンジン",
+    "Height Field": "ハイトフィールド",
+    "Fast Z-map of the exact tool envelope (3-axis and C-X-Z jobs)":
+        "工具包絡面を正確に求める高速Zマップ（3軸とC-X-Zのジョブ）",
+    "Exact Solid": "厳密ソリッド",
+    "manifold3d booleans of the swept tools: exact, slower": "工具の掃引体のmanifold3dブーリアン：正確だが低速",
     # Posts and work offsets
     "Post": "ポストプロセッサ",
     "Controller the NC program is written for": "NCプログラムの出力先の制御装置",
