@@ -294,10 +294,17 @@ class PathBuilder:
         self._add(FEED, (x, y, z), self.feed if feed is None else feed)
 
     def polyline(self, points: np.ndarray, feed=None):
-        points = np.asarray(points, dtype=float)
+        """Feed moves through every point (k, 3), appended in one go."""
+        points = np.asarray(points, dtype=float).reshape(-1, 3)
+        if not len(points):
+            return
         f = self.feed if feed is None else feed
-        for p in points:
-            self._add(FEED, p, f)
+        count = len(points)
+        self._kind.extend([FEED] * count)
+        self._xyz.extend(map(tuple, points.tolist()))
+        self._feed.extend([f] * count)
+        self._center.extend([(np.nan, np.nan, np.nan)] * count)
+        self.position = self._xyz[-1]
 
     def arc(self, x, y, z, cx, cy, clockwise: bool, feed=None):
         self._add(ARC_CW if clockwise else ARC_CCW, (x, y, z), self.feed if feed is None else feed,
