@@ -202,8 +202,6 @@ def stepnc_sample(out_dir: str) -> str:
 
 
 def stepnc_job(args) -> dict:
-    import bpy
-
     from kezuri.operators import preview
     from kezuri.operators import stepnc as shell
     from kezuri.toolpath import stepnc

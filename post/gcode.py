@@ -79,15 +79,24 @@ class GcodePost:
     def n(self, value: float) -> str:
         return fmt(value, self.decimals)
 
+    # Lines the header adds after the units: a dialect's conventions worth stating in the file.
+    conventions: tuple = ()
+
+    def operation_seconds(self, op: Operation, rapid_rate: float) -> float:
+        """Estimated time of one operation on this machine."""
+        return op.cycle_time(rapid_rate)
+
     def header(self, program: Program) -> list:
         lines = [f"(KEZURI CAM - {comment_text(program.name)})", f"(POST: {comment_text(self.name)})",
-                 "(UNITS: MM)"]
+                 "(UNITS: MM)", *self.conventions]
         for tool in program.tools():
             lines.append(f"(TOOL: {comment_text(tool.describe())})")
+        total = 0.0
         for op in program.operations:
-            lines.append(f"(OPERATION: {comment_text(op.name)} - T{op.tool.number} - "
-                         f"{format_duration(op.cycle_time(program.rapid_rate))})")
-        lines.append(f"(ESTIMATED CYCLE TIME: {format_duration(program.cycle_time())})")
+            seconds = self.operation_seconds(op, program.rapid_rate)
+            total += seconds
+            lines.append(f"(OPERATION: {comment_text(op.name)} - T{op.tool.number} - {format_duration(seconds)})")
+        lines.append(f"(ESTIMATED CYCLE TIME: {format_duration(total)})")
         for note in program.notes:
             lines.append(f"(NOTE: {comment_text(note)})")
         return lines

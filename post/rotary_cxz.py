@@ -27,7 +27,7 @@ import numpy as np
 from ..toolpath import rotary
 from ..toolpath.program import FEED, RAPID, Operation, Program
 from .fanuc import FanucPost
-from .gcode import GcodePost, PostError, comment_text, fmt, format_duration
+from .gcode import GcodePost, PostError, comment_text, fmt
 from .linuxcnc import LinuxCNCPost
 
 
@@ -60,22 +60,12 @@ class RotaryCXZPost(GcodePost):
             if np.any(np.abs(op.xyz[:, 1]) > 1e-9):
                 raise PostError(f"{what}: the machine has no Y axis; Y must be 0")
 
-    def header(self, program: Program) -> list:
-        lines = [f"(KEZURI CAM - {comment_text(program.name)})", f"(POST: {comment_text(self.name)})",
-                 "(UNITS: MM)",
-                 "(MACHINE: C-X-Z ROTARY TABLE. X = -R FROM THE AXIS. +C TURNS THE TABLE CLOCKWISE SEEN FROM THE TOOL)",
-                 "(FEED: G93 INVERSE TIME, F = 1/MIN FROM THE PATH LENGTH ON THE PART. Z = TOOL TIP)"]
-        for tool in program.tools():
-            lines.append(f"(TOOL: {comment_text(tool.describe())})")
-        total = 0.0
-        for op in program.operations:
-            seconds = rotary.cycle_time(op, program.rapid_rate, self.max_table_rpm)
-            total += seconds
-            lines.append(f"(OPERATION: {comment_text(op.name)} - T{op.tool.number} - {format_duration(seconds)})")
-        lines.append(f"(ESTIMATED CYCLE TIME: {format_duration(total)})")
-        for note in program.notes:
-            lines.append(f"(NOTE: {comment_text(note)})")
-        return lines
+    conventions = ("(MACHINE: C-X-Z ROTARY TABLE. X = -R FROM THE AXIS. +C TURNS THE TABLE CLOCKWISE SEEN FROM THE "
+                   "TOOL)", "(FEED: G93 INVERSE TIME, F = 1/MIN FROM THE PATH LENGTH ON THE PART. Z = TOOL TIP)")
+
+    def operation_seconds(self, op: Operation, rapid_rate: float) -> float:
+        """The table's speed limit counts too."""
+        return rotary.cycle_time(op, rapid_rate, self.max_table_rpm)
 
     def to_text(self, program: Program) -> str:
         self.check(program)

@@ -366,7 +366,7 @@ def test_finishing_before_its_roughing_is_reported_not_replanned(ex1, ex1_progra
 
 
 def test_finishing_region_is_what_roughing_leaves(ex1):
-    rough, finish = ex1.workingstep(13), ex1.workingstep(14)
+    rough = ex1.workingstep(13)
     leftover = finishing_leftover(rough.its_feature, [rough.its_operation])
     # the 1 mm allowance_side along the walls (the R9 tool leaves nothing more in the R10 corners)
     perimeter = 2 * (30 + 60) + 2 * math.pi * POCKET_RADIUS

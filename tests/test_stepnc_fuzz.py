@@ -4,8 +4,6 @@ import os
 import random
 import re
 
-import pytest
-
 from kezuri.toolpath import stepnc
 from kezuri.toolpath.errors import InputError
 
