@@ -10,6 +10,18 @@ class KezuriPanel:
     bl_category = "CAM"
 
 
+def property_subpanel(idname: str, label: str, parent: str, group: str, names: tuple):
+    """A sub-panel, closed at first, listing ``names`` of ``scene.kezuri.<group>``."""
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = getattr(context.scene.kezuri, group)
+        for name in names:
+            layout.prop(props, name)
+    return type(idname, (KezuriPanel, bpy.types.Panel), {"bl_idname": idname, "bl_label": label, "bl_parent_id": parent,
+                                                          "bl_options": {"DEFAULT_CLOSED"}, "draw": draw})
+
+
 class KEZURI_PT_machine(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_machine"
     bl_label = "Machine & Stock"
@@ -59,35 +71,6 @@ class KEZURI_PT_engrave_texture(KezuriPanel, bpy.types.Panel):
             layout.prop(props, name)
 
 
-class KEZURI_PT_engrave_finish(KezuriPanel, bpy.types.Panel):
-    bl_idname = "KEZURI_PT_engrave_finish"
-    bl_label = "Band & Burr Finishing"
-    bl_parent_id = "KEZURI_PT_engrave"
-    bl_options = {"DEFAULT_CLOSED"}
-
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        props = context.scene.kezuri.engrave
-        for name in ("finish_diameter", "finish_tool_number", "band_width", "band_depth", "band_stepover"):
-            layout.prop(props, name)
-
-
-class KEZURI_PT_engrave_feeds(KezuriPanel, bpy.types.Panel):
-    bl_idname = "KEZURI_PT_engrave_feeds"
-    bl_label = "Feeds & Heights"
-    bl_parent_id = "KEZURI_PT_engrave"
-    bl_options = {"DEFAULT_CLOSED"}
-
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        props = context.scene.kezuri.engrave
-        for name in ("rough_rpm", "rough_feed", "finish_rpm", "finish_feed", "plunge_feed", "clearance_z",
-                     "safe_z", "show_rapids"):
-            layout.prop(props, name)
-
-
 class KEZURI_PT_rotary(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_rotary"
     bl_label = "Rotary Pockets"
@@ -113,21 +96,6 @@ class KEZURI_PT_rotary(KezuriPanel, bpy.types.Panel):
         row.operator("kezuri.rotary_generate", icon="DRIVER_ROTATIONAL_DIFFERENCE")
         layout.prop(scene.kezuri.rotary, "post")
         layout.operator("kezuri.rotary_export", icon="EXPORT")
-
-
-class KEZURI_PT_rotary_settings(KezuriPanel, bpy.types.Panel):
-    bl_idname = "KEZURI_PT_rotary_settings"
-    bl_label = "Bit, Feeds & Pitch"
-    bl_parent_id = "KEZURI_PT_rotary"
-    bl_options = {"DEFAULT_CLOSED"}
-
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        props = context.scene.kezuri.rotary
-        for name in ("tool_diameter", "tool_number", "flute_length", "spindle_rpm", "cutting_speed", "plunge_speed",
-                     "spacing", "stepover", "step_down", "allowance", "wall_stepover", "max_table_rpm"):
-            layout.prop(props, name)
 
 
 class KEZURI_PT_stepnc(KezuriPanel, bpy.types.Panel):
@@ -183,20 +151,6 @@ class KEZURI_PT_turnmill(KezuriPanel, bpy.types.Panel):
         row.scale_y = 1.4
         row.operator("kezuri.turnmill_generate", icon="MOD_SCREW")
         layout.operator("kezuri.turnmill_export", icon="EXPORT")
-
-
-class KEZURI_PT_turnmill_settings(KezuriPanel, bpy.types.Panel):
-    bl_idname = "KEZURI_PT_turnmill_settings"
-    bl_label = "Tool & Tolerance"
-    bl_parent_id = "KEZURI_PT_turnmill"
-    bl_options = {"DEFAULT_CLOSED"}
-
-    def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        props = context.scene.kezuri.turnmill
-        for name in ("tool_diameter", "tolerance", "sample_spacing", "feed", "spindle_rpm"):
-            layout.prop(props, name)
 
 
 class KEZURI_PT_sheet(KezuriPanel, bpy.types.Panel):
@@ -265,6 +219,20 @@ class KEZURI_PT_simulate(KezuriPanel, bpy.types.Panel):
         else:
             layout.label(text="No findings", icon="CHECKMARK")
 
+
+KEZURI_PT_engrave_finish = property_subpanel(
+    "KEZURI_PT_engrave_finish", "Band & Burr Finishing", "KEZURI_PT_engrave", "engrave",
+    ("finish_diameter", "finish_tool_number", "band_width", "band_depth", "band_stepover"))
+KEZURI_PT_engrave_feeds = property_subpanel(
+    "KEZURI_PT_engrave_feeds", "Feeds & Heights", "KEZURI_PT_engrave", "engrave",
+    ("rough_rpm", "rough_feed", "finish_rpm", "finish_feed", "plunge_feed", "clearance_z", "safe_z", "show_rapids"))
+KEZURI_PT_rotary_settings = property_subpanel(
+    "KEZURI_PT_rotary_settings", "Bit, Feeds & Pitch", "KEZURI_PT_rotary", "rotary",
+    ("tool_diameter", "tool_number", "flute_length", "spindle_rpm", "cutting_speed", "plunge_speed", "spacing",
+     "stepover", "step_down", "allowance", "wall_stepover", "max_table_rpm"))
+KEZURI_PT_turnmill_settings = property_subpanel(
+    "KEZURI_PT_turnmill_settings", "Tool & Tolerance", "KEZURI_PT_turnmill", "turnmill",
+    ("tool_diameter", "tolerance", "sample_spacing", "feed", "spindle_rpm"))
 
 CLASSES = (KEZURI_PT_machine, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
            KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_stepnc,

@@ -6,9 +6,9 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-for path in (HERE, ROOT):  # ROOT: transitional, until every test imports through ``kezuri``
-    if path not in sys.path:
-        sys.path.insert(0, path)
+if HERE not in sys.path:
+    sys.path.insert(0, HERE)
+pytest_plugins = ["blender_helpers"]    # the empty_scene fixture
 if "kezuri" not in sys.modules:
     spec = importlib.util.spec_from_file_location("kezuri", os.path.join(ROOT, "__init__.py"),
                                                   submodule_search_locations=[ROOT])

@@ -1,6 +1,5 @@
 """The Blender shell, run for real with the bpy wheel in background mode."""
 import re
-import types
 
 import numpy as np
 import pytest
@@ -8,28 +7,21 @@ import pytest
 bpy = pytest.importorskip("bpy")
 
 import kezuri  # noqa: E402  (loaded by conftest from the repository root)
+from blender_helpers import draw_panel  # noqa: E402
 import rs274  # noqa: E402
 from kezuri.operators import engrave as shell  # noqa: E402
 from kezuri.operators import panels, samples  # noqa: E402
 
 
-@pytest.fixture(scope="module", autouse=True)
-def registered():
-    if not hasattr(bpy.types.Scene, "kezuri"):
-        kezuri.register()
-    yield
-
 
 @pytest.fixture
-def scene():
-    scene = bpy.context.scene
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
+def scene(empty_scene):
+    scene = empty_scene
     samples.name_plate(scene)
     return scene
 
 
-def test_register_and_unregister_twice_cleanly():
+def test_register_and_unregister_twice_cleanly(empty_scene):
     for _ in range(2):
         kezuri.unregister()
         assert not hasattr(bpy.types.Scene, "kezuri")
@@ -114,41 +106,6 @@ def test_metres_millimetres_and_inches_give_the_same_nc():
     assert "X-100." in in_mm      # the plate edge at -100 mm, not -0.1 or -100000
 
 
-class RecordingLayout:
-    """Stands in for UILayout (background mode cannot draw): records what a panel shows."""
-
-    def __init__(self):
-        self.props, self.operators = [], []
-        self.use_property_split = False
-        self.scale_y = 1.0
-
-    def prop(self, data, name, **_):
-        assert hasattr(data, name), name
-        self.props.append(name)
-
-    def operator(self, idname, **_):
-        self.operators.append(idname)
-        return types.SimpleNamespace()      # the operator's properties, which panels may set
-
-    def template_list(self, list_type, list_id, data, name, active_data, active_name, **_):
-        assert hasattr(data, name) and hasattr(active_data, active_name), (name, active_name)
-        self.props.append(name)
-
-    def row(self, **_):
-        return self
-
-    column = box = row
-
-    def menu(self, idname, **_):
-        self.operators.append(idname)
-
-    def separator(self, **_):
-        pass
-
-    def label(self, **_):
-        pass
-
-
 @pytest.mark.parametrize("panel, expected_props, expected_ops", [
     (panels.KEZURI_PT_machine, {"post", "work_offset", "plate", "origin"}, set()),
     (panels.KEZURI_PT_engrave, {"letters"}, {"kezuri.engrave_generate", "kezuri.engrave_export"}),
@@ -157,11 +114,9 @@ class RecordingLayout:
     (panels.KEZURI_PT_engrave_finish, {"finish_diameter", "band_width", "band_depth", "band_stepover"}, set()),
 ])
 def test_panels_draw_their_properties(scene, panel, expected_props, expected_ops):
-    holder = type("PanelSelf", (), {})()
-    holder.layout = RecordingLayout()
-    panel.draw(holder, bpy.context)
-    assert expected_props <= set(holder.layout.props)
-    assert expected_ops <= set(holder.layout.operators)
+    layout = draw_panel(panel, bpy.context)
+    assert expected_props <= set(layout.props)
+    assert expected_ops <= set(layout.operators)
     assert panel.bl_category == "CAM" and panel.bl_region_type == "UI"
 
 

@@ -1,36 +1,24 @@
 """W2 in Blender and batch: pockets marked on objects, generate, export, the batch report."""
 import json
-import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
 bpy = pytest.importorskip("bpy")
 
-import kezuri  # noqa: E402
 import rs274  # noqa: E402
 from kezuri.operators import panels, samples  # noqa: E402
 from kezuri.operators import rotary as shell  # noqa: E402
 from kezuri.toolpath import region  # noqa: E402
 from kezuri.toolpath import rotary as core  # noqa: E402
-from test_blender_engrave import RecordingLayout  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from blender_helpers import draw_panel, run_batch  # noqa: E402
 
 
-@pytest.fixture(scope="module", autouse=True)
-def registered():
-    if not hasattr(bpy.types.Scene, "kezuri"):
-        kezuri.register()
 
 
 @pytest.fixture
-def scene():
-    scene = bpy.context.scene
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
+def scene(empty_scene):
+    scene = empty_scene
     samples.rotary_block(scene)
     return scene
 
@@ -86,16 +74,13 @@ def test_mark_pocket_operator(scene):
 
 def test_rotary_panel_draws_pocket_settings_of_the_active_object(scene):
     bpy.context.view_layer.objects.active = bpy.data.objects["bowl"]
-    holder = type("PanelSelf", (), {})()
-    holder.layout = RecordingLayout()
-    panels.KEZURI_PT_rotary.draw(holder, bpy.context)
-    assert {"enabled", "depth", "wall_angle", "bottom", "sphere_radius", "post"} <= set(holder.layout.props)
-    assert {"kezuri.rotary_generate", "kezuri.rotary_export"} <= set(holder.layout.operators)
+    layout = draw_panel(panels.KEZURI_PT_rotary, bpy.context)
+    assert {"enabled", "depth", "wall_angle", "bottom", "sphere_radius", "post"} <= set(layout.props)
+    assert {"kezuri.rotary_generate", "kezuri.rotary_export"} <= set(layout.operators)
 
 
 def test_batch_rotary_report(tmp_path):
-    done = subprocess.run([sys.executable, os.path.join(ROOT, "batch.py"), "rotary", "--out", str(tmp_path)],
-                          capture_output=True, text=True, timeout=600, cwd=ROOT)
+    done = run_batch("rotary", "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr[-3000:]
     report = json.loads((tmp_path / "report.json").read_text())
     assert report["workflow"] == "rotary" and report["toolpath_seconds"] > 0

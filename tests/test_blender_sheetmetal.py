@@ -1,8 +1,5 @@
 """W5 in Blender and in batch: operators, CDL import, elbow, batch files and reports."""
 import json
-import os
-import subprocess
-import sys
 import xml.etree.ElementTree as ET
 
 import numpy as np
@@ -10,27 +7,18 @@ import pytest
 
 bpy = pytest.importorskip("bpy")
 
-import kezuri  # noqa: E402
-from kezuri.operators import panels, samples  # noqa: E402
-from test_blender_engrave import RecordingLayout  # noqa: E402
+from kezuri.operators import panels  # noqa: E402
+from blender_helpers import draw_panel, run_batch  # noqa: E402
 from test_unfold import PAPER_CDL  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PAPER_EDGES = [104.40307, 101.98039, 100.49876, 107.70330]
 PAPER_DIAGONALS = [150.00000, 141.77447]
 
 
-@pytest.fixture(scope="module", autouse=True)
-def registered():
-    if not hasattr(bpy.types.Scene, "kezuri"):
-        kezuri.register()
-
 
 @pytest.fixture
-def scene():
-    scene = bpy.context.scene
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
+def scene(empty_scene):
+    scene = empty_scene
     return scene
 
 
@@ -103,23 +91,18 @@ def test_elbow_operator_adds_pieces_and_patterns(scene):
 
 
 def test_sheet_panel_draws_its_settings(scene):
-    holder = type("PanelSelf", (), {})()
-    holder.layout = RecordingLayout()
-    panels.KEZURI_PT_sheet.draw(holder, bpy.context)
+    layout = draw_panel(panels.KEZURI_PT_sheet, bpy.context)
     assert {"divisions", "direction", "tool_diameter", "thickness", "pitch", "station", "corners"} <= \
-        set(holder.layout.props)
-    assert {"kezuri.unfold_quad", "kezuri.sheet_export", "kezuri.import_cdl"} <= set(holder.layout.operators)
+        set(layout.props)
+    assert {"kezuri.unfold_quad", "kezuri.sheet_export", "kezuri.import_cdl"} <= set(layout.operators)
 
 
-def batch(*args):
-    return subprocess.run([sys.executable, os.path.join(ROOT, "batch.py"), *args], capture_output=True, text=True,
-                          timeout=600, cwd=ROOT)
 
 
 @pytest.mark.parametrize("direction", ["horizontal", "vertical"])
 def test_batch_unfold_reports_the_papers_numbers(tmp_path, direction):
     out = tmp_path / direction
-    done = batch("unfold", "--corners", "0,0,0;0,30,100;100,50,100;100,40,0", "--divisions", "5",
+    done = run_batch("unfold", "--corners", "0,0,0;0,30,100;100,50,100;100,40,0", "--divisions", "5",
                  "--direction", direction, "--tool-diameter", "10", "--thickness", "1.6", "--out", str(out))
     assert done.returncode == 0, done.stderr[-2000:]
     report = json.loads((out / "report.json").read_text())
@@ -141,19 +124,19 @@ def test_batch_unfold_reports_the_papers_numbers(tmp_path, direction):
 def test_batch_unfold_reads_a_cdl_file_and_refuses_an_open_one(tmp_path):
     good = tmp_path / "paper.cdl"
     good.write_text(PAPER_CDL)
-    done = batch("unfold", "--cdl", str(good), "--out", str(tmp_path / "a"))
+    done = run_batch("unfold", "--cdl", str(good), "--out", str(tmp_path / "a"))
     assert done.returncode == 0, done.stderr[-2000:]
     assert json.loads((tmp_path / "a" / "report.json").read_text())["corners"][2] == [100, 50, 100]
     broken = tmp_path / "open.cdl"
     broken.write_text(PAPER_CDL.replace("LINE 100.0000000000, 50.0000000000, 100.0000000000",
                                         "LINE 100.0000000000, 55.0000000000, 100.0000000000"))
-    done = batch("unfold", "--cdl", str(broken), "--out", str(tmp_path / "b"))
+    done = run_batch("unfold", "--cdl", str(broken), "--out", str(tmp_path / "b"))
     assert done.returncode == 2 and "CDL line" in done.stderr and "Traceback" not in done.stderr
     assert not (tmp_path / "b" / "unfold.nc").exists()
 
 
 def test_batch_elbow_reports_piece_outlines(tmp_path):
-    done = batch("elbow", "--diameter", "100", "--bend-radius", "150", "--angle", "90", "--pieces", "4",
+    done = run_batch("elbow", "--diameter", "100", "--bend-radius", "150", "--angle", "90", "--pieces", "4",
                  "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr[-2000:]
     report = json.loads((tmp_path / "report.json").read_text())

@@ -1,34 +1,22 @@
 """W6 in Blender and batch: the carved stock of each job, its findings, and any NC file."""
 import json
-import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
 bpy = pytest.importorskip("bpy")
 
-import kezuri  # noqa: E402
 from kezuri.operators import panels, samples  # noqa: E402
 from kezuri.toolpath import ncread  # noqa: E402
 from kezuri.toolpath.program import Tool  # noqa: E402
-from test_blender_engrave import RecordingLayout  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from blender_helpers import draw_panel, run_batch  # noqa: E402
 
 
-@pytest.fixture(scope="module", autouse=True)
-def registered():
-    if not hasattr(bpy.types.Scene, "kezuri"):
-        kezuri.register()
 
 
 @pytest.fixture
-def scene():
-    scene = bpy.context.scene
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
+def scene(empty_scene):
+    scene = empty_scene
     return scene
 
 
@@ -61,10 +49,8 @@ def test_a_gouge_is_listed_and_framed(scene):
     findings = scene.kezuri.simulation.findings
     gouges = [f for f in findings if f.kind == "gouge"]
     assert gouges and max(f.depth_mm for f in result.findings_of("gouge")) == pytest.approx(1.8, abs=0.01)
-    holder = type("PanelSelf", (), {})()
-    holder.layout = RecordingLayout()
-    panels.KEZURI_PT_simulate.draw(holder, bpy.context)
-    assert "kezuri.frame_finding" in holder.layout.operators
+    layout = draw_panel(panels.KEZURI_PT_simulate, bpy.context)
+    assert "kezuri.frame_finding" in layout.operators
     assert bpy.ops.kezuri.frame_finding(index=0) == {"FINISHED"}
     assert tuple(scene.cursor.location) == pytest.approx(tuple(findings[0].location))
 
@@ -82,9 +68,7 @@ def test_nc_reader_follows_our_own_linuxcnc_program():
 def test_batch_simulate_reports_the_nc_line_of_a_rapid_through_the_stock(tmp_path):
     nc = tmp_path / "slot.ngc"
     nc.write_text("G21 G90\nG0 X0 Y0 Z5\nG1 Z-2 F100\nX50\nG0 Z-1\nX100\nM2\n")
-    done = subprocess.run([sys.executable, os.path.join(ROOT, "batch.py"), "simulate", "--nc", str(nc), "--tool",
-                           "flat:6", "--stock", "box:-10,-10,-10,110,10,0", "--out", str(tmp_path / "out")],
-                          capture_output=True, text=True, timeout=600, cwd=ROOT)
+    done = run_batch("simulate", "--nc", str(nc), "--tool", "flat:6", "--stock", "box:-10,-10,-10,110,10,0", "--out", str(tmp_path / "out"))
     assert done.returncode == 0, done.stderr[-3000:]
     report = json.loads((tmp_path / "out" / "report.json").read_text())
     simulation = report["simulation"]
@@ -97,8 +81,7 @@ def test_batch_simulate_reports_the_nc_line_of_a_rapid_through_the_stock(tmp_pat
 
 
 def test_batch_engrave_report_has_the_simulation(tmp_path):
-    done = subprocess.run([sys.executable, os.path.join(ROOT, "batch.py"), "engrave", "--out", str(tmp_path)],
-                          capture_output=True, text=True, timeout=600, cwd=ROOT)
+    done = run_batch("engrave", "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr[-3000:]
     simulation = json.loads((tmp_path / "report.json").read_text())["simulation"]
     assert simulation["engine"] == "heightfield" and simulation["removed_volume_mm3"] > 1000

@@ -2,36 +2,25 @@
 Blender written as ISO 14649 and read back; batch reports and bad files."""
 import json
 import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
 bpy = pytest.importorskip("bpy")
 
-import kezuri  # noqa: E402
 import rs274  # noqa: E402
 from kezuri.operators import panels, samples  # noqa: E402
 from kezuri.toolpath import stepnc  # noqa: E402
-from test_blender_engrave import RecordingLayout  # noqa: E402
+from blender_helpers import ROOT, draw_panel, run_batch  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(ROOT, "..", "shared", "fixtures"))
 EX1 = os.path.join(FIXTURES, "iso14649", "ex1.stp")
 
 
-@pytest.fixture(scope="module", autouse=True)
-def registered():
-    if not hasattr(bpy.types.Scene, "kezuri"):
-        kezuri.register()
-
 
 @pytest.fixture
-def scene():
-    scene = bpy.context.scene
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
+def scene(empty_scene):
+    scene = empty_scene
     return scene
 
 
@@ -113,21 +102,16 @@ def test_export_without_import_is_a_clear_error(scene, tmp_path):
 
 def test_stepnc_panel_lists_the_workplan(scene):
     bpy.ops.kezuri.import_stepnc(filepath=EX1)
-    holder = type("PanelSelf", (), {})()
-    holder.layout = RecordingLayout()
-    panels.KEZURI_PT_stepnc.draw(holder, bpy.context)
-    assert "steps" in holder.layout.props
+    layout = draw_panel(panels.KEZURI_PT_stepnc, bpy.context)
+    assert "steps" in layout.props
     assert {"kezuri.import_stepnc", "kezuri.stepnc_generate", "kezuri.stepnc_export",
-            "kezuri.workingstep_move"} <= set(holder.layout.operators)
+            "kezuri.workingstep_move"} <= set(layout.operators)
 
 
-def batch(*args):
-    return subprocess.run([sys.executable, os.path.join(ROOT, "batch.py"), *args], capture_output=True, text=True,
-                          timeout=600, cwd=ROOT)
 
 
 def test_batch_stepnc_on_ex1(tmp_path):
-    done = batch("stepnc", "--input", EX1, "--post", "linuxcnc", "--out", str(tmp_path))
+    done = run_batch("stepnc", "--input", EX1, "--post", "linuxcnc", "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr[-3000:]
     report = json.loads((tmp_path / "report.json").read_text())
     assert [s["id"] for s in report["workingsteps"]] == [10, 11, 12, 13, 14]
@@ -142,7 +126,7 @@ def test_batch_stepnc_on_ex1(tmp_path):
 
 
 def test_batch_stepnc_order_option(tmp_path):
-    done = batch("stepnc", "--input", EX1, "--order", "13,14,10", "--out", str(tmp_path))
+    done = run_batch("stepnc", "--input", EX1, "--order", "13,14,10", "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr[-3000:]
     report = json.loads((tmp_path / "report.json").read_text())
     assert [s["id"] for s in report["workingsteps"]] == [13, 14, 10]
@@ -153,7 +137,7 @@ def test_batch_stepnc_bad_file_names_the_line_and_writes_no_nc(tmp_path):
                                                            "#30= MILLING_TOOL_DIMENSION(18.000,,")
     bad = tmp_path / "bad.stp"
     bad.write_text(text)
-    done = batch("stepnc", "--input", str(bad), "--out", str(tmp_path / "out"))
+    done = run_batch("stepnc", "--input", str(bad), "--out", str(tmp_path / "out"))
     assert done.returncode == 2
     assert "line" in done.stderr and "#30" in done.stderr and "Traceback" not in done.stderr
     assert not list((tmp_path / "out").glob("stepnc.*"))

@@ -1,35 +1,23 @@
 """W4 in Blender and batch: both ray engines agree, face colours, paths, NC and CL data."""
 import json
-import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 
 bpy = pytest.importorskip("bpy")
 
-import kezuri  # noqa: E402
 import rs274  # noqa: E402
 from kezuri.operators import panels, samples  # noqa: E402
 from kezuri.operators import turnmill as shell  # noqa: E402
 from kezuri.toolpath import turnmill as core  # noqa: E402
-from test_blender_engrave import RecordingLayout  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from blender_helpers import draw_panel, run_batch  # noqa: E402
 
 
-@pytest.fixture(scope="module", autouse=True)
-def registered():
-    if not hasattr(bpy.types.Scene, "kezuri"):
-        kezuri.register()
 
 
 @pytest.fixture
-def scene():
-    scene = bpy.context.scene
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
+def scene(empty_scene):
+    scene = empty_scene
     samples.turnmill_part(scene)
     return scene
 
@@ -97,17 +85,14 @@ def test_part_off_the_axis_is_refused(scene):
 
 
 def test_turnmill_panel(scene):
-    holder = type("PanelSelf", (), {})()
-    holder.layout = RecordingLayout()
-    panels.KEZURI_PT_turnmill.draw(holder, bpy.context)
-    assert {"part", "stock_radius", "engine"} <= set(holder.layout.props)
+    layout = draw_panel(panels.KEZURI_PT_turnmill, bpy.context)
+    assert {"part", "stock_radius", "engine"} <= set(layout.props)
     assert {"kezuri.turnmill_classify", "kezuri.turnmill_generate", "kezuri.turnmill_export"} <= \
-        set(holder.layout.operators)
+        set(layout.operators)
 
 
 def test_batch_turnmill_report(tmp_path):
-    done = subprocess.run([sys.executable, os.path.join(ROOT, "batch.py"), "turnmill", "--out", str(tmp_path)],
-                          capture_output=True, text=True, timeout=900, cwd=ROOT)
+    done = run_batch("turnmill", "--out", str(tmp_path))
     assert done.returncode == 0, done.stderr[-3000:]
     report = json.loads((tmp_path / "report.json").read_text())
     assert report["rays"] > 10000 and report["classification_seconds"] > 0
