@@ -5,7 +5,7 @@ import os
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-EX1 = os.path.join(HERE, "..", "..", "shared", "fixtures", "iso14649", "ex1.stp")
+EX1 = os.path.join(HERE, "..", "tests", "fixtures", "iso14649", "ex1.stp")
 
 
 def large_file(pockets: int = 400) -> str:

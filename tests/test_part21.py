@@ -12,9 +12,7 @@ from kezuri.toolpath.stepnc.part21 import (
     read_part21, write_part21,
 )
 
-# CI checks the repository out with the project's shared/ folder beside it.
-FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "..", "..", "shared",
-                                                          "fixtures"))
+FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "fixtures"))
 EX1 = os.path.join(FIXTURES, "iso14649", "ex1.stp")
 
 HEADER = """ISO-10303-21;

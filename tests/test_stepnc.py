@@ -25,9 +25,7 @@ from kezuri.toolpath.stepnc.workplan import (
     PocketSpec, finishing_leftover, load_workplan, pocket_region, pockets_to_part21, to_program,
 )
 
-# CI checks the repository out with the project's shared/ folder beside it.
-FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "..", "..", "shared",
-                                                          "fixtures"))
+FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "fixtures"))
 EX1 = os.path.join(FIXTURES, "iso14649", "ex1.stp")
 EX1_CAN = os.path.join(FIXTURES, "iso14649", "ex1.can")
 

@@ -7,8 +7,7 @@ import re
 from kezuri.toolpath import stepnc
 from kezuri.toolpath.errors import InputError
 
-FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "..", "..", "shared",
-                                                          "fixtures"))
+FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "fixtures"))
 EX1 = open(os.path.join(FIXTURES, "iso14649", "ex1.stp"), encoding="latin-1").read()
 TOKENS = re.findall(r"#\d+|'[^']*'|\.[A-Z_]+\.|-?\d+\.\d*(?:E[+-]?\d+)?|-?\d+|[A-Z_][A-Z0-9_]*|\S", EX1)
 JUNK = ["$", "*", "(", ")", ",", ";", "=", "#", "#9999", "'", ".T.", ".X.", "-1.", "1.E400", "0.", "()", "/*", "X"]
