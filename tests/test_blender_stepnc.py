@@ -11,7 +11,7 @@ bpy = pytest.importorskip("bpy")
 import rs274  # noqa: E402
 from kezuri.operators import panels, samples  # noqa: E402
 from kezuri.toolpath import stepnc  # noqa: E402
-from blender_helpers import ROOT, draw_panel, run_batch  # noqa: E402
+from blender_helpers import draw_panel, run_batch  # noqa: E402
 
 FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "fixtures"))
 EX1 = os.path.join(FIXTURES, "iso14649", "ex1.stp")
