@@ -101,15 +101,18 @@ class GcodePost:
             lines.append(f"(NOTE: {comment_text(note)})")
         return lines
 
-    def to_text(self, program: Program) -> str:
+    def opening(self, program: Program) -> list:
+        """Checks, then the program number, the header comments and the preamble."""
         self.check(program)
         if not program.operations:
             raise PostError("the program has no operations")
         lines = []
         if self.program_number:
             lines.append(f"{self.program_number} ({comment_text(program.name)[:30]})")
-        lines += self.header(program)
-        lines += self.preamble(program)
+        return lines + self.header(program) + self.preamble(program)
+
+    def to_text(self, program: Program) -> str:
+        lines = self.opening(program)
         work_offset = self.work_offset or program.work_offset
         for index, op in enumerate(program.operations):
             lines.append(f"(OPERATION {index + 1}: {comment_text(op.name)})")

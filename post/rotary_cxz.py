@@ -68,14 +68,7 @@ class RotaryCXZPost(GcodePost):
         return rotary.cycle_time(op, rapid_rate, self.max_table_rpm)
 
     def to_text(self, program: Program) -> str:
-        self.check(program)
-        if not program.operations:
-            raise PostError("the program has no operations")
-        lines = []
-        if self.program_number:
-            lines.append(f"{self.program_number} ({comment_text(program.name)[:30]})")
-        lines += self.header(program)
-        lines += self.preamble(program)
+        lines = self.opening(program)
         work_offset = self.work_offset or program.work_offset
         tool = None
         for index, op in enumerate(program.operations):

@@ -129,15 +129,11 @@ class TurnMillXZCPost(GcodePost):
     def ending(self, program: Program) -> list:
         return self._lines(self.codes.home, self.codes.program_end)
 
+    def preamble(self, program: Program) -> list:
+        return self._lines(self.codes.preamble)
+
     def to_text(self, program: Program) -> str:
-        self.check(program)
-        if not program.operations:
-            raise PostError("the program has no operations")
-        lines = []
-        if self.program_number:
-            lines.append(f"{self.program_number} ({comment_text(program.name)[:30]})")
-        lines += self.header(program)
-        lines += self._lines(self.codes.preamble)
+        lines = self.opening(program)
         for index, op in enumerate(program.operations):
             lines.append(f"(OPERATION {index + 1}: {comment_text(op.name)})")
             lines += self.tool_change(op, index == 0)
