@@ -136,17 +136,23 @@ def _edges(region: CrossSection) -> np.ndarray:
 def contains_points(region: CrossSection, points: np.ndarray) -> np.ndarray:
     """Even-odd point-in-region test for (n, 2) points."""
     points = np.asarray(points, float).reshape(-1, 2)
+    px, py = points[:, 0], points[:, 1]
+    # Sweep: each edge only meets the points whose y lies in its span (found by binary search
+    # in the points sorted by y), so the work is the crossings, not points x edges.
+    order = np.argsort(py, kind="stable")
+    ys = py[order]
     edges = _edges(region)
-    inside = np.zeros(len(points), bool)
-    for start in range(0, len(points), 2048):
-        p = points[start:start + 2048]
-        px, py = p[:, 0:1], p[:, 1:2]
-        x0, y0, x1, y1 = (edges[:, k][None, :] for k in range(4))
-        crosses = (y0 > py) != (y1 > py)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            xi = x0 + (py - y0) * (x1 - x0) / (y1 - y0)
-        inside[start:start + 2048] = (np.count_nonzero(crosses & (px < xi), axis=1) % 2) == 1
-    return inside
+    edges = edges[edges[:, 1] != edges[:, 3]]
+    x0, y0, x1, y1 = edges.T
+    first = np.searchsorted(ys, np.minimum(y0, y1), "left")
+    count = np.searchsorted(ys, np.maximum(y0, y1), "left") - first
+    # Every (edge, point) pair with the point in the edge's span, as two flat index arrays.
+    edge = np.repeat(np.arange(len(edges)), count)
+    offset = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
+    point = order[np.repeat(first, count) + offset]
+    xi = x0[edge] + (py[point] - y0[edge]) * (x1[edge] - x0[edge]) / (y1[edge] - y0[edge])
+    crossings = np.bincount(point, weights=px[point] < xi, minlength=len(points))
+    return crossings.astype(np.int64) % 2 == 1
 
 
 def _rotation(angle_deg: float) -> np.ndarray:

@@ -312,17 +312,28 @@ def _disk(radius: float) -> CrossSection:
     return CrossSection([np.column_stack([radius * np.cos(a), radius * np.sin(a)])])
 
 
-def _signed_distance(loop: np.ndarray, region: CrossSection, pts: np.ndarray) -> np.ndarray:
-    """Distance from points (n, 2) to the polygon, positive inside."""
+def _signed_distance(loop: np.ndarray, region: CrossSection, pts: np.ndarray, cap: float = math.inf) -> np.ndarray:
+    """Distance from points (n, 2) to the polygon, positive inside.
+
+    With ``cap``, points deeper inside than ``cap`` (inside the region offset inward by it) get
+    ``cap`` instead of their distance: callers that only compare with smaller values skip the
+    exact, points x edges, computation for them."""
     ax, ay = loop[:, 0], loop[:, 1]
     dx, dy = np.roll(ax, -1) - ax, np.roll(ay, -1) - ay
     length2 = np.maximum(dx * dx + dy * dy, 1e-300)
-    out = np.empty(len(pts))
-    for s in range(0, len(pts), 4096):
-        px, py = pts[s:s + 4096, 0:1] - ax, pts[s:s + 4096, 1:2] - ay
+    out = np.full(len(pts), cap, dtype=float)
+    near = np.ones(len(pts), bool)
+    if math.isfinite(cap):
+        near = ~rg.contains_points(rg.offset(region, -cap), pts)
+    index = np.flatnonzero(near)
+    for s in range(0, len(index), 4096):
+        chunk = index[s:s + 4096]
+        px, py = pts[chunk, 0:1] - ax, pts[chunk, 1:2] - ay
         t = np.clip((px * dx + py * dy) / length2, 0.0, 1.0)
-        out[s:s + 4096] = np.sqrt(((px - t * dx) ** 2 + (py - t * dy) ** 2).min(axis=1))
-    return np.where(rg.contains_points(region, pts), out, -out)
+        out[chunk] = np.sqrt(((px - t * dx) ** 2 + (py - t * dy) ** 2).min(axis=1))
+    inside = rg.contains_points(region, pts[index])
+    out[index] = np.where(inside, out[index], -out[index])
+    return out
 
 
 class _Geometry:
@@ -443,9 +454,10 @@ class _Geometry:
         """How far (mm) balls at local centres (n, 3) cut past the design surface (<= 0: clear)."""
         r, th = self.r, self.theta
         z = centres[:, 2]
-        d2 = _signed_distance(self.loop, self.region, centres[:, :2])
         below_edge = z <= r * math.sin(th)
         need = np.where(below_edge, self.wall_offset(z), np.sqrt(np.maximum(r * r - z * z, 0.0)))
+        # Deeper inside than any ball needs: clear of the wall, no exact distance wanted.
+        d2 = _signed_distance(self.loop, self.region, centres[:, :2], cap=float(need.max(initial=0.0)) + 1.0)
         wall = (need - d2) * np.where(below_edge, math.cos(th), 1.0)
         wall = np.where(z >= r, -np.inf, wall)
         if self.bottom == "flat":
