@@ -79,3 +79,16 @@ def test_bad_input_exits_2_with_a_message_and_no_program(tmp_path):
     assert done.returncode == 2
     assert "missing.blend" in done.stderr and "Traceback" not in done.stderr
     assert not (tmp_path / "o" / "engrave.nc").exists()
+
+
+def test_arguments_after_the_double_dash_when_run_by_blender():
+    sys.path.insert(0, ROOT)
+    try:
+        import batch as batch_module
+    finally:
+        sys.path.remove(ROOT)
+    blender_argv = ["blender", "-b", "plate.blend", "--python", "batch.py", "--", "engrave", "--out", "d"]
+    assert batch_module.script_arguments(blender_argv) == ["engrave", "--out", "d"]
+    assert batch_module.script_arguments(["batch.py", "demo", "--out", "d"]) == ["demo", "--out", "d"]
+    args = batch_module.parser().parse_args(["rotary", "--post", "fanuc", "--out", "x"])
+    assert (args.command, args.post, args.out) == ("rotary", "fanuc", "x")
