@@ -28,15 +28,20 @@ import time
 ROOT = os.path.dirname(os.path.abspath(__file__))
 
 
-def load_extension():
-    """Import this folder as the package ``kezuri`` (as Blender does) and register it."""
+def import_package():
+    """Import this folder as the package ``kezuri``, as Blender does (no bpy needed)."""
     if "kezuri" not in sys.modules:
         spec = importlib.util.spec_from_file_location("kezuri", os.path.join(ROOT, "__init__.py"),
                                                       submodule_search_locations=[ROOT])
         package = importlib.util.module_from_spec(spec)
         sys.modules["kezuri"] = package
         spec.loader.exec_module(package)
-    package = sys.modules["kezuri"]
+    return sys.modules["kezuri"]
+
+
+def load_extension():
+    """Import the package and register it with Blender."""
+    package = import_package()
     import bpy
     if not hasattr(bpy.types.Scene, "kezuri"):
         package.register()

@@ -1,7 +1,8 @@
 """W1: plan and bake the full built-in name-plate job (core only, letters taken from Blender once)."""
 from __future__ import annotations
 
-import time
+from timing import best_of
+
 
 
 def sample_inputs():
@@ -19,15 +20,6 @@ def sample_inputs():
     plate = convert.plate_from_object(plate_obj, depsgraph, scene)
     letters = [(letters_obj.name, convert.outlines_in_work(letters_obj, depsgraph, plate.frame))]
     return plate.outline, letters
-
-
-def best_of(repeats, work):
-    best = float("inf")
-    for _ in range(repeats):
-        started = time.perf_counter()
-        work()
-        best = min(best, time.perf_counter() - started)
-    return best
 
 
 def run():

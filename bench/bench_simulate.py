@@ -10,6 +10,8 @@ import time
 
 import numpy as np
 
+from timing import best_of
+
 STOCK = (0.0, 0.0, -20.0, 200.0, 100.0, 0.0)
 
 
@@ -70,15 +72,6 @@ def naive_exact(op, cell: float) -> np.ndarray:
             lowest = np.minimum(lowest, np.where((e2 <= r * r) & (foot >= 0) & (foot <= l), cylinder, np.inf))
         heights[i0:i1, j0:j1] = np.minimum(heights[i0:i1, j0:j1], lowest)
     return heights
-
-
-def best_of(repeats, work):
-    best = float("inf")
-    for _ in range(repeats):
-        started = time.perf_counter()
-        work()
-        best = min(best, time.perf_counter() - started)
-    return best
 
 
 def run():

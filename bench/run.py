@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import argparse
 import glob
-import importlib.util
+import importlib
 import json
 import os
 import platform
@@ -19,21 +19,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
 
-def load_package():
-    if "kezuri" not in sys.modules:
-        spec = importlib.util.spec_from_file_location("kezuri", os.path.join(ROOT, "__init__.py"),
-                                                      submodule_search_locations=[ROOT])
-        package = importlib.util.module_from_spec(spec)
-        sys.modules["kezuri"] = package
-        spec.loader.exec_module(package)
-
-
 def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("--json", default=os.path.join(HERE, "results.json"))
     parser.add_argument("--only", help="run only bench_<ONLY>.py")
     args = parser.parse_args()
-    load_package()
+    sys.path.insert(0, ROOT)
+    from batch import import_package
+    import_package()
     sys.path.insert(0, HERE)
     rows = []
     for path in sorted(glob.glob(os.path.join(HERE, "bench_*.py"))):

@@ -94,9 +94,9 @@ def run_on_mesh(vertices, faces, stock: core.Stock, settings: core.TurnMillSetti
     return TurnMillJob(result, vertices, faces, owner, frame, 2 * len(samples), seconds, engine_name)
 
 
-def run_turnmill(scene, depsgraph, progress=None) -> TurnMillJob:
-    props = scene.kezuri.turnmill
-    obj = props.part
+def part_mesh(scene, depsgraph) -> tuple:
+    """The Turn-Mill panel's part as triangles in work mm: (object, vertices, faces, owner, frame)."""
+    obj = scene.kezuri.turnmill.part
     if obj is None or obj.type != "MESH":
         raise convert.SceneInputError("pick the part (a mesh around the Z axis) in the Turn-Mill panel")
     world, polygons, _ = convert.evaluated_mesh_arrays(obj, depsgraph)
@@ -105,6 +105,12 @@ def run_turnmill(scene, depsgraph, progress=None) -> TurnMillJob:
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
     vertices = frame.to_work(world)
     faces, owner = triangulated(vertices, polygons)
+    return obj, vertices, faces, owner, frame
+
+
+def run_turnmill(scene, depsgraph, progress=None) -> TurnMillJob:
+    props = scene.kezuri.turnmill
+    obj, vertices, faces, owner, frame = part_mesh(scene, depsgraph)
     selected = None
     if props.selected_only:
         selected_polygons = np.array([p.select for p in obj.data.polygons], bool)
@@ -189,10 +195,7 @@ class KEZURI_OT_turnmill_classify(bpy.types.Operator):
     def execute(self, context):
         def work():
             props = context.scene.kezuri.turnmill
-            obj = props.part
-            world, polygons, _ = convert.evaluated_mesh_arrays(obj, context.evaluated_depsgraph_get())
-            vertices = world * convert.mm_per_unit(context.scene)
-            faces, owner = triangulated(vertices, polygons)
+            obj, vertices, faces, owner, _ = part_mesh(context.scene, context.evaluated_depsgraph_get())
             vertices, faces = core.check_mesh(vertices, faces)
             engine = engine_for(props.engine, vertices, faces)
             labels = core.classify_faces(vertices, faces, engine, props.sample_spacing)
