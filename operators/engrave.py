@@ -16,7 +16,7 @@ from ..post import milling_post, write_atomic
 from ..toolpath import engrave as core
 from ..toolpath.program import Tool
 from . import convert
-from .common import Progress, run_reported
+from .common import SteppedOperator, run_reported
 from .preferences import scene_output_dir, scene_post
 from .properties import MILLING_POST_ITEMS
 
@@ -55,7 +55,9 @@ def letter_objects(props) -> list:
     return objects
 
 
-def run_engrave(scene, depsgraph, progress=None) -> EngraveJob:
+def engrave_request(scene, depsgraph):
+    """Read the plate, the letters and the settings from the scene; return ``compute(progress)``,
+    which plans the job without touching Blender data (so it can run in steps)."""
     settings = scene.kezuri
     props = settings.engrave
     plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, settings.stock.origin)
@@ -63,12 +65,21 @@ def run_engrave(scene, depsgraph, progress=None) -> EngraveJob:
     if not objects:
         raise convert.SceneInputError("no letters: pick a Text, curve or mesh object as Letters in the Engrave panel")
     letters = [(obj.name, convert.outlines_in_work(obj, depsgraph, plate.frame)) for obj in objects]
-    result = core.plan(plate.outline, letters, settings_from(props), name=scene.name, progress=progress)
-    result.program.work_offset = settings.machine.work_offset
-    result.program.rapid_rate = settings.machine.rapid_rate
-    result.program.notes = list(result.warnings)
-    baked, depths = core.bake(result.program)
-    return EngraveJob(result, baked, depths, plate)
+    engrave_settings, name = settings_from(props), scene.name
+    work_offset, rapid_rate = settings.machine.work_offset, settings.machine.rapid_rate
+
+    def compute(progress=None) -> EngraveJob:
+        result = core.plan(plate.outline, letters, engrave_settings, name=name, progress=progress)
+        result.program.work_offset = work_offset
+        result.program.rapid_rate = rapid_rate
+        result.program.notes = list(result.warnings)
+        baked, depths = core.bake(result.program)
+        return EngraveJob(result, baked, depths, plate)
+    return compute
+
+
+def run_engrave(scene, depsgraph, progress=None) -> EngraveJob:
+    return engrave_request(scene, depsgraph)(progress)
 
 
 def show_engrave(scene, job: EngraveJob, show_rapids: bool = True) -> list:
@@ -99,12 +110,13 @@ def extension_for(post_name: str) -> str:
     return ".ngc" if post_name == "linuxcnc" else ".nc"
 
 
-class KEZURI_OT_engrave_generate(bpy.types.Operator):
+class KEZURI_OT_engrave_generate(SteppedOperator, bpy.types.Operator):
     """Plan the gouge-texture roughing, band finishing and burr contour, and show the toolpaths"""
 
     bl_idname = "kezuri.engrave_generate"
     bl_label = "Generate Engraving"
     bl_options = {"REGISTER", "UNDO"}
+    progress_label = "engrave"
 
     @classmethod
     def poll(cls, context):
@@ -117,21 +129,17 @@ class KEZURI_OT_engrave_generate(bpy.types.Operator):
             return False
         return True
 
-    def execute(self, context):
-        def work():
-            progress = Progress(context, "engrave")
-            try:
-                job = run_engrave(context.scene, context.evaluated_depsgraph_get(), progress)
-            finally:
-                progress.end()
-            show_engrave(context.scene, job, context.scene.kezuri.engrave.show_rapids)
-            for warning in job.result.warnings:
-                self.report({"WARNING"}, warning)
-            minutes = job.baked.cycle_time() / 60
-            self.report({"INFO"}, f"Engraving planned: {sum(len(op) for op in job.baked.operations)} moves, "
-                                  f"about {minutes:.1f} min")
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def prepare(self, context):
+        return engrave_request(context.scene, context.evaluated_depsgraph_get())
+
+    def finish(self, context, job):
+        show_engrave(context.scene, job, context.scene.kezuri.engrave.show_rapids)
+        for warning in job.result.warnings:
+            self.report({"WARNING"}, warning)
+        minutes = job.baked.cycle_time() / 60
+        self.report({"INFO"}, f"Engraving planned: {sum(len(op) for op in job.baked.operations)} moves, "
+                              f"about {minutes:.1f} min")
+        return {"FINISHED"}
 
 
 class KEZURI_OT_engrave_export(bpy.types.Operator, ExportHelper):

@@ -18,7 +18,7 @@ from ..post import rotary_post, write_atomic
 from ..toolpath import rotary as core
 from ..toolpath.program import Tool
 from . import convert
-from .common import Progress, run_reported
+from .common import SteppedOperator, run_reported
 
 PREFIX = "Kezuri Rotary"
 COLOURS = ((0.95, 0.45, 0.1, 1.0), (0.1, 0.6, 1.0, 1.0), (0.2, 0.9, 0.3, 1.0), (0.9, 0.8, 0.1, 1.0))
@@ -47,7 +47,9 @@ def pocket_objects(scene) -> list:
     return sorted((o for o in scene.objects if o.kezuri_pocket.enabled), key=lambda o: o.name)
 
 
-def run_rotary(scene, depsgraph, progress=None) -> RotaryJob:
+def rotary_request(scene, depsgraph):
+    """Read the block, the pockets and the settings; return ``compute(progress)``, which plans
+    without touching Blender data (so it can run in steps)."""
     settings = scene.kezuri
     plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, "CENTER")
     size_x, size_y, thickness = plate.size
@@ -63,10 +65,17 @@ def run_rotary(scene, depsgraph, progress=None) -> RotaryJob:
                                    props.sphere_radius if props.bottom == "sphere" else None))
     if not pockets:
         raise convert.SceneInputError("no pockets: mark outline objects as pockets in the Rotary Pockets panel")
-    rotary_settings = settings_from(settings.rotary)
-    result = core.plan(block, pockets, rotary_settings, name=scene.name, progress=progress)
-    result.program.work_offset = settings.machine.work_offset
-    return RotaryJob(result, rotary_settings, plate.frame, block)
+    rotary_settings, name, work_offset = settings_from(settings.rotary), scene.name, settings.machine.work_offset
+
+    def compute(progress=None) -> RotaryJob:
+        result = core.plan(block, pockets, rotary_settings, name=name, progress=progress)
+        result.program.work_offset = work_offset
+        return RotaryJob(result, rotary_settings, plate.frame, block)
+    return compute
+
+
+def run_rotary(scene, depsgraph, progress=None) -> RotaryJob:
+    return rotary_request(scene, depsgraph)(progress)
 
 
 def part_frame_paths(op) -> tuple:
@@ -95,12 +104,13 @@ def export_rotary(job: RotaryJob, post_name: str, path: str) -> str:
     return write_atomic(path, post.to_text(job.result.program))
 
 
-class KEZURI_OT_rotary_generate(bpy.types.Operator):
+class KEZURI_OT_rotary_generate(SteppedOperator, bpy.types.Operator):
     """Plan the roughing, wall finishing and bottom spirals of every pocket, in C-X-Z"""
 
     bl_idname = "kezuri.rotary_generate"
     bl_label = "Generate Rotary Pockets"
     bl_options = {"REGISTER", "UNDO"}
+    progress_label = "rotary"
 
     @classmethod
     def poll(cls, context):
@@ -109,19 +119,15 @@ class KEZURI_OT_rotary_generate(bpy.types.Operator):
             return False
         return True
 
-    def execute(self, context):
-        def work():
-            progress = Progress(context, "rotary")
-            try:
-                job = run_rotary(context.scene, context.evaluated_depsgraph_get(), progress)
-            finally:
-                progress.end()
-            show_rotary(context.scene, job)
-            minutes, seconds = divmod(int(round(job.result.cycle_time_s)), 60)
-            self.report({"INFO"}, f"{len(job.result.pockets)} pockets planned; estimated cycle time "
-                                  f"{minutes} min {seconds:02d} s")
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def prepare(self, context):
+        return rotary_request(context.scene, context.evaluated_depsgraph_get())
+
+    def finish(self, context, job):
+        show_rotary(context.scene, job)
+        minutes, seconds = divmod(int(round(job.result.cycle_time_s)), 60)
+        self.report({"INFO"}, f"{len(job.result.pockets)} pockets planned; estimated cycle time "
+                              f"{minutes} min {seconds:02d} s")
+        return {"FINISHED"}
 
 
 class KEZURI_OT_rotary_export(bpy.types.Operator, ExportHelper):

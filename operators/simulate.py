@@ -15,7 +15,7 @@ from bpy.props import EnumProperty, IntProperty
 from ..toolpath import region
 from ..toolpath import simulate as core
 from . import convert
-from .common import Progress, run_reported
+from .common import CoreCall, SteppedOperator
 
 PREFIX = "Kezuri Simulated"
 WORKFLOW_ITEMS = [("ENGRAVE", "Engraving", "The gouge-texture name plate"),
@@ -39,36 +39,73 @@ def box_stock_of(outline_loops, thickness: float) -> core.BoxStock:
     return core.BoxStock(float(x0), float(y0), -float(thickness), float(x1), float(y1), 0.0)
 
 
-def simulate_job(scene, workflow: str, engine: str = "heightfield", cell: float = 0.1, progress=None) -> SimulationJob:
-    """Plan the workflow's job from the scene and cut its stock with it."""
+def _scaled(progress, start: float, end: float):
+    if progress is None:
+        return None
+    return lambda fraction, text="": progress(start + (end - start) * fraction, text)
+
+
+def _simulation_setup(scene, workflow: str):
+    """Read the workflow's job from the scene: ``(plan(progress), setup(planned))``, neither
+    touching Blender data; setup gives (program, stock, extra simulate arguments, frame, name)."""
     depsgraph = bpy.context.evaluated_depsgraph_get()
     if workflow == "ENGRAVE":
         from . import engrave
-        job = engrave.run_engrave(scene, depsgraph)
-        letters = [loop for obj in engrave.letter_objects(scene.kezuri.engrave)
-                   for loop in convert.outlines_in_work(obj, depsgraph, job.plate.frame)]
-        keep = [region.offset(region.from_loops(letters, "letters"), -KEEP_MARGIN)]
-        texture = job.result.program.operations[0].texture
-        floor = min(texture.deepest, scene.kezuri.engrave.band_depth) if texture is not None else \
-            scene.kezuri.engrave.band_depth
-        result = core.simulate(job.baked, box_stock_of(job.plate.outline, job.plate.size[2]), engine=engine,
-                               cell=cell, design=floor - KEEP_MARGIN, keep_regions=keep, progress=progress)
-        return SimulationJob(result, job.plate.frame, "engrave")
+        props = scene.kezuri.engrave
+        plate_frame = convert.plate_from_object(scene.kezuri.stock.plate, depsgraph, scene,
+                                                scene.kezuri.stock.origin).frame
+        letters = [loop for obj in engrave.letter_objects(props)
+                   for loop in convert.outlines_in_work(obj, depsgraph, plate_frame)]
+        band_depth = props.band_depth
+
+        def setup(job):
+            keep = region.offset(region.from_loops(letters, "letters"), -KEEP_MARGIN)
+            texture = job.result.program.operations[0].texture
+            floor = min(texture.deepest, band_depth) if texture is not None else band_depth
+            extra = {"design": floor - KEEP_MARGIN, "keep_regions": [[np.asarray(loop) for loop in keep.to_polygons()]]}
+            return job.baked, box_stock_of(job.plate.outline, job.plate.size[2]), extra, job.plate.frame, "engrave"
+        return engrave.engrave_request(scene, depsgraph), setup
     if workflow == "ROTARY":
         from . import rotary
-        job = rotary.run_rotary(scene, depsgraph)
-        b = job.block
-        stock = core.BoxStock(-b.size_x / 2, -b.size_y / 2, -b.thickness, b.size_x / 2, b.size_y / 2, 0.0)
-        result = core.simulate(job.result.program, stock, engine=engine, cell=cell, progress=progress)
-        return SimulationJob(result, job.frame, "rotary")
+
+        def setup(job):
+            b = job.block
+            stock = core.BoxStock(-b.size_x / 2, -b.size_y / 2, -b.thickness, b.size_x / 2, b.size_y / 2, 0.0)
+            return job.result.program, stock, {}, job.frame, "rotary"
+        return rotary.rotary_request(scene, depsgraph), setup
     if workflow == "STEPNC":
         from . import stepnc
         loaded = stepnc.load_scene_workplan(scene)
         program = stepnc.scene_program(scene, loaded)
-        result = core.simulate(program, stepnc.stock_box(loaded, program), engine=engine, cell=cell,
-                               progress=progress)
-        return SimulationJob(result, convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0)), "stepnc")
+        stock = stepnc.stock_box(loaded, program)
+        frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+        return (lambda progress=None: program), (lambda planned: (planned, stock, {}, frame, "stepnc"))
     raise convert.SceneInputError(f"no simulation for {workflow!r}")
+
+
+def simulation_request(scene, workflow: str, engine: str = "heightfield", cell: float = 0.1):
+    """Read the workflow's job from the scene; return what cuts its stock without touching
+    Blender data: a ``compute(progress)`` that plans and simulates (run in steps), or for the
+    manifold engine, whose booleans hold Python's GIL, the job planned now and its simulation
+    as a :class:`CoreCall` (run in a separate process from the UI)."""
+    plan, setup = _simulation_setup(scene, workflow)
+    if engine == "manifold":
+        program, stock, extra, frame, name = setup(plan(None))
+        return CoreCall("toolpath.simulate", "simulate",
+                        dict(program_or_operations=program, stock=stock, engine=engine, cell=cell, **extra),
+                        then=lambda result: SimulationJob(result, frame, name))
+
+    def compute(progress=None) -> SimulationJob:
+        program, stock, extra, frame, name = setup(plan(_scaled(progress, 0.0, 0.2)))
+        result = core.simulate(program, stock, engine=engine, cell=cell, progress=_scaled(progress, 0.2, 1.0),
+                               **extra)
+        return SimulationJob(result, frame, name)
+    return compute
+
+
+def simulate_job(scene, workflow: str, engine: str = "heightfield", cell: float = 0.1, progress=None) -> SimulationJob:
+    """Plan the workflow's job from the scene and cut its stock with it."""
+    return simulation_request(scene, workflow, engine, cell)(progress)
 
 
 def report_of(result: core.SimulationResult) -> dict:
@@ -119,31 +156,28 @@ def store_findings(scene, job: SimulationJob):
             item.location = job.frame.to_world([(float(f.xy[0]), float(f.xy[1]), 0.0)])[0]
 
 
-class KEZURI_OT_simulate(bpy.types.Operator):
+class KEZURI_OT_simulate(SteppedOperator, bpy.types.Operator):
     """Cut the stock with the job's toolpaths and check for gouges, rapids through material and moves outside the machine"""  # noqa: E501
 
     bl_idname = "kezuri.simulate"
     bl_label = "Simulate"
     bl_options = {"REGISTER", "UNDO"}
+    progress_label = "simulate"
 
     workflow: EnumProperty(name="Job", items=WORKFLOW_ITEMS, default="ENGRAVE")
 
-    def execute(self, context):
-        def work():
-            props = context.scene.kezuri.simulation
-            progress = Progress(context, "simulate")
-            try:
-                job = simulate_job(context.scene, self.workflow, props.engine, props.cell, progress)
-            finally:
-                progress.end()
-            show_simulation(context.scene, job)
-            store_findings(context.scene, job)
-            for finding in job.result.findings[:10]:
-                self.report({"WARNING"}, finding.message)
-            self.report({"INFO"}, f"Removed {job.result.removed_volume_mm3 / 1000:.1f} cm^3 in "
-                                  f"{job.result.seconds:.1f} s; {len(job.result.findings)} finding(s)")
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def prepare(self, context):
+        props = context.scene.kezuri.simulation
+        return simulation_request(context.scene, self.workflow, props.engine, props.cell)
+
+    def finish(self, context, job):
+        show_simulation(context.scene, job)
+        store_findings(context.scene, job)
+        for finding in job.result.findings[:10]:
+            self.report({"WARNING"}, finding.message)
+        self.report({"INFO"}, f"Removed {job.result.removed_volume_mm3 / 1000:.1f} cm^3 in "
+                              f"{job.result.seconds:.1f} s; {len(job.result.findings)} finding(s)")
+        return {"FINISHED"}
 
 
 class KEZURI_OT_frame_finding(bpy.types.Operator):

@@ -21,7 +21,7 @@ from ..post.cldata import CLDataPost
 from ..post.turnmill_xzc import TurnMillLinuxCNCPost, TurnMillXZCPost
 from ..toolpath import turnmill as core
 from . import convert
-from .common import Progress, run_reported
+from .common import SteppedOperator, run_reported
 
 PREFIX = "Kezuri Turn-Mill"
 ATTRIBUTE = "Kezuri reach"
@@ -78,17 +78,20 @@ def settings_from(props) -> core.TurnMillSettings:
 
 
 def run_on_mesh(vertices, faces, stock: core.Stock, settings: core.TurnMillSettings, engine_name: str,
-                frame: convert.WorkFrame, owner=None, selected=None, name="turn-mill") -> TurnMillJob:
+                frame: convert.WorkFrame, owner=None, selected=None, name="turn-mill", progress=None) -> TurnMillJob:
     """Classify (timed), then plan.  ``selected``: a face mask; unselected faces still block rays
-    but get no paths."""
+    but get no paths.  Touches no Blender data (the BVH engine is mathutils only)."""
+    report = progress or (lambda fraction, text="": None)
     vertices, faces = core.check_mesh(vertices, faces)
     engine = engine_for(engine_name, vertices, faces)
     started = time.perf_counter()
-    labels = core.classify_faces(vertices, faces, engine, settings.sample_spacing)
+    labels = core.classify_faces(vertices, faces, engine, settings.sample_spacing,
+                                 lambda fraction, text="": report(0.6 * fraction, text))
     seconds = time.perf_counter() - started
     samples, _ = core.face_samples(vertices[faces], settings.sample_spacing)
     machined = labels if selected is None else np.where(selected, labels, core.NEITHER)
-    result = core.plan(vertices, faces, stock, settings, engine, labels=machined, name=name)
+    result = core.plan(vertices, faces, stock, settings, engine, labels=machined, name=name,
+                       progress=lambda fraction, text="": report(0.6 + 0.4 * fraction, text))
     result.labels = labels
     owner = np.arange(len(faces)) if owner is None else owner
     return TurnMillJob(result, vertices, faces, owner, frame, 2 * len(samples), seconds, engine_name)
@@ -108,7 +111,9 @@ def part_mesh(scene, depsgraph) -> tuple:
     return obj, vertices, faces, owner, frame
 
 
-def run_turnmill(scene, depsgraph, progress=None) -> TurnMillJob:
+def turnmill_request(scene, depsgraph):
+    """Read the part and the settings; return ``compute(progress)``, which classifies and plans
+    without touching Blender data (so it can run in steps)."""
     props = scene.kezuri.turnmill
     obj, vertices, faces, owner, frame = part_mesh(scene, depsgraph)
     selected = None
@@ -119,13 +124,13 @@ def run_turnmill(scene, depsgraph, progress=None) -> TurnMillJob:
                                           "or switch off Selected Faces Only)")
         selected = selected_polygons[owner]
     stock = core.Stock(props.stock_radius, props.stock_z_min, props.stock_z_max)
-    if progress:
-        progress(0.1, "classifying faces")
-    job = run_on_mesh(vertices, faces, stock, settings_from(props), props.engine, frame, owner, selected,
-                      name=scene.name)
-    if progress:
-        progress(1.0, "done")
-    return job
+    settings, engine, name = settings_from(props), props.engine, scene.name
+    return lambda progress=None: run_on_mesh(vertices, faces, stock, settings, engine, frame, owner, selected,
+                                             name=name, progress=progress)
+
+
+def run_turnmill(scene, depsgraph, progress=None) -> TurnMillJob:
+    return turnmill_request(scene, depsgraph)(progress)
 
 
 def polygon_labels(triangle_labels: np.ndarray, owner: np.ndarray, polygon_count: int) -> np.ndarray:
@@ -180,60 +185,64 @@ def _poll_part(cls, context) -> bool:
     return True
 
 
-class KEZURI_OT_turnmill_classify(bpy.types.Operator):
+class KEZURI_OT_turnmill_classify(SteppedOperator, bpy.types.Operator):
     """Cast rays from every face: colour it by the tool directions that reach it (blue radial,
     green axial, purple both, grey neither)"""
 
     bl_idname = "kezuri.turnmill_classify"
     bl_label = "Classify Faces"
     bl_options = {"REGISTER", "UNDO"}
+    progress_label = "classify"
 
     @classmethod
     def poll(cls, context):
         return _poll_part(cls, context)
 
-    def execute(self, context):
-        def work():
-            props = context.scene.kezuri.turnmill
-            obj, vertices, faces, owner, _ = part_mesh(context.scene, context.evaluated_depsgraph_get())
-            vertices, faces = core.check_mesh(vertices, faces)
-            engine = engine_for(props.engine, vertices, faces)
-            labels = core.classify_faces(vertices, faces, engine, props.sample_spacing)
-            per_polygon = polygon_labels(labels, owner, len(obj.data.polygons))
-            colour_faces(obj, per_polygon)
-            if context.space_data is not None and context.space_data.type == "VIEW_3D":
-                context.space_data.shading.color_type = "VERTEX"
-            counts = {REPORT_LABELS[k]: int(np.count_nonzero(per_polygon == k)) for k in REPORT_LABELS}
-            self.report({"INFO"}, "Faces: " + ", ".join(f"{v} {k}" for k, v in counts.items()))
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def prepare(self, context):
+        props = context.scene.kezuri.turnmill
+        _, vertices, faces, owner, _ = part_mesh(context.scene, context.evaluated_depsgraph_get())
+        vertices, faces = core.check_mesh(vertices, faces)
+        engine_name, spacing = props.engine, props.sample_spacing
+
+        def compute(progress=None):
+            engine = engine_for(engine_name, vertices, faces)
+            return core.classify_faces(vertices, faces, engine, spacing, progress), owner
+        return compute
+
+    def finish(self, context, result):
+        labels, owner = result
+        obj = context.scene.kezuri.turnmill.part
+        per_polygon = polygon_labels(labels, owner, len(obj.data.polygons))
+        colour_faces(obj, per_polygon)
+        if context.space_data is not None and context.space_data.type == "VIEW_3D":
+            context.space_data.shading.color_type = "VERTEX"
+        counts = {REPORT_LABELS[k]: int(np.count_nonzero(per_polygon == k)) for k in REPORT_LABELS}
+        self.report({"INFO"}, "Faces: " + ", ".join(f"{v} {k}" for k, v in counts.items()))
+        return {"FINISHED"}
 
 
-class KEZURI_OT_turnmill_generate(bpy.types.Operator):
+class KEZURI_OT_turnmill_generate(SteppedOperator, bpy.types.Operator):
     """Classify the faces, then plan radial and axial roughing and finishing paths"""
 
     bl_idname = "kezuri.turnmill_generate"
     bl_label = "Generate Turn-Mill Paths"
     bl_options = {"REGISTER", "UNDO"}
+    progress_label = "turn-mill"
 
     @classmethod
     def poll(cls, context):
         return _poll_part(cls, context)
 
-    def execute(self, context):
-        def work():
-            progress = Progress(context, "turn-mill")
-            try:
-                job = run_turnmill(context.scene, context.evaluated_depsgraph_get(), progress)
-            finally:
-                progress.end()
-            obj = context.scene.kezuri.turnmill.part
-            colour_faces(obj, polygon_labels(job.plan.labels, job.owner, len(obj.data.polygons)))
-            show_turnmill(context.scene, job)
-            ops = job.plan.program.operations
-            self.report({"INFO"}, f"{len(ops)} operations, about {job.plan.program.cycle_time() / 60:.1f} min")
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def prepare(self, context):
+        return turnmill_request(context.scene, context.evaluated_depsgraph_get())
+
+    def finish(self, context, job):
+        obj = context.scene.kezuri.turnmill.part
+        colour_faces(obj, polygon_labels(job.plan.labels, job.owner, len(obj.data.polygons)))
+        show_turnmill(context.scene, job)
+        ops = job.plan.program.operations
+        self.report({"INFO"}, f"{len(ops)} operations, about {job.plan.program.cycle_time() / 60:.1f} min")
+        return {"FINISHED"}
 
 
 class KEZURI_OT_turnmill_export(bpy.types.Operator, ExportHelper):

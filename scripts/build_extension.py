@@ -2,10 +2,10 @@
 
     .venv/bin/python scripts/build_extension.py [--platforms linux-x64,...] [--out dist]
 
-Downloads the wheels Blender lacks (manifold3d, trimesh, and embreex where a wheel exists) for
-every platform and for both Pythons Blender 4.2-5.x ships (cp311, cp313), stages a copy of the
-extension with those wheels listed in its manifest, and runs Blender's own extension tool
-(shipped in the bpy wheel) with --split-platforms.  numpy is not bundled: Blender has it.
+Downloads the wheels Blender lacks (manifold3d, trimesh, numba with llvmlite, and embreex where a
+wheel exists) for every platform and for both Pythons Blender 4.2-5.x ships (cp311, cp313),
+stages a copy of the extension with those wheels listed in its manifest, and runs Blender's own
+extension tool (shipped in the bpy wheel) with --split-platforms.  numpy is not bundled: Blender has it.
 Wheels are fetched by this build, never committed.
 """
 from __future__ import annotations
@@ -25,7 +25,8 @@ PLATFORMS = {  # Blender platform name -> pip platform tag
     "macos-arm64": "macosx_11_0_arm64",
     "macos-x64": "macosx_10_15_x86_64",
 }
-REQUIRED = ("manifold3d==3.5.4", "trimesh==5.2.0")
+REQUIRED = ("manifold3d==3.5.4", "trimesh==5.2.0",
+            "numba==0.61.2", "llvmlite==0.44.0")     # numba: the compiled height-field kernel
 OPTIONAL = ("embreex==4.4.0.post1",)          # faster ray casting for trimesh, not on every platform
 STAGE_EXCLUDE = {".git", ".venv", "venv", "dist", "build", "tests", "bench", "docs", "scripts", ".ci",
                  "__pycache__", ".pytest_cache", "demo-out"}

@@ -133,10 +133,10 @@ def elbow_step():
     frame_all()
 
 
-def run_in_view(operator, **kwargs):
+def run_in_view(operator, *args, **kwargs):
     window, area, region, _ = view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
-        operator(**kwargs)
+        operator(*args, **kwargs)
 
 
 def simulate_step():
@@ -200,10 +200,54 @@ def turnmill_step():
     frame_all()
 
 
+def simulated_objects():
+    return [o.name for o in bpy.context.scene.objects if o.name.startswith("Kezuri Simulated")]
+
+
+def start_long_simulation():
+    """The exact (manifold) simulation of the name plate, invoked as from the panel's button: it
+    runs in steps from a timer, with the progress in the status bar."""
+    scene = bpy.context.scene
+    samples = module("operators.samples")
+    samples.clear_scene(scene)
+    samples.set_millimetres(scene)
+    samples.name_plate(scene)
+    scene.kezuri.simulation.engine = "manifold"
+    only_panels("KEZURI_PT_simulate")
+    show_cam_tab()
+    frame_all()
+    run_in_view(bpy.ops.kezuri.simulate, "INVOKE_DEFAULT", workflow="ENGRAVE")
+
+
+def press_escape():
+    """Esc in the viewport cancels the running simulation: nothing may be left in the scene."""
+    window, area, _, _ = view3d()
+    x, y = area.x + area.width // 2, window.height - (area.y + area.height // 2)
+    subprocess.run(["xdotool", "mousemove", str(x), str(y), "key", "Escape"], check=True)
+
+
+def check_cancelled():
+    left = simulated_objects()
+    print("modal simulation: cancel " + ("ok, nothing left in the scene" if not left else f"failed: {left}"),
+          flush=True)
+    bpy.context.scene.kezuri.simulation.engine = "heightfield"
+    run_in_view(bpy.ops.kezuri.simulate, "INVOKE_DEFAULT", workflow="ENGRAVE")
+
+
+def check_finished():
+    if module("operators.common").SteppedOperator.running:      # still cutting: look again later
+        STEPS.insert(state["index"], ("modal finished", check_finished, None))
+        return
+    made = simulated_objects()
+    print("modal simulation: run to the end " + ("ok" if made else "failed: no simulated stock"), flush=True)
+
+
 STEPS = [("setup", maximise_viewport, None), ("cam tab", click_cam_tab, None), ("engrave", engrave_step, "engrave"),
          ("simulate", simulate_step, "simulate"), ("rotary", rotary_step, "rotary"),
          ("stepnc", stepnc_step, "stepnc"), ("turnmill", turnmill_step, "turnmill"),
-         ("sheet", sheet_step, "sheet-metal"), ("elbow", elbow_step, "elbow")]
+         ("sheet", sheet_step, "sheet-metal"), ("elbow", elbow_step, "elbow"),
+         ("modal start", start_long_simulation, "simulate-running"), ("modal cancel", press_escape, None),
+         ("modal restart", check_cancelled, None), ("modal finished", check_finished, None)]
 state = {"index": 0, "pending": None}
 
 

@@ -89,6 +89,7 @@ LIFT = 1e-4              # ray origins are lifted this fraction of the part size
 MAX_SUBDIVISION = 16     # at most 16 x 16 classification samples per face
 PAIR_BUDGET = 1 << 20    # (query, triangle) pairs handled at once: bounds the memory
 QUERY_CHUNK = 256        # at most this many nearby queries are culled against the triangles together
+RAY_BATCH = 50_000       # rays cast at once between progress reports
 PUSH_ITERATIONS = 8      # rounds of pushing a ball centre clear of the surface (corners need 2-3)
 
 # The grid search order of the axial chaining (paper 4.4): outward, counter-clockwise, inward,
@@ -436,8 +437,10 @@ def face_samples(triangles: np.ndarray, spacing: float) -> tuple[np.ndarray, np.
     return np.vstack(points), np.concatenate(owner)
 
 
-def classify_faces(vertices, faces, engine: RayEngine | None = None, sample_spacing: float = 2.0) -> np.ndarray:
-    """Label each face NEITHER / RADIAL / AXIAL / BOTH ((m,) int8) by casting rays from its samples."""
+def classify_faces(vertices, faces, engine: RayEngine | None = None, sample_spacing: float = 2.0,
+                   progress=None) -> np.ndarray:
+    """Label each face NEITHER / RADIAL / AXIAL / BOTH ((m,) int8) by casting rays from its samples.
+    ``progress``: optional callable(fraction, text), called between batches of rays."""
     v, f = check_mesh(vertices, faces)
     if not (isinstance(sample_spacing, (int, float)) and math.isfinite(sample_spacing) and sample_spacing > 0):
         raise TurnMillError(f"sample spacing must be a number > 0, got {sample_spacing!r}")
@@ -455,20 +458,29 @@ def classify_faces(vertices, faces, engine: RayEngine | None = None, sample_spac
     axial = np.broadcast_to(np.array([0.0, 0.0, 1.0]), points.shape)
 
     labels = np.zeros(len(f), dtype=np.int8)
-    for bit, directions in ((RADIAL, radial), (AXIAL, axial)):
+    for half, (bit, directions) in enumerate(((RADIAL, radial), (AXIAL, axial))):
         facing = np.einsum("ij,ij->i", n, directions) > FACING
-        labels[_reachable(engine, origins, directions, facing, owner, len(f))] |= bit
+        report = None if progress is None else \
+            (lambda fraction, half=half: progress((half + fraction) / 2, f"casting {DIRECTIONS[half]} rays"))
+        labels[_reachable(engine, origins, directions, facing, owner, len(f), report)] |= bit
     return labels
 
 
-def _reachable(engine, origins, directions, facing, owner, face_count) -> np.ndarray:
+def _reachable(engine, origins, directions, facing, owner, face_count, progress=None) -> np.ndarray:
     """Faces all of whose samples face the direction and see out along it unblocked."""
     samples = np.bincount(owner, minlength=face_count)
     all_facing = np.bincount(owner, weights=(~facing).astype(float), minlength=face_count) == 0
     cast = np.flatnonzero(all_facing[owner])
-    hits = np.asarray(engine.intersects_any(origins[cast], directions[cast]))
-    if hits.shape != (len(cast),):
-        raise TurnMillError(f"the ray engine returned {hits.shape} results for {len(cast)} rays")
+    hits = []
+    for start in range(0, len(cast), RAY_BATCH):
+        batch = cast[start:start + RAY_BATCH]
+        batch_hits = np.asarray(engine.intersects_any(origins[batch], directions[batch]))
+        if batch_hits.shape != (len(batch),):
+            raise TurnMillError(f"the ray engine returned {batch_hits.shape} results for {len(batch)} rays")
+        hits.append(batch_hits)
+        if progress is not None:
+            progress(min(1.0, (start + len(batch)) / len(cast)))
+    hits = np.concatenate(hits) if hits else np.zeros(0, bool)
     blocked = np.bincount(owner[cast], weights=hits.astype(bool).astype(float), minlength=face_count)
     return (samples > 0) & all_facing & (blocked == 0)
 
@@ -1018,10 +1030,12 @@ class TurnMillPlan:
 
 
 def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None, engine: RayEngine | None = None,
-         labels=None, name: str = "turn-mill") -> TurnMillPlan:
+         labels=None, name: str = "turn-mill", progress=None) -> TurnMillPlan:
     """Classify the faces (or use ``labels``), generate the radial and axial layers, and build the
     program: radial roughing, radial finishing (radial station), axial roughing, axial finishing
-    (axial station).  Operations with nothing to cut are left out."""
+    (axial station).  Operations with nothing to cut are left out.
+    ``progress``: optional callable(fraction, text)."""
+    report = progress or (lambda fraction, text="": None)
     settings = TurnMillSettings() if settings is None else settings
     if not isinstance(stock, Stock):
         raise TurnMillError(f"stock must be a Stock, got {type(stock).__name__}")
@@ -1032,10 +1046,14 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
         raise TurnMillError(f"the part does not fit in the stock: {int(outside.sum())} vertices lie outside the "
                             f"{2 * stock.radius:g} mm bar from z = {stock.z_min:g} to {stock.z_max:g}")
     if labels is None:
-        labels = classify_faces(v, f, engine, settings.sample_spacing)
+        labels = classify_faces(v, f, engine, settings.sample_spacing,
+                                lambda fraction, text="": report(0.5 * fraction, text))
     radial_ids, axial_ids = path_faces(v, f, labels)
+    report(0.5, "radial layers")
     radial = radial_layers(v, f, radial_ids, stock, settings)
+    report(0.8, "axial layers")
     axial = axial_layers(v, f, axial_ids, stock, settings)
+    report(0.95, "operations")
     operations = []
     for direction, layers in (("radial", radial), ("axial", axial)):
         for label, part in (("roughing", layers[:-1]), ("finishing", layers[-1:])):
