@@ -19,11 +19,11 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PYTHONS = ("311", "313")
-PLATFORMS = {  # Blender platform name -> pip platform tag
-    "linux-x64": "manylinux_2_28_x86_64",
-    "windows-x64": "win_amd64",
-    "macos-arm64": "macosx_11_0_arm64",
-    "macos-x64": "macosx_10_15_x86_64",
+PLATFORMS = {  # Blender platform name -> the pip platform tags its wheels may carry
+    "linux-x64": ("manylinux_2_28_x86_64", "manylinux_2_17_x86_64", "manylinux2014_x86_64"),
+    "windows-x64": ("win_amd64",),
+    "macos-arm64": ("macosx_11_0_arm64",),
+    "macos-x64": ("macosx_10_15_x86_64", "macosx_10_14_x86_64"),
 }
 REQUIRED = ("manifold3d==3.5.4", "trimesh==5.2.0",
             "numba==0.61.2", "llvmlite==0.44.0")     # numba: the compiled height-field kernel
@@ -42,13 +42,14 @@ def blender_ext() -> str:
     return path[0]
 
 
-def download(requirement: str, platform_tag: str, python: str, folder: str, optional: bool) -> bool:
+def download(requirement: str, platform_tags: tuple, python: str, folder: str, optional: bool) -> bool:
+    tags = [word for tag in platform_tags for word in ("--platform", tag)]
     command = [sys.executable, "-m", "pip", "download", "-q", "--no-deps", "--only-binary=:all:",
-               "--platform", platform_tag, "--python-version", python, "--implementation", "cp",
+               *tags, "--python-version", python, "--implementation", "cp",
                "--dest", folder, requirement]
     done = subprocess.run(command, capture_output=True, text=True)
     if done.returncode and not optional:
-        raise SystemExit(f"cannot download {requirement} for {platform_tag} cp{python}:\n{done.stderr}")
+        raise SystemExit(f"cannot download {requirement} for {platform_tags[0]} cp{python}:\n{done.stderr}")
     return done.returncode == 0
 
 

@@ -9,7 +9,7 @@ import os
 import sys
 
 USER = os.environ["BLENDER_USER_RESOURCES"]
-BUNDLED = ("manifold3d", "trimesh", "embreex")
+BUNDLED = ("manifold3d", "trimesh", "embreex", "numba", "llvmlite")
 
 
 class OnlyBundled(importlib.abc.MetaPathFinder):
@@ -33,10 +33,12 @@ status = bpy.ops.extensions.package_install_files(filepath=sys.argv[1], repo="us
                                                   enable_on_install=True)
 result["install"] = sorted(status)
 import manifold3d  # noqa: E402
+import numba  # noqa: E402
 import trimesh  # noqa: E402
 
 result["manifold3d"] = manifold3d.__file__
 result["trimesh"] = trimesh.__file__
+result["numba"] = numba.__file__
 package = "bl_ext.user_default.kezuri"
 result["registered"] = hasattr(bpy.types.Scene, "kezuri")
 samples = importlib.import_module(package + ".operators.samples")
@@ -46,6 +48,31 @@ samples.set_millimetres(scene)
 samples.name_plate(scene)
 result["engrave_generate"] = sorted(bpy.ops.kezuri.engrave_generate())
 result["kezuri_objects"] = len(bpy.data.collections["Kezuri"].objects)
+result["simulate"] = sorted(bpy.ops.kezuri.simulate(workflow="ENGRAVE"))
+# Every other workflow's main operator on its sample.
+samples.clear_scene(scene)
+samples.rotary_block(scene)
+result["rotary_generate"] = sorted(bpy.ops.kezuri.rotary_generate())
+samples.clear_scene(scene)
+fixture = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fixtures", "iso14649", "ex1.stp")
+result["import_stepnc"] = sorted(bpy.ops.kezuri.import_stepnc(filepath=fixture))
+result["stepnc_generate"] = sorted(bpy.ops.kezuri.stepnc_generate())
+samples.clear_scene(scene)
+samples.turnmill_part(scene)
+result["turnmill_generate"] = sorted(bpy.ops.kezuri.turnmill_generate())
+samples.clear_scene(scene)
+result["unfold_quad"] = sorted(bpy.ops.kezuri.unfold_quad())
+result["add_elbow"] = sorted(bpy.ops.kezuri.add_elbow())
+# The exact simulation as the UI runs it: in a child process, from the installed copy.
+common = importlib.import_module(package + ".operators.common")
+program = importlib.import_module(package + ".toolpath.program")
+slot = program.Operation("slot", program.Tool(1, "flat", 2.0), 10000, [program.FEED, program.FEED],
+                         [[2.0, 5.0, -1.0], [8.0, 5.0, -1.0]], [300.0, 300.0], start=[2.0, 5.0, 5.0])
+job = common.ProcessJob(common.CoreCall("toolpath.simulate", "simulate", {
+    "program_or_operations": [slot], "stock": (0, 0, -5, 10, 10, 0), "engine": "manifold", "cell": 0.5}))
+while not job.step():
+    pass
+result["process_job_volume"] = job.result().solid.volume()
 # Preferences: the tool library and the default post.
 prefs = bpy.context.preferences.addons[package].preferences
 bpy.ops.kezuri.tool_add()

@@ -38,6 +38,13 @@ def test_installed_zip_runs_on_its_bundled_wheels_and_disables_cleanly(linux_zip
     assert result["install"] == ["FINISHED"]
     assert result["manifold3d"].startswith(str(tmp_path / "user"))
     assert result["trimesh"].startswith(str(tmp_path / "user"))
+    assert result["numba"].startswith(str(tmp_path / "user"))
+    for operator in ("engrave_generate", "simulate", "rotary_generate", "import_stepnc", "stepnc_generate",
+                     "turnmill_generate", "unfold_quad", "add_elbow"):
+        assert result[operator] == ["FINISHED"], operator
+    # The 10 x 10 x 5 stock minus a 2 mm flat slot, 6 mm long and 1 mm deep: (6 * 2 + pi) * 1 mm^3;
+    # the faceted tool leaves a little material.
+    assert result["process_job_volume"] == pytest.approx(500.0 - (12.0 + 3.14159), abs=0.15)   # 1 % of the cut
     assert result["registered"] is True
     assert result["engrave_generate"] == ["FINISHED"] and result["kezuri_objects"] >= 3
     assert result["rough_from_library"] == [8.0, 7]
