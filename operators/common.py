@@ -203,7 +203,7 @@ class SteppedOperator:
             self._end(context)
             self.report({"INFO"}, "Cancelled: the scene is as it was")
             return {"CANCELLED"}
-        if event.type != "TIMER" or event.timer is not self._timer:
+        if event.type != "TIMER":      # (Blender's Event does not say whose timer fired: any will do)
             return {"PASS_THROUGH"}
         if not self._job.step():
             context.window_manager.progress_update(int(self._job.fraction * 100))

@@ -235,7 +235,9 @@ def check_cancelled():
 
 
 def check_finished():
-    if module("operators.common").SteppedOperator.running:      # still cutting: look again later
+    state.setdefault("waited", 0)
+    if module("operators.common").SteppedOperator.running and state["waited"] < 40:   # still cutting
+        state["waited"] += 1
         STEPS.insert(state["index"], ("modal finished", check_finished, None))
         return
     made = simulated_objects()
