@@ -119,6 +119,7 @@ def report_of(result: core.SimulationResult) -> dict:
                          "depth_mm": None if f.depth_mm is None else round(float(f.depth_mm), 4)}
     return {
         "engine": result.engine,
+        "kernel": result.kernel,
         "cell_mm": result.cell,
         "tolerance_mm": result.tolerance,
         "seconds": round(result.seconds, 3),

@@ -1,6 +1,8 @@
 """W6: material removal (height field and manifold engines) against closed forms, and the
 safety checks (gouges, rapids in material, travel limits, plunges)."""
+import importlib.util
 import math
+import os
 
 import numpy as np
 import pytest
@@ -12,7 +14,18 @@ from kezuri.toolpath.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Pro
 FLAT6 = Tool(1, "flat", 6.0)
 BALL6 = Tool(2, "ball", 6.0)
 BULL6 = Tool(3, "bull", 6.0, corner_radius=1.0)
+VBIT6 = Tool(4, "vbit", 6.0)          # 90 degrees
+DRILL6 = Tool(5, "drill", 6.0)        # 118 degrees
 BOX = (0, 0, -10, 40, 40, 0)
+NUMBA = importlib.util.find_spec("numba") is not None and os.environ.get("KEZURI_NO_NUMBA") != "1"
+
+
+@pytest.fixture(params=["numpy", "numba"])
+def kernel(request):
+    """The height field kernel under test (numba where it is installed and not switched off)."""
+    if request.param == "numba" and not NUMBA:
+        pytest.skip("the numba kernel is not available")
+    return request.param
 
 
 def operation(tool, points, start, kinds=None, center=None, c=None, name="op"):
@@ -31,8 +44,8 @@ def slot(tool, depth, length=20.0, y=20.0):
     return operation(tool, points, start=[10, y, 5.0], kinds=[FEED, FEED, RAPID])
 
 
-def both_engines(ops, stock, cell=0.1):
-    return [sim.simulate(ops, stock, engine=engine, cell=cell, tolerance=0.01)
+def both_engines(ops, stock, cell=0.1, kernel="auto"):
+    return [sim.simulate(ops, stock, engine=engine, cell=cell, tolerance=0.01, kernel=kernel)
             for engine in ("heightfield", "manifold")]
 
 
@@ -45,41 +58,60 @@ def assert_close(results, expected, rel=0.01):
 
 # ----- closed forms -------------------------------------------------------------------------
 
-def test_flat_end_slot_is_a_stadium_times_depth():
+def test_flat_end_slot_is_a_stadium_times_depth(kernel):
     length, d, depth = 20.0, 6.0, 2.0
     expected = (length * d + math.pi * d * d / 4) * depth
-    assert_close(both_engines(slot(FLAT6, depth, length), BOX), expected)
+    assert_close(both_engines(slot(FLAT6, depth, length), BOX, kernel=kernel), expected)
 
 
-def test_ball_end_slot_is_half_a_capsule():
+def test_ball_end_slot_is_half_a_capsule(kernel):
     r, length = 3.0, 20.0
     expected = length * math.pi * r * r / 2 + 2 / 3 * math.pi * r ** 3
-    assert_close(both_engines(slot(BALL6, r, length), BOX), expected)
+    assert_close(both_engines(slot(BALL6, r, length), BOX, kernel=kernel), expected)
 
 
-def test_bull_nose_slot_matches_its_profile():
+def test_bull_nose_slot_matches_its_profile(kernel):
     r, rc, depth, length = 3.0, 1.0, 2.0, 20.0
     flat = r - rc
     corner = rc * rc * (1 - math.pi / 4)          # material a corner leaves in the section
     corner_r = (rc * rc * (flat + rc / 2) - math.pi * rc * rc / 4 * (flat + 4 * rc / (3 * math.pi))) / corner
     section = 2 * r * depth - 2 * corner
     ends = math.pi * r * r * depth - 2 * math.pi * corner_r * corner   # the two half ends: one tool
-    assert_close(both_engines(slot(BULL6, depth, length), BOX), length * section + ends)
+    assert_close(both_engines(slot(BULL6, depth, length), BOX, kernel=kernel), length * section + ends)
 
 
-def test_ring_groove_with_the_table_turning_is_an_annulus():
+def test_v_bit_groove_is_a_triangle_prism_plus_a_cone(kernel):
+    # 90 degrees: the groove is as deep as it is half wide; its two half-cone ends make one cone.
+    depth, length = 2.0, 20.0
+    expected = length * depth * depth + math.pi * depth ** 3 / 3
+    assert_close(both_engines(slot(VBIT6, depth, length), BOX, kernel=kernel), expected)
+
+
+def test_drilled_hole_is_a_cylinder_on_a_cone(kernel):
+    tip = 3.0 / math.tan(math.radians(59))     # height of the 118 degree point
+    depth = 5.0
+    op = operation(DRILL6, [[20, 20, -depth], [20, 20, 5.0]], start=[20, 20, 5.0], kinds=[FEED, RAPID])
+    expected = math.pi * 9 * (depth - tip) + math.pi * 9 * tip / 3
+    results = both_engines(op, BOX, kernel=kernel)
+    assert_close(results, expected)
+    hf = results[0].heightfield
+    centre = np.argmin(np.abs(hf.x() - 20.05)), np.argmin(np.abs(hf.y() - 20.05))
+    assert hf.heights[centre] == pytest.approx(-depth + 0.05 * math.sqrt(2) / math.tan(math.radians(59)), abs=1e-5)
+
+
+def test_ring_groove_with_the_table_turning_is_an_annulus(kernel):
     # C-X-Z: the tool held at X = -30 (radius 30 on the part) while C turns a full turn.
     op = operation(FLAT6, [[-30, 0, -2.0], [-30, 0, -2.0], [-30, 0, 5.0]], start=[-30, 0, 5.0],
                    c=[0.0, 360.0, 360.0], kinds=[FEED, FEED, RAPID])
     expected = math.pi * (33 ** 2 - 27 ** 2) * 2.0
-    results = both_engines(op, sim.CylinderStock(radius=50, height=20), cell=0.2)
+    results = both_engines(op, sim.CylinderStock(radius=50, height=20), cell=0.2, kernel=kernel)
     assert_close(results, expected)
 
 
-def test_quarter_turn_of_c_cuts_a_quarter_ring_at_the_right_place():
+def test_quarter_turn_of_c_cuts_a_quarter_ring_at_the_right_place(kernel):
     # C = angle of the part point from the -X axis: C 0..90 at X = -30 sweeps the third quadrant.
     op = operation(FLAT6, [[-30, 0, -2.0], [-30, 0, -2.0]], start=[-30, 0, 5.0], c=[0.0, 90.0])
-    result = sim.simulate(op, sim.CylinderStock(radius=50, height=20), cell=0.2)
+    result = sim.simulate(op, sim.CylinderStock(radius=50, height=20), cell=0.2, kernel=kernel)
     expected = math.pi * (33 ** 2 - 27 ** 2) / 4 * 2.0 + math.pi * 9 * 2.0   # plus the two half ends
     assert result.removed_volume_mm3 == pytest.approx(expected, rel=0.01)
     hf = result.heightfield
@@ -89,20 +121,20 @@ def test_quarter_turn_of_c_cuts_a_quarter_ring_at_the_right_place():
     assert hf.heights[np.argmin(np.abs(hf.x() - 21.2)), np.argmin(np.abs(hf.y() + 21.2))] == 0.0
 
 
-def test_helix_then_flat_circle_leaves_an_annulus():
+def test_helix_then_flat_circle_leaves_an_annulus(kernel):
     # Two G3 full circles around (20, 20), radius 10: a helix down 2 mm, then one flat turn.
     points = [[30, 20, 0.0], [30, 20, -2.0], [30, 20, -2.0], [30, 20, 5.0]]
     center = [[np.nan] * 3, [20, 20, 0], [20, 20, 0], [np.nan] * 3]
     op = operation(FLAT6, points, start=[30, 20, 5.0], kinds=[FEED, ARC_CCW, ARC_CCW, RAPID], center=center)
     expected = math.pi * (13 ** 2 - 7 ** 2) * 2.0
-    assert_close(both_engines(op, BOX), expected)
+    assert_close(both_engines(op, BOX, kernel=kernel), expected)
 
 
-def test_helix_floor_is_a_ramp():
+def test_helix_floor_is_a_ramp(kernel):
     # After one helical turn alone, the floor under the path descends with the angle.
     points = [[30, 20, 0.0], [30, 20, -2.0]]
     op = operation(FLAT6, points, start=[30, 20, 0.0], kinds=[FEED, ARC_CCW], center=[[np.nan] * 3, [20, 20, 0]])
-    hf = sim.simulate(op, BOX, cell=0.1).heightfield
+    hf = sim.simulate(op, BOX, cell=0.1, kernel=kernel).heightfield
     for angle in (90, 180, 270):
         x = 20 + 10 * math.cos(math.radians(angle))
         y = 20 + 10 * math.sin(math.radians(angle))
@@ -113,13 +145,13 @@ def test_helix_floor_is_a_ramp():
         assert hf.heights[i, j] == pytest.approx(-2.0 * leave / 360, abs=0.002)
 
 
-def test_arc_slot_is_half_an_annulus_plus_two_half_ends():
+def test_arc_slot_is_half_an_annulus_plus_two_half_ends(kernel):
     # G2 half circle around (20, 20), radius 10, from (30, 20) to (10, 20), 2 mm deep.
     points = [[30, 20, -2.0], [10, 20, -2.0], [10, 20, 5.0]]
     center = [[np.nan] * 3, [20, 20, -2.0], [np.nan] * 3]
     op = operation(FLAT6, points, start=[30, 20, 5.0], kinds=[FEED, ARC_CW, RAPID], center=center)
     expected = (math.pi * (13 ** 2 - 7 ** 2) / 2 + math.pi * 9) * 2.0
-    results = both_engines(op, BOX)
+    results = both_engines(op, BOX, kernel=kernel)
     assert_close(results, expected)
     # clockwise from (30, 20) to (10, 20) passes below the centre
     hf = results[0].heightfield
@@ -136,10 +168,10 @@ def test_manifold_joins_nearly_straight_moves_without_cutting_more():
     assert solid.removed_volume_mm3 == pytest.approx(heightfield.removed_volume_mm3, rel=0.01)
 
 
-def test_program_of_several_operations_removes_the_union():
+def test_program_of_several_operations_removes_the_union(kernel):
     program = Program("two slots", [slot(FLAT6, 2.0, y=10.0), slot(FLAT6, 2.0, y=30.0)])
     single = (20 * 6 + math.pi * 9) * 2
-    assert sim.simulate(program, BOX).removed_volume_mm3 == pytest.approx(2 * single, rel=0.01)
+    assert sim.simulate(program, BOX, kernel=kernel).removed_volume_mm3 == pytest.approx(2 * single, rel=0.01)
 
 
 # ----- the height field is the exact envelope ------------------------------------------------
@@ -164,14 +196,14 @@ def sampled_envelope(points, tool, hf, step=0.002):
 
 
 @pytest.mark.parametrize("tool", [BALL6, FLAT6], ids=["ball", "flat"])
-def test_height_field_matches_a_densely_sampled_sweep(tool):
+def test_height_field_matches_a_densely_sampled_sweep(tool, kernel):
     rng = np.random.default_rng(7)
     points = np.cumsum(rng.normal(0, 1.2, (8, 3)), axis=0)
     points[:, :2] += 10 - points[:, :2].mean(axis=0)
     points[:, 2] = -1.0 - np.abs(points[:, 2]) * 0.4
     points = np.vstack([points, [[points[-1, 0], points[-1, 1], -3.5]], [[12, 9, -0.5]]])  # a plunge, a ramp
     op = operation(tool, points[1:], start=points[0])
-    hf = sim.simulate(op, (0, 0, -10, 20, 20, 0), cell=0.1).heightfield
+    hf = sim.simulate(op, (0, 0, -10, 20, 20, 0), cell=0.1, kernel=kernel).heightfield
     reference = sampled_envelope(points, tool, hf)
     # exact up to the reference's own sampling (it can only sit higher)
     assert np.max(hf.heights - reference) < 2e-4
@@ -180,9 +212,9 @@ def test_height_field_matches_a_densely_sampled_sweep(tool):
 
 # ----- safety checks -----------------------------------------------------------------------------
 
-def test_cutting_one_mm_below_a_design_plane_is_a_one_mm_gouge():
+def test_cutting_one_mm_below_a_design_plane_is_a_one_mm_gouge(kernel):
     op = slot(FLAT6, 2.0)
-    result = sim.simulate(op, BOX, design=-1.0)
+    result = sim.simulate(op, BOX, kernel=kernel, design=-1.0)
     gouges = result.findings_of("gouge")
     assert len(gouges) == 1
     assert gouges[0].depth_mm == pytest.approx(1.0, abs=0.1)
@@ -190,49 +222,49 @@ def test_cutting_one_mm_below_a_design_plane_is_a_one_mm_gouge():
     assert 7 - 0.1 <= gouges[0].xy[0] <= 33 + 0.1 and abs(gouges[0].xy[1] - 20) <= 3.1
 
 
-def test_ball_gouge_names_the_move_that_went_deepest():
+def test_ball_gouge_names_the_move_that_went_deepest(kernel):
     points = [[10, 20, -1.0], [30, 20, -1.0], [30, 20, -2.0], [35, 20, -2.0]]
     op = operation(BALL6, points, start=[10, 20, 5.0])
-    gouge, = sim.check(op, BOX, design=-1.5)
+    gouge, = sim.check(op, BOX, kernel=kernel, design=-1.5)
     assert gouge.kind == "gouge"
     assert gouge.depth_mm == pytest.approx(0.5, abs=0.01)
     assert gouge.move in (2, 3) and gouge.xy[0] >= 30 - 0.1
 
 
-def test_design_as_a_function_and_as_a_mesh():
+def test_design_as_a_function_and_as_a_mesh(kernel):
     op = slot(FLAT6, 2.0)
-    by_function = sim.check(op, BOX, design=lambda x, y: np.where(x > 25, -1.0, -3.0))
+    by_function = sim.check(op, BOX, kernel=kernel, design=lambda x, y: np.where(x > 25, -1.0, -3.0))
     assert by_function[0].depth_mm == pytest.approx(1.0, abs=1e-3) and by_function[0].xy[0] > 25
     part = trimesh.creation.box(extents=(40, 40, 9), transform=trimesh.transformations.translation_matrix(
         (20, 20, -5.5)))                      # a block whose top is z = -1
-    by_mesh = sim.check(op, BOX, design=part)
+    by_mesh = sim.check(op, BOX, kernel=kernel, design=part)
     assert by_mesh[0].kind == "gouge" and by_mesh[0].depth_mm == pytest.approx(1.0, abs=1e-3)
-    assert sim.check(op, BOX, design=-2.0) == []
+    assert sim.check(op, BOX, kernel=kernel, design=-2.0) == []
 
 
-def test_keep_regions_forbid_any_cut():
+def test_keep_regions_forbid_any_cut(kernel):
     op = slot(FLAT6, 2.0)
     keep = np.array([[20, 0], [25, 0], [25, 40], [20, 40]], float)
-    gouge, = sim.check(op, BOX, keep_regions=[keep])
+    gouge, = sim.check(op, BOX, kernel=kernel, keep_regions=[keep])
     assert gouge.depth_mm == pytest.approx(2.0, abs=1e-3) and 20 <= gouge.xy[0] <= 25
     # a floor per region: cutting to -2 where -2.5 is allowed is fine
-    assert sim.check(op, BOX, keep_regions=[(keep, -2.5)]) == []
-    assert sim.check(op, BOX, keep_regions=[np.array([[0, 0], [5, 0], [5, 5]], float)]) == []
+    assert sim.check(op, BOX, kernel=kernel, keep_regions=[(keep, -2.5)]) == []
+    assert sim.check(op, BOX, kernel=kernel, keep_regions=[np.array([[0, 0], [5, 0], [5, 5]], float)]) == []
 
 
-def test_rapid_through_the_stock_is_reported_with_its_move_index():
+def test_rapid_through_the_stock_is_reported_with_its_move_index(kernel):
     points = [[5, 5, 5.0], [5, 5, -1.0], [35, 5, -1.0], [35, 5, 5.0], [35, 35, 5.0]]
     op = operation(FLAT6, points, start=[5, 5, 10.0], kinds=[RAPID, FEED, RAPID, RAPID, RAPID])
-    rapids = sim.check(op, BOX)
+    rapids = sim.check(op, BOX, kernel=kernel)
     assert [(f.kind, f.move) for f in rapids] == [("rapid_in_material", 2)]
     assert rapids[0].depth_mm == pytest.approx(1.0, abs=1e-3)
 
 
-def test_rapids_in_air_or_in_cut_material_are_fine():
+def test_rapids_in_air_or_in_cut_material_are_fine(kernel):
     # Feed a slot, retract straight up, rapid back along the slot inside it: no material left there.
     points = [[10, 20, -2.0], [30, 20, -2.0], [30, 20, -1.0], [10, 20, -1.0], [10, 20, 5.0], [0, 0, 5.0]]
     op = operation(BALL6, points, start=[10, 20, 5.0], kinds=[FEED, FEED, RAPID, RAPID, RAPID, RAPID])
-    assert sim.check(op, BOX) == []
+    assert sim.check(op, BOX, kernel=kernel) == []
 
 
 def test_moves_outside_the_travel_are_reported():
@@ -253,15 +285,15 @@ def test_arcs_are_checked_along_their_path_not_only_at_their_ends():
     assert [(f.kind, f.move) for f in found] == [("travel", 1)]
 
 
-def test_plunging_with_a_tool_that_cannot_plunge():
+def test_plunging_with_a_tool_that_cannot_plunge(kernel):
     down = [[20, 20, 2.0], [20, 20, -2.0], [30, 20, -2.0]]
-    bull = sim.check(operation(BULL6, down, start=[20, 20, 5.0]), BOX)
+    bull = sim.check(operation(BULL6, down, start=[20, 20, 5.0]), BOX, kernel=kernel)
     assert [(f.kind, f.move) for f in bull] == [("plunge", 1)]
-    assert sim.check(operation(FLAT6, down, start=[20, 20, 5.0]), BOX) == []
-    banned = sim.check(operation(FLAT6, down, start=[20, 20, 5.0]), BOX, no_plunge_tools={1})
+    assert sim.check(operation(FLAT6, down, start=[20, 20, 5.0]), BOX, kernel=kernel) == []
+    banned = sim.check(operation(FLAT6, down, start=[20, 20, 5.0]), BOX, kernel=kernel, no_plunge_tools={1})
     assert [(f.kind, f.move) for f in banned] == [("plunge", 1)]
     ramp = [[20, 20, 2.0], [30, 20, -2.0]]
-    assert sim.check(operation(BULL6, ramp, start=[20, 20, 5.0]), BOX) == []
+    assert sim.check(operation(BULL6, ramp, start=[20, 20, 5.0]), BOX, kernel=kernel) == []
     assert sim.can_plunge(Tool(9, "drill", 5.0)) and not sim.can_plunge(BULL6)
 
 
@@ -287,19 +319,78 @@ def test_cylinder_stock_mesh_and_manifold_solid():
         assert mesh.volume == pytest.approx(math.pi * 50 ** 2 * 20 - result.removed_volume_mm3, rel=0.003)
 
 
-def test_progress_is_reported_and_can_cancel():
+def test_progress_is_reported_and_can_cancel(kernel):
     seen = []
-    sim.simulate(slot(FLAT6, 2.0), BOX, progress=seen.append)
+    sim.simulate(slot(FLAT6, 2.0), BOX, kernel=kernel, progress=seen.append)
     assert seen and seen[-1] == pytest.approx(1.0) and seen == sorted(seen)
-    with pytest.raises(sim.SimulationCancelled):
-        sim.simulate(slot(FLAT6, 2.0), BOX, engine="manifold", progress=lambda f: False)
+    for engine in sim.ENGINES:
+        with pytest.raises(sim.SimulationCancelled):
+            sim.simulate(slot(FLAT6, 2.0), BOX, kernel=kernel, engine=engine, progress=lambda f: False)
 
 
-def test_result_reports_engine_cell_and_time():
-    result = sim.simulate(slot(FLAT6, 2.0), BOX, cell=0.2)
+def test_result_reports_engine_cell_kernel_and_time(kernel):
+    result = sim.simulate(slot(FLAT6, 2.0), BOX, cell=0.2, kernel=kernel)
     assert result.engine == "heightfield" and result.cell == pytest.approx(0.2) and result.seconds > 0
-    solid = sim.simulate(slot(FLAT6, 2.0), BOX, engine="manifold")
+    assert result.kernel == kernel
+    solid = sim.simulate(slot(FLAT6, 2.0), BOX, engine="manifold", kernel=kernel)
     assert solid.engine == "manifold" and solid.cell is None and solid.tolerance == 0.03
+    assert solid.kernel == kernel                     # its safety checks ran on that kernel
+
+
+# ----- the two height field kernels ------------------------------------------------------------------
+
+def random_operation(rng, tool, name, n=50):
+    """A random walk over a 60 x 60 mm box at -0.5..-4 mm: feeds, arcs (their centres beside
+    the chord, so some spiral), plunges, and rapids, some of them through the material."""
+    xy = np.clip(30 + np.cumsum(rng.normal(0, 2.5, (n, 2)), axis=0), 3, 57)
+    z = -rng.uniform(0.5, 4.0, n)
+    kinds = rng.choice([FEED, FEED, ARC_CW, ARC_CCW], n)
+    special = rng.choice(n - 1, 6, replace=False) + 1
+    plunges, rapids = special[:4], special[4:]
+    xy[plunges] = xy[plunges - 1]                       # straight down (or up)
+    kinds[plunges] = FEED
+    kinds[rapids] = RAPID
+    previous = np.vstack([xy[:1], xy[:-1]])
+    chord = xy - previous
+    center = np.full((n, 3), np.nan)
+    arcs = (kinds == ARC_CW) | (kinds == ARC_CCW)
+    center[arcs, :2] = (xy + previous)[arcs] / 2 + rng.uniform(-1, 1, (arcs.sum(), 1)) * chord[arcs][:, ::-1] * [1, -1]
+    center[arcs, 2] = 0.0
+    return operation(tool, np.column_stack([xy, z]), start=[xy[0, 0], xy[0, 1], 5.0], kinds=kinds, center=center,
+                     name=name)
+
+
+@pytest.mark.skipif(not NUMBA, reason="the numba kernel is not available")
+def test_both_kernels_give_the_same_heights_and_findings():
+    rng = np.random.default_rng(11)
+    tools = [BALL6, FLAT6, Tool(7, "bull", 8.0, corner_radius=2), VBIT6, DRILL6, Tool(8, "ball", 3.0)]
+    program = Program("mixed", [random_operation(rng, tool, f"op{i}") for i, tool in enumerate(tools)])
+    ring = operation(BULL6, [[-20, 0, -1.5], [-20, 0, -1.5], [-24, 0, -3.5], [-24, 0, 5.0]], start=[-20, 0, 5.0],
+                     c=[0.0, 200.0, 300.0, 300.0], kinds=[FEED, FEED, FEED, RAPID])
+    cases = [(program, (0, 0, -10, 60, 60, 0), 0.07), (ring, sim.CylinderStock(30, 10), 0.1)]
+    kinds = []
+    for ops, stock, cell in cases:
+        numpy, numba = (sim.simulate(ops, stock, cell=cell, tolerance=0.1, design=-3.0, no_plunge_tools={7},
+                                     kernel=kernel) for kernel in ("numpy", "numba"))
+        assert (numpy.kernel, numba.kernel) == ("numpy", "numba")
+        hf = numpy.heightfield
+        assert np.mean(hf.heights[hf.inside] < hf.top) > 0.2     # much of the stock is cut
+        np.testing.assert_array_max_ulp(numba.heightfield.heights, hf.heights, maxulp=1)
+        assert numba.removed_volume_mm3 == pytest.approx(numpy.removed_volume_mm3, rel=1e-6)
+        assert [(f.kind, f.operation, f.move) for f in numba.findings] == \
+            [(f.kind, f.operation, f.move) for f in numpy.findings]
+        assert [f.depth_mm for f in numba.findings] == pytest.approx([f.depth_mm for f in numpy.findings], abs=1e-6)
+        kinds.append({f.kind for f in numpy.findings})
+    assert kinds == [{"gouge", "rapid_in_material", "plunge"}, {"gouge", "plunge"}]
+
+
+def test_kernel_choice(monkeypatch):
+    with pytest.raises(ValueError, match="kernel"):
+        sim.simulate(slot(FLAT6, 2.0), BOX, kernel="fortran")
+    monkeypatch.setenv("KEZURI_NO_NUMBA", "1")
+    assert sim.simulate(slot(FLAT6, 2.0), BOX, cell=0.5).kernel == "numpy"
+    with pytest.raises(ValueError, match="KEZURI_NO_NUMBA"):
+        sim.simulate(slot(FLAT6, 2.0), BOX, kernel="numba")
 
 
 # ----- bad input ------------------------------------------------------------------------------------

@@ -23,6 +23,10 @@ One call, :func:`simulate`, with two engines behind it:
     per grid column into exact y-intervals (roots of a quadratic), so a short raster move
     costs ~2R*L/cell^2 cells instead of the ~pi*R^2/cell^2 of stamping the whole tool.
 
+    Two kernels evaluate the regions (``kernel=``): a compiled one (numba, in
+    heightfield_kernel.py), used where numba can be imported, and pure numpy, the fallback.
+    They do the same arithmetic in the same order and write the same heights.
+
 ``"manifold"``
     Exact solids: for every straight move the hull of the (faceted, inscribed) tool at both
     ends, unioned in chunks with ``Manifold.batch_boolean`` and subtracted from the stock.
@@ -47,6 +51,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
 import time
 from dataclasses import dataclass
 
@@ -58,6 +63,7 @@ from .errors import InputError
 from .program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool, arc_sweep
 
 ENGINES = ("heightfield", "manifold")
+KERNELS = ("auto", "numba", "numpy")    # height field kernels; "auto": numba where it can be imported
 CHORD_TOLERANCE = 0.01     # mm: arcs and rotary moves are cut into chords this close to the path
 TOUCH_TOLERANCE = 1e-3     # mm: a rapid must go this deep into material to count as touching it
 GOUGE_TOLERANCE = 1e-3     # mm: cutting this far below the design is reported
@@ -242,6 +248,7 @@ class SimulationResult:
     stock: BoxStock | CylinderStock
     heightfield: HeightField | None = None
     solid: Manifold | None = None
+    kernel: str = "numpy"       # the height field kernel that ran: "numba" or "numpy"
 
     def findings_of(self, kind: str) -> list:
         return [f for f in self.findings if f.kind == kind]
@@ -254,6 +261,21 @@ class SimulationResult:
         if self.solid is not None:
             return _manifold_arrays(self.solid)
         return _heightfield_mesh(self.heightfield, self.stock, max_cells)
+
+    def __getstate__(self):
+        """Picklable (a simulation run in another process sends its result back): the solid
+        travels as its triangle mesh."""
+        state = dict(self.__dict__)
+        if self.solid is not None:
+            state["solid"] = _manifold_arrays(self.solid)
+        return state
+
+    def __setstate__(self, state):
+        if state.get("solid") is not None:
+            vertices, faces = state["solid"]
+            state["solid"] = Manifold(Mesh(vert_properties=np.asarray(vertices, np.float32),
+                                           tri_verts=np.asarray(faces, np.uint32)))
+        self.__dict__.update(state)
 
 
 # ----- the path as the simulation sees it ---------------------------------------------------
@@ -362,17 +384,22 @@ def _chains(ops: list, no_plunge_tools) -> list:
 
 # ----- tool shapes ------------------------------------------------------------------------
 
+def _profile_shape(tool: Tool):
+    """(tip_tan, corner, flat): a cone whose half angle has tangent tip_tan if tip_tan > 0,
+    else a flat disc of radius ``flat`` rounded by a ``corner`` radius."""
+    if tool.kind in TIP_ANGLE_DEG:
+        return math.tan(math.radians(TIP_ANGLE_DEG[tool.kind]) / 2), 0.0, 0.0
+    corner = 0.0 if tool.kind == "flat" else float(tool.corner_radius)
+    return 0.0, corner, float(tool.radius) - corner
+
+
 def _profile(tool: Tool, d):
     """Height of the tool's underside above its tip at distance d from the axis (d <= R)."""
-    r = tool.radius
-    if tool.kind == "flat":
-        return np.zeros_like(d)
-    if tool.kind in TIP_ANGLE_DEG:
-        return d / math.tan(math.radians(TIP_ANGLE_DEG[tool.kind]) / 2)
-    rc = tool.corner_radius
-    flat = r - rc
+    tip_tan, corner, flat = _profile_shape(tool)
+    if tip_tan > 0:
+        return d / tip_tan
     off = np.maximum(d - flat, 0)
-    return rc - np.sqrt(np.maximum(rc * rc - off * off, 0))
+    return corner - np.sqrt(np.maximum(corner * corner - off * off, 0))
 
 
 def _ring_count(flat_radius: float, corner_radius: float, tolerance: float) -> int:
@@ -460,13 +487,18 @@ def _disk_span(dx, r):
 
 class _Family:
     """Items of one kind (bands or tool positions): their reference point (ox, oy), the
-    segment each belongs to, and named per-item arrays."""
+    segment each belongs to, and named per-item arrays.
+
+    A subclass gives the x and y ranges of its items, their y-intervals per grid column and
+    their values over runs of cells (the numpy kernel), and ``cut``: the same through the
+    compiled kernel (heightfield_kernel.py), min-written straight into the flat heights."""
 
     def __init__(self, segment, ox, oy, **arrays):
+        # contiguous float arrays: the compiled kernels then need one signature each
         self.segment = np.asarray(segment)
-        self.ox = np.asarray(ox, float)
-        self.oy = np.asarray(oy, float)
-        self.arrays = {k: np.asarray(v) for k, v in arrays.items()}
+        self.ox = np.ascontiguousarray(ox, float)
+        self.oy = np.ascontiguousarray(oy, float)
+        self.arrays = {k: np.ascontiguousarray(v, float) for k, v in arrays.items()}
 
     def __len__(self):
         return len(self.segment)
@@ -527,6 +559,10 @@ class _Bands(_Family):
         np.multiply(j, _row(cell_y * uy * a), out=out)
         out += _row((dx * ux + dy0 * uy) * a + self.z[k])
         out -= tmp
+
+    def cut(self, kernels, flat, hf):
+        kernels.cut_bands(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.ux, self.uy,
+                          self.length, self.s, self.z, self.a, self.b, self.r)
 
 
 def _sqrt_of_r2_minus_square(x, r):
@@ -590,6 +626,10 @@ class _SphereVertices(_Family):
         out += _row(dy0)
         _sqrt_of_r2_minus_square(out, _row(np.sqrt(np.maximum(self.r[k] ** 2 - dx * dx, 0))))
         np.subtract(_row(self.z[k]), out, out=out)
+
+    def cut(self, kernels, flat, hf):
+        kernels.cut_sphere_vertices(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.d1x,
+                                    self.d1y, self.dz1, self.d2x, self.d2y, self.dz2, self.z, self.r)
 
 
 def _cut_disk_span(o, r, n1a, n1b, dz1, n2a, n2b, dz2):
@@ -655,6 +695,10 @@ class _Stamps(_Family):
         np.minimum(tmp, np.float32(self.r), out=tmp)
         out[...] = _profile(self.tool, tmp)
         out += _row(self.z[k])
+
+    def cut(self, kernels, flat, hf):
+        kernels.cut_stamps(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.z,
+                           self.r, *_profile_shape(self.tool))
 
 
 # ----- height field: which items a chain needs ------------------------------------------------
@@ -782,6 +826,47 @@ def _grid(stock, cell: float) -> HeightField:
     return hf
 
 
+def _columns(hf: HeightField, family: _Family):
+    """(first grid column, number of columns) of every item of the family."""
+    nx, ny = hf.shape
+    xlo, xhi = family.xrange()
+    ylo, yhi = family.yrange()
+    c0 = np.clip(np.ceil((xlo - hf.x0) / hf.cell_x - 0.5), 0, nx).astype(np.int64)
+    c1 = np.clip(np.floor((xhi - hf.x0) / hf.cell_x - 0.5), -1, nx - 1).astype(np.int64)
+    ncol = np.maximum(c1 - c0 + 1, 0)
+    ncol[(yhi < hf.y0) | (ylo > hf.y0 + ny * hf.cell_y)] = 0
+    return c0, ncol
+
+
+def _kernel_grid(hf: HeightField):
+    """The grid as the compiled kernels take it (one type for every grid: one compilation)."""
+    return hf.shape[1], float(hf.x0), float(hf.y0), float(hf.cell_x), float(hf.cell_y)
+
+
+def _compiled_kernels(kernel: str):
+    """The compiled kernels module for ``kernel`` ("auto", "numba", "numpy"), or None for numpy.
+
+    numba is optional: "auto" falls back to numpy where it cannot be imported or where the
+    environment sets KEZURI_NO_NUMBA=1; "numba" then refuses."""
+    if kernel not in KERNELS:
+        raise SimulationError(f"kernel must be one of {KERNELS}, got {kernel!r}")
+    if kernel == "numpy":
+        return None
+    if os.environ.get("KEZURI_NO_NUMBA") == "1":
+        why = "KEZURI_NO_NUMBA=1 is set"
+    else:
+        try:
+            from . import heightfield_kernel
+            return heightfield_kernel
+        except (ImportError, OSError, RuntimeError) as error:
+            # OSError: llvmlite's library would not load; RuntimeError: numba finds no
+            # writable place for its cache of compiled kernels
+            why = f"numba cannot be used ({error})"
+    if kernel == "numba":
+        raise SimulationError(f"the numba kernel is not available: {why}")
+    return None
+
+
 class _Scratch:
     """Buffers reused for every chunk of cells: fresh temporaries of this size would cost more
     in page faults than the arithmetic done in them."""
@@ -813,13 +898,8 @@ def _cells(hf: HeightField, family: _Family, scratch: _Scratch):
     run-minor, so per-run constants broadcast along contiguous rows.  Padding has value +inf
     and an index up to ``ny + 8`` past the run's start (possibly past the grid: index a buffer
     with that margin).  The arrays live in ``scratch`` and are overwritten by the next chunk."""
-    nx, ny = hf.shape
-    xlo, xhi = family.xrange()
-    ylo, yhi = family.yrange()
-    c0 = np.clip(np.ceil((xlo - hf.x0) / hf.cell_x - 0.5), 0, nx).astype(np.int64)
-    c1 = np.clip(np.floor((xhi - hf.x0) / hf.cell_x - 0.5), -1, nx - 1).astype(np.int64)
-    ncol = np.maximum(c1 - c0 + 1, 0)
-    ncol[(yhi < hf.y0) | (ylo > hf.y0 + ny * hf.cell_y)] = 0
+    ny = hf.shape[1]
+    c0, ncol = _columns(hf, family)
     items = np.flatnonzero(ncol)
     if not len(items):
         return
@@ -881,12 +961,16 @@ def _runs(chain: _Chain, families: list, longest: int = 5000):
 
 
 class _Simulation:
-    """The height field engine: runs the chains in order and records what it finds."""
+    """The height field engine: runs the chains in order and records what it finds.
 
-    def __init__(self, hf: HeightField, tolerance: float, progress=None):
+    ``kernels``: the compiled kernels module, or None for the numpy kernel.  Checked moves
+    always take the numpy path (they are few, and must be measured before they cut)."""
+
+    def __init__(self, hf: HeightField, tolerance: float, progress=None, kernels=None):
         self.hf = hf
         self.tolerance = tolerance
         self.progress = progress
+        self.kernels = kernels
         self.touches = []       # (chain, segment, depth, xy) of checked moves that met material
         self.scratch = _Scratch()
 
@@ -902,6 +986,9 @@ class _Simulation:
                 parts = [fam.take(slice(*np.searchsorted(fam.segment, [a, b]))) for fam in families]
                 if checked:
                     self._checked(flat, chain, a, parts)
+                elif self.kernels is not None:
+                    for fam in parts:
+                        fam.cut(self.kernels, flat, self.hf)
                 else:
                     for fam in parts:
                         for _, _, index, values in _cells(self.hf, fam, self.scratch):
@@ -1108,11 +1195,12 @@ def _findings(sim: _Simulation, chains: list, ops: list, design_z) -> list:
 
 
 def check(program_or_operations, stock, *, cell: float = 0.1, tolerance: float = 0.03, design=None,
-          keep_regions=None, travel: dict | None = None, no_plunge_tools=(), progress=None) -> list:
+          keep_regions=None, travel: dict | None = None, no_plunge_tools=(), progress=None,
+          kernel: str = "auto") -> list:
     """Safety findings alone (runs the height field engine); see :func:`simulate`."""
     return simulate(program_or_operations, stock, engine="heightfield", cell=cell, tolerance=tolerance,
                     design=design, keep_regions=keep_regions, travel=travel, no_plunge_tools=no_plunge_tools,
-                    progress=progress).findings
+                    progress=progress, kernel=kernel).findings
 
 
 # ----- manifold engine -----------------------------------------------------------------------------
@@ -1284,7 +1372,7 @@ def _heightfield_mesh(hf: HeightField, stock, max_cells):
 
 def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell: float = 0.1,
              tolerance: float = 0.03, design=None, keep_regions=None, travel: dict | None = None,
-             no_plunge_tools=(), progress=None, chunk: int = 1000) -> SimulationResult:
+             no_plunge_tools=(), progress=None, chunk: int = 1000, kernel: str = "auto") -> SimulationResult:
     """Cut the stock with the program and check it.
 
     ``stock``: a BoxStock, a CylinderStock or (x0, y0, z0, x1, y1, z1).
@@ -1299,6 +1387,9 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     ``no_plunge_tools``: tool numbers that cannot feed straight down (see :func:`can_plunge`).
     ``progress(fraction)`` is called as work completes; returning False cancels
     (:class:`SimulationCancelled`).
+    ``kernel``: how the height field is computed: "numba" (compiled, several times faster),
+    "numpy", or "auto" (numba where it can be imported, see :data:`KERNELS`); both give the
+    same heights.  The result's ``kernel`` says which ran.
     """
     started = time.perf_counter()
     if engine not in ENGINES:
@@ -1308,6 +1399,7 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
             raise SimulationError(f"{name} must be a positive number of mm, got {value!r}")
     if not (isinstance(chunk, int) and chunk > 0):
         raise SimulationError(f"chunk must be a positive number of moves, got {chunk!r}")
+    kernels = _compiled_kernels(kernel)
     stock = as_stock(stock)
     ops = _operations(program_or_operations)
     chains = _chains(ops, no_plunge_tools)
@@ -1318,15 +1410,17 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     if engine == "manifold":
         solid = _manifold_sweep(stock, chains, tolerance, chunk, _part_of(progress, 0.0, 0.8))
         progress = _part_of(progress, 0.8, 1.0)      # the safety checks still run on a height field
-    sim = _Simulation(hf, tolerance, progress)
+    sim = _Simulation(hf, tolerance, progress, kernels)
     sim.run(chains)
     findings += _findings(sim, chains, ops, design_z)
     seconds = time.perf_counter() - started
+    ran = "numpy" if kernels is None else "numba"
     if solid is not None:
         removed = _stock_solid(stock, tolerance).volume() - solid.volume()
-        return SimulationResult("manifold", float(removed), seconds, None, tolerance, findings, stock, solid=solid)
+        return SimulationResult("manifold", float(removed), seconds, None, tolerance, findings, stock, solid=solid,
+                                kernel=ran)
     return SimulationResult("heightfield", hf.removed_volume(), seconds, hf.cell_x, tolerance, findings, stock,
-                            heightfield=hf)
+                            heightfield=hf, kernel=ran)
 
 
 def _part_of(progress, start: float, end: float):
