@@ -205,6 +205,7 @@ class KEZURI_PT_simulate(KezuriPanel, bpy.types.Panel):
         layout.prop(props, "engine")
         if props.engine == "heightfield":
             layout.prop(props, "cell")
+        layout.prop(props, "colour_by")
         layout.use_property_split = False
         row = layout.row(align=True)
         for key, text in (("ENGRAVE", "Engraving"), ("ROTARY", "Rotary"), ("STEPNC", "STEP-NC")):

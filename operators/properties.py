@@ -235,11 +235,24 @@ class KezuriFinding(bpy.types.PropertyGroup):
     location: FloatVectorProperty(name="Location", size=3, subtype="XYZ")
 
 
+def show_colours(props, context=None):
+    """Make the simulated stock show the colours the panel asks for (both are stored on it)."""
+    from .simulate import COLOUR_ATTRIBUTES, PREFIX
+    for obj in bpy.data.objects:
+        if obj.name.startswith(PREFIX) and obj.type == "MESH":
+            attribute = obj.data.color_attributes.get(COLOUR_ATTRIBUTES[props.colour_by])
+            if attribute is not None:
+                obj.data.color_attributes.active_color = attribute
+
+
 class KezuriSimulation(bpy.types.PropertyGroup):
     engine: EnumProperty(name="Engine", default="heightfield", items=[
         ("heightfield", "Height Field", "Fast Z-map of the exact tool envelope (3-axis and C-X-Z jobs)"),
         ("manifold", "Exact Solid", "manifold3d booleans of the swept tools: exact, slower")])
     cell: mm("Cell Size", 0.1, "Height-field grid spacing", minimum=0.01)
+    colour_by: EnumProperty(name="Colour", default="DEPTH", update=show_colours, items=[
+        ("DEPTH", "Depth", "Light wood at the top, dark at the deepest cut"),
+        ("OPERATION", "Operation", "Each operation's surface in its own colour")])
     findings: CollectionProperty(type=KezuriFinding)
 
 

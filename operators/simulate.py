@@ -18,6 +18,9 @@ from . import convert
 from .common import CoreCall, SteppedOperator
 
 PREFIX = "Kezuri Simulated"
+COLOUR_ATTRIBUTES = {"DEPTH": "Kezuri depth", "OPERATION": "Kezuri operation"}
+OPERATION_COLOURS = np.array([(0.95, 0.45, 0.10, 1.0), (0.10, 0.60, 1.00, 1.0), (0.20, 0.80, 0.30, 1.0),
+                              (0.90, 0.80, 0.10, 1.0), (0.75, 0.30, 0.95, 1.0), (0.90, 0.20, 0.30, 1.0)])
 WORKFLOW_ITEMS = [("ENGRAVE", "Engraving", "The gouge-texture name plate"),
                   ("ROTARY", "Rotary Pockets", "The pockets on the rotating table"),
                   ("STEPNC", "STEP-NC Workplan", "The imported ISO 14649 workplan")]
@@ -132,19 +135,29 @@ def report_of(result: core.SimulationResult) -> dict:
 
 
 def show_simulation(scene, job: SimulationJob, max_cells: int = 250_000):
-    """The simulated stock as a mesh in the Kezuri collection, coloured by depth (replaces the last one)."""
+    """The simulated stock as a mesh in the Kezuri collection (replaces the last one), with two
+    colour attributes: by depth, and by the operation whose surface shows there."""
     convert.remove_objects(PREFIX)
     vertices, faces = job.result.mesh(max_cells)
     obj = convert.mesh_object(scene, f"{PREFIX} stock ({job.name})", vertices, faces, job.frame,
                               color=(0.85, 0.72, 0.52, 1.0))
-    z = np.asarray(vertices, float)[:, 2]
+    vertices = np.asarray(vertices, float)
+    z = vertices[:, 2]
     top, depth = z.max(), max(float(z.max() - z.min()), 1e-9)
     shade = np.clip((top - z) / depth, 0, 1)[:, None]
     light, dark = np.array([0.92, 0.80, 0.60, 1.0]), np.array([0.35, 0.20, 0.08, 1.0])
-    colours = (light * (1 - shade) + dark * shade).astype(np.float32)
-    attribute = obj.data.color_attributes.new("Kezuri depth", "FLOAT_COLOR", "POINT")
-    attribute.data.foreach_set("color", colours.ravel())
-    obj.data.color_attributes.active_color = attribute
+    by_depth = light * (1 - shade) + dark * shade
+    hf = job.result.heightfield
+    by_operation = np.tile(light, (len(vertices), 1))
+    if hf is not None and hf.operation is not None:
+        operation = hf.operation_at(vertices[:, :2])
+        cut = (operation >= 0) & (z < top - 1e-6)
+        by_operation[cut] = OPERATION_COLOURS[operation[cut] % len(OPERATION_COLOURS)]
+    for key, colours in (("OPERATION", by_operation), ("DEPTH", by_depth)):
+        attribute = obj.data.color_attributes.new(COLOUR_ATTRIBUTES[key], "FLOAT_COLOR", "POINT")
+        attribute.data.foreach_set("color", colours.astype(np.float32).ravel())
+    obj.data.color_attributes.active_color = obj.data.color_attributes[
+        COLOUR_ATTRIBUTES[scene.kezuri.simulation.colour_by]]
     return obj
 
 

@@ -142,6 +142,9 @@ PANEL_TEXTS = {
 # Property names and descriptions, enum items (operators/properties.py, preferences.py and the
 # operators' own properties).
 PROPERTY_TEXTS = {
+    "Colour": "色分け",
+    "Light wood at the top, dark at the deepest cut": "上面は明るく、最も深い切削ほど濃く",
+    "Each operation's surface in its own colour": "各工程が仕上げた面をそれぞれの色で表示",
     # Simulation
     "Job": "ジョブ",
     "Engraving": "彫刻",
@@ -413,6 +416,9 @@ PROPERTY_TEXTS = {
 
 # Fixed messages: poll messages, reports and the errors the operators show (run_reported).
 MESSAGES = {
+    "This job is already running: wait for it or press Esc to cancel it": "この処理は実行中です。終わるまで待つか、Escで中止してください",
+    "Cancelled: the scene is as it was": "中止しました。シーンは元のままです",
+    "Esc to cancel": "Escで中止",
     # operators/*.py
     "Pick the plate (stock) object first": "先に板材（素材）のオブジェクトを選んでください",
     "Pick the letters (Text, curve or mesh) first": "先に文字（テキスト・カーブ・メッシュ）を選んでください",

@@ -86,3 +86,22 @@ def test_batch_engrave_report_has_the_simulation(tmp_path):
     simulation = json.loads((tmp_path / "report.json").read_text())["simulation"]
     assert simulation["engine"] == "heightfield" and simulation["removed_volume_mm3"] > 1000
     assert simulation["gouges"] == [] and simulation["max_gouge_mm"] == 0 and simulation["rapid_collisions"] == []
+
+
+def test_simulated_stock_is_coloured_by_depth_or_by_operation(scene):
+    """The name plate's roughing, band and burr each colour their own surface; the panel's
+    Colour switch changes which colours the viewport shows without simulating again."""
+    from kezuri.operators import simulate as shell
+    samples.name_plate(scene)
+    assert bpy.ops.kezuri.simulate(workflow="ENGRAVE") == {"FINISHED"}
+    carved = next(o for o in bpy.data.collections["Kezuri"].objects if o.name.startswith("Kezuri Simulated"))
+    attributes = carved.data.color_attributes
+    assert attributes.active_color.name == "Kezuri depth"
+    colours = np.empty(len(carved.data.vertices) * 4, np.float32)
+    attributes["Kezuri operation"].data.foreach_get("color", colours)
+    colours = colours.reshape(-1, 4)
+    seen = {tuple(np.round(c, 3)) for c in colours}
+    for index in range(3):                       # roughing, band finishing, burr contour
+        assert tuple(np.round(shell.OPERATION_COLOURS[index], 3).astype(np.float32)) in seen
+    scene.kezuri.simulation.colour_by = "OPERATION"
+    assert attributes.active_color.name == "Kezuri operation"

@@ -417,3 +417,14 @@ def test_bad_arguments_are_refused_with_a_clear_message():
         sim.simulate(broken, BOX)
     with pytest.raises(ValueError, match="rotary"):
         sim.simulate(operation(FLAT6, [[0, 0, 0.0]], start=[0, 0, 5.0]).replace(rotary={"a": np.zeros(1)}), BOX)
+
+
+def test_each_cell_knows_the_operation_whose_surface_shows_there(kernel):
+    """Roughing cuts a slot along y = 20; finishing recuts its left half 1 mm deeper.  The right
+    half shows the roughing, the left half the finishing, the rest of the stock was never cut."""
+    roughing = operation(FLAT6, [[30.0, 20.0, -2.0]], [10.0, 20.0, -2.0], name="roughing")
+    finishing = operation(FLAT6, [[20.0, 20.0, -3.0]], [10.0, 20.0, -3.0], name="finishing")
+    hf = sim.simulate([roughing, finishing], BOX, cell=0.25, kernel=kernel).heightfield
+    assert hf.operation.shape == hf.shape
+    assert list(hf.operation_at([[26.0, 20.0], [14.0, 20.0], [5.0, 5.0], [35.0, 35.0]])) == [0, 1, -1, -1]
+    assert set(np.unique(hf.operation)) == {-1, 0, 1}

@@ -211,7 +211,8 @@ class HeightField:
     """Z-map: ``heights[i, j]`` is the lowest the tool reached over the centre of cell (i, j),
     (x0 + (i + 0.5) * cell_x, y0 + (j + 0.5) * cell_y), or the stock top where it never cut;
     the material top is that clamped to [bottom, top].  ``inside`` marks cells of the stock
-    (outside a cylinder stock heights are -inf)."""
+    (outside a cylinder stock heights are -inf).  ``operation[i, j]``: the index of the last
+    operation that lowered the cell, the one whose surface shows there (-1: never cut)."""
 
     x0: float
     y0: float
@@ -221,6 +222,14 @@ class HeightField:
     inside: np.ndarray
     top: float
     bottom: float
+    operation: np.ndarray | None = None
+
+    def operation_at(self, xy) -> np.ndarray:
+        """The ``operation`` of the cells under (k, 2) points (clamped to the grid)."""
+        xy = np.asarray(xy, float).reshape(-1, 2)
+        i = np.clip(np.floor((xy[:, 0] - self.x0) / self.cell_x).astype(np.int64), 0, self.shape[0] - 1)
+        j = np.clip(np.floor((xy[:, 1] - self.y0) / self.cell_y).astype(np.int64), 0, self.shape[1] - 1)
+        return self.operation[i, j]
 
     @property
     def shape(self):
@@ -980,7 +989,9 @@ class _Simulation:
         flat[:nx * ny] = self.hf.heights.reshape(-1)
         total = sum(len(ch.move) for ch in chains) or 1
         done = 0
+        operation = np.full(nx * ny, -1, np.int16)
         for chain in chains:
+            before = flat[:nx * ny].copy()
             families = _families(chain, self.hf.top, self.tolerance)
             for a, b, checked in _runs(chain, families):
                 parts = [fam.take(slice(*np.searchsorted(fam.segment, [a, b]))) for fam in families]
@@ -996,7 +1007,9 @@ class _Simulation:
                 done += b - a
                 if self.progress is not None and self.progress(done / total) is False:
                     raise SimulationCancelled("simulation cancelled")
+            operation[flat[:nx * ny] < before] = chain.op_index
         self.hf.heights[...] = flat[:nx * ny].reshape(nx, ny)
+        self.hf.operation = operation.reshape(nx, ny)
 
     def _checked(self, flat, chain, segment, families):
         """Apply one checked move, recording it if it reaches into the material as it is
