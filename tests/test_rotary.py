@@ -341,6 +341,57 @@ def test_gouge_check_sees_a_gouge():
     assert rotary.max_gouge(VERTICAL, deeper, SMALL_BLOCK) == pytest.approx(0.3 - SETTINGS.standoff, abs=1e-3)
 
 
+def box_penetration(pocket, centres):
+    """The test's own: how far balls cut into a pocket with vertical walls and a flat floor."""
+    z = centres[:, 2]
+    d = polygon_distance(pocket.outline, centres[:, :2])
+    d = np.where(rg.contains_points(rg.from_loops([pocket.outline]), centres[:, :2]), d, -d)
+    wall = np.where(z <= 0, R, np.sqrt(np.maximum(R * R - z * z, 0.0))) - d
+    return np.maximum(np.where(z < R, wall, -np.inf), -pocket.depth - (z - R))
+
+
+@pytest.mark.parametrize("turn, move", [(0.5, 0.0), (0.0, -0.3)])
+def test_gouge_check_bounds_a_wall_gouge(turn, move):
+    # Turning the table or moving X a little pushes the ball into the walls.  The check is a
+    # bound, not a sample: never below what dense sampling of the machine's motion finds.
+    op = rotary.plan(SMALL_BLOCK, [VERTICAL]).program.operations[0]
+    moved = op.replace(xyz=op.xyz + [move, 0.0, 0.0], rotary={"c": op.rotary["c"] + turn})
+    points = np.vstack([moved.start, moved.xyz])
+    c = np.concatenate([moved.rotary["c"][:1], moved.rotary["c"]])
+    kinds = ["rapid"] + ["rapid" if k == RAPID else "feed" for k in moved.kind]
+    tips = interpolated_tips(points, np.column_stack([0 * c, 0 * c, c]), kinds, samples=100)
+    dense = float(box_penetration(VERTICAL, tips + [0, 0, R]).max())
+    assert dense > 0.1
+    assert dense - 1e-9 <= rotary.max_gouge(VERTICAL, moved, SMALL_BLOCK) <= dense * 1.001 + 1e-4
+
+
+@pytest.mark.parametrize("outline", [crescent(), dumbbell(), rectangle(0.0, 0.0, 30.0, 18.0)])
+def test_outline_distance_is_exact(outline):
+    loop = rg.validate_loop(outline, "test")
+    region = rg.from_loops([loop])
+    distance = rotary._OutlineDistance(loop, region, cap=4.0)
+    pts = np.random.default_rng(7).uniform(loop.min(axis=0) - 5, loop.max(axis=0) + 5, (4000, 2))
+    exact = polygon_distance(loop, pts) * np.where(rg.contains_points(region, pts), 1, -1)
+    got = distance(pts)
+    capped = got == 4.0
+    assert np.allclose(got[~capped], exact[~capped], rtol=0, atol=1e-9)
+    assert np.all(exact[capped] >= 4.0 - 1e-9)        # deep inside only "at least cap"
+
+
+@pytest.mark.parametrize("outline", [crescent(), dumbbell()])
+def test_curve_clipping_agrees_with_region(outline):
+    region = rg.offset(rg.from_loops([outline]), -3.5)
+    centre = np.array(rg.centroid(region))
+    region = region.translate(tuple(-centre))
+    boundary = rotary._Boundary(region)
+    phi = np.linspace(0, 2 * np.pi * 25, 20000)
+    spiral = rotary._by_arc_length(np.column_stack([phi * np.cos(phi), phi * np.sin(phi)]) / (2 * np.pi), 1.0)
+    for curve in [rotary._circle(radius, 1.0) for radius in (2.0, 6.5, 11.0, 17.0)] + [spiral]:
+        ours, theirs = boundary.clip(curve), rg.clip_polyline(curve, region)
+        assert len(ours) == len(theirs)
+        assert all(a.shape == b.shape and np.allclose(a, b, rtol=0, atol=1e-12) for a, b in zip(ours, theirs))
+
+
 # ----------------------------------------------------------------------------------------
 # Roughing, finishing coverage, scallops
 # ----------------------------------------------------------------------------------------

@@ -302,9 +302,9 @@ def part_points(op: Operation) -> np.ndarray:
 
 def _to_machine(kind, xyz, feed, tolerance, start_c):
     """Part-frame moves (tool tip) -> machine moves: cutting moves split until the rotary
-    interpolation stays within ``tolerance`` of the chord, C unwrapped.  Only the halves of
-    moves just split are checked again: a split leaves every other move as it was; nor are
-    moves whose bend (:func:`_speed_and_bend`) keeps them that close anyway."""
+    interpolation stays within ``tolerance`` of the chord, C unwrapped.  A move is sampled
+    unless its bend (:func:`_speed_and_bend`) keeps it that close anyway; after a split only
+    the two halves are checked again (a split leaves every other move as it was)."""
     kind, xyz, feed = np.asarray(kind), np.asarray(xyz, float), np.asarray(feed, float)
     moved = np.ones(len(kind), bool)
     moved[1:] = np.any(np.abs(np.diff(xyz, axis=0)) > 1e-9, axis=1)
@@ -366,7 +366,8 @@ class _OutlineDistance:
     def __init__(self, loop: np.ndarray, region: CrossSection, cap: float):
         self.region, self.cap = region, cap
         vector = np.roll(loop, -1, axis=0) - loop
-        self.ax, self.ay, self.dx, self.dy = loop[:, 0].copy(), loop[:, 1].copy(), vector[:, 0].copy(), vector[:, 1].copy()
+        self.ax, self.ay = loop[:, 0].copy(), loop[:, 1].copy()
+        self.dx, self.dy = vector[:, 0].copy(), vector[:, 1].copy()
         self.inverse = 1.0 / np.maximum(self.dx ** 2 + self.dy ** 2, 1e-300)
         self.low = loop.min(axis=0)
         extent = loop.max(axis=0) - self.low
@@ -548,9 +549,15 @@ class _Geometry:
     def need(self, z: np.ndarray) -> np.ndarray:
         """Plan distance from the outline a ball centre at height z (< r) needs to clear the
         wall: the wall's offset below its top edge, the ball's section at the board top above
-        it.  Never grows with z."""
+        it.  Concave in z (the two meet with the same slope) and never growing."""
         r = self.r
         return np.where(z <= r * math.sin(self.theta), self.wall_offset(z), np.sqrt(np.maximum(r * r - z * z, 0.0)))
+
+    def need_slope(self, z: np.ndarray) -> np.ndarray:
+        """d need / dz (-inf at z = r)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(z <= self.r * math.sin(self.theta), -math.tan(self.theta),
+                            -z / np.sqrt(np.maximum(self.r ** 2 - z * z, 0.0)))
 
     def probe(self, centres: np.ndarray) -> np.ndarray:
         """Balls at local centres (n, 3) -> (n, 4) columns: z; signed plan distance d to the
@@ -580,25 +587,31 @@ class _Geometry:
           1 / distance; so d'' <= speed^2 / rho + bend and d >= min(d0, d1) -
           (speed^2 / rho + bend) span^2 / 8 (a function with f'' <= K lies at most K span^2 / 8
           below its chord);
-        * the wall asks for need(z) <= need(lowest z) (need never grows with z), and its
-          penetration (need - d) * w, w = cos(theta) below the wall's top edge and 1 above
-          it, is at most X * (the largest w on the stretch), or X * (the smallest) when
-          X < 0, with X = need(lowest z) - (the bound on d).  Below the edge need is linear
-          in t, so need - d also stays under the higher of its end values + the sag of d;
+        * the wall's penetration is (need(z) - d) * w, w = cos(theta) below the wall's top
+          edge and 1 above it: at most X * (the largest w on the stretch), or X * (the
+          smallest) when X < 0, where X bounds need - d.  need(z) <= need(lowest z), which
+          with the bound on d gives one X.  need is also concave, so under its tangent at
+          either end, which is linear in t: then need - d stays under the higher of its end
+          values (the tangent's) + the sag of d, which gives two more;
         * a flat bottom is linear in t; a sphere's |c - centre| is convex and 1-Lipschitz in c
           with c'' = (p'', 0), so it lies at most bend * span^2 / 8 above its chord.
         """
+        (z0, d0), (z1, d1) = v0[:, :2].T, v1[:, :2].T
         length = speed * span
-        inside = np.minimum(v0[:, 1], v1[:, 1]) - length / 2
+        inside = np.minimum(d0, d1) - length / 2
         curving = speed ** 2 / np.where(inside > 0, inside, 1.0) + bend
         sag = np.where(inside > 0, curving * span ** 2 / 8, np.inf)
-        closest = np.maximum(-v0[:, 1], -v1[:, 1])            # -d at the nearer end
-        approach = np.minimum(closest + sag, (length - v0[:, 1] - v1[:, 1]) / 2)
-        low, high = np.minimum(v0[:, 0], v1[:, 0]), np.maximum(v0[:, 0], v1[:, 0])
+        low, high = np.minimum(z0, z1), np.maximum(z0, z1)
+        x = self.need(low) + np.minimum(np.maximum(-d0, -d1) + sag, (length - d0 - d1) / 2)
+        sloped = np.flatnonzero(low < high)         # (level stretches gain nothing from tangents)
+        if len(sloped):
+            za, zb, da, db = z0[sloped], z1[sloped], d0[sloped], d1[sloped]
+            na, nb, sa, sb = self.need(za), self.need(zb), self.need_slope(za), self.need_slope(zb)
+            with np.errstate(invalid="ignore"):
+                under_a = np.where(za < self.r, np.maximum(na - da, na + sa * (zb - za) - db), np.inf)
+                under_b = np.where(zb < self.r, np.maximum(nb + sb * (za - zb) - da, nb - db), np.inf)
+            x[sloped] = np.minimum(x[sloped], np.minimum(under_a, under_b) + sag[sloped])
         edge, slope = self.r * math.sin(self.theta), math.cos(self.theta)
-        x = self.need(low) + approach
-        linear = np.maximum(self.need(v0[:, 0]) - v0[:, 1], self.need(v1[:, 0]) - v1[:, 1]) + sag
-        x = np.where(high <= edge, np.minimum(x, linear), x)
         most, least = np.where(high <= edge, slope, 1.0), np.where(low <= edge, slope, 1.0)
         wall = np.where(low < self.r, x * np.where(x >= 0, most, least), -np.inf)
         bottom = np.maximum(v0[:, 2], v1[:, 2])
@@ -659,13 +672,15 @@ def scallop_height(ball_radius: float, stepover: float, surface_radius: float = 
 def _densify(points: np.ndarray, spacing: float) -> np.ndarray:
     """Keep every vertex, split segments longer than ``spacing``; drop repeated points."""
     points = np.asarray(points, float)
-    keep = np.ones(len(points), bool)
-    keep[1:] = _norms(np.diff(points, axis=0)) > 1e-6
-    points = points[keep]
-    if len(points) < 2:
-        return points
     seg = np.diff(points, axis=0)
-    count = np.maximum(1, np.ceil(_norms(seg) / spacing - 1e-9).astype(int))
+    length = _norms(seg)
+    if not np.all(length > 1e-6):
+        points = points[np.concatenate([[True], length > 1e-6])]
+        seg = np.diff(points, axis=0)
+        length = _norms(seg)
+    count = np.maximum(1, np.ceil(length / spacing - 1e-9).astype(int))
+    if len(points) < 2 or count.max() == 1:
+        return points
     starts = np.repeat(points[:-1], count, axis=0)
     steps = np.repeat(seg / count[:, None], count, axis=0)
     k = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
@@ -1017,7 +1032,7 @@ def _start_nearest(chain: np.ndarray, here: np.ndarray) -> np.ndarray:
     if not _is_closed(chain):
         return chain
     index = int(np.argmin(_norms(chain[:-1] - here)))
-    return rg.rotate_closed(chain, index)
+    return np.vstack([chain[index:-1], chain[:index + 1]])       # the closed chain from index round
 
 
 def max_gouge(pocket: Pocket, op: Operation, block: Block = Block(),
