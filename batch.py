@@ -271,6 +271,24 @@ def turnmill_arguments(p):
     p.add_argument("--engine", choices=["BVH", "TRIMESH"], help="ray engine (default: BVH, trimesh for --mesh)")
 
 
+def turnmill_simulation(scene, job, out_dir: str) -> tuple:
+    """Cut the bar with the job's program (radius map + height field), checked against the part;
+    render the carved bar to turnmill.png: (report entry, png)."""
+    from types import SimpleNamespace
+
+    from kezuri.operators import preview
+    from kezuri.operators import simulate as shell
+    from kezuri.operators.common import Progress
+    from kezuri.toolpath import simulate
+
+    result = simulate.simulate(job.plan.program, job.stock, cell=0.1, progress=Progress(None, "simulate"),
+                               design=SimpleNamespace(vertices=job.vertices, faces=job.faces))
+    carved = shell.show_simulation(scene, shell.SimulationJob(result, job.frame, "turnmill"))
+    png = preview.render_preview(scene, [carved], [], os.path.join(out_dir, "turnmill.png"), see_through=False,
+                                 color_type="VERTEX")
+    return shell.report_of(result), png
+
+
 def turnmill_job(args) -> dict:
     import bpy
     import numpy as np
@@ -315,11 +333,14 @@ def turnmill_job(args) -> dict:
     files = [shell.export_turnmill(job, post, os.path.join(args.out, f"turnmill{shell.extension_for(post)}"))
              for post in ("xzc", "linuxcnc", "cldata")]
     paths = shell.show_turnmill(scene, job)
-    png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "turnmill.png"))
+    toolpaths_png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "turnmill-toolpaths.png"))
+    simulation, png = turnmill_simulation(scene, job, args.out)
     return {
         "workflow": "turnmill",
         "files": files,
         "preview": png,
+        "toolpaths_preview": toolpaths_png,
+        "simulation": simulation,
         "engine": job.engine,
         "rays": job.rays,
         "classification_seconds": round(job.classification_seconds, 3),

@@ -208,7 +208,8 @@ class KEZURI_PT_simulate(KezuriPanel, bpy.types.Panel):
         layout.prop(props, "colour_by")
         layout.use_property_split = False
         row = layout.row(align=True)
-        for key, text in (("ENGRAVE", "Engraving"), ("ROTARY", "Rotary"), ("STEPNC", "STEP-NC")):
+        for key, text in (("ENGRAVE", "Engraving"), ("ROTARY", "Rotary"), ("STEPNC", "STEP-NC"),
+                          ("TURNMILL", "Turn-Mill")):
             row.operator("kezuri.simulate", text=text).workflow = key
         if len(props.findings):
             box = layout.box()

@@ -7,6 +7,7 @@ operator shows the result as a mesh coloured by depth and lists the findings in 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from types import SimpleNamespace
 
 import bpy
 import numpy as np
@@ -23,7 +24,8 @@ OPERATION_COLOURS = np.array([(0.95, 0.45, 0.10, 1.0), (0.10, 0.60, 1.00, 1.0), 
                               (0.90, 0.80, 0.10, 1.0), (0.75, 0.30, 0.95, 1.0), (0.90, 0.20, 0.30, 1.0)])
 WORKFLOW_ITEMS = [("ENGRAVE", "Engraving", "The gouge-texture name plate"),
                   ("ROTARY", "Rotary Pockets", "The pockets on the rotating table"),
-                  ("STEPNC", "STEP-NC Workplan", "The imported ISO 14649 workplan")]
+                  ("STEPNC", "STEP-NC Workplan", "The imported ISO 14649 workplan"),
+                  ("TURNMILL", "Turn-Mill", "The turn-mill part's radial and axial operations")]
 # Offsets are polygons within region.ARC_TOLERANCE of the true curve: a keep region is checked
 # this much inside its outline, so chord sag is not reported as a gouge.
 KEEP_MARGIN = 2 * region.ARC_TOLERANCE
@@ -83,6 +85,13 @@ def _simulation_setup(scene, workflow: str):
         stock = stepnc.stock_box(loaded, program)
         frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
         return (lambda progress=None: program), (lambda planned: (planned, stock, {}, frame, "stepnc"))
+    if workflow == "TURNMILL":
+        from . import turnmill
+
+        def setup(job):
+            design = SimpleNamespace(vertices=job.vertices, faces=job.faces)
+            return job.plan.program, job.stock, {"design": design}, job.frame, "turnmill"
+        return turnmill.turnmill_request(scene, depsgraph), setup
     raise convert.SceneInputError(f"no simulation for {workflow!r}")
 
 
@@ -142,17 +151,14 @@ def show_simulation(scene, job: SimulationJob, max_cells: int = 250_000):
     obj = convert.mesh_object(scene, f"{PREFIX} stock ({job.name})", vertices, faces, job.frame,
                               color=(0.85, 0.72, 0.52, 1.0))
     vertices = np.asarray(vertices, float)
-    z = vertices[:, 2]
-    top, depth = z.max(), max(float(z.max() - z.min()), 1e-9)
-    shade = np.clip((top - z) / depth, 0, 1)[:, None]
+    depth = job.result.depth_at(vertices)
+    shade = np.clip(depth / max(float(depth.max()), 1e-9), 0, 1)[:, None]
     light, dark = np.array([0.92, 0.80, 0.60, 1.0]), np.array([0.35, 0.20, 0.08, 1.0])
     by_depth = light * (1 - shade) + dark * shade
-    hf = job.result.heightfield
     by_operation = np.tile(light, (len(vertices), 1))
-    if hf is not None and hf.operation is not None:
-        operation = hf.operation_at(vertices[:, :2])
-        cut = (operation >= 0) & (z < top - 1e-6)
-        by_operation[cut] = OPERATION_COLOURS[operation[cut] % len(OPERATION_COLOURS)]
+    operation = job.result.operation_at(vertices)
+    cut = (operation >= 0) & (depth > 1e-6)
+    by_operation[cut] = OPERATION_COLOURS[operation[cut] % len(OPERATION_COLOURS)]
     for key, colours in (("OPERATION", by_operation), ("DEPTH", by_depth)):
         attribute = obj.data.color_attributes.new(COLOUR_ATTRIBUTES[key], "FLOAT_COLOR", "POINT")
         attribute.data.foreach_set("color", colours.astype(np.float32).ravel())
@@ -169,7 +175,7 @@ def store_findings(scene, job: SimulationJob):
         item.kind, item.message = f.kind, f.message
         item.operation, item.move = f.operation, f.move
         if f.xy is not None:
-            item.location = job.frame.to_world([(float(f.xy[0]), float(f.xy[1]), 0.0)])[0]
+            item.location = job.frame.to_world([(float(f.xy[0]), float(f.xy[1]), f.z or 0.0)])[0]
 
 
 class KEZURI_OT_simulate(SteppedOperator, bpy.types.Operator):

@@ -70,6 +70,7 @@ class TurnMillJob:
     rays: int
     classification_seconds: float
     engine: str
+    stock: core.Stock
 
 
 def settings_from(props) -> core.TurnMillSettings:
@@ -94,7 +95,7 @@ def run_on_mesh(vertices, faces, stock: core.Stock, settings: core.TurnMillSetti
                        progress=lambda fraction, text="": report(0.6 + 0.4 * fraction, text))
     result.labels = labels
     owner = np.arange(len(faces)) if owner is None else owner
-    return TurnMillJob(result, vertices, faces, owner, frame, 2 * len(samples), seconds, engine_name)
+    return TurnMillJob(result, vertices, faces, owner, frame, 2 * len(samples), seconds, engine_name, stock)
 
 
 def part_mesh(scene, depsgraph) -> tuple:

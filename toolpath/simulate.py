@@ -58,6 +58,7 @@ from dataclasses import dataclass
 import numpy as np
 from manifold3d import CrossSection, Manifold, Mesh, OpType
 
+from . import radiusmap as rmap
 from . import region as rg
 from .errors import InputError
 from .program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool, arc_sweep
@@ -122,33 +123,40 @@ class BoxStock:
 
 @dataclass(frozen=True)
 class CylinderStock:
-    """A disc of material on the rotary table: axis Z through the origin, top face at z = 0."""
+    """A disc of material on the rotary table, or a bar in a turn-mill chuck: axis Z through
+    the origin, top (end) face at z = ``z_top`` (0 unless given)."""
 
     radius: float
     height: float
+    z_top: float = 0.0
 
     def __post_init__(self):
         for name in ("radius", "height"):
             v = getattr(self, name)
             if not (isinstance(v, (int, float, np.floating, np.integer)) and math.isfinite(v) and v > 0):
                 raise SimulationError(f"stock cylinder {name} must be a positive number, got {v!r}")
+        if not (isinstance(self.z_top, (int, float, np.floating, np.integer)) and math.isfinite(self.z_top)):
+            raise SimulationError(f"stock cylinder top must be a finite number, got {self.z_top!r}")
 
     @property
     def top(self) -> float:
-        return 0.0
+        return float(self.z_top)
 
     @property
     def bottom(self) -> float:
-        return -float(self.height)
+        return float(self.z_top) - float(self.height)
 
     def volume(self) -> float:
         return math.pi * self.radius ** 2 * self.height
 
 
 def as_stock(stock) -> BoxStock | CylinderStock:
-    """A stock object from a BoxStock, a CylinderStock or six numbers (x0, y0, z0, x1, y1, z1)."""
+    """A stock object from a BoxStock, a CylinderStock, a turn-mill bar (anything with
+    ``radius``, ``z_min`` and ``z_max``) or six numbers (x0, y0, z0, x1, y1, z1)."""
     if isinstance(stock, (BoxStock, CylinderStock)):
         return stock
+    if all(hasattr(stock, name) for name in ("radius", "z_min", "z_max")):
+        return CylinderStock(stock.radius, stock.z_max - stock.z_min, stock.z_max)
     try:
         values = [float(v) for v in stock]
     except (TypeError, ValueError):
@@ -204,6 +212,7 @@ class Finding:
     move: int
     xy: tuple | None = None   # where (part coordinates, mm)
     depth_mm: float | None = None
+    z: float | None = None    # the height, where it matters (radial turn-mill findings)
 
 
 @dataclass
@@ -258,9 +267,39 @@ class SimulationResult:
     heightfield: HeightField | None = None
     solid: Manifold | None = None
     kernel: str = "numpy"       # the height field kernel that ran: "numba" or "numpy"
+    # Radial turn-mill work: the radius map of the radial operations.  The stock is then the
+    # material inside both the radius map and the height field of the other operations.
+    radiusmap: rmap.RadiusMap | None = None
+    axial_cut: bool = True      # whether any operation cut the height field
 
     def findings_of(self, kind: str) -> list:
         return [f for f in self.findings if f.kind == kind]
+
+    def depth_at(self, points) -> np.ndarray:
+        """How deep below the stock's surface (k, 3) points of the simulated stock lie: below
+        the top face, or for a turned bar the least depth below its end face, its outside and its
+        chuck end."""
+        points = np.asarray(points, float).reshape(-1, 3)
+        depth = self.stock.top - points[:, 2]
+        if self.radiusmap is not None:
+            depth = np.minimum(depth, self.stock.radius - np.hypot(points[:, 0], points[:, 1]))
+            depth = np.minimum(depth, points[:, 2] - self.stock.bottom)
+        return np.maximum(depth, 0.0)
+
+    def operation_at(self, points) -> np.ndarray:
+        """The operation whose surface shows at (k, 3) points of the simulated stock (-1: none
+        recorded; the manifold engine records none)."""
+        points = np.asarray(points, float).reshape(-1, 3)
+        operation = np.full(len(points), -1, np.int64)
+        hf = self.heightfield
+        if hf is not None and hf.operation is not None:
+            operation[:] = hf.operation_at(points[:, :2])
+        if self.radiusmap is not None:
+            rm = self.radiusmap
+            radial = self.stock.radius - np.hypot(points[:, 0], points[:, 1]) < self.stock.top - points[:, 2]
+            i, k = rm.cells_of(np.arctan2(points[:, 1], points[:, 0]), points[:, 2])
+            operation[radial] = rm.operation[i[radial], k[radial]]
+        return operation
 
     def mesh(self, max_cells: int | None = 250_000):
         """The simulated stock as a closed triangle mesh: (vertices (k, 3), faces (f, 3)).
@@ -269,7 +308,9 @@ class SimulationResult:
         resolution), so the viewport shows the deepest cut of every pooled block."""
         if self.solid is not None:
             return _manifold_arrays(self.solid)
-        return _heightfield_mesh(self.heightfield, self.stock, max_cells)
+        if self.radiusmap is None:
+            return _heightfield_mesh(self.heightfield, self.stock, max_cells)
+        return _turned_mesh(self.radiusmap, self.heightfield if self.axial_cut else None, self.stock, max_cells)
 
     def __getstate__(self):
         """Picklable (a simulation run in another process sends its result back): the solid
@@ -282,9 +323,12 @@ class SimulationResult:
     def __setstate__(self, state):
         if state.get("solid") is not None:
             vertices, faces = state["solid"]
-            state["solid"] = Manifold(Mesh(vert_properties=np.asarray(vertices, np.float32),
-                                           tri_verts=np.asarray(faces, np.uint32)))
+            state["solid"] = _solid_of(vertices, faces)
         self.__dict__.update(state)
+
+
+def _solid_of(vertices, faces) -> Manifold:
+    return Manifold(Mesh(vert_properties=np.asarray(vertices, np.float32), tri_verts=np.asarray(faces, np.uint32)))
 
 
 # ----- the path as the simulation sees it ---------------------------------------------------
@@ -1097,7 +1141,8 @@ def _index_range(origin, cell, n, lo, hi):
 
 
 def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Upper envelope of a triangle mesh over the grid (a z-buffer seen from above)."""
+    """Upper envelope of a triangle mesh over the grid (a z-buffer seen from above); cell
+    centres on a triangle's edge belong to neither side (-inf there: nothing to check)."""
     top = np.full(hf.shape, -np.inf)
     flat = top.reshape(-1)
     nx, ny = hf.shape
@@ -1121,7 +1166,9 @@ def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.nd
             p, q = t[k, e], t[k, (e + 1) % 3]
             # inside: sign * cross(q - p, X - p) >= 0, linear in y
             ex, ey = q[:, 0] - p[:, 0], q[:, 1] - p[:, 1]
-            e_lo, e_hi = _halfline(sign[k] * (ex * (-p[:, 1]) - ey * (x - p[:, 0])) + 1e-9, sign[k] * ex)
+            # Shrunk by a hair: a cell centre on a vertical wall's top edge is not held to the
+            # top of the wall (it may as well be the floor's), and is left unchecked.
+            e_lo, e_hi = _halfline(sign[k] * (ex * (-p[:, 1]) - ey * (x - p[:, 0])) - 1e-7, sign[k] * ex)
             lo, hi = np.maximum(lo, e_lo), np.minimum(hi, e_hi)
         r0 = np.clip(np.ceil((lo - hf.y0) / hf.cell_y - 0.5), 0, ny).astype(np.int64)
         r1 = np.clip(np.floor((hi - hf.y0) / hf.cell_y - 0.5), -1, ny - 1).astype(np.int64)
@@ -1290,7 +1337,7 @@ def _stock_solid(stock, tolerance: float) -> Manifold:
         return Manifold.cube([stock.x1 - stock.x0, stock.y1 - stock.y0, stock.z1 - stock.z0]).translate(
             [stock.x0, stock.y0, stock.z0])
     n = _segments_for(stock.radius, tolerance / 2)
-    return Manifold.cylinder(stock.height, stock.radius, stock.radius, n).translate([0, 0, -stock.height])
+    return Manifold.cylinder(stock.height, stock.radius, stock.radius, n).translate([0, 0, stock.bottom])
 
 
 def _manifold_sweep(stock, chains: list, tolerance: float, chunk: int, progress) -> Manifold:
@@ -1331,7 +1378,7 @@ def _manifold_sweep(stock, chains: list, tolerance: float, chunk: int, progress)
 def _stock_box(stock):
     if isinstance(stock, BoxStock):
         return (stock.x0, stock.y0, stock.z0), (stock.x1, stock.y1, stock.z1)
-    return (-stock.radius, -stock.radius, -stock.height), (stock.radius, stock.radius, 0.0)
+    return (-stock.radius, -stock.radius, stock.bottom), (stock.radius, stock.radius, stock.top)
 
 
 def _manifold_arrays(solid: Manifold):
@@ -1341,19 +1388,19 @@ def _manifold_arrays(solid: Manifold):
 
 # ----- height field -> mesh -------------------------------------------------------------------------
 
-def _heightfield_mesh(hf: HeightField, stock, max_cells):
-    heights = np.where(hf.inside, hf.heights, hf.top)
-    heights = np.clip(heights, hf.bottom + 1e-3, hf.top).astype(float)
+def _pooled(heights: np.ndarray, max_cells) -> tuple:
+    """(heights min-pooled to at most ``max_cells`` cells, block size): each block keeps its deepest cut."""
     nx, ny = heights.shape
-    block = 1
-    if max_cells is not None and nx * ny > max_cells:
-        block = math.ceil(math.sqrt(nx * ny / max_cells))
-        px, py = -nx % block, -ny % block
-        padded = np.pad(heights, ((0, px), (0, py)), mode="edge")
-        heights = padded.reshape(padded.shape[0] // block, block, padded.shape[1] // block, block).min(axis=(1, 3))
-    (x0, y0, _), (x1, y1, _) = _stock_box(stock)
-    cx, cy = block * hf.cell_x, block * hf.cell_y
-    # Vertices at cell centres plus a ring on the stock's edge (heights copied outward).
+    if max_cells is None or nx * ny <= max_cells:
+        return heights, 1
+    block = math.ceil(math.sqrt(nx * ny / max_cells))
+    padded = np.pad(heights, ((0, -nx % block), (0, -ny % block)), mode="edge")
+    return padded.reshape(padded.shape[0] // block, block, padded.shape[1] // block, block).min(axis=(1, 3)), block
+
+
+def _relief_mesh(heights: np.ndarray, x0, y0, x1, y1, cx, cy, bottom):
+    """A closed mesh of columns over the rectangle: vertices at the cell centres (x0 + (i + 0.5)
+    cx, ...) plus a ring on the rectangle's edge (heights copied outward), walls, a flat bottom."""
     xs = np.concatenate([[x0], np.minimum(x0 + (np.arange(heights.shape[0]) + 0.5) * cx, x1), [x1]])
     ys = np.concatenate([[y0], np.minimum(y0 + (np.arange(heights.shape[1]) + 0.5) * cy, y1), [y1]])
     z = np.pad(heights, 1, mode="edge")
@@ -1365,20 +1412,51 @@ def _heightfield_mesh(hf: HeightField, stock, max_cells):
     top_faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
     # The boundary ring, counter-clockwise seen from above, then walls and a bottom fan.
     ring = np.concatenate([ids[:, 0], ids[-1, 1:], ids[-2::-1, -1], ids[0, -2:0:-1]])
-    bottom = top_vertices[ring].copy()
-    bottom[:, 2] = hf.bottom
+    low_vertices = top_vertices[ring].copy()
+    low_vertices[:, 2] = bottom
     n_top = len(top_vertices)
     low = n_top + np.arange(len(ring))
     centre = n_top + len(ring)
     nxt = np.roll(np.arange(len(ring)), -1)
     walls = np.concatenate([np.column_stack([ring, low, low[nxt]]), np.column_stack([ring, low[nxt], ring[nxt]])])
     fan = np.column_stack([np.full(len(ring), centre), low[nxt], low])
-    vertices = np.vstack([top_vertices, bottom, [[(x0 + x1) / 2, (y0 + y1) / 2, hf.bottom]]])
-    faces = np.vstack([top_faces, walls, fan])
+    vertices = np.vstack([top_vertices, low_vertices, [[(x0 + x1) / 2, (y0 + y1) / 2, bottom]]])
+    return vertices, np.vstack([top_faces, walls, fan])
+
+
+def _heightfield_mesh(hf: HeightField, stock, max_cells):
+    heights = np.where(hf.inside, hf.heights, hf.top)
+    heights, block = _pooled(np.clip(heights, hf.bottom + 1e-3, hf.top).astype(float), max_cells)
+    (x0, y0, _), (x1, y1, _) = _stock_box(stock)
+    cx, cy = block * hf.cell_x, block * hf.cell_y
+    vertices, faces = _relief_mesh(heights, x0, y0, x1, y1, cx, cy, hf.bottom)
     if isinstance(stock, CylinderStock):
-        block_solid = Manifold(Mesh(vert_properties=vertices.astype(np.float32), tri_verts=faces.astype(np.uint32)))
-        return _manifold_arrays(block_solid ^ _stock_solid(stock, max(cx, cy) / 4))
+        return _manifold_arrays(_solid_of(vertices, faces) ^ _stock_solid(stock, max(cx, cy) / 4))
     return vertices, faces
+
+
+def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStock, max_cells):
+    """The bar of the radius map, less the air the height field's cuts opened above it.
+
+    The air is a box over the cut cells minus their columns (uncut cells stand above the box),
+    so only the cut area meets the bar in the boolean, and no faces of the two coincide."""
+    bar = rmap.mesh(rm, stock.bottom, stock.top, max_cells)
+    cut = None if hf is None else hf.inside & (hf.heights < hf.top - 1e-6)
+    if cut is None or not cut.any():
+        return bar
+    nx, ny = hf.shape
+    i, j = np.nonzero(cut)
+    i0, i1, j0, j1 = max(i.min() - 2, 0), min(i.max() + 3, nx), max(j.min() - 2, 0), min(j.max() + 3, ny)
+    heights = np.clip(hf.heights[i0:i1, j0:j1], hf.bottom + 1e-3, hf.top).astype(float)
+    heights[~cut[i0:i1, j0:j1]] = hf.top + 1.0
+    heights, block = _pooled(heights, max_cells)
+    cx, cy = block * hf.cell_x, block * hf.cell_y
+    x0, y0 = hf.x0 + i0 * hf.cell_x, hf.y0 + j0 * hf.cell_y
+    x1, y1 = x0 + heights.shape[0] * cx, y0 + heights.shape[1] * cy
+    columns = _solid_of(*_relief_mesh(heights, x0 - cx, y0 - cy, x1 + cx, y1 + cy, cx, cy, hf.bottom - 2.0))
+    box = Manifold.cube([x1 - x0 - cx, y1 - y0 - cy, hf.top - hf.bottom + 1.5]).translate(
+        [x0 + cx / 2, y0 + cy / 2, hf.bottom - 1.0])
+    return _manifold_arrays(_solid_of(*bar) - (box - columns))
 
 
 # ----- the one call -----------------------------------------------------------------------------------
@@ -1415,25 +1493,123 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     kernels = _compiled_kernels(kernel)
     stock = as_stock(stock)
     ops = _operations(program_or_operations)
-    chains = _chains(ops, no_plunge_tools)
+    radial = [getattr(op, "direction", None) == "radial" for op in ops]
+    if any(radial) and not isinstance(stock, CylinderStock):
+        raise SimulationError("radial turn-mill operations cut a bar: give a cylinder stock about the C axis")
+    all_chains = _chains(ops, no_plunge_tools)
+    chains = [chain for chain in all_chains if not radial[chain.op_index]]
     hf = _grid(stock, float(cell))
     design_z = _design_heights(hf, design, keep_regions)
     findings = _travel_findings(ops, travel) if travel else []
     solid = None
     if engine == "manifold":
-        solid = _manifold_sweep(stock, chains, tolerance, chunk, _part_of(progress, 0.0, 0.8))
-        progress = _part_of(progress, 0.8, 1.0)      # the safety checks still run on a height field
-    sim = _Simulation(hf, tolerance, progress, kernels)
-    sim.run(chains)
-    findings += _findings(sim, chains, ops, design_z)
+        solid = _manifold_sweep(stock, all_chains, tolerance, chunk, _part_of(progress, 0.0, 0.8))
+        progress = _part_of(progress, 0.8, 1.0)      # the safety checks still run on the maps
+    rm = None
+    if any(radial):
+        share = sum(len(op) for op, r in zip(ops, radial) if r) / sum(len(op) for op in ops)
+        rm, radial_findings = _radius_map_cut(ops, radial, stock, float(cell), tolerance, design, no_plunge_tools,
+                                              _part_of(progress, 0.0, share), kernels)
+        findings += radial_findings
+        progress = _part_of(progress, share, 1.0)
+    if chains:
+        sim = _Simulation(hf, tolerance, progress, kernels)
+        sim.run(chains)
+        findings += _findings(sim, chains, ops, design_z)
     seconds = time.perf_counter() - started
     ran = "numpy" if kernels is None else "numba"
     if solid is not None:
         removed = _stock_solid(stock, tolerance).volume() - solid.volume()
         return SimulationResult("manifold", float(removed), seconds, None, tolerance, findings, stock, solid=solid,
-                                kernel=ran)
-    return SimulationResult("heightfield", hf.removed_volume(), seconds, hf.cell_x, tolerance, findings, stock,
-                            heightfield=hf, kernel=ran)
+                                kernel=ran, radiusmap=rm, axial_cut=bool(chains))
+    if rm is None:
+        return SimulationResult("heightfield", hf.removed_volume(), seconds, hf.cell_x, tolerance, findings, stock,
+                                heightfield=hf, kernel=ran)
+    removed = rm.removed_volume()
+    if chains:
+        removed += hf.removed_volume() - _overlap_volume(hf, rm)
+    return SimulationResult("radiusmap+heightfield" if chains else "radiusmap", removed, seconds, hf.cell_x,
+                            tolerance, findings, stock, heightfield=hf, kernel=ran, radiusmap=rm,
+                            axial_cut=bool(chains))
+
+
+def _overlap_volume(hf: HeightField, rm: rmap.RadiusMap) -> float:
+    """Material that both the height field and the radius map removed (counted once)."""
+    top = np.clip(hf.heights, hf.bottom, hf.top)
+    cut = hf.inside & (top < hf.top)
+    i, j = np.nonzero(cut)
+    overlap = rm.removed_above(hf.x()[i], hf.y()[j], top[i, j].astype(float), np.full(len(i), hf.top))
+    return float(overlap.sum() * hf.cell_x * hf.cell_y)
+
+
+def _radius_map_cut(ops, radial, stock: CylinderStock, cell: float, tolerance: float, design, no_plunge_tools,
+                    progress, kernels):
+    """The radial turn-mill operations on a radius map: (map, findings)."""
+    rm = rmap.grid(stock.radius, stock.bottom, stock.top, cell)
+    total = sum(len(op) for op, r in zip(ops, radial) if r)
+    done = 0
+    stamps_of, findings = {}, []
+    for index, op in enumerate(ops):
+        if not radial[index] or not len(op):
+            continue
+        if op.tool.kind != "ball":
+            raise SimulationError(f"operation {op.name!r}: radial turn-mill work is simulated for ball end mills, "
+                                  f"not a {op.tool.describe()}")
+        checked = op.kind == RAPID
+        if not can_plunge(op.tool, no_plunge_tools):
+            # straight in towards the axis: X falls, nothing else moves
+            a = op.start_points()
+            c_end = op.rotary["c"]
+            checked |= ((op.kind == FEED) & (op.xyz[:, 0] < a[:, 0]) & (np.abs(op.xyz[:, 2] - a[:, 2]) < 1e-9)
+                        & (np.abs(c_end - np.concatenate([[c_end[0]], c_end[:-1]])) < 1e-9))
+        try:
+            stamps = rmap.ball_stamps(op, rmap.stamp_spacing(op.tool.radius, tolerance), checked)
+        except ValueError as error:
+            raise SimulationError(str(error)) from None
+
+        def report(fraction, base=done, size=len(op)):
+            if progress is not None and progress((base + fraction * size) / total) is False:
+                raise SimulationCancelled("simulation cancelled")
+        for touch in rmap.cut(rm, stamps, op.tool.radius, index, report, kernels):
+            x, y, z = touch.point
+            where = f"({x:.2f}, {y:.2f}, z {z:.2f})"
+            if op.kind[touch.move] == RAPID:
+                message = f"{op.name}: rapid move {touch.move} runs {touch.depth:.3f} mm into material at {where}"
+                kind = "rapid_in_material"
+            else:
+                message = (f"{op.name}: {op.tool.describe()} cannot plunge, but move {touch.move} feeds "
+                           f"{touch.depth:.3f} mm straight in into material at {where}")
+                kind = "plunge"
+            findings.append(Finding(kind, message, index, touch.move, (x, y), touch.depth, z))
+        stamps_of[index] = stamps
+        done += len(op)
+    if design is not None and hasattr(design, "vertices") and hasattr(design, "faces"):
+        findings += _radial_gouges(rm, stamps_of, ops, np.asarray(design.vertices, float),
+                                   np.asarray(design.faces, np.int64))
+    return rm, findings
+
+
+def _radial_gouges(rm: rmap.RadiusMap, stamps_of: dict, ops: list, vertices, faces) -> list:
+    """The deepest cut inside the design's outer radius, with the move that made it."""
+    outer = rmap.outer_radii(rm, vertices, faces)
+    depth = outer - rm.radii
+    gouged = (outer > 0) & (depth > GOUGE_TOLERANCE)
+    if not gouged.any():
+        return []
+    i, k = np.unravel_index(int(np.argmax(np.where(gouged, depth, -np.inf))), rm.shape)
+    worst = float(depth[i, k])
+    best = (np.inf, None, -1)
+    for index, stamps in stamps_of.items():
+        s, entry = rmap.lowest_stamp(rm, stamps, ops[index].tool.radius, int(i), int(k))
+        if entry < best[0]:
+            best = (entry, index, int(stamps.move[s]))
+    _, index, move = best
+    theta, z = (i + 0.5) * rm.cell_theta, rm.z0 + (k + 0.5) * rm.cell_z
+    x, y = rm.radii[i, k] * math.cos(theta), rm.radii[i, k] * math.sin(theta)
+    area = float(np.sum(outer[gouged]) * rm.cell_theta * rm.cell_z)
+    return [Finding("gouge", f"{ops[index].name}: move {max(move, 0)} cuts {worst:.3f} mm inside the design at "
+                    f"({x:.2f}, {y:.2f}, z {z:.2f}); {area:.1f} mm^2 gouged in all", index, max(move, 0), (x, y),
+                    worst, z)]
 
 
 def _part_of(progress, start: float, end: float):

@@ -1,0 +1,180 @@
+"""W6 for radial turn-mill work: the radius map r(theta, z), checked against closed forms, the
+design (gouges), rapids through the bar, and the combined bar of the built-in sample."""
+import math
+import pickle
+
+import numpy as np
+import pytest
+import trimesh
+from manifold3d import Manifold
+
+from kezuri.toolpath import radiusmap, simulate, turnmill
+from kezuri.toolpath.program import FEED, RAPID, Tool
+
+BAR = turnmill.Stock(20.0, -30.0, 0.0)
+BALL_R = 3.0
+
+
+def radial_op(moves, r=BALL_R, start=(25.0, -15.0, 0.0), name="ring"):
+    """A radial ball operation from (kind, X, Z, C) moves; start = (X, Z, C)."""
+    kind = np.array([m[0] for m in moves])
+    xyz = np.array([[m[1], 0.0, m[2]] for m in moves], float)
+    c = np.array([m[3] for m in moves], float)
+    feed = np.where(kind == RAPID, np.nan, 300.0)
+    return turnmill.TurnMillOperation(name, Tool(1, "ball", 2 * r), 3000.0, kind, xyz, feed, rotary={"c": c},
+                                      clearance_z=5.0, safe_z=5.0,
+                                      start=np.array([start[0], 0.0, start[1]]), direction="radial")
+
+
+def ring_groove(x_tip=15.0, z=-15.0, c_turn=360.0):
+    """Feed in at C = 0, turn C once round, rapid out: a groove round the bar."""
+    return radial_op([(FEED, x_tip, z, 0.0), (FEED, x_tip, z, c_turn), (RAPID, 25.0, z, c_turn)],
+                     start=(25.0, z, 0.0))
+
+
+def ring_volume(bar_radius, centre_radius, r):
+    """Pappus: the shank's rectangle from the ball centre out to the bar, plus the ball's inner
+    half disc (centroid 4r / 3pi inside the centre)."""
+    rectangle = math.pi * (bar_radius ** 2 - centre_radius ** 2) * 2 * r
+    half_disc = 2 * math.pi * (centre_radius - 4 * r / (3 * math.pi)) * math.pi * r * r / 2
+    return rectangle + half_disc
+
+
+@pytest.mark.parametrize("kernel", ["numba", "numpy"])
+def test_ring_groove_volume_matches_pappus(kernel):
+    result = simulate.simulate([ring_groove()], BAR, cell=0.1, tolerance=0.01, kernel=kernel)
+    assert result.engine == "radiusmap"
+    assert result.removed_volume_mm3 == pytest.approx(ring_volume(20.0, 18.0, BALL_R), rel=0.01)
+    assert result.findings == []
+
+
+def test_ring_groove_profile_is_the_ball():
+    """Across the groove, the material radius is the ball's inner edge: 18 - sqrt(9 - dz^2)."""
+    rm = simulate.simulate([ring_groove()], BAR, cell=0.05, tolerance=0.005).radiusmap
+    z = rm.z()
+    dz = z + 15.0
+    inside = np.abs(dz) < BALL_R - 0.05
+    expected = 18.0 - np.sqrt(BALL_R ** 2 - dz[inside] ** 2)
+    for i in (0, rm.shape[0] // 3, rm.shape[0] - 1):
+        assert np.allclose(rm.radii[i, inside], expected, atol=0.006)
+    assert np.all(rm.radii[:, np.abs(dz) > BALL_R + 0.05] == 20.0)
+
+
+def test_half_turn_cuts_half_the_ring():
+    full = simulate.simulate([ring_groove()], BAR, cell=0.1, tolerance=0.01).removed_volume_mm3
+    half = simulate.simulate([ring_groove(c_turn=180.0)], BAR, cell=0.1, tolerance=0.01)
+    # Each end adds the half of the tool's cut that lies beyond the end plane; the two halves
+    # make one whole plunge (the tool is symmetric about its own plane).
+    plunge = simulate.simulate([ring_groove(c_turn=0.0)], BAR, cell=0.1, tolerance=0.01).removed_volume_mm3
+    assert half.removed_volume_mm3 == pytest.approx(full / 2 + plunge, rel=0.01)
+    rm = half.radiusmap
+    z_row = rm.cells_of(np.array([0.0]), np.array([-15.0]))[1][0]
+    theta = rm.theta()
+    assert np.all(rm.radii[(theta > 0.3) & (theta < math.pi - 0.3), z_row] < 15.01)
+    assert np.all(rm.radii[(theta > math.pi + 0.5) & (theta < 2 * math.pi - 0.5), z_row] == 20.0)
+
+
+def test_kernels_agree():
+    program = [ring_groove(), ring_groove(x_tip=12.0, z=-22.0, c_turn=-270.0)]
+    a = simulate.simulate(program, BAR, cell=0.1, kernel="numba").radiusmap.radii
+    b = simulate.simulate(program, BAR, cell=0.1, kernel="numpy").radiusmap.radii
+    assert np.abs(a - b).max() < 1e-9
+
+
+def cylinder_design(radius, z_min=-30.0, z_max=0.0):
+    mesh = Manifold.cylinder(z_max - z_min, radius, radius, 256).translate((0, 0, z_min)).to_mesh64()
+    return trimesh.Trimesh(np.asarray(mesh.vert_properties)[:, :3], np.asarray(mesh.tri_verts), process=False)
+
+
+def test_outer_radii_of_a_cylinder():
+    design = cylinder_design(16.0, -25.0, -5.0)
+    rm = radiusmap.grid(20.0, -30.0, 0.0, 0.1)
+    outer = radiusmap.outer_radii(rm, np.asarray(design.vertices), np.asarray(design.faces))
+    within = (rm.z() > -25.0) & (rm.z() < -5.0)
+    sag = 16.0 * (1 - math.cos(math.pi / 256))
+    assert np.all(outer[:, within] <= 16.0 + 1e-9)
+    assert np.all(outer[:, within] >= 16.0 - sag - 1e-9)
+    assert np.all(outer[:, ~within] == 0.0)
+
+
+def test_one_millimetre_into_the_design_is_a_one_millimetre_gouge():
+    design = cylinder_design(16.0)        # the groove's floor (tip radius 15) is 1 mm inside it
+    result = simulate.simulate([ring_groove()], BAR, cell=0.05, tolerance=0.005, design=design)
+    gouges = result.findings_of("gouge")
+    assert len(gouges) == 1
+    assert gouges[0].depth_mm == pytest.approx(1.0, abs=0.02)
+    assert gouges[0].move in (0, 1)       # the plunge or the turn: both reach the floor
+    assert gouges[0].z == pytest.approx(-15.0, abs=0.05)
+    assert math.hypot(*gouges[0].xy) == pytest.approx(15.0, abs=0.02)
+    clear = simulate.simulate([ring_groove()], BAR, cell=0.05, tolerance=0.005, design=cylinder_design(14.9))
+    assert clear.findings_of("gouge") == []
+
+
+def test_rapid_into_the_bar_is_reported():
+    op = radial_op([(RAPID, 15.0, -15.0, 0.0), (FEED, 15.0, -15.0, 90.0), (RAPID, 25.0, -15.0, 90.0)],
+                   start=(25.0, -15.0, 0.0))
+    rapids = simulate.simulate([op], BAR, cell=0.1).findings_of("rapid_in_material")
+    assert [f.move for f in rapids] == [0]
+    assert rapids[0].depth_mm == pytest.approx(5.0, abs=0.05)    # the ball's front reaches radius 15 in a 20 bar
+
+
+def test_radial_work_needs_a_bar_and_a_ball():
+    with pytest.raises(simulate.SimulationError, match="cylinder stock"):
+        simulate.simulate([ring_groove()], simulate.BoxStock(-20, -20, -30, 20, 20, 0))
+    op = ring_groove()
+    op.tool = Tool(1, "flat", 6.0)
+    with pytest.raises(simulate.SimulationError, match="ball end mills"):
+        simulate.simulate([op], BAR)
+
+
+@pytest.fixture(scope="module")
+def sample():
+    vertices, faces, stock = turnmill.sample_part()
+    plan = turnmill.plan(vertices, faces, stock)
+    design = trimesh.Trimesh(vertices, faces, process=False)
+    result = simulate.simulate(plan.program, stock, cell=0.1, design=design)
+    return design, stock, result
+
+
+def test_sample_part_is_cut_without_gouges_or_rapids(sample):
+    design, stock, result = sample
+    assert result.engine == "radiusmap+heightfield"
+    assert result.findings == []
+    to_remove = math.pi * stock.radius ** 2 * (stock.z_max - stock.z_min) - design.volume
+    # Ball end mills leave the fillets in the inside corners: a few percent stays.
+    assert 0.9 * to_remove < result.removed_volume_mm3 < to_remove
+
+
+def test_sample_part_features_are_cut(sample):
+    _, _, result = sample
+    rm, hf = result.radiusmap, result.heightfield
+    i, k = rm.cells_of(np.array([0.0]), np.array([-37.5]))
+    assert rm.radii[i[0], k[0]] == pytest.approx(35.0, abs=0.05)      # the flat at x = 35, mid height
+    i, k = rm.cells_of(np.array([2.0]), np.array([-16.0]))
+    assert rm.radii[i[0], k[0]] == pytest.approx(36.0, abs=0.05)      # the groove floor
+    j = np.argmin(np.abs(hf.y()))
+    x = hf.x()
+    assert hf.heights[np.argmin(np.abs(x - 20.0)), j] == pytest.approx(-6.0, abs=0.02)   # the end-face pocket
+    assert rm.operation[i[0], k[0]] >= 0 and hf.operation[np.argmin(np.abs(x - 20.0)), j] >= 2
+
+
+def test_sample_bar_mesh_is_closed_and_holds_the_material(sample):
+    _, stock, result = sample
+    vertices, faces = result.mesh()
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    assert mesh.is_watertight
+    bar = math.pi * stock.radius ** 2 * (stock.z_max - stock.z_min)
+    assert bar - mesh.volume == pytest.approx(result.removed_volume_mm3, rel=0.03)
+    colours = result.operation_at(vertices)
+    depth = result.depth_at(vertices)
+    deep = colours[depth > 0.5]
+    assert np.mean(deep >= 0) > 0.99           # the rest sit on the walls of pocket rims
+    assert set(np.unique(deep)) <= {-1, 0, 1, 2, 3}
+    assert {0, 1}.intersection(deep) and {2, 3}.intersection(deep)     # radial and axial surfaces
+
+
+def test_result_travels_between_processes(sample):
+    _, _, result = sample
+    back = pickle.loads(pickle.dumps(result))
+    assert np.array_equal(back.radiusmap.radii, result.radiusmap.radii)
+    assert back.removed_volume_mm3 == result.removed_volume_mm3
