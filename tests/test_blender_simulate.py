@@ -38,6 +38,25 @@ def test_rotary_simulation_has_no_findings(scene):
     assert len(scene.kezuri.simulation.findings) == 0
 
 
+def test_turnmill_simulation_carves_the_bar(scene):
+    """The sample bar after the radial and axial operations: the flat at x = 35 and the groove
+    (floor radius 36) on its side, the pockets in its end face, and nothing found."""
+    samples.turnmill_part(scene)
+    assert bpy.ops.kezuri.simulate(workflow="TURNMILL") == {"FINISHED"}
+    assert len(scene.kezuri.simulation.findings) == 0
+    carved = next(o for o in bpy.data.collections["Kezuri"].objects if o.name.startswith("Kezuri Simulated"))
+    v = np.array([tuple(carved.matrix_world @ p.co) for p in carved.data.vertices])
+    rho = np.hypot(v[:, 0], v[:, 1])
+    assert rho.max() == pytest.approx(42.5, abs=0.01)
+    assert v[:, 2].min() == pytest.approx(-60.0, abs=1e-4) and v[:, 2].max() == pytest.approx(0.0, abs=1e-4)
+    flat = (np.abs(v[:, 1]) < 5) & (v[:, 0] > 0) & (v[:, 2] < -32) & (v[:, 2] > -43)
+    assert v[flat, 0].max() == pytest.approx(35.0, abs=0.1)
+    groove = (v[:, 2] < -15.2) & (v[:, 2] > -16.8) & (np.abs(v[:, 0]) < 20) & (v[:, 1] > 0)
+    assert rho[groove].max() == pytest.approx(36.0, abs=0.1)
+    pocket = (np.abs(v[:, 0] - 20) < 6) & (np.abs(v[:, 1]) < 10)
+    assert v[pocket, 2].min() == pytest.approx(-6.0, abs=0.05)
+
+
 def test_a_gouge_is_listed_and_framed(scene):
     """The name plate checked against a design 1 mm below the top: every cut deeper is a gouge."""
     from kezuri.operators import engrave, simulate

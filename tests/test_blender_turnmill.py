@@ -104,3 +104,10 @@ def test_batch_turnmill_report(tmp_path):
     assert end_face and all(f["label"] == "axial" for f in end_face)
     assert [op["name"] for op in report["operations"]] == ["radial roughing", "radial finishing", "axial roughing",
                                                            "axial finishing"]
+    simulation = report["simulation"]
+    assert simulation["engine"] == "radiusmap+heightfield"
+    assert simulation["gouges"] == [] and simulation["rapid_collisions"] == [] and simulation["max_gouge_mm"] == 0
+    # what the sample's features take out of the bar, less the ball's fillets in their corners
+    assert 18000 < simulation["removed_volume_mm3"] < 21000
+    assert (tmp_path / "turnmill.png").stat().st_size > 10000
+    assert (tmp_path / "turnmill-toolpaths.png").stat().st_size > 10000
