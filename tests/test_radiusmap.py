@@ -48,6 +48,20 @@ def test_ring_groove_volume_matches_pappus(kernel):
     assert result.findings == []
 
 
+def test_manifold_engine_turns_the_tool_with_c():
+    """The exact-solid engine places the radial tool along its own axis at every move: the same
+    ring groove, within 1 % of Pappus and of the radius map."""
+    solid = simulate.simulate([ring_groove()], BAR, engine="manifold", tolerance=0.01)
+    assert solid.engine == "manifold"
+    assert solid.removed_volume_mm3 == pytest.approx(ring_volume(20.0, 18.0, BALL_R), rel=0.01)
+    vertices, faces = solid.mesh()
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    rho = np.hypot(mesh.vertices[:, 0], mesh.vertices[:, 1])
+    groove = np.abs(mesh.vertices[:, 2] + 15.0) < 0.2
+    assert rho[groove].min() == pytest.approx(15.0, abs=0.02)      # the ball's front at the tip radius
+    assert solid.findings == []
+
+
 def test_ring_groove_profile_is_the_ball():
     """Across the groove, the material radius is the ball's inner edge: 18 - sqrt(9 - dz^2)."""
     rm = simulate.simulate([ring_groove()], BAR, cell=0.05, tolerance=0.005).radiusmap

@@ -345,6 +345,7 @@ class _Chain:
     move: np.ndarray
     rapid: np.ndarray
     checked: np.ndarray
+    radial: bool = False       # a turn-mill radial tool: its axis points from the C axis to the tip
 
 
 def _machine_samples(op: Operation):
@@ -431,7 +432,8 @@ def _chains(ops: list, no_plunge_tools) -> list:
                 c_end = op.rotary["c"]
                 straight_down &= np.abs(c_end - np.concatenate([[c_end[0]], c_end[:-1]])) < 1e-9
             checked |= straight_down[seg_move]
-        chains.append(_Chain(index, op.tool, points, seg_move, rapid, checked))
+        chains.append(_Chain(index, op.tool, points, seg_move, rapid, checked,
+                             getattr(op, "direction", None) == "radial"))
     return chains
 
 
@@ -1349,30 +1351,55 @@ def _manifold_sweep(stock, chains: list, tolerance: float, chunk: int, progress)
     the true sweep; its facets take the other two thirds."""
     solid = _stock_solid(stock, tolerance)
     (bx0, by0, _), (bx1, by1, _) = _stock_box(stock)
-    lowest = min(float(ch.points[:, 2].min()) for ch in chains)
-    height = stock.top + 1.0 - lowest         # the shank reaches above the stock from any depth
     merge = tolerance / 3
     pieces = []
     for chain in chains:
         p = chain.points
         r = chain.tool.radius
+        if chain.radial:
+            # The tool axis turns with C: runs are merged only where it keeps its direction.
+            reach = np.hypot(p[:, 0], p[:, 1])
+            axis = p[:, :2] / np.maximum(reach, 1e-12)[:, None]
+            height = stock.radius + 1.0 - float(reach.min())
+            turns = np.flatnonzero(np.abs(np.diff(np.arctan2(axis[:, 1], axis[:, 0]))) > 1e-12)
+            groups = np.split(np.arange(len(p)), turns + 1)
+            ends = sorted({int(g[0]) + e for g in groups for e in _straight_runs(p[g], merge / 2)} | set(turns.tolist()))
+        else:
+            axis = None
+            height = stock.top + 1.0 - float(p[:, 2].min())   # the shank reaches above the stock from any depth
+            # cones are never merged: only the disc-and-corner tools are shrunk here
+            ends = list(range(len(p))) if chain.tool.kind in TIP_ANGLE_DEG else _straight_runs(p, merge / 2)
         whole = _tool_points(chain.tool, tolerance, height)
         shrunk = _tool_points(chain.tool, tolerance - merge, height, inset=merge)
-        # cones are never merged: only the disc-and-corner tools are shrunk here
-        ends = list(range(len(p))) if chain.tool.kind in TIP_ANGLE_DEG else _straight_runs(p, merge / 2)
         for i, j in zip(ends[:-1], ends[1:]):
             run = p[i:j + 1]
             lo, hi = run.min(axis=0), run.max(axis=0)
-            if lo[2] < stock.top and hi[0] + r > bx0 and lo[0] - r < bx1 and hi[1] + r > by0 and lo[1] - r < by1:
-                pieces.append((whole if j == i + 1 else shrunk, run))
+            if axis is not None:
+                inside = reach[i:j + 1].min() < stock.radius and hi[2] + 2 * r > stock.bottom and lo[2] < stock.top
+            else:
+                inside = (lo[2] < stock.top and hi[0] + r > bx0 and lo[0] - r < bx1 and hi[1] + r > by0
+                          and lo[1] - r < by1)
+            if inside:
+                pieces.append((whole if j == i + 1 else shrunk, run, None if axis is None else axis[i:j + 1]))
     for start in range(0, len(pieces), chunk):
-        swept = [Manifold.hull_points((run[:, None, :] + tool[None, :, :]).reshape(-1, 3))
-                 for tool, run in pieces[start:start + chunk]]
+        swept = [Manifold.hull_points(_placed(tool, run, axes)) for tool, run, axes in pieces[start:start + chunk]]
         solid = solid - Manifold.batch_boolean(swept, OpType.Add)
         solid.num_tri()                        # evaluate now: a natural progress point
         if progress is not None and progress(min(1.0, (start + chunk) / len(pieces))) is False:
             raise SimulationCancelled("simulation cancelled")
     return solid
+
+
+def _placed(tool: np.ndarray, run: np.ndarray, axes: np.ndarray | None) -> np.ndarray:
+    """The tool's points (tip at the origin, axis +Z) at every point of the run: upright, or
+    for a radial tool turned so its axis is the run's horizontal ``axes``."""
+    if axes is None:
+        return (run[:, None, :] + tool[None, :, :]).reshape(-1, 3)
+    ux, uy = axes[:, None, 0], axes[:, None, 1]
+    a, b, c = tool[None, :, 0], tool[None, :, 1], tool[None, :, 2]
+    # local (a, b, c) -> a * Z + b * (-uy, ux, 0) + c * (ux, uy, 0)
+    placed = np.stack([c * ux - b * uy, c * uy + b * ux, np.broadcast_to(a, ux.shape[:1] + a.shape[1:])], axis=-1)
+    return (run[:, None, :] + placed).reshape(-1, 3)
 
 
 def _stock_box(stock):
