@@ -1357,13 +1357,14 @@ def _manifold_sweep(stock, chains: list, tolerance: float, chunk: int, progress)
         p = chain.points
         r = chain.tool.radius
         if chain.radial:
-            # The tool axis turns with C: runs are merged only where it keeps its direction.
+            # The tool axis turns with C: a run is merged where both the tip and the far end of
+            # the shank stay within merge / 2 of their chords (a rigid motion: every point of
+            # the tool between them does too, near enough).
             reach = np.hypot(p[:, 0], p[:, 1])
             axis = p[:, :2] / np.maximum(reach, 1e-12)[:, None]
             height = stock.radius + 1.0 - float(reach.min())
-            turns = np.flatnonzero(np.abs(np.diff(np.arctan2(axis[:, 1], axis[:, 0]))) > 1e-12)
-            groups = np.split(np.arange(len(p)), turns + 1)
-            ends = sorted({int(g[0]) + e for g in groups for e in _straight_runs(p[g], merge / 2)} | set(turns.tolist()))
+            shank_end = p[:, :2] + height * axis
+            ends = _straight_runs(np.column_stack([p, shank_end]), merge / 2)
         else:
             axis = None
             height = stock.top + 1.0 - float(p[:, 2].min())   # the shank reaches above the stock from any depth
