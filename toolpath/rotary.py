@@ -57,7 +57,7 @@ rims only (wall angle 0).
 
 Cycle time, compared with the paper: the built-in sample (:func:`sample_job`, three pockets
 in a 105 mm block, 6 mm bit, P = alpha = 1 mm, 1500 mm/min on the wood, 300 mm/min plunges)
-is estimated at 7 min 59 s (slanted tray 4:46, peanut 2:06, bowl 1:07); the paper machined
+is estimated at 8 min 43 s (slanted tray 5:14, peanut 2:21, bowl 1:07); the paper machined
 its three pockets in 8 min 22 s.  Its feeds and pocket sizes are not published, so this
 is a sanity check of the order of magnitude, not a reproduction.
 """
@@ -884,7 +884,9 @@ def _inner_point(piece: CrossSection) -> np.ndarray:
 def _roughing(geo: _Geometry, settings: RotarySettings) -> list:
     """[(z, chain (k, 3)), ...]: per layer, each piece's centre, then circles out to its outline."""
     extra = settings.allowance + settings.standoff
-    bottom_tip = -geo.depth + settings.allowance
+    # The deepest layer: on a flat floor the ball keeps the standoff too, or that layer's region
+    # would be empty and the floor finishing would take the whole last step at once.
+    bottom_tip = geo.floor_z(extra) - geo.r if geo.bottom == "flat" else -geo.depth + settings.allowance
     layers = max(1, math.ceil(-bottom_tip / settings.step_down - 1e-9))
     passes, region, chains = [], None, []
     for k in range(1, layers + 1):
