@@ -151,6 +151,7 @@ PROPERTY_TEXTS = {
     "The gouge-texture name plate": "彫刻刀跡の表札",
     "The pockets on the rotating table": "回転テーブルのポケット",
     "The imported ISO 14649 workplan": "読み込んだISO 14649ワークプラン",
+    "The turn-mill part's radial and axial operations": "複合加工部品の径方向・軸方向の加工工程",
     "Kind": "種類",
     "Location": "位置",
     "Message": "メッセージ",
