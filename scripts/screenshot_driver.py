@@ -200,6 +200,20 @@ def turnmill_step():
     frame_all()
 
 
+def turnmill_simulate_step():
+    """The sample bar carved by the radial and axial tools, coloured by operation."""
+    scene = bpy.context.scene
+    run_in_view(bpy.ops.kezuri.simulate, workflow="TURNMILL")
+    scene.kezuri.turnmill.part.hide_set(True)
+    for obj in scene.objects:
+        if obj.name.startswith("Kezuri Turn-Mill"):
+            obj.hide_set(True)
+    scene.kezuri.simulation.colour_by = "OPERATION"
+    only_panels("KEZURI_PT_simulate")
+    show_cam_tab("VERTEX")
+    frame_all()
+
+
 def simulated_objects():
     return [o.name for o in bpy.context.scene.objects if o.name.startswith("Kezuri Simulated")]
 
@@ -247,6 +261,7 @@ def check_finished():
 STEPS = [("setup", maximise_viewport, None), ("cam tab", click_cam_tab, None), ("engrave", engrave_step, "engrave"),
          ("simulate", simulate_step, "simulate"), ("rotary", rotary_step, "rotary"),
          ("stepnc", stepnc_step, "stepnc"), ("turnmill", turnmill_step, "turnmill"),
+         ("turnmill simulate", turnmill_simulate_step, "simulate-turnmill"),
          ("sheet", sheet_step, "sheet-metal"), ("elbow", elbow_step, "elbow"),
          ("modal start", start_long_simulation, "simulate-running"), ("modal cancel", press_escape, None),
          ("modal restart", check_cancelled, None), ("modal finished", check_finished, None)]
