@@ -400,8 +400,9 @@ def unfold(args) -> dict:
         corners = shell.corners_mm(sheet)
     job = shell.run_unfold(corners, sheet)
     files = shell.unfold_files(job, os.path.join(args.out, "unfold.nc"))
-    part, flat, cut = shell.show_unfold(scene, job)
-    png = preview.render_preview(scene, [part, flat], [cut], os.path.join(args.out, "unfold.png"), see_through=False)
+    objects = shell.show_unfold(scene, job)
+    png = preview.render_preview(scene, [o for o in objects if o.type == "MESH"], [o for o in objects if o.type != "MESH"],
+                                 os.path.join(args.out, "unfold.png"), see_through=False)
     pattern = job.quad.pattern
     return {
         "workflow": "unfold",
@@ -416,6 +417,7 @@ def unfold(args) -> dict:
                       for t in pattern.triangles],
         "outline": rounded(pattern.outline),
         "cut_contour": rounded(job.contour),
+        "simulation": shell.punch_report([job.punched], sheet.thickness),
     }
 
 
@@ -437,7 +439,7 @@ def elbow(args) -> dict:
         if getattr(args, option) is not None:
             setattr(sheet, name, getattr(args, option))
     result = shell.run_elbow(sheet)
-    files = shell.elbow_files(result, os.path.join(args.out, "elbow.dxf"))
+    files = shell.elbow_files(result, os.path.join(args.out, "elbow.dxf"), sheet)
     objects = shell.show_elbow(scene, result)
     solids = [o for o in objects if o.type == "MESH" and len(o.data.polygons)]
     wires = [o for o in objects if o not in solids]
@@ -447,6 +449,8 @@ def elbow(args) -> dict:
         "files": files,
         "preview": png,
         "diameter": result.diameter, "bend_radius": result.bend_radius, "angle": result.bend_angle,
+        "simulation": shell.punch_report([punched for _, punched in shell.elbow_punching(result, sheet)],
+                                         sheet.thickness),
         "pieces": [{"index": piece.index + 1, "angle_deg": round(piece.angle, 6),
                     "outline": rounded(piece.outline),
                     "shortest_mm": round(float(piece.generatrix_lengths.min()), 6),

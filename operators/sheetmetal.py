@@ -15,6 +15,7 @@ from bpy.props import StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
 from ..post import amada_punch, flat_export, write_atomic
+from ..toolpath import punch
 from ..toolpath import unfold as core
 from . import convert
 from .common import run_reported
@@ -30,6 +31,7 @@ class UnfoldJob:
     quad: core.TwistedQuad
     contour: np.ndarray        # tool-centre contour around the flat pattern (mm)
     nc: str                    # the turret-punch program
+    punched: punch.PunchResult  # that program read back and punched out of the sheet
 
 
 def corners_mm(props) -> np.ndarray:
@@ -40,7 +42,43 @@ def run_unfold(corners, props) -> UnfoldJob:
     quad = core.unfold_twisted_quad(corners, props.divisions, props.direction)
     contour = core.compensate_outline(quad.pattern.outline, props.tool_diameter)
     nc = amada_punch.to_text(contour, station=props.station, pitch=props.pitch, thickness=props.thickness)
-    return UnfoldJob(quad, contour, nc)
+    punched = punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=quad.pattern.outline)
+    return UnfoldJob(quad, contour, nc, punched)
+
+
+def punch_report(results: list, thickness: float) -> dict:
+    """The ``simulation`` entry of a batch report for one or more punched parts."""
+    gouges = [{"line": g.line, "depth_mm": round(g.depth_mm, 4), "xy": [round(v, 3) for v in g.xy],
+               "message": g.message, "part": index + 1}
+              for index, result in enumerate(results) for g in result.gouges]
+    removed = sum(r.removed_area_mm2 for r in results)
+    return {
+        "engine": "crosssection",
+        "tolerance_mm": results[0].tolerance,
+        "seconds": round(sum(r.seconds for r in results), 3),
+        "hits": sum(r.hits for r in results),
+        "parts_separated": [r.part_separated for r in results],
+        "part_area_mm2": [round(r.part_area_mm2, 2) for r in results],
+        "pattern_area_mm2": [round(r.pattern_area_mm2, 2) for r in results],
+        "removed_area_mm2": round(removed, 2),
+        "removed_volume_mm3": round(removed * thickness, 1),
+        "max_scallop_mm": round(max(r.max_scallop_mm or 0.0 for r in results), 4),
+        "gouges": gouges,
+        "max_gouge_mm": round(max(r.max_gouge_mm for r in results), 4),
+        "rapid_collisions": [],
+    }
+
+
+def punch_warnings(results: list) -> list:
+    """What the punching simulation found that the shop must hear about."""
+    warnings = []
+    for index, result in enumerate(results):
+        which = f"part {index + 1}: " if len(results) > 1 else ""
+        if not result.part_separated:
+            warnings.append(f"{which}the part stays in the sheet: hits further apart than the punch leave webs "
+                            f"(lower the pitch below the {result.punch_diameter:g} mm punch)")
+        warnings += [f"{which}{g.message}" for g in result.gouges]
+    return warnings
 
 
 def unfold_files(job: UnfoldJob, base_path: str) -> list:
@@ -74,7 +112,19 @@ def show_unfold(scene, job: UnfoldJob) -> list:
     cut = np.column_stack([job.contour, np.zeros(len(job.contour))])
     cut_obj = convert.polyline_object(scene, f"{PREFIX} cut contour", [np.vstack([cut, cut[:1]])], flat_frame,
                                       color=(1.0, 0.3, 0.1, 1.0))
-    return [part, flat_obj, cut_obj]
+    # The punched sheet beside the flat pattern: the part that falls out, and the skeleton.
+    (x0, _, x1, _) = job.punched.sheet.bounds()
+    punched_frame = convert.WorkFrame(scale, (flat_frame.origin_mm[0] + float(job.contour[:, 0].max()) + GAP_MM - x0,
+                                              0.0, 0.0))
+    thickness = float(scene.kezuri.sheet.thickness)
+    pieces = []
+    for name, region, colour in (("punched part", job.punched.part, (0.55, 0.75, 0.95, 1.0)),
+                                 ("skeleton", job.punched.sheet - job.punched.part, (0.6, 0.6, 0.62, 1.0))):
+        if region.area() > 0:
+            mesh = region.extrude(thickness).translate((0.0, 0.0, -thickness)).to_mesh()
+            pieces.append(convert.mesh_object(scene, f"{PREFIX} {name}", np.asarray(mesh.vert_properties)[:, :3],
+                                              np.asarray(mesh.tri_verts), punched_frame, color=colour))
+    return [part, flat_obj, cut_obj, *pieces]
 
 
 def run_elbow(props) -> core.Elbow:
@@ -92,11 +142,25 @@ def elbow_layout(elbow: core.Elbow) -> list:
     return placed
 
 
-def elbow_files(elbow: core.Elbow, base_path: str) -> list:
+def elbow_punching(elbow: core.Elbow, props) -> list:
+    """Per piece: (turret-punch program, its punching simulation), with the sheet panel's punch."""
+    jobs = []
+    for outline in elbow_layout(elbow):
+        contour = core.compensate_outline(outline, props.tool_diameter)
+        nc = amada_punch.to_text(contour, station=props.station, pitch=props.pitch, thickness=props.thickness)
+        jobs.append((nc, punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=outline)))
+    return jobs
+
+
+def elbow_files(elbow: core.Elbow, base_path: str, props) -> list:
+    """DXF and SVG of all the pieces, and one turret-punch program per piece (<stem>-1.nc ...)."""
     stem = os.path.splitext(base_path)[0]
     outlines = elbow_layout(elbow)
-    return [write_atomic(stem + ".dxf", flat_export.to_dxf(outlines)),
-            write_atomic(stem + ".svg", flat_export.to_svg(outlines))]
+    files = [write_atomic(stem + ".dxf", flat_export.to_dxf(outlines)),
+             write_atomic(stem + ".svg", flat_export.to_svg(outlines))]
+    for index, (nc, _) in enumerate(elbow_punching(elbow, props), start=1):
+        files.append(write_atomic(f"{stem}-{index}.nc", nc))
+    return files
 
 
 def show_elbow(scene, elbow: core.Elbow) -> list:
@@ -153,6 +217,8 @@ class KEZURI_OT_unfold_quad(bpy.types.Operator):
                 setattr(sheet, name, getattr(self, name))
             job = run_unfold(corners_mm(sheet), sheet)
             show_unfold(context.scene, job)
+            for warning in punch_warnings([job.punched]):
+                self.report({"WARNING"}, warning)
             lengths = ", ".join(f"{v:.3f}" for v in job.quad.edge_lengths)
             self.report({"INFO"}, f"Unfolded into {2 * job.quad.divisions} triangles; edges {lengths} mm")
             return {"FINISHED"}
@@ -256,7 +322,7 @@ class KEZURI_OT_add_elbow(bpy.types.Operator):
 
 
 class KEZURI_OT_elbow_export(bpy.types.Operator, ExportHelper):
-    """Write the elbow pieces' flat patterns as DXF and SVG"""
+    """Write the elbow pieces' flat patterns as DXF and SVG, and a turret-punch program per piece"""
 
     bl_idname = "kezuri.elbow_export"
     bl_label = "Export Elbow Patterns"
@@ -267,7 +333,7 @@ class KEZURI_OT_elbow_export(bpy.types.Operator, ExportHelper):
 
     def execute(self, context):
         def work():
-            files = elbow_files(run_elbow(context.scene.kezuri.sheet), self.filepath)
+            files = elbow_files(run_elbow(context.scene.kezuri.sheet), self.filepath, context.scene.kezuri.sheet)
             self.report({"INFO"}, "Wrote " + ", ".join(os.path.basename(f) for f in files))
             return {"FINISHED"}
         return run_reported(self, work)

@@ -112,7 +112,8 @@ OPERATOR_DESCRIPTIONS = {
         "タレットパンチ用プログラム（.nc）と、展開図のDXF・SVGを同じ場所に書き出します",
     "Add a segmented pipe elbow and the flat pattern of every piece":
         "エビ管（分割したパイプエルボ）と、各ピースの展開図を追加します",
-    "Write the elbow pieces' flat patterns as DXF and SVG": "エビ管の各ピースの展開図をDXFとSVGで書き出します",
+    "Write the elbow pieces' flat patterns as DXF and SVG, and a turret-punch program per piece":
+        "エビ管の各ピースの展開図をDXFとSVGで、ピースごとのタレットパンチNCとともに書き出します",
 }
 
 # Panel and menu labels (bl_label), and the fixed texts of layout.label().

@@ -42,6 +42,11 @@ def test_unfold_operator_lays_out_an_isometric_flat_pattern(scene):
     # Beside the part, not on top of it.
     assert min(v.co.x for v in flat.data.vertices) > max(v.co.x for v in part.data.vertices)
     assert scene.kezuri.sheet.direction == "vertical"      # the redo settings are kept in the scene
+    # The punched sheet beside the flat pattern: the part fell out of the skeleton.
+    punched = bpy.data.objects["Kezuri Sheet punched part"]
+    skeleton = bpy.data.objects["Kezuri Sheet skeleton"]
+    assert min(v.co.x for v in punched.data.vertices) > max(v.co.x for v in flat.data.vertices)
+    assert max(v.co.x for v in punched.data.vertices) < max(v.co.x for v in skeleton.data.vertices)
 
 
 def test_unfold_in_a_metre_scene_has_the_same_physical_size(scene):
@@ -119,6 +124,14 @@ def test_batch_unfold_reports_the_papers_numbers(tmp_path, direction):
     ET.fromstring((out / "unfold.svg").read_text())
     assert (out / "unfold.dxf").read_text().rstrip().endswith("EOF")
     assert (out / "unfold.png").stat().st_size > 10_000
+    simulation = report["simulation"]
+    assert simulation["engine"] == "crosssection" and simulation["parts_separated"] == [True]
+    assert simulation["gouges"] == [] and simulation["max_gouge_mm"] == 0
+    # the default 2 mm pitch with the 10 mm punch: cusps of 5 - sqrt(24) = 0.10 mm, corners a little more
+    assert 0.09 < simulation["max_scallop_mm"] < 0.14
+    pattern_area = abs(np.sum(np.cross(np.array(report["outline"]), np.roll(np.array(report["outline"]), -1, 0)))) / 2
+    assert simulation["pattern_area_mm2"] == [pytest.approx(pattern_area, abs=0.01)]
+    assert pattern_area < simulation["part_area_mm2"][0] < pattern_area * 1.005
 
 
 def test_batch_unfold_reads_a_cdl_file_and_refuses_an_open_one(tmp_path):
@@ -147,3 +160,8 @@ def test_batch_elbow_reports_piece_outlines(tmp_path):
     assert middle["longest_mm"] == pytest.approx(2 * (150 + 50) * np.tan(theta / 2), abs=1e-3)
     outline = np.array(middle["outline"])
     assert outline[:, 0].max() - outline[:, 0].min() == pytest.approx(np.pi * 100, abs=1e-6)
+    programs = sorted(tmp_path.glob("elbow-*.nc"))
+    assert [p.name for p in programs] == [f"elbow-{i}.nc" for i in (1, 2, 3, 4)]
+    assert all(p.read_text().rstrip().endswith("G50") for p in programs)
+    simulation = report["simulation"]
+    assert simulation["parts_separated"] == [True] * 4 and simulation["gouges"] == []
