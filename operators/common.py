@@ -4,6 +4,8 @@ from __future__ import annotations
 import sys
 import traceback
 
+from .translations import translate_message
+
 
 def user_errors():
     """Exception types whose message is meant for the user (no traceback): every input error of
@@ -18,15 +20,14 @@ def run_reported(operator, work):
     Input errors are shown as they are; anything else is a bug: a short message in the
     status bar and the traceback in the system console, never an exception out of execute().
     """
-    from bpy.app.translations import pgettext_rpt
     try:
         return work()
     except user_errors() as error:
-        operator.report({"ERROR"}, pgettext_rpt(str(error)))
+        operator.report({"ERROR"}, translate_message(str(error)))
     except Exception as error:  # noqa: BLE001 - the last line of defence of the UI
         traceback.print_exc(file=sys.stderr)
-        operator.report({"ERROR"}, f"Kezuri internal error ({type(error).__name__}): {error}; "
-                                   "details in the system console")
+        operator.report({"ERROR"}, translate_message(f"Kezuri internal error ({type(error).__name__}): {error}; "
+                                   "details in the system console"))
     return {"CANCELLED"}
 
 
@@ -182,7 +183,8 @@ class SteppedOperator:
         if bpy.app.background or context.window is None:
             return self.execute(context)
         if self.bl_idname in SteppedOperator.running:
-            self.report({"WARNING"}, "This job is already running: wait for it or press Esc to cancel it")
+            self.report({"WARNING"},
+                        translate_message("This job is already running: wait for it or press Esc to cancel it"))
             return {"CANCELLED"}
 
         def start():
@@ -201,7 +203,7 @@ class SteppedOperator:
         if event.type == "ESC" and event.value == "PRESS":
             self._job.cancel()
             self._end(context)
-            self.report({"INFO"}, "Cancelled: the scene is as it was")
+            self.report({"INFO"}, translate_message("Cancelled: the scene is as it was"))
             return {"CANCELLED"}
         if event.type != "TIMER":      # (Blender's Event does not say whose timer fired: any will do)
             return {"PASS_THROUGH"}

@@ -19,6 +19,7 @@ from . import convert
 from .common import SteppedOperator, run_reported
 from .preferences import scene_output_dir, scene_post
 from .properties import MILLING_POST_ITEMS
+from .translations import translate_message
 
 PREFIX = "Kezuri Engrave"
 COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "band": (0.1, 0.6, 1.0, 1.0), "burr": (0.2, 0.9, 0.3, 1.0),
@@ -135,10 +136,11 @@ class KEZURI_OT_engrave_generate(SteppedOperator, bpy.types.Operator):
     def finish(self, context, job):
         show_engrave(context.scene, job, context.scene.kezuri.engrave.show_rapids)
         for warning in job.result.warnings:
-            self.report({"WARNING"}, warning)
+            self.report({"WARNING"}, translate_message(warning))
         minutes = job.baked.cycle_time() / 60
-        self.report({"INFO"}, f"Engraving planned: {sum(len(op) for op in job.baked.operations)} moves, "
-                              f"about {minutes:.1f} min")
+        self.report({"INFO"},
+                    translate_message(f"Engraving planned: {sum(len(op) for op in job.baked.operations)} moves, "
+                              f"about {minutes:.1f} min"))
         return {"FINISHED"}
 
 
@@ -172,7 +174,7 @@ class KEZURI_OT_engrave_export(bpy.types.Operator, ExportHelper):
         def work():
             job = run_engrave(context.scene, context.evaluated_depsgraph_get())
             path = export_engrave(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset)
-            self.report({"INFO"}, f"Wrote {path}")
+            self.report({"INFO"}, translate_message(f"Wrote {path}"))
             return {"FINISHED"}
         return run_reported(self, work)
 

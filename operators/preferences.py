@@ -8,6 +8,7 @@ import bpy
 from bpy.props import CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 from .properties import MILLING_POST_ITEMS, WORK_OFFSET_ITEMS
+from .translations import translate_message
 
 ADDON_ID = __package__.rpartition(".")[0]   # "kezuri", or "bl_ext.<repo>.kezuri" once installed
 
@@ -101,7 +102,7 @@ class KEZURI_OT_tool_add(bpy.types.Operator):
     def execute(self, context):
         prefs = preferences(context)
         if prefs is None:
-            self.report({"ERROR"}, "Kezuri preferences are not available")
+            self.report({"ERROR"}, translate_message("Kezuri preferences are not available"))
             return {"CANCELLED"}
         tool = prefs.tools.add()
         tool.number = max((t.number for t in prefs.tools), default=0) + 1
@@ -147,12 +148,13 @@ class KEZURI_OT_use_library_tool(bpy.types.Operator):
     def execute(self, context):
         prefs = preferences(context)
         if prefs is None or self.index >= len(prefs.tools):
-            self.report({"ERROR"}, "No such tool in the library")
+            self.report({"ERROR"}, translate_message("No such tool in the library"))
             return {"CANCELLED"}
         tool = prefs.tools[self.index]
         wanted = "ball" if self.slot == "rough" else "flat"
         if tool.kind != wanted:
-            self.report({"ERROR"}, f"{tool.name} is a {tool.kind}; the {self.slot}ing tool must be a {wanted}")
+            self.report({"ERROR"},
+                        translate_message(f"{tool.name} is a {tool.kind}; the {self.slot}ing tool must be a {wanted}"))
             return {"CANCELLED"}
         engrave = context.scene.kezuri.engrave
         setattr(engrave, f"{self.slot}_diameter", tool.diameter)

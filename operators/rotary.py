@@ -19,6 +19,7 @@ from ..toolpath import rotary as core
 from ..toolpath.program import Tool
 from . import convert
 from .common import SteppedOperator, run_reported
+from .translations import translate_message
 
 PREFIX = "Kezuri Rotary"
 COLOURS = ((0.95, 0.45, 0.1, 1.0), (0.1, 0.6, 1.0, 1.0), (0.2, 0.9, 0.3, 1.0), (0.9, 0.8, 0.1, 1.0))
@@ -125,8 +126,8 @@ class KEZURI_OT_rotary_generate(SteppedOperator, bpy.types.Operator):
     def finish(self, context, job):
         show_rotary(context.scene, job)
         minutes, seconds = divmod(int(round(job.result.cycle_time_s)), 60)
-        self.report({"INFO"}, f"{len(job.result.pockets)} pockets planned; estimated cycle time "
-                              f"{minutes} min {seconds:02d} s")
+        self.report({"INFO"}, translate_message(f"{len(job.result.pockets)} pockets planned; estimated cycle time "
+                              f"{minutes} min {seconds:02d} s"))
         return {"FINISHED"}
 
 
@@ -153,7 +154,7 @@ class KEZURI_OT_rotary_export(bpy.types.Operator, ExportHelper):
         def work():
             job = run_rotary(context.scene, context.evaluated_depsgraph_get())
             path = export_rotary(job, self.post, self.filepath)
-            self.report({"INFO"}, f"Wrote {path}")
+            self.report({"INFO"}, translate_message(f"Wrote {path}"))
             return {"FINISHED"}
         return run_reported(self, work)
 
@@ -180,7 +181,8 @@ class KEZURI_OT_mark_pocket(bpy.types.Operator):
             if obj.type in {"MESH", "CURVE"} and obj != context.scene.kezuri.stock.plate:
                 obj.kezuri_pocket.enabled = self.enable
                 count += 1
-        self.report({"INFO"}, f"{count} object(s) {'marked as' if self.enable else 'no longer'} pockets")
+        self.report({"INFO"},
+                    translate_message(f"{count} object(s) {'marked as' if self.enable else 'no longer'} pockets"))
         return {"FINISHED"}
 
 

@@ -20,6 +20,7 @@ from ..toolpath import unfold as core
 from . import convert
 from .common import run_reported
 from .properties import ELBOW_SETTINGS, UNFOLD_SETTINGS, copies
+from .translations import translate_message
 
 PREFIX = "Kezuri Sheet"
 ELBOW_PREFIX = "Kezuri Elbow"
@@ -218,9 +219,10 @@ class KEZURI_OT_unfold_quad(bpy.types.Operator):
             job = run_unfold(corners_mm(sheet), sheet)
             show_unfold(context.scene, job)
             for warning in punch_warnings([job.punched]):
-                self.report({"WARNING"}, warning)
+                self.report({"WARNING"}, translate_message(warning))
             lengths = ", ".join(f"{v:.3f}" for v in job.quad.edge_lengths)
-            self.report({"INFO"}, f"Unfolded into {2 * job.quad.divisions} triangles; edges {lengths} mm")
+            self.report({"INFO"},
+                        translate_message(f"Unfolded into {2 * job.quad.divisions} triangles; edges {lengths} mm"))
             return {"FINISHED"}
         return run_reported(self, work)
 
@@ -246,7 +248,7 @@ class KEZURI_OT_quad_from_selection(bpy.types.Operator):
                 context.active_object.update_from_editmode()
             corners = quad_corners_from_object(context.active_object, context.scene)
             context.scene.kezuri.sheet.corners = corners.ravel()
-            self.report({"INFO"}, "Corners taken from the selected face")
+            self.report({"INFO"}, translate_message("Corners taken from the selected face"))
             return {"FINISHED"}
         return run_reported(self, work)
 
@@ -271,7 +273,7 @@ class KEZURI_OT_import_cdl(bpy.types.Operator, ImportHelper):
             world = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
             convert.mesh_object(scene, f"{PREFIX} imported quad", corners, [[0, 1, 2, 3]], world,
                                 color=(0.7, 0.75, 0.8, 1.0))
-            self.report({"INFO"}, f"Read the quad from {os.path.basename(self.filepath)}")
+            self.report({"INFO"}, translate_message(f"Read the quad from {os.path.basename(self.filepath)}"))
             return {"FINISHED"}
         return run_reported(self, work)
 
@@ -290,7 +292,7 @@ class KEZURI_OT_sheet_export(bpy.types.Operator, ExportHelper):
         def work():
             job = run_unfold(corners_mm(context.scene.kezuri.sheet), context.scene.kezuri.sheet)
             files = unfold_files(job, self.filepath)
-            self.report({"INFO"}, "Wrote " + ", ".join(os.path.basename(f) for f in files))
+            self.report({"INFO"}, translate_message("Wrote " + ", ".join(os.path.basename(f) for f in files)))
             return {"FINISHED"}
         return run_reported(self, work)
 
@@ -316,7 +318,8 @@ class KEZURI_OT_add_elbow(bpy.types.Operator):
                 setattr(sheet, name, getattr(self, name))
             elbow = run_elbow(sheet)
             show_elbow(context.scene, elbow)
-            self.report({"INFO"}, f"Elbow of {len(elbow.pieces)} pieces, {elbow.piece_angle:.2f} deg each")
+            self.report({"INFO"},
+                        translate_message(f"Elbow of {len(elbow.pieces)} pieces, {elbow.piece_angle:.2f} deg each"))
             return {"FINISHED"}
         return run_reported(self, work)
 
@@ -334,7 +337,7 @@ class KEZURI_OT_elbow_export(bpy.types.Operator, ExportHelper):
     def execute(self, context):
         def work():
             files = elbow_files(run_elbow(context.scene.kezuri.sheet), self.filepath, context.scene.kezuri.sheet)
-            self.report({"INFO"}, "Wrote " + ", ".join(os.path.basename(f) for f in files))
+            self.report({"INFO"}, translate_message("Wrote " + ", ".join(os.path.basename(f) for f in files)))
             return {"FINISHED"}
         return run_reported(self, work)
 

@@ -17,6 +17,7 @@ from ..toolpath import region
 from ..toolpath import simulate as core
 from . import convert
 from .common import CoreCall, SteppedOperator
+from .translations import translate_message
 
 PREFIX = "Kezuri Simulated"
 COLOUR_ATTRIBUTES = {"DEPTH": "Kezuri depth", "OPERATION": "Kezuri operation"}
@@ -172,7 +173,7 @@ def store_findings(scene, job: SimulationJob):
     items.clear()
     for f in job.result.findings:
         item = items.add()
-        item.kind, item.message = f.kind, f.message
+        item.kind, item.message = f.kind, translate_message(f.message)
         item.operation, item.move = f.operation, f.move
         if f.xy is not None:
             item.location = job.frame.to_world([(float(f.xy[0]), float(f.xy[1]), f.z or 0.0)])[0]
@@ -196,9 +197,9 @@ class KEZURI_OT_simulate(SteppedOperator, bpy.types.Operator):
         show_simulation(context.scene, job)
         store_findings(context.scene, job)
         for finding in job.result.findings[:10]:
-            self.report({"WARNING"}, finding.message)
-        self.report({"INFO"}, f"Removed {job.result.removed_volume_mm3 / 1000:.1f} cm^3 in "
-                              f"{job.result.seconds:.1f} s; {len(job.result.findings)} finding(s)")
+            self.report({"WARNING"}, translate_message(finding.message))
+        self.report({"INFO"}, translate_message(f"Removed {job.result.removed_volume_mm3 / 1000:.1f} cm^3 in "
+                              f"{job.result.seconds:.1f} s; {len(job.result.findings)} finding(s)"))
         return {"FINISHED"}
 
 

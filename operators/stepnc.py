@@ -20,6 +20,7 @@ from ..toolpath.stepnc.model import ClosedPocket, PlanarFace, RoundHole
 from . import convert
 from .common import run_reported
 from .properties import MILLING_POST_ITEMS
+from .translations import translate_message
 
 PREFIX = "Kezuri STEP-NC"
 FEATURE_COLOURS = {"ClosedPocket": (0.2, 0.6, 1.0, 1.0), "PlanarFace": (0.9, 0.8, 0.2, 1.0),
@@ -184,8 +185,9 @@ class KEZURI_OT_import_stepnc(bpy.types.Operator, ImportHelper):
             fill_workplan_list(context.scene, self.filepath, loaded)
             show_workplan(context.scene, loaded)
             for warning in loaded.warnings:
-                self.report({"WARNING"}, warning)
-            self.report({"INFO"}, f"{len(loaded.workingsteps)} workingsteps from {os.path.basename(self.filepath)}")
+                self.report({"WARNING"}, translate_message(warning))
+            steps, name = len(loaded.workingsteps), os.path.basename(self.filepath)
+            self.report({"INFO"}, translate_message(f"{steps} workingsteps from {name}"))
             return {"FINISHED"}
         return run_reported(self, work)
 
@@ -210,8 +212,9 @@ class KEZURI_OT_stepnc_generate(bpy.types.Operator):
             program = scene_program(context.scene, loaded)
             show_workplan(context.scene, loaded, program)
             for note in program.notes:
-                self.report({"WARNING"}, note)
-            self.report({"INFO"}, f"{len(program.operations)} operations, about {program.cycle_time() / 60:.1f} min")
+                self.report({"WARNING"}, translate_message(note))
+            minutes = program.cycle_time() / 60
+            self.report({"INFO"}, translate_message(f"{len(program.operations)} operations, about {minutes:.1f} min"))
             return {"FINISHED"}
         return run_reported(self, work)
 
@@ -238,7 +241,7 @@ class KEZURI_OT_stepnc_export(bpy.types.Operator, ExportHelper):
     def execute(self, context):
         def work():
             path, _ = export_nc(context.scene, self.post, self.filepath)
-            self.report({"INFO"}, f"Wrote {path}")
+            self.report({"INFO"}, translate_message(f"Wrote {path}"))
             return {"FINISHED"}
         return run_reported(self, work)
 
@@ -257,7 +260,7 @@ class KEZURI_OT_export_stepnc(bpy.types.Operator, ExportHelper):
         def work():
             text = pockets_part21(context.scene, context.evaluated_depsgraph_get())
             path = write_atomic(self.filepath, text)
-            self.report({"INFO"}, f"Wrote {path}")
+            self.report({"INFO"}, translate_message(f"Wrote {path}"))
             return {"FINISHED"}
         return run_reported(self, work)
 

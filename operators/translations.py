@@ -10,12 +10,15 @@ and messages use the default context ``"*"``; operator labels (buttons, menus, F
 ``"Operator"``, so every operator label is entered in both.
 
 Messages: Blender translates labels and tooltips by itself, but not what Python reports or
-raises.  Fixed (whole-string) messages are here; the code translates them at report time with
-``bpy.app.translations.pgettext_rpt(message)`` (poll messages with ``pgettext_tip``).  Messages
-built with f-strings (object names, counts, lengths) are not translatable this way and are left
-in English.
+raises.  Every report goes through :func:`translate_message`: fixed (whole-string) messages are
+looked up with ``bpy.app.translations.pgettext_rpt`` (poll messages with ``pgettext_tip``);
+messages built with f-strings (object names, counts, lengths) are matched against
+:data:`MESSAGE_TEMPLATES`, English with ``{}`` where the f-string has a value, and the values are
+put into the Japanese template's ``{0}``, ``{1}`` ... (word order differs).
 """
 from __future__ import annotations
+
+import re
 
 import bpy
 
@@ -522,6 +525,359 @@ MESSAGES = {
 }
 
 
+def _template_pattern(template: str):
+    """An anchored regex for an English template: literal text escaped, each ``{}`` a group."""
+    parts = [re.escape(part.replace("{{", "{").replace("}}", "}")) for part in template.split("{}")]
+    return re.compile("(.*?)".join(parts) + r"\Z", re.DOTALL)
+
+
+def _compiled_templates() -> list:
+    """(regex, Japanese) for every template, the most literal text first: the most specific wins."""
+    ordered = sorted(MESSAGE_TEMPLATES.items(), key=lambda item: -len(item[0].replace("{}", "")))
+    return [(_template_pattern(english), japanese) for english, japanese in ordered]
+
+
+def reports_in_japanese() -> bool:
+    """Whether Blender translates reports now (interface language Japanese, reports on)."""
+    probe = next(iter(MESSAGES))
+    return bpy.app.translations.pgettext_rpt(probe) != probe
+
+
+def translate_message(text: str) -> str:
+    """A report or error message in the interface language: a fixed message, or an f-string
+    message filled into its Japanese template; English when nothing matches."""
+    fixed = bpy.app.translations.pgettext_rpt(text)
+    if fixed != text or not reports_in_japanese():
+        return fixed
+    return japanese_message(text) or text
+
+
+def japanese_message(text: str) -> str | None:
+    """The Japanese of a message built from an f-string (its values filled into the template),
+    or None when no template matches."""
+    for pattern, japanese in _COMPILED:
+        match = pattern.match(text)
+        if match:
+            return japanese.format(*match.groups())
+    return None
+
+
+# English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
+MESSAGE_TEMPLATES = {
+    'Kezuri internal error ({}): {}; details in the system console': 'Kezuriの内部エラー（{0}）：{1}。詳細はシステムコンソールを見てください',
+    'scene unit scale must be positive, got {}': 'シーンの単位スケールは正の値にしてください（指定値 {0}）',
+    'object {} ({}) has no geometry': 'オブジェクト {0}（{1}）に形状がありません',
+    'object {} has no outline (no faces and no edges)': 'オブジェクト {0} に輪郭がありません（面も辺もありません）',
+    'object {} has an open or branching outline near ({}, {}, {}): close it (or fill the curve)':
+        'オブジェクト {0} の輪郭が ({1}, {2}, {3}) 付近で開いているか分岐しています。閉じてください（またはカーブを塗りつぶしてください）',
+    'object {} is a {}; use a Text, curve or mesh': 'オブジェクト {0} は {1} です。テキスト・カーブ・メッシュを使ってください',
+    'object {} has a vertex with a non-finite coordinate': 'オブジェクト {0} に有限でない座標の頂点があります',
+    'plate {} must be a mesh object, not a {}': '板材 {0} はメッシュオブジェクトにしてください（{1} ではなく）',
+    'plate {} has no faces': '板材 {0} に面がありません',
+    'plate {} has a vertex with a non-finite coordinate': '板材 {0} に有限でない座標の頂点があります',
+    'object {} cannot be turned into a mesh: {}': 'オブジェクト {0} をメッシュに変換できません：{1}',
+    'unknown work origin {}': '不明なワーク原点 {0}',
+    'Engraving planned: {} moves, about {} min': '彫刻パスを作成しました：{0} 移動、約 {1} 分',
+    'Wrote {}': '{0} を書き出しました',
+    '{} is a {}; the {}ing tool must be a {}': '{0} は {1} です。{2}用の工具は {3} にしてください',
+    'pocket {}: the outline must be one closed loop, found {}': 'ポケット {0}：輪郭は閉じたループ1つにしてください（{1} 個あります）',
+    '{} pockets planned; estimated cycle time {} min {} s': '{0} 個のポケットを作成しました。加工時間の見積り {1} 分 {2} 秒',
+    '{} object(s) {} pockets': '{0} 個のオブジェクト：ポケット指定を変更しました（{1}）',
+    'object {}: select exactly one quad face (found {} face(s), the first with {} corners)':
+        'オブジェクト {0}：四角形の面を1つだけ選択してください（{1} 面あり、最初の面の頂点数 {2}）',
+    'Unfolded into {} triangles; edges {} mm': '{0} 個の三角形に展開しました。辺の長さ {1} mm',
+    'Read the quad from {}': '{0} から四辺形を読み込みました',
+    'Elbow of {} pieces, {} deg each': '{0} ピースのエビ管、1ピース {1} 度',
+    'no simulation for {}': '{0} のシミュレーションはありません',
+    'Removed {} cm^3 in {} s; {} finding(s)': '{0} cm^3 を除去しました（{1} 秒）。指摘 {2} 件',
+    'the imported ISO 14649 file is gone: {}': '読み込んだISO 14649ファイルが見つかりません：{0}',
+    'pocket {}: the outline must be one closed loop': 'ポケット {0}：輪郭は閉じたループ1つにしてください',
+    '{} workingsteps from {}': '{1} から {0} 個のワーキングステップ',
+    '{} operations, about {} min': '{0} 工程、約 {1} 分',
+    'part {} has no faces': '部品 {0} に面がありません',
+    'part {}: no faces are selected (select them in Edit Mode, or switch off Selected Faces Only)':
+        '部品 {0}：面が選択されていません（編集モードで選択するか、「選択面のみ」をオフにしてください）',
+    'unknown post {}; choose one of {}': '不明なポスト {0}。{1} から選んでください',
+    '{} must be a finite number {}, got {}': '{0} は有限の数値（{1}）にしてください（指定値 {2}）',
+    'a contour must be a list of (x, y) points, got shape {}': '輪郭は (x, y) 点のリストにしてください（形状 {0}）',
+    'tool side must be one of {}, got {}': '工具の側は {0} のいずれかにしてください（指定値 {1}）',
+    'turret station must be an integer 1..999, got {}': 'タレットステーションは1〜999の整数にしてください（指定値 {0}）',
+    'end code must be one of {}, got {}': '終了コードは {0} のいずれかにしてください（指定値 {1}）',
+    '{} segments do not fit sequence numbers N001..N999': '{0} 個の線分はシーケンス番号 N001〜N999 に収まりません',
+    'segment {} is {} mm long, shorter than the {} mm output resolution': '線分 {0} の長さは {1} mm で、出力分解能 {2} mm より短いです',
+    'G79 punching line: pitch Q {} must be at least the thickness {} mm': 'G79 パンチング直線：ピッチ Q {0} は板厚 {1} mm 以上にしてください',
+    '{} must be a number, got {}': '{0} は数値にしてください（指定値 {1}）',
+    'operation {} has arc moves; the CL data writer writes GOTO points only': '工程 {0} に円弧移動があります。CLデータ出力は GOTO 点のみです',
+    'operation {} moves rotary axes {} without a tool direction; the CL data writer knows X-Z-C turn-mill and 3-axis operations':
+        '工程 {0} は工具方向なしで回転軸 {1} を動かします。CLデータ出力が扱えるのは X-Z-C 複合加工と3軸の工程です',
+    'operation {}: the macro post knows only the gouge texture': '工程 {0}：マクロポストが扱えるのは彫刻刀跡テクスチャだけです',
+    'operation {}: O7023 splits X moves only; set the raster angle to 0 or use the baked Fanuc post':
+        '工程 {0}：O7023 が分割できるのは X 方向の移動だけです。ラスター角度を0にするか、展開済みFanucポストを使ってください',
+    'operation {}: scoop motion and spacing jitter exist only in baked programs; use the baked Fanuc post':
+        '工程 {0}：すくい動作と間隔のゆらぎは展開済みプログラムにしかありません。展開済みFanucポストを使ってください',
+    'bend lines must be a (k, 2, 2) array, got {}': '曲げ線は (k, 2, 2) の配列にしてください（指定値 {0}）',
+    'margin must be >= 0, got {}': '余白は0以上にしてください（指定値 {0}）',
+    '{} {}: a contour must be a (k, 2) array with k >= 2, got {}': '{0} {1}：輪郭は k >= 2 の (k, 2) 配列にしてください（指定値 {2}）',
+    '{} {}: non-finite coordinate': '{0} {1}：有限でない座標があります',
+    'operation {} still carries an unbaked texture: bake it first (the {} post writes the cut depths literally)':
+        '工程 {0} のテクスチャがまだ展開されていません。先に展開してください（{1} ポストは切込み深さをそのまま書き出します）',
+    'the {} post is for 3-axis milling; operation {} moves rotary axes {}': '{0} ポストは3軸フライス用です。工程 {1} は回転軸 {2} を動かします',
+    'unknown rotary post {}; choose one of {}': '不明な回転テーブルポスト {0}。{1} から選んでください',
+    '{} carries a texture; the {} post writes C-X-Z pockets only': '{0} にはテクスチャがあります。{1} ポストが書き出すのは C-X-Z ポケットだけです',
+    '{}: the {} post needs C positions for every move (got rotary axes {}); plan it with toolpath.rotary':
+        '{0}：{1} ポストにはすべての移動の C 位置が必要です（回転軸 {2}）。toolpath.rotary で作成してください',
+    '{} has arcs; a C-X-Z machine cuts straight X/C/Z moves only': '{0} に円弧があります。C-X-Z 機は X/C/Z の直線移動しか削れません',
+    '{}: X must stay on the negative side of the rotation centre (X = -R)': '{0}：X は回転中心の負側（X = -R）にしてください',
+    '{}: the machine has no Y axis; Y must be 0': '{0}：この機械にY軸はありません。Y は0にしてください',
+    'operation {} is not an X-Z-C turn-mill operation (it has no radial/axial tool direction): plan it with toolpath.turnmill':
+        '工程 {0} は X-Z-C 複合加工の工程ではありません（径方向・軸方向の工具方向がありません）。toolpath.turnmill で作成してください',
+    'operation {} has arc moves; the {} post writes straight moves only': '工程 {0} に円弧移動があります。{1} ポストは直線移動しか書き出しません',
+    'gouge motion must be one of {}, got {}': '彫り動作は {0} のいずれかにしてください（指定値 {1}）',
+    'stepover {} mm is wider than the {} mm roughing tool: ridges would be left standing':
+        'ステップオーバー {0} mm が荒加工工具 {1} mm より広いため、削り残しの山ができます',
+    'letter clearance {} mm is less than the roughing tool radius {} mm: the ball would cut into the letters':
+        '文字との逃げ {0} mm が荒加工工具の半径 {1} mm より小さいため、ボールが文字に食い込みます',
+    'the {} mm finishing tool is wider than the {} mm band': '仕上げ工具 {0} mm が帯の幅 {1} mm より広いです',
+    'letters {} reach outside the plate': '文字 {0} が板材の外にはみ出しています',
+    'texture {} must be a finite number': 'テクスチャの {0} は有限の数値にしてください',
+    '{} must be a finite number, got {}': '{0} は有限の数値にしてください（指定値 {1}）',
+    '{} must be greater than zero, got {}': '{0} は0より大きくしてください（指定値 {1}）',
+    '--tool {}: give ball:D, flat:D or bull:D,R': '--tool {0}：ball:D、flat:D、bull:D,R のいずれかで指定してください',
+    'line {}: unbalanced parenthesis in {}': '{0} 行目：{1} の括弧が対応していません',
+    'line {}: no G-code words in {}': '{0} 行目：{1} にGコードのワードがありません',
+    'line {}: R-format arcs are not supported; use I and J': '{0} 行目：R 指定の円弧には対応していません。I と J を使ってください',
+    'line {}: a move before any G0/G1/G2/G3': '{0} 行目：G0/G1/G2/G3 より前に移動があります',
+    'line {}: an arc needs I and J': '{0} 行目：円弧には I と J が必要です',
+    'tool kind {} is not one of {}': '工具の種類 {0} は {1} のいずれでもありません',
+    'tool diameter must be a positive number, got {}': '工具径は正の数にしてください（指定値 {0}）',
+    'tool number must be an integer 0..999, got {}': '工具番号は0〜999の整数にしてください（指定値 {0}）',
+    'corner radius {} does not fit a {} mm tool': 'コーナー半径 {0} は {1} mm の工具に収まりません',
+    'operation {}: move arrays have different lengths': '工程 {0}：移動の配列の長さが揃っていません',
+    'operation {}: unknown move kind': '工程 {0}：不明な移動の種類です',
+    'operation {}: move {} has a non-finite coordinate': '工程 {0}：移動 {1} に有限でない座標があります',
+    'operation {}: cutting move {} has no positive feed': '工程 {0}：切削移動 {1} に正の送り速度がありません',
+    'operation {}: an arc has no centre': '工程 {0}：円弧に中心がありません',
+    'operation {}: spindle speed must be >= 0': '工程 {0}：主軸回転数は0以上にしてください',
+    'operation {}: rotary axis {} has {} values for {} moves': '工程 {0}：回転軸 {1} の値が {2} 個ありますが、移動は {3} 個です',
+    'operation {}: rotary axis {} has a non-finite value': '工程 {0}：回転軸 {1} に有限でない値があります',
+    'line {}: cannot read {}': '{0} 行目：{1} を読めません',
+    'line {}: expected one G or M code, got {}': '{0} 行目：GコードかMコードを1つ書いてください（{1}）',
+    'the lines give different tool diameters {}: one punch is simulated': '行ごとに工具径が異なります {0}。シミュレーションできるパンチは1本です',
+    'punch diameter must be a number > 0, got {}': 'パンチ径は0より大きい数にしてください（指定値 {0}）',
+    "punch diameter {} does not match the program's P {}": 'パンチ径 {0} がプログラムの P {1} と一致しません',
+    'tolerance must be > 0 and well under the punch radius, got {}': '許容差は0より大きく、パンチ半径より十分小さくしてください（指定値 {0}）',
+    'line {}: {} given twice in {}': '{0} 行目：{2} に {1} が2回あります',
+    'line {}: {} comes after the program end': '{0} 行目：{1} がプログラム終了の後にあります',
+    'line {}: {} is not a turret-punch code this reader knows (G92, G72, G69, G79, G50, M30)':
+        '{0} 行目：{1} はこの読み込みが扱うタレットパンチのコード（G92, G72, G69, G79, G50, M30）ではありません',
+    'line {}: {} needs {}, got {}': '{0} 行目：{1} には {2} が必要です（{3}）',
+    'line {}: a number is not finite in {}': '{0} 行目：{1} に有限でない数値があります',
+    'line {}: {} takes no words, got {}': '{0} 行目：{1} にワードは付けられません（{2}）',
+    'line {}: {} before any G72 reference point': '{0} 行目：G72 の基準点より前に {1} があります',
+    'line {}: I (length) must be >= 0 and Q (pitch) > 0, got {}': '{0} 行目：I（長さ）は0以上、Q（ピッチ）は0より大きくしてください（{1}）',
+    'line {}: D (thickness) must be > 0, got {}': '{0} 行目：D（板厚）は0より大きくしてください（{1}）',
+    'operation {}: radial turn-mill moves are straight in X, Z and C, not G2/G3 arcs':
+        '工程 {0}：複合加工の径方向の移動は X・Z・C の直線で、G2/G3 の円弧ではありません',
+    '{}: an outline must be a list of (x, y) points': '{0}：輪郭は (x, y) 点のリストにしてください',
+    '{}: outline has a non-finite coordinate (NaN or infinity)': '{0}：輪郭に有限でない座標（NaN または無限大）があります',
+    '{}: outline has fewer than 3 distinct points': '{0}：輪郭の異なる点が3つ未満です',
+    '{}: outline encloses no area': '{0}：輪郭が面積を囲んでいません',
+    '{}: no closed outline': '{0}：閉じた輪郭がありません',
+    '{}: no faces with an area when seen from above': '{0}：上から見て面積のある面がありません',
+    'stepover must be a positive number, got {}': 'ステップオーバーは正の数にしてください（指定値 {0}）',
+    '{} raster rows ({} mm at a {} mm stepover): more than {}':
+        'ラスター行が {0} 行（{1} mm をステップオーバー {2} mm で）あり、上限 {3} を超えます',
+    'pocket names must be unique, got {}': 'ポケット名が重複しています：{0}',
+    'allowance must be >= 0, got {}': '削り代は0以上にしてください（指定値 {0}）',
+    'the rotary pockets are cut with a ball-nose bit, not a {} tool': '回転テーブルポケットはボールエンドミルで削ります（{0} ではなく）',
+    '{}: the outline crosses itself': '{0}：輪郭が自己交差しています',
+    '{}: depth must be greater than zero, got {}': '{0}：深さは0より大きくしてください（指定値 {1}）',
+    '{}: depth {} mm goes through the {} mm board': '{0}：深さ {1} mm が板厚 {2} mm を貫通します',
+    "{}: depth {} mm is beyond the bit's flute length {} mm": '{0}：深さ {1} mm が刃長 {2} mm を超えています',
+    '{}: wall angle must be 0..{} degrees from vertical, got {}': '{0}：壁の角度は垂直から0〜{1}度にしてください（指定値 {2}）',
+    '{}: bottom must be one of {}, got {}': '{0}：底の形は {1} のいずれかにしてください（指定値 {2}）',
+    '{}: the outline reaches outside the {} x {} mm board': '{0}：輪郭が {1} x {2} mm の板の外にはみ出しています',
+    'board sizes must be positive numbers, got {}': '板の寸法は正の数にしてください（指定値 {0}）',
+    '{} {} mm is wider than the {} mm bit: ridges would be left standing': '{0} {1} mm が刃物 {2} mm より広いため、削り残しの山ができます',
+    '{}: {} must be a finite number, got {}': '{0}：{1} は有限の数値にしてください（指定値 {2}）',
+    '{}: the centre must be two finite numbers, got {}': '{0}：中心は有限の数値2つにしてください（指定値 {1}）',
+    '{}: a spherical bowl needs a finite sphere radius, got {}': '{0}：球面の器には有限の球半径が必要です（指定値 {1}）',
+    '{}: a spherical bowl has a vertical rim; set the wall angle to 0': '{0}：球面の器の縁は垂直です。壁の角度を0にしてください',
+    "{}: the bowl's lowest point (the centre) is outside the outline": '{0}：器の最も低い点（中心）が輪郭の外にあります',
+    '{}: sphere radius {} mm is smaller than the opening requires: a bowl {} mm deep reaching {} mm from its centre needs at least {} mm':
+        '{0}：球半径 {1} mm は開口部に対して小さすぎます。深さ {2} mm で中心から {3} mm まで届く器には {4} mm 以上が必要です',
+    'pockets {} and {} overlap ({} mm^2)': 'ポケット {0} と {1} が重なっています（{2} mm^2）',
+    'a stock box needs six numbers (x0, y0, z0, x1, y1, z1), got {}':
+        '素材の直方体には6つの数値 (x0, y0, z0, x1, y1, z1) が必要です（{0} 個）',
+    'a {} mm cell gives {} x {} cells over the stock (more than {}); use a coarser cell':
+        '{0} mm のセルでは素材が {1} x {2} セル（上限 {3} 超）になります。セルを粗くしてください',
+    'kernel must be one of {}, got {}': 'カーネルは {0} のいずれかにしてください（指定値 {1}）',
+    'the numba kernel is not available: {}': 'numba カーネルは使えません：{0}',
+    'engine must be one of {}, got {}': 'エンジンは {0} のいずれかにしてください（指定値 {1}）',
+    'chunk must be a positive number of moves, got {}': 'チャンクは正の移動数にしてください（指定値 {0}）',
+    'stock box needs six finite numbers, got {}': '素材の直方体には有限の数値6つが必要です（指定値 {0}）',
+    'stock box ({}, {}, {})..({}, {}, {}) encloses no volume: every max must be above its min':
+        '素材の直方体 ({0}, {1}, {2})..({3}, {4}, {5}) に体積がありません。最大値はすべて最小値より大きくしてください',
+    'stock cylinder top must be a finite number, got {}': '素材の円柱の上面は有限の数値にしてください（指定値 {0}）',
+    'stock must be a BoxStock, a CylinderStock or (x0, y0, z0, x1, y1, z1), got {}':
+        '素材は BoxStock、CylinderStock、または (x0, y0, z0, x1, y1, z1) にしてください（指定値 {0}）',
+    'not an Operation: {}': '工程（Operation）ではありません：{0}',
+    'operation {}: start point has a non-finite coordinate': '工程 {0}：開始点に有限でない座標があります',
+    'operation {}: rotary axes {} are not simulated (only C, a table turning about Z)':
+        '工程 {0}：回転軸 {1} はシミュレーションできません（Z軸まわりに回るテーブルの C のみ）',
+    'travel limits: unknown axis {} (use x, y, z, c)': 'ストローク制限：不明な軸 {0}（x, y, z, c を使ってください）',
+    'travel limits for {}: need finite (min, max) with min <= max, got {}':
+        '{0} のストローク制限：min <= max の有限な (min, max) が必要です（指定値 {1}）',
+    '{} must be a positive number of mm, got {}': '{0} は正の mm 値にしてください（指定値 {1}）',
+    'operation {}: radial turn-mill work is simulated for ball end mills, not a {}':
+        '工程 {0}：複合加工の径方向加工でシミュレーションできるのはボールエンドミルです（{1} ではなく）',
+    'stock cylinder {} must be a positive number, got {}': '素材の円柱の {0} は正の数にしてください（指定値 {1}）',
+    'an ISO 14649 file needs exactly one PROJECT, this one has {}':
+        'ISO 14649 ファイルには PROJECT がちょうど1つ必要です（このファイルは {0} 個）',
+    '#{} GENERAL_CLOSED_PROFILE: the outline #{} is not closed (its last point is not its first)':
+        '#{0} GENERAL_CLOSED_PROFILE：輪郭 #{1} が閉じていません（最後の点が最初の点と一致しません）',
+    '#{} {}: attribute {} (number {}) is missing; the instance has {} attributes':
+        '#{0} {1}：属性 {2}（{3} 番目）がありません。このインスタンスの属性は {4} 個です',
+    '#{} {}: attribute {} is unset ($) but required': '#{0} {1}：属性 {2} が未設定（$）ですが必須です',
+    '#{} {}: attribute {} must refer to {}, found the value {}': '#{0} {1}：属性 {2} は {3} を参照する必要がありますが、値 {4} があります',
+    '#{} {}: attribute {} refers to #{}, which is not defined': '#{0} {1}：属性 {2} が参照する #{3} は定義されていません',
+    '#{} {}: attribute {} must refer to {}, found #{} {}': '#{0} {1}：属性 {2} は {3} を参照する必要がありますが、#{4} {5} です',
+    '#{} {}: attribute {} must be a list of references, found {}': '#{0} {1}：属性 {2} は参照のリストにしてください（{3}）',
+    '#{} {}: attribute {} must be a number, found {}': '#{0} {1}：属性 {2} は数値にしてください（{3}）',
+    '#{} {}: attribute {} must be a {} number, found {}': '#{0} {1}：属性 {2} は {3} の数値にしてください（{4}）',
+    '#{} {}: {} {} mm is larger than {} mm': '#{0} {1}：{2} {3} mm が {4} mm より大きいです',
+    '#{} {}: attribute {} must be a string, found {}': '#{0} {1}：属性 {2} は文字列にしてください（{3}）',
+    '#{} {}: attribute {} must be an enumeration such as .LEFT., found {}':
+        '#{0} {1}：属性 {2} は .LEFT. のような列挙値にしてください（{3}）',
+    '#{} {}: attribute {} must be .T. or .F., found {}': '#{0} {1}：属性 {2} は .T. か .F. にしてください（{3}）',
+    '#{} {}: attribute {} must be 1 to 3 numbers, found {}': '#{0} {1}：属性 {2} は1〜3個の数値にしてください（{3}）',
+    '#{} AXIS2_PLACEMENT_3D: ref_direction is parallel to axis': '#{0} AXIS2_PLACEMENT_3D：ref_direction が axis と平行です',
+    '#{} TRIMMED_CURVE: attribute {} must be a list, found {}': '#{0} TRIMMED_CURVE：属性 {1} はリストにしてください（{2}）',
+    '#{} TRIMMED_CURVE: attribute {} has neither a CARTESIAN_POINT nor a PARAMETER_VALUE: {}':
+        '#{0} TRIMMED_CURVE：属性 {1} に CARTESIAN_POINT も PARAMETER_VALUE もありません：{2}',
+    '#{} {}: diameter must be positive, found {}': '#{0} {1}：直径は正の値にしてください（{2}）',
+    '#{} WORKPLAN contains itself (through #{})': '#{0} WORKPLAN が（#{1} を通して）自分自身を含んでいます',
+    '#{} DIRECTION: direction_ratios are all zero': '#{0} DIRECTION：direction_ratios がすべて0です',
+    '#{} TRIMMED_CURVE: attribute {} must hold a CARTESIAN_POINT or a PARAMETER_VALUE, found #{} {}':
+        '#{0} TRIMMED_CURVE：属性 {1} は CARTESIAN_POINT か PARAMETER_VALUE にしてください（#{2} {3}）',
+    '#{} PLANAR_FACE: the removal boundary #{} runs along the course of travel #{}, so the face has no area':
+        '#{0} PLANAR_FACE：除去境界 #{1} が移動経路 #{2} に沿っているため、面に面積がありません',
+    '#{} {}: angle must be above 0 and at most 90 degrees, found {}': '#{0} {1}：角度は0度より大きく90度以下にしてください（{2}）',
+    '#{} COMPOSITE_CURVE: segment {} starts {} mm away from the end of the previous one':
+        '#{0} COMPOSITE_CURVE：セグメント {1} の始点が前のセグメントの終点から {2} mm 離れています',
+    'cannot write {} {} as a Part 21 value': '{0} {1} を Part 21 の値として書けません',
+    '#{} has no part {} (parts: {})': '#{0} に部分 {1} がありません（部分：{2}）',
+    'Part 21 cannot represent the real {}': 'Part 21 では実数 {0} を表せません',
+    "bad Part 21 type name {} (upper case letters, digits, '_')": "Part 21 の型名 {0} が不正です（英大文字・数字・'_'）",
+    '#{} is {}, not {}': '#{0} は {1} で、{2} ではありません',
+    'bad instance id in {}': '{0} のインスタンスIDが不正です',
+    'bad enumeration name {}': '列挙名 {0} が不正です',
+    'bad instance id {}': 'インスタンスID {0} が不正です',
+    'duplicate instance #{}': 'インスタンス #{0} が重複しています',
+    '{} was not reserved or is already defined': '{0} は予約されていないか、すでに定義されています',
+    'reserved but never defined: {}': '予約されたまま定義されていません：{0}',
+    'no instance #{}': 'インスタンス #{0} がありません',
+    '#{} refers to #{}, which is not defined': '#{0} が参照する #{1} は定義されていません',
+    'complex instance #{} has no parts': '複合インスタンス #{0} に部分がありません',
+    'no workingstep #{}': 'ワーキングステップ #{0} がありません',
+    '#{} MILLING_TECHNOLOGY: neither spindle nor cutspeed is given':
+        '#{0} MILLING_TECHNOLOGY：spindle も cutspeed もありません',
+    '#{} MILLING_TECHNOLOGY: no positive feedrate (nor feedrate_per_tooth with a known number of teeth)':
+        '#{0} MILLING_TECHNOLOGY：正の feedrate がありません（刃数の分かる feedrate_per_tooth もありません）',
+    '#{} MACHINING_WORKINGSTEP: its security plane (Z {}) is not above the feature #{} (Z {})':
+        '#{0} MACHINING_WORKINGSTEP：安全平面（Z {1}）がフィーチャー #{2}（Z {3}）より上にありません',
+    '{} mm cut {} mm at a time needs {} layers (more than {}): check axial_cutting_depth':
+        '{0} mm を {1} mm ずつ削ると {2} 層（上限 {3} 超）になります。axial_cutting_depth を確認してください',
+    'stepover {} mm (overlap {}, radial depth {}) is below {} mm':
+        'ステップオーバー {0} mm（オーバーラップ {1}、径方向切込み {2}）が {3} mm 未満です',
+    'stock box {} has no volume: give (min corner, max corner)': '素材の直方体 {0} に体積がありません。(最小角, 最大角) で指定してください',
+    'pockets need an end mill, not a {}': 'ポケットにはエンドミルが必要です（{0} ではなく）',
+    'overlap is a ratio of the tool diameter, 0 <= overlap < 1; got {}':
+        'オーバーラップは工具径に対する比率で 0 <= overlap < 1 です（指定値 {0}）',
+    'ramp angle must be 0..90 degrees, got {}': 'ランプ角は0〜90度にしてください（指定値 {0}）',
+    'order must list every workingstep once; missing {}, unknown {}, given {}':
+        '順序にはすべてのワーキングステップを1回ずつ並べてください。不足 {0}、不明 {1}、指定 {2}',
+    '#{} {}: retract_plane {} must be above the feature (positive)':
+        '#{0} {1}：retract_plane {2} はフィーチャーより上（正の値）にしてください',
+    'more than {} contour passes at a {} mm stepover': 'ステップオーバー {1} mm では輪郭パスが {0} 回を超えます',
+    'planar face #{}: {} facing strokes (more than {}) at a {} mm stepover':
+        '平面 #{0}：ステップオーバー {3} mm では正面削りが {1} 回（上限 {2} 超）になります',
+    '{} must be a positive number, got {}': '{0} は正の数にしてください（指定値 {1}）',
+    'pocket {}: depth {} must be above 0 and at most the stock height {}':
+        'ポケット {0}：深さ {1} は0より大きく、素材の高さ {2} 以下にしてください',
+    'pocket {}: corner radius must not be negative': 'ポケット {0}：コーナー半径を負にはできません',
+    "workingstep #{} '{}': {}": "ワーキングステップ #{0} '{1}'：{2}",
+    'more than {} finishing passes at a {} mm stepover': 'ステップオーバー {1} mm では仕上げパスが {0} 回を超えます',
+    'vertices must have shape (n, 3), got {}': '頂点の形状は (n, 3) にしてください（{0}）',
+    'faces must be triangles, shape (m, 3), got {}': '面は三角形、形状 (m, 3) にしてください（{0}）',
+    'face indices must be integers, got {}': '面のインデックスは整数にしてください（{0}）',
+    'face indices must lie in 0..{}': '面のインデックスは 0〜{0} の範囲にしてください',
+    'the mesh is non-manifold: {} edge(s) are shared by more than two faces': 'メッシュが非多様体です：{0} 本の辺を3つ以上の面が共有しています',
+    'sample spacing must be a number > 0, got {}': 'サンプル間隔は0より大きい数にしてください（指定値 {0}）',
+    'labels must be {} values from NEITHER, RADIAL, AXIAL, BOTH':
+        'ラベルは NEITHER, RADIAL, AXIAL, BOTH のいずれかの値を {0} 個にしてください',
+    'stock must be a Stock, got {}': '素材は Stock にしてください（{0}）',
+    'the part does not fit in the stock: {} vertices lie outside the {} mm bar from z = {} to {}':
+        '部品が素材に収まりません：{0} 個の頂点が z = {2}〜{3} の直径 {1} mm の丸棒の外にあります',
+    'stock radius and Z range must be finite numbers, got {}': '素材の半径とZ範囲は有限の数値にしてください（指定値 {0}）',
+    'stock radius must be > 0, got {}': '素材の半径は0より大きくしてください（指定値 {0}）',
+    'stock z_min ({}) must be below z_max ({})': '素材の z_min（{0}）は z_max（{1}）より下にしてください',
+    'the tool radius must be > 0, got a tool diameter of {}': '工具半径は0より大きくしてください（工具径 {0}）',
+    'tolerance {} must be smaller than the tool radius {}': '許容差 {0} は工具半径 {1} より小さくしてください',
+    'stepover must be > 0 and at most the tool diameter, got {}': 'ステップオーバーは0より大きく工具径以下にしてください（指定値 {0}）',
+    'ray chunk size must be a positive integer, got {}': 'レイのチャンクサイズは正の整数にしてください（指定値 {0}）',
+    'the ray engine returned {} results for {} rays': 'レイエンジンが {1} 本のレイに対して {0} 個の結果を返しました',
+    'operation {}: direction must be one of {}': '工程 {0}：方向は {1} のいずれかにしてください',
+    'operation {}: an X-Z-C operation moves exactly the C axis': '工程 {0}：X-Z-C の工程で動かす回転軸は C だけです',
+    'operation {}: the machine has no Y axis (Y must be 0)': '工程 {0}：この機械にY軸はありません（Y は0にしてください）',
+    '{} must be a number > 0, got {}': '{0} は0より大きい数にしてください（指定値 {1}）',
+    'direction must be one of {}, got {}': '方向は {0} のいずれかにしてください（指定値 {1}）',
+    '{} must be an integer, got {}': '{0} は整数にしてください（指定値 {1}）',
+    '{} must be at least {}, got {}': '{0} は {1} 以上にしてください（指定値 {2}）',
+    'a twisted quad needs 4 corners (x, y, z), got an array of shape {}': 'ねじれ四辺形には4つの頂点 (x, y, z) が必要です（配列の形状 {0}）',
+    '{} must be an (n+1, 3) array with n >= 1, got shape {}': '{0} は n >= 1 の (n+1, 3) 配列にしてください（形状 {1}）',
+    '{} has a non-finite coordinate (NaN or infinity)': '{0} に有限でない座標（NaN または無限大）があります',
+    'CDL: a twisted quad needs exactly 4 LINE records, found {} (at lines: {})':
+        'CDL：ねじれ四辺形には LINE レコードがちょうど4つ必要です（{0} 個、行：{1}）',
+    'CDL line {}: the four LINEs do not close: the loop ends at {}, not at P1 {}':
+        'CDL {0} 行目：4本の LINE が閉じていません。ループの終点は {1} で、P1 {2} ではありません',
+    'the two rails need the same number of points, got {} and {}': '2本のレールの点の数を揃えてください（{0} と {1}）',
+    'diagonal must be one of {}, got {}': '対角線は {0} のいずれかにしてください（指定値 {1}）',
+    'an outline must be a (k, 2) array, got shape {}': '輪郭は (k, 2) 配列にしてください（形状 {0}）',
+    'outline turns straight back on itself at point {}': '輪郭が点 {0} で真後ろに折り返しています',
+    'bend angle KD must be at most 180 degrees, got {}': '曲げ角度 KD は180度以下にしてください（指定値 {0}）',
+    'bend radius RT ({}) must exceed the pipe radius D/2 ({})': '曲げ半径 RT（{0}）は管の半径 D/2（{1}）より大きくしてください',
+    'a {} degree bend needs more than {} pieces': '{0} 度の曲げには {1} ピースより多く必要です',
+    'corners P{}, P{} and P{} are collinear: the edges meeting at P{} lie on one straight line':
+        '頂点 P{0}、P{1}、P{2} が一直線上にあります：P{3} で交わる辺が同じ直線上にあります',
+    'CDL line {}: LINE record has {} numbers, expected 13 or 14 (x1, y1, z1, x2, y2, z2, colour, type, ...)':
+        'CDL {0} 行目：LINE レコードの数値が {1} 個です。13 か 14 個（x1, y1, z1, x2, y2, z2, 色, 線種, ...）が必要です',
+    'CDL line {}: LINE has a non-finite coordinate': 'CDL {0} 行目：LINE に有限でない座標があります',
+    'CDL line {}: LINE has zero length': 'CDL {0} 行目：LINE の長さが0です',
+    'CDL line {}: the LINE ends at {} where {} other LINEs begin or end (a closed loop needs exactly 1)':
+        'CDL {0} 行目：LINE の終点 {1} で他の LINE が {2} 本始まるか終わっています（閉じたループにはちょうど1本が必要です）',
+    'rung {}: the rails touch (zero-length rung a[{}]-b[{}])': '横桟 {0}：レールが接しています（長さ0の横桟 a[{1}]-b[{2}]）',
+    'strip step {}: both rails stand still (rungs {} and {} coincide)': '帯のステップ {0}：両方のレールが進みません（横桟 {1} と {2} が一致）',
+    'corners P{} and P{} coincide (zero-length {})': '頂点 P{0} と P{1} が一致しています（長さ0の {2}）',
+    'CDL line {}: number {} before any record word': 'CDL {0} 行目：レコード名より前に数値 {1} があります',
+    '{}: rapid move {} runs {} mm into material at ({}, {})': '{0}：早送り移動 {1} が ({3}, {4}) で材料に {2} mm 入り込みます',
+    '{}: rapid move {} runs {} mm into material at {}': '{0}：早送り移動 {1} が {3} で材料に {2} mm 入り込みます',
+    '{}: move {} cuts {} mm below the design at ({}, {}); {} mm^2 gouged in all':
+        '{0}：移動 {1} が ({3}, {4}) で設計面より {2} mm 深く削ります。削り込みは合計 {5} mm^2',
+    '{}: move {} cuts {} mm inside the design at ({}, {}, z {}); {} mm^2 gouged in all':
+        '{0}：移動 {1} が ({3}, {4}, z {5}) で設計面より {2} mm 内側まで削ります。削り込みは合計 {6} mm^2',
+    '{}: {} cannot plunge, but move {} feeds {} mm straight down into material at ({}, {})':
+        '{0}：{1} は突っ込み加工できませんが、移動 {2} が ({4}, {5}) で材料へ {3} mm 真下に送ります',
+    '{}: move {} goes {} the {} travel limit {} (reaches {}; {} move(s))':
+        '{0}：移動 {1} が {3} のストローク制限 {4} を越えます（{2}、到達 {5}、{6} 移動）',
+    '{}the part stays in the sheet: hits further apart than the punch leave webs (lower the pitch below the {} mm punch)':
+        '{0}部品がシートから外れません：パンチ径より広い間隔の打ち抜きでつなぎが残ります（ピッチを {1} mm のパンチ径より小さくしてください）',
+    '{}line {}: a hit bites {} mm into the part at ({}, {})': '{0}{1} 行目：打ち抜きが ({3}, {4}) で部品に {2} mm 食い込みます',
+    '{}: {} cannot plunge, but move {} feeds {} mm straight in into material at {}':
+        '{0}：{1} は突っ込み加工できませんが、移動 {2} が {4} で材料へ {3} mm まっすぐ送り込みます',
+}
+
+
 def _build() -> dict:
     messages: dict = {}
     for table in (PROPERTY_TEXTS, PANEL_TEXTS, OPERATOR_DESCRIPTIONS, MESSAGES):
@@ -536,6 +892,7 @@ def _build() -> dict:
 
 
 TRANSLATIONS = _build()
+_COMPILED = _compiled_templates()
 
 
 def register():

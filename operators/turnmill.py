@@ -22,6 +22,7 @@ from ..post.turnmill_xzc import TurnMillLinuxCNCPost, TurnMillXZCPost
 from ..toolpath import turnmill as core
 from . import convert
 from .common import SteppedOperator, run_reported
+from .translations import translate_message
 
 PREFIX = "Kezuri Turn-Mill"
 ATTRIBUTE = "Kezuri reach"
@@ -218,7 +219,7 @@ class KEZURI_OT_turnmill_classify(SteppedOperator, bpy.types.Operator):
         if context.space_data is not None and context.space_data.type == "VIEW_3D":
             context.space_data.shading.color_type = "VERTEX"
         counts = {REPORT_LABELS[k]: int(np.count_nonzero(per_polygon == k)) for k in REPORT_LABELS}
-        self.report({"INFO"}, "Faces: " + ", ".join(f"{v} {k}" for k, v in counts.items()))
+        self.report({"INFO"}, translate_message("Faces: " + ", ".join(f"{v} {k}" for k, v in counts.items())))
         return {"FINISHED"}
 
 
@@ -242,7 +243,8 @@ class KEZURI_OT_turnmill_generate(SteppedOperator, bpy.types.Operator):
         colour_faces(obj, polygon_labels(job.plan.labels, job.owner, len(obj.data.polygons)))
         show_turnmill(context.scene, job)
         ops = job.plan.program.operations
-        self.report({"INFO"}, f"{len(ops)} operations, about {job.plan.program.cycle_time() / 60:.1f} min")
+        self.report({"INFO"},
+                    translate_message(f"{len(ops)} operations, about {job.plan.program.cycle_time() / 60:.1f} min"))
         return {"FINISHED"}
 
 
@@ -271,7 +273,7 @@ class KEZURI_OT_turnmill_export(bpy.types.Operator, ExportHelper):
     def execute(self, context):
         def work():
             job = run_turnmill(context.scene, context.evaluated_depsgraph_get())
-            self.report({"INFO"}, f"Wrote {export_turnmill(job, self.post, self.filepath)}")
+            self.report({"INFO"}, translate_message(f"Wrote {export_turnmill(job, self.post, self.filepath)}"))
             return {"FINISHED"}
         return run_reported(self, work)
 

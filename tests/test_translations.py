@@ -143,9 +143,56 @@ def source_messages() -> list:
                 elif node.func.attr in {"label", "prop", "menu"} and "text" in keywords:
                     texts.append((DEFAULT, keywords["text"]))
             for context, arg in texts:
-                text = _constant(arg)
+                text = _constant(_unwrapped(arg))
                 if text:
                     found.append((context, text, f"operators/{filename}:{node.lineno}"))
+    return found
+
+
+def _unwrapped(node):
+    """The message inside ``translate_message(...)``, or the node itself."""
+    if isinstance(node, ast.Call) and getattr(node.func, "id", "") == "translate_message" and node.args:
+        return node.args[0]
+    return node
+
+
+def _template(node):
+    """The English template of a message: an f-string with ``{}`` for each value (literal braces
+    doubled, as str.format wants them); None when part of it is not literal."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value.replace("{", "{{").replace("}", "}}")
+    if isinstance(node, ast.JoinedStr):
+        return "".join(v.value.replace("{", "{{").replace("}", "}}") if isinstance(v, ast.Constant) else "{}"
+                       for v in node.values)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
+        left, right = _template(node.left), _template(node.right)
+        return None if left is None or right is None else left + right
+    return None
+
+
+def formatted_messages() -> dict:
+    """{English template: where} for every message built with an f-string that the core or the
+    shell raises (``raise ...Error(f"...")``) or reports (``report(level, f"...")``)."""
+    found = {}
+    root = os.path.dirname(os.path.dirname(operators.__file__))
+    for folder in ("toolpath", "toolpath/stepnc", "post", "operators"):
+        for filename in sorted(os.listdir(os.path.join(root, folder))):
+            if not filename.endswith(".py") or filename == "translations.py":
+                continue
+            with open(os.path.join(root, folder, filename), encoding="utf-8") as stream:
+                tree = ast.parse(stream.read(), filename)
+            for node in ast.walk(tree):
+                message = None
+                if isinstance(node, ast.Raise) and isinstance(node.exc, ast.Call) and node.exc.args:
+                    name = getattr(node.exc.func, "id", getattr(node.exc.func, "attr", ""))
+                    if name.endswith("Error"):
+                        message = node.exc.args[0]
+                elif isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "report" and len(node.args) == 2:
+                    message = _unwrapped(node.args[1])
+                if isinstance(message, (ast.JoinedStr, ast.BinOp)):
+                    template = _template(message)
+                    if template is not None and "{}" in template:
+                        found.setdefault(template, f"{folder}/{filename}:{node.lineno}")
     return found
 
 
@@ -227,3 +274,57 @@ def test_blender_shows_japanese_when_the_interface_language_is_japanese():
         assert bpy.app.translations.pgettext_iface("Generate Engraving", OPERATOR) == "彫刻パスを生成"
     finally:
         view.language, view.use_translate_interface = saved
+
+
+def test_the_formatted_message_collector_finds_the_known_ones():
+    found = formatted_messages()
+    assert "stock radius must be > 0, got {}" in found                      # toolpath (a raise)
+    assert "Wrote {}" in found                                              # operators (a report)
+    assert "line {}: cannot read {}" in found                               # toolpath/punch.py
+    assert "#{} DIRECTION: direction_ratios are all zero" in found         # toolpath/stepnc
+    assert len(found) > 200
+
+
+def test_every_formatted_message_has_a_japanese_template():
+    missing = sorted(f"{where}: {template!r}" for template, where in formatted_messages().items()
+                     if template not in translations.MESSAGE_TEMPLATES)
+    assert not missing, f"{len(missing)} f-string messages without a ja_JP template:\n" + "\n".join(missing)
+
+
+def test_japanese_templates_use_every_value_once():
+    for english, japanese in translations.MESSAGE_TEMPLATES.items():
+        count = english.count("{}")
+        assert sorted(int(i) for i in re.findall(r"\{(\d+)\}", japanese)) == list(range(count)), english
+        assert JAPANESE.search(japanese), english
+
+
+def sample_values(template: str) -> list:
+    return [f"V{index}x" for index in range(template.count("{}"))]
+
+
+@pytest.mark.parametrize("english", sorted(translations.MESSAGE_TEMPLATES))
+def test_a_formatted_message_comes_out_in_japanese_with_its_values(english):
+    values = sample_values(english)
+    message = english.format(*values)
+    japanese = translations.japanese_message(message)
+    assert japanese is not None and JAPANESE.search(japanese), message
+    for value in values:
+        assert value in japanese, (message, japanese)
+
+
+def test_real_error_messages_are_matched():
+    from kezuri.toolpath import punch, turnmill
+    with pytest.raises(turnmill.TurnMillError) as raised:
+        turnmill.Stock(radius=-1.0, z_min=0.0, z_max=1.0)
+    assert translations.japanese_message(str(raised.value)) == "素材の半径は0より大きくしてください（指定値 -1.0）"
+    with pytest.raises(punch.PunchError) as raised:
+        punch.read_amada("N001 G72 X0.00 Y0.00\nG69 I10.00 J0.00 P0.00 T302\nG50\n")
+    assert translations.japanese_message(str(raised.value)) == \
+        "2 行目：G69 には I, J, P, Q, T が必要です（'G69 I10.00 J0.00 P0.00 T302'）"
+
+
+def test_english_stays_english():
+    assert not translations.reports_in_japanese()          # the default interface language
+    message = "stock radius must be > 0, got -1"
+    assert translations.translate_message(message) == message
+    assert translations.translate_message("no template looks like this {x}") == "no template looks like this {x}"
