@@ -214,6 +214,25 @@ def turnmill_simulate_step():
     frame_all()
 
 
+def japanese_step():
+    """The interface in Japanese: the sheet-metal panel after Unfold, and a report message built
+    with an f-string checked to come out in Japanese (the bpy wheel has no locales to check it)."""
+    view = bpy.context.preferences.view
+    view.language = "ja_JP"
+    view.use_translate_interface = view.use_translate_tooltips = view.use_translate_reports = True
+    translations = module("operators.translations")
+    message = translations.translate_message("stock radius must be > 0, got -1")
+    print("japanese reports: " + ("ok " if message == "素材の半径は0より大きくしてください（指定値 -1）" else "failed ")
+          + message, flush=True)
+    sheet_step()
+
+
+def english_step():
+    view = bpy.context.preferences.view
+    view.language = "en_US"
+    view.use_translate_reports = False
+
+
 def simulated_objects():
     return [o.name for o in bpy.context.scene.objects if o.name.startswith("Kezuri Simulated")]
 
@@ -263,6 +282,7 @@ STEPS = [("setup", maximise_viewport, None), ("cam tab", click_cam_tab, None), (
          ("stepnc", stepnc_step, "stepnc"), ("turnmill", turnmill_step, "turnmill"),
          ("turnmill simulate", turnmill_simulate_step, "simulate-turnmill"),
          ("sheet", sheet_step, "sheet-metal"), ("elbow", elbow_step, "elbow"),
+         ("japanese", japanese_step, "sheet-metal-ja"), ("english", english_step, None),
          ("modal start", start_long_simulation, "simulate-running"), ("modal cancel", press_escape, None),
          ("modal restart", check_cancelled, None), ("modal finished", check_finished, None)]
 state = {"index": 0, "pending": None}
