@@ -139,6 +139,7 @@ def report_of(result: core.SimulationResult) -> dict:
         "removed_volume_mm3": round(result.removed_volume_mm3, 1),
         "gouges": [finding(f) for f in gouges],
         "max_gouge_mm": round(max((f.depth_mm or 0.0 for f in gouges), default=0.0), 4),
+        "gouge_volume_mm3": None if result.gouge_volume_mm3 is None else round(result.gouge_volume_mm3, 1),
         "rapid_collisions": [finding(f) for f in rapids],
         "other_findings": [finding(f) for f in result.findings if f.kind not in ("gouge", "rapid_in_material")],
     }

@@ -124,6 +124,20 @@ def test_one_millimetre_into_the_design_is_a_one_millimetre_gouge():
     assert clear.findings_of("gouge") == []
 
 
+def test_manifold_gouge_volume_is_the_design_cut_away():
+    """The groove's floor is 1 mm inside a 16 mm design cylinder: the part of the ball's half disc
+    inside radius 16 (a circle segment 1 mm high), turned once round (Pappus)."""
+    r, h, centre = BALL_R, 1.0, 18.0
+    half_angle = math.acos((r - h) / r)
+    area = r * r * half_angle - (r - h) * math.sqrt(2 * r * h - h * h)
+    offset = 4 * r * math.sin(half_angle) ** 3 / (3 * (2 * half_angle - math.sin(2 * half_angle)))
+    expected = 2 * math.pi * (centre - offset) * area
+    result = simulate.simulate([ring_groove()], BAR, engine="manifold", tolerance=0.01, design=cylinder_design(16.0))
+    assert result.gouge_volume_mm3 == pytest.approx(expected, rel=0.02)
+    clear = simulate.simulate([ring_groove()], BAR, engine="manifold", tolerance=0.01, design=cylinder_design(14.9))
+    assert clear.gouge_volume_mm3 == pytest.approx(0.0, abs=0.5)
+
+
 def test_rapid_into_the_bar_is_reported():
     op = radial_op([(RAPID, 15.0, -15.0, 0.0), (FEED, 15.0, -15.0, 90.0), (RAPID, 25.0, -15.0, 90.0)],
                    start=(25.0, -15.0, 0.0))

@@ -56,7 +56,7 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from manifold3d import CrossSection, Manifold, Mesh, OpType
+from manifold3d import CrossSection, Error, Manifold, Mesh, OpType
 
 from . import radiusmap as rmap
 from . import region as rg
@@ -271,6 +271,8 @@ class SimulationResult:
     # material inside both the radius map and the height field of the other operations.
     radiusmap: rmap.RadiusMap | None = None
     axial_cut: bool = True      # whether any operation cut the height field
+    # The manifold engine with a closed design mesh: the volume of the design that was cut away.
+    gouge_volume_mm3: float | None = None
 
     def findings_of(self, kind: str) -> list:
         return [f for f in self.findings if f.kind == kind]
@@ -328,7 +330,8 @@ class SimulationResult:
 
 
 def _solid_of(vertices, faces) -> Manifold:
-    return Manifold(Mesh(vert_properties=np.asarray(vertices, np.float32), tri_verts=np.asarray(faces, np.uint32)))
+    return Manifold(Mesh(vert_properties=np.ascontiguousarray(vertices, np.float32),
+                         tri_verts=np.ascontiguousarray(faces, np.uint32)))
 
 
 # ----- the path as the simulation sees it ---------------------------------------------------
@@ -1549,7 +1552,8 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     if solid is not None:
         removed = _stock_solid(stock, tolerance).volume() - solid.volume()
         return SimulationResult("manifold", float(removed), seconds, None, tolerance, findings, stock, solid=solid,
-                                kernel=ran, radiusmap=rm, axial_cut=bool(chains))
+                                kernel=ran, radiusmap=rm, axial_cut=bool(chains),
+                                gouge_volume_mm3=_gouge_volume(solid, design))
     if rm is None:
         return SimulationResult("heightfield", hf.removed_volume(), seconds, hf.cell_x, tolerance, findings, stock,
                                 heightfield=hf, kernel=ran)
@@ -1559,6 +1563,17 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     return SimulationResult("radiusmap+heightfield" if chains else "radiusmap", removed, seconds, hf.cell_x,
                             tolerance, findings, stock, heightfield=hf, kernel=ran, radiusmap=rm,
                             axial_cut=bool(chains))
+
+
+def _gouge_volume(solid: Manifold, design) -> float | None:
+    """Volume of the design (a closed mesh) that the simulated stock no longer holds; None when
+    the design is not a closed mesh."""
+    if not (hasattr(design, "vertices") and hasattr(design, "faces")):
+        return None
+    part = _solid_of(np.asarray(design.vertices)[:, :3], np.asarray(design.faces))
+    if part.status() != Error.NoError or part.is_empty():
+        return None
+    return float((part - solid).volume())
 
 
 def _overlap_volume(hf: HeightField, rm: rmap.RadiusMap) -> float:
