@@ -277,7 +277,7 @@ PROPERTY_TEXTS = {
     "Tool Diameter": "工具径",
     "Punch diameter: the cut contour is offset by its radius (mm)":
         "パンチ径：切断輪郭はその半径だけオフセットされます（工具径補正） (mm)",
-    "Thickness": "板厚",
+    "Sheet Thickness": "板厚",
     "Sheet thickness; above 3.2 mm the punching line G79 is used (mm)":
         "板厚。3.2 mm を超えるとパンチングライン G79 を使います (mm)",
     "Nibbling Pitch": "ニブリングピッチ",

@@ -222,8 +222,9 @@ def japanese_step():
     view.use_translate_interface = view.use_translate_tooltips = view.use_translate_reports = True
     translations = module("operators.translations")
     message = translations.translate_message("stock radius must be > 0, got -1")
+    # ascii(): the chroot's stdout may not take Japanese
     print("japanese reports: " + ("ok " if message == "素材の半径は0より大きくしてください（指定値 -1）" else "failed ")
-          + message, flush=True)
+          + ascii(message), flush=True)
     sheet_step()
 
 
