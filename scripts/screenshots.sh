@@ -37,7 +37,7 @@ run blender --command extension install-file -r user_default -e /tmp/kezuri.zip
 run blender -b --python-expr \
   "import bpy; bpy.context.preferences.view.show_splash = False; bpy.ops.wm.save_userpref()"
 run xvfb-run -a -s "-screen 0 1600x1000x24" env KEZURI_SCREENSHOTS=/tmp/screenshots \
-  blender --python /tmp/screenshot_driver.py 2>&1 | grep -E "screenshot|failed|Error|modal" || true
+  blender --python /tmp/screenshot_driver.py 2>&1 | grep -E "screenshot|failed|Error|modal|japanese" || true
 
 mkdir -p docs/screenshots
 cp "$CHROOT"/tmp/screenshots/*.png docs/screenshots/
