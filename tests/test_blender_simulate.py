@@ -57,6 +57,21 @@ def test_turnmill_simulation_carves_the_bar(scene):
     assert v[pocket, 2].min() == pytest.approx(-6.0, abs=0.05)
 
 
+def test_exact_turnmill_simulation_can_go_to_a_child_process(scene):
+    """From the panel the exact engine runs in a child process: the turn-mill job's call (the
+    program, the bar, the part as the design) must travel there whole."""
+    import pickle
+
+    from kezuri.operators import simulate as shell
+    samples.turnmill_part(scene)
+    call = shell.simulation_request(scene, "TURNMILL", engine="manifold")
+    kwargs = pickle.loads(pickle.dumps(call.kwargs))
+    assert kwargs["engine"] == "manifold" and kwargs["stock"].radius == pytest.approx(42.5)
+    assert [op.direction for op in kwargs["program_or_operations"].operations] == ["radial", "radial", "axial",
+                                                                                   "axial"]
+    assert len(kwargs["design"].faces) == len(call.kwargs["design"].faces) > 1000
+
+
 def test_a_gouge_is_listed_and_framed(scene):
     """The name plate checked against a design 1 mm below the top: every cut deeper is a gouge."""
     from kezuri.operators import engrave, simulate
