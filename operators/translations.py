@@ -564,6 +564,8 @@ def japanese_message(text: str) -> str | None:
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "a {} mm cell gives {} dexels round the bar (more than {}); use a coarser cell":
+        "{0} mm のセルでは丸棒の周りが {1} 個のデクセル（上限 {2} 超）になります。セルを粗くしてください",
     'Kezuri internal error ({}): {}; details in the system console': 'Kezuriの内部エラー（{0}）：{1}。詳細はシステムコンソールを見てください',
     'scene unit scale must be positive, got {}': 'シーンの単位スケールは正の値にしてください（指定値 {0}）',
     'object {} ({}) has no geometry': 'オブジェクト {0}（{1}）に形状がありません',

@@ -146,6 +146,12 @@ def test_rapid_into_the_bar_is_reported():
     assert rapids[0].depth_mm == pytest.approx(5.0, abs=0.05)    # the ball's front reaches radius 15 in a 20 bar
 
 
+def test_a_cell_too_fine_for_memory_is_refused():
+    long_bar = turnmill.Stock(5.0, -10000.0, 0.0)       # a small end face, a huge side
+    with pytest.raises(simulate.SimulationError, match="dexels round the bar"):
+        simulate.simulate([ring_groove(x_tip=3.0)], long_bar, cell=0.05)
+
+
 def test_radial_work_needs_a_bar_and_a_ball():
     with pytest.raises(simulate.SimulationError, match="cylinder stock"):
         simulate.simulate([ring_groove()], simulate.BoxStock(-20, -20, -30, 20, 20, 0))

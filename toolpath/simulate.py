@@ -1588,6 +1588,10 @@ def _overlap_volume(hf: HeightField, rm: rmap.RadiusMap) -> float:
 def _radius_map_cut(ops, radial, stock: CylinderStock, cell: float, tolerance: float, design, no_plunge_tools,
                     progress, kernels):
     """The radial turn-mill operations on a radius map: (map, findings)."""
+    dexels = math.ceil(2 * math.pi * stock.radius / cell) * math.ceil(stock.height / cell)
+    if dexels > MAX_CELLS:
+        raise SimulationError(f"a {cell} mm cell gives {dexels} dexels round the bar (more than {MAX_CELLS}); "
+                              "use a coarser cell")
     rm = rmap.grid(stock.radius, stock.bottom, stock.top, cell)
     total = sum(len(op) for op, r in zip(ops, radial) if r)
     done = 0
