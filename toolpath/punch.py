@@ -1,18 +1,14 @@
-"""Turret-punch simulation (SPEC W5 + W6): read an Amada program back, punch the sheet, check the part.
+"""Turret-punch simulation (SPEC W5 + W6): read an Amada program back, punch it out of a blank, check the part.
 
-Before the program goes to the press the shop wants to know that the part falls out of the
-sheet, how tall the scallops between nibbling hits are, and that no hit bites into the part.
+``read_amada`` parses the NC text itself (it shares no code with :mod:`..post.amada_punch`, whose
+docstring defines the words).  Assumed of the controller: a round punch, and the hits of a G69 / G79
+line spaced evenly from its start to its end, both included, as few as keep them at most Q apart.
 
-The reader is independent of :mod:`..post.amada_punch` (it parses the text): ``G92 X Y``
-(origin), ``G72 X Y`` (pattern reference point), ``G69 I J P Q T`` (nibbling line: length, angle
-in degrees counter-clockwise from +X, tool diameter with its side, + = left of travel, - = right,
-0 = the line is the tool-centre path; pitch; station), ``G79 I J P Q D T`` (punching line, D =
-thickness), and the end ``G50`` or ``M30``.  Assumed of the controller: a round punch, and hits
-spaced evenly along the line, both ends included, no further apart than Q.
-
-The sheet is a ``manifold3d.CrossSection``: a blank round the hits minus the union of the hit
-discs (polygons inscribed within ``tolerance``, so the error is always material left).  The part
-is the piece that holds the pattern's interior; it is separated when it is not the frame.
+``simulate_punching`` subtracts the hits from a blank with ``manifold3d.CrossSection``.  Each hit is
+a regular polygon inscribed within ``tolerance`` of the punch circle (the error is material left,
+never a false gouge), with corners on the circle ahead, behind and to both sides of its line: hits
+closer than the diameter cut through; hits exactly one diameter apart leave a web of no width,
+which holds the part.
 """
 from __future__ import annotations
 
@@ -30,6 +26,8 @@ from .errors import InputError
 _WORD = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
 _NEEDS = {"G92": "XY", "G72": "XY", "G69": "IJPQT", "G79": "IJPQDT"}
 ENDS = ("G50", "M30")
+MAX_HITS = 200_000          # more hits than this is a wrong pitch (Q0.001), not a part
+_CHUNK = 1 << 20            # point x segment pairs per numpy block in the distance searches
 
 
 class PunchError(InputError):
@@ -38,11 +36,16 @@ class PunchError(InputError):
 
 @dataclass
 class PunchProgram:
-    """The hits of a program: centres (k, 2) in program coordinates and, per hit, the NC line
-    (1-based) and station.  ``punch_diameter``: |P| of the lines (None when P0)."""
+    """The hits of a program, in program coordinates.
+
+    ``hits`` (k, 2) punch centres; per hit its NC line (1-based) in ``lines``, the direction of
+    that line in ``angles`` (degrees) and the turret station in ``stations``.
+    ``punch_diameter``: |P| of the lines, None when they are tool-centre paths (P0);
+    ``thickness``: D of the G79 lines, None without any; ``origin``: G92 X, Y or None."""
 
     hits: np.ndarray
     lines: np.ndarray
+    angles: np.ndarray
     stations: np.ndarray
     punch_diameter: float | None
     thickness: float | None
@@ -58,10 +61,11 @@ def _words(text: str, number: int) -> tuple[str, dict]:
     pairs = _WORD.findall(body)
     if re.sub(r"\s", "", body) != "".join(a + v for a, v in pairs):
         raise PunchError(f"line {number}: cannot read {text.strip()!r}")
-    codes = [a + str(int(float(v))) for a, v in pairs if a in "GM"]
+    codes = [(a, v) for a, v in pairs if a in "GM"]
     if len(codes) != 1:
         raise PunchError(f"line {number}: expected one G or M code, got {text.strip()!r}")
-    code = codes[0][0] + codes[0][1:].zfill(2)
+    address, value = codes[0]
+    code = address + (str(int(float(value))).zfill(2) if float(value).is_integer() else value)
     words = {}
     for a, v in pairs:
         if a in "GM":
@@ -72,11 +76,22 @@ def _words(text: str, number: int) -> tuple[str, dict]:
     return code, words
 
 
+def _direction(degrees: float) -> np.ndarray:
+    """Unit vector ``degrees`` counter-clockwise from +X, exact on the axes (J90.00 runs straight up)."""
+    quarter, rest = divmod(degrees, 90.0)
+    if rest == 0:
+        return np.array(((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0))[int(quarter) % 4])
+    angle = math.radians(degrees)
+    return np.array([math.cos(angle), math.sin(angle)])
+
+
 def read_amada(text: str) -> PunchProgram:
     """The hits of an Amada turret-punch program (see the module notes); raises PunchError naming
     the line for anything else."""
-    hits, lines, stations, diameters, thickness = [], [], [], set(), None
-    origin, point, ended = None, None, False
+    if not isinstance(text, str):
+        raise PunchError("a punch program must be text")
+    hits, lines, angles, stations, diameters, thickness = [], [], [], [], set(), None
+    origin, point, ended, count = None, None, False, 0
     for number, raw in enumerate(text.splitlines(), start=1):
         code, words = _words(raw, number)
         if not code:
@@ -97,40 +112,51 @@ def read_amada(text: str) -> PunchProgram:
             raise PunchError(f"line {number}: a number is not finite in {raw.strip()!r}")
         if code == "G92":
             origin = (words["X"], words["Y"])
-        elif code == "G72":
+            continue
+        if code == "G72":
             point = np.array([words["X"], words["Y"]])
-        else:
-            if point is None:
-                raise PunchError(f"line {number}: {code} before any G72 reference point")
-            length, pitch, p = words["I"], words["Q"], words["P"]
-            if length < 0 or pitch <= 0:
-                raise PunchError(f"line {number}: I (length) must be >= 0 and Q (pitch) > 0, got {raw.strip()!r}")
-            if code == "G79":
-                thickness = words["D"]
-                if thickness <= 0:
-                    raise PunchError(f"line {number}: D (thickness) must be > 0, got {raw.strip()!r}")
-            angle = math.radians(words["J"])
-            along = np.array([math.cos(angle), math.sin(angle)])
-            left = np.array([-along[1], along[0]])
-            count = max(1, math.ceil(length / pitch - 1e-9))
-            t = np.linspace(0.0, length, count + 1)
-            hits.append(point + t[:, None] * along + left * (p / 2))
-            lines += [number] * (count + 1)
-            stations += [int(words["T"])] * (count + 1)
-            if p != 0:
-                diameters.add(abs(p))
+            continue
+        if point is None:
+            raise PunchError(f"line {number}: {code} before any G72 reference point")
+        length, pitch, p = words["I"], words["Q"], words["P"]
+        if length < 0 or pitch <= 0:
+            raise PunchError(f"line {number}: I (length) must be >= 0 and Q (pitch) > 0, got {raw.strip()!r}")
+        if not words["T"].is_integer():
+            raise PunchError(f"line {number}: cannot read {raw.strip()!r}")
+        if code == "G79":
+            thickness = words["D"]
+            if thickness <= 0:
+                raise PunchError(f"line {number}: D (thickness) must be > 0, got {raw.strip()!r}")
+        steps = max(0, math.ceil(length / pitch - 1e-9))       # the 1e-9: 0.7 / 0.1 is 7, not 8
+        count += steps + 1
+        if count > MAX_HITS:
+            raise PunchError("the program has more than 200000 hits: check the pitches Q")
+        along = _direction(words["J"])
+        left = np.array([-along[1], along[0]])
+        t = np.linspace(0.0, length, steps + 1)
+        hits.append(point + t[:, None] * along + left * (p / 2))
+        lines += [number] * (steps + 1)
+        angles += [words["J"]] * (steps + 1)
+        stations += [int(words["T"])] * (steps + 1)
+        if p != 0:
+            diameters.add(abs(p))
     if not ended:
         raise PunchError("the program has no end (G50 or M30)")
     if not hits:
         raise PunchError("the program punches nothing: no G69 or G79 line")
     if len(diameters) > 1:
         raise PunchError(f"the lines give different tool diameters {sorted(diameters)}: one punch is simulated")
-    return PunchProgram(np.vstack(hits), np.array(lines), np.array(stations), diameters.pop() if diameters else None,
-                        thickness, origin)
+    return PunchProgram(np.vstack(hits), np.array(lines), np.array(angles, float), np.array(stations),
+                        diameters.pop() if diameters else None, thickness, origin)
 
 
 def nibbling_scallop(diameter: float, pitch: float) -> float:
-    """The cusp height left between two hits ``pitch`` apart on a straight line: r - sqrt(r^2 - (pitch/2)^2)."""
+    """The cusp height r - sqrt(r^2 - (pitch/2)^2) (r = diameter / 2) that two hits ``pitch``
+    apart on a straight line leave standing between them, measured from the line their discs
+    touch.  At a pitch of the diameter or more the hits no longer overlap and r is returned
+    (the whole radius stands, and the part is held by webs)."""
+    if not (math.isfinite(diameter) and math.isfinite(pitch) and diameter > 0 and pitch >= 0):
+        raise PunchError("the scallop needs a diameter > 0 and a pitch >= 0")
     r = diameter / 2
     if pitch >= diameter:
         return r
@@ -139,7 +165,8 @@ def nibbling_scallop(diameter: float, pitch: float) -> float:
 
 @dataclass
 class Gouge:
-    """A hit that bites into the part: the deepest point, how deep, and the NC line of the hit."""
+    """A hit that bites into the part: its NC line, the deepest point of that line's bites and
+    how far inside the pattern it lies."""
 
     line: int
     depth_mm: float
@@ -149,6 +176,14 @@ class Gouge:
 
 @dataclass
 class PunchResult:
+    """What the punching left.  ``part`` is the piece holding the pattern (the frame itself when
+    the part is not separated), ``sheet`` everything left of the blank, ``skeleton`` the sheet
+    without the part; ``part_outline`` the part's loops (outer CCW, holes CW).
+    ``max_scallop_mm``: how far the separated part's boundary stands outside the pattern (None
+    without a pattern or a separated part); ``max_gouge_mm``: how far it lies inside the pattern
+    beyond ``tolerance`` (0 when nowhere), with one finding per biting NC line in ``gouges``,
+    deepest first."""
+
     hits: int
     pieces: int
     part_separated: bool
@@ -158,103 +193,173 @@ class PunchResult:
     max_scallop_mm: float | None
     max_gouge_mm: float
     gouges: list
+    part_outline: list
     part: CrossSection
-    sheet: CrossSection          # what is left of the blank: the part and the skeleton
+    sheet: CrossSection
+    skeleton: CrossSection
     punch_diameter: float
     tolerance: float
     seconds: float
 
 
+def _number(value) -> float:
+    """``value`` as a finite float, or NaN (for the caller's own message)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        return math.nan
+    return math.nan if isinstance(value, bool) or not math.isfinite(v) else v
+
+
+def _boxes_meet(a, b) -> bool:
+    return a[0] <= b[2] and b[0] <= a[2] and a[1] <= b[3] and b[1] <= a[3]
+
+
 def _pattern(pattern) -> np.ndarray:
     try:
-        return rg.validate_loop(pattern, "pattern")
+        pts = np.asarray(pattern, dtype=float)
+    except (TypeError, ValueError):
+        pts = np.empty(0)
+    if pts.ndim != 2 or pts.shape[1] != 2:
+        raise PunchError("pattern: an outline must be a list of (x, y) points")
+    try:
+        return rg.validate_loop(pts, "pattern")
     except InputError as error:
         raise PunchError(str(error)) from None
 
 
-def _interior_point(pattern: CrossSection) -> np.ndarray:
-    """A point well inside the pattern (the deepest of a few insets that are not empty)."""
-    (x0, y0), (x1, y1) = pattern.bounds()[:2], pattern.bounds()[2:]
-    inset = min(x1 - x0, y1 - y0) / 4
-    while inset > 1e-6:
-        inner = rg.offset(pattern, -inset)
-        if inner.area() > 0:
-            return np.asarray(inner.to_polygons()[0], float)[0]
-        inset /= 4
-    return np.asarray(pattern.to_polygons()[0], float)[0]
-
-
-def _distances(points: np.ndarray, loop: np.ndarray) -> np.ndarray:
-    """Distance of each point to the closed polyline."""
-    a, b = loop, np.roll(loop, -1, axis=0)
+def _segment_distances(points: np.ndarray, loop: np.ndarray) -> np.ndarray:
+    """Distance of each point (n, 2) to the closed polyline ``loop`` (m, 2)."""
+    a = loop
+    d = np.roll(loop, -1, axis=0) - a
+    dd = np.maximum((d * d).sum(axis=1), 1e-300)
     best = np.full(len(points), np.inf)
-    for start in range(0, len(a), 256):
-        pa, pb = a[start:start + 256], b[start:start + 256]
-        d = pb - pa
-        t = np.clip(((points[:, None, :] - pa[None]) * d[None]).sum(-1) / np.maximum((d * d).sum(-1), 1e-300),
-                    0.0, 1.0)
-        gap = points[:, None, :] - (pa[None] + t[..., None] * d[None])
-        best = np.minimum(best, np.sqrt((gap * gap).sum(-1)).min(axis=1))
+    step = max(1, _CHUNK // max(1, len(a)))
+    for start in range(0, len(points), step):
+        p = points[start:start + step, None, :]
+        t = np.clip(((p - a) * d).sum(axis=2) / dd, 0.0, 1.0)
+        gap = p - (a + t[..., None] * d)
+        best[start:start + step] = np.sqrt((gap * gap).sum(axis=2).min(axis=1))
     return best
+
+
+def _nearest_hits(points: np.ndarray, program: PunchProgram) -> np.ndarray:
+    """Index of the hit nearest to each point.  A line's hits are evenly spaced from its first to
+    its last, so the nearest of them follows from the projection on that segment; then the
+    nearest line's wins."""
+    first = np.flatnonzero(np.r_[True, program.lines[1:] != program.lines[:-1]])
+    steps = np.r_[first[1:], len(program.lines)] - 1 - first
+    a = program.hits[first]
+    ab = program.hits[first + steps] - a
+    out = np.empty(len(points), dtype=int)
+    block = max(1, _CHUNK // len(first))
+    for start in range(0, len(points), block):
+        p = points[start:start + block, None, :]
+        t = ((p - a) * ab).sum(axis=2) / np.maximum((ab * ab).sum(axis=1), 1e-300)
+        k = first + np.clip(np.rint(t * steps), 0, steps).astype(int)
+        nearest = ((p - program.hits[k]) ** 2).sum(axis=2).argmin(axis=1)
+        out[start:start + block] = k[np.arange(len(k)), nearest]
+    return out
+
+
+def _discs(program: PunchProgram, r: float, tolerance: float) -> CrossSection:
+    """The union of the hit discs: a 4m-gon inscribed within ``tolerance``, a corner ahead."""
+    n = 4 * math.ceil(rg.circle_segments(r, tolerance) / 4)
+    disc = CrossSection.circle(r, n)
+    turned = {angle: disc.rotate(angle) for angle in np.unique(program.angles)}
+    return CrossSection.batch_boolean([turned[a].translate((float(x), float(y)))
+                                       for (x, y), a in zip(program.hits, program.angles)], OpType.Add)
+
+
+def _gouges(boundary: np.ndarray, bite: np.ndarray, program: PunchProgram, tolerance: float) -> list:
+    """One finding per NC line whose hits bite deeper than ``tolerance``, deepest first."""
+    deep = np.flatnonzero(bite > tolerance)
+    line = program.lines[_nearest_hits(boundary[deep], program)]
+    findings = []
+    for number in np.unique(line):
+        mine = deep[line == number]
+        worst = mine[np.argmax(bite[mine])]
+        x, y = boundary[worst]
+        depth = float(bite[worst])
+        findings.append(Gouge(int(number), depth, (float(x), float(y)),
+                              f"line {number}: a hit bites {depth:.3f} mm into the part at ({x:.2f}, {y:.2f})"))
+    return sorted(findings, key=lambda g: (-g.depth_mm, g.line))
 
 
 def simulate_punching(program_or_text, *, punch_diameter: float | None = None, pattern=None,
                       margin: float | None = None, tolerance: float = 0.01) -> PunchResult:
-    """Punch the sheet with the program's hits and measure the part (see the module notes).
+    """Punch every hit of the program out of a blank and measure what is left.  The part is the
+    piece holding most of the pattern; it is separated when it is not the frame round the blank.
 
-    ``pattern``: the flat pattern the part must match (k, 2), before tool compensation; without
-    it the part is the largest piece not touching the blank's edge."""
+    ``program_or_text``: the NC text or a :class:`PunchProgram`.  ``punch_diameter`` is needed
+    when the lines are tool-centre paths (P0) and must agree with |P| (within the program's
+    0.01 mm) otherwise.  ``pattern``: the flat pattern (k, 2) the part must match, before tool
+    compensation, in the program's coordinates; without it the part is the largest piece that
+    is not the frame, and there are no scallops or gouges to measure.  ``margin``: blank round
+    the hits beyond the punch radius (default the diameter).  ``tolerance``: the discs' chord
+    error and the depth below which a bite is not a gouge (mm)."""
     started = time.perf_counter()
     program = read_amada(program_or_text) if isinstance(program_or_text, str) else program_or_text
     if not isinstance(program, PunchProgram):
         raise PunchError("simulate_punching needs the NC text or a PunchProgram")
-    d = punch_diameter if punch_diameter is not None else program.punch_diameter
-    if d is None:
-        raise PunchError("the program's lines are tool-centre paths (P0): give the punch diameter")
-    if not (isinstance(d, (int, float)) and math.isfinite(d) and d > 0):
-        raise PunchError(f"punch diameter must be a number > 0, got {d!r}")
-    if program.punch_diameter is not None and abs(program.punch_diameter - d) > 1e-6:
+    if len(program.hits) == 0:
+        raise PunchError("the program punches nothing: no G69 or G79 line")
+    if punch_diameter is None:
+        if program.punch_diameter is None:
+            raise PunchError("the program's lines are tool-centre paths (P0): give the punch diameter")
+        punch_diameter = program.punch_diameter
+    d = _number(punch_diameter)
+    if not d > 0:
+        raise PunchError(f"punch diameter must be a number > 0, got {punch_diameter!r}")
+    if program.punch_diameter is not None and abs(program.punch_diameter - d) > 0.005 + 1e-9:
         raise PunchError(f"punch diameter {d} does not match the program's P {program.punch_diameter}")
-    if not (isinstance(tolerance, (int, float)) and math.isfinite(tolerance) and 0 < tolerance < d / 4):
+    tol = _number(tolerance)
+    if not 0 < tol < d / 4:
         raise PunchError(f"tolerance must be > 0 and well under the punch radius, got {tolerance!r}")
+    margin = d if margin is None else _number(margin)
+    if not margin > 0:
+        raise PunchError("margin must be a number > 0")
+    outline = None if pattern is None else _pattern(pattern)
+
     r = d / 2
-    margin = d if margin is None else float(margin)
     hits = program.hits
-    (x0, y0), (x1, y1) = hits.min(axis=0) - r - margin, hits.max(axis=0) + r + margin
+    x0, y0 = hits.min(axis=0) - r - margin
+    x1, y1 = hits.max(axis=0) + r + margin
     blank = rg.rectangle(x0, y0, x1, y1)
-    disc = CrossSection.circle(r, rg.circle_segments(r, tolerance))
-    holes = CrossSection.batch_boolean([disc.translate(tuple(h)) for h in hits], OpType.Add)
-    sheet = blank - holes
+    sheet = blank - _discs(program, r, tol)
     pieces = rg.components(sheet)
-    frame = [p for p in pieces if np.allclose(p.bounds(), (x0, y0, x1, y1), atol=1e-6)]
-    loose = [p for p in pieces if not any(p is f for f in frame)]
-    outline = None
-    if pattern is not None:
-        outline = _pattern(pattern)
-        inside = _interior_point(CrossSection([outline]))
-        holding = [p for p in pieces if rg.contains_points(p, inside[None, :])[0]]
-        part = holding[0] if holding else CrossSection()
-        separated = bool(holding) and not any(part is f for f in frame)
-    else:
+    # the margin keeps the frame whole round the blank: the only piece reaching its edges
+    frame = next((p for p in pieces if np.allclose(p.bounds(), (x0, y0, x1, y1), atol=1e-6)), None)
+    if outline is None:
+        loose = [p for p in pieces if p is not frame]
         part = loose[0] if loose else CrossSection()
-        separated = bool(loose)
-    result = PunchResult(len(hits), len(pieces), separated, rg.area(part),
-                         abs(rg.signed_area(outline)) if outline is not None else None,
-                         rg.area(blank) - rg.area(sheet), None, 0.0, [], part, sheet, float(d), float(tolerance), 0.0)
-    if outline is not None and part.area() > 0:
-        boundary = np.vstack(rg.loops(part))
-        gap = _distances(boundary, outline)
-        outside = ~rg.contains_points(CrossSection([outline]), boundary)
-        result.max_scallop_mm = float(gap[outside].max()) if outside.any() else 0.0
-        bite = np.where(outside, 0.0, gap)
-        worst = int(np.argmax(bite))
-        if bite[worst] > tolerance:
-            xy = boundary[worst]
-            hit = int(np.argmin(np.hypot(*(hits - xy).T)))
-            line = int(program.lines[hit])
-            result.max_gouge_mm = float(bite[worst])
-            result.gouges.append(Gouge(line, float(bite[worst]), (float(xy[0]), float(xy[1])),
-                                       f"line {line}: a hit bites {bite[worst]:.3f} mm into the part at "
-                                       f"({xy[0]:.2f}, {xy[1]:.2f})"))
-    result.seconds = time.perf_counter() - started
-    return result
+    else:
+        shape = CrossSection([outline])
+        px0, py0, px1, py1 = shape.bounds()
+        overlap = [(p ^ shape).area() if _boxes_meet(p.bounds(), (px0, py0, px1, py1)) else 0.0 for p in pieces]
+        if max(overlap) <= 0:
+            raise PunchError("the pattern does not overlap what is left of the sheet: "
+                             "are the pattern and the program in the same coordinates?")
+        part = pieces[int(np.argmax(overlap))]
+    separated = part.area() > 0 and part is not frame
+    loops = rg.loops(part)
+
+    scallop, gouge, findings = None, 0.0, []
+    if outline is not None:
+        boundary = np.vstack(loops)
+        gap = _segment_distances(boundary, outline)
+        inside = rg.contains_points(shape, boundary)
+        bite = np.where(inside, gap, 0.0)
+        if separated:
+            scallop = float(gap[~inside].max()) if (~inside).any() else 0.0
+        findings = _gouges(boundary, bite, program, tol)
+        gouge = findings[0].depth_mm if findings else 0.0
+
+    return PunchResult(
+        hits=len(hits), pieces=len(pieces), part_separated=bool(separated), part_area_mm2=rg.area(part),
+        pattern_area_mm2=None if outline is None else abs(rg.signed_area(outline)),
+        removed_area_mm2=rg.area(blank) - rg.area(sheet), max_scallop_mm=scallop, max_gouge_mm=gouge,
+        gouges=findings, part_outline=loops, part=part, sheet=sheet,
+        skeleton=CrossSection.compose([p for p in pieces if p is not part]),
+        punch_diameter=d, tolerance=tol, seconds=time.perf_counter() - started)
+
