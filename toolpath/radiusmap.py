@@ -29,7 +29,6 @@ from .program import ARC_CCW, ARC_CW, Operation
 
 _STAMP_BATCH = 1024      # ball stamps evaluated together (bounds the memory of one batch)
 _TRIANGLE_BATCH = 4096   # design triangles sliced together
-TOUCH_TOLERANCE = 1e-3   # mm: a checked move must reach this far into material to count (as the height field's)
 
 
 @dataclass
@@ -177,10 +176,11 @@ class Touch:
     point: tuple
 
 
-def cut(rm: RadiusMap, stamps: BallStamps, ball_radius: float, operation: int, progress=None,
+def cut(rm: RadiusMap, stamps: BallStamps, ball_radius: float, operation: int, touch: float, progress=None,
         kernels=None) -> list:
     """Cut the map with one operation's stamps, in order; returns the checked moves that
-    reached into the material as it was before them (:class:`Touch`).  ``progress(fraction)``
+    reached more than ``touch`` mm into the material as it was before them (:class:`Touch`).
+    ``progress(fraction)``
     is called after every block of stamps (it may raise to cancel).  ``kernels``: the compiled
     kernels module (heightfield_kernel), or None for numpy; checked moves always take numpy."""
     flat = rm.radii.reshape(-1)
@@ -205,7 +205,7 @@ def cut(rm: RadiusMap, stamps: BallStamps, ball_radius: float, operation: int, p
         if stamps.checked[a]:
             depth = flat[index] - entry
             worst = int(np.argmax(depth))
-            if depth[worst] > TOUCH_TOLERANCE:
+            if depth[worst] > touch:
                 i, k = divmod(int(index[worst]), rm.shape[1])
                 theta = (i + 0.5) * rm.cell_theta
                 point = (float(flat[index[worst]] * math.cos(theta)), float(flat[index[worst]] * math.sin(theta)),

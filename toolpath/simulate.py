@@ -1617,7 +1617,7 @@ def _radius_map_cut(ops, radial, stock: CylinderStock, cell: float, tolerance: f
         def report(fraction, base=done, size=len(op)):
             if progress is not None and progress((base + fraction * size) / total) is False:
                 raise SimulationCancelled("simulation cancelled")
-        for touch in rmap.cut(rm, stamps, op.tool.radius, index, report, kernels):
+        for touch in rmap.cut(rm, stamps, op.tool.radius, index, TOUCH_TOLERANCE, report, kernels):
             x, y, z = touch.point
             where = f"({x:.2f}, {y:.2f}, z {z:.2f})"
             if op.kind[touch.move] == RAPID:
