@@ -180,9 +180,9 @@ def cut(rm: RadiusMap, stamps: BallStamps, ball_radius: float, operation: int, t
         kernels=None) -> list:
     """Cut the map with one operation's stamps, in order; returns the checked moves that
     reached more than ``touch`` mm into the material as it was before them (:class:`Touch`).
-    ``progress(fraction)``
-    is called after every block of stamps (it may raise to cancel).  ``kernels``: the compiled
-    kernels module (heightfield_kernel), or None for numpy; checked moves always take numpy."""
+    ``progress(fraction)`` is called after every block of stamps (it may raise to cancel).
+    ``kernels``: the compiled kernels module (heightfield_kernel), or None for numpy; checked
+    moves always take numpy."""
     flat = rm.radii.reshape(-1)
     before = flat.copy()
     touches = []
