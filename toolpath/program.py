@@ -32,6 +32,7 @@ class MoveKind(enum.IntEnum):
 
 
 TOOL_KINDS = ("ball", "flat", "bull", "drill", "vbit")
+TIP_ANGLE_DEG = {"drill": 118.0, "vbit": 90.0}  # included angle of the pointed kinds; Tool does not carry one yet
 
 
 @dataclass(frozen=True)

@@ -28,11 +28,10 @@ One call, :func:`simulate`, with two engines behind it:
     They do the same arithmetic in the same order and write the same heights.
 
 ``"manifold"``
-    Exact solids: for every straight move the hull of the (faceted, inscribed) tool at both
-    ends, unioned in chunks with ``Manifold.batch_boolean`` and subtracted from the stock.
-    Facets are chosen from ``tolerance`` and lie inside the true tool, so the error is always
-    material left.  Runs of short, nearly collinear moves (a raster over a curved surface)
-    become one hull of a slightly smaller tool, which still lies inside the true sweep.
+    Exact solids: the stock minus the swept tool, built in sweep.py (tubes of the tool's
+    section along runs of moves, wedges of the tool at corners, hulls of the tool elsewhere),
+    unioned in chunks with ``Manifold.batch_boolean``.  Every piece lies inside the true
+    sweep, within ``tolerance`` of it, so the error is always material left.
 
 Rotary C (SPEC W2, C-X-Z): the table turns about Z; a machine position (X, Y, C) is the part
 point ``Rot(C) @ (X, Y)`` (X = -R, C = the angle of the part point from the -X axis).
@@ -56,12 +55,13 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from manifold3d import CrossSection, Error, Manifold, Mesh, OpType
+from manifold3d import CrossSection, Error, Manifold, Mesh
 
 from . import radiusmap as rmap
 from . import region as rg
+from . import sweep
 from .errors import InputError
-from .program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool, arc_sweep
+from .program import ARC_CCW, ARC_CW, FEED, RAPID, TIP_ANGLE_DEG, Operation, Program, Tool, arc_sweep
 
 ENGINES = ("heightfield", "manifold")
 KERNELS = ("auto", "numba", "numpy")    # height field kernels; "auto": numba where it can be imported
@@ -71,7 +71,6 @@ GOUGE_TOLERANCE = 1e-3     # mm: cutting this far below the design is reported
 MAX_CELLS = 60_000_000     # a finer grid than this is refused (memory)
 # A move shorter than this in XY is taken as vertical: its ends are stamped whole instead.
 MIN_XY_LENGTH = 1e-3
-TIP_ANGLE_DEG = {"drill": 118.0, "vbit": 90.0}  # included angle; Tool does not carry one yet
 PLUNGING_KINDS = ("drill", "ball", "flat")
 _ITEM_BATCH = 2048         # triangles per numpy batch when rasterising a design mesh
 _PAIR_BATCH = 32768        # (item, grid column) pairs per numpy batch
@@ -1270,140 +1269,12 @@ def check(program_or_operations, stock, *, cell: float = 0.1, tolerance: float =
 
 # ----- manifold engine -----------------------------------------------------------------------------
 
-def _segments_for(radius: float, tolerance: float) -> int:
-    """Polygon sides (a multiple of 4) so a faceted sphere of this radius stays within
-    ``tolerance`` of the true one (a facet's centre sags about twice the edge's sagitta)."""
-    ratio = max(-1.0, 1.0 - tolerance / (2.0 * radius))
-    n = math.ceil(math.pi / max(math.acos(ratio), 1e-6))
-    return int(min(max(4 * math.ceil(n / 4), 8), 720))
-
-
-def _tool_points(tool: Tool, tolerance: float, height: float, inset: float = 0.0) -> np.ndarray:
-    """Vertices of the tool, tip at the origin, up to ``height`` above the tip, on the surface
-    of the tool shrunk by ``inset`` all round (so their hull lies inside the tool).
-
-    Ball, flat and bull are a flat disc rounded by a corner radius; shrinking by ``inset``
-    lifts the bottom by ``inset`` and takes ``inset`` off the corner radius (a corner sharper
-    than ``inset`` becomes square on a disc ``inset`` smaller)."""
-    r = tool.radius
-    n = _segments_for(r, tolerance)
-    around = np.arange(n) * (2 * math.pi / n)
-    if tool.kind in TIP_ANGLE_DEG:
-        rings = [(0.0, 0.0), (r, r / math.tan(math.radians(TIP_ANGLE_DEG[tool.kind]) / 2))]
-    else:
-        rc = max(tool.corner_radius - inset, 0.0)
-        flat = r - inset - rc
-        rings = [(flat, inset)]                 # (radius, z)
-        steps = max(1, _segments_for(rc, tolerance) // 4) if rc > 0 else 0
-        for beta in np.arange(1, steps + 1) * (math.pi / 2 / max(steps, 1)):
-            rings.append((flat + rc * math.sin(beta), inset + rc - rc * math.cos(beta)))
-    rings.append((rings[-1][0], max(height, rings[-1][1] + 1.0)))
-    pts = []
-    for radius, z in rings:
-        if radius < 1e-12:
-            pts.append(np.array([[0.0, 0.0, z]]))
-        else:
-            pts.append(np.column_stack([radius * np.cos(around), radius * np.sin(around), np.full(n, z)]))
-    return np.vstack(pts)
-
-
-def _straight_runs(points: np.ndarray, deviation: float) -> list:
-    """Split a polyline into runs of consecutive points that all lie within ``deviation`` of
-    the chord of their run; returns the indices where runs start and end (greedy: the run
-    length is doubled, then bisected)."""
-
-    def fits(i, j):
-        a, d = points[i], points[j] - points[i]
-        inner = points[i + 1:j] - a
-        t = np.clip(inner @ d / max(d @ d, 1e-300), 0.0, 1.0)
-        return not len(inner) or float(np.max(np.linalg.norm(inner - t[:, None] * d, axis=1))) <= deviation
-
-    ends = [0]
-    last = len(points) - 1
-    i = 0
-    while i < last:
-        good = 1
-        while i + 2 * good <= last and fits(i, i + 2 * good):
-            good *= 2
-        bad = min(2 * good, last - i + 1)
-        while bad - good > 1:
-            mid = (good + bad) // 2
-            if fits(i, i + mid):
-                good = mid
-            else:
-                bad = mid
-        i += good
-        ends.append(i)
-    return ends
-
-
 def _stock_solid(stock, tolerance: float) -> Manifold:
     if isinstance(stock, BoxStock):
         return Manifold.cube([stock.x1 - stock.x0, stock.y1 - stock.y0, stock.z1 - stock.z0]).translate(
             [stock.x0, stock.y0, stock.z0])
-    n = _segments_for(stock.radius, tolerance / 2)
+    n = sweep.segments_for(stock.radius, tolerance / 2)
     return Manifold.cylinder(stock.height, stock.radius, stock.radius, n).translate([0, 0, stock.bottom])
-
-
-def _manifold_sweep(stock, chains: list, tolerance: float, chunk: int, progress) -> Manifold:
-    """Stock minus the swept tool, in chunks of ``chunk`` swept pieces.
-
-    A piece is the hull of the tool at both ends of a move.  A nearly straight run of moves
-    (within a sixth of ``tolerance`` of its chord, so the hull of its points is within a third
-    of the path) makes one piece, with the tool shrunk by that third so the piece stays inside
-    the true sweep; its facets take the other two thirds."""
-    solid = _stock_solid(stock, tolerance)
-    (bx0, by0, _), (bx1, by1, _) = _stock_box(stock)
-    merge = tolerance / 3
-    pieces = []
-    for chain in chains:
-        p = chain.points
-        r = chain.tool.radius
-        if chain.radial:
-            # The tool axis turns with C: a run is merged where both the tip and the far end of
-            # the shank stay within merge / 2 of their chords (a rigid motion: every point of
-            # the tool between them does too, near enough).
-            reach = np.hypot(p[:, 0], p[:, 1])
-            axis = p[:, :2] / np.maximum(reach, 1e-12)[:, None]
-            height = stock.radius + 1.0 - float(reach.min())
-            shank_end = p[:, :2] + height * axis
-            ends = _straight_runs(np.column_stack([p, shank_end]), merge / 2)
-        else:
-            axis = None
-            height = stock.top + 1.0 - float(p[:, 2].min())   # the shank reaches above the stock from any depth
-            # cones are never merged: only the disc-and-corner tools are shrunk here
-            ends = list(range(len(p))) if chain.tool.kind in TIP_ANGLE_DEG else _straight_runs(p, merge / 2)
-        whole = _tool_points(chain.tool, tolerance, height)
-        shrunk = _tool_points(chain.tool, tolerance - merge, height, inset=merge)
-        for i, j in zip(ends[:-1], ends[1:]):
-            run = p[i:j + 1]
-            lo, hi = run.min(axis=0), run.max(axis=0)
-            if axis is not None:
-                inside = reach[i:j + 1].min() < stock.radius and hi[2] + 2 * r > stock.bottom and lo[2] < stock.top
-            else:
-                inside = (lo[2] < stock.top and hi[0] + r > bx0 and lo[0] - r < bx1 and hi[1] + r > by0
-                          and lo[1] - r < by1)
-            if inside:
-                pieces.append((whole if j == i + 1 else shrunk, run, None if axis is None else axis[i:j + 1]))
-    for start in range(0, len(pieces), chunk):
-        swept = [Manifold.hull_points(_placed(tool, run, axes)) for tool, run, axes in pieces[start:start + chunk]]
-        solid = solid - Manifold.batch_boolean(swept, OpType.Add)
-        solid.num_tri()                        # evaluate now: a natural progress point
-        if progress is not None and progress(min(1.0, (start + chunk) / len(pieces))) is False:
-            raise SimulationCancelled("simulation cancelled")
-    return solid
-
-
-def _placed(tool: np.ndarray, run: np.ndarray, axes: np.ndarray | None) -> np.ndarray:
-    """The tool's points (tip at the origin, axis +Z) at every point of the run: upright, or
-    for a radial tool turned so its axis is the run's horizontal ``axes``."""
-    if axes is None:
-        return (run[:, None, :] + tool[None, :, :]).reshape(-1, 3)
-    ux, uy = axes[:, None, 0], axes[:, None, 1]
-    a, b, c = tool[None, :, 0], tool[None, :, 1], tool[None, :, 2]
-    # local (a, b, c) -> a * Z + b * (-uy, ux, 0) + c * (ux, uy, 0)
-    placed = np.stack([c * ux - b * uy, c * uy + b * ux, np.broadcast_to(a, ux.shape[:1] + a.shape[1:])], axis=-1)
-    return (run[:, None, :] + placed).reshape(-1, 3)
 
 
 def _stock_box(stock):
@@ -1534,7 +1405,8 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     findings = _travel_findings(ops, travel) if travel else []
     solid = None
     if engine == "manifold":
-        solid = _manifold_sweep(stock, all_chains, tolerance, chunk, _part_of(progress, 0.0, 0.8))
+        solid = sweep.cut(_stock_solid(stock, tolerance), all_chains, tolerance, chunk,
+                          _cancelling(_part_of(progress, 0.0, 0.8)))
         progress = _part_of(progress, 0.8, 1.0)      # the safety checks still run on the maps
     rm = None
     if any(radial):
@@ -1657,6 +1529,17 @@ def _radial_gouges(rm: rmap.RadiusMap, stamps_of: dict, ops: list, vertices, fac
     return [Finding("gouge", f"{ops[index].name}: move {max(move, 0)} cuts {worst:.3f} mm inside the design at "
                     f"({x:.2f}, {y:.2f}, z {z:.2f}); {area:.1f} mm^2 gouged in all", index, max(move, 0), (x, y),
                     worst, z)]
+
+
+def _cancelling(progress):
+    """The callback, raising SimulationCancelled when it returns False."""
+    if progress is None:
+        return None
+
+    def report(fraction):
+        if progress(fraction) is False:
+            raise SimulationCancelled("simulation cancelled")
+    return report
 
 
 def _part_of(progress, start: float, end: float):

@@ -1,0 +1,138 @@
+"""W6: the manifold engine's swept solids (toolpath/sweep.py) against closed forms and against the
+true sweep of the tool, point by point."""
+import math
+
+import numpy as np
+import pytest
+from manifold3d import Manifold, OpType
+
+from kezuri.toolpath import simulate as sim
+from kezuri.toolpath import sweep
+from kezuri.toolpath.program import FEED, Operation, Tool
+
+BALL6 = Tool(2, "ball", 6.0)
+FLAT6 = Tool(1, "flat", 6.0)
+BOX = (-30, -30, -20, 30, 30, 0)
+
+
+def chain(tool, points, radial=False):
+    return sim._Chain(0, tool, np.asarray(points, float), np.zeros(len(points) - 1, int),
+                      np.zeros(len(points) - 1, bool), np.zeros(len(points) - 1, bool), radial)
+
+
+def level_op(tool, points, name="op"):
+    points = np.asarray(points, float)
+    n = len(points) - 1
+    return Operation(name, tool, 10000, np.full(n, FEED), points[1:], np.full(n, 500.0), start=points[0])
+
+
+def circle(radius, z, n=400, turns=1.0):
+    angle = np.linspace(0, 2 * math.pi * turns, n + 1)
+    return np.column_stack([radius * np.cos(angle), radius * np.sin(angle), np.full(n + 1, z)])
+
+
+def pieces_of(tool, points, tolerance=0.01):
+    stock = sim._stock_solid(sim.as_stock(BOX), tolerance)
+    level = {}
+    makers = sweep._chain_pieces(chain(tool, points), tolerance, stock.bounding_box(), sweep._Floors([], tolerance),
+                                 level)
+    return [make() for make in makers + [m for made, _ in level.values() for m in made]]
+
+
+def depth_outside_ball_sweep(vertices, tips, r):
+    """How far each vertex lies outside ball + shank swept along the level tip polyline (exact:
+    distance to the centre segments, and the shank above them)."""
+    centres = tips + [0, 0, r]
+    a, b = centres[:-1], centres[1:]
+    worst = np.zeros(len(vertices))
+    for start in range(0, len(vertices), 2000):
+        v = vertices[start:start + 2000, None, :]
+        d = b - a
+        t = np.clip(np.einsum("vsk,sk->vs", v - a, d) / np.einsum("sk,sk->s", d, d), 0, 1)
+        near = a + t[..., None] * d
+        ball = np.linalg.norm(v - near, axis=2) - r
+        shank = np.where(v[..., 2] >= near[..., 2], np.linalg.norm((v - near)[..., :2], axis=2) - r, np.inf)
+        worst[start:start + 2000] = np.min(np.minimum(ball, shank), axis=1)
+    return worst
+
+
+def test_ball_along_a_level_circle_is_pappus_of_its_section():
+    # tip 2 mm deep on a 15 mm circle: the section in the stock is a circular segment of the ball
+    r, depth, radius = 3.0, 2.0, 15.0
+    op = level_op(BALL6, circle(radius, -depth, n=300))
+    result = sim.simulate(op, BOX, engine="manifold", tolerance=0.01)
+    segment = r * r * math.acos((r - depth) / r) - (r - depth) * math.sqrt(2 * r * depth - depth * depth)
+    expected = 2 * math.pi * radius * segment
+    assert result.removed_volume_mm3 <= expected * 1.001            # always material left
+    assert result.removed_volume_mm3 == pytest.approx(expected, rel=0.01)
+
+
+def test_every_piece_of_a_level_run_lies_inside_the_true_sweep():
+    # a wave with a sharp corner in it: tubes, a corner wedge and the two end wedges
+    x = np.linspace(-20, 0, 81)
+    wave = np.column_stack([x, 3 * np.sin(x / 4), np.full_like(x, -2.0)])
+    leg = np.column_stack([np.zeros(40), np.linspace(0, 15, 41)[1:], np.full(40, -2.0)])
+    tips = np.vstack([wave, leg])
+    pieces = pieces_of(BALL6, tips)
+    assert len(pieces) < 20                   # tubes and wedges, not one hull per move
+    vertices = np.vstack([np.asarray(p.to_mesh().vert_properties)[:, :3] for p in pieces])
+    assert depth_outside_ball_sweep(vertices, tips, 3.0).max() < 1e-6
+    # and together they fill it: the removed volume is the height field's (an independent method)
+    stock = sim._stock_solid(sim.as_stock(BOX), 0.01)
+    removed = stock.volume() - (stock - Manifold.batch_boolean(pieces, OpType.Add)).volume()
+    field = sim.simulate(level_op(BALL6, tips), BOX, cell=0.05)
+    assert removed <= field.removed_volume_mm3 * 1.002
+    assert removed == pytest.approx(field.removed_volume_mm3, rel=0.01)
+
+
+def test_a_layer_wholly_inside_a_deeper_ones_footprint_is_left_out():
+    # flat 6 mm: three rings 6, 8, 10 at -5 clear the annulus 3..13 to the floor; a ring of 8 at -1
+    # lies inside it, so it adds nothing
+    deep = [circle(radius, -5.0) for radius in (6.0, 8.0, 10.0)]
+    shallow = circle(8.0, -1.0)
+    floors = sweep._Floors([chain(FLAT6, ring) for ring in deep], 0.05)
+    assert floors.needed(shallow, FLAT6.radius) == []
+    assert floors.needed(circle(12.0, -1.0), FLAT6.radius) == [(0, 400)]      # pokes out: kept
+    ops = [level_op(FLAT6, ring, f"ring {i}") for i, ring in enumerate(deep + [shallow])]
+    result = sim.simulate(ops, BOX, engine="manifold", tolerance=0.01)
+    assert result.removed_volume_mm3 == pytest.approx(math.pi * (13 ** 2 - 3 ** 2) * 5.0, rel=0.01)
+
+
+def test_a_staircase_of_short_moves_is_cut_as_hulls():
+    steps = [[-10.0 + 0.5 * (k // 2 + k % 2), 0.5 * (k // 2), -1.0] for k in range(40)]
+    steps = np.asarray(steps)
+    section = sweep._section(sweep.tool_rings(BALL6, 0.025), 3.0, 5.0)
+    assert sweep._tube_pieces(steps, section, 0.05) is None
+    field, exact = (sim.simulate(level_op(BALL6, steps), BOX, engine=engine, tolerance=0.01, cell=0.05)
+                    for engine in ("heightfield", "manifold"))
+    assert exact.removed_volume_mm3 == pytest.approx(field.removed_volume_mm3, rel=0.01)
+
+
+def test_a_gentle_ramp_is_one_run_of_tubes_and_matches_the_height_field():
+    # a ball spiralling down 1 mm per turn (about 0.6 degrees): within the slope allowance
+    turns = np.linspace(0, 2, 801)
+    tips = np.column_stack([15 * np.cos(2 * math.pi * turns), 15 * np.sin(2 * math.pi * turns), -1.0 - turns])
+    assert sweep._gentle_runs(tips, sweep._max_slope(BALL6, 0.05 / 4)) == [(0, 800)]
+    field, exact = (sim.simulate(level_op(BALL6, tips), BOX, engine=engine, tolerance=0.01, cell=0.05)
+                    for engine in ("heightfield", "manifold"))
+    assert exact.removed_volume_mm3 == pytest.approx(field.removed_volume_mm3, rel=0.01)
+
+
+def test_a_radial_ball_turning_about_c_is_pappus_of_its_section():
+    # radial ball, tip at radius 20 on a bar of radius 25, a full turn at z = -10: the groove's
+    # section is the ball's disc plus the shank's band out to the bar's surface
+    r, tip, bar = 3.0, 20.0, 25.0
+    angle = np.linspace(0, 2 * math.pi, 721)
+    tips = np.column_stack([tip * np.cos(angle), tip * np.sin(angle), np.full(721, -10.0)])
+    stock = sim._stock_solid(sim.CylinderStock(radius=bar, height=30), 0.05)
+    pieces = [make() for make in sweep._chain_pieces(chain(BALL6, tips, radial=True), 0.05, stock.bounding_box(),
+                                                     sweep._Floors([], 0.05), {})]
+    assert len(pieces) <= 4                    # one tube and the tool at its ends
+    removed = stock.volume() - (stock - Manifold.batch_boolean(pieces, OpType.Add)).volume()
+    centre = tip + r
+    # half disc (inner side, centroid 4r/3pi further in) and the band from the centre out to the bar
+    half_disc = math.pi * r * r / 2 * 2 * math.pi * (centre - 4 * r / (3 * math.pi))
+    band = 2 * r * math.pi * (bar ** 2 - centre ** 2)
+    expected = half_disc + band
+    assert removed <= expected * 1.001
+    assert removed == pytest.approx(expected, rel=0.01)

@@ -1,0 +1,577 @@
+"""Swept solids for the manifold engine (W6): the stock minus the tool at every point of every move.
+
+Every piece lies inside the tool's true sweep, so every error is material left, and
+``tolerance`` bounds it.  Each chain of moves (one operation's tip path in part coordinates)
+becomes pieces, which are unioned in chunks with ``Manifold.batch_boolean`` and subtracted from
+the stock.  The booleans' cost follows the number and size of the pieces, so moves are swept
+along runs wherever the geometry allows, instead of one hull per move:
+
+* A *gentle run* of an upright tool (axis along Z; on a rotary table it also turns about its
+  own axis, which changes nothing): moves that climb or fall no steeper than the tool's slope
+  allowance.  The tool's section through its axis (end and shank, up to above the stock),
+  held upright and across the path, is carried along the run as a tube: where a tool of
+  revolution moves horizontally, that section is exactly where it touches its sweep.  A tube
+  follows the path while it turns gently (the section stands on the bisector at each vertex);
+  at a sharp corner, after 60 degrees of turning and at both ends it stops square to its move
+  and a wedge of the tool (the section's outer half turned about the tool axis over the open
+  angle) fills the corner.
+* A *run of a radial ball* (turn-mill: the axis runs from the C axis through the tip): level
+  moves that travel more across the axis than along it.  Its tube carries the inner half of the
+  ball's great circle across the move and the shank's top and bottom lines out beyond the bar;
+  these stand in planes through the C axis, so the tube cannot fold while the path turns one
+  way about C.  The whole tool closes each stretch.
+* Everything else (plunges, steep ramps, staircases of short moves): the hull of the tool at
+  both ends of a move; a nearly straight run of moves is one hull of a slightly shrunk tool.
+
+Two kinds of run add nothing and are left out: a level run repeated lower down along the same
+path (a pocket with vertical walls), and any stretch lying wholly over ground that deeper level
+runs have cleared to the top (see :class:`_Floors`).
+
+Budget of a tube (all material left): the section's facets a quarter of the tolerance, the
+joints a quarter (at a vertex turning by d the section stands full size across the bisector, so
+the tube lies W (1/cos(d/2) - 1) inside the sweep on the inner side), the section shrunk by an
+eighth so the path can be thinned to within an eighth (a quarter in all), and on a slope the
+upright section up to a quarter.
+"""
+from __future__ import annotations
+
+import bisect
+import math
+
+import numpy as np
+from manifold3d import CrossSection, Error, FillRule, JoinType, Manifold, Mesh64, OpType
+
+from .program import TIP_ANGLE_DEG, Tool
+
+MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
+MAX_STRETCH_TURN = math.pi / 3   # a tube turns at most this much in all (it cannot fold back onto itself)
+WEDGE_OVERLAP = math.radians(5.0)  # a wedge of the tool at a corner reaches this far over the tubes
+MAX_RADIAL_TILT = math.radians(60.0)  # a radial tool's run moves at most this far from across its axis
+MAX_SHARP_SHARE = 0.25           # runs that break at more than this share of their vertices are cut as hulls
+_PULL_BACK = 1e-3                # mm: a tube's square end stops this short of its vertex, a wedge's floor this high
+
+
+def segments_for(radius: float, tolerance: float) -> int:
+    """Polygon sides (a multiple of 4) so a faceted sphere of this radius stays within
+    ``tolerance`` of the true one (a facet's centre sags about twice the edge's sagitta)."""
+    ratio = max(-1.0, 1.0 - tolerance / (2.0 * radius))
+    n = math.ceil(math.pi / max(math.acos(ratio), 1e-6))
+    return int(min(max(4 * math.ceil(n / 4), 8), 720))
+
+
+def tool_rings(tool: Tool, tolerance: float, inset: float = 0.0) -> list:
+    """The tool's end from the tip up, as (radius, height above the tip) rings on the surface of
+    the tool shrunk by ``inset`` all round; the last ring is where the end meets the shank.
+
+    Ball, flat and bull are a flat disc rounded by a corner radius; shrinking by ``inset``
+    lifts the bottom by ``inset`` and takes ``inset`` off the corner radius (a corner sharper
+    than ``inset`` becomes square on a disc ``inset`` smaller)."""
+    r = tool.radius
+    if tool.kind in TIP_ANGLE_DEG:
+        return [(0.0, 0.0), (r, r / math.tan(math.radians(TIP_ANGLE_DEG[tool.kind]) / 2))]
+    rc = max(tool.corner_radius - inset, 0.0)
+    flat = r - inset - rc
+    rings = [(flat, inset)]
+    steps = max(1, segments_for(rc, tolerance) // 4) if rc > 0 else 0
+    for beta in np.arange(1, steps + 1) * (math.pi / 2 / max(steps, 1)):
+        rings.append((flat + rc * math.sin(beta), inset + rc - rc * math.cos(beta)))
+    return rings
+
+
+def tool_points(tool: Tool, tolerance: float, height: float, inset: float = 0.0) -> np.ndarray:
+    """Vertices of the tool, tip at the origin, up to ``height`` above the tip (at least 1 mm above
+    its end), on the surface of the tool shrunk by ``inset`` (so their hull lies inside the tool)."""
+    rings = tool_rings(tool, tolerance, inset)
+    rings.append((rings[-1][0], max(height, rings[-1][1] + 1.0)))
+    n = segments_for(tool.radius, tolerance)
+    around = np.arange(n) * (2 * math.pi / n)
+    pts = []
+    for radius, z in rings:
+        if radius < 1e-12:
+            pts.append(np.array([[0.0, 0.0, z]]))
+        else:
+            pts.append(np.column_stack([radius * np.cos(around), radius * np.sin(around), np.full(n, z)]))
+    return np.vstack(pts)
+
+
+def straight_runs(points: np.ndarray, deviation: float) -> list:
+    """Split a polyline into runs of consecutive points that all lie within ``deviation`` of
+    the chord of their run; returns the indices where runs start and end (greedy: the run
+    length is doubled, then bisected)."""
+
+    def fits(i, j):
+        a, d = points[i], points[j] - points[i]
+        inner = points[i + 1:j] - a
+        t = np.clip(inner @ d / max(d @ d, 1e-300), 0.0, 1.0)
+        return not len(inner) or float(np.max(np.linalg.norm(inner - t[:, None] * d, axis=1))) <= deviation
+
+    ends = [0]
+    last = len(points) - 1
+    i = 0
+    while i < last:
+        good = 1
+        while i + 2 * good <= last and fits(i, i + 2 * good):
+            good *= 2
+        bad = min(2 * good, last - i + 1)
+        while bad - good > 1:
+            mid = (good + bad) // 2
+            if fits(i, i + mid):
+                good = mid
+            else:
+                bad = mid
+        i += good
+        ends.append(i)
+    return ends
+
+
+def placed(tool: np.ndarray, run: np.ndarray, axes: np.ndarray | None) -> np.ndarray:
+    """The tool's points (tip at the origin, axis +Z) at every point of the run: upright, or
+    for a radial tool turned so its axis is the run's horizontal ``axes``."""
+    if axes is None:
+        return (run[:, None, :] + tool[None, :, :]).reshape(-1, 3)
+    ux, uy = axes[:, None, 0], axes[:, None, 1]
+    a, b, c = tool[None, :, 0], tool[None, :, 1], tool[None, :, 2]
+    # local (a, b, c) -> a * Z + b * (-uy, ux, 0) + c * (ux, uy, 0)
+    turned = np.stack([c * ux - b * uy, c * uy + b * ux, np.broadcast_to(a, ux.shape[:1] + a.shape[1:])], axis=-1)
+    return (run[:, None, :] + turned).reshape(-1, 3)
+
+
+def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = 1000, progress=None) -> Manifold:
+    """The stock minus every chain's swept tool.
+
+    ``chains``: objects with ``tool``, ``points`` (the tip path in part coordinates, (n, 3))
+    and ``radial`` (the tool axis runs from the Z axis through the tip, as in radial turn-mill
+    work; otherwise it is +Z).  Pieces are unioned ``chunk`` at a time and subtracted;
+    ``progress(fraction)`` is called after each chunk (it may raise to cancel)."""
+    bounds = stock.bounding_box()
+    floors = _Floors([chain for chain in chains if not chain.radial], tolerance)
+    lowest = {}
+    pieces = []
+    for chain in chains:
+        pieces += _chain_pieces(chain, tolerance, bounds, floors, lowest)
+    # each kept level run is one piece: its own tubes unioned first (near each other, they go fast)
+    pieces += [lambda made=made: Manifold.batch_boolean([m() for m in made], OpType.Add) for made, _ in lowest.values()]
+    solid = stock
+    for start in range(0, len(pieces), chunk):
+        swept = [make() for make in pieces[start:start + chunk]]
+        solid = solid - Manifold.batch_boolean(swept, OpType.Add)
+        solid.num_tri()                        # evaluate now: a natural progress point
+        if progress is not None:
+            progress(min(1.0, (start + chunk) / len(pieces)))
+    return solid
+
+
+def _chain_pieces(chain, tolerance: float, bounds, floors, lowest: dict) -> list:
+    """The chain as pieces, each a function that builds its solid: its gentle runs as tubes, and
+    hulls for the moves between them.
+
+    A level run of an upright tool lies inside the sweep of the same tool along the same path
+    lower down (a pocket with vertical walls repeats its path at every depth): such runs go
+    into ``lowest`` (tool and path -> (pieces, height)) and only the lowest of them is cut."""
+    p = chain.points
+    x0, y0, _, x1, y1, top = bounds
+    bar_radius = max(-x0, x1, -y0, y1)
+    if chain.radial:
+        reach = np.hypot(p[:, 0], p[:, 1])
+        axes = p[:, :2] / np.maximum(reach, 1e-12)[:, None]
+        height = bar_radius + 1.0 - float(reach.min())      # the shank reaches out of the bar from any depth
+        runs = _radial_runs(p, axes) if chain.tool.kind == "ball" else []
+    else:
+        axes = None
+        height = top + 1.0 - float(p[:, 2].min())           # the shank reaches above the stock from any depth
+        runs = _gentle_runs(p, _max_slope(chain.tool, tolerance / 4))
+    whole = tool_points(chain.tool, tolerance, height)
+    pieces = []
+    for i, j in runs:
+        run = p[i:j + 1]
+        if chain.radial:
+            pieces += _radial_run(chain.tool, run, axes[i:j + 1], whole, tolerance, bar_radius)
+        elif np.ptp(run[:, 2]) > 0:
+            pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors)
+        else:
+            key = (chain.tool, np.round(run[:, :2], 6).tobytes())
+            if key not in lowest or lowest[key][1] > run[0, 2]:
+                made = _axial_run(chain, run, whole, height, tolerance, bounds, floors)
+                lowest[key] = (made, run[0, 2])
+    # the moves between runs
+    starts = [0] + [j for _, j in runs]
+    ends = [i for i, _ in runs] + [len(p) - 1]
+    for i, j in zip(starts, ends):
+        if j > i:
+            pieces += _hull_pieces(chain, p[i:j + 1], None if axes is None else axes[i:j + 1], whole, height,
+                                   tolerance, bounds)
+    return pieces
+
+
+def _max_slope(tool: Tool, allowance: float) -> float:
+    """The steepest move (radians) along which the upright section of an upright tool stays within
+    ``allowance`` of the true sweep: a flat bottom of radius f leaves up to f tan(a) under its
+    leading edge, a corner of radius c up to c (1/cos(a) - 1) below its lowest point.  Cones are
+    taken on level moves only."""
+    if tool.kind in TIP_ANGLE_DEG:
+        return 0.0
+    flat, corner = tool.radius - tool.corner_radius, tool.corner_radius
+    limits = [math.pi / 4]
+    if flat > 0:
+        limits.append(math.atan(allowance / 2 / flat))
+    if corner > 0:
+        limits.append(math.acos(1.0 / (1.0 + allowance / 2 / corner)))
+    return min(limits)
+
+
+def _gentle_runs(p: np.ndarray, max_slope: float) -> list:
+    """(first, last) point indices of the runs of at least MIN_RUN_MOVES moves that each climb or
+    fall no steeper than ``max_slope`` (0: level moves only)."""
+    d = np.diff(p, axis=0)
+    across = np.hypot(d[:, 0], d[:, 1])
+    gentle = (across > 1e-6) & (np.abs(d[:, 2]) <= np.maximum(across * math.tan(max_slope), 1e-9))
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], gentle.astype(np.int8), [0]])))
+    return [(int(i), int(j)) for i, j in zip(edges[::2], edges[1::2]) if j - i >= MIN_RUN_MOVES]
+
+
+def _hull_pieces(chain, p, axes, whole, height, tolerance, bounds) -> list:
+    """One hull of the tool at both ends of each move, or of a slightly shrunk tool along a nearly
+    straight run of moves (within a sixth of ``tolerance`` of its chord, so the hull of its
+    points is within a third of the path); the facets take the other two thirds."""
+    x0, y0, bottom, x1, y1, top = bounds
+    bar_radius = max(-x0, x1, -y0, y1)
+    merge = tolerance / 3
+    r = chain.tool.radius
+    if axes is not None:
+        # The tool axis turns with C: a run is merged where both the tip and the far end of the
+        # shank stay within merge / 2 of their chords (a rigid motion: every point of the tool
+        # between them does too, near enough).
+        reach = np.hypot(p[:, 0], p[:, 1])
+        ends = straight_runs(np.column_stack([p, p[:, :2] + height * axes]), merge / 2)
+    else:
+        # cones are never merged: only the disc-and-corner tools are shrunk here
+        ends = list(range(len(p))) if chain.tool.kind in TIP_ANGLE_DEG else straight_runs(p, merge / 2)
+    shrunk = tool_points(chain.tool, tolerance - merge, height, inset=merge)
+    pieces = []
+    for i, j in zip(ends[:-1], ends[1:]):
+        run = p[i:j + 1]
+        lo, hi = run.min(axis=0), run.max(axis=0)
+        if axes is not None:
+            inside = reach[i:j + 1].min() < bar_radius and hi[2] + r > bottom and lo[2] - r < top
+        else:
+            inside = lo[2] < top and hi[0] + r > x0 and lo[0] - r < x1 and hi[1] + r > y0 and lo[1] - r < y1
+        if inside:
+            points = placed(whole if j == i + 1 else shrunk, run, None if axes is None else axes[i:j + 1])
+            pieces.append(lambda points=points: Manifold.hull_points(points))
+    return pieces
+
+
+def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance: float, bounds, floors) -> list:
+    """path (+) tool for an upright tool along a gentle run: the tool's section through its axis
+    (end and shank, up to above the stock) carried along the path as tubes, upright and across
+    the path, with wedges of the tool at sharp corners and at both ends; stretches that deeper
+    level runs have already cleared (see :class:`_Floors`) are left out.  A run too jagged for
+    tubes (see :func:`_tube_pieces`) is cut as hulls."""
+    x0, y0, _, x1, y1, top = bounds
+    tool = chain.tool
+    r = tool.radius
+    lo, hi = p.min(axis=0), p.max(axis=0)
+    if lo[2] >= top or hi[0] + r <= x0 or lo[0] - r >= x1 or hi[1] + r <= y0 or lo[1] - r >= y1:
+        return []
+    facets, inset = _section_budget(r, tolerance)
+    section = _section(tool_rings(tool, 2 * facets, inset), r - inset, top + 1.0 - lo[2])
+    pieces = []
+    for a, b in floors.needed(p, r):
+        tubes = _tube_pieces(p[a:b + 1], section, tolerance)
+        pieces += _hull_pieces(chain, p[a:b + 1], None, whole, height, tolerance, bounds) if tubes is None else tubes
+    return pieces
+
+
+def _radial_run(tool: Tool, p: np.ndarray, axes: np.ndarray, whole: np.ndarray, tolerance: float,
+                bar_radius: float) -> list:
+    """A radial ball along a run of level moves: the ball's inner half great circle across the
+    move and the shank's top and bottom lines out beyond the bar (together the curve where the
+    tool touches its sweep) carried along the path as tubes, with the whole tool at both ends of
+    each stretch that turns one way about C."""
+    r = tool.radius
+    centres = np.column_stack([p[:, :2] + r * axes, p[:, 2]])
+    reach = np.hypot(centres[:, 0], centres[:, 1])
+    if reach.min() - r >= bar_radius:
+        return []
+    facets, inset = _section_budget(r, tolerance)
+    ball = r - inset
+    n = 4 * math.ceil(math.pi / math.acos(1.0 - facets / ball) / 4)
+    inner = np.linspace(math.pi / 2, 3 * math.pi / 2, n // 2 + 1)
+    length = bar_radius + 1.0 - float(reach.min()) + r          # out beyond the bar from any depth
+    # thinned so both the centre and the far end of the shank stay within the inset of their path
+    keep = np.asarray(straight_runs(np.column_stack([centres, centres[:, :2] + length * axes]),
+                                    min(tolerance / 8, r / 4)))
+    turn = np.sign(centres[keep[:-1], 0] * centres[keep[1:], 1] - centres[keep[:-1], 1] * centres[keep[1:], 0])
+    ends = [0] + [k for k in range(1, len(keep) - 1) if turn[k - 1] != turn[k]] + [len(keep) - 1]
+    pieces = []
+    for a, b in zip(ends[:-1], ends[1:]):
+        stretch = keep[a:b + 1]
+        pieces.append(lambda stretch=stretch: _tube_mesh(_radial_rings(centres[stretch], axes[stretch], ball,
+                                                                       inner, length)))
+    for k in ends:
+        i = keep[k]
+        pieces.append(lambda i=i: Manifold.hull_points(placed(whole, p[i:i + 1], axes[i:i + 1])))
+    return pieces
+
+
+def _radial_rings(centres: np.ndarray, axes: np.ndarray, ball: float, inner: np.ndarray, length: float) -> np.ndarray:
+    """(m, k, 3) rings of a radial ball's tube: at each centre, the inner half of the great circle
+    across the (horizontal) direction of travel, then the shank's bottom and top lines out to
+    ``length`` along the tool axis."""
+    d = np.diff(centres[:, :2], axis=0)
+    t = d / np.linalg.norm(d, axis=1)[:, None]
+    travel = np.vstack([t[:1], t[:-1] + t[1:], t[-1:]])
+    across = np.column_stack([-travel[:, 1], travel[:, 0]])
+    across /= np.linalg.norm(across, axis=1)[:, None]
+    across *= np.sign(np.einsum("ij,ij->i", across, axes))[:, None]      # pointing outwards
+    up = np.array([0.0, 0.0, 1.0])
+    horizontal = np.column_stack([across, np.zeros(len(across))])
+    circle = (np.cos(inner)[None, :, None] * horizontal[:, None, :] + np.sin(inner)[None, :, None] * up) * ball
+    axis = np.column_stack([axes, np.zeros(len(axes))])[:, None, :] * length
+    shank = np.concatenate([axis - ball * up, axis + ball * up], axis=1)
+    return centres[:, None, :] + np.concatenate([circle, shank], axis=1)
+
+
+def _radial_runs(p: np.ndarray, axes: np.ndarray) -> list:
+    """(first, last) point indices of the runs of at least MIN_RUN_MOVES level moves of a radial
+    tool that travel more across its axis than along it (within MAX_RADIAL_TILT of tangential)."""
+    d = np.diff(p, axis=0)
+    across = np.hypot(d[:, 0], d[:, 1])
+    middle = axes[:-1] + axes[1:]
+    radial = np.abs(np.einsum("ij,ij->i", d[:, :2], middle)) / np.maximum(np.linalg.norm(middle, axis=1), 1e-12)
+    gentle = (across > 1e-6) & (np.abs(d[:, 2]) <= 1e-9) & (radial <= across * math.sin(MAX_RADIAL_TILT))
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], gentle.astype(np.int8), [0]])))
+    return [(int(i), int(j)) for i, j in zip(edges[::2], edges[1::2]) if j - i >= MIN_RUN_MOVES]
+
+
+def _section_budget(radius: float, tolerance: float) -> tuple:
+    """(facet sagitta, inset) of a tube's section, each a quarter and an eighth of the tolerance:
+    the inset leaves room to follow the path only within it (see :func:`_tube_pieces`)."""
+    return tolerance / 4, min(tolerance / 8, radius / 4)
+
+
+def _section(rings: list, shank_radius: float, height: float) -> np.ndarray:
+    """The tool cut by a plane through its axis, from the tip up to ``height``: a convex polygon
+    (s, h), counter-clockwise; ``rings`` is its end (see :func:`tool_rings`)."""
+    right = list(rings) + [(shank_radius, height)]
+    left = [(-s, h) for s, h in reversed(right) if s > 1e-12]
+    return np.array(right + left, float)
+
+
+def _max_turn(half_width: float, allowance: float) -> float:
+    """The largest turn at a tube vertex that keeps the tube within ``allowance`` of the sweep."""
+    return 2.0 * math.acos(1.0 / (1.0 + allowance / half_width))
+
+
+def _stretches(path: np.ndarray, half_width: float, max_turn: float) -> list:
+    """Vertex indices where a tube of this half-width along the 2-D polyline breaks, both ends
+    included: a turn sharper than ``max_turn``, a move too short for the turns at its ends (the
+    sections there would cross within the half-width), or MAX_STRETCH_TURN of turning since the
+    last break.  The tubes on either side of a break end square to their moves and a wedge of
+    the tool fills the corner."""
+    d = np.diff(path, axis=0)
+    length = np.linalg.norm(d, axis=1)
+    heading = np.arctan2(d[:, 1], d[:, 0])
+    turn = np.abs((np.diff(heading) + math.pi) % (2 * math.pi) - math.pi)
+    lean = np.tan(turn / 2)                  # a section at a vertex leans this much per unit of half-width
+    m = len(path) - 1
+    breaks, turned = [0], 0.0
+    for i in range(1, m):
+        before = 0.0 if breaks[-1] == i - 1 else lean[i - 2]
+        after = lean[i] if i < m - 1 else 0.0
+        if (turn[i - 1] > max_turn or turned + turn[i - 1] > MAX_STRETCH_TURN
+                or length[i - 1] <= 1.25 * half_width * (before + lean[i - 1])
+                or length[i] <= 1.25 * half_width * (lean[i - 1] + after)):
+            breaks.append(i)
+            turned = 0.0
+        else:
+            turned += turn[i - 1]
+    breaks.append(m)
+    return breaks
+
+
+def _tube_pieces(path: np.ndarray, section: np.ndarray, tolerance: float) -> list:
+    """Tubes of ``section`` (s across the path, h up) along the gentle 3-D polyline, and at every
+    break (see :func:`_stretches`) and at both ends the section's outer half turned about the
+    vertical axis through the vertex over the angle the tubes leave open (a wedge of the tool;
+    half of it at the ends).
+
+    Every piece lies inside the true sweep.  The polyline is first thinned to the vertices it
+    needs to stay within the section's inset (an eighth of the tolerance) of every point, so the
+    tubes along it still do; joints take a quarter of the tolerance, facets another quarter.
+
+    None when more than MAX_SHARP_SHARE of the vertices are breaks (a staircase of short
+    moves): tubes one move long and a wedge at every corner, all overlapping, union slower than
+    hulls of the tool."""
+    half_width = float(np.max(np.abs(section[:, 0])))
+    path = path[straight_runs(path, min(tolerance / 8, half_width / 4))]
+    flat = path[:, :2]
+    breaks = _stretches(flat, half_width, _max_turn(half_width, tolerance / 4))
+    if len(breaks) - 2 > MAX_SHARP_SHARE * len(path):
+        return None
+    d = np.diff(flat, axis=0)
+    t = d / np.linalg.norm(d, axis=1)[:, None]
+    heading = np.arctan2(t[:, 1], t[:, 0])
+    bisector = np.vstack([t[:1], t[:-1] + t[1:], t[-1:]])
+    pieces = []
+    for k, (a, b) in enumerate(zip(breaks[:-1], breaks[1:])):
+        # the ends stand square to their moves, pulled back a hair so that they never lie in the
+        # plane of the next tube's end (at a reversal the two would coincide)
+        along = bisector[a:b + 1].copy()
+        along[0], along[-1] = t[a], t[b - 1]
+        stretch = path[a:b + 1].copy()
+        if b - a > 1 or np.linalg.norm(d[a]) > 4 * _PULL_BACK:
+            stretch[0, :2] += _PULL_BACK * t[a]
+            stretch[-1, :2] -= _PULL_BACK * t[b - 1]
+        pieces.append(lambda stretch=stretch, along=along, k=k: _tube(stretch, along, _lifted(section, k)))
+    right = section[section[:, 0] > 1e-9 * half_width]
+    outer = np.vstack([[0.0, section[:, 1].min()], right[np.argsort(right[:, 1], kind="stable")],
+                       [0.0, section[:, 1].max()]])
+    segments = 4 * math.ceil(math.pi / math.acos(1.0 - tolerance / 4 / half_width) / 4)
+    last = len(path) - 1
+    for k, i in enumerate(breaks):
+        if i == 0:
+            start, sweep = heading[0] + math.pi / 2, math.pi
+        elif i == last:
+            start, sweep = heading[-1] - math.pi / 2, math.pi
+        else:
+            turn = (heading[i] - heading[i - 1] + math.pi) % (2 * math.pi) - math.pi
+            start, sweep = (heading[i - 1] - math.pi / 2, turn) if turn > 0 else (heading[i] + math.pi / 2, -turn)
+        # reaching WEDGE_OVERLAP past the tubes' end faces on both sides: overlapping, never
+        # touching (faces that nearly coincide make slivers and slow booleans)
+        start, sweep = start - WEDGE_OVERLAP, sweep + 2 * WEDGE_OVERLAP
+        outline = CrossSection([_raised_floor(_lifted(outer, k + 0.5))])
+        pieces.append(lambda start=start, sweep=sweep, at=path[i].tolist(), outline=outline: Manifold.revolve(
+            outline, max(3, math.ceil(segments * sweep / (2 * math.pi))), math.degrees(sweep))
+            .rotate([0.0, 0.0, math.degrees(start)]).translate(at))
+    return pieces
+
+
+def _raised_floor(section: np.ndarray) -> np.ndarray:
+    """The section with its flat bottom (if any) raised by _PULL_BACK: a wedge's floor then never
+    lies in the plane of the tubes' floor (coplanar floors leave slivers in the union)."""
+    raised = section.copy()
+    raised[section[:, 1] == section[:, 1].min(), 1] += _PULL_BACK
+    return raised
+
+
+def _lifted(section: np.ndarray, k: float) -> np.ndarray:
+    """The section with its top raised by a different amount for each piece k (up to 0.5 mm; the
+    top lies above the stock): many pieces with their tops in one plane make the union slow."""
+    lifted = section.copy()
+    top = section[:, 1] == section[:, 1].max()
+    lifted[top, 1] += 0.05 + 0.45 * ((k * 0.6180339887) % 1.0)
+    return lifted
+
+
+def _tube(path: np.ndarray, along: np.ndarray, section: np.ndarray) -> Manifold:
+    """``section`` (s, h) carried along the 3-D polyline, upright and across the horizontal
+    direction ``along`` at each vertex (s along its left normal, h up), closed at both ends."""
+    along = along / np.linalg.norm(along, axis=1)[:, None]
+    normal = np.column_stack([-along[:, 1], along[:, 0], np.zeros(len(along))])
+    rings = path[:, None, :] + section[None, :, 0, None] * normal[:, None, :]
+    rings[:, :, 2] += section[None, :, 1]
+    return _tube_mesh(rings)
+
+
+def _tube_mesh(rings: np.ndarray) -> Manifold:
+    """The closed tube through rings (m, k, 3) of corresponding points, capped by fans at both
+    ends (each end ring must be star-shaped from its first point)."""
+    m, k, _ = rings.shape
+    origin = rings.reshape(-1, 3).mean(axis=0)
+    vertices = rings.reshape(-1, 3) - origin
+    ring = np.arange(k)
+    a = (np.arange(m - 1) * k)[:, None] + ring
+    b = (np.arange(m - 1) * k)[:, None] + (ring + 1) % k
+    sides = np.concatenate([np.stack([a, b, b + k], -1), np.stack([a, b + k, a + k], -1)]).reshape(-1, 3)
+    fan = np.column_stack([np.zeros(k - 2, np.int64), np.arange(1, k - 1), np.arange(2, k)])
+    faces = np.vstack([sides, fan[:, ::-1], fan + (m - 1) * k])
+    v0, v1, v2 = vertices[faces[:, 0]], vertices[faces[:, 1]], vertices[faces[:, 2]]
+    if np.einsum("ij,ij->", v0, np.cross(v1, v2)) < 0:
+        faces = faces[:, ::-1]
+    tube = Manifold(Mesh64(vert_properties=np.ascontiguousarray(vertices + origin, np.float64),
+                           tri_verts=np.ascontiguousarray(faces, np.uint64)))
+    if tube.status() != Error.NoError:
+        raise RuntimeError(f"tube mesh rejected by manifold: {tube.status()}")
+    return tube
+
+
+class _Floors:
+    """Where upright tools have cleared everything: above the height where a tool's end meets its
+    shank, over the footprint of each level run (its path offset by the tool radius).  A piece of
+    a run higher up that lies wholly inside such a footprint adds nothing to the cut (the deeper
+    run is always cut itself, so leaving the piece out keeps the union the same); in a pocket
+    with many layers that is most of every layer but the deepest."""
+
+    def __init__(self, chains: list, tolerance: float):
+        floors = []
+        for chain in chains:
+            end = tool_rings(chain.tool, tolerance)[-1][1]
+            for i, j in _gentle_runs(chain.points, 0.0):
+                floors.append((float(chain.points[i, 2]) + end, chain.points[i:j + 1, :2], chain.tool.radius))
+        floors.sort(key=lambda floor: floor[0])
+        self.heights = [height for height, _, _ in floors]
+        self.footprints = [(path, radius) for _, path, radius in floors]
+        self.tolerance = tolerance
+        self.cleared = [CrossSection()]      # cleared[k]: the union of the k lowest footprints
+
+    def below(self, z: float) -> CrossSection:
+        """The area cleared all the way down to ``z`` by runs below it."""
+        k = bisect.bisect_right(self.heights, z - 1e-9)   # strictly deeper: a run never clears itself
+        while len(self.cleared) <= k:
+            path, radius = self.footprints[len(self.cleared) - 1]
+            self.cleared.append(self.cleared[-1] + _footprint(path, radius, self.tolerance))
+        return self.cleared[k]
+
+    def needed(self, run: np.ndarray, radius: float) -> list:
+        """(first, last) vertex ranges of the run that are not wholly inside cleared area."""
+        whole = [(0, len(run) - 1)]
+        cleared = self.below(float(run[:, 2].min()))
+        if cleared.is_empty():
+            return whole
+        core = cleared.offset(-radius, JoinType.Round)
+        if core.is_empty():
+            return whole
+        inside = _inside(run[:, :2], core.to_polygons())
+        keep = ~(inside[:-1] & inside[1:])      # per move
+        edges = np.flatnonzero(np.diff(np.concatenate([[1], keep.astype(np.int8), [1]])))
+        for a, b in zip(edges[::2], edges[1::2]):
+            # moves a..b-1 have both ends in the core; the footprint decides
+            rest = _footprint(run[a:b + 1, :2], radius + self.tolerance / 4, self.tolerance / 8) - cleared
+            if rest.area() > 1e-6:
+                keep[a:b] = True
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], keep.astype(np.int8), [0]])))
+        return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]
+
+
+def _footprint(path: np.ndarray, radius: float, tolerance: float) -> CrossSection:
+    """The 2-D polyline offset by ``radius`` (round ends and joins; facets inside the circle
+    within ``tolerance``): a ribbon 1e-4 mm wide on each side, one polygon per stretch without a
+    turn over 90 degrees so its sides cannot fold, offset by the rest of the radius."""
+    thin = 1e-4
+    d = np.diff(path, axis=0)
+    t = d / np.linalg.norm(d, axis=1)[:, None]
+    folds = np.flatnonzero(np.einsum("ij,ij->i", t[:-1], t[1:]) <= 0.0) + 1
+    ribbons = []
+    for a, b in zip(np.concatenate([[0], folds]), np.concatenate([folds, [len(path) - 1]])):
+        along = np.vstack([t[a:a + 1], t[a:b - 1] + t[a + 1:b], t[b - 1:b]])
+        across = np.column_stack([-along[:, 1], along[:, 0]])
+        across *= thin / np.maximum(np.linalg.norm(across, axis=1), 1e-12)[:, None]
+        ribbons.append(np.vstack([path[a:b + 1] + across, (path[a:b + 1] - across)[::-1]]))
+    segments = 4 * math.ceil(math.pi / math.acos(1.0 - tolerance / radius) / 4)
+    return CrossSection(ribbons, FillRule.NonZero).offset(radius - thin, JoinType.Round, 2.0, segments)
+
+
+def _inside(points: np.ndarray, polygons: list) -> np.ndarray:
+    """Which points lie inside the polygons (even-odd over all their edges)."""
+    inside = np.zeros(len(points), bool)
+    x, y = points[:, 0, None], points[:, 1, None]
+    for polygon in polygons:
+        a = np.asarray(polygon, float)
+        b = np.roll(a, -1, axis=0)
+        for s in range(0, len(a), 2048):
+            ax, ay, bx, by = a[s:s + 2048, 0], a[s:s + 2048, 1], b[s:s + 2048, 0], b[s:s + 2048, 1]
+            straddles = (ay > y) != (by > y)
+            cross_x = ax + (y - ay) * (bx - ax) / np.where(by != ay, by - ay, 1.0)
+            inside ^= (np.count_nonzero(straddles & (x < cross_x), axis=1) % 2).astype(bool)
+    return inside
