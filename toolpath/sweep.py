@@ -15,8 +15,8 @@ along runs wherever the geometry allows, instead of one hull per move:
   at a sharp corner, after 60 degrees of turning and at both ends it stops square to its move
   and a wedge of the tool (the section's outer half turned about the tool axis over the open
   angle) fills the corner.
-* A *run of a radial ball* (turn-mill: the axis runs from the C axis through the tip): level
-  moves that travel more across the axis than along it.  Its tube carries the inner half of the
+* A *run of a radial ball* (turn-mill: the axis runs from the C axis through the tip): gentle
+  moves that travel across the axis rather than along it.  Its tube carries the inner half of the
   ball's great circle across the move and the shank's top and bottom lines out beyond the bar;
   these stand in planes through the C axis, so the tube cannot fold while the path turns one
   way about C.  The whole tool closes each stretch.
@@ -175,7 +175,7 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, lowest: dict) -> list
         reach = np.hypot(p[:, 0], p[:, 1])
         axes = p[:, :2] / np.maximum(reach, 1e-12)[:, None]
         height = bar_radius + 1.0 - float(reach.min())      # the shank reaches out of the bar from any depth
-        runs = _radial_runs(p, axes) if chain.tool.kind == "ball" else []
+        runs = _radial_runs(p, axes, _max_slope(chain.tool, tolerance / 4)) if chain.tool.kind == "ball" else []
     else:
         axes = None
         height = top + 1.0 - float(p[:, 2].min())           # the shank reaches above the stock from any depth
@@ -284,7 +284,7 @@ def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance
 
 def _radial_run(tool: Tool, p: np.ndarray, axes: np.ndarray, whole: np.ndarray, tolerance: float,
                 bar_radius: float) -> list:
-    """A radial ball along a run of level moves: the ball's inner half great circle across the
+    """A radial ball along a gentle run: the ball's inner half great circle across the
     move and the shank's top and bottom lines out beyond the bar (together the curve where the
     tool touches its sweep) carried along the path as tubes, with the whole tool at both ends of
     each stretch that turns one way about C."""
@@ -332,14 +332,16 @@ def _radial_rings(centres: np.ndarray, axes: np.ndarray, ball: float, inner: np.
     return centres[:, None, :] + np.concatenate([circle, shank], axis=1)
 
 
-def _radial_runs(p: np.ndarray, axes: np.ndarray) -> list:
-    """(first, last) point indices of the runs of at least MIN_RUN_MOVES level moves of a radial
-    tool that travel more across its axis than along it (within MAX_RADIAL_TILT of tangential)."""
+def _radial_runs(p: np.ndarray, axes: np.ndarray, max_slope: float) -> list:
+    """(first, last) point indices of the runs of at least MIN_RUN_MOVES moves of a radial tool
+    that travel across its axis (within MAX_RADIAL_TILT of tangential) and climb or fall no
+    steeper than ``max_slope`` (the ball's great circle then stands upright within its allowance)."""
     d = np.diff(p, axis=0)
     across = np.hypot(d[:, 0], d[:, 1])
     middle = axes[:-1] + axes[1:]
     radial = np.abs(np.einsum("ij,ij->i", d[:, :2], middle)) / np.maximum(np.linalg.norm(middle, axis=1), 1e-12)
-    gentle = (across > 1e-6) & (np.abs(d[:, 2]) <= 1e-9) & (radial <= across * math.sin(MAX_RADIAL_TILT))
+    gentle = ((across > 1e-6) & (np.abs(d[:, 2]) <= np.maximum(across * math.tan(max_slope), 1e-9))
+              & (radial <= across * math.sin(MAX_RADIAL_TILT)))
     edges = np.flatnonzero(np.diff(np.concatenate([[0], gentle.astype(np.int8), [0]])))
     return [(int(i), int(j)) for i, j in zip(edges[::2], edges[1::2]) if j - i >= MIN_RUN_MOVES]
 
