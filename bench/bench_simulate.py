@@ -102,6 +102,6 @@ def run():
         result = sim.simulate(part, STOCK, engine="manifold", cell=0.5)
         seconds = time.perf_counter() - started
         rows.append({"name": f"simulate: manifold, {moves // 1000}k moves", "seconds": seconds, "target_s": None,
-                     "notes": f"tolerance {result.tolerance} mm, nearly straight runs joined, chunks of 1000 hulls, "
+                     "notes": f"tolerance {result.tolerance} mm, runs swept as tubes (sweep.py), chunks of 1000 pieces, "
                               f"{result.solid.num_tri()} triangles; includes the 0.5 mm height-field safety pass"})
     return rows
