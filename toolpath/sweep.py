@@ -59,6 +59,12 @@ def segments_for(radius: float, tolerance: float) -> int:
     return int(min(max(4 * math.ceil(n / 4), 8), 720))
 
 
+def _polygon_sides(radius: float, sagitta: float) -> int:
+    """Sides (a multiple of 4) of a polygon inscribed in a circle of this radius whose edges sag
+    at most ``sagitta`` from it (a 2-D outline; see :func:`segments_for` for spheres)."""
+    return 4 * math.ceil(math.pi / math.acos(max(-1.0, 1.0 - sagitta / radius)) / 4)
+
+
 def tool_rings(tool: Tool, tolerance: float, inset: float = 0.0) -> list:
     """The tool's end from the tip up, as (radius, height above the tip) rings on the surface of
     the tool shrunk by ``inset`` all round; the last ring is where the end meets the shank.
@@ -295,7 +301,7 @@ def _radial_run(tool: Tool, p: np.ndarray, axes: np.ndarray, whole: np.ndarray, 
         return []
     facets, inset = _section_budget(r, tolerance)
     ball = r - inset
-    n = 4 * math.ceil(math.pi / math.acos(1.0 - facets / ball) / 4)
+    n = _polygon_sides(ball, facets)
     inner = np.linspace(math.pi / 2, 3 * math.pi / 2, n // 2 + 1)
     length = bar_radius + 1.0 - float(reach.min()) + r          # out beyond the bar from any depth
     # thinned so both the centre and the far end of the shank stay within the inset of their path
@@ -429,7 +435,7 @@ def _tube_pieces(path: np.ndarray, section: np.ndarray, tolerance: float) -> lis
     right = section[section[:, 0] > 1e-9 * half_width]
     outer = np.vstack([[0.0, section[:, 1].min()], right[np.argsort(right[:, 1], kind="stable")],
                        [0.0, section[:, 1].max()]])
-    segments = 4 * math.ceil(math.pi / math.acos(1.0 - tolerance / 4 / half_width) / 4)
+    segments = _polygon_sides(half_width, tolerance / 4)
     last = len(path) - 1
     for k, i in enumerate(breaks):
         if i == 0:
@@ -564,7 +570,7 @@ def _footprint(path: np.ndarray, radius: float, tolerance: float) -> CrossSectio
         across = np.column_stack([-along[:, 1], along[:, 0]])
         across *= thin / np.maximum(np.linalg.norm(across, axis=1), 1e-12)[:, None]
         ribbons.append(np.vstack([path[a:b + 1] + across, (path[a:b + 1] - across)[::-1]]))
-    segments = 4 * math.ceil(math.pi / math.acos(1.0 - tolerance / radius) / 4)
+    segments = _polygon_sides(radius, tolerance)
     return CrossSection(ribbons, FillRule.NonZero).offset(radius - thin, JoinType.Round, 2.0, segments)
 
 
