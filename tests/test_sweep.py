@@ -31,12 +31,13 @@ def circle(radius, z, n=400, turns=1.0):
     return np.column_stack([radius * np.cos(angle), radius * np.sin(angle), np.full(n + 1, z)])
 
 
-def pieces_of(tool, points, tolerance=0.01):
-    stock = sim._stock_solid(sim.as_stock(BOX), tolerance)
-    level = {}
-    makers = sweep._chain_pieces(chain(tool, points), tolerance, stock.bounding_box(), sweep._Floors([], tolerance),
-                                 level)
-    return [make() for make in makers + [m for made, _ in level.values() for m in made]]
+def pieces_of(tool, points, tolerance=0.01, stock=None, radial=False):
+    """The solids one chain is cut as, its level runs included."""
+    stock = stock or sim._stock_solid(sim.as_stock(BOX), tolerance)
+    repeats = sweep._Repeats()
+    makers = sweep._chain_pieces(chain(tool, points, radial=radial), tolerance, stock.bounding_box(),
+                                 sweep._Floors([], tolerance), repeats)
+    return [make() for make in makers + [m for made in repeats.kept() for m in made]]
 
 
 def depth_outside_ball_sweep(vertices, tips, r):
@@ -118,21 +119,66 @@ def test_a_gentle_ramp_is_one_run_of_tubes_and_matches_the_height_field():
     assert exact.removed_volume_mm3 == pytest.approx(field.removed_volume_mm3, rel=0.01)
 
 
+def radial_groove_volume(r, tip, bar):
+    """A radial ball's full turn about C at tip radius ``tip`` on a bar: Pappus on the ball's inner
+    half disc (centroid 4r/3pi nearer the axis than its centre) and the shank's band from the
+    centre out to the bar's surface."""
+    centre = tip + r
+    half_disc = math.pi * r * r / 2 * 2 * math.pi * (centre - 4 * r / (3 * math.pi))
+    band = 2 * r * math.pi * (bar ** 2 - centre ** 2)
+    return half_disc + band
+
+
 def test_a_radial_ball_turning_about_c_is_pappus_of_its_section():
-    # radial ball, tip at radius 20 on a bar of radius 25, a full turn at z = -10: the groove's
-    # section is the ball's disc plus the shank's band out to the bar's surface
+    # radial ball, tip at radius 20 on a bar of radius 25, a full turn at z = -10
     r, tip, bar = 3.0, 20.0, 25.0
     angle = np.linspace(0, 2 * math.pi, 721)
     tips = np.column_stack([tip * np.cos(angle), tip * np.sin(angle), np.full(721, -10.0)])
     stock = sim._stock_solid(sim.CylinderStock(radius=bar, height=30), 0.05)
-    pieces = [make() for make in sweep._chain_pieces(chain(BALL6, tips, radial=True), 0.05, stock.bounding_box(),
-                                                     sweep._Floors([], 0.05), {})]
+    pieces = pieces_of(BALL6, tips, 0.05, stock, radial=True)
     assert len(pieces) <= 4                    # one tube and the tool at its ends
     removed = stock.volume() - (stock - Manifold.batch_boolean(pieces, OpType.Add)).volume()
-    centre = tip + r
-    # half disc (inner side, centroid 4r/3pi further in) and the band from the centre out to the bar
-    half_disc = math.pi * r * r / 2 * 2 * math.pi * (centre - 4 * r / (3 * math.pi))
-    band = 2 * r * math.pi * (bar ** 2 - centre ** 2)
-    expected = half_disc + band
+    expected = radial_groove_volume(r, tip, bar)
     assert removed <= expected * 1.001
     assert removed == pytest.approx(expected, rel=0.01)
+
+
+def test_a_ring_repeated_farther_from_the_c_axis_is_left_out():
+    # roughing a groove ring by ring, 24 -> 20 at z = -10, and a half turn at 22 (which the full
+    # ring at 20 covers): only the ring at 20 is cut, and the groove is its Pappus volume; a half
+    # turn at 18 covers nothing and is kept
+    angle = np.linspace(0, 2 * math.pi, 721)
+
+    def ring(tip, turns=1.0, z=-10.0):
+        a = angle * turns
+        return np.column_stack([tip * np.cos(a), tip * np.sin(a), np.full(len(a), z)])
+
+    stock = sim._stock_solid(sim.CylinderStock(radius=25.0, height=30), 0.05)
+    rings = [ring(24.0), ring(22.0, turns=0.5), ring(22.0), ring(20.0)]
+    repeats = sweep._Repeats()
+    for tips in rings + [ring(18.0, turns=0.5)]:
+        assert sweep._chain_pieces(chain(BALL6, tips, radial=True), 0.05, stock.bounding_box(),
+                                   sweep._Floors([], 0.05), repeats) == []
+    assert len(repeats.kept()) == 2
+    solid = sweep.cut(stock, [chain(BALL6, tips, radial=True) for tips in rings], 0.05)
+    expected = radial_groove_volume(3.0, 20.0, 25.0)
+    assert stock.volume() - solid.volume() == pytest.approx(expected, rel=0.01)
+    assert stock.volume() - solid.volume() <= expected * 1.001
+
+
+def test_a_slot_repeated_at_every_depth_is_cut_once_at_the_bottom():
+    # a flat 6 mm slot 20 mm long, in four moves, at -1, -2 and -3 mm (a pocket with vertical
+    # walls repeats its path at every depth): only the pass at -3 is cut, and the slot is
+    # (L D + pi D^2 / 4) * depth
+    line = np.column_stack([np.linspace(-10, 10, 5), np.zeros(5), np.zeros(5)])
+    passes = [line + [0, 0, -depth] for depth in (1.0, 2.0, 3.0)]
+    stock = sim._stock_solid(sim.as_stock(BOX), 0.01)
+    repeats = sweep._Repeats()
+    for tips in passes:
+        sweep._chain_pieces(chain(FLAT6, tips), 0.01, stock.bounding_box(), sweep._Floors([], 0.01), repeats)
+    assert len(repeats.kept()) == 1
+    result = sim.simulate([level_op(FLAT6, tips, f"pass {k}") for k, tips in enumerate(passes)], BOX,
+                          engine="manifold", tolerance=0.01)
+    expected = (20 * 6 + math.pi * 36 / 4) * 3
+    assert result.removed_volume_mm3 == pytest.approx(expected, rel=0.01)
+    assert result.removed_volume_mm3 <= expected * 1.001

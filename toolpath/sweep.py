@@ -49,6 +49,7 @@ WEDGE_OVERLAP = math.radians(5.0)  # a wedge of the tool at a corner reaches thi
 MAX_RADIAL_TILT = math.radians(60.0)  # a radial tool's run moves at most this far from across its axis
 MAX_SHARP_SHARE = 0.25           # runs that break at more than this share of their vertices are cut as hulls
 _PULL_BACK = 1e-3                # mm: a tube's square end stops this short of its vertex, a wedge's floor this high
+LEVEL = 1e-6                     # mm: a run whose height varies less than this is level (posts round to 1e-4)
 
 
 def segments_for(radius: float, tolerance: float) -> int:
@@ -151,12 +152,14 @@ def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = 1000, prog
     ``progress(fraction)`` is called after each chunk (it may raise to cancel)."""
     bounds = stock.bounding_box()
     floors = _Floors([chain for chain in chains if not chain.radial], tolerance)
-    lowest = {}
+    repeats = _Repeats()
     pieces = []
     for chain in chains:
-        pieces += _chain_pieces(chain, tolerance, bounds, floors, lowest)
-    # each kept level run is one piece: its own tubes unioned first (near each other, they go fast)
-    pieces += [lambda made=made: Manifold.batch_boolean([m() for m in made], OpType.Add) for made, _ in lowest.values()]
+        pieces += _chain_pieces(chain, tolerance, bounds, floors, repeats)
+    # each run kept from the repeats is one piece: its own tubes unioned first (near each other,
+    # they go fast)
+    pieces += [lambda made=made: Manifold.batch_boolean([m() for m in made], OpType.Add)
+               for made in repeats.kept() if made]
     solid = stock
     for start in range(0, len(pieces), chunk):
         swept = [make() for make in pieces[start:start + chunk]]
@@ -167,13 +170,10 @@ def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = 1000, prog
     return solid
 
 
-def _chain_pieces(chain, tolerance: float, bounds, floors, lowest: dict) -> list:
+def _chain_pieces(chain, tolerance: float, bounds, floors, repeats) -> list:
     """The chain as pieces, each a function that builds its solid: its gentle runs as tubes, and
-    hulls for the moves between them.
-
-    A level run of an upright tool lies inside the sweep of the same tool along the same path
-    lower down (a pocket with vertical walls repeats its path at every depth): such runs go
-    into ``lowest`` (tool and path -> (pieces, height)) and only the lowest of them is cut."""
+    hulls for the moves between them.  Level runs (radial ones: at one height) go to
+    ``repeats``, which leaves out those that a deeper run along the same path contains."""
     p = chain.points
     x0, y0, _, x1, y1, top = bounds
     bar_radius = max(-x0, x1, -y0, y1)
@@ -190,15 +190,24 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, lowest: dict) -> list
     pieces = []
     for i, j in runs:
         run = p[i:j + 1]
+        level = np.ptp(run[:, 2]) <= LEVEL
         if chain.radial:
-            pieces += _radial_run(chain.tool, run, axes[i:j + 1], whole, tolerance, bar_radius)
-        elif np.ptp(run[:, 2]) > 0:
-            pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors)
+            make = lambda run=run, i=i, j=j: _radial_run(chain.tool, run, axes[i:j + 1], whole, tolerance, bar_radius)
+            if level:
+                # a ring at one height: the same tool nearer the C axis at the same angle contains it
+                reach = np.hypot(run[:, 0], run[:, 1])
+                turned = abs(np.unwrap(np.arctan2(run[:, 1], run[:, 0]))[-1] - math.atan2(run[0, 1], run[0, 0]))
+                repeats.add((chain.tool, round(float(run[0, 2]), 6)), reach.min(), reach.max(),
+                            turned >= 2 * math.pi - 1e-9, make)
+            else:
+                pieces += make()
+        elif level:
+            # a pocket with vertical walls repeats its path at every depth: the same tool lower
+            # down contains it
+            repeats.add((chain.tool, np.round(run[:, :2], 6).tobytes()), run[:, 2].min(), run[:, 2].max(), True,
+                        lambda run=run: _axial_run(chain, run, whole, height, tolerance, bounds, floors))
         else:
-            key = (chain.tool, np.round(run[:, :2], 6).tobytes())
-            if key not in lowest or lowest[key][1] > run[0, 2]:
-                made = _axial_run(chain, run, whole, height, tolerance, bounds, floors)
-                lowest[key] = (made, run[0, 2])
+            pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors)
     # the moves between runs
     starts = [0] + [j for _, j in runs]
     ends = [i for i, _ in runs] + [len(p) - 1]
@@ -506,6 +515,36 @@ def _tube_mesh(rings: np.ndarray) -> Manifold:
         return Manifold.batch_boolean([Manifold.hull_points(np.vstack([rings[i], rings[i + 1]]))
                                        for i in range(m - 1)], OpType.Add)
     return tube
+
+
+class _Repeats:
+    """Level runs grouped by what they repeat; a run is left out when another run in its group
+    covers its whole path deeper down.
+
+    Each tool grows no narrower from its tip to its shank and its shank reaches out of the
+    stock, so the tool contains itself moved away from its tip along its axis: an upright tool
+    lower on the same vertical line, a radial tool nearer the C axis on the same ray.  Groups
+    are an upright tool along one path (depth: the height) and a radial tool at one height
+    (depth: the reach from the C axis; only a full turn about C covers every angle)."""
+
+    def __init__(self):
+        self.groups = {}
+
+    def add(self, key, low: float, high: float, covers: bool, make) -> None:
+        """A run whose depth measure (height or reach; lower is deeper) spans low..high, with
+        ``make()`` returning its pieces."""
+        self.groups.setdefault(key, []).append((float(low), float(high), covers, make))
+
+    def kept(self) -> list:
+        """The pieces of every run that no other run in its group covers from deeper down (of
+        runs at exactly the same depth, the first)."""
+        made = []
+        for runs in self.groups.values():
+            for n, (low, _, _, make) in enumerate(runs):
+                if not any(covers and (high < low or (high == low and m < n))
+                           for m, (_, high, covers, _) in enumerate(runs) if m != n):
+                    made.append(make())
+        return made
 
 
 class _Floors:
