@@ -187,12 +187,19 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats) -> list:
         height = top + 1.0 - float(p[:, 2].min())           # the shank reaches above the stock from any depth
         runs = _gentle_runs(p, _max_slope(chain.tool, tolerance / 4))
     whole = tool_points(chain.tool, tolerance, height)
+    # the moves between runs, cut as hulls; where there are some, they hold the whole tool at the
+    # run's end, and the run need not close that end itself
+    starts = [0] + [j for _, j in runs]
+    ends = [i for i, _ in runs] + [len(p) - 1]
+    between = [j > i for i, j in zip(starts, ends)]
     pieces = []
-    for i, j in runs:
+    for k, (i, j) in enumerate(runs):
         run = p[i:j + 1]
         level = np.ptp(run[:, 2]) <= LEVEL
+        closed = (between[k], between[k + 1])
         if chain.radial:
-            make = lambda run=run, i=i, j=j: _radial_run(chain.tool, run, axes[i:j + 1], whole, tolerance, bar_radius)
+            make = lambda run=run, i=i, j=j, closed=closed: _radial_run(chain.tool, run, axes[i:j + 1], whole,
+                                                                        tolerance, bar_radius, closed)
             if level:
                 # a ring at one height: the same tool nearer the C axis at the same angle contains it
                 reach = np.hypot(run[:, 0], run[:, 1])
@@ -205,12 +212,10 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats) -> list:
             # a pocket with vertical walls repeats its path at every depth: the same tool lower
             # down contains it
             repeats.add((chain.tool, np.round(run[:, :2], 6).tobytes()), run[:, 2].min(), run[:, 2].max(), True,
-                        lambda run=run: _axial_run(chain, run, whole, height, tolerance, bounds, floors))
+                        lambda run=run, closed=closed: _axial_run(chain, run, whole, height, tolerance, bounds,
+                                                                  floors, closed))
         else:
-            pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors)
-    # the moves between runs
-    starts = [0] + [j for _, j in runs]
-    ends = [i for i, _ in runs] + [len(p) - 1]
+            pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors, closed)
     for i, j in zip(starts, ends):
         if j > i:
             pieces += _hull_pieces(chain, p[i:j + 1], None if axes is None else axes[i:j + 1], whole, height,
@@ -276,12 +281,14 @@ def _hull_pieces(chain, p, axes, whole, height, tolerance, bounds) -> list:
     return pieces
 
 
-def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance: float, bounds, floors) -> list:
+def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance: float, bounds, floors,
+               closed: tuple = (False, False)) -> list:
     """path (+) tool for an upright tool along a gentle run: the tool's section through its axis
     (end and shank, up to above the stock) carried along the path as tubes, upright and across
     the path, with wedges of the tool at sharp corners and at both ends; stretches that deeper
     level runs have already cleared (see :class:`_Floors`) are left out.  A run too jagged for
-    tubes (see :func:`_tube_pieces`) is cut as hulls."""
+    tubes (see :func:`_tube_pieces`) is cut as hulls.  ``closed``: whether other pieces already
+    hold the whole tool at the run's first and last point."""
     x0, y0, _, x1, y1, top = bounds
     tool = chain.tool
     r = tool.radius
@@ -292,17 +299,18 @@ def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance
     section = _section(tool_rings(tool, 2 * facets, inset), r - inset, top + 1.0 - lo[2])
     pieces = []
     for a, b in floors.needed(p, r):
-        tubes = _tube_pieces(p[a:b + 1], section, tolerance)
+        tubes = _tube_pieces(p[a:b + 1], section, tolerance, (closed[0] and a == 0, closed[1] and b == len(p) - 1))
         pieces += _hull_pieces(chain, p[a:b + 1], None, whole, height, tolerance, bounds) if tubes is None else tubes
     return pieces
 
 
 def _radial_run(tool: Tool, p: np.ndarray, axes: np.ndarray, whole: np.ndarray, tolerance: float,
-                bar_radius: float) -> list:
+                bar_radius: float, closed: tuple = (False, False)) -> list:
     """A radial ball along a gentle run: the ball's inner half great circle across the
     move and the shank's top and bottom lines out beyond the bar (together the curve where the
     tool touches its sweep) carried along the path as tubes, with the whole tool at both ends of
-    each stretch that turns one way about C."""
+    each stretch that turns one way about C (except the run's first or last point where ``closed``
+    says other pieces hold it)."""
     r = tool.radius
     centres = np.column_stack([p[:, :2] + r * axes, p[:, 2]])
     reach = np.hypot(centres[:, 0], centres[:, 1])
@@ -323,7 +331,7 @@ def _radial_run(tool: Tool, p: np.ndarray, axes: np.ndarray, whole: np.ndarray, 
         stretch = keep[a:b + 1]
         pieces.append(lambda stretch=stretch: _tube_mesh(_radial_rings(centres[stretch], axes[stretch], ball,
                                                                        inner, length)))
-    for k in ends:
+    for k in ends[1 if closed[0] else 0:-1 if closed[1] else None]:
         i = keep[k]
         pieces.append(lambda i=i: Manifold.hull_points(placed(whole, p[i:i + 1], axes[i:i + 1])))
     return pieces
@@ -407,11 +415,11 @@ def _stretches(path: np.ndarray, half_width: float, max_turn: float) -> list:
     return breaks
 
 
-def _tube_pieces(path: np.ndarray, section: np.ndarray, tolerance: float) -> list:
+def _tube_pieces(path: np.ndarray, section: np.ndarray, tolerance: float, closed: tuple = (False, False)) -> list:
     """Tubes of ``section`` (s across the path, h up) along the gentle 3-D polyline, and at every
     break (see :func:`_stretches`) and at both ends the section's outer half turned about the
     vertical axis through the vertex over the angle the tubes leave open (a wedge of the tool;
-    half of it at the ends).
+    half of it at the ends, unless ``closed`` says other pieces hold the whole tool there).
 
     Every piece lies inside the true sweep.  The polyline is first thinned to the vertices it
     needs to stay within the section's inset (an eighth of the tolerance) of every point, so the
@@ -447,6 +455,8 @@ def _tube_pieces(path: np.ndarray, section: np.ndarray, tolerance: float) -> lis
     segments = _polygon_sides(half_width, tolerance / 4)
     last = len(path) - 1
     for k, i in enumerate(breaks):
+        if (i == 0 and closed[0]) or (i == last and closed[1]):
+            continue
         if i == 0:
             start, sweep = heading[0] + math.pi / 2, math.pi
         elif i == last:
