@@ -182,3 +182,43 @@ def test_a_slot_repeated_at_every_depth_is_cut_once_at_the_bottom():
     expected = (20 * 6 + math.pi * 36 / 4) * 3
     assert result.removed_volume_mm3 == pytest.approx(expected, rel=0.01)
     assert result.removed_volume_mm3 <= expected * 1.001
+
+
+def test_pocket_layers_on_the_side_of_a_bar_leave_out_the_ones_a_deeper_layer_covers():
+    # a radial ball cutting a flat-floored pocket into the side of a bar: straight chords at
+    # x = 22 (y +-8), 21 (y +-6) and 20 (y +-7), all at z = -15.  The chord at 20 lies nearer the
+    # C axis than the one at 21 along every ray the latter crosses; the chord at 22 reaches
+    # further round than the one at 20 and is kept.  Volumes: the radius map, an independent engine.
+    from kezuri.toolpath import turnmill
+    from kezuri.toolpath.program import RAPID
+
+    def chord(x, half_width, n=40):
+        y = np.linspace(-half_width, half_width, n + 1)
+        return np.column_stack([np.full(n + 1, x), y, np.full(n + 1, -15.0)])
+
+    chords = [chord(22.0, 8.0), chord(21.0, 6.0), chord(20.0, 7.0)]
+    repeats = sweep._Repeats()
+    stock = sim._stock_solid(sim.CylinderStock(radius=25.0, height=30), 0.05)
+    for tips in chords:
+        assert sweep._chain_pieces(chain(BALL6, tips, radial=True), 0.05, stock.bounding_box(),
+                                   sweep._Floors([], 0.05), repeats) == []
+    assert len(repeats.kept()) == 2
+
+    def radial_op(tips, name):
+        # in at the first point, along the chord, out: (X, Z, C) machine moves of a radial ball
+        reach, angle = np.hypot(tips[:, 0], tips[:, 1]), np.degrees(np.arctan2(tips[:, 1], tips[:, 0]))
+        x = np.concatenate([reach, [30.0]])
+        c = np.concatenate([angle, angle[-1:]])
+        kind = np.full(len(x), FEED)
+        kind[-1] = RAPID
+        xyz = np.column_stack([x, np.zeros(len(x)), np.full(len(x), -15.0)])
+        return turnmill.TurnMillOperation(name, BALL6, 3000.0, kind, xyz, np.where(kind == RAPID, np.nan, 300.0),
+                                          rotary={"c": c}, clearance_z=5.0, safe_z=5.0,
+                                          start=np.array([30.0, 0.0, -15.0]), direction="radial")
+
+    ops = [radial_op(tips, f"layer {k}") for k, tips in enumerate(chords)]
+    bar = turnmill.Stock(25.0, -30.0, 0.0)
+    field, exact = (sim.simulate(ops, bar, engine=engine, cell=0.05, tolerance=0.02)
+                    for engine in ("heightfield", "manifold"))
+    assert field.engine == "radiusmap"
+    assert exact.removed_volume_mm3 == pytest.approx(field.removed_volume_mm3, rel=0.01)
