@@ -109,6 +109,37 @@ def test_a_staircase_of_short_moves_is_cut_as_hulls():
     assert exact.removed_volume_mm3 == pytest.approx(field.removed_volume_mm3, rel=0.01)
 
 
+def surface_samples(solid, per_triangle=3, seed=1):
+    """Random points on every triangle of the solid (and its vertices)."""
+    mesh = solid.to_mesh()
+    v = np.asarray(mesh.vert_properties, float)[:, :3]
+    t = v[np.asarray(mesh.tri_verts)]
+    w = np.random.default_rng(seed).dirichlet(np.ones(3), size=(len(t), per_triangle))
+    return np.vstack([v, np.einsum("tsk,tkd->tsd", w, t).reshape(-1, 3)])
+
+
+def test_a_level_staircase_on_a_grid_is_cut_along_its_rows():
+    # eight diagonal stairs of 0.5 mm cells side by side, walked up and down (as the turn-mill
+    # axial grid passes step): the rows across the stairs become one hull each, and every piece
+    # still lies inside the exact sweep and fills it
+    points = []
+    for k in range(8):
+        stair = [(0.5 * (k + m + s), 0.5 * m) for m in range(12) for s in (0, 1)]
+        points += stair[::-1] if k % 2 else stair
+    tips = np.array([(x - 6.0, y - 3.0, -1.0) for x, y in points])
+    pieces = pieces_of(BALL6, tips, tolerance=0.05)
+    assert len(pieces) < (len(tips) - 1) / 3
+    for piece in pieces:
+        assert depth_outside_ball_sweep(surface_samples(piece), tips, 3.0).max() < 1e-6
+    stock = sim._stock_solid(sim.as_stock(BOX), 0.05)
+    removed = stock.volume() - (stock - Manifold.batch_boolean(pieces, OpType.Add)).volume()
+    # a cut 1 mm deep is mostly surface: bound it between the height fields of the true ball and
+    # of the ball shrunk by the tolerance (its sweep is the true sweep shrunk by the tolerance)
+    field = sim.simulate(level_op(BALL6, tips), BOX, cell=0.05)
+    shrunk = sim.simulate(level_op(Tool(2, "ball", 6.0 - 2 * 0.05), tips + [0, 0, 0.05]), BOX, cell=0.05)
+    assert shrunk.removed_volume_mm3 < removed <= field.removed_volume_mm3 * 1.002
+
+
 def test_a_gentle_ramp_is_one_run_of_tubes_and_matches_the_height_field():
     # a ball spiralling down 1 mm per turn (about 0.6 degrees): within the slope allowance
     turns = np.linspace(0, 2, 801)

@@ -47,8 +47,10 @@ MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is s
 MAX_STRETCH_TURN = math.pi / 3   # a tube turns at most this much in all (it cannot fold back onto itself)
 WEDGE_OVERLAP = math.radians(5.0)  # a wedge of the tool at a corner reaches this far over the tubes
 MAX_RADIAL_TILT = math.radians(60.0)  # a radial tool's run moves at most this far from across its axis
+MAX_RADIAL_SLOPE = math.radians(45.0)  # ... and climbs or falls along the bar at most this steeply
 MAX_SHARP_SHARE = 0.25           # runs that break at more than this share of their vertices are cut as hulls
 _PULL_BACK = 1e-3                # mm: a tube's square end stops this short of its vertex, a wedge's floor this high
+ROW_STRAIGHTNESS = 0.02          # of the tolerance: how far the vertices of one row may stray from its line
 LEVEL = 1e-6                     # mm: a run whose height varies less than this is level (posts round to 1e-4)
 
 
@@ -181,7 +183,7 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats) -> list:
         reach = np.hypot(p[:, 0], p[:, 1])
         axes = p[:, :2] / np.maximum(reach, 1e-12)[:, None]
         height = bar_radius + 1.0 - float(reach.min())      # the shank reaches out of the bar from any depth
-        runs = _radial_runs(p, axes, _max_slope(chain.tool, tolerance / 4)) if chain.tool.kind == "ball" else []
+        runs = _radial_runs(p, axes) if chain.tool.kind == "ball" else []
     else:
         axes = None
         height = top + 1.0 - float(p[:, 2].min())           # the shank reaches above the stock from any depth
@@ -285,8 +287,9 @@ def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance
     (end and shank, up to above the stock) carried along the path as tubes, upright and across
     the path, with wedges of the tool at sharp corners and at both ends; stretches that deeper
     level runs have already cleared (see :class:`_Floors`) are left out.  A run too jagged for
-    tubes (see :func:`_tube_pieces`) is cut as hulls.  ``closed``: whether other pieces already
-    hold the whole tool at the run's first and last point."""
+    tubes (see :func:`_tube_pieces`) is cut as hulls, or if it is a level staircase of a ball or
+    flat end mill, as rows of tool places (see :func:`_level_staircase`).  ``closed``: whether
+    other pieces already hold the whole tool at the run's first and last point."""
     x0, y0, _, x1, y1, top = bounds
     tool = chain.tool
     r = tool.radius
@@ -298,17 +301,82 @@ def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance
     pieces = []
     for a, b in floors.needed(p, r):
         tubes = _tube_pieces(p[a:b + 1], section, tolerance, (closed[0] and a == 0, closed[1] and b == len(p) - 1))
-        pieces += _hull_pieces(chain, p[a:b + 1], None, whole, height, tolerance, bounds) if tubes is None else tubes
+        if tubes is not None:
+            pieces += tubes
+        elif tool.kind in ("ball", "flat") and np.ptp(p[a:b + 1, 2]) <= LEVEL:
+            pieces += _level_staircase(chain, p[a:b + 1], whole, height, tolerance, bounds)
+        else:
+            pieces += _hull_pieces(chain, p[a:b + 1], None, whole, height, tolerance, bounds)
+    return pieces
+
+
+def _level_staircase(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance: float, bounds) -> list:
+    """A level run of a ball or flat end mill that steps along a grid (as the turn-mill axial
+    passes do), cut along the grid's rows rather than along its moves.
+
+    Two places of a ball or flat end mill a gap g apart hold between them the tool shrunk by
+    its dip r - sqrt(r^2 - g^2 / 4) anywhere on the line joining them, so:
+
+    * the vertices are sorted into rows along the grid (straight within ROW_STRAIGHTNESS of the
+      tolerance), and each stretch of at least three vertices without a wider gap is one hull
+      of the tool shrunk by a quarter of the tolerance at its two ends (the dip and the
+      straightness within that quarter; facets the other half);
+    * a short move (its dip at most a quarter of the tolerance) between two vertices held by
+      such stretches adds too little to the tool at its ends to be cut on its own;
+    * every other move is cut as elsewhere (see :func:`_hull_pieces`).
+    """
+    x0, y0, _, x1, y1, top = bounds
+    r = chain.tool.radius
+
+    def span(dip):
+        """The widest gap between two tool places that dips no more than ``dip`` between them."""
+        return 2.0 * math.sqrt(max(2.0 * r * dip - dip * dip, 0.0))
+
+    d = np.diff(p[:, :2], axis=0)
+    length = np.linalg.norm(d, axis=1)
+    # the grid's direction: the commonest direction of travel (by length) modulo a quarter turn
+    angle = np.degrees(np.arctan2(d[:, 1], d[:, 0])) % 90.0
+    counts, edges = np.histogram(angle, bins=180, range=(0.0, 90.0), weights=length)
+    peak = edges[np.argmax(counts)]
+    heading = math.radians(float(np.median(angle[np.abs((angle - peak + 45.0) % 90.0 - 45.0) <= 0.5])))
+    along = p[:, :2] @ [math.cos(heading), math.sin(heading)]
+    across = p[:, :2] @ [-math.sin(heading), math.cos(heading)]
+    straightness = tolerance * ROW_STRAIGHTNESS
+    gap = span(tolerance / 4 - 2 * straightness)
+    shrunk = tool_points(chain.tool, tolerance / 2, height, inset=tolerance / 4)
+    held = np.zeros(len(p), bool)
+    pieces = []
+    order = np.argsort(across, kind="stable")
+    rows = [0] + [k for k in range(1, len(order)) if across[order[k]] - across[order[k - 1]] > straightness]
+    rows = [order[a:b] for a, b in zip(rows, rows[1:] + [len(order)])]
+    for row in rows:
+        if len(row) < 3 or np.ptp(across[row]) > 2 * straightness:
+            continue
+        row = row[np.argsort(along[row], kind="stable")]
+        for stretch in np.split(row, np.flatnonzero(np.diff(along[row]) > gap) + 1):
+            if len(np.unique(np.round(along[stretch], 9))) < 3:
+                continue
+            held[stretch] = True
+            ends = p[[stretch[0], stretch[-1]]]
+            lo, hi = ends.min(axis=0), ends.max(axis=0)
+            if lo[2] < top and hi[0] + r > x0 and lo[0] - r < x1 and hi[1] + r > y0 and lo[1] - r < y1:
+                pieces.append(lambda ends=ends: Manifold.hull_points(placed(shrunk, ends, None)))
+    cut = ~(held[:-1] & held[1:] & (length <= span(tolerance / 4)))
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], cut.astype(np.int8), [0]])))
+    for i, j in zip(edges[::2], edges[1::2]):
+        pieces += _hull_pieces(chain, p[i:j + 1], None, whole, height, tolerance, bounds)
     return pieces
 
 
 def _radial_run(tool: Tool, p: np.ndarray, axes: np.ndarray, whole: np.ndarray, tolerance: float,
                 bar_radius: float, closed: tuple = (False, False)) -> list:
-    """A radial ball along a gentle run: the ball's inner half great circle across the
-    move and the shank's top and bottom lines out beyond the bar (together the curve where the
-    tool touches its sweep) carried along the path as tubes, with the whole tool at both ends of
-    each stretch that turns one way about C (except the run's first or last point where ``closed``
-    says other pieces hold it)."""
+    """A radial ball along a run across its axis: the tip-side half of the ball's great circle
+    square to the move and the shank's lines out beyond the bar (together the curve where the
+    tool touches its sweep, see :func:`_radial_rings`) carried along the path as tubes, with the
+    whole tool at both ends of each stretch (except the run's first or last point where
+    ``closed`` says other pieces hold it).  A stretch turns one way about C, so the long shank
+    lines cannot fold, and bends across the bar (seen unrolled: round C against along Z) only as
+    gently as an upright tool's tube bends (see :func:`_stretches`)."""
     r = tool.radius
     centres = np.column_stack([p[:, :2] + r * axes, p[:, 2]])
     reach = np.hypot(centres[:, 0], centres[:, 1])
@@ -323,7 +391,10 @@ def _radial_run(tool: Tool, p: np.ndarray, axes: np.ndarray, whole: np.ndarray, 
     keep = np.asarray(straight_runs(np.column_stack([centres, centres[:, :2] + length * axes]),
                                     min(tolerance / 8, r / 4)))
     turn = np.sign(centres[keep[:-1], 0] * centres[keep[1:], 1] - centres[keep[:-1], 1] * centres[keep[1:], 0])
-    ends = [0] + [k for k in range(1, len(keep) - 1) if turn[k - 1] != turn[k]] + [len(keep) - 1]
+    reversals = [k for k in range(1, len(keep) - 1) if turn[k - 1] != turn[k]]
+    unrolled = np.column_stack([np.unwrap(np.arctan2(centres[keep, 1], centres[keep, 0])) * reach[keep].mean(),
+                                centres[keep, 2]])
+    ends = sorted(set(reversals) | set(_stretches(unrolled, ball, _max_turn(ball, tolerance / 4))))
     pieces = []
     for a, b in zip(ends[:-1], ends[1:]):
         stretch = keep[a:b + 1]
@@ -336,32 +407,34 @@ def _radial_run(tool: Tool, p: np.ndarray, axes: np.ndarray, whole: np.ndarray, 
 
 
 def _radial_rings(centres: np.ndarray, axes: np.ndarray, ball: float, inner: np.ndarray, length: float) -> np.ndarray:
-    """(m, k, 3) rings of a radial ball's tube: at each centre, the inner half of the great circle
-    across the (horizontal) direction of travel, then the shank's bottom and top lines out to
-    ``length`` along the tool axis."""
-    d = np.diff(centres[:, :2], axis=0)
+    """(m, k, 3) rings of a radial ball's tube: at each centre, the tip-side half of the great
+    circle square to the direction of travel, then the shank's two lines out to ``length`` along
+    the tool axis from where that circle meets the shank's side.  A ball moving in a straight
+    line touches its sweep along that great circle; the shank (a cylinder about the tool axis)
+    along the two lines on it square to both the axis and the travel."""
+    d = np.diff(centres, axis=0)
     t = d / np.linalg.norm(d, axis=1)[:, None]
     travel = np.vstack([t[:1], t[:-1] + t[1:], t[-1:]])
-    across = np.column_stack([-travel[:, 1], travel[:, 0]])
-    across /= np.linalg.norm(across, axis=1)[:, None]
-    across *= np.sign(np.einsum("ij,ij->i", across, axes))[:, None]      # pointing outwards
-    up = np.array([0.0, 0.0, 1.0])
-    horizontal = np.column_stack([across, np.zeros(len(across))])
-    circle = (np.cos(inner)[None, :, None] * horizontal[:, None, :] + np.sin(inner)[None, :, None] * up) * ball
-    axis = np.column_stack([axes, np.zeros(len(axes))])[:, None, :] * length
-    shank = np.concatenate([axis - ball * up, axis + ball * up], axis=1)
-    return centres[:, None, :] + np.concatenate([circle, shank], axis=1)
+    travel /= np.linalg.norm(travel, axis=1)[:, None]
+    axis = np.column_stack([axes, np.zeros(len(axes))])
+    outward = axis - np.einsum("ij,ij->i", axis, travel)[:, None] * travel      # the axis, square to the travel
+    outward /= np.linalg.norm(outward, axis=1)[:, None]
+    side = np.cross(travel, axis)
+    side /= (np.linalg.norm(side, axis=1) * np.sign(side[:, 2]))[:, None]       # upwards (runs are never steep)
+    circle = (np.cos(inner)[None, :, None] * outward[:, None, :] + np.sin(inner)[None, :, None] * side[:, None, :])
+    shank = np.stack([axis * length - ball * side, axis * length + ball * side], axis=1)
+    return centres[:, None, :] + np.concatenate([circle * ball, shank], axis=1)
 
 
-def _radial_runs(p: np.ndarray, axes: np.ndarray, max_slope: float) -> list:
+def _radial_runs(p: np.ndarray, axes: np.ndarray) -> list:
     """(first, last) point indices of the runs of at least MIN_RUN_MOVES moves of a radial tool
-    that travel across its axis (within MAX_RADIAL_TILT of tangential) and climb or fall no
-    steeper than ``max_slope`` (the ball's great circle then stands upright within its allowance)."""
+    that travel across its axis: within MAX_RADIAL_TILT of square to it round C, and no steeper
+    than MAX_RADIAL_SLOPE along the bar (steeper moves, like the steps between rows, are hulls)."""
     d = np.diff(p, axis=0)
     across = np.hypot(d[:, 0], d[:, 1])
     middle = axes[:-1] + axes[1:]
     radial = np.abs(np.einsum("ij,ij->i", d[:, :2], middle)) / np.maximum(np.linalg.norm(middle, axis=1), 1e-12)
-    gentle = ((across > 1e-6) & (np.abs(d[:, 2]) <= np.maximum(across * math.tan(max_slope), 1e-9))
+    gentle = ((across > 1e-6) & (np.abs(d[:, 2]) <= across * math.tan(MAX_RADIAL_SLOPE))
               & (radial <= across * math.sin(MAX_RADIAL_TILT)))
     edges = np.flatnonzero(np.diff(np.concatenate([[0], gentle.astype(np.int8), [0]])))
     return [(int(i), int(j)) for i, j in zip(edges[::2], edges[1::2]) if j - i >= MIN_RUN_MOVES]
