@@ -15,17 +15,22 @@ along runs wherever the geometry allows, instead of one hull per move:
   at a sharp corner, after 60 degrees of turning and at both ends it stops square to its move
   and a wedge of the tool (the section's outer half turned about the tool axis over the open
   angle) fills the corner.
-* A *run of a radial ball* (turn-mill: the axis runs from the C axis through the tip): gentle
-  moves that travel across the axis rather than along it.  Its tube carries the inner half of the
-  ball's great circle across the move and the shank's top and bottom lines out beyond the bar;
-  these stand in planes through the C axis, so the tube cannot fold while the path turns one
-  way about C.  The whole tool closes each stretch.
-* Everything else (plunges, steep ramps, staircases of short moves): the hull of the tool at
-  both ends of a move; a nearly straight run of moves is one hull of a slightly shrunk tool.
+* A *run of a radial ball* (turn-mill: the axis runs from the C axis through the tip): moves
+  that travel across the axis rather than along it, level or ramping along the bar.  Its tube
+  carries the tip-side half of the ball's great circle square to the move and the shank's two
+  lines out beyond the bar.  A stretch turns one way about C (so the long shank lines cannot
+  fold) and bends across the bar only gently; the whole tool closes each stretch.
+* A *level staircase* of a ball or flat end mill on a grid (turn-mill axial passes): the tool
+  at its vertices, one hull per stretch of a grid row (see :func:`_level_staircase`).
+* Everything else (plunges, steep ramps, other staircases of short moves): the hull of the tool
+  at both ends of a move; a nearly straight run of moves is one hull of a slightly shrunk tool.
+  Where a run ends next to such hulls, they close it.
 
-Two kinds of run add nothing and are left out: a level run repeated lower down along the same
-path (a pocket with vertical walls), and any stretch lying wholly over ground that deeper level
-runs have cleared to the top (see :class:`_Floors`).
+Runs that add nothing are left out: a level run that another run along the same path covers
+from deeper down (an upright tool lower on the same vertical lines: the layers of a pocket with
+vertical walls; a radial tool nearer the C axis on the same rays: roughing rings and pocket
+layers on the side of a bar; see :class:`_Repeats`), and any stretch lying wholly over ground
+that deeper level runs have cleared to the top (see :class:`_Floors`).
 
 Budget of a tube (all material left): the section's facets a quarter of the tolerance, the
 joints a quarter (at a vertex turning by d the section stands full size across the bisector, so
