@@ -105,9 +105,7 @@ def simulation_request(scene, workflow: str, engine: str = "heightfield", cell: 
     if engine == "manifold":
         program, stock, extra, frame, name = setup(plan(None))
         return CoreCall("toolpath.simulate", "simulate",
-                        # chunks of 250 swept moves: progress every few seconds, and no slower in all
-                        dict(program_or_operations=program, stock=stock, engine=engine, cell=cell, chunk=250,
-                             **extra),
+                        dict(program_or_operations=program, stock=stock, engine=engine, cell=cell, **extra),
                         then=lambda result: SimulationJob(result, frame, name))
 
     def compute(progress=None) -> SimulationJob:

@@ -716,7 +716,7 @@ MESSAGE_TEMPLATES = {
     'kernel must be one of {}, got {}': 'カーネルは {0} のいずれかにしてください（指定値 {1}）',
     'the numba kernel is not available: {}': 'numba カーネルは使えません：{0}',
     'engine must be one of {}, got {}': 'エンジンは {0} のいずれかにしてください（指定値 {1}）',
-    'chunk must be a positive number of moves, got {}': 'チャンクは正の移動数にしてください（指定値 {0}）',
+    'chunk must be a positive number of triangles, got {}': 'チャンクは正の三角形数にしてください（指定値 {0}）',
     'stock box needs six finite numbers, got {}': '素材の直方体には有限の数値6つが必要です（指定値 {0}）',
     'stock box ({}, {}, {})..({}, {}, {}) encloses no volume: every max must be above its min':
         '素材の直方体 ({0}, {1}, {2})..({3}, {4}, {5}) に体積がありません。最大値はすべて最小値より大きくしてください',

@@ -140,6 +140,46 @@ def test_a_level_staircase_on_a_grid_is_cut_along_its_rows():
     assert shrunk.removed_volume_mm3 < removed <= field.removed_volume_mm3 * 1.002
 
 
+def grid_pocket_with_wall_arcs(overshoot, radius=4.5, cell=0.5, z=-1.0):
+    """Level tips of a grid pocket in a circle (rows 0.5 mm apart, walked back and forth) that
+    follows the wall between rows, as the turn-mill axial passes do: out to the wall, along it
+    ``overshoot`` radians past the next row, back, and in to the next row."""
+    tips = []
+    previous = None
+    for k, y in enumerate(np.arange(-8, 9) * cell):
+        end = math.floor(math.sqrt(radius ** 2 - y ** 2) / cell) * cell
+        xs = np.arange(-end, end + cell / 2, cell)[::(-1) ** k]
+        start = math.atan2(y, xs[0])
+        if previous is not None:
+            ahead = np.sign(y) * (1 if math.cos(start) > 0 else -1)     # round the wall, away from the rows
+            far = start + ahead * overshoot
+            out = np.linspace(previous, far, max(2, int(abs(far - previous) / 0.02)))
+            back = np.linspace(far, start, max(2, int(abs(far - start) / 0.02)))[1:]
+            tips += [(radius * math.cos(a), radius * math.sin(a)) for a in np.concatenate([out, back])]
+        tips += [(x, y) for x in xs]
+        previous = math.atan2(y, xs[-1])
+    tips = np.array([(x, y, z) for x, y in tips])
+    return tips[np.concatenate([[True], np.any(np.abs(np.diff(tips, axis=0)) > 1e-9, axis=1)])]
+
+
+def test_a_staircase_that_runs_back_along_its_wall_cuts_the_wall_once():
+    # the same pocket with the wall arcs walked out and back: the way back lies on ground the
+    # way out holds, so it adds almost no pieces; the pieces stay inside the exact sweep and fill
+    # it to within the tolerance
+    direct, doubled = grid_pocket_with_wall_arcs(0.0), grid_pocket_with_wall_arcs(0.3)
+    pieces = pieces_of(BALL6, doubled, tolerance=0.05)
+    extra_pieces = len(pieces) - len(pieces_of(BALL6, direct, tolerance=0.05))
+    assert extra_pieces < (len(doubled) - len(direct)) / 10      # 300 more moves
+    swept = Manifold.batch_boolean(pieces, OpType.Add)
+    samples = surface_samples(swept, per_triangle=1)
+    assert depth_outside_ball_sweep(samples[samples[:, 2] < BOX[5]], doubled, 3.0).max() < 1e-6   # in the stock
+    stock = sim._stock_solid(sim.as_stock(BOX), 0.05)
+    removed = stock.volume() - (stock - swept).volume()
+    field = sim.simulate(level_op(BALL6, doubled), BOX, cell=0.05)
+    shrunk = sim.simulate(level_op(Tool(2, "ball", 6.0 - 2 * 0.05), doubled + [0, 0, 0.05]), BOX, cell=0.05)
+    assert shrunk.removed_volume_mm3 < removed <= field.removed_volume_mm3 * 1.002
+
+
 def test_a_gentle_ramp_is_one_run_of_tubes_and_matches_the_height_field():
     # a ball spiralling down 1 mm per turn (about 0.6 degrees): within the slope allowance
     turns = np.linspace(0, 2, 801)

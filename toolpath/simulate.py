@@ -1365,7 +1365,8 @@ def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStoc
 
 def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell: float = 0.1,
              tolerance: float = 0.03, design=None, keep_regions=None, travel: dict | None = None,
-             no_plunge_tools=(), progress=None, chunk: int = 1000, kernel: str = "auto") -> SimulationResult:
+             no_plunge_tools=(), progress=None, chunk: int = sweep.CHUNK_TRIANGLES,
+             kernel: str = "auto") -> SimulationResult:
     """Cut the stock with the program and check it.
 
     ``stock``: a BoxStock, a CylinderStock or (x0, y0, z0, x1, y1, z1).
@@ -1379,7 +1380,8 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     (loop, z_min) pairs.  ``travel``: {"x": (min, max), ...} machine limits (x, y, z, c).
     ``no_plunge_tools``: tool numbers that cannot feed straight down (see :func:`can_plunge`).
     ``progress(fraction)`` is called as work completes; returning False cancels
-    (:class:`SimulationCancelled`).
+    (:class:`SimulationCancelled`).  ``chunk``: for the manifold engine, how many triangles of
+    swept pieces are unioned before they are subtracted from the stock (each is a progress step).
     ``kernel``: how the height field is computed: "numba" (compiled, several times faster),
     "numpy", or "auto" (numba where it can be imported, see :data:`KERNELS`); both give the
     same heights.  The result's ``kernel`` says which ran.
@@ -1391,7 +1393,7 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
         if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
             raise SimulationError(f"{name} must be a positive number of mm, got {value!r}")
     if not (isinstance(chunk, int) and chunk > 0):
-        raise SimulationError(f"chunk must be a positive number of moves, got {chunk!r}")
+        raise SimulationError(f"chunk must be a positive number of triangles, got {chunk!r}")
     kernels = _compiled_kernels(kernel)
     stock = as_stock(stock)
     ops = _operations(program_or_operations)

@@ -56,6 +56,10 @@ MAX_RADIAL_SLOPE = math.radians(45.0)  # ... and climbs or falls along the bar a
 MAX_SHARP_SHARE = 0.25           # runs that break at more than this share of their vertices are cut as hulls
 _PULL_BACK = 1e-3                # mm: a tube's square end stops this short of its vertex, a wedge's floor this high
 ROW_STRAIGHTNESS = 0.02          # of the tolerance: how far the vertices of one row may stray from its line
+# triangles of pieces per union before it is subtracted: small enough that the union stays near
+# the stock (in a bar, every tool's shank reaches out of it, and far-reaching unions grow slow),
+# large enough that the solid is not rebuilt too often
+CHUNK_TRIANGLES = 25_000
 LEVEL = 1e-6                     # mm: a run whose height varies less than this is level (posts round to 1e-4)
 
 
@@ -150,13 +154,14 @@ def placed(tool: np.ndarray, run: np.ndarray, axes: np.ndarray | None) -> np.nda
     return (run[:, None, :] + turned).reshape(-1, 3)
 
 
-def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = 1000, progress=None) -> Manifold:
+def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = CHUNK_TRIANGLES, progress=None) -> Manifold:
     """The stock minus every chain's swept tool.
 
     ``chains``: objects with ``tool``, ``points`` (the tip path in part coordinates, (n, 3))
     and ``radial`` (the tool axis runs from the Z axis through the tip, as in radial turn-mill
-    work; otherwise it is +Z).  Pieces are unioned ``chunk`` at a time and subtracted;
-    ``progress(fraction)`` is called after each chunk (it may raise to cancel)."""
+    work; otherwise it is +Z).  Pieces are unioned in path order until they hold ``chunk``
+    triangles, and subtracted; ``progress(fraction)`` is called after each chunk (it may raise
+    to cancel)."""
     bounds = stock.bounding_box()
     floors = _Floors([chain for chain in chains if not chain.radial], tolerance)
     repeats = _Repeats()
@@ -168,12 +173,16 @@ def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = 1000, prog
     pieces += [lambda made=made: Manifold.batch_boolean([m() for m in made], OpType.Add)
                for made in repeats.kept() if made]
     solid = stock
-    for start in range(0, len(pieces), chunk):
-        swept = [make() for make in pieces[start:start + chunk]]
-        solid = solid - Manifold.batch_boolean(swept, OpType.Add)
-        solid.num_tri()                        # evaluate now: a natural progress point
-        if progress is not None:
-            progress(min(1.0, (start + chunk) / len(pieces)))
+    swept, size = [], 0
+    for done, make in enumerate(pieces, 1):
+        swept.append(make())
+        size += swept[-1].num_tri()
+        if size >= chunk or done == len(pieces):
+            solid = solid - Manifold.batch_boolean(swept, OpType.Add)
+            solid.num_tri()                    # evaluate now: a natural progress point
+            swept, size = [], 0
+            if progress is not None:
+                progress(done / len(pieces))
     return solid
 
 
@@ -309,26 +318,30 @@ def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance
         if tubes is not None:
             pieces += tubes
         elif tool.kind in ("ball", "flat") and np.ptp(p[a:b + 1, 2]) <= LEVEL:
-            pieces += _level_staircase(chain, p[a:b + 1], whole, height, tolerance, bounds)
+            pieces += _level_staircase(chain, p[a:b + 1], height, tolerance, bounds)
         else:
             pieces += _hull_pieces(chain, p[a:b + 1], None, whole, height, tolerance, bounds)
     return pieces
 
 
-def _level_staircase(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance: float, bounds) -> list:
+def _level_staircase(chain, p: np.ndarray, height: float, tolerance: float, bounds) -> list:
     """A level run of a ball or flat end mill that steps along a grid (as the turn-mill axial
     passes do), cut along the grid's rows rather than along its moves.
 
     Two places of a ball or flat end mill a gap g apart hold between them the tool shrunk by
-    its dip r - sqrt(r^2 - g^2 / 4) anywhere on the line joining them, so:
+    its dip r - sqrt(r^2 - g^2 / 4) anywhere on the line joining them.  Every piece here holds
+    the tool shrunk by three quarters of the tolerance at each point of its path (facets a half,
+    the rest a quarter), so:
 
     * the vertices are sorted into rows along the grid (straight within ROW_STRAIGHTNESS of the
       tolerance), and each stretch of at least three vertices without a wider gap is one hull
       of the tool shrunk by a quarter of the tolerance at its two ends (the dip and the
-      straightness within that quarter; facets the other half);
-    * a short move (its dip at most a quarter of the tolerance) between two vertices held by
-      such stretches adds too little to the tool at its ends to be cut on its own;
-    * every other move is cut as elsewhere (see :func:`_hull_pieces`).
+      straightness within that quarter);
+    * the other moves are taken in order: a short move between two vertices that lie near the
+      paths already held (its dip plus that distance at most a quarter of the tolerance) adds
+      too little to be cut on its own, as where a pass runs back over its own path along a
+      wall; every other move is cut as elsewhere (see :func:`_hull_pieces`), with the tighter
+      budget.
     """
     x0, y0, _, x1, y1, top = bounds
     r = chain.tool.radius
@@ -349,8 +362,7 @@ def _level_staircase(chain, p: np.ndarray, whole: np.ndarray, height: float, tol
     straightness = tolerance * ROW_STRAIGHTNESS
     gap = span(tolerance / 4 - 2 * straightness)
     shrunk = tool_points(chain.tool, tolerance / 2, height, inset=tolerance / 4)
-    held = np.zeros(len(p), bool)
-    pieces = []
+    pieces, held = [], []
     order = np.argsort(across, kind="stable")
     rows = [0] + [k for k in range(1, len(order)) if across[order[k]] - across[order[k - 1]] > straightness]
     rows = [order[a:b] for a, b in zip(rows, rows[1:] + [len(order)])]
@@ -361,16 +373,36 @@ def _level_staircase(chain, p: np.ndarray, whole: np.ndarray, height: float, tol
         for stretch in np.split(row, np.flatnonzero(np.diff(along[row]) > gap) + 1):
             if len(np.unique(np.round(along[stretch], 9))) < 3:
                 continue
-            held[stretch] = True
             ends = p[[stretch[0], stretch[-1]]]
+            held.append(ends[:, :2])
             lo, hi = ends.min(axis=0), ends.max(axis=0)
             if lo[2] < top and hi[0] + r > x0 and lo[0] - r < x1 and hi[1] + r > y0 and lo[1] - r < y1:
                 pieces.append(lambda ends=ends: Manifold.hull_points(placed(shrunk, ends, None)))
-    cut = ~(held[:-1] & held[1:] & (length <= span(tolerance / 4)))
+    near = np.full(len(p), np.inf)
+    if held:
+        held = np.asarray(held)
+        near = np.min([_distance_to_segment(p[:, :2], a, b) for a, b in held], axis=0)
+    allowance = tolerance / 4
+    held_radius = r - tolerance        # the pieces hold a tool at least this wide: its dip is deeper
+    dip = held_radius - np.sqrt(np.maximum(held_radius ** 2 - length * length / 4, 0.0))
+    cut = np.zeros(len(length), bool)
+    for k in range(len(length)):
+        if dip[k] + max(near[k], near[k + 1]) > allowance:
+            cut[k] = True
+            near = np.minimum(near, _distance_to_segment(p[:, :2], p[k, :2], p[k + 1, :2]))
     edges = np.flatnonzero(np.diff(np.concatenate([[0], cut.astype(np.int8), [0]])))
+    tight = 3 * tolerance / 4
+    whole = tool_points(chain.tool, tight, height)
     for i, j in zip(edges[::2], edges[1::2]):
-        pieces += _hull_pieces(chain, p[i:j + 1], None, whole, height, tolerance, bounds)
+        pieces += _hull_pieces(chain, p[i:j + 1], None, whole, height, tight, bounds)
     return pieces
+
+
+def _distance_to_segment(points: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Each 2-D point's distance from the segment a-b."""
+    d = b - a
+    t = np.clip((points - a) @ d / max(float(d @ d), 1e-300), 0.0, 1.0)
+    return np.hypot(*(points - a - t[:, None] * d).T)
 
 
 def _radial_run(tool: Tool, p: np.ndarray, axes: np.ndarray, whole: np.ndarray, tolerance: float,
