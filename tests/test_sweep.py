@@ -86,6 +86,31 @@ def test_every_piece_of_a_level_run_lies_inside_the_true_sweep():
     assert removed == pytest.approx(field.removed_volume_mm3, rel=0.01)
 
 
+@pytest.mark.parametrize("corners", [False, True])
+def test_a_level_path_with_bends_corners_and_a_reversal_is_within_the_tolerance_of_its_sweep(corners):
+    # a 5 mm circle in 1.2 mm chords (each vertex bends 14 degrees: on a level path the joints
+    # may take half the tolerance, so the tubes run through the bends); or twice round it, then a
+    # reversal, a square corner and a reversal: the pieces lie inside the exact sweep, and
+    # contain the sweep of the tool shrunk by the tolerance, point for point (no fin of stock is
+    # left standing where tubes meet)
+    tolerance = 0.05
+    if corners:
+        corner = [[5.0, -4.0, -2.0], [9.0, -4.0, -2.0], [6.0, -4.0, -2.0]]
+        tips = np.vstack([circle(5.0, -2.0, n=52, turns=2.0), corner])
+    else:
+        tips = circle(5.0, -2.0, n=26)
+    pieces = pieces_of(BALL6, tips, tolerance=tolerance)
+    assert len(pieces) <= (31 if corners else 16)    # tubes (breaking every 60 degrees), not hulls
+    swept = Manifold.batch_boolean(pieces, OpType.Add)
+    samples = surface_samples(swept)
+    assert depth_outside_ball_sweep(samples[samples[:, 2] < BOX[5]], tips, 3.0).max() < 1e-6
+    shrunk = sweep.tool_points(BALL6, 0.005, 5.0, inset=tolerance)
+    inner = Manifold.batch_boolean([Manifold.hull_points(sweep.placed(shrunk, tips[k:k + 2], None))
+                                    for k in range(len(tips) - 1)], OpType.Add)
+    stock = sim._stock_solid(sim.as_stock(BOX), tolerance)
+    assert ((inner ^ stock) - swept).volume() < 1e-6
+
+
 def test_a_layer_wholly_inside_a_deeper_ones_footprint_is_left_out():
     # flat 6 mm: three rings 6, 8, 10 at -5 clear the annulus 3..13 to the floor; a ring of 8 at -1
     # lies inside it, so it adds nothing

@@ -14,7 +14,7 @@ along runs wherever the geometry allows, instead of one hull per move:
   follows the path while it turns gently (the section stands on the bisector at each vertex);
   at a sharp corner, after 60 degrees of turning and at both ends it stops square to its move
   and a wedge of the tool (the section's outer half turned about the tool axis over the open
-  angle) fills the corner.
+  angle) fills the corner; at a reversal the whole tool does.
 * A *run of a radial ball* (turn-mill: the axis runs from the C axis through the tip): moves
   that travel across the axis rather than along it, level or ramping along the bar.  Its tube
   carries the tip-side half of the ball's great circle square to the move and the shank's two
@@ -36,7 +36,11 @@ Budget of a tube (all material left): the section's facets a quarter of the tole
 joints a quarter (at a vertex turning by d the section stands full size across the bisector, so
 the tube lies W (1/cos(d/2) - 1) inside the sweep on the inner side), the section shrunk by an
 eighth so the path can be thinned to within an eighth (a quarter in all), and on a slope the
-upright section up to a quarter.
+upright section up to a quarter (on a level path, that quarter goes to the joints too).
+
+Budget of a level staircase: facets a half, the tool shrunk by a quarter (for a row's dip and
+straightness, or a run of moves merged into one hull), and a quarter for each move it leaves
+out (its dip plus its distance from paths already held; see :func:`_level_staircase`).
 """
 from __future__ import annotations
 
@@ -54,7 +58,8 @@ WEDGE_OVERLAP = math.radians(5.0)  # a wedge of the tool at a corner reaches thi
 MAX_RADIAL_TILT = math.radians(60.0)  # a radial tool's run moves at most this far from across its axis
 MAX_RADIAL_SLOPE = math.radians(45.0)  # ... and climbs or falls along the bar at most this steeply
 MAX_SHARP_SHARE = 0.25           # runs that break at more than this share of their vertices are cut as hulls
-_PULL_BACK = 1e-3                # mm: a tube's square end stops this short of its vertex, a wedge's floor this high
+REVERSAL = math.radians(150.0)  # a corner turning more than this is a reversal (see :func:`_tube_pieces`)
+_PULL_BACK = 1e-3                # mm: a tube's square end stops this short of a reversal, a wedge's floor this high
 ROW_STRAIGHTNESS = 0.02          # of the tolerance: how far the vertices of one row may stray from its line
 # triangles of pieces per union before it is subtracted: small enough that the union stays near
 # the stock (in a bar, every tool's shank reaches out of it, and far-reaching unions grow slow),
@@ -531,7 +536,9 @@ def _tube_pieces(path: np.ndarray, section: np.ndarray, tolerance: float, closed
 
     Every piece lies inside the true sweep.  The polyline is first thinned to the vertices it
     needs to stay within the section's inset (an eighth of the tolerance) of every point, so the
-    tubes along it still do; joints take a quarter of the tolerance, facets another quarter.
+    tubes along it still do; joints take a quarter of the tolerance (a half on a level path,
+    which needs none for its slope), facets another quarter.  At a reversal (a turn over
+    REVERSAL) the whole tool stands at the vertex instead of a wedge.
 
     None when more than MAX_SHARP_SHARE of the vertices are breaks (a staircase of short
     moves): tubes one move long and a wedge at every corner, all overlapping, union slower than
@@ -539,23 +546,28 @@ def _tube_pieces(path: np.ndarray, section: np.ndarray, tolerance: float, closed
     half_width = float(np.max(np.abs(section[:, 0])))
     path = path[straight_runs(path, min(tolerance / 8, half_width / 4))]
     flat = path[:, :2]
-    breaks = _stretches(flat, half_width, _max_turn(half_width, tolerance / 4))
+    # the joints take a quarter of the tolerance, or on a level path also the quarter a slope would
+    joints = tolerance / 2 if np.ptp(path[:, 2]) <= LEVEL else tolerance / 4
+    breaks = _stretches(flat, half_width, _max_turn(half_width, joints))
     if len(breaks) - 2 > MAX_SHARP_SHARE * len(path):
         return None
     d = np.diff(flat, axis=0)
     t = d / np.linalg.norm(d, axis=1)[:, None]
     heading = np.arctan2(t[:, 1], t[:, 0])
     bisector = np.vstack([t[:1], t[:-1] + t[1:], t[-1:]])
+    turn = np.concatenate([[0.0], (np.diff(heading) + math.pi) % (2 * math.pi) - math.pi, [0.0]])
+    reversal = np.abs(turn) > REVERSAL
     pieces = []
     for k, (a, b) in enumerate(zip(breaks[:-1], breaks[1:])):
-        # the ends stand square to their moves, pulled back a hair so that they never lie in the
-        # plane of the next tube's end (at a reversal the two would coincide)
+        # the ends stand square to their moves, through the vertex (a tube coming in and one
+        # going out touch only along its axis), but at a reversal their ends would lie in one
+        # plane: there they stop a hair short, and the whole tool fills the gap
         along = bisector[a:b + 1].copy()
         along[0], along[-1] = t[a], t[b - 1]
         stretch = path[a:b + 1].copy()
         if b - a > 1 or np.linalg.norm(d[a]) > 4 * _PULL_BACK:
-            stretch[0, :2] += _PULL_BACK * t[a]
-            stretch[-1, :2] -= _PULL_BACK * t[b - 1]
+            stretch[0, :2] += _PULL_BACK * t[a] * reversal[a]
+            stretch[-1, :2] -= _PULL_BACK * t[b - 1] * reversal[b]
         pieces.append(lambda stretch=stretch, along=along, k=k: _tube(stretch, along, _lifted(section, k)))
     right = section[section[:, 0] > 1e-9 * half_width]
     outer = np.vstack([[0.0, section[:, 1].min()], right[np.argsort(right[:, 1], kind="stable")],
@@ -569,12 +581,15 @@ def _tube_pieces(path: np.ndarray, section: np.ndarray, tolerance: float, closed
             start, sweep = heading[0] + math.pi / 2, math.pi
         elif i == last:
             start, sweep = heading[-1] - math.pi / 2, math.pi
+        elif reversal[i]:
+            start, sweep = 0.0, 2 * math.pi
         else:
-            turn = (heading[i] - heading[i - 1] + math.pi) % (2 * math.pi) - math.pi
-            start, sweep = (heading[i - 1] - math.pi / 2, turn) if turn > 0 else (heading[i] + math.pi / 2, -turn)
-        # reaching WEDGE_OVERLAP past the tubes' end faces on both sides: overlapping, never
-        # touching (faces that nearly coincide make slivers and slow booleans)
-        start, sweep = start - WEDGE_OVERLAP, sweep + 2 * WEDGE_OVERLAP
+            start, sweep = ((heading[i - 1] - math.pi / 2, turn[i]) if turn[i] > 0
+                            else (heading[i] + math.pi / 2, -turn[i]))
+        if sweep < 2 * math.pi:
+            # reaching WEDGE_OVERLAP past the tubes' end faces on both sides: overlapping, never
+            # touching (faces that nearly coincide make slivers and slow booleans)
+            start, sweep = start - WEDGE_OVERLAP, sweep + 2 * WEDGE_OVERLAP
         outline = CrossSection([_raised_floor(_lifted(outer, k + 0.5))])
         pieces.append(lambda start=start, sweep=sweep, at=path[i].tolist(), outline=outline: Manifold.revolve(
             outline, max(3, math.ceil(segments * sweep / (2 * math.pi))), math.degrees(sweep))
