@@ -492,6 +492,27 @@ MESSAGES = {
         "シミュレーションには Program、Operation、または Operation のリストが必要です",
     "design must be a function z(x, y), a mesh with vertices and faces, or a number":
         "設計形状は関数 z(x, y)、頂点と面を持つメッシュ、または数値で指定してください",
+    "radial turn-mill operations cut a bar: give a cylinder stock about the C axis":
+        "ラジアル方向のターンミル工程は丸棒を削ります：C軸まわりの円柱素材を指定してください",
+    # toolpath/ncread.py
+    "the NC file has no moves": "NCファイルに移動がありません",
+    # toolpath/punch.py
+    "a punch program must be text": "パンチプログラムはテキストにしてください",
+    "the program has no end (G50 or M30)": "プログラムに終わり（G50 または M30）がありません",
+    "the program punches nothing: no G69 or G79 line": "プログラムは何も打ち抜きません：G69 も G79 の行もありません",
+    "the scallop needs a diameter > 0 and a pitch >= 0": "スカラップには 0 より大きい直径と 0 以上のピッチが必要です",
+    "pattern: an outline must be a list of (x, y) points": "展開図：輪郭は (x, y) 点のリストにしてください",
+    "simulate_punching needs the NC text or a PunchProgram":
+        "simulate_punching には NC テキストまたは PunchProgram が必要です",
+    "margin must be a number > 0": "余白は 0 より大きい数にしてください",
+    "the program has more than 200000 hits: check the pitches Q": "ヒット数が 200000 を超えています：ピッチ Q を確認してください",
+    "the program's lines are tool-centre paths (P0): give the punch diameter":
+        "プログラムの線は工具中心の経路（P0）です：パンチの直径を指定してください",
+    "the pattern does not overlap what is left of the sheet: are the pattern and the program in the same coordinates?":
+        "展開図が残った板と重なりません：展開図とプログラムは同じ座標系ですか？",
+    # toolpath/stepnc/part21.py
+    "None is not a Part 21 value; use UNSET for '$'": "None は Part 21 の値ではありません。'$' には UNSET を使ってください",
+    "a complex instance needs at least one part": "複合インスタンスには少なくとも1つの部分が必要です",
     # toolpath/turnmill.py
     "the mesh is empty: it needs vertices and triangles": "メッシュが空です：頂点と三角形が必要です",
     "the mesh has NaN or infinite vertex coordinates": "メッシュの頂点座標に NaN または無限大があります",

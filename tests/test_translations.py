@@ -170,10 +170,9 @@ def _template(node):
     return None
 
 
-def formatted_messages() -> dict:
-    """{English template: where} for every message built with an f-string that the core or the
-    shell raises (``raise ...Error(f"...")``) or reports (``report(level, f"...")``)."""
-    found = {}
+def raised_messages():
+    """(message node, where) for every message the core or the shell raises (``raise
+    ...Error(...)``) or reports (``report(level, ...)``)."""
     root = os.path.dirname(os.path.dirname(operators.__file__))
     for folder in ("toolpath", "toolpath/stepnc", "post", "operators"):
         for filename in sorted(os.listdir(os.path.join(root, folder))):
@@ -189,10 +188,19 @@ def formatted_messages() -> dict:
                         message = node.exc.args[0]
                 elif isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "report" and len(node.args) == 2:
                     message = _unwrapped(node.args[1])
-                if isinstance(message, (ast.JoinedStr, ast.BinOp)):
-                    template = _template(message)
-                    if template is not None and "{}" in template:
-                        found.setdefault(template, f"{folder}/{filename}:{node.lineno}")
+                if message is not None:
+                    yield message, f"{folder}/{filename}:{node.lineno}"
+
+
+def formatted_messages() -> dict:
+    """{English template: where} for every message built with an f-string that the core or the
+    shell raises or reports."""
+    found = {}
+    for message, where in raised_messages():
+        if isinstance(message, (ast.JoinedStr, ast.BinOp)):
+            template = _template(message)
+            if template is not None and "{}" in template:
+                found.setdefault(template, where)
     return found
 
 
@@ -289,6 +297,14 @@ def test_every_formatted_message_has_a_japanese_template():
     missing = sorted(f"{where}: {template!r}" for template, where in formatted_messages().items()
                      if template not in translations.MESSAGE_TEMPLATES)
     assert not missing, f"{len(missing)} f-string messages without a ja_JP template:\n" + "\n".join(missing)
+
+
+def test_every_fixed_error_message_is_translated():
+    fixed = {(message.value, where) for message, where in raised_messages()
+             if isinstance(message, ast.Constant) and isinstance(message.value, str)}
+    assert "the NC file has no moves" in {text for text, _ in fixed}          # toolpath/ncread.py
+    missing = sorted(f"{where}: {text!r}" for text, where in fixed if (DEFAULT, text) not in JA)
+    assert not missing, f"{len(missing)} fixed error messages without ja_JP translation:\n" + "\n".join(missing)
 
 
 def test_japanese_templates_use_every_value_once():
