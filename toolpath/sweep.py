@@ -58,7 +58,7 @@ WEDGE_OVERLAP = math.radians(5.0)  # a wedge of the tool at a corner reaches thi
 MAX_RADIAL_TILT = math.radians(60.0)  # a radial tool's run moves at most this far from across its axis
 MAX_RADIAL_SLOPE = math.radians(45.0)  # ... and climbs or falls along the bar at most this steeply
 MAX_SHARP_SHARE = 0.25           # runs that break at more than this share of their vertices are cut as hulls
-REVERSAL = math.radians(150.0)  # a corner turning more than this is a reversal (see :func:`_tube_pieces`)
+REVERSAL = math.radians(150.0)   # a corner turning more than this is a reversal (see :func:`_tube_pieces`)
 _PULL_BACK = 1e-3                # mm: a tube's square end stops this short of a reversal, a wedge's floor this high
 ROW_STRAIGHTNESS = 0.02          # of the tolerance: how far the vertices of one row may stray from its line
 # triangles of pieces per union before it is subtracted: small enough that the union stays near
