@@ -5,7 +5,7 @@ is planned from the sample scene as the Simulate operator plans it, then simulat
 manifold engine at a 0.05 mm tool tolerance: facets lie inside the true tool, so the solid is
 within 0.05 mm of the exact cut, always on the side of leaving material.  The notes give the
 removed volume against the height field's (0.1 mm cells) as a cross-check.  Issue #7's target:
-every sample under 10 s.  Each job runs once (the turn-mill bar takes about 11 s).
+every sample under 10 s.  Each job runs once.
 """
 from __future__ import annotations
 
