@@ -84,7 +84,40 @@ def test_v_bit_groove_is_a_triangle_prism_plus_a_cone(kernel):
     # 90 degrees: the groove is as deep as it is half wide; its two half-cone ends make one cone.
     depth, length = 2.0, 20.0
     expected = length * depth * depth + math.pi * depth ** 3 / 3
-    assert_close(both_engines(slot(VBIT6, depth, length), BOX, kernel=kernel), expected)
+    results = both_engines(slot(VBIT6, depth, length), BOX, kernel=kernel)
+    assert_close(results, expected)
+    # across the middle of the groove every cell is exact: the flank, one mm up per mm aside
+    hf = results[0].heightfield
+    column = np.argmin(np.abs(hf.x() - 20.05))
+    across = hf.y() - 20.0
+    inside = np.abs(across) < depth
+    np.testing.assert_allclose(hf.heights[column, inside], -depth + np.abs(across[inside]), atol=1e-5)
+
+
+def test_v_bit_ramps_match_the_cone_stamped_densely_along_them(kernel):
+    # a gentle ramp that ends deeper than the cone is tall (3 mm: the rim cuts beside it) and a
+    # ramp steeper than the flank: the height field is the exact lower envelope, so it lies
+    # between the cone stamped at 4001 places along each move and that less the V-groove
+    # between two stamps (slope * spacing / 2)
+    tool, cell = VBIT6, 0.2
+    moves = [([10.0, 12.0, -1.0], [28.0, 20.0, -4.5]), ([12.0, 30.0, -0.5], [13.0, 31.0, -3.0])]
+    points = [moves[0][0], moves[0][1], [28.0, 20.0, 5.0], [12.0, 30.0, 5.0], moves[1][0], moves[1][1],
+              [13.0, 31.0, 5.0]]
+    op = operation(tool, points, start=[10.0, 12.0, 5.0], kinds=[FEED, FEED, RAPID, RAPID, FEED, FEED, RAPID])
+    hf = sim.simulate(op, BOX, cell=cell, kernel=kernel).heightfield
+    x, y = np.meshgrid(hf.x(), hf.y(), indexing="ij")
+    stamped = np.full(hf.shape, hf.top)
+    worst_groove = 0.0
+    for a, b in moves:
+        a, b = np.asarray(a), np.asarray(b)
+        places = a + np.linspace(0.0, 1.0, 4001)[:, None] * (b - a)
+        worst_groove = max(worst_groove, np.hypot(*(b - a)[:2]) / 4000 / 2)     # slope 1: 90 degrees
+        for px, py, pz in places:
+            d = np.hypot(x - px, y - py)
+            stamped = np.minimum(stamped, np.where(d <= tool.radius, pz + d, np.inf))
+    assert np.all(hf.heights <= stamped + 1e-5)
+    assert np.all(hf.heights >= stamped - worst_groove - 1e-5)
+    assert (hf.heights < hf.top).sum() > 1000
 
 
 def test_drilled_hole_is_a_cylinder_on_a_cone(kernel):
@@ -340,8 +373,9 @@ def test_result_reports_engine_cell_kernel_and_time(kernel):
 # ----- the two height field kernels ------------------------------------------------------------------
 
 def random_operation(rng, tool, name, n=50):
-    """A random walk over a 60 x 60 mm box at -0.5..-4 mm: feeds, arcs (their centres beside
-    the chord, so some spiral), plunges, and rapids, some of them through the material."""
+    """A random walk over a 60 x 60 mm box at -0.5..-4 mm, half its moves level: feeds, arcs
+    (their centres beside the chord, so some spiral), plunges, and rapids, some of them through
+    the material."""
     xy = np.clip(30 + np.cumsum(rng.normal(0, 2.5, (n, 2)), axis=0), 3, 57)
     z = -rng.uniform(0.5, 4.0, n)
     kinds = rng.choice([FEED, FEED, ARC_CW, ARC_CCW], n)
@@ -356,6 +390,8 @@ def random_operation(rng, tool, name, n=50):
     arcs = (kinds == ARC_CW) | (kinds == ARC_CCW)
     center[arcs, :2] = (xy + previous)[arcs] / 2 + rng.uniform(-1, 1, (arcs.sum(), 1)) * chord[arcs][:, ::-1] * [1, -1]
     center[arcs, 2] = 0.0
+    for i in np.flatnonzero(rng.random(n) < 0.5)[1:]:   # about half the moves hold their depth
+        z[i] = z[i - 1]
     return operation(tool, np.column_stack([xy, z]), start=[xy[0, 0], xy[0, 1], 5.0], kinds=kinds, center=center,
                      name=name)
 

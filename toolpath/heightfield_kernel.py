@@ -105,6 +105,19 @@ def _band_intervals(dx, ux, uy, length, s, r, eps):
 
 
 @_jit
+def _cone_band_interval(dx, ux, uy, length, mu, w, side, eps):
+    """Cells of one side of a cone band in one column, as simulate._cone_band_interval."""
+    lo, hi = -np.inf, np.inf
+    start = dx * (ux + side * mu * uy)
+    slant = uy - side * mu * ux
+    for a, b in ((-side * dx * uy, side * ux), (w + side * dx * uy, -side * ux), (start, slant),
+                 (length - start, -slant)):
+        side_lo, side_hi = _halfline(a, b)
+        lo, hi = max(lo, side_lo), min(hi, side_hi)
+    return lo - eps, hi + eps
+
+
+@_jit
 def _vertex_intervals(dx, d1x, d1y, dz1, d2x, d2y, dz2, r, eps):
     """Cells of a vertex sphere in one column, as simulate._SphereVertices.intervals."""
     dlo, dhi = _disk_span(dx, r)
@@ -158,6 +171,28 @@ def cut_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, s, z, a, b, r):
                     jf = np.float32(j)
                     e = jf * e_step + e0
                     cells[j] = min(cells[j], jf * z_step + z0 - np.sqrt(np.abs(rb * rb - e * e)))
+
+
+@_jit
+def cut_cone_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, z, a, g, mu, w):
+    """Cone bands (simulate._ConeBands): value = z + a*q + g*|e|."""
+    ny, _, _, _, cell_y = grid
+    for k in range(len(ox)):
+        e_step = np.float32(cell_y * ux[k])
+        z_step = np.float32(cell_y * uy[k] * a[k])
+        rise = np.float32(g[k])
+        for col in range(c0[k], c0[k] + ncol[k]):
+            dx = _dx(col, ox[k], grid)
+            for side in (1.0, -1.0):
+                lo, hi = _cone_band_interval(dx, ux[k], uy[k], length[k], mu[k], w[k], side, eps)
+                first, count = _rows(oy[k], lo, hi, grid)
+                dy0 = _dy0(first, oy[k], grid)
+                e0 = np.float32(dy0 * ux[k] - dx * uy[k])
+                z0 = np.float32((dx * ux[k] + dy0 * uy[k]) * a[k] + z[k])
+                cells = flat[col * ny + first:col * ny + first + count]
+                for j in range(count):
+                    jf = np.float32(j)
+                    cells[j] = min(cells[j], (jf * z_step + z0) + np.abs(jf * e_step + e0) * rise)
 
 
 @_jit

@@ -12,7 +12,8 @@ One call, :func:`simulate`, with two engines behind it:
     * flat end: the swept disc, lowest at one end of the contact range;
     * bull nose: the flat disc of radius R - r plus the torus, the torus taken as a ring of
       spheres (spaced so the surface error stays within ``tolerance``);
-    * drill / V-bit: cones stamped at the points and along the moves within ``tolerance``.
+    * drill / V-bit: the cone's flank beside each move, its rim (a flat disc at the cone's
+      top) beside each move that climbs or falls, and the whole cone at the points.
 
     Speed comes from taking the tool path as one chain.  The envelope of a convex tool over
     one move, g(t) = z(t) + h(|P - C(t)|), is convex in t, so at a cell P the lowest value
@@ -622,6 +623,61 @@ class _Bands(_Family):
                           self.length, self.s, self.z, self.a, self.b, self.r)
 
 
+class _ConeBands(_Family):
+    """Cells beside a move of a pointed tool (V-bit, drill) whose lowest value lies on the
+    cone's flank strictly inside the move.  With q the distance along the move from its start
+    and e across it (both in XY), the tip climbing a = dz/l per mm and the flank rising k per mm
+    from the axis (k = 1 / tan of the half angle, a < k), the flank's lowest point over a cell
+    is g*|e| above the tip (g = sqrt(k^2 - a^2)) at mu*|e| behind the cell (mu = a / g), so
+
+        value = z + a*q + g*|e|  over  |e| <= w, 0 <= q - mu*|e| <= length
+
+    where w = r*g/k keeps that point within the cone's radius r (beyond it the rim takes over:
+    see :func:`_disc_bands`).  Arrays: ux, uy, length, z, a, g, mu, w."""
+
+    def xrange(self):
+        return _band_span(self.ox, self.ux, self.uy, self.length, -self.w * np.abs(self.mu),
+                          self.w * np.abs(self.mu), self.w)
+
+    def yrange(self):
+        reach = self.w * (1.0 + np.abs(self.mu))
+        ends = self.oy + self.uy * self.length
+        return np.minimum(self.oy, ends) - reach - _EPS, np.maximum(self.oy, ends) + reach + _EPS
+
+    def intervals(self, k, dx):
+        return [_cone_band_interval(dx, self.ux[k], self.uy[k], self.length[k], self.mu[k], self.w[k], side)
+                for side in (1.0, -1.0)]
+
+    def values(self, k, dx, dy0, cell_y, j, out, tmp):
+        ux, uy, a, g = self.ux[k], self.uy[k], self.a[k], self.g[k]
+        # e and z + a*q are affine in the cell number j along the run (dy = dy0 + j*cell_y)
+        np.multiply(j, _row(cell_y * ux), out=tmp)
+        tmp += _row(dy0 * ux - dx * uy)
+        np.abs(tmp, out=tmp)
+        tmp *= _row(g)
+        np.multiply(j, _row(cell_y * uy * a), out=out)
+        out += _row((dx * ux + dy0 * uy) * a + self.z[k])
+        out += tmp
+
+    def cut(self, kernels, flat, hf):
+        kernels.cut_cone_bands(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.ux,
+                               self.uy, self.length, self.z, self.a, self.g, self.mu, self.w)
+
+
+def _cone_band_interval(dx, ux, uy, length, mu, w, side):
+    """Cells of one side of a cone band in a column (side +1: e >= 0, -1: e <= 0):
+    0 <= side*e <= w and 0 <= q - mu*side*e <= length, with q = dx*ux + dy*uy and
+    e = dy*ux - dx*uy (dy the unknown)."""
+    lo, hi = np.full_like(dx, -np.inf), np.full_like(dx, np.inf)
+    start = dx * (ux + side * mu * uy)
+    slant = uy - side * mu * ux
+    for a, b in ((-side * dx * uy, side * ux), (w + side * dx * uy, -side * ux), (start, slant),
+                 (length - start, -slant)):
+        side_lo, side_hi = _halfline(a, b)
+        lo, hi = np.maximum(lo, side_lo), np.minimum(hi, side_hi)
+    return lo - _EPS, hi + _EPS
+
+
 def _sqrt_of_r2_minus_square(x, r):
     """x <- sqrt(r^2 - x^2) in place; the cells of a region have |x| <= r up to rounding."""
     np.multiply(x, x, out=x)
@@ -794,7 +850,7 @@ def _families(chain: _Chain, top: float, tolerance: float) -> list:
             for angle in np.arange(n) * (2 * math.pi / n):
                 families += _sphere_chain(p, delta, length, bands, ~stamped & (p[:, 2] < top), seg_of_vertex,
                                           rc, (flat * math.cos(angle), flat * math.sin(angle)))
-    else:  # cones: the whole tool at every point and along the moves
+    else:  # cones: the whole tool at every point
         stamped[:] = True
     points = np.flatnonzero(stamped & (p[:, 2] < top))
     seg = seg_of_vertex[points]
@@ -802,17 +858,16 @@ def _families(chain: _Chain, top: float, tolerance: float) -> list:
     z = p[points, 2]
     if tool.kind in TIP_ANGLE_DEG:
         slope = 1 / math.tan(math.radians(TIP_ANGLE_DEG[tool.kind]) / 2)
-        spacing = 2 * tolerance / slope   # a cone's V-groove between two stamps is slope*spacing/2 deep
-        count = np.where(bands, np.ceil(length / spacing).astype(np.int64) - 1, 0)
-        count = np.maximum(count, 0)
-        s = np.repeat(np.arange(m), count)
-        t = (np.arange(len(s)) - np.repeat(np.cumsum(count) - count, count) + 1) / (count[s] + 1)
-        samples = p[s] + t[:, None] * delta[s]
-        seg = np.concatenate([seg, s])
-        xy = np.vstack([xy, samples[:, :2]])
-        z = np.concatenate([z, samples[:, 2]])
-        order = np.argsort(seg, kind="stable")
-        seg, xy, z = seg[order], xy[order], z[order]
+        # the flank beside each move, and where the move climbs or falls, the rim (a flat disc
+        # at the cone's top) beside it: with the cone at the points, the exact envelope
+        s = np.flatnonzero(bands & (np.abs(delta[:, 2]) < slope * length))
+        a = delta[s, 2] / length[s]
+        g = np.sqrt(slope * slope - a * a)
+        families.append(_ConeBands(s, p[s, 0], p[s, 1], ux=delta[s, 0] / length[s], uy=delta[s, 1] / length[s],
+                                   length=length[s], z=p[s, 2], a=a, g=g, mu=a / g, w=tool.radius * g / slope))
+        rim = _disc_bands(p, delta, length, bands & (delta[:, 2] != 0), tool.radius)
+        rim.arrays["z"] = rim.z + tool.radius * slope
+        families.append(rim)
     families.append(_Stamps(seg, xy[:, 0], xy[:, 1], tool, z=z))
     return [f for f in families if len(f)]
 
