@@ -80,6 +80,7 @@ def naive_exact(op, cell: float) -> np.ndarray:
 def run():
     from kezuri.toolpath import simulate as sim
     from kezuri.toolpath import sweep
+    from kezuri.toolpath.program import Tool
 
     op = raster()
     rows = []
@@ -92,6 +93,14 @@ def run():
             rows.append({"name": f"simulate: height field ({kernel}), 100k moves, {cell} mm cells",
                          "seconds": seconds, "target_s": target if kernel == "numba" else None,
                          "notes": f"exact ball envelope, {what}; best of {repeats}"})
+    for tool, what in ((Tool(4, "vbit", 6.0), "90 degree V-bit: the cone's flank and rim, exact"),
+                       (Tool(7, "bull", 6.0, corner_radius=1.0),
+                        "bull nose 6 mm, corner 1 mm: its torus a ring of spheres")):
+        shaped = op.replace(tool=tool)
+        sim.simulate(first_moves(shaped, 2000), STOCK, cell=0.5)                  # warm up (and compile)
+        seconds = best_of(3, lambda: sim.simulate(shaped, STOCK, cell=0.1))
+        rows.append({"name": f"simulate: height field (numba), 100k moves, 0.1 mm cells, {tool.kind}",
+                     "seconds": seconds, "target_s": None, "notes": f"{what}; best of 3"})
     subset = 5000
     part = first_moves(op, subset)
     seconds = best_of(1, lambda: naive_exact(part, 0.1)) * len(op) / subset
