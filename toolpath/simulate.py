@@ -261,7 +261,7 @@ class SimulationResult:
     removed_volume_mm3: float
     seconds: float
     cell: float | None          # height field cell (mm); None for the manifold engine
-    tolerance: float            # mm: tool-shape approximation (facets, torus ring, cones)
+    tolerance: float            # mm: tool-shape approximation (facets, torus ring)
     findings: list
     stock: BoxStock | CylinderStock
     heightfield: HeightField | None = None
@@ -1428,7 +1428,7 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     ``engine``: "heightfield" (Z-map with ``cell`` mm columns) or "manifold" (exact solids;
     its safety checks still run on a height field of ``cell``).
     ``tolerance``: how far the tool shape may be approximated (manifold facets, the bull
-    nose's torus ring, cone stamps); always on the side of leaving material.
+    nose's torus ring); always on the side of leaving material.
     ``design``: the finished part, for gouge checks: a function z(x, y) on arrays, a mesh
     (anything with ``vertices`` and ``faces``, e.g. trimesh.Trimesh: its upper envelope), or
     a number (a floor plane).  ``keep_regions``: 2-D loops where nothing may be cut, or
