@@ -77,7 +77,16 @@ def test_bull_nose_slot_matches_its_profile(kernel):
     corner_r = (rc * rc * (flat + rc / 2) - math.pi * rc * rc / 4 * (flat + 4 * rc / (3 * math.pi))) / corner
     section = 2 * r * depth - 2 * corner
     ends = math.pi * r * r * depth - 2 * math.pi * corner_r * corner   # the two half ends: one tool
-    assert_close(both_engines(slot(BULL6, depth, length), BOX, kernel=kernel), length * section + ends)
+    results = both_engines(slot(BULL6, depth, length), BOX, kernel=kernel)
+    assert_close(results, length * section + ends)
+    # across the middle of the slot every cell is the profile: flat, then the corner's arc
+    hf = results[0].heightfield
+    column = np.argmin(np.abs(hf.x() - 20.05))
+    across = np.abs(hf.y() - 20.0)
+    inside = across < r
+    off = np.maximum(across[inside] - flat, 0.0)
+    profile = -depth + rc - np.sqrt(rc * rc - off * off)
+    np.testing.assert_allclose(hf.heights[column, inside], profile, atol=1e-5)
 
 
 def test_v_bit_groove_is_a_triangle_prism_plus_a_cone(kernel):

@@ -105,8 +105,8 @@ def _band_intervals(dx, ux, uy, length, s, r, eps):
 
 
 @_jit
-def _cone_band_interval(dx, ux, uy, length, mu, w, side, eps):
-    """Cells of one side of a cone band in one column, as simulate._cone_band_interval."""
+def _band_side_interval(dx, ux, uy, length, mu, w, side, eps):
+    """Cells of one side of a cone or level band in one column, as simulate._band_side_interval."""
     lo, hi = -np.inf, np.inf
     start = dx * (ux + side * mu * uy)
     slant = uy - side * mu * ux
@@ -184,7 +184,7 @@ def cut_cone_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, z, a, g, m
         for col in range(c0[k], c0[k] + ncol[k]):
             dx = _dx(col, ox[k], grid)
             for side in (1.0, -1.0):
-                lo, hi = _cone_band_interval(dx, ux[k], uy[k], length[k], mu[k], w[k], side, eps)
+                lo, hi = _band_side_interval(dx, ux[k], uy[k], length[k], mu[k], w[k], side, eps)
                 first, count = _rows(oy[k], lo, hi, grid)
                 dy0 = _dy0(first, oy[k], grid)
                 e0 = np.float32(dy0 * ux[k] - dx * uy[k])
@@ -193,6 +193,26 @@ def cut_cone_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, z, a, g, m
                 for j in range(count):
                     jf = np.float32(j)
                     cells[j] = min(cells[j], (jf * z_step + z0) + np.abs(jf * e_step + e0) * rise)
+
+
+@_jit
+def cut_level_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, z, radius, tip_tan, corner, flat_radius):
+    """Level bands (simulate._LevelBands): value = z + profile(|e|)."""
+    ny, _, _, _, cell_y = grid
+    reach = np.float32(radius)
+    for k in range(len(ox)):
+        e_step = np.float32(cell_y * ux[k])
+        tip = np.float32(z[k])
+        for col in range(c0[k], c0[k] + ncol[k]):
+            dx = _dx(col, ox[k], grid)
+            for side in (1.0, -1.0):
+                lo, hi = _band_side_interval(dx, ux[k], uy[k], length[k], 0.0, radius, side, eps)
+                first, count = _rows(oy[k], lo, hi, grid)
+                e0 = np.float32(_dy0(first, oy[k], grid) * ux[k] - dx * uy[k])
+                cells = flat[col * ny + first:col * ny + first + count]
+                for j in range(count):
+                    d = min(np.abs(np.float32(j) * e_step + e0), reach)
+                    cells[j] = min(cells[j], _profile(d, tip_tan, corner, flat_radius) + tip)
 
 
 @_jit

@@ -10,8 +10,8 @@ One call, :func:`simulate`, with two engines behind it:
 
     * ball: the capsule (the ball centre's segment thickened by R);
     * flat end: the swept disc, lowest at one end of the contact range;
-    * bull nose: the flat disc of radius R - r plus the torus, the torus taken as a ring of
-      spheres (spaced so the surface error stays within ``tolerance``);
+    * bull nose: the flat disc of radius R - r plus the torus: beside level moves exact, elsewhere
+      a ring of spheres (spaced so the surface error stays within ``tolerance``);
     * drill / V-bit: the cone's flank beside each move, its rim (a flat disc at the cone's
       top) beside each move that climbs or falls, and the whole cone at the points.
 
@@ -645,7 +645,7 @@ class _ConeBands(_Family):
         return np.minimum(self.oy, ends) - reach - _EPS, np.maximum(self.oy, ends) + reach + _EPS
 
     def intervals(self, k, dx):
-        return [_cone_band_interval(dx, self.ux[k], self.uy[k], self.length[k], self.mu[k], self.w[k], side)
+        return [_band_side_interval(dx, self.ux[k], self.uy[k], self.length[k], self.mu[k], self.w[k], side)
                 for side in (1.0, -1.0)]
 
     def values(self, k, dx, dy0, cell_y, j, out, tmp):
@@ -664,8 +664,46 @@ class _ConeBands(_Family):
                                self.uy, self.length, self.z, self.a, self.g, self.mu, self.w)
 
 
-def _cone_band_interval(dx, ux, uy, length, mu, w, side):
-    """Cells of one side of a cone band in a column (side +1: e >= 0, -1: e <= 0):
+class _LevelBands(_Family):
+    """Cells beside a level move of a bull nose: its lowest point over a cell lies square to the
+    move, so with q along the move and e across it the value is the tool's profile there,
+
+        value = z + profile(|e|)  over  0 <= q <= length, |e| <= R
+
+    (exact: the torus needs no ring of spheres here).  Arrays: ux, uy, length, z."""
+
+    def __init__(self, segment, ox, oy, tool, **arrays):
+        super().__init__(segment, ox, oy, **arrays)
+        self.tool = tool
+        self.r = tool.radius
+
+    def xrange(self):
+        return _band_span(self.ox, self.ux, self.uy, self.length, 0.0, 0.0, self.r)
+
+    def yrange(self):
+        ends = self.oy + self.uy * self.length
+        return np.minimum(self.oy, ends) - self.r - _EPS, np.maximum(self.oy, ends) + self.r + _EPS
+
+    def intervals(self, k, dx):
+        return [_band_side_interval(dx, self.ux[k], self.uy[k], self.length[k], 0.0, self.r, side)
+                for side in (1.0, -1.0)]
+
+    def values(self, k, dx, dy0, cell_y, j, out, tmp):
+        ux, uy = self.ux[k], self.uy[k]
+        np.multiply(j, _row(cell_y * ux), out=tmp)          # e, affine in the cell number j
+        tmp += _row(dy0 * ux - dx * uy)
+        np.abs(tmp, out=tmp)
+        np.minimum(tmp, np.float32(self.r), out=tmp)
+        out[...] = _profile(self.tool, tmp)
+        out += _row(self.z[k])
+
+    def cut(self, kernels, flat, hf):
+        kernels.cut_level_bands(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.ux,
+                                self.uy, self.length, self.z, self.r, *_profile_shape(self.tool))
+
+
+def _band_side_interval(dx, ux, uy, length, mu, w, side):
+    """Cells of one side of a cone or level band in a column (side +1: e >= 0, -1: e <= 0):
     0 <= side*e <= w and 0 <= q - mu*side*e <= length, with q = dx*ux + dy*uy and
     e = dy*ux - dx*uy (dy the unknown)."""
     lo, hi = np.full_like(dx, -np.inf), np.full_like(dx, np.inf)
@@ -846,10 +884,16 @@ def _families(chain: _Chain, top: float, tolerance: float) -> list:
         if flat > 0:
             families.append(_disc_bands(p, delta, length, bands, flat))
         if rc > 0:
+            # beside a level move the torus is exact (see _LevelBands); elsewhere, and at the
+            # points, a ring of spheres within the tolerance
+            level = bands & (delta[:, 2] == 0)
+            s = np.flatnonzero(level)
+            families.append(_LevelBands(s, p[s, 0], p[s, 1], tool, ux=delta[s, 0] / length[s],
+                                        uy=delta[s, 1] / length[s], length=length[s], z=p[s, 2]))
             n = _ring_count(flat, rc, tolerance)
             for angle in np.arange(n) * (2 * math.pi / n):
-                families += _sphere_chain(p, delta, length, bands, ~stamped & (p[:, 2] < top), seg_of_vertex,
-                                          rc, (flat * math.cos(angle), flat * math.sin(angle)))
+                families += _sphere_chain(p, delta, length, bands & ~level, ~stamped & (p[:, 2] < top),
+                                          seg_of_vertex, rc, (flat * math.cos(angle), flat * math.sin(angle)))
     else:  # cones: the whole tool at every point
         stamped[:] = True
     points = np.flatnonzero(stamped & (p[:, 2] < top))
