@@ -95,7 +95,7 @@ def run():
                          "notes": f"exact ball envelope, {what}; best of {repeats}"})
     for tool, what in ((Tool(4, "vbit", 6.0), "90 degree V-bit: the cone's flank and rim, exact"),
                        (Tool(7, "bull", 6.0, corner_radius=1.0),
-                        "bull nose 6 mm, corner 1 mm: its torus a ring of spheres")):
+                        "bull nose 6 mm, corner 1 mm; no level moves here: its torus a ring of spheres")):
         shaped = op.replace(tool=tool)
         sim.simulate(first_moves(shaped, 2000), STOCK, cell=0.5)                  # warm up (and compile)
         seconds = best_of(3, lambda: sim.simulate(shaped, STOCK, cell=0.1))
