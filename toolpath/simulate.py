@@ -623,6 +623,21 @@ class _Bands(_Family):
                           self.length, self.s, self.z, self.a, self.b, self.r)
 
 
+class _Profiled(_Family):
+    """Items whose value is the tool's profile at a distance from its axis, above the tip z."""
+
+    def __init__(self, segment, ox, oy, tool, **arrays):
+        super().__init__(segment, ox, oy, **arrays)
+        self.tool = tool
+        self.r = tool.radius
+
+    def profile_at(self, k, distance, out):
+        """out <- z + profile(min(distance, R)); ``distance`` is clipped in place."""
+        np.minimum(distance, np.float32(self.r), out=distance)
+        out[...] = _profile(self.tool, distance)
+        out += _row(self.z[k])
+
+
 class _ConeBands(_Family):
     """Cells beside a move of a pointed tool (V-bit, drill) whose lowest value lies on the
     cone's flank strictly inside the move.  With q the distance along the move from its start
@@ -664,18 +679,13 @@ class _ConeBands(_Family):
                                self.uy, self.length, self.z, self.a, self.g, self.mu, self.w)
 
 
-class _LevelBands(_Family):
+class _LevelBands(_Profiled):
     """Cells beside a level move of a bull nose: its lowest point over a cell lies square to the
     move, so with q along the move and e across it the value is the tool's profile there,
 
         value = z + profile(|e|)  over  0 <= q <= length, |e| <= R
 
     (exact: the torus needs no ring of spheres here).  Arrays: ux, uy, length, z."""
-
-    def __init__(self, segment, ox, oy, tool, **arrays):
-        super().__init__(segment, ox, oy, **arrays)
-        self.tool = tool
-        self.r = tool.radius
 
     def xrange(self):
         return _band_span(self.ox, self.ux, self.uy, self.length, 0.0, 0.0, self.r)
@@ -693,9 +703,7 @@ class _LevelBands(_Family):
         np.multiply(j, _row(cell_y * ux), out=tmp)          # e, affine in the cell number j
         tmp += _row(dy0 * ux - dx * uy)
         np.abs(tmp, out=tmp)
-        np.minimum(tmp, np.float32(self.r), out=tmp)
-        out[...] = _profile(self.tool, tmp)
-        out += _row(self.z[k])
+        self.profile_at(k, tmp, out)
 
     def cut(self, kernels, flat, hf):
         kernels.cut_level_bands(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.ux,
@@ -818,14 +826,9 @@ def _cut_disk_span(o, r, n1a, n1b, dz1, n2a, n2b, dz2):
     return o + lo - _EPS, o + hi + _EPS
 
 
-class _Stamps(_Family):
+class _Stamps(_Profiled):
     """The whole tool standing at a point (its full underside over the disk of radius R).
     Arrays: z (tip)."""
-
-    def __init__(self, segment, ox, oy, tool, **arrays):
-        super().__init__(segment, ox, oy, **arrays)
-        self.tool = tool
-        self.r = tool.radius
 
     def xrange(self):
         return self.ox - self.r - _EPS, self.ox + self.r + _EPS
@@ -843,9 +846,7 @@ class _Stamps(_Family):
         np.multiply(tmp, tmp, out=tmp)
         tmp += _row(dx * dx)
         np.sqrt(tmp, out=tmp)
-        np.minimum(tmp, np.float32(self.r), out=tmp)
-        out[...] = _profile(self.tool, tmp)
-        out += _row(self.z[k])
+        self.profile_at(k, tmp, out)
 
     def cut(self, kernels, flat, hf):
         kernels.cut_stamps(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.z,
@@ -909,9 +910,8 @@ def _families(chain: _Chain, top: float, tolerance: float) -> list:
         g = np.sqrt(slope * slope - a * a)
         families.append(_ConeBands(s, p[s, 0], p[s, 1], ux=delta[s, 0] / length[s], uy=delta[s, 1] / length[s],
                                    length=length[s], z=p[s, 2], a=a, g=g, mu=a / g, w=tool.radius * g / slope))
-        rim = _disc_bands(p, delta, length, bands & (delta[:, 2] != 0), tool.radius)
-        rim.arrays["z"] = rim.z + tool.radius * slope
-        families.append(rim)
+        families.append(_disc_bands(p, delta, length, bands & (delta[:, 2] != 0), tool.radius,
+                                    lift=tool.radius * slope))
     families.append(_Stamps(seg, xy[:, 0], xy[:, 1], tool, z=z))
     return [f for f in families if len(f)]
 
@@ -950,7 +950,8 @@ def _sphere_chain(p, delta, length, bands, vertices, seg_of_vertex, r, offset):
     return [sphere_bands, sphere_vertices]
 
 
-def _disc_bands(p, delta, length, bands, r):
+def _disc_bands(p, delta, length, bands, r, lift=0.0):
+    """Bands of a flat disc of radius r, ``lift`` above the tip (a cone's rim: its top)."""
     s = np.flatnonzero(bands)
     # Turn every move to run downhill; the swept disc is the same.
     down = delta[s, 2] <= 0
@@ -958,7 +959,7 @@ def _disc_bands(p, delta, length, bands, r):
     d = np.where(down[:, None], delta[s], -delta[s])
     l = length[s]
     return _Bands(s, start[:, 0], start[:, 1], ux=d[:, 0] / l, uy=d[:, 1] / l, length=l, s=np.full(len(s), -1.0),
-                  z=start[:, 2], a=d[:, 2] / l, b=-d[:, 2] / l, r=np.full(len(s), r))
+                  z=start[:, 2] + lift, a=d[:, 2] / l, b=-d[:, 2] / l, r=np.full(len(s), r))
 
 
 # ----- height field: evaluation -------------------------------------------------------------
