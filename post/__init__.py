@@ -1,23 +1,35 @@
-"""Posts: Program (the IR) -> controller text.  Only this package writes NC."""
+"""Posts: Program (the IR) -> controller text.  Only this package writes NC.
+
+Every module of the package is imported here, so every post class in it registers itself
+(:mod:`.registry`); lookups by name and by machine family go through the registry.
+"""
 from __future__ import annotations
 
-from .fanuc import FanucMacroPost, FanucPost
-from .gcode import GcodePost, PostError
-from .grbl import GrblPost
-from .linuxcnc import LinuxCNCPost
-from .output import write_atomic
-from .rotary_cxz import ROTARY_POSTS, rotary_post
-from .turnmill_xzc import TurnMillLinuxCNCPost, TurnMillXZCPost
+import importlib
+import pkgutil
 
-MILLING_POSTS = {"fanuc": FanucPost, "fanuc-macro": FanucMacroPost, "linuxcnc": LinuxCNCPost, "grbl": GrblPost}
+from . import registry
+from .gcode import GcodePost, PostError
+from .output import write_atomic
+from .registry import (FAMILIES, ControllerLimits, Post, UnknownPostError, choices, create, enum_items, extension,
+                       find, posts)
+
+for _module in pkgutil.iter_modules(__path__):
+    importlib.import_module(f"{__name__}.{_module.name}")
 
 
 def milling_post(name: str, work_offset: str | None = None) -> GcodePost:
-    try:
-        return MILLING_POSTS[name](work_offset)
-    except KeyError:
-        raise PostError(f"unknown post {name!r}; choose one of {', '.join(MILLING_POSTS)}") from None
+    """A 3-axis milling post by name (``fanuc``, ``fanuc-macro``, ``linuxcnc``, ``grbl`` ...)."""
+    return create("milling", name, work_offset=work_offset)
 
 
-__all__ = ["MILLING_POSTS", "milling_post", "ROTARY_POSTS", "rotary_post", "TurnMillXZCPost", "TurnMillLinuxCNCPost",
-           "PostError", "write_atomic"]
+def rotary_post(name: str, work_offset: str | None = None, max_table_rpm: float | None = None):
+    """A C-X-Z rotary-table post by its choice word (``linuxcnc``, ``fanuc`` ...)."""
+    options = {"work_offset": work_offset}
+    if max_table_rpm is not None:
+        options["max_table_rpm"] = max_table_rpm
+    return create("cxz", name, **options)
+
+
+__all__ = ["FAMILIES", "ControllerLimits", "Post", "UnknownPostError", "GcodePost", "PostError", "choices", "create",
+           "enum_items", "extension", "find", "posts", "registry", "milling_post", "rotary_post", "write_atomic"]

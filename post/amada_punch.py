@@ -31,6 +31,7 @@ import math
 import numpy as np
 
 from .gcode import PostError
+from .registry import Post
 
 THICK_SHEET = 3.2          # mm: above this, G79 punching line instead of G69 nibbling
 MIN_SEGMENT = 0.01         # mm: the output resolution; shorter segments cannot be written
@@ -139,3 +140,21 @@ def to_text(contour, *, station: int, pitch: float, thickness: float, tool_diame
             lines.append(f"G69 I{_num(m)} J{j} P{_num(p)} Q{_num(q)} T{station:03d}")
     lines.append(end_code)
     return "\n".join(lines) + "\n"
+
+
+class AmadaPunchPost(Post):
+    """The registry's entry for this file: the turret punch writes contours, not Programs."""
+
+    name = "amada-04p"
+    label = "Amada Turret Punch (04P)"
+    label_ja = "アマダ タレットパンチ（04P）"
+    description = "Amada 04P-style turret punch: G92 origin, G72 pattern point, G69 nibbling / G79 punching lines"
+    description_ja = "アマダ04P系タレットパンチ：G92 原点、G72 基準点、G69 ニブリング／G79 パンチング"
+    family = "punch"
+    extension = ".nc"
+
+    def __init__(self, **options):
+        self.options = options
+
+    def to_text(self, contour) -> str:
+        return to_text(contour, **self.options)

@@ -34,6 +34,7 @@ import numpy as np
 from ..toolpath.program import FEED, RAPID, Operation, Program
 from ..toolpath.turnmill import TurnMillOperation, machine_to_part
 from .gcode import PostError, comment_text, format_duration
+from .registry import Post
 
 
 def _num(value: float, decimals: int) -> str:
@@ -41,10 +42,15 @@ def _num(value: float, decimals: int) -> str:
     return text[1:] if text.startswith("-") and float(text) == 0 else text
 
 
-class CLDataPost:
+class CLDataPost(Post):
     """Program -> APT CL data text."""
 
     name = "cldata"
+    label = "APT CL Data"
+    label_ja = "APT CLデータ"
+    description = "Cutter location data in part coordinates, for a post-processor"
+    description_ja = "ポストプロセッサ用の、部品座標での工具位置（CL）データ"
+    family = "cldata"
     extension = ".cls"
 
     def __init__(self, decimals: int = 4, axis_decimals: int = 6):

@@ -27,6 +27,12 @@ MACRO_PROGRAM = 7023
 
 class FanucPost(GcodePost):
     name = "fanuc"
+    label = "Fanuc (baked texture)"
+    label_ja = "FANUC（テクスチャをベイク）"
+    description = "Fanuc machining centre, ISO 6983; texture depths written literally"
+    description_ja = "FANUCのマシニングセンタ（ISO 6983）。刀跡の深さを数値のまま書き出します"
+    family = "milling"
+    order = 10
     extension = ".nc"
     decimals = 3
     program_number = "O0001"
@@ -43,6 +49,12 @@ class FanucPost(GcodePost):
 
 class FanucMacroPost(FanucPost):
     name = "fanuc-macro"
+    label = "Fanuc (controller macro)"
+    label_ja = "FANUC（制御装置マクロ）"
+    description = "Fanuc Custom Macro B: G66.1 P7023 draws the depths on the controller from clock #3001"
+    description_ja = "FANUCカスタムマクロB：G66.1 P7023 が制御装置上でクロック #3001 を種に深さを乱数で決めます"
+    order = 11
+    needs_texture = True
 
     def check(self, program):
         textured = [op for op in program.operations if op.texture is not None]

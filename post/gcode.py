@@ -9,12 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.errors import InputError
 from ..toolpath.program import ARC_CW, FEED, RAPID, Operation, Program
-
-
-class PostError(InputError):
-    """A program the chosen controller cannot run (the message says why and what to change)."""
+from .registry import Post, PostError
 
 
 def fmt(value: float, decimals: int) -> str:
@@ -37,7 +33,7 @@ def comment_text(text: str) -> str:
     return clean.replace("(", "[").replace(")", "]").upper()
 
 
-class GcodePost:
+class GcodePost(Post):
     """Program -> text for one controller family.  Subclasses set the class attributes and
     override the hooks (preamble, tool change, ending)."""
 

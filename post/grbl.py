@@ -10,6 +10,12 @@ from .gcode import GcodePost, comment_text
 
 class GrblPost(GcodePost):
     name = "grbl"
+    label = "GRBL"
+    label_ja = "GRBL"
+    description = "GRBL 1.1 hobby router: no tool changer, M00 pause at each tool change"
+    description_ja = "GRBL 1.1 のホビー用ルーター：自動工具交換装置なし、工具交換のたびに M00 で一時停止"
+    family = "milling"
+    order = 30
     extension = ".nc"
     decimals = 3
     percent_wrapped = False

@@ -6,6 +6,12 @@ from .gcode import GcodePost
 
 class LinuxCNCPost(GcodePost):
     name = "linuxcnc"
+    label = "LinuxCNC"
+    label_ja = "LinuxCNC"
+    description = "LinuxCNC / rs274ngc router or mill (.ngc)"
+    description_ja = "LinuxCNC / rs274ngc のルーターまたはフライス盤（.ngc）"
+    family = "milling"
+    order = 20
     extension = ".ngc"
     decimals = 4
 

@@ -109,12 +109,26 @@ class RotaryCXZPost(GcodePost):
 
 class LinuxCNCRotaryPost(RotaryCXZPost, LinuxCNCPost):
     name = "linuxcnc-cxz"
+    choice = "linuxcnc"
+    label = "LinuxCNC"
+    label_ja = "LinuxCNC"
+    description = "X Z C words, G93 inverse-time feed (.ngc)"
+    description_ja = "X Z C ワード、G93 逆時間送り（.ngc）"
+    family = "cxz"
+    order = 10
     extension = ".ngc"
     decimals = 4
 
 
 class FanucRotaryPost(RotaryCXZPost, FanucPost):
     name = "fanuc-cxz"
+    choice = "fanuc"
+    label = "Fanuc"
+    label_ja = "FANUC"
+    description = "Fanuc flavour of the same program (.nc)"
+    description_ja = "同じプログラムのFANUC版（.nc）"
+    family = "cxz"
+    order = 20
     extension = ".nc"
     decimals = 3
     angle_decimals = 3
@@ -125,14 +139,3 @@ class FanucRotaryPost(RotaryCXZPost, FanucPost):
 
     def ending(self, program):
         return ["M05", "G91 G28 Z0.", "G90", "M30"]
-
-
-ROTARY_POSTS = {"linuxcnc": LinuxCNCRotaryPost, "fanuc": FanucRotaryPost}
-
-
-def rotary_post(name: str, work_offset: str | None = None,
-                max_table_rpm: float = rotary.DEFAULT_MAX_TABLE_RPM) -> RotaryCXZPost:
-    try:
-        return ROTARY_POSTS[name](work_offset, max_table_rpm)
-    except KeyError:
-        raise PostError(f"unknown rotary post {name!r}; choose one of {', '.join(ROTARY_POSTS)}") from None

@@ -89,6 +89,13 @@ class TurnMillXZCPost(GcodePost):
     """Program of :class:`TurnMillOperation` s -> X-Z-C NC text."""
 
     name = "turnmill-xzc"
+    choice = "xzc"
+    label = "Turn-Mill X-Z-C"
+    label_ja = "複合加工機 X-Z-C"
+    description = "X (diameter), Z, C words with the machine's C-axis and turret codes"
+    description_ja = "X（直径値）、Z、C ワードと、機械のC軸・タレット用コード"
+    family = "xzc"
+    order = 10
     extension = ".nc"
     decimals = 3
     program_number = "O0001"
@@ -181,6 +188,12 @@ class TurnMillLinuxCNCPost(TurnMillXZCPost):
     """The checking variant: LinuxCNC words only, X as a radius, machine switches as comments."""
 
     name = "turnmill-linuxcnc"
+    choice = "linuxcnc"
+    label = "LinuxCNC X-Z-C"
+    label_ja = "LinuxCNC X-Z-C"
+    description = "X (radius), Z, C words only"
+    description_ja = "X（半径値）、Z、C ワードのみ"
+    order = 20
     extension = ".ngc"
     decimals = 4
     program_number = None

@@ -74,7 +74,7 @@ def test_linuxcnc_arcs_and_helices_pass_rs274():
 
 def test_same_input_same_bytes_and_no_timestamp():
     job = sample_job()
-    for name in post.MILLING_POSTS:
+    for name in post.choices("milling"):
         program = job.program if name == "fanuc-macro" else engrave.bake(job.program)[0]
         a = post.milling_post(name).to_text(program)
         b = post.milling_post(name).to_text(program)

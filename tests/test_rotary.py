@@ -12,7 +12,8 @@ import pytest
 
 import rs274
 from kezuri.post.gcode import PostError
-from kezuri.post.rotary_cxz import FanucRotaryPost, LinuxCNCRotaryPost, rotary_post
+from kezuri.post import rotary_post
+from kezuri.post.rotary_cxz import FanucRotaryPost, LinuxCNCRotaryPost
 from kezuri.toolpath import region as rg
 from kezuri.toolpath import rotary
 from kezuri.toolpath.program import RAPID, Operation, Program, Tool
@@ -548,7 +549,7 @@ def test_posts_refuse_what_they_cannot_write():
     positive = op.replace(rotary={"c": [0.0, 0.0]})
     with pytest.raises(PostError, match="negative side"):
         LinuxCNCRotaryPost().to_text(Program("p", [positive]))
-    with pytest.raises(PostError, match="unknown rotary post"):
+    with pytest.raises(PostError, match="unknown post .heidenhain.; choose one of linuxcnc, fanuc"):
         rotary_post("heidenhain")
 
 
