@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import bpy
 
-from . import (engrave, panels, preferences, properties, rotary, sheetmetal, simulate, stepnc, translations,
-               turnmill)
+from . import panels, preferences, properties, simulate, translations
+from .workflows import WORKFLOWS
 
-CLASSES = (*preferences.CLASSES, *engrave.CLASSES, *rotary.CLASSES, *stepnc.CLASSES, *turnmill.CLASSES,
-           *sheetmetal.CLASSES, *simulate.CLASSES, *panels.CLASSES)
-MENUS = (*stepnc.MENUS, *sheetmetal.MENUS)
+CLASSES = (*preferences.CLASSES, *(cls for workflow in WORKFLOWS for cls in workflow.classes), *simulate.CLASSES,
+           *panels.CLASSES)
+MENUS = tuple(menu for workflow in WORKFLOWS for menu in workflow.menus)
 
 
 def register():

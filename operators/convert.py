@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
-from ..toolpath import region
+from ..toolpath import meshdata, region
 from ..toolpath.errors import InputError
 
 COLLECTION = "Kezuri"
@@ -72,40 +72,6 @@ def evaluated_mesh_arrays(obj, depsgraph):
     return world, polygons, edges.reshape(-1, 2)
 
 
-def edge_loops(vertices: np.ndarray, edges: np.ndarray, name: str) -> list:
-    """Closed loops of a wire (a curve without fill, or a mesh of edges only).
-
-    Every vertex must join exactly two edges: an open outline cannot bound a region.
-    """
-    if not len(edges):
-        raise SceneInputError(f"object {name!r} has no outline (no faces and no edges)")
-    neighbours: dict = {}
-    for a, b in edges:
-        neighbours.setdefault(int(a), []).append(int(b))
-        neighbours.setdefault(int(b), []).append(int(a))
-    open_ends = [v for v, n in neighbours.items() if len(n) != 2]
-    if open_ends:
-        p = vertices[open_ends[0]]
-        raise SceneInputError(f"object {name!r} has an open or branching outline near "
-                              f"({p[0]:.3g}, {p[1]:.3g}, {p[2]:.3g}): close it (or fill the curve)")
-    loops, seen = [], set()
-    for start in neighbours:
-        if start in seen:
-            continue
-        loop, previous, current = [start], None, start
-        seen.add(start)
-        while True:
-            a, b = neighbours[current]
-            nxt = b if a == previous else a
-            if nxt == start:
-                break
-            loop.append(nxt)
-            seen.add(nxt)
-            previous, current = current, nxt
-        loops.append(vertices[loop])
-    return loops
-
-
 def outlines_in_work(obj, depsgraph, frame: "WorkFrame") -> list:
     """Closed outlines (work mm, (k, 2) arrays) of a Text, curve or mesh object, seen from above.
 
@@ -120,7 +86,7 @@ def outlines_in_work(obj, depsgraph, frame: "WorkFrame") -> list:
     work = frame.to_work(vertices)
     if polygons:
         return region.loops(region.union_of_faces([work[p, :2] for p in polygons], f"object {obj.name!r}"))
-    return [loop[:, :2] for loop in edge_loops(work, edges, obj.name)]
+    return [loop[:, :2] for loop in meshdata.edge_loops(work, edges, obj.name)]
 
 
 @dataclass
@@ -156,9 +122,7 @@ def plate_from_object(obj, depsgraph, scene, origin: str = "CENTER") -> Plate:
     else:
         raise SceneInputError(f"unknown work origin {origin!r}")
     frame = WorkFrame(scale, origin_mm)
-    top_z = hi[2] / scale
-    tolerance = max(1e-6, (hi[2] - lo[2]) / scale * 1e-4)
-    top_faces = [p for p in polygons if np.all(np.abs(vertices[p, 2] - top_z) <= tolerance)]
+    top_faces = meshdata.top_faces(vertices, polygons)
     if top_faces:
         work = frame.to_work(vertices)
         outline = region.loops(region.union_of_faces([work[p, :2] for p in top_faces], f"plate {obj.name!r}"))

@@ -6,20 +6,25 @@ it, so the panel, batch and tests cut the same program.
 from __future__ import annotations
 
 import os
+import time
 from dataclasses import dataclass
 
 import bpy
 from bpy.props import EnumProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper
 
-from ..post import milling_post, write_atomic
+from .. import post as posts
+from ..post import write_atomic
 from ..toolpath import engrave as core
 from ..toolpath.program import Tool
 from . import convert
 from .common import SteppedOperator, run_reported
 from .preferences import scene_output_dir, scene_post
-from .properties import MILLING_POST_ITEMS
+from .properties import post_items, post_number
 from .translations import translate_message
+from .workflow import BatchCommand, SimulationSetup, Workflow
+
+POST_FAMILIES = ("milling",)
 
 PREFIX = "Kezuri Engrave"
 COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "band": (0.1, 0.6, 1.0, 1.0), "burr": (0.2, 0.9, 0.3, 1.0),
@@ -32,6 +37,8 @@ class EngraveJob:
     baked: object                   # Program with the texture applied (what the baked posts write)
     depths: list                    # gouge target depths of the baked roughing, in order
     plate: convert.Plate
+    letter_loops: list              # the letters' outlines, (k, 2) arrays in work mm
+    settings: core.EngraveSettings
 
 
 def settings_from(props) -> core.EngraveSettings:
@@ -75,7 +82,8 @@ def engrave_request(scene, depsgraph):
         result.program.rapid_rate = rapid_rate
         result.program.notes = list(result.warnings)
         baked, depths = core.bake(result.program)
-        return EngraveJob(result, baked, depths, plate)
+        return EngraveJob(result, baked, depths, plate, [loop for _, loops in letters for loop in loops],
+                          engrave_settings)
     return compute
 
 
@@ -98,17 +106,25 @@ def show_engrave(scene, job: EngraveJob, show_rapids: bool = True) -> list:
 
 def program_for_post(job: EngraveJob, post_name: str):
     """The macro post writes the untextured path and lets the controller draw the depths."""
-    return job.result.program if post_name == "fanuc-macro" else job.baked
+    return job.result.program if posts.find(POST_FAMILIES, post_name).needs_texture else job.baked
 
 
 def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str | None = None) -> str:
-    post = milling_post(post_name, work_offset)
+    post = posts.create(POST_FAMILIES, post_name, work_offset=work_offset)
     text = post.to_text(program_for_post(job, post_name))
     return write_atomic(path, text)
 
 
 def extension_for(post_name: str) -> str:
-    return ".ngc" if post_name == "linuxcnc" else ".nc"
+    return posts.extension(POST_FAMILIES, post_name)
+
+
+def simulation(job: EngraveJob) -> SimulationSetup:
+    """The baked program on the plate; the letters must stand and nothing may go below the
+    deepest planned cut."""
+    extra = core.simulation_limits(job.letter_loops, job.result.program, job.settings.band_depth)
+    return SimulationSetup(job.baked, core.plate_stock(job.plate.outline, job.plate.size[2]), extra, job.plate.frame,
+                           "engrave")
 
 
 class KEZURI_OT_engrave_generate(SteppedOperator, bpy.types.Operator):
@@ -153,7 +169,7 @@ class KEZURI_OT_engrave_export(bpy.types.Operator, ExportHelper):
 
     filename_ext = ".nc"
     filter_glob: StringProperty(default="*.nc;*.ngc;*.tap", options={"HIDDEN"})
-    post: EnumProperty(name="Post", items=MILLING_POST_ITEMS, default="fanuc")
+    post: EnumProperty(name="Post", items=post_items(POST_FAMILIES), default=post_number("fanuc"))
 
     @classmethod
     def poll(cls, context):
@@ -180,3 +196,55 @@ class KEZURI_OT_engrave_export(bpy.types.Operator, ExportHelper):
 
 
 CLASSES = (KEZURI_OT_engrave_generate, KEZURI_OT_engrave_export)
+
+
+# ----- batch: ``batch.py engrave`` ---------------------------------------------------------
+
+def batch_arguments(p):
+    p.add_argument("--blend", help="a .blend whose scene has the Kezuri plate and letters set")
+    p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
+    p.add_argument("--seed", type=int)
+
+
+def batch(args) -> dict:
+    from . import batchio, preview, samples, simview
+    from .common import Progress
+
+    scene = batchio.open_blend(args.blend)
+    if not args.blend:
+        samples.name_plate(scene)
+    props = scene.kezuri
+    if args.seed is not None:
+        props.engrave.seed = args.seed
+    post_name = args.post or scene_post(scene)
+    started = time.perf_counter()
+    job = run_engrave(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "engrave"))
+    seconds = time.perf_counter() - started
+    nc_path = os.path.join(args.out, f"engrave{extension_for(post_name)}")
+    export_engrave(job, post_name, nc_path, props.machine.work_offset)
+    wires = show_engrave(scene, job, show_rapids=False)
+    toolpaths_png = preview.render_preview(scene, [props.stock.plate, *letter_objects(props.engrave)], wires,
+                                           os.path.join(args.out, "engrave-toolpaths.png"))
+    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "engrave")
+    return {
+        "simulation": simulation_report,
+        "toolpaths_preview": toolpaths_png,
+        "workflow": "engrave",
+        "post": post_name,
+        "seed": props.engrave.seed,
+        "files": [nc_path],
+        "preview": png,
+        "toolpath_seconds": round(seconds, 3),
+        "operations": program_for_post(job, post_name).summary(),
+        "cycle_time_s": round(job.baked.cycle_time(), 1),
+        "gouge_depths": [round(d, 4) for d in job.depths],
+        "warnings": job.result.warnings,
+        "skipped": job.result.skipped,
+    }
+
+
+WORKFLOW = Workflow(
+    "ENGRAVE", "Engraving", "The gouge-texture name plate", classes=CLASSES, post_families=POST_FAMILIES,
+    request=engrave_request, simulation=simulation,
+    commands=(BatchCommand("engrave", "gouge-texture name plate (W1)", batch_arguments, batch,
+                           demo=("--post", "linuxcnc")),))

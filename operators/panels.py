@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import bpy
 
+from .workflows import simulated
+
 
 class KezuriPanel:
     bl_space_type = "VIEW_3D"
@@ -208,9 +210,8 @@ class KEZURI_PT_simulate(KezuriPanel, bpy.types.Panel):
         layout.prop(props, "colour_by")
         layout.use_property_split = False
         row = layout.row(align=True)
-        for key, text in (("ENGRAVE", "Engraving"), ("ROTARY", "Rotary"), ("STEPNC", "STEP-NC"),
-                          ("TURNMILL", "Turn-Mill")):
-            row.operator("kezuri.simulate", text=text).workflow = key
+        for workflow in simulated():
+            row.operator("kezuri.simulate", text=workflow.short_label).workflow = workflow.key
         if len(props.findings):
             box = layout.box()
             box.label(text=f"{len(props.findings)} finding(s)", icon="ERROR")

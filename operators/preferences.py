@@ -7,7 +7,7 @@ from __future__ import annotations
 import bpy
 from bpy.props import CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
-from .properties import MILLING_POST_ITEMS, WORK_OFFSET_ITEMS
+from .properties import WORK_OFFSET_ITEMS, post_items, post_number
 from .translations import translate_message
 
 ADDON_ID = __package__.rpartition(".")[0]   # "kezuri", or "bl_ext.<repo>.kezuri" once installed
@@ -41,7 +41,7 @@ class KEZURI_UL_tools(bpy.types.UIList):
 class KezuriPreferences(bpy.types.AddonPreferences):
     bl_idname = ADDON_ID
 
-    default_post: EnumProperty(name="Default Post", items=MILLING_POST_ITEMS, default="fanuc",
+    default_post: EnumProperty(name="Default Post", items=post_items("milling"), default=post_number("fanuc"),
                                description="Controller a new job is exported for")
     default_work_offset: EnumProperty(name="Default Work Offset", items=WORK_OFFSET_ITEMS, default="G54")
     output_dir: StringProperty(name="Output Folder", subtype="DIR_PATH", default="//nc/",

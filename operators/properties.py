@@ -10,16 +10,26 @@ import bpy
 from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty,
                        IntProperty, PointerProperty, StringProperty)
 
-MILLING_POST_ITEMS = [
-    ("fanuc", "Fanuc (baked texture)", "Fanuc machining centre, ISO 6983; texture depths written literally"),
-    ("fanuc-macro", "Fanuc (controller macro)",
-     "Fanuc Custom Macro B: G66.1 P7023 draws the depths on the controller from clock #3001"),
-    ("linuxcnc", "LinuxCNC", "LinuxCNC / rs274ngc router or mill (.ngc)"),
-    ("grbl", "GRBL", "GRBL 1.1 hobby router: no tool changer, M00 pause at each tool change"),
-]
+from .. import post as posts
 
-SCENE_POST_ITEMS = [("DEFAULT", "Preferences Default", "The default post of the extension preferences"),
-                    *MILLING_POST_ITEMS]
+_ENUM_ITEMS: dict = {}   # Blender reads dynamic enum strings after the callback returns: keep them alive
+
+
+def post_items(families, texture: bool | None = None, first: tuple = ()):
+    """A dynamic ``items`` callback listing the registered posts of ``families`` (see
+    ``post.registry``): a post added to ``post/`` shows up without an edit here."""
+    def items(self, context):
+        found = posts.enum_items(families, texture=texture, first=first)
+        return _ENUM_ITEMS.setdefault(repr(found), found)
+    return items
+
+
+def post_number(choice: str) -> int:
+    """The enum value of a post (a dynamic enum's default is a number)."""
+    return posts.registry.enum_number(choice)
+
+
+DEFAULT_POST = ("DEFAULT", "Preferences Default", "The default post of the extension preferences")
 
 WORK_OFFSET_ITEMS = [(f"G{n}", f"G{n}", f"Work coordinate system G{n}") for n in range(54, 60)]
 
@@ -48,7 +58,7 @@ def mm(name, default, description, minimum=None, maximum=None, soft_min=None, so
 
 
 class KezuriMachine(bpy.types.PropertyGroup):
-    post: EnumProperty(name="Post", items=SCENE_POST_ITEMS, default="DEFAULT",
+    post: EnumProperty(name="Post", items=post_items("milling", first=(DEFAULT_POST,)), default=0,
                        description="Controller the NC program is written for")
     work_offset: EnumProperty(name="Work Offset", items=WORK_OFFSET_ITEMS, default="G54",
                               description="Work coordinate system selected at the program start")
@@ -180,9 +190,7 @@ class KezuriRotary(bpy.types.PropertyGroup):
     wall_stepover: mm("Wall Stepover", 0.5, "Wall finishing pitch along the wall", minimum=0.01)
     max_table_rpm: FloatProperty(name="Table Speed Limit", default=60.0, min=0.1,
                                  description="Fastest the face plate turns (rpm), for feeds and times")
-    post: EnumProperty(name="Post", default="linuxcnc", items=[
-        ("linuxcnc", "LinuxCNC", "X Z C words, G93 inverse-time feed"),
-        ("fanuc", "Fanuc", "Fanuc flavour of the same program")])
+    post: EnumProperty(name="Post", items=post_items("cxz"), default=post_number("linuxcnc"))
 
 
 class KezuriWorkingstep(bpy.types.PropertyGroup):
@@ -237,7 +245,7 @@ class KezuriFinding(bpy.types.PropertyGroup):
 
 def show_colours(props, context=None):
     """Make the simulated stock show the colours the panel asks for (both are stored on it)."""
-    from .simulate import COLOUR_ATTRIBUTES, PREFIX
+    from .simview import COLOUR_ATTRIBUTES, PREFIX
     for obj in bpy.data.objects:
         if obj.name.startswith(PREFIX) and obj.type == "MESH":
             attribute = obj.data.color_attributes.get(COLOUR_ATTRIBUTES[props.colour_by])

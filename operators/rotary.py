@@ -7,6 +7,8 @@ Pockets panel): its outline (a closed curve or mesh), depth, wall angle and bott
 """
 from __future__ import annotations
 
+import os
+import time
 from dataclasses import dataclass
 
 import bpy
@@ -14,17 +16,19 @@ import numpy as np
 from bpy.props import EnumProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper
 
-from ..post import rotary_post, write_atomic
+from .. import post as posts
+from ..post import write_atomic
 from ..toolpath import rotary as core
 from ..toolpath.program import Tool
 from . import convert
 from .common import SteppedOperator, run_reported
+from .properties import post_items, post_number
 from .translations import translate_message
+from .workflow import BatchCommand, SimulationSetup, Workflow
 
 PREFIX = "Kezuri Rotary"
 COLOURS = ((0.95, 0.45, 0.1, 1.0), (0.1, 0.6, 1.0, 1.0), (0.2, 0.9, 0.3, 1.0), (0.9, 0.8, 0.1, 1.0))
-ROTARY_POST_ITEMS = [("linuxcnc", "LinuxCNC", "X Z C words, G93 inverse-time feed (.ngc)"),
-                     ("fanuc", "Fanuc", "Fanuc flavour of the same program (.nc)")]
+POST_FAMILIES = ("cxz",)
 
 
 @dataclass
@@ -97,12 +101,22 @@ def show_rotary(scene, job: RotaryJob) -> list:
 
 
 def extension_for(post_name: str) -> str:
-    return ".ngc" if post_name == "linuxcnc" else ".nc"
+    return posts.extension(POST_FAMILIES, post_name)
 
 
 def export_rotary(job: RotaryJob, post_name: str, path: str) -> str:
-    post = rotary_post(post_name, job.result.program.work_offset, max_table_rpm=job.settings.max_table_rpm)
+    post = posts.create(POST_FAMILIES, post_name, work_offset=job.result.program.work_offset,
+                        max_table_rpm=job.settings.max_table_rpm)
     return write_atomic(path, post.to_text(job.result.program))
+
+
+def simulation(job: RotaryJob) -> SimulationSetup:
+    """The C-X-Z program on the block (its top centre on the table's axis)."""
+    from ..toolpath.simulate import BoxStock
+
+    b = job.block
+    stock = BoxStock(-b.size_x / 2, -b.size_y / 2, -b.thickness, b.size_x / 2, b.size_y / 2, 0.0)
+    return SimulationSetup(job.result.program, stock, {}, job.frame, "rotary")
 
 
 class KEZURI_OT_rotary_generate(SteppedOperator, bpy.types.Operator):
@@ -140,7 +154,7 @@ class KEZURI_OT_rotary_export(bpy.types.Operator, ExportHelper):
 
     filename_ext = ".ngc"
     filter_glob: StringProperty(default="*.ngc;*.nc", options={"HIDDEN"})
-    post: EnumProperty(name="Post", items=ROTARY_POST_ITEMS, default="linuxcnc")
+    post: EnumProperty(name="Post", items=post_items(POST_FAMILIES), default=post_number("linuxcnc"))
 
     @classmethod
     def poll(cls, context):
@@ -187,3 +201,46 @@ class KEZURI_OT_mark_pocket(bpy.types.Operator):
 
 
 CLASSES = (KEZURI_OT_rotary_generate, KEZURI_OT_rotary_export, KEZURI_OT_mark_pocket)
+
+
+# ----- batch: ``batch.py rotary`` ----------------------------------------------------------
+
+def batch_arguments(p):
+    p.add_argument("--blend", help="a .blend with the block as Kezuri stock and pocket outlines marked")
+    p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
+
+
+def batch(args) -> dict:
+    from . import batchio, preview, samples, simview
+    from .common import Progress
+
+    scene = batchio.open_blend(args.blend)
+    if not args.blend:
+        samples.rotary_block(scene)
+    post_name = args.post or scene.kezuri.rotary.post
+    started = time.perf_counter()
+    job = run_rotary(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "rotary"))
+    seconds = time.perf_counter() - started
+    nc_path = export_rotary(job, post_name, os.path.join(args.out, f"rotary{extension_for(post_name)}"))
+    paths = show_rotary(scene, job)
+    toolpaths_png = preview.render_preview(scene, [scene.kezuri.stock.plate], paths,
+                                           os.path.join(args.out, "rotary-toolpaths.png"))
+    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "rotary")
+    return {
+        "simulation": simulation_report,
+        "toolpaths_preview": toolpaths_png,
+        "workflow": "rotary",
+        "post": post_name,
+        "files": [nc_path],
+        "preview": png,
+        "toolpath_seconds": round(seconds, 3),
+        "cycle_time_s": job.result.cycle_time_s,
+        "operations": job.result.program.summary(),
+        "pockets": job.result.reports,
+    }
+
+
+WORKFLOW = Workflow(
+    "ROTARY", "Rotary Pockets", "The pockets on the rotating table", classes=CLASSES, post_families=POST_FAMILIES,
+    request=rotary_request, simulation=simulation, button="Rotary",
+    commands=(BatchCommand("rotary", "pockets on a rotating table, C-X-Z (W2)", batch_arguments, batch),))

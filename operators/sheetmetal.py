@@ -14,17 +14,28 @@ import numpy as np
 from bpy.props import StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
-from ..post import amada_punch, flat_export, write_atomic
+from .. import post as posts
+from ..post import flat_export, write_atomic
 from ..toolpath import punch
 from ..toolpath import unfold as core
 from . import convert
 from .common import run_reported
 from .properties import ELBOW_SETTINGS, UNFOLD_SETTINGS, copies
 from .translations import translate_message
+from .workflow import BatchCommand, Workflow
 
 PREFIX = "Kezuri Sheet"
 ELBOW_PREFIX = "Kezuri Elbow"
 GAP_MM = 20.0   # flat patterns are laid out this far beside the part
+POST_FAMILIES = ("punch",)
+PUNCH_POST = "amada-04p"
+
+
+def punch_program(contour, props) -> str:
+    """The turret-punch program nibbling round ``contour`` with the sheet panel's punch."""
+    post = posts.create(POST_FAMILIES, PUNCH_POST, station=props.station, pitch=props.pitch,
+                        thickness=props.thickness)
+    return post.to_text(contour)
 
 
 @dataclass
@@ -42,7 +53,7 @@ def corners_mm(props) -> np.ndarray:
 def run_unfold(corners, props) -> UnfoldJob:
     quad = core.unfold_twisted_quad(corners, props.divisions, props.direction)
     contour = core.compensate_outline(quad.pattern.outline, props.tool_diameter)
-    nc = amada_punch.to_text(contour, station=props.station, pitch=props.pitch, thickness=props.thickness)
+    nc = punch_program(contour, props)
     punched = punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=quad.pattern.outline)
     return UnfoldJob(quad, contour, nc, punched)
 
@@ -87,7 +98,7 @@ def unfold_files(job: UnfoldJob, base_path: str) -> list:
     outline = job.quad.pattern.outline
     bends = job.quad.pattern.bend_lines()
     stem = os.path.splitext(base_path)[0]
-    files = [write_atomic(stem + ".nc", job.nc),
+    files = [write_atomic(stem + posts.extension(POST_FAMILIES, PUNCH_POST), job.nc),
              write_atomic(stem + ".dxf", flat_export.to_dxf([outline], [job.contour], bends)),
              write_atomic(stem + ".svg", flat_export.to_svg([outline], [job.contour], bends))]
     return files
@@ -148,7 +159,7 @@ def elbow_punching(elbow: core.Elbow, props) -> list:
     jobs = []
     for outline in elbow_layout(elbow):
         contour = core.compensate_outline(outline, props.tool_diameter)
-        nc = amada_punch.to_text(contour, station=props.station, pitch=props.pitch, thickness=props.thickness)
+        nc = punch_program(contour, props)
         jobs.append((nc, punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=outline)))
     return jobs
 
@@ -160,7 +171,7 @@ def elbow_files(elbow: core.Elbow, base_path: str, props) -> list:
     files = [write_atomic(stem + ".dxf", flat_export.to_dxf(outlines)),
              write_atomic(stem + ".svg", flat_export.to_svg(outlines))]
     for index, (nc, _) in enumerate(elbow_punching(elbow, props), start=1):
-        files.append(write_atomic(f"{stem}-{index}.nc", nc))
+        files.append(write_atomic(f"{stem}-{index}{posts.extension(POST_FAMILIES, PUNCH_POST)}", nc))
     return files
 
 
@@ -349,3 +360,115 @@ def menu_import(self, context):
 CLASSES = (KEZURI_OT_unfold_quad, KEZURI_OT_quad_from_selection, KEZURI_OT_import_cdl, KEZURI_OT_sheet_export,
            KEZURI_OT_add_elbow, KEZURI_OT_elbow_export)
 MENUS = ((bpy.types.TOPBAR_MT_file_import, menu_import),)
+
+
+# ----- batch: ``batch.py unfold`` and ``batch.py elbow`` -----------------------------------
+
+def unfold_arguments(p):
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--cdl", help="CADKEY .CDL file with the quad's four LINE records")
+    source.add_argument("--corners", help='"x,y,z;x,y,z;x,y,z;x,y,z" in mm (default: the paper\'s test quad)')
+    source.add_argument("--blend", help="a .blend whose Kezuri sheet settings hold the corners")
+    p.add_argument("--divisions", type=int)
+    p.add_argument("--direction", choices=["horizontal", "vertical"])
+    p.add_argument("--tool-diameter", type=float)
+    p.add_argument("--thickness", type=float)
+    p.add_argument("--pitch", type=float)
+    p.add_argument("--station", type=int)
+
+
+def parse_corners(text: str):
+    try:
+        corners = np.array([[float(v) for v in corner.split(",")] for corner in text.split(";")])
+    except ValueError:
+        raise convert.SceneInputError(f"--corners: not numbers: {text!r}") from None
+    if corners.shape != (4, 3):
+        raise convert.SceneInputError(f'--corners needs four "x,y,z" corners separated by ";", got {text!r}')
+    return corners
+
+
+def unfold_batch(args) -> dict:
+    from . import batchio, preview
+
+    scene = batchio.open_blend(args.blend)
+    sheet = scene.kezuri.sheet
+    for option in ("divisions", "direction", "tool_diameter", "thickness", "pitch", "station"):
+        if getattr(args, option) is not None:
+            setattr(sheet, option, getattr(args, option))
+    if args.cdl:
+        if not os.path.isfile(args.cdl):
+            raise FileNotFoundError(f"no such CDL file: {args.cdl}")
+        with open(args.cdl, encoding="latin-1") as stream:
+            corners = core.read_cdl(stream.read())
+    elif args.corners:
+        corners = parse_corners(args.corners)
+    else:
+        corners = corners_mm(sheet)
+    job = run_unfold(corners, sheet)
+    files = unfold_files(job, os.path.join(args.out, "unfold.nc"))
+    objects = show_unfold(scene, job)
+    png = preview.render_preview(scene, [o for o in objects if o.type == "MESH"],
+                                 [o for o in objects if o.type != "MESH"], os.path.join(args.out, "unfold.png"),
+                                 see_through=False)
+    pattern = job.quad.pattern
+    rounded = batchio.rounded
+    return {
+        "workflow": "unfold",
+        "files": files,
+        "preview": png,
+        "divisions": job.quad.divisions,
+        "direction": job.quad.direction,
+        "corners": rounded(job.quad.corners),
+        "edge_lengths": rounded(job.quad.edge_lengths, 6),
+        "diagonals": rounded(job.quad.diagonals, 6),
+        "triangles": [{"3d": rounded(pattern.vertices_3d[t]), "2d": rounded(pattern.vertices_2d[t])}
+                      for t in pattern.triangles],
+        "outline": rounded(pattern.outline),
+        "cut_contour": rounded(job.contour),
+        "simulation": punch_report([job.punched], sheet.thickness),
+    }
+
+
+def elbow_arguments(p):
+    p.add_argument("--diameter", type=float)
+    p.add_argument("--bend-radius", type=float)
+    p.add_argument("--angle", type=float)
+    p.add_argument("--pieces", type=int)
+
+
+def elbow_batch(args) -> dict:
+    from . import batchio, preview
+
+    scene = batchio.open_blend(None)
+    sheet = scene.kezuri.sheet
+    for option, name in (("diameter", "elbow_diameter"), ("bend_radius", "elbow_radius"),
+                         ("angle", "elbow_angle"), ("pieces", "elbow_pieces")):
+        if getattr(args, option) is not None:
+            setattr(sheet, name, getattr(args, option))
+    result = run_elbow(sheet)
+    files = elbow_files(result, os.path.join(args.out, "elbow.dxf"), sheet)
+    objects = show_elbow(scene, result)
+    solids = [o for o in objects if o.type == "MESH" and len(o.data.polygons)]
+    wires = [o for o in objects if o not in solids]
+    png = preview.render_preview(scene, solids, wires, os.path.join(args.out, "elbow.png"), see_through=False)
+    rounded = batchio.rounded
+    return {
+        "workflow": "elbow",
+        "files": files,
+        "preview": png,
+        "diameter": result.diameter, "bend_radius": result.bend_radius, "angle": result.bend_angle,
+        "simulation": punch_report([punched for _, punched in elbow_punching(result, sheet)], sheet.thickness),
+        "pieces": [{"index": piece.index + 1, "angle_deg": round(piece.angle, 6),
+                    "outline": rounded(piece.outline),
+                    "shortest_mm": round(float(piece.generatrix_lengths.min()), 6),
+                    "longest_mm": round(float(piece.generatrix_lengths.max()), 6)} for piece in result.pieces],
+    }
+
+
+WORKFLOW = Workflow(
+    "SHEET", "Sheet Metal", "Twisted quads and pipe elbows: flat patterns, turret-punch NC, DXF, SVG",
+    classes=CLASSES, menus=MENUS, post_families=POST_FAMILIES,
+    commands=(BatchCommand("unfold", "twisted quad: flat pattern, turret-punch NC, DXF, SVG (W5)", unfold_arguments,
+                           unfold_batch),
+              BatchCommand("elbow", "segmented pipe elbow: flat patterns, DXF, SVG (W5)", elbow_arguments,
+                           elbow_batch)))

@@ -13,14 +13,19 @@ import numpy as np
 from bpy.props import EnumProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
-from ..post import milling_post, write_atomic
+from .. import post as posts
+from ..post import write_atomic
 from ..toolpath import stepnc
+from ..toolpath.meshdata import prism
 from ..toolpath.program import Tool
-from ..toolpath.stepnc.model import ClosedPocket, PlanarFace, RoundHole
+from ..toolpath.stepnc.solids import block_of, feature_solid, stock_box
 from . import convert
 from .common import run_reported
-from .properties import MILLING_POST_ITEMS
+from .properties import post_items, post_number
 from .translations import translate_message
+from .workflow import BatchCommand, SimulationSetup, Workflow
+
+POST_FAMILIES = ("milling",)
 
 PREFIX = "Kezuri STEP-NC"
 FEATURE_COLOURS = {"ClosedPocket": (0.2, 0.6, 1.0, 1.0), "PlanarFace": (0.9, 0.8, 0.2, 1.0),
@@ -67,42 +72,14 @@ def scene_program(scene, loaded):
     return program
 
 
-def _prism(outline: np.ndarray, top: float, bottom: float):
-    """Vertices and faces of a vertical prism over a closed (k, 2) outline."""
-    k = len(outline)
-    vertices = np.vstack([np.column_stack([outline, np.full(k, top)]),
-                          np.column_stack([outline, np.full(k, bottom)])])
-    faces = [list(range(k))[::-1], list(range(k, 2 * k))]
-    faces += [[i, (i + 1) % k, k + (i + 1) % k, k + i] for i in range(k)]
-    return vertices, faces
-
-
-def feature_solid(feature):
-    """A prism showing where a feature removes material (work mm)."""
-    top, bottom = feature.top_z, feature.bottom_z
-    if isinstance(feature, ClosedPocket):
-        outline = np.asarray(feature.outline(), float)[:, :2]
-    elif isinstance(feature, PlanarFace):
-        outline = np.asarray(feature.corners(), float)
-    elif isinstance(feature, RoundHole):
-        angles = np.linspace(0, 2 * np.pi, 48, endpoint=False)
-        outline = np.column_stack([np.cos(angles), np.sin(angles)]) * feature.diameter / 2 + feature.centre
-    else:
-        return None
-    if abs(top - bottom) < 1e-9:
-        bottom = top - 0.1
-    return _prism(outline, top, bottom)
-
-
 def show_workplan(scene, loaded, program=None) -> list:
     convert.remove_objects(PREFIX)
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
     objects = []
-    workpiece = loaded.project.its_workpieces[0] if getattr(loaded.project, "its_workpieces", None) else None
-    block = getattr(workpiece, "its_bounding_geometry", None) if workpiece is not None else None
-    if block is not None:
-        (x0, y0, z0), (x1, y1, z1) = block.box()
-        vertices, faces = _prism(np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]), z1, z0)
+    box = block_of(loaded)
+    if box is not None:
+        (x0, y0, z0), (x1, y1, z1) = box
+        vertices, faces = prism(np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]), z1, z0)
         stock = convert.mesh_object(scene, f"{PREFIX} stock", vertices, faces, frame, (0.85, 0.72, 0.52, 1.0))
         stock.display_type = "WIRE"
         objects.append(stock)
@@ -124,28 +101,30 @@ def show_workplan(scene, loaded, program=None) -> list:
     return objects
 
 
-def stock_box(loaded, program):
-    """The workpiece's BLOCK when the file gives one, else a box around the features and the
-    cuts (a tool radius beyond them), from the lowest cut to the highest feature top."""
-    from ..toolpath.simulate import BoxStock
-
-    workpiece = loaded.project.its_workpieces[0] if loaded.project.its_workpieces else None
-    block = getattr(workpiece, "its_bounding_geometry", None)
-    if block is not None:
-        (x0, y0, z0), (x1, y1, z1) = block.box()
-        return BoxStock(x0, y0, z0, x1, y1, z1)
-    cuts = np.vstack([op.xyz[op.kind != 0] for op in program.operations])
-    margin = max(op.tool.radius for op in program.operations) + 1.0
-    top = max(step.its_feature.top_z for step in loaded.workingsteps)
-    (x0, y0, z0), (x1, y1, _) = cuts.min(axis=0), cuts.max(axis=0)
-    return BoxStock(x0 - margin, y0 - margin, min(z0, top) - 1.0, x1 + margin, y1 + margin, top)
-
-
 def export_nc(scene, post_name: str, path: str) -> tuple:
     loaded = load_scene_workplan(scene)
     program = scene_program(scene, loaded)
-    post = milling_post(post_name, scene.kezuri.machine.work_offset)
+    post = posts.create(POST_FAMILIES, post_name, work_offset=scene.kezuri.machine.work_offset)
+    if post.needs_texture:
+        raise posts.PostError(f"the {post.name} post writes textured engravings only; pick another post")
     return write_atomic(path, post.to_text(program)), program
+
+
+def extension_for(post_name: str) -> str:
+    return posts.extension(POST_FAMILIES, post_name)
+
+
+def stepnc_request(scene, depsgraph):
+    """Read the imported workplan and convert it in the list's order: ``compute(progress)``."""
+    loaded = load_scene_workplan(scene)
+    program = scene_program(scene, loaded)
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    return lambda progress=None: (loaded, program, frame)
+
+
+def simulation(job) -> SimulationSetup:
+    loaded, program, frame = job
+    return SimulationSetup(program, stock_box(loaded, program), {}, frame, "stepnc")
 
 
 def pockets_part21(scene, depsgraph) -> str:
@@ -228,14 +207,14 @@ class KEZURI_OT_stepnc_export(bpy.types.Operator, ExportHelper):
 
     filename_ext = ".nc"
     filter_glob: StringProperty(default="*.nc;*.ngc", options={"HIDDEN"})
-    post: EnumProperty(name="Post", items=[i for i in MILLING_POST_ITEMS if i[0] != "fanuc-macro"], default="fanuc")
+    post: EnumProperty(name="Post", items=post_items(POST_FAMILIES, texture=False), default=post_number("fanuc"))
 
     @classmethod
     def poll(cls, context):
         return KEZURI_OT_stepnc_generate.poll(context)
 
     def check(self, context):
-        self.filename_ext = ".ngc" if self.post == "linuxcnc" else ".nc"
+        self.filename_ext = extension_for(self.post)
         return ExportHelper.check(self, context)
 
     def execute(self, context):
@@ -308,3 +287,86 @@ def menu_export(self, context):
 CLASSES = (KEZURI_OT_import_stepnc, KEZURI_OT_stepnc_generate, KEZURI_OT_stepnc_export, KEZURI_OT_export_stepnc,
            KEZURI_OT_workingstep_move, KEZURI_UL_workingsteps)
 MENUS = ((bpy.types.TOPBAR_MT_file_import, menu_import), (bpy.types.TOPBAR_MT_file_export, menu_export))
+
+
+# ----- batch: ``batch.py stepnc`` ----------------------------------------------------------
+
+def batch_arguments(p):
+    p.add_argument("--input", help="ISO 14649 Part 21 file (.stp, .p21); default: a built-in two-pocket plate")
+    p.add_argument("--post", choices=posts.choices(POST_FAMILIES, texture=False))
+    p.add_argument("--order", help="workingstep instance ids in the order to cut, e.g. 13,14,10 (default: "
+                                   "the workplan's order); workingsteps left out are not cut")
+
+
+def sample_file(out_dir: str) -> str:
+    """A 120 x 80 x 20 mm plate with a rectangular and an L-shaped pocket, as ISO 14649."""
+    pockets = [stepnc.PocketSpec("POCKET1", ((10, 10), (50, 10), (50, 40), (10, 40)), 8.0),
+               stepnc.PocketSpec("POCKET2", ((65, 15), (110, 15), (110, 35), (85, 35), (85, 70), (65, 70)), 5.0)]
+    text = stepnc.pockets_to_part21(((0, 0, -20), (120, 80, 0)), pockets, Tool(1, "flat", 6.0, flute_length=20.0),
+                                    name="KEZURI SAMPLE PLATE")
+    return write_atomic(os.path.join(out_dir, "sample.stp"), text)
+
+
+def apply_order(scene, text: str, path: str) -> None:
+    """``--order 13,14,10``: cut these workingsteps, in this order, and no others."""
+    try:
+        wanted = [int(v.strip().lstrip("#")) for v in text.split(",") if v.strip()]
+    except ValueError:
+        raise convert.SceneInputError(f"--order: instance ids separated by commas, got {text!r}") from None
+    steps = scene.kezuri.stepnc.steps
+    known = [item.ident for item in steps]
+    for ident in wanted:
+        if ident not in known:
+            raise convert.SceneInputError(f"--order: #{ident} is not a workingstep of {path} ({known})")
+    for target, ident in enumerate(wanted):
+        steps.move([item.ident for item in steps].index(ident), target)
+    for item in steps:
+        item.enabled = item.ident in wanted
+
+
+def batch(args) -> dict:
+    from . import batchio, preview, simview
+
+    scene = batchio.open_blend(None)
+    path = args.input or sample_file(args.out)
+    if not os.path.isfile(path):
+        raise FileNotFoundError(f"no such ISO 14649 file: {path}")
+    loaded = stepnc.load_workplan(path)
+    fill_workplan_list(scene, os.path.abspath(path), loaded)
+    if args.order:
+        apply_order(scene, args.order, path)
+    post_name = args.post or "fanuc"
+    nc_path, program = export_nc(scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"))
+    objects = show_workplan(scene, loaded, program)
+    solids = [o for o in objects if o.type == "MESH"]
+    paths = [o for o in objects if o.type == "CURVE"]
+    toolpaths_png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "stepnc-toolpaths.png"))
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    simulation_report, png = simview.batch_simulation(scene, simulation((loaded, program, frame)), args.out,
+                                                      "stepnc")
+    steps = {step.id: step for step in loaded.workingsteps}
+    order = [item.ident for item in scene.kezuri.stepnc.steps if item.enabled]
+    workingsteps = []
+    for ident, op in zip(order, program.operations):
+        entry = describe_step(steps[ident])
+        entry.update(tool=op.tool.describe(), moves=len(op))
+        workingsteps.append(entry)
+    return {
+        "workflow": "stepnc",
+        "simulation": simulation_report,
+        "toolpaths_preview": toolpaths_png,
+        "input": os.path.abspath(path),
+        "post": post_name,
+        "files": [nc_path],
+        "preview": png,
+        "workingsteps": workingsteps,
+        "operations": program.summary(),
+        "warnings": list(program.notes),
+        "cycle_time_s": round(program.cycle_time(), 1),
+    }
+
+
+WORKFLOW = Workflow(
+    "STEPNC", "STEP-NC Workplan", "The imported ISO 14649 workplan", classes=CLASSES, menus=MENUS,
+    post_families=POST_FAMILIES, request=stepnc_request, simulation=simulation, button="STEP-NC",
+    commands=(BatchCommand("stepnc", "ISO 14649 (STEP-NC) workplan to G-code (W3)", batch_arguments, batch),))

@@ -173,18 +173,6 @@ PROPERTY_TEXTS = {
     "Controller the NC program is written for": "NCプログラムの出力先の制御装置",
     "Preferences Default": "プリファレンスの既定値",
     "The default post of the extension preferences": "エクステンションのプリファレンスで設定した既定のポストプロセッサ",
-    "Fanuc (baked texture)": "FANUC（テクスチャをベイク）",
-    "Fanuc machining centre, ISO 6983; texture depths written literally":
-        "FANUCのマシニングセンタ（ISO 6983）。刀跡の深さを数値のまま書き出します",
-    "Fanuc (controller macro)": "FANUC（制御装置マクロ）",
-    "Fanuc Custom Macro B: G66.1 P7023 draws the depths on the controller from clock #3001":
-        "FANUCカスタムマクロB：G66.1 P7023 が制御装置上でクロック #3001 を種に深さを乱数で決めます",
-    "LinuxCNC": "LinuxCNC",
-    "LinuxCNC / rs274ngc router or mill (.ngc)": "LinuxCNC / rs274ngc のルーターまたはフライス盤（.ngc）",
-    "GRBL": "GRBL",
-    "GRBL 1.1 hobby router: no tool changer, M00 pause at each tool change":
-        "GRBL 1.1 のホビー用ルーター：自動工具交換装置なし、工具交換のたびに M00 で一時停止",
-    "Fanuc": "FANUC",
     "Work Offset": "ワーク座標系",
     "Work coordinate system selected at the program start": "プログラムの始めに選択するワーク座標系",
     **{f"G{n}": f"G{n}" for n in range(54, 60)},
@@ -333,10 +321,6 @@ PROPERTY_TEXTS = {
     "Wall finishing pitch along the wall (mm)": "壁面に沿った壁面仕上げのピッチ (mm)",
     "Table Speed Limit": "テーブル回転数の上限",
     "Fastest the face plate turns (rpm), for feeds and times": "面板の最高回転数 (rpm)。送り速度と加工時間の計算に使います",
-    "X Z C words, G93 inverse-time feed": "X Z C ワード、G93 逆時間送り",
-    "Fanuc flavour of the same program": "同じプログラムのFANUC版",
-    "X Z C words, G93 inverse-time feed (.ngc)": "X Z C ワード、G93 逆時間送り（.ngc）",
-    "Fanuc flavour of the same program (.nc)": "同じプログラムのFANUC版（.nc）",
     # STEP-NC (ISO 14649) workplan
     "Instance": "インスタンス番号",
     "Instance number (#id) in the Part 21 file": "Part 21ファイル内のインスタンス番号（#id）",
@@ -379,14 +363,6 @@ PROPERTY_TEXTS = {
     "Blender's BVHTree": "BlenderのBVHTree",
     "trimesh": "trimesh",
     "trimesh (Embree when bundled), as in batch runs": "trimesh（同梱されていればEmbree）。バッチ実行と同じです",
-    "Turn-Mill X-Z-C": "複合加工機 X-Z-C",
-    "X (diameter), Z, C words with the machine's C-axis and turret codes":
-        "X（直径値）、Z、C ワードと、機械のC軸・タレット用コード",
-    "LinuxCNC X-Z-C": "LinuxCNC X-Z-C",
-    "X (radius), Z, C words only": "X（半径値）、Z、C ワードのみ",
-    "APT CL Data": "APT CLデータ",
-    "Cutter location data in part coordinates, for a post-processor":
-        "ポストプロセッサ用の、部品座標での工具位置（CL）データ",
     # Preferences: tool library
     "Number": "工具番号",
     "Tool (pocket) number, T word": "工具（ポット）番号、Tワード",
@@ -898,6 +874,28 @@ MESSAGE_TEMPLATES = {
     '{}line {}: a hit bites {} mm into the part at ({}, {})': '{0}{1} 行目：打ち抜きが ({3}, {4}) で部品に {2} mm 食い込みます',
     '{}: {} cannot plunge, but move {} feeds {} mm straight in into material at {}':
         '{0}：{1} は突っ込み加工できませんが、移動 {2} が {4} で材料へ {3} mm まっすぐ送り込みます',
+    # batch commands (operators/<workflow>.py) and the post registry
+    'no such .blend file: {}': '.blend ファイルがありません：{0}',
+    '--blend {}: not a .blend file Blender can open ({})': '--blend {0}：Blender で開ける .blend ファイルではありません（{1}）',
+    '--stock {}: not numbers': '--stock {0}：数値ではありません',
+    '--stock {}: give box:x0,y0,z0,x1,y1,z1 or cylinder:R,H': '--stock {0}：box:x0,y0,z0,x1,y1,z1 か cylinder:R,H で指定してください',
+    'no such NC file: {}': 'NC ファイルがありません：{0}',
+    'no such design file: {}': '設計形状のファイルがありません：{0}',
+    '--corners: not numbers: {}': '--corners：数値ではありません：{0}',
+    '--corners needs four "x,y,z" corners separated by ";", got {}':
+        '--corners には ";" で区切った "x,y,z" の頂点が4つ必要です（指定：{0}）',
+    'no such CDL file: {}': 'CDL ファイルがありません：{0}',
+    'the {} post writes textured engravings only; pick another post':
+        '{0} ポストプロセッサは刀跡テクスチャ付きの彫刻専用です。別のポストプロセッサを選んでください',
+    '--order: instance ids separated by commas, got {}': '--order：インスタンス番号をカンマ区切りで指定してください（指定：{0}）',
+    '--order: #{} is not a workingstep of {} ({})': '--order：#{0} は {1} のワーキングステップではありません（{2}）',
+    'no such ISO 14649 file: {}': 'ISO 14649 ファイルがありません：{0}',
+    'no such mesh file: {}': 'メッシュファイルがありません：{0}',
+    '{}: not a readable mesh ({})': '{0}：読み込めるメッシュではありません（{1}）',
+    '{}: the mesh has no faces': '{0}：メッシュに面がありません',
+    'no workflow {}; the table has {}': 'ワークフロー {0} はありません。あるのは {1} です',
+    'post class {} needs {}': 'ポストプロセッサのクラス {0} には {1} が必要です',
+    'post {} ({}, {}) is already registered by {}.{}': 'ポストプロセッサ {0}（{1}、{2}）は {3}.{4} が登録済みです',
 }
 
 
@@ -906,6 +904,11 @@ def _build() -> dict:
     for table in (PROPERTY_TEXTS, PANEL_TEXTS, OPERATOR_DESCRIPTIONS, MESSAGES):
         for english, japanese in table.items():
             messages[(DEFAULT, english)] = japanese
+    from .. import post
+    for cls in post.posts():     # each post declares its own Japanese label and description
+        for english, japanese in ((cls.label, cls.label_ja), (cls.description, cls.description_ja)):
+            if japanese:
+                messages.setdefault((DEFAULT, english), japanese)
     for table in (OPERATOR_LABELS, OPERATOR_TEXTS):
         for english, japanese in table.items():
             messages[(OPERATOR, english)] = japanese

@@ -6,6 +6,7 @@ core's trimesh engine is the other choice (and the one batch runs use without Bl
 """
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass
 
@@ -16,13 +17,17 @@ from bpy_extras.io_utils import ExportHelper
 from mathutils import Vector
 from mathutils.bvhtree import BVHTree
 
+from .. import post as posts
 from ..post import write_atomic
-from ..post.cldata import CLDataPost
-from ..post.turnmill_xzc import TurnMillLinuxCNCPost, TurnMillXZCPost
+from ..toolpath import meshdata
 from ..toolpath import turnmill as core
 from . import convert
 from .common import SteppedOperator, run_reported
+from .properties import post_items, post_number
 from .translations import translate_message
+from .workflow import BatchCommand, SimulationSetup, Workflow
+
+POST_FAMILIES = ("xzc", "cldata")
 
 PREFIX = "Kezuri Turn-Mill"
 ATTRIBUTE = "Kezuri reach"
@@ -49,16 +54,6 @@ class BVHRayEngine:
 
 def engine_for(name: str, vertices, faces):
     return BVHRayEngine(vertices, faces) if name == "BVH" else core.TrimeshRayEngine(vertices, faces)
-
-
-def triangulated(vertices: np.ndarray, polygons) -> tuple:
-    """Triangles (fan) of the polygons, and the polygon each triangle came from."""
-    triangles, owner = [], []
-    for index, poly in enumerate(polygons):
-        for k in range(1, len(poly) - 1):
-            triangles.append((poly[0], poly[k], poly[k + 1]))
-            owner.append(index)
-    return np.array(triangles, dtype=np.int64).reshape(-1, 3), np.array(owner, dtype=np.int64)
 
 
 @dataclass
@@ -109,7 +104,7 @@ def part_mesh(scene, depsgraph) -> tuple:
         raise convert.SceneInputError(f"part {obj.name!r} has no faces")
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
     vertices = frame.to_work(world)
-    faces, owner = triangulated(vertices, polygons)
+    faces, owner = meshdata.triangulated(polygons)
     return obj, vertices, faces, owner, frame
 
 
@@ -138,9 +133,7 @@ def run_turnmill(scene, depsgraph, progress=None) -> TurnMillJob:
 def polygon_labels(triangle_labels: np.ndarray, owner: np.ndarray, polygon_count: int) -> np.ndarray:
     """Per Blender polygon: the directions that reach all of its triangles (the labels are bit
     sets: radial 1, axial 2, both 3)."""
-    labels = np.full(polygon_count, core.BOTH, dtype=np.int8)
-    np.bitwise_and.at(labels, owner, triangle_labels.astype(np.int8))
-    return labels
+    return meshdata.polygon_bits(triangle_labels, owner, polygon_count, core.BOTH)
 
 
 def colour_faces(obj, labels: np.ndarray):
@@ -171,12 +164,21 @@ def show_turnmill(scene, job: TurnMillJob) -> list:
 
 
 def export_turnmill(job: TurnMillJob, post_name: str, path: str) -> str:
-    post = {"xzc": TurnMillXZCPost, "linuxcnc": TurnMillLinuxCNCPost, "cldata": CLDataPost}[post_name]()
+    post = posts.create(POST_FAMILIES, post_name)
     return write_atomic(path, post.to_text(job.plan.program))
 
 
 def extension_for(post_name: str) -> str:
-    return {"xzc": ".nc", "linuxcnc": ".ngc", "cldata": ".cl"}[post_name]
+    return posts.extension(POST_FAMILIES, post_name)
+
+
+def simulation(job: TurnMillJob) -> SimulationSetup:
+    """The X-Z-C program on the round bar, checked against the part."""
+    from types import SimpleNamespace
+
+    return SimulationSetup(job.plan.program, job.stock, {"design": SimpleNamespace(vertices=job.vertices,
+                                                                                   faces=job.faces)},
+                           job.frame, "turnmill")
 
 
 def _poll_part(cls, context) -> bool:
@@ -256,11 +258,8 @@ class KEZURI_OT_turnmill_export(bpy.types.Operator, ExportHelper):
     bl_options = {"REGISTER"}
 
     filename_ext = ".nc"
-    filter_glob: StringProperty(default="*.nc;*.ngc;*.cl", options={"HIDDEN"})
-    post: EnumProperty(name="Post", default="xzc", items=[
-        ("xzc", "Turn-Mill X-Z-C", "X (diameter), Z, C words with the machine's C-axis and turret codes"),
-        ("linuxcnc", "LinuxCNC X-Z-C", "X (radius), Z, C words only"),
-        ("cldata", "APT CL Data", "Cutter location data in part coordinates, for a post-processor")])
+    filter_glob: StringProperty(default="*.nc;*.ngc;*.cls", options={"HIDDEN"})
+    post: EnumProperty(name="Post", items=post_items(POST_FAMILIES), default=post_number("xzc"))
 
     @classmethod
     def poll(cls, context):
@@ -279,3 +278,87 @@ class KEZURI_OT_turnmill_export(bpy.types.Operator, ExportHelper):
 
 
 CLASSES = (KEZURI_OT_turnmill_classify, KEZURI_OT_turnmill_generate, KEZURI_OT_turnmill_export)
+
+
+# ----- batch: ``batch.py turnmill`` --------------------------------------------------------
+
+def batch_arguments(p):
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--blend", help="a .blend whose Turn-Mill panel names the part and the stock")
+    source.add_argument("--mesh", help="an STL/OBJ/PLY of the part in mm, around the Z axis (stock from its size)")
+    p.add_argument("--engine", choices=["BVH", "TRIMESH"], help="ray engine (default: BVH, trimesh for --mesh)")
+    p.add_argument("--post", choices=posts.choices(POST_FAMILIES), action="append",
+                   help="write the program for this post (repeat for more; default: every turn-mill post)")
+
+
+def read_mesh_file(path: str) -> tuple:
+    """Vertices (mm) and triangles of an STL/OBJ/PLY part, and the round bar around it."""
+    import trimesh
+
+    if not os.path.isfile(path):
+        raise FileNotFoundError(f"no such mesh file: {path}")
+    try:
+        loaded = trimesh.load(path, force="mesh")
+    except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file
+        raise core.TurnMillError(f"{path}: not a readable mesh ({error})") from None
+    vertices, faces = np.asarray(loaded.vertices, float), np.asarray(loaded.faces)
+    if not len(vertices) or not len(faces):
+        raise core.TurnMillError(f"{path}: the mesh has no faces")
+    radius = float(np.hypot(vertices[:, 0], vertices[:, 1]).max())
+    return vertices, faces, core.Stock(radius, float(vertices[:, 2].min()), float(vertices[:, 2].max()))
+
+
+def batch(args) -> dict:
+    from . import batchio, preview, samples, simview
+
+    scene = batchio.open_blend(args.blend)
+    if args.mesh:
+        vertices, faces, stock = read_mesh_file(args.mesh)
+        frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+        job = run_on_mesh(vertices, faces, stock, settings_from(scene.kezuri.turnmill), args.engine or "TRIMESH",
+                          frame, name=os.path.basename(args.mesh))
+        labels = job.plan.labels
+        face_centroids = job.vertices[job.faces].mean(axis=1)
+    else:
+        if not args.blend:
+            samples.turnmill_part(scene)
+        if args.engine:
+            scene.kezuri.turnmill.engine = args.engine
+        job = run_turnmill(scene, bpy.context.evaluated_depsgraph_get())
+        part = scene.kezuri.turnmill.part
+        labels = polygon_labels(job.plan.labels, job.owner, len(part.data.polygons))
+        colour_faces(part, labels)
+        centres = [p.center if part.matrix_world.is_identity else part.matrix_world @ p.center
+                   for p in part.data.polygons]
+        face_centroids = job.frame.to_work(np.array(centres, float))
+    names = args.post or posts.choices(POST_FAMILIES)
+    files = [export_turnmill(job, name, os.path.join(args.out, f"turnmill{extension_for(name)}"))
+             for name in dict.fromkeys(names)]
+    paths = show_turnmill(scene, job)
+    if args.mesh:   # after show_turnmill, whose clean-up would remove it
+        solids = [convert.mesh_object(scene, "Kezuri part (mesh file)", job.vertices, job.faces, job.frame)]
+    else:
+        solids = [scene.kezuri.turnmill.part]
+    toolpaths_png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "turnmill-toolpaths.png"))
+    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "turnmill")
+    return {
+        "workflow": "turnmill",
+        "files": files,
+        "preview": png,
+        "toolpaths_preview": toolpaths_png,
+        "simulation": simulation_report,
+        "engine": job.engine,
+        "rays": job.rays,
+        "classification_seconds": round(job.classification_seconds, 3),
+        "faces": [{"centroid": batchio.rounded(c, 4), "label": REPORT_LABELS[int(k)]}
+                  for c, k in zip(face_centroids, labels)],
+        "operations": job.plan.program.summary(),
+        "cycle_time_s": round(job.plan.program.cycle_time(), 1),
+    }
+
+
+WORKFLOW = Workflow(
+    "TURNMILL", "Turn-Mill", "The turn-mill part's radial and axial operations", classes=CLASSES,
+    post_families=POST_FAMILIES, request=turnmill_request, simulation=simulation,
+    commands=(BatchCommand("turnmill", "4.5-axis turn-mill: reach classification, radial/axial paths, X-Z-C (W4)",
+                           batch_arguments, batch),))

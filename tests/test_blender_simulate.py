@@ -74,12 +74,13 @@ def test_exact_turnmill_simulation_can_go_to_a_child_process(scene):
 
 def test_a_gouge_is_listed_and_framed(scene):
     """The name plate checked against a design 1 mm below the top: every cut deeper is a gouge."""
-    from kezuri.operators import engrave, simulate
+    from kezuri.operators import engrave, simview
+    from kezuri.toolpath import engrave as engrave_core
     from kezuri.toolpath import simulate as core
     samples.name_plate(scene)
     job = engrave.run_engrave(scene, bpy.context.evaluated_depsgraph_get())
-    result = core.simulate(job.baked, simulate.box_stock_of(job.plate.outline, 20.0), cell=0.25, design=-1.0)
-    simulate.store_findings(scene, simulate.SimulationJob(result, job.plate.frame, "engrave"))
+    result = core.simulate(job.baked, engrave_core.plate_stock(job.plate.outline, 20.0), cell=0.25, design=-1.0)
+    simview.store_findings(scene, simview.SimulationJob(result, job.plate.frame, "engrave"))
     findings = scene.kezuri.simulation.findings
     gouges = [f for f in findings if f.kind == "gouge"]
     assert gouges and max(f.depth_mm for f in result.findings_of("gouge")) == pytest.approx(1.8, abs=0.01)
@@ -125,7 +126,7 @@ def test_batch_engrave_report_has_the_simulation(tmp_path):
 def test_simulated_stock_is_coloured_by_depth_or_by_operation(scene):
     """The name plate's roughing, band and burr each colour their own surface; the panel's
     Colour switch changes which colours the viewport shows without simulating again."""
-    from kezuri.operators import simulate as shell
+    from kezuri.operators import simview as shell
     samples.name_plate(scene)
     assert bpy.ops.kezuri.simulate(workflow="ENGRAVE") == {"FINISHED"}
     carved = next(o for o in bpy.data.collections["Kezuri"].objects if o.name.startswith("Kezuri Simulated"))

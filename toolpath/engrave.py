@@ -385,3 +385,27 @@ def apply_texture(op: Operation, texture: GougeTexture, digits, jitter_rng=None)
                           feed=np.array(feeds, float), center=np.array(centres, float).reshape(-1, 3),
                           texture=None)
     return textured, depths
+
+
+# Offsets are polygons within region.ARC_TOLERANCE of the true curve: a keep region is checked
+# this much inside its outline, so chord sag is not reported as a gouge.
+KEEP_MARGIN = 2 * rg.ARC_TOLERANCE
+
+
+def simulation_limits(letter_loops, program: Program, band_depth: float) -> dict:
+    """The design limits the simulation checks an engraving against (keyword arguments of
+    ``simulate.simulate``): nothing below the deepest planned cut anywhere (``design``), and the
+    letters (``letter_loops``: (k, 2) arrays, work mm) left standing to the plate's top."""
+    keep = rg.offset(rg.from_loops(list(letter_loops), "letters"), -KEEP_MARGIN)
+    texture = program.operations[0].texture if program.operations else None
+    floor = min(texture.deepest, band_depth) if texture is not None else band_depth
+    return {"design": floor - KEEP_MARGIN, "keep_regions": [[np.asarray(loop) for loop in keep.to_polygons()]]}
+
+
+def plate_stock(outline_loops, thickness: float):
+    """The plate as the simulation's stock: the box around its top outline, top at Z = 0."""
+    from .simulate import BoxStock
+
+    points = np.vstack(outline_loops)
+    (x0, y0), (x1, y1) = points.min(axis=0), points.max(axis=0)
+    return BoxStock(float(x0), float(y0), -float(thickness), float(x1), float(y1), 0.0)

@@ -1,0 +1,71 @@
+"""W6 for any NC file: ``batch.py simulate --nc FILE``: read G-code in our posts' LinuxCNC/Fanuc
+dialect, cut a stock with it, check it against a design mesh, write the carved stock as STL."""
+from __future__ import annotations
+
+import os
+
+from ..toolpath import simulate as core
+from .workflow import BatchCommand, Workflow
+
+
+def batch_arguments(p):
+    p.add_argument("--nc", required=True, help="G-code in our posts' LinuxCNC/Fanuc dialect")
+    p.add_argument("--tool", required=True, help="ball:D, flat:D or bull:D,R (mm)")
+    p.add_argument("--stock", required=True, help="box:x0,y0,z0,x1,y1,z1 or cylinder:R,H (axis Z, top at z = 0)")
+    p.add_argument("--rotary", choices=["c"], help="C words turn the part about Z")
+    p.add_argument("--design", help="the finished part as STL/OBJ/PLY, for the gouge check")
+    p.add_argument("--engine", choices=list(core.ENGINES), default="heightfield")
+    p.add_argument("--cell", type=float, default=0.1, help="height-field cell (mm)")
+
+
+def parse_stock(text: str):
+    kind, _, sizes = text.partition(":")
+    try:
+        numbers = [float(v) for v in sizes.split(",")]
+    except ValueError:
+        raise core.SimulationError(f"--stock {text!r}: not numbers") from None
+    if kind == "box" and len(numbers) == 6:
+        return core.BoxStock(*numbers)
+    if kind == "cylinder" and len(numbers) == 2:
+        return core.CylinderStock(*numbers)
+    raise core.SimulationError(f"--stock {text!r}: give box:x0,y0,z0,x1,y1,z1 or cylinder:R,H")
+
+
+def batch(args) -> dict:
+    import trimesh
+
+    from ..post import write_atomic
+    from ..toolpath import ncread
+    from . import batchio, convert, preview, simview
+
+    if not os.path.isfile(args.nc):
+        raise FileNotFoundError(f"no such NC file: {args.nc}")
+    with open(args.nc, encoding="latin-1") as stream:
+        op, lines = ncread.read_nc(stream.read(), ncread.parse_tool(args.tool), os.path.basename(args.nc))
+    if not args.rotary:
+        op.rotary = {}
+    design = None
+    if args.design:
+        if not os.path.isfile(args.design):
+            raise FileNotFoundError(f"no such design file: {args.design}")
+        design = trimesh.load(args.design, force="mesh")
+    result = core.simulate([op], parse_stock(args.stock), engine=args.engine, cell=args.cell, design=design)
+    report = simview.report_of(result)
+    for entry in report["gouges"] + report["rapid_collisions"] + report["other_findings"]:
+        entry["line"] = lines[entry["move"]]
+    vertices, faces = result.mesh()
+    mesh_path = write_atomic(os.path.join(args.out, "simulated.stl"),
+                             trimesh.Trimesh(vertices, faces, process=False).export(file_type="stl"))
+    scene = batchio.open_blend(None)
+    job = simview.SimulationJob(result, convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0)), "nc")
+    carved = simview.show_simulation(scene, job)
+    png = preview.render_preview(scene, [carved], [], os.path.join(args.out, "simulated.png"), see_through=False,
+                                 color_type="VERTEX")
+    return {"workflow": "simulate", "files": [mesh_path], "preview": png, "nc": os.path.abspath(args.nc),
+            "moves": len(op), "simulation": report}
+
+
+WORKFLOW = Workflow(
+    "NCFILE", "NC File", "Material removal and safety checks of an NC file",
+    commands=(BatchCommand("simulate", "material removal and safety checks of an NC file (W6)", batch_arguments,
+                           batch, demo=None),))

@@ -1,0 +1,134 @@
+"""The simulation in the scene: run a workflow's :class:`SimulationSetup`, show the carved stock,
+list the findings, and the ``simulation`` entry of a batch report.
+
+Needs no workflow table: the Simulate operator (:mod:`.simulate`) and every workflow's batch
+command call it with the workflow they have.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import bpy
+import numpy as np
+
+from ..toolpath import simulate as core
+from . import convert
+from .common import CoreCall
+from .translations import translate_message
+
+PREFIX = "Kezuri Simulated"
+COLOUR_ATTRIBUTES = {"DEPTH": "Kezuri depth", "OPERATION": "Kezuri operation"}
+OPERATION_COLOURS = np.array([(0.95, 0.45, 0.10, 1.0), (0.10, 0.60, 1.00, 1.0), (0.20, 0.80, 0.30, 1.0),
+                              (0.90, 0.80, 0.10, 1.0), (0.75, 0.30, 0.95, 1.0), (0.90, 0.20, 0.30, 1.0)])
+
+
+@dataclass
+class SimulationJob:
+    result: core.SimulationResult
+    frame: convert.WorkFrame
+    name: str
+
+
+def _scaled(progress, start: float, end: float):
+    if progress is None:
+        return None
+    return lambda fraction, text="": progress(start + (end - start) * fraction, text)
+
+
+def simulation_request(workflow, scene, engine: str = "heightfield", cell: float = 0.1):
+    """Read ``workflow``'s job from the scene; return what cuts its stock without touching
+    Blender data: a ``compute(progress)`` that plans and simulates (run in steps), or for the
+    manifold engine, whose booleans hold Python's GIL, the job planned now and its simulation
+    as a :class:`CoreCall` (run in a separate process from the UI)."""
+    if workflow.simulation is None:
+        raise convert.SceneInputError(f"no simulation for {workflow.label!r}")
+    plan = workflow.request(scene, bpy.context.evaluated_depsgraph_get())
+    if engine == "manifold":
+        setup = workflow.simulation(plan(None))
+        return CoreCall("toolpath.simulate", "simulate",
+                        dict(program_or_operations=setup.program, stock=setup.stock, engine=engine, cell=cell,
+                             **setup.extra),
+                        then=lambda result: SimulationJob(result, setup.frame, setup.name))
+
+    def compute(progress=None) -> SimulationJob:
+        return run_setup(workflow.simulation(plan(_scaled(progress, 0.0, 0.2))), engine, cell,
+                         _scaled(progress, 0.2, 1.0))
+    return compute
+
+
+def run_setup(setup, engine: str = "heightfield", cell: float = 0.1, progress=None) -> SimulationJob:
+    """Cut ``setup``'s stock with its program."""
+    result = core.simulate(setup.program, setup.stock, engine=engine, cell=cell, progress=progress, **setup.extra)
+    return SimulationJob(result, setup.frame, setup.name)
+
+
+def report_of(result: core.SimulationResult) -> dict:
+    """The ``simulation`` entry of a batch report."""
+    gouges = result.findings_of("gouge")
+    rapids = result.findings_of("rapid_in_material")
+    finding = lambda f: {"operation": f.operation, "move": f.move, "message": f.message,  # noqa: E731
+                         "xy": None if f.xy is None else [round(float(v), 3) for v in f.xy],
+                         "depth_mm": None if f.depth_mm is None else round(float(f.depth_mm), 4)}
+    return {
+        "engine": result.engine,
+        "kernel": result.kernel,
+        "cell_mm": result.cell,
+        "tolerance_mm": result.tolerance,
+        "seconds": round(result.seconds, 3),
+        "removed_volume_mm3": round(result.removed_volume_mm3, 1),
+        "gouges": [finding(f) for f in gouges],
+        "max_gouge_mm": round(max((f.depth_mm or 0.0 for f in gouges), default=0.0), 4),
+        "gouge_volume_mm3": None if result.gouge_volume_mm3 is None else round(result.gouge_volume_mm3, 1),
+        "rapid_collisions": [finding(f) for f in rapids],
+        "other_findings": [finding(f) for f in result.findings if f.kind not in ("gouge", "rapid_in_material")],
+    }
+
+
+def show_simulation(scene, job: SimulationJob, max_cells: int = 250_000):
+    """The simulated stock as a mesh in the Kezuri collection (replaces the last one), with two
+    colour attributes: by depth, and by the operation whose surface shows there."""
+    convert.remove_objects(PREFIX)
+    vertices, faces = job.result.mesh(max_cells)
+    obj = convert.mesh_object(scene, f"{PREFIX} stock ({job.name})", vertices, faces, job.frame,
+                              color=(0.85, 0.72, 0.52, 1.0))
+    vertices = np.asarray(vertices, float)
+    depth = job.result.depth_at(vertices)
+    shade = np.clip(depth / max(float(depth.max()), 1e-9), 0, 1)[:, None]
+    light, dark = np.array([0.92, 0.80, 0.60, 1.0]), np.array([0.35, 0.20, 0.08, 1.0])
+    by_depth = light * (1 - shade) + dark * shade
+    by_operation = np.tile(light, (len(vertices), 1))
+    operation = job.result.operation_at(vertices)
+    cut = (operation >= 0) & (depth > 1e-6)
+    by_operation[cut] = OPERATION_COLOURS[operation[cut] % len(OPERATION_COLOURS)]
+    for key, colours in (("OPERATION", by_operation), ("DEPTH", by_depth)):
+        attribute = obj.data.color_attributes.new(COLOUR_ATTRIBUTES[key], "FLOAT_COLOR", "POINT")
+        attribute.data.foreach_set("color", colours.astype(np.float32).ravel())
+    obj.data.color_attributes.active_color = obj.data.color_attributes[
+        COLOUR_ATTRIBUTES[scene.kezuri.simulation.colour_by]]
+    return obj
+
+
+def store_findings(scene, job: SimulationJob):
+    items = scene.kezuri.simulation.findings
+    items.clear()
+    for f in job.result.findings:
+        item = items.add()
+        item.kind, item.message = f.kind, translate_message(f.message)
+        item.operation, item.move = f.operation, f.move
+        if f.xy is not None:
+            item.location = job.frame.to_world([(float(f.xy[0]), float(f.xy[1]), f.z or 0.0)])[0]
+
+
+def batch_simulation(scene, setup, out_dir: str, stem: str) -> tuple:
+    """Batch: cut ``setup``'s stock (height field, 0.1 mm), render the carved stock to
+    ``<stem>.png``: (report entry, png path)."""
+    import os
+
+    from . import preview
+    from .common import Progress
+
+    job = run_setup(setup, "heightfield", 0.1, Progress(None, "simulate"))
+    carved = show_simulation(scene, job)
+    png = preview.render_preview(scene, [carved], [], os.path.join(out_dir, f"{stem}.png"), see_through=False,
+                                 color_type="VERTEX")
+    return report_of(job.result), png

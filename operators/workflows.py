@@ -1,0 +1,28 @@
+"""The workflow table: one entry per workflow, in the order the panel and the demo show them.
+
+Registration (``operators/__init__``), the Simulate operator and panel, batch's commands and
+the demo loop over :data:`WORKFLOWS`; nothing else lists the workflows.
+"""
+from __future__ import annotations
+
+from . import engrave, ncfile, rotary, sheetmetal, stepnc, turnmill
+
+WORKFLOWS = (engrave.WORKFLOW, rotary.WORKFLOW, stepnc.WORKFLOW, turnmill.WORKFLOW, sheetmetal.WORKFLOW,
+             ncfile.WORKFLOW)
+
+
+def simulated() -> list:
+    """The workflows whose jobs the Simulate operator cuts."""
+    return [w for w in WORKFLOWS if w.simulation is not None]
+
+
+def workflow_of(key: str):
+    for workflow in WORKFLOWS:
+        if workflow.key == key:
+            return workflow
+    raise KeyError(f"no workflow {key!r}; the table has {', '.join(w.key for w in WORKFLOWS)}")
+
+
+def commands() -> dict:
+    """Batch commands by name: every workflow's."""
+    return {command.name: command for workflow in WORKFLOWS for command in workflow.commands}
