@@ -7,7 +7,7 @@ import pytest
 from manifold3d import Manifold, OpType
 
 from kezuri.toolpath import simulate as sim
-from kezuri.toolpath import sweep
+from kezuri.toolpath.simulate import sweep
 from kezuri.toolpath.program import FEED, Operation, Tool
 
 BALL6 = Tool(2, "ball", 6.0)

@@ -50,7 +50,7 @@ import math
 import numpy as np
 from manifold3d import CrossSection, Error, FillRule, JoinType, Manifold, Mesh64, OpType
 
-from .program import TIP_ANGLE_DEG, Tool
+from ..program import TIP_ANGLE_DEG, Tool
 
 MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
 MAX_STRETCH_TURN = math.pi / 3   # a tube turns at most this much in all (it cannot fold back onto itself)

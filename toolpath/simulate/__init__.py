@@ -25,7 +25,7 @@ One call, :func:`simulate`, with two engines behind it:
     costs ~2R*L/cell^2 cells instead of the ~pi*R^2/cell^2 of stamping the whole tool.
 
     Two kernels evaluate the regions (``kernel=``): a compiled one (numba, in
-    heightfield_kernel.py), used where numba can be imported, and pure numpy, the fallback.
+    kernel.py), used where numba can be imported, and pure numpy, the fallback.
     They do the same arithmetic in the same order and write the same heights.
 
 ``"manifold"``
@@ -59,10 +59,10 @@ import numpy as np
 from manifold3d import CrossSection, Error, Manifold, Mesh
 
 from . import radiusmap as rmap
-from . import region as rg
+from .. import region as rg
 from . import sweep
-from .errors import InputError
-from .program import ARC_CCW, ARC_CW, FEED, RAPID, TIP_ANGLE_DEG, Operation, Program, Tool, arc_sweep
+from ..errors import InputError
+from ..program import ARC_CCW, ARC_CW, FEED, RAPID, TIP_ANGLE_DEG, Operation, Program, Tool, arc_sweep
 
 ENGINES = ("heightfield", "manifold")
 KERNELS = ("auto", "numba", "numpy")    # height field kernels; "auto": numba where it can be imported
@@ -549,7 +549,7 @@ class _Family:
 
     A subclass gives the x and y ranges of its items, their y-intervals per grid column and
     their values over runs of cells (the numpy kernel), and ``cut``: the same through the
-    compiled kernel (heightfield_kernel.py), min-written straight into the flat heights."""
+    compiled kernel (kernel.py), min-written straight into the flat heights."""
 
     def __init__(self, segment, ox, oy, **arrays):
         # contiguous float arrays: the compiled kernels then need one signature each
@@ -1013,7 +1013,7 @@ def _compiled_kernels(kernel: str):
         why = "KEZURI_NO_NUMBA=1 is set"
     else:
         try:
-            from . import heightfield_kernel
+            from . import kernel as heightfield_kernel
             return heightfield_kernel
         except (ImportError, OSError, RuntimeError) as error:
             # OSError: llvmlite's library would not load; RuntimeError: numba finds no
