@@ -79,7 +79,7 @@ def naive_exact(op, cell: float) -> np.ndarray:
 
 def run():
     from kezuri.toolpath import simulate as sim
-    from kezuri.toolpath import sweep
+    from kezuri.toolpath.simulate import sweep
     from kezuri.toolpath.program import Tool
 
     op = raster()

@@ -460,7 +460,7 @@ MESSAGES = {
     "outline has a non-finite coordinate (NaN or infinity)": "輪郭に有限でない座標（NaN または無限大）があります",
     "outline has fewer than 3 distinct points": "輪郭の異なる点が3つ未満です",
     "outline encloses no area": "輪郭が面積を囲んでいません",
-    # toolpath/simulate.py
+    # toolpath/simulate/
     "nothing to simulate: the program has no moves": "シミュレーションするものがありません：プログラムに移動がありません",
     "design surface has NaN heights": "設計面の高さに NaN があります",
     "simulation cancelled": "シミュレーションを中止しました",

@@ -8,7 +8,8 @@ import pytest
 import trimesh
 from manifold3d import Manifold
 
-from kezuri.toolpath import radiusmap, simulate, turnmill
+from kezuri.toolpath import simulate, turnmill
+from kezuri.toolpath.simulate import radiusmap
 from kezuri.toolpath.program import FEED, RAPID, Tool
 
 BAR = turnmill.Stock(20.0, -30.0, 0.0)

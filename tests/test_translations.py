@@ -174,7 +174,7 @@ def raised_messages():
     """(message node, where) for every message the core or the shell raises (``raise
     ...Error(...)``) or reports (``report(level, ...)``)."""
     root = os.path.dirname(os.path.dirname(operators.__file__))
-    for folder in ("toolpath", "toolpath/stepnc", "post", "operators"):
+    for folder in ("toolpath", "toolpath/stepnc", "toolpath/simulate", "post", "operators"):
         for filename in sorted(os.listdir(os.path.join(root, folder))):
             if not filename.endswith(".py") or filename == "translations.py":
                 continue

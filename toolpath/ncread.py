@@ -13,6 +13,7 @@ import numpy as np
 
 from .errors import InputError
 from .program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Tool
+from .tools import SHAPES
 
 WORD = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
 
@@ -92,6 +93,8 @@ def parse_tool(text: str) -> Tool:
         numbers = [float(v) for v in sizes.split(",")]
     except ValueError:
         raise NCReadError(f"--tool {text!r}: give ball:D, flat:D or bull:D,R") from None
-    if kind not in ("ball", "flat", "bull") or not numbers or (kind == "bull") != (len(numbers) == 2):
+    shape = SHAPES.get(kind)
+    # end mills only; a bull nose's corner radius is its second size
+    if shape is None or shape.pointed or not numbers or shape.corner_given != (len(numbers) == 2):
         raise NCReadError(f"--tool {text!r}: give ball:D, flat:D or bull:D,R")
-    return Tool(1, kind, numbers[0], corner_radius=numbers[1] if kind == "bull" else 0.0)
+    return Tool(1, kind, numbers[0], corner_radius=numbers[1] if shape.corner_given else 0.0)

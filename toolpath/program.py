@@ -15,7 +15,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import tools
 from .errors import InputError
+from .tools import KINDS as TOOL_KINDS, TIP_ANGLE_DEG  # noqa: F401 (re-exported)
 
 RAPID, FEED, ARC_CW, ARC_CCW = 0, 1, 2, 3
 
@@ -31,13 +33,9 @@ class MoveKind(enum.IntEnum):
     ARC_CCW = ARC_CCW
 
 
-TOOL_KINDS = ("ball", "flat", "bull", "drill", "vbit")
-TIP_ANGLE_DEG = {"drill": 118.0, "vbit": 90.0}  # included angle of the pointed kinds; Tool does not carry one yet
-
-
 @dataclass(frozen=True)
 class Tool:
-    """A cutter.  ``kind`` is one of TOOL_KINDS; lengths in mm."""
+    """A cutter.  ``kind`` is one of TOOL_KINDS (its shape: :attr:`shape`); lengths in mm."""
 
     number: int
     kind: str
@@ -47,13 +45,15 @@ class Tool:
     name: str = ""
 
     def __post_init__(self):
-        if self.kind not in TOOL_KINDS:
-            raise ProgramError(f"tool kind {self.kind!r} is not one of {TOOL_KINDS}")
+        try:
+            shape = tools.shape_class(self.kind)
+        except tools.ToolShapeError as error:
+            raise ProgramError(str(error)) from None
         if not (np.isfinite(self.diameter) and self.diameter > 0):
             raise ProgramError(f"tool diameter must be a positive number, got {self.diameter}")
         if not (isinstance(self.number, int) and 0 <= self.number <= 999):
             raise ProgramError(f"tool number must be an integer 0..999, got {self.number!r}")
-        if self.kind == "ball" and self.corner_radius == 0.0:
+        if shape.corner_is_radius and self.corner_radius == 0.0:
             object.__setattr__(self, "corner_radius", self.diameter / 2)
         if not 0 <= self.corner_radius <= self.diameter / 2 + 1e-9:
             raise ProgramError(f"corner radius {self.corner_radius} does not fit a {self.diameter} mm tool")
@@ -62,12 +62,13 @@ class Tool:
     def radius(self) -> float:
         return self.diameter / 2
 
+    @property
+    def shape(self) -> tools.ToolShape:
+        """The tool's end: its profile, whether it plunges, how the simulation cuts it."""
+        return tools.shape_of(self)
+
     def describe(self) -> str:
-        label = {"ball": "ball end mill", "flat": "flat end mill", "bull": "bull nose end mill",
-                 "drill": "drill", "vbit": "V-bit"}[self.kind]
-        text = f"T{self.number} {self.diameter:g} mm {label}"
-        if self.kind == "bull":
-            text += f" R{self.corner_radius:g}"
+        text = f"T{self.number} {self.diameter:g} mm {self.shape.describe()}"
         return text + (f" ({self.name})" if self.name else "")
 
 

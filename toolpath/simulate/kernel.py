@@ -1,16 +1,16 @@
-"""Compiled height-field kernels (numba): the closed forms of :mod:`.simulate`'s numpy path,
+"""Compiled height-field kernels (numba): the closed forms of the numpy path (families.py),
 evaluated item by item and grid column by column straight into the flat height array,
 with no index or value arrays in between.
 
 Each step is done as the numpy path does it, in the same order and precision: the
 y-intervals and per-run constants in float64, the values along a run of cells in float32.
 So both kernels write the same heights, and the safety checks, which run on the numpy
-path, see the same stock.  :mod:`.simulate` imports this module only when numba is wanted
+path, see the same stock.  heightfield.py imports this module only when numba is wanted
 and importable.
 
 ``grid`` is (ny, x0, y0, cell_x, cell_y) of the height field; ``flat`` its heights, row
 major (cell (i, j) at i * ny + j); ``c0``, ``ncol`` the first grid column and number of
-columns of each item; ``eps`` the widening of every region (simulate's ``_EPS``).
+columns of each item; ``eps`` the widening of every region (families.``_EPS``).
 """
 from __future__ import annotations
 
@@ -87,7 +87,7 @@ def _disk_span(dx, r):
 
 @_jit
 def _band_intervals(dx, ux, uy, length, s, r, eps):
-    """Cells of a band in one column, as simulate._band_intervals: |e| <= r and
+    """Cells of a band in one column, as families._band_intervals: |e| <= r and
     0 <= q - s*sqrt(r^2 - e^2) <= length, with q = dx*ux + dy*uy, e = dy*ux - dx*uy."""
     if abs(ux) > 1e-12:
         e1 = (-r + dx * uy) / ux
@@ -106,7 +106,7 @@ def _band_intervals(dx, ux, uy, length, s, r, eps):
 
 @_jit
 def _band_side_interval(dx, ux, uy, length, mu, w, side, eps):
-    """Cells of one side of a cone or level band in one column, as simulate._band_side_interval."""
+    """Cells of one side of a cone or level band in one column, as families._band_side_interval."""
     lo, hi = -np.inf, np.inf
     start = dx * (ux + side * mu * uy)
     slant = uy - side * mu * ux
@@ -119,7 +119,7 @@ def _band_side_interval(dx, ux, uy, length, mu, w, side, eps):
 
 @_jit
 def _vertex_intervals(dx, d1x, d1y, dz1, d2x, d2y, dz2, r, eps):
-    """Cells of a vertex sphere in one column, as simulate._SphereVertices.intervals."""
+    """Cells of a vertex sphere in one column, as families._SphereVertices.intervals."""
     dlo, dhi = _disk_span(dx, r)
     q = r * r - dx * dx
     incoming = _sqrt_condition(dx * d1x, d1y, dz1, q, 0.0, 1.0, dlo, dhi)
@@ -152,7 +152,7 @@ def _dy0(first, oy, grid):
 
 @_jit
 def cut_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, s, z, a, b, r):
-    """Bands (simulate._Bands): value = z + a*q - b*sqrt(r^2 - e^2)."""
+    """Bands (families._Bands): value = z + a*q - b*sqrt(r^2 - e^2)."""
     ny, _, _, _, cell_y = grid
     for k in range(len(ox)):
         rb = np.float32(r[k] * b[k])
@@ -175,7 +175,7 @@ def cut_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, s, z, a, b, r):
 
 @_jit
 def cut_cone_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, z, a, g, mu, w):
-    """Cone bands (simulate._ConeBands): value = z + a*q + g*|e|."""
+    """Cone bands (families._ConeBands): value = z + a*q + g*|e|."""
     ny, _, _, _, cell_y = grid
     for k in range(len(ox)):
         e_step = np.float32(cell_y * ux[k])
@@ -197,7 +197,7 @@ def cut_cone_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, z, a, g, m
 
 @_jit
 def cut_level_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, z, radius, tip_tan, corner, flat_radius):
-    """Level bands (simulate._LevelBands): value = z + profile(|e|)."""
+    """Level bands (families._LevelBands): value = z + profile(|e|)."""
     ny, _, _, _, cell_y = grid
     reach = np.float32(radius)
     for k in range(len(ox)):
@@ -217,7 +217,7 @@ def cut_level_bands(flat, grid, eps, c0, ncol, ox, oy, ux, uy, length, z, radius
 
 @_jit
 def cut_sphere_vertices(flat, grid, eps, c0, ncol, ox, oy, d1x, d1y, dz1, d2x, d2y, dz2, z, r):
-    """Vertex spheres (simulate._SphereVertices): value = centre z - sqrt(r^2 - |D|^2)."""
+    """Vertex spheres (families._SphereVertices): value = centre z - sqrt(r^2 - |D|^2)."""
     ny, _, _, _, cell_y = grid
     step = np.float32(cell_y)
     for k in range(len(ox)):
@@ -237,7 +237,7 @@ def cut_sphere_vertices(flat, grid, eps, c0, ncol, ox, oy, d1x, d1y, dz1, d2x, d
 
 @_jit
 def _profile(d, tip_tan, corner, flat_radius):
-    """simulate._profile in float32: a cone if tip_tan > 0, else a disc rounded by corner."""
+    """tools.ToolShape.height_at in float32: a cone if tip_tan > 0, else a disc rounded by corner."""
     if tip_tan > 0:
         return d / np.float32(tip_tan)
     off = max(d - np.float32(flat_radius), np.float32(0.0))
@@ -246,7 +246,7 @@ def _profile(d, tip_tan, corner, flat_radius):
 
 @_jit
 def cut_stamps(flat, grid, eps, c0, ncol, ox, oy, z, radius, tip_tan, corner, flat_radius):
-    """Whole-tool stamps (simulate._Stamps): value = tip z + profile(|D|)."""
+    """Whole-tool stamps (families._Stamps): value = tip z + profile(|D|)."""
     ny, _, _, _, cell_y = grid
     step = np.float32(cell_y)
     reach = np.float32(radius)

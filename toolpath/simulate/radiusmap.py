@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .program import ARC_CCW, ARC_CW, Operation
+from ..program import ARC_CCW, ARC_CW, Operation
 
 _STAMP_BATCH = 1024      # ball stamps evaluated together (bounds the memory of one batch)
 _TRIANGLE_BATCH = 4096   # design triangles sliced together
@@ -181,7 +181,7 @@ def cut(rm: RadiusMap, stamps: BallStamps, ball_radius: float, operation: int, t
     """Cut the map with one operation's stamps, in order; returns the checked moves that
     reached more than ``touch`` mm into the material as it was before them (:class:`Touch`).
     ``progress(fraction)`` is called after every block of stamps (it may raise to cancel).
-    ``kernels``: the compiled kernels module (heightfield_kernel), or None for numpy; checked
+    ``kernels``: the compiled kernels module (kernel.py), or None for numpy; checked
     moves always take numpy."""
     flat = rm.radii.reshape(-1)
     before = flat.copy()

@@ -50,7 +50,8 @@ import math
 import numpy as np
 from manifold3d import CrossSection, Error, FillRule, JoinType, Manifold, Mesh64, OpType
 
-from .program import TIP_ANGLE_DEG, Tool
+from ..program import Tool
+from .repeats import _Level, _RadialLevel, _Repeats
 
 MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
 MAX_STRETCH_TURN = math.pi / 3   # a tube turns at most this much in all (it cannot fold back onto itself)
@@ -90,8 +91,8 @@ def tool_rings(tool: Tool, tolerance: float, inset: float = 0.0) -> list:
     lifts the bottom by ``inset`` and takes ``inset`` off the corner radius (a corner sharper
     than ``inset`` becomes square on a disc ``inset`` smaller)."""
     r = tool.radius
-    if tool.kind in TIP_ANGLE_DEG:
-        return [(0.0, 0.0), (r, r / math.tan(math.radians(TIP_ANGLE_DEG[tool.kind]) / 2))]
+    if tool.shape.pointed:
+        return [(0.0, 0.0), (r, r / tool.shape.tip_tan)]
     rc = max(tool.corner_radius - inset, 0.0)
     flat = r - inset - rc
     rings = [(flat, inset)]
@@ -202,7 +203,7 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats) -> list:
         reach = np.hypot(p[:, 0], p[:, 1])
         axes = p[:, :2] / np.maximum(reach, 1e-12)[:, None]
         height = bar_radius + 1.0 - float(reach.min())      # the shank reaches out of the bar from any depth
-        runs = _radial_runs(p, axes) if chain.tool.kind == "ball" else []
+        runs = _radial_runs(p, axes) if chain.tool.shape.spherical else []
     else:
         axes = None
         height = top + 1.0 - float(p[:, 2].min())           # the shank reaches above the stock from any depth
@@ -247,7 +248,7 @@ def _max_slope(tool: Tool, allowance: float) -> float:
     ``allowance`` of the true sweep: a flat bottom of radius f leaves up to f tan(a) under its
     leading edge, a corner of radius c up to c (1/cos(a) - 1) below its lowest point.  Cones are
     taken on level moves only."""
-    if tool.kind in TIP_ANGLE_DEG:
+    if tool.shape.pointed:
         return 0.0
     flat, corner = tool.radius - tool.corner_radius, tool.corner_radius
     limits = [math.pi / 4]
@@ -284,7 +285,7 @@ def _hull_pieces(chain, p, axes, whole, height, tolerance, bounds) -> list:
         ends = straight_runs(np.column_stack([p, p[:, :2] + height * axes]), merge / 2)
     else:
         # cones are never merged: only the disc-and-corner tools are shrunk here
-        ends = list(range(len(p))) if chain.tool.kind in TIP_ANGLE_DEG else straight_runs(p, merge / 2)
+        ends = list(range(len(p))) if chain.tool.shape.pointed else straight_runs(p, merge / 2)
     shrunk = tool_points(chain.tool, tolerance - merge, height, inset=merge)
     pieces = []
     for i, j in zip(ends[:-1], ends[1:]):
@@ -322,7 +323,7 @@ def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance
         tubes = _tube_pieces(p[a:b + 1], section, tolerance, (closed[0] and a == 0, closed[1] and b == len(p) - 1))
         if tubes is not None:
             pieces += tubes
-        elif tool.kind in ("ball", "flat") and np.ptp(p[a:b + 1, 2]) <= LEVEL:
+        elif tool.shape.staircase and np.ptp(p[a:b + 1, 2]) <= LEVEL:
             pieces += _level_staircase(chain, p[a:b + 1], height, tolerance, bounds)
         else:
             pieces += _hull_pieces(chain, p[a:b + 1], None, whole, height, tolerance, bounds)
@@ -648,87 +649,6 @@ def _tube_mesh(rings: np.ndarray) -> Manifold:
         return Manifold.batch_boolean([Manifold.hull_points(np.vstack([rings[i], rings[i + 1]]))
                                        for i in range(m - 1)], OpType.Add)
     return tube
-
-
-class _Repeats:
-    """Level runs grouped by what they repeat; a run is left out when another run in its group
-    covers its whole path deeper down.
-
-    Each tool grows no narrower from its tip to its shank and its shank reaches out of the
-    stock, so the tool contains itself moved away from its tip along its axis: an upright tool
-    lower on the same vertical line, a radial tool nearer the C axis on the same ray.  Groups
-    are an upright tool along one path (see :class:`_Level`) and a radial tool at one height
-    (see :class:`_RadialLevel`)."""
-
-    def __init__(self):
-        self.groups = {}
-
-    def add(self, key, run, make) -> None:
-        """``run`` (a _Level or _RadialLevel) in group ``key``, with ``make()`` returning its pieces."""
-        self.groups.setdefault(key, []).append((run, make))
-
-    def kept(self) -> list:
-        """The pieces of every run that no other run in its group covers (of runs that cover
-        each other, the first)."""
-        made = []
-        for runs in self.groups.values():
-            for n, (run, make) in enumerate(runs):
-                if not any(other.covers(run) and (m < n or not run.covers(other))
-                           for m, (other, _) in enumerate(runs) if m != n):
-                    made.append(make())
-        return made
-
-
-class _Level:
-    """An upright tool's level run, grouped with runs along the same path: the lower covers the higher."""
-
-    def __init__(self, points: np.ndarray):
-        self.low, self.high = float(points[:, 2].min()), float(points[:, 2].max())
-
-    def covers(self, other: "_Level") -> bool:
-        return self.high <= other.low
-
-
-class _RadialLevel:
-    """A radial tool's run at one height, as its reach from the C axis along each angle, grouped
-    with the same tool's runs at that height."""
-
-    def __init__(self, points: np.ndarray):
-        xy = points[:, :2]
-        angle = np.unwrap(np.arctan2(xy[:, 1], xy[:, 0]))
-        if angle[-1] < angle[0]:
-            angle, xy = angle[::-1], xy[::-1]
-        self.monotone = bool(np.all(np.diff(angle) > 1e-12))
-        self.angle, self.xy = angle, xy
-        self.full = angle[-1] - angle[0] >= 2 * math.pi - 1e-9
-
-    def reach(self, angles: np.ndarray) -> np.ndarray:
-        """Where the ray from the C axis at each angle (within the run's) meets the path."""
-        k = np.clip(np.searchsorted(self.angle, angles, side="right") - 1, 0, len(self.angle) - 2)
-        a, d = self.xy[k], self.xy[k + 1] - self.xy[k]
-        return (a[:, 0] * d[:, 1] - a[:, 1] * d[:, 0]) / (np.cos(angles) * d[:, 1] - np.sin(angles) * d[:, 0])
-
-    def covers(self, other: "_RadialLevel") -> bool:
-        """Whether this run passes nearer the C axis than ``other`` at every angle ``other``
-        passes.  Both paths turn one way about C, so comparing them at the vertices of either is
-        enough: two straight moves between the same two rays cross at most once."""
-        if not (self.monotone and other.monotone):
-            return False
-        turn, first = 2 * math.pi, self.angle[0]
-        low, high = other.angle[0], other.angle[-1]
-        if self.full:
-            own = self.angle[self.angle < first + turn]
-            shifts = np.arange(math.floor((low - first) / turn), math.ceil((high - first) / turn) + 1) * turn
-            mine = (own[None, :] + shifts[:, None]).ravel()
-            to_own = lambda angles: first + (angles - first) % turn
-        else:
-            shift = turn * math.floor((low - first) / turn)
-            if high > self.angle[-1] + shift + 1e-12:
-                return False
-            mine = self.angle + shift
-            to_own = lambda angles: angles - shift
-        angles = np.concatenate([other.angle, mine[(mine > low) & (mine < high)]])
-        return bool(np.all(self.reach(to_own(angles)) <= other.reach(angles) + 1e-9))
 
 
 class _Floors:

@@ -1,0 +1,217 @@
+"""The one call, :func:`simulate` (and :func:`check`): the engines behind it, and the radial
+turn-mill work on a radius map."""
+from __future__ import annotations
+
+import math
+import numbers
+import time
+
+import numpy as np
+from manifold3d import Error, Manifold
+
+from ..program import FEED, RAPID
+from . import radiusmap as rmap
+from . import sweep
+from .checks import _design_heights, _findings, _travel_findings
+from .heightfield import _compiled_kernels, _grid, _Simulation
+from .paths import _chains, _operations, can_plunge
+from .stock import (ENGINES, GOUGE_TOLERANCE, MAX_CELLS, TOUCH_TOLERANCE, CylinderStock, Finding, HeightField,
+                    SimulationCancelled, SimulationError, SimulationResult, _solid_of, _stock_solid, as_stock)
+
+def check(program_or_operations, stock, *, cell: float = 0.1, tolerance: float = 0.03, design=None,
+          keep_regions=None, travel: dict | None = None, no_plunge_tools=(), progress=None,
+          kernel: str = "auto") -> list:
+    """Safety findings alone (runs the height field engine); see :func:`simulate`."""
+    return simulate(program_or_operations, stock, engine="heightfield", cell=cell, tolerance=tolerance,
+                    design=design, keep_regions=keep_regions, travel=travel, no_plunge_tools=no_plunge_tools,
+                    progress=progress, kernel=kernel).findings
+
+
+# ----- the one call -----------------------------------------------------------------------------------
+
+def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell: float = 0.1,
+             tolerance: float = 0.03, design=None, keep_regions=None, travel: dict | None = None,
+             no_plunge_tools=(), progress=None, chunk: int = sweep.CHUNK_TRIANGLES,
+             kernel: str = "auto") -> SimulationResult:
+    """Cut the stock with the program and check it.
+
+    ``stock``: a BoxStock, a CylinderStock or (x0, y0, z0, x1, y1, z1).
+    ``engine``: "heightfield" (Z-map with ``cell`` mm columns) or "manifold" (exact solids;
+    its safety checks still run on a height field of ``cell``).
+    ``tolerance``: how far the tool shape may be approximated (manifold facets, the bull
+    nose's torus ring); always on the side of leaving material.
+    ``design``: the finished part, for gouge checks: a function z(x, y) on arrays, a mesh
+    (anything with ``vertices`` and ``faces``, e.g. trimesh.Trimesh: its upper envelope), or
+    a number (a floor plane).  ``keep_regions``: 2-D loops where nothing may be cut, or
+    (loop, z_min) pairs.  ``travel``: {"x": (min, max), ...} machine limits (x, y, z, c).
+    ``no_plunge_tools``: tool numbers that cannot feed straight down (see :func:`can_plunge`).
+    ``progress(fraction)`` is called as work completes; returning False cancels
+    (:class:`SimulationCancelled`).  ``chunk``: for the manifold engine, how many triangles of
+    swept pieces are unioned before they are subtracted from the stock (each is a progress step).
+    ``kernel``: how the height field is computed: "numba" (compiled, several times faster),
+    "numpy", or "auto" (numba where it can be imported, see :data:`KERNELS`); both give the
+    same heights.  The result's ``kernel`` says which ran.
+    """
+    started = time.perf_counter()
+    if engine not in ENGINES:
+        raise SimulationError(f"engine must be one of {ENGINES}, got {engine!r}")
+    for name, value in (("cell", cell), ("tolerance", tolerance)):
+        if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
+            raise SimulationError(f"{name} must be a positive number of mm, got {value!r}")
+    if not (isinstance(chunk, int) and chunk > 0):
+        raise SimulationError(f"chunk must be a positive number of triangles, got {chunk!r}")
+    kernels = _compiled_kernels(kernel)
+    stock = as_stock(stock)
+    ops = _operations(program_or_operations)
+    radial = [getattr(op, "direction", None) == "radial" for op in ops]
+    if any(radial) and not isinstance(stock, CylinderStock):
+        raise SimulationError("radial turn-mill operations cut a bar: give a cylinder stock about the C axis")
+    all_chains = _chains(ops, no_plunge_tools)
+    chains = [chain for chain in all_chains if not radial[chain.op_index]]
+    hf = _grid(stock, float(cell))
+    design_z = _design_heights(hf, design, keep_regions)
+    findings = _travel_findings(ops, travel) if travel else []
+    solid = None
+    if engine == "manifold":
+        solid = sweep.cut(_stock_solid(stock, tolerance), all_chains, tolerance, chunk,
+                          _cancelling(_part_of(progress, 0.0, 0.8)))
+        progress = _part_of(progress, 0.8, 1.0)      # the safety checks still run on the maps
+    rm = None
+    if any(radial):
+        share = sum(len(op) for op, r in zip(ops, radial) if r) / sum(len(op) for op in ops)
+        rm, radial_findings = _radius_map_cut(ops, radial, stock, float(cell), tolerance, design, no_plunge_tools,
+                                              _part_of(progress, 0.0, share), kernels)
+        findings += radial_findings
+        progress = _part_of(progress, share, 1.0)
+    if chains:
+        sim = _Simulation(hf, tolerance, progress, kernels)
+        sim.run(chains)
+        findings += _findings(sim, chains, ops, design_z)
+    seconds = time.perf_counter() - started
+    ran = "numpy" if kernels is None else "numba"
+    if solid is not None:
+        removed = _stock_solid(stock, tolerance).volume() - solid.volume()
+        return SimulationResult("manifold", float(removed), seconds, None, tolerance, findings, stock, solid=solid,
+                                kernel=ran, radiusmap=rm, axial_cut=bool(chains),
+                                gouge_volume_mm3=_gouge_volume(solid, design))
+    if rm is None:
+        return SimulationResult("heightfield", hf.removed_volume(), seconds, hf.cell_x, tolerance, findings, stock,
+                                heightfield=hf, kernel=ran)
+    removed = rm.removed_volume()
+    if chains:
+        removed += hf.removed_volume() - _overlap_volume(hf, rm)
+    return SimulationResult("radiusmap+heightfield" if chains else "radiusmap", removed, seconds, hf.cell_x,
+                            tolerance, findings, stock, heightfield=hf, kernel=ran, radiusmap=rm,
+                            axial_cut=bool(chains))
+
+
+def _gouge_volume(solid: Manifold, design) -> float | None:
+    """Volume of the design (a closed mesh) that the simulated stock no longer holds; None when
+    the design is not a closed mesh."""
+    if not (hasattr(design, "vertices") and hasattr(design, "faces")):
+        return None
+    part = _solid_of(np.asarray(design.vertices)[:, :3], np.asarray(design.faces))
+    if part.status() != Error.NoError or part.is_empty():
+        return None
+    return float((part - solid).volume())
+
+
+def _overlap_volume(hf: HeightField, rm: rmap.RadiusMap) -> float:
+    """Material that both the height field and the radius map removed (counted once)."""
+    top = np.clip(hf.heights, hf.bottom, hf.top)
+    cut = hf.inside & (top < hf.top)
+    i, j = np.nonzero(cut)
+    overlap = rm.removed_above(hf.x()[i], hf.y()[j], top[i, j].astype(float), np.full(len(i), hf.top))
+    return float(overlap.sum() * hf.cell_x * hf.cell_y)
+
+
+def _radius_map_cut(ops, radial, stock: CylinderStock, cell: float, tolerance: float, design, no_plunge_tools,
+                    progress, kernels):
+    """The radial turn-mill operations on a radius map: (map, findings)."""
+    dexels = math.ceil(2 * math.pi * stock.radius / cell) * math.ceil(stock.height / cell)
+    if dexels > MAX_CELLS:
+        raise SimulationError(f"a {cell} mm cell gives {dexels} dexels round the bar (more than {MAX_CELLS}); "
+                              "use a coarser cell")
+    rm = rmap.grid(stock.radius, stock.bottom, stock.top, cell)
+    total = sum(len(op) for op, r in zip(ops, radial) if r)
+    done = 0
+    stamps_of, findings = {}, []
+    for index, op in enumerate(ops):
+        if not radial[index] or not len(op):
+            continue
+        if not op.tool.shape.spherical:
+            raise SimulationError(f"operation {op.name!r}: radial turn-mill work is simulated for ball end mills, "
+                                  f"not a {op.tool.describe()}")
+        checked = op.kind == RAPID
+        if not can_plunge(op.tool, no_plunge_tools):
+            # straight in towards the axis: X falls, nothing else moves
+            a = op.start_points()
+            c_end = op.rotary["c"]
+            checked |= ((op.kind == FEED) & (op.xyz[:, 0] < a[:, 0]) & (np.abs(op.xyz[:, 2] - a[:, 2]) < 1e-9)
+                        & (np.abs(c_end - np.concatenate([[c_end[0]], c_end[:-1]])) < 1e-9))
+        try:
+            stamps = rmap.ball_stamps(op, rmap.stamp_spacing(op.tool.radius, tolerance), checked)
+        except ValueError as error:
+            raise SimulationError(str(error)) from None
+
+        def report(fraction, base=done, size=len(op)):
+            if progress is not None and progress((base + fraction * size) / total) is False:
+                raise SimulationCancelled("simulation cancelled")
+        for touch in rmap.cut(rm, stamps, op.tool.radius, index, TOUCH_TOLERANCE, report, kernels):
+            x, y, z = touch.point
+            where = f"({x:.2f}, {y:.2f}, z {z:.2f})"
+            if op.kind[touch.move] == RAPID:
+                message = f"{op.name}: rapid move {touch.move} runs {touch.depth:.3f} mm into material at {where}"
+                kind = "rapid_in_material"
+            else:
+                message = (f"{op.name}: {op.tool.describe()} cannot plunge, but move {touch.move} feeds "
+                           f"{touch.depth:.3f} mm straight in into material at {where}")
+                kind = "plunge"
+            findings.append(Finding(kind, message, index, touch.move, (x, y), touch.depth, z))
+        stamps_of[index] = stamps
+        done += len(op)
+    if design is not None and hasattr(design, "vertices") and hasattr(design, "faces"):
+        findings += _radial_gouges(rm, stamps_of, ops, np.asarray(design.vertices, float),
+                                   np.asarray(design.faces, np.int64))
+    return rm, findings
+
+
+def _radial_gouges(rm: rmap.RadiusMap, stamps_of: dict, ops: list, vertices, faces) -> list:
+    """The deepest cut inside the design's outer radius, with the move that made it."""
+    outer = rmap.outer_radii(rm, vertices, faces)
+    depth = outer - rm.radii
+    gouged = (outer > 0) & (depth > GOUGE_TOLERANCE)
+    if not gouged.any():
+        return []
+    i, k = np.unravel_index(int(np.argmax(np.where(gouged, depth, -np.inf))), rm.shape)
+    worst = float(depth[i, k])
+    best = (np.inf, None, -1)
+    for index, stamps in stamps_of.items():
+        s, entry = rmap.lowest_stamp(rm, stamps, ops[index].tool.radius, int(i), int(k))
+        if entry < best[0]:
+            best = (entry, index, int(stamps.move[s]))
+    _, index, move = best
+    theta, z = (i + 0.5) * rm.cell_theta, rm.z0 + (k + 0.5) * rm.cell_z
+    x, y = rm.radii[i, k] * math.cos(theta), rm.radii[i, k] * math.sin(theta)
+    area = float(np.sum(outer[gouged]) * rm.cell_theta * rm.cell_z)
+    return [Finding("gouge", f"{ops[index].name}: move {max(move, 0)} cuts {worst:.3f} mm inside the design at "
+                    f"({x:.2f}, {y:.2f}, z {z:.2f}); {area:.1f} mm^2 gouged in all", index, max(move, 0), (x, y),
+                    worst, z)]
+
+
+def _cancelling(progress):
+    """The callback, raising SimulationCancelled when it returns False."""
+    if progress is None:
+        return None
+
+    def report(fraction):
+        if progress(fraction) is False:
+            raise SimulationCancelled("simulation cancelled")
+    return report
+
+
+def _part_of(progress, start: float, end: float):
+    """A progress callback reporting into [start, end] of the caller's."""
+    if progress is None:
+        return None
+    return lambda fraction: progress(start + (end - start) * fraction)

@@ -1,0 +1,182 @@
+"""Safety checks: the design's heights over the grid (a function, a mesh's upper envelope, a
+floor, keep regions), gouges below it, rapids and plunges into material, travel limits."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from manifold3d import CrossSection
+
+from .. import region as rg
+from .families import _halfline
+from .heightfield import _lowest_move, _Simulation
+from .paths import _machine_samples
+from .stock import GOUGE_TOLERANCE, Finding, HeightField, SimulationError
+
+_ITEM_BATCH = 2048         # triangles per numpy batch when rasterising a design mesh
+
+
+# ----- design surface ---------------------------------------------------------------------------
+
+def _design_heights(hf: HeightField, design, keep_regions) -> np.ndarray | None:
+    """Lowest Z the finished part allows per cell (-inf: anything may be cut), or None."""
+    if design is None and not keep_regions:
+        return None
+    allowed = np.full(hf.shape, -np.inf)
+    if design is not None:
+        if callable(design):
+            gx, gy = np.meshgrid(hf.x(), hf.y(), indexing="ij")
+            values = np.asarray(design(gx, gy), float)
+            allowed = np.broadcast_to(values, hf.shape).copy()
+        elif hasattr(design, "vertices") and hasattr(design, "faces"):
+            allowed = _mesh_top(hf, np.asarray(design.vertices, float), np.asarray(design.faces, np.int64))
+        else:
+            try:
+                allowed[:] = float(design)
+            except (TypeError, ValueError):
+                raise SimulationError("design must be a function z(x, y), a mesh with vertices and faces, or a number")
+        if np.isnan(allowed).any():
+            raise SimulationError("design surface has NaN heights")
+    for item in keep_regions or ():
+        shape, z_min = (item if isinstance(item, tuple) else (item, hf.top))
+        area = _keep_area(shape)
+        x0, y0, x1, y1 = area.bounds()
+        i0, i1 = _index_range(hf.x0, hf.cell_x, hf.shape[0], x0, x1)
+        j0, j1 = _index_range(hf.y0, hf.cell_y, hf.shape[1], y0, y1)
+        if i0 >= i1 or j0 >= j1:
+            continue
+        gx, gy = np.meshgrid(hf.x()[i0:i1], hf.y()[j0:j1], indexing="ij")
+        inside = rg.contains_points(area, np.column_stack([gx.ravel(), gy.ravel()])).reshape(gx.shape)
+        block = allowed[i0:i1, j0:j1]
+        block[inside] = np.maximum(block[inside], float(z_min))
+    return allowed
+
+
+def _keep_area(shape) -> CrossSection:
+    """A keep region: a CrossSection, one closed loop ((k, 2) points), or a list of loops read
+    even-odd (letters with their counters: the counters are not kept)."""
+    if isinstance(shape, CrossSection):
+        return shape
+    array = np.asarray(shape, dtype=object if isinstance(shape, list) else float)
+    if array.dtype != object and array.ndim == 2:
+        return rg.from_loops([array], "keep region")
+    return rg.from_loops(list(shape), "keep region")
+
+
+def _index_range(origin, cell, n, lo, hi):
+    return (int(np.clip(math.ceil((lo - origin) / cell - 0.5), 0, n)),
+            int(np.clip(math.floor((hi - origin) / cell - 0.5) + 1, 0, n)))
+
+
+def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """Upper envelope of a triangle mesh over the grid (a z-buffer seen from above); cell
+    centres on a triangle's edge belong to neither side (-inf there: nothing to check)."""
+    top = np.full(hf.shape, -np.inf)
+    flat = top.reshape(-1)
+    nx, ny = hf.shape
+    tri = vertices[faces]
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    area2 = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    keep = np.abs(area2) > 1e-12
+    tri, area2 = tri[keep], area2[keep]
+    for start in range(0, len(tri), _ITEM_BATCH):
+        t = tri[start:start + _ITEM_BATCH]
+        sign = np.sign(area2[start:start + _ITEM_BATCH])
+        c0 = np.clip(np.ceil((t[:, :, 0].min(1) - hf.x0) / hf.cell_x - 0.5), 0, nx).astype(np.int64)
+        c1 = np.clip(np.floor((t[:, :, 0].max(1) - hf.x0) / hf.cell_x - 0.5), -1, nx - 1).astype(np.int64)
+        ncol = np.maximum(c1 - c0 + 1, 0)
+        k = np.repeat(np.arange(len(t)), ncol)
+        col = np.arange(len(k)) - np.repeat(np.cumsum(ncol) - ncol, ncol) + c0[k]
+        x = hf.x0 + (col + 0.5) * hf.cell_x
+        lo = np.full(len(k), -np.inf)
+        hi = np.full(len(k), np.inf)
+        for e in range(3):
+            p, q = t[k, e], t[k, (e + 1) % 3]
+            # inside: sign * cross(q - p, X - p) >= 0, linear in y
+            ex, ey = q[:, 0] - p[:, 0], q[:, 1] - p[:, 1]
+            # Shrunk by a hair: a cell centre on a vertical wall's top edge is not held to the
+            # top of the wall (it may as well be the floor's), and is left unchecked.
+            e_lo, e_hi = _halfline(sign[k] * (ex * (-p[:, 1]) - ey * (x - p[:, 0])) - 1e-7, sign[k] * ex)
+            lo, hi = np.maximum(lo, e_lo), np.minimum(hi, e_hi)
+        r0 = np.clip(np.ceil((lo - hf.y0) / hf.cell_y - 0.5), 0, ny).astype(np.int64)
+        r1 = np.clip(np.floor((hi - hf.y0) / hf.cell_y - 0.5), -1, ny - 1).astype(np.int64)
+        cnt = np.maximum(r1 - r0 + 1, 0)
+        total = int(cnt.sum())
+        if not total:
+            continue
+        j = np.arange(total) - np.repeat(np.cumsum(cnt) - cnt, cnt)
+        row = np.repeat(r0, cnt) + j
+        ke = np.repeat(k, cnt)
+        xe = np.repeat(x, cnt)
+        ye = hf.y0 + (row + 0.5) * hf.cell_y
+        p0, p1, p2 = t[ke, 0], t[ke, 1], t[ke, 2]
+        # z on the triangle's plane
+        u1, u2 = p1 - p0, p2 - p0
+        normal = np.cross(u1, u2)
+        z = p0[:, 2] - (normal[:, 0] * (xe - p0[:, 0]) + normal[:, 1] * (ye - p0[:, 1])) / normal[:, 2]
+        np.maximum.at(flat, np.repeat(col, cnt) * ny + row, z)
+    return top
+
+
+# ----- safety checks ------------------------------------------------------------------------------
+
+def _travel_findings(ops: list, travel: dict) -> list:
+    limits = {}
+    for axis, bounds in travel.items():
+        name = str(axis).lower()
+        if name not in ("x", "y", "z", "c"):
+            raise SimulationError(f"travel limits: unknown axis {axis!r} (use x, y, z, c)")
+        lo, hi = (float(v) for v in bounds)
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
+            raise SimulationError(f"travel limits for {axis}: need finite (min, max) with min <= max, got {bounds!r}")
+        limits[name] = (lo, hi)
+    findings = []
+    for index, op in enumerate(ops):
+        if not len(op):
+            continue
+        xyz, c, move = _machine_samples(op)
+        values = {"x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2], "c": c}
+        for axis, (lo, hi) in limits.items():
+            if axis == "c" and "c" not in op.rotary:
+                continue
+            v = values[axis]
+            for side, bad in (("below", v < lo - 1e-9), ("above", v > hi + 1e-9)):
+                if bad.any():
+                    first = int(np.flatnonzero(bad)[0])
+                    worst = float(v[bad].min() if side == "below" else v[bad].max())
+                    moves = np.unique(move[bad])
+                    limit = lo if side == "below" else hi
+                    findings.append(Finding(
+                        "travel", f"{op.name}: move {move[first]} goes {side} the {axis.upper()} travel limit "
+                        f"{limit:g} (reaches {worst:.3f}; {len(moves)} move(s))", index, int(move[first])))
+    return findings
+
+
+def _findings(sim: _Simulation, chains: list, ops: list, design_z) -> list:
+    findings = []
+    for chain, segment, depth, xy in sim.touches:
+        op = ops[chain.op_index]
+        move = int(chain.move[segment])
+        if chain.rapid[segment]:
+            findings.append(Finding("rapid_in_material", f"{op.name}: rapid move {move} runs {depth:.3f} mm into "
+                                    f"material at ({xy[0]:.2f}, {xy[1]:.2f})", chain.op_index, move, xy, depth))
+        else:
+            findings.append(Finding("plunge", f"{op.name}: {op.tool.describe()} cannot plunge, but move {move} "
+                                    f"feeds {depth:.3f} mm straight down into material at ({xy[0]:.2f}, {xy[1]:.2f})",
+                                    chain.op_index, move, xy, depth))
+    hf = sim.hf
+    if design_z is not None:
+        material_floor = np.minimum(design_z, hf.top)
+        depth = np.where(hf.inside, material_floor - np.maximum(hf.heights, hf.bottom), -np.inf)
+        gouged = depth > GOUGE_TOLERANCE
+        if gouged.any():
+            i, j = np.unravel_index(int(np.argmax(depth)), hf.shape)
+            worst = float(depth[i, j])
+            xy = (float(hf.x()[i]), float(hf.y()[j]))
+            chain, segment, _ = _lowest_move(chains, hf, int(i), int(j), sim.tolerance)
+            move = int(chain.move[segment])
+            area = float(gouged.sum() * hf.cell_x * hf.cell_y)
+            findings.append(Finding("gouge", f"{ops[chain.op_index].name}: move {move} cuts {worst:.3f} mm below the "
+                                    f"design at ({xy[0]:.2f}, {xy[1]:.2f}); {area:.1f} mm^2 gouged in all",
+                                    chain.op_index, move, xy, worst))
+    return findings

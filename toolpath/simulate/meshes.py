@@ -1,0 +1,83 @@
+"""Preview meshes of a simulated stock: a height field as a relief of columns (min-pooled to a
+cell budget), a turned bar less the air the height field opened."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from manifold3d import Manifold
+
+from . import radiusmap as rmap
+from .stock import CylinderStock, HeightField, _manifold_arrays, _solid_of, _stock_box, _stock_solid
+
+# ----- height field -> mesh -------------------------------------------------------------------------
+
+def _pooled(heights: np.ndarray, max_cells) -> tuple:
+    """(heights min-pooled to at most ``max_cells`` cells, block size): each block keeps its deepest cut."""
+    nx, ny = heights.shape
+    if max_cells is None or nx * ny <= max_cells:
+        return heights, 1
+    block = math.ceil(math.sqrt(nx * ny / max_cells))
+    padded = np.pad(heights, ((0, -nx % block), (0, -ny % block)), mode="edge")
+    return padded.reshape(padded.shape[0] // block, block, padded.shape[1] // block, block).min(axis=(1, 3)), block
+
+
+def _relief_mesh(heights: np.ndarray, x0, y0, x1, y1, cx, cy, bottom):
+    """A closed mesh of columns over the rectangle: vertices at the cell centres (x0 + (i + 0.5)
+    cx, ...) plus a ring on the rectangle's edge (heights copied outward), walls, a flat bottom."""
+    xs = np.concatenate([[x0], np.minimum(x0 + (np.arange(heights.shape[0]) + 0.5) * cx, x1), [x1]])
+    ys = np.concatenate([[y0], np.minimum(y0 + (np.arange(heights.shape[1]) + 0.5) * cy, y1), [y1]])
+    z = np.pad(heights, 1, mode="edge")
+    gx, gy = np.meshgrid(xs, ys, indexing="ij")
+    top_vertices = np.column_stack([gx.ravel(), gy.ravel(), z.ravel()])
+    w, h = len(xs), len(ys)
+    ids = np.arange(w * h).reshape(w, h)
+    a, b, c, d = ids[:-1, :-1].ravel(), ids[1:, :-1].ravel(), ids[1:, 1:].ravel(), ids[:-1, 1:].ravel()
+    top_faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    # The boundary ring, counter-clockwise seen from above, then walls and a bottom fan.
+    ring = np.concatenate([ids[:, 0], ids[-1, 1:], ids[-2::-1, -1], ids[0, -2:0:-1]])
+    low_vertices = top_vertices[ring].copy()
+    low_vertices[:, 2] = bottom
+    n_top = len(top_vertices)
+    low = n_top + np.arange(len(ring))
+    centre = n_top + len(ring)
+    nxt = np.roll(np.arange(len(ring)), -1)
+    walls = np.concatenate([np.column_stack([ring, low, low[nxt]]), np.column_stack([ring, low[nxt], ring[nxt]])])
+    fan = np.column_stack([np.full(len(ring), centre), low[nxt], low])
+    vertices = np.vstack([top_vertices, low_vertices, [[(x0 + x1) / 2, (y0 + y1) / 2, bottom]]])
+    return vertices, np.vstack([top_faces, walls, fan])
+
+
+def _heightfield_mesh(hf: HeightField, stock, max_cells):
+    heights = np.where(hf.inside, hf.heights, hf.top)
+    heights, block = _pooled(np.clip(heights, hf.bottom + 1e-3, hf.top).astype(float), max_cells)
+    (x0, y0, _), (x1, y1, _) = _stock_box(stock)
+    cx, cy = block * hf.cell_x, block * hf.cell_y
+    vertices, faces = _relief_mesh(heights, x0, y0, x1, y1, cx, cy, hf.bottom)
+    if isinstance(stock, CylinderStock):
+        return _manifold_arrays(_solid_of(vertices, faces) ^ _stock_solid(stock, max(cx, cy) / 4))
+    return vertices, faces
+
+
+def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStock, max_cells):
+    """The bar of the radius map, less the air the height field's cuts opened above it.
+
+    The air is a box over the cut cells minus their columns (uncut cells stand above the box),
+    so only the cut area meets the bar in the boolean, and no faces of the two coincide."""
+    bar = rmap.mesh(rm, stock.bottom, stock.top, max_cells)
+    cut = None if hf is None else hf.inside & (hf.heights < hf.top - 1e-6)
+    if cut is None or not cut.any():
+        return bar
+    nx, ny = hf.shape
+    i, j = np.nonzero(cut)
+    i0, i1, j0, j1 = max(i.min() - 2, 0), min(i.max() + 3, nx), max(j.min() - 2, 0), min(j.max() + 3, ny)
+    heights = np.clip(hf.heights[i0:i1, j0:j1], hf.bottom + 1e-3, hf.top).astype(float)
+    heights[~cut[i0:i1, j0:j1]] = hf.top + 1.0
+    heights, block = _pooled(heights, max_cells)
+    cx, cy = block * hf.cell_x, block * hf.cell_y
+    x0, y0 = hf.x0 + i0 * hf.cell_x, hf.y0 + j0 * hf.cell_y
+    x1, y1 = x0 + heights.shape[0] * cx, y0 + heights.shape[1] * cy
+    columns = _solid_of(*_relief_mesh(heights, x0 - cx, y0 - cy, x1 + cx, y1 + cy, cx, cy, hf.bottom - 2.0))
+    box = Manifold.cube([x1 - x0 - cx, y1 - y0 - cy, hf.top - hf.bottom + 1.5]).translate(
+        [x0 + cx / 2, y0 + cy / 2, hf.bottom - 1.0])
+    return _manifold_arrays(_solid_of(*bar) - (box - columns))

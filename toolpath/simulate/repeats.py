@@ -1,0 +1,89 @@
+"""Level runs of the manifold engine that repeat one another (see sweep.py): the pocket's layers
+along one path, a radial tool's rings at one height.  A run that another run of its group covers
+from deeper down adds nothing to the cut and is left out."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+class _Repeats:
+    """Level runs grouped by what they repeat; a run is left out when another run in its group
+    covers its whole path deeper down.
+
+    Each tool grows no narrower from its tip to its shank and its shank reaches out of the
+    stock, so the tool contains itself moved away from its tip along its axis: an upright tool
+    lower on the same vertical line, a radial tool nearer the C axis on the same ray.  Groups
+    are an upright tool along one path (see :class:`_Level`) and a radial tool at one height
+    (see :class:`_RadialLevel`)."""
+
+    def __init__(self):
+        self.groups = {}
+
+    def add(self, key, run, make) -> None:
+        """``run`` (a _Level or _RadialLevel) in group ``key``, with ``make()`` returning its pieces."""
+        self.groups.setdefault(key, []).append((run, make))
+
+    def kept(self) -> list:
+        """The pieces of every run that no other run in its group covers (of runs that cover
+        each other, the first)."""
+        made = []
+        for runs in self.groups.values():
+            for n, (run, make) in enumerate(runs):
+                if not any(other.covers(run) and (m < n or not run.covers(other))
+                           for m, (other, _) in enumerate(runs) if m != n):
+                    made.append(make())
+        return made
+
+
+class _Level:
+    """An upright tool's level run, grouped with runs along the same path: the lower covers the higher."""
+
+    def __init__(self, points: np.ndarray):
+        self.low, self.high = float(points[:, 2].min()), float(points[:, 2].max())
+
+    def covers(self, other: "_Level") -> bool:
+        return self.high <= other.low
+
+
+class _RadialLevel:
+    """A radial tool's run at one height, as its reach from the C axis along each angle, grouped
+    with the same tool's runs at that height."""
+
+    def __init__(self, points: np.ndarray):
+        xy = points[:, :2]
+        angle = np.unwrap(np.arctan2(xy[:, 1], xy[:, 0]))
+        if angle[-1] < angle[0]:
+            angle, xy = angle[::-1], xy[::-1]
+        self.monotone = bool(np.all(np.diff(angle) > 1e-12))
+        self.angle, self.xy = angle, xy
+        self.full = angle[-1] - angle[0] >= 2 * math.pi - 1e-9
+
+    def reach(self, angles: np.ndarray) -> np.ndarray:
+        """Where the ray from the C axis at each angle (within the run's) meets the path."""
+        k = np.clip(np.searchsorted(self.angle, angles, side="right") - 1, 0, len(self.angle) - 2)
+        a, d = self.xy[k], self.xy[k + 1] - self.xy[k]
+        return (a[:, 0] * d[:, 1] - a[:, 1] * d[:, 0]) / (np.cos(angles) * d[:, 1] - np.sin(angles) * d[:, 0])
+
+    def covers(self, other: "_RadialLevel") -> bool:
+        """Whether this run passes nearer the C axis than ``other`` at every angle ``other``
+        passes.  Both paths turn one way about C, so comparing them at the vertices of either is
+        enough: two straight moves between the same two rays cross at most once."""
+        if not (self.monotone and other.monotone):
+            return False
+        turn, first = 2 * math.pi, self.angle[0]
+        low, high = other.angle[0], other.angle[-1]
+        if self.full:
+            own = self.angle[self.angle < first + turn]
+            shifts = np.arange(math.floor((low - first) / turn), math.ceil((high - first) / turn) + 1) * turn
+            mine = (own[None, :] + shifts[:, None]).ravel()
+            to_own = lambda angles: first + (angles - first) % turn
+        else:
+            shift = turn * math.floor((low - first) / turn)
+            if high > self.angle[-1] + shift + 1e-12:
+                return False
+            mine = self.angle + shift
+            to_own = lambda angles: angles - shift
+        angles = np.concatenate([other.angle, mine[(mine > low) & (mine < high)]])
+        return bool(np.all(self.reach(to_own(angles)) <= other.reach(angles) + 1e-9))
