@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .errors import InputError
+from .texture import GougeTexture
 
 RAPID, FEED, ARC_CW, ARC_CCW = 0, 1, 2, 3
 
@@ -86,8 +87,8 @@ class Operation:
     The axes move linearly in machine coordinates, so a move traces a curve on the part, and
     lengths and times are measured along that curve.
     ``start`` is where the tool is before the first move (normally above the clearance plane).
-    ``texture`` carries a request a post may honour itself (e.g. the gouge texture that a
-    controller macro applies at run time); the moves are then the untextured path.
+    ``texture`` carries a request a post may honour itself: a :class:`GougeTexture` that a
+    controller macro applies at run time; the moves are then the untextured path.
     """
 
     name: str
@@ -102,7 +103,7 @@ class Operation:
     clearance_z: float = 20.0
     safe_z: float = 100.0
     start: np.ndarray | None = None
-    texture: object | None = None
+    texture: GougeTexture | None = None
     coolant: bool = False
     comment: str = ""
 
@@ -144,6 +145,9 @@ class Operation:
             raise ProgramError(f"operation {self.name!r}: an arc has no centre")
         if not (np.isfinite(self.spindle_rpm) and self.spindle_rpm >= 0):
             raise ProgramError(f"operation {self.name!r}: spindle speed must be >= 0")
+        if self.texture is not None and not isinstance(self.texture, GougeTexture):
+            raise ProgramError(f"operation {self.name!r}: texture must be a GougeTexture or None, "
+                               f"got {type(self.texture).__name__}")
 
     def __len__(self):
         return len(self.kind)
