@@ -69,14 +69,15 @@ from dataclasses import dataclass, field
 import numpy as np
 from manifold3d import CrossSection
 
+from . import kinematics
 from . import region as rg
 from .errors import InputError
+from .kinematics import (DEFAULT_MAX_TABLE_RPM, cycle_time, from_cylindrical, inverse_time_feed,  # noqa: F401
+                         move_times, part_points, to_cylindrical, unwrap_c)
 from .program import RAPID, Operation, PathBuilder, Program, Tool
 
 BOTTOMS = ("flat", "sphere")
 MAX_WALL_ANGLE = 75.0          # degrees from vertical
-DEFAULT_MAX_TABLE_RPM = 60.0   # the face plate as a C axis, for feeds and time estimates
-_ON_AXIS = 1e-9                # mm: points closer to the axis than this have no angle of their own
 # Elements per block where work on long arrays is cut into blocks: numpy temporaries beyond
 # ~128 kB come fresh from the OS (page faults) each time and cost several times the arithmetic.
 _BLOCK = 4096
@@ -200,69 +201,13 @@ class RotaryResult:
 
 
 # ----------------------------------------------------------------------------------------
-# Cylindrical coordinates
+# Machine coordinates (the conversion itself: :mod:`kinematics`)
 # ----------------------------------------------------------------------------------------
-
-def to_cylindrical(xy) -> tuple[np.ndarray, np.ndarray]:
-    """Part XY (n, 2) -> (X word = -R, C in degrees in (-180, 180]).  See the module notes for
-    the sign of C; a point on the axis gets C = 0 (use :func:`unwrap_c` along a path)."""
-    xy = np.asarray(xy, float).reshape(-1, 2)
-    # + 0.0 turns -0.0 into 0.0, so a point on the +X axis gets C = 180, not -180.
-    return -_norms(xy), np.degrees(np.arctan2(0.0 - xy[:, 1], 0.0 - xy[:, 0]))
-
-
-def from_cylindrical(x_word, c_deg) -> np.ndarray:
-    """(X word, C degrees) -> part XY (n, 2): the machine point (X, 0) turned back by C."""
-    x = np.asarray(x_word, float).reshape(-1)
-    c = np.radians(np.asarray(c_deg, float).reshape(-1))
-    return np.column_stack([x * np.cos(c), x * np.sin(c)])
-
-
-def unwrap_c(c_deg, radius, start_c: float | None = None) -> np.ndarray:
-    """Continuous C along a path: each value within 180 degrees of the one before it.
-
-    Points on the axis (radius ~ 0) have no angle of their own and keep the previous C (the
-    leading ones take the first C off the axis).  ``start_c`` is where the table already is:
-    the path starts within half a turn of it.
-    """
-    c = np.array(c_deg, float).reshape(-1)
-    on_axis = np.asarray(radius, float).reshape(-1) < _ON_AXIS
-    if on_axis.all():
-        return np.full(len(c), 0.0 if start_c is None else float(start_c))
-    index = np.where(~on_axis, np.arange(len(c)), 0)
-    np.maximum.accumulate(index, out=index)
-    first = int(np.flatnonzero(~on_axis)[0])
-    c = np.where(np.arange(len(c)) < first, c[first], c[index])
-    if start_c is not None:
-        c = np.concatenate([[start_c], c])
-    c = np.unwrap(c, period=360.0)
-    return c[1:] if start_c is not None else c
-
-
-def _machine_at(x0, c0, z0, x1, c1, z1, t) -> np.ndarray:
-    """Part-frame points (n, 3) of linear X/C/Z interpolation at parameter t (n,)."""
-    x = x0 + (x1 - x0) * t
-    xy = from_cylindrical(x, c0 + (c1 - c0) * t)
-    return np.column_stack([xy, z0 + (z1 - z0) * t])
-
-
-def _speed_and_bend(x0, c0, x1, c1) -> tuple[np.ndarray, np.ndarray]:
-    """Bounds on |p'| and |p''| (t in [0, 1]) of the plan point p = R (cos C, sin C) that
-    linear X/C moves trace on the part, R = -X: |p'|^2 = R'^2 + (R C')^2 and |p''|^2 =
-    (R C'^2)^2 + (2 R' C')^2 (C in radians), largest at the move's larger R.  A move strays at
-    most bend / 8 from its chord."""
-    radius = np.maximum(np.abs(x0), np.abs(x1))
-    grow, turn = np.abs(x1 - x0), np.radians(np.abs(c1 - c0))
-    return np.sqrt(grow ** 2 + (radius * turn) ** 2), turn * np.sqrt((radius * turn) ** 2 + (2 * grow) ** 2)
-
 
 def _endpoints(op: Operation):
     """(x0, c0, z0, x1, c1, z1) per move; the operation starts at its first C."""
-    x, z, c = op.xyz[:, 0], op.xyz[:, 2], op.rotary["c"]
-    x0 = np.concatenate([[op.start[0]], x[:-1]])
-    z0 = np.concatenate([[op.start[2]], z[:-1]])
-    c0 = np.concatenate([[c[0]], c[:-1]])
-    return x0, c0, z0, x, c, z
+    a, b, c0, c1 = kinematics.operation_c_moves(op)
+    return a[:, 0], c0, a[:, 2], b[:, 0], c1, b[:, 2]
 
 
 def move_lengths(op: Operation) -> np.ndarray:
@@ -270,40 +215,10 @@ def move_lengths(op: Operation) -> np.ndarray:
     return op.move_lengths()
 
 
-def move_times(op: Operation, rapid_rate: float, max_table_rpm: float = DEFAULT_MAX_TABLE_RPM,
-               lengths: np.ndarray | None = None) -> np.ndarray:
-    """Seconds per move.  Cutting: path length on the part / the move's feed, or longer when
-    the table cannot turn that fast; rapids: the slowest axis (X/Z at ``rapid_rate``, C at
-    ``max_table_rpm``).  ``lengths``: :func:`move_lengths` of op when already at hand."""
-    x0, c0, z0, x1, c1, z1 = _endpoints(op)
-    table = np.abs(c1 - c0) / (360.0 * max_table_rpm)
-    cutting = op.kind != RAPID
-    lengths = move_lengths(op) if lengths is None else lengths
-    minutes = np.where(cutting, lengths / np.where(cutting, op.feed, 1.0),
-                       np.sqrt((x1 - x0) ** 2 + (z1 - z0) ** 2) / rapid_rate)
-    return np.maximum(minutes, table) * 60.0
-
-
-def inverse_time_feed(op: Operation, max_table_rpm: float = DEFAULT_MAX_TABLE_RPM) -> np.ndarray:
-    """G93 F words: 1 / minutes for each cutting move (NaN for rapids)."""
-    minutes = move_times(op, 1.0, max_table_rpm) / 60.0   # (the rapid rate does not matter here)
-    with np.errstate(divide="ignore"):
-        return np.where(op.kind != RAPID, 1.0 / minutes, np.nan)
-
-
-def cycle_time(op: Operation, rapid_rate: float, max_table_rpm: float = DEFAULT_MAX_TABLE_RPM) -> float:
-    return float(move_times(op, rapid_rate, max_table_rpm).sum())
-
-
-def part_points(op: Operation) -> np.ndarray:
-    """The operation's end points back in the part frame (n, 3), tool tip."""
-    return np.column_stack([from_cylindrical(op.xyz[:, 0], op.rotary["c"]), op.xyz[:, 2]])
-
-
 def _to_machine(kind, xyz, feed, tolerance, start_c):
     """Part-frame moves (tool tip) -> machine moves: cutting moves split until the rotary
     interpolation stays within ``tolerance`` of the chord, C unwrapped.  A move is sampled
-    unless its bend (:func:`_speed_and_bend`) keeps it that close anyway; after a split only
+    unless its bend (:func:`kinematics.speed_and_bend`) keeps it that close anyway; after a split only
     the two halves are checked again (a split leaves every other move as it was)."""
     kind, xyz, feed = np.asarray(kind), np.asarray(xyz, float), np.asarray(feed, float)
     moved = np.ones(len(kind), bool)
@@ -313,12 +228,13 @@ def _to_machine(kind, xyz, feed, tolerance, start_c):
     for _ in range(40):
         x_word, c_raw = to_cylindrical(xyz[:, :2])
         c = unwrap_c(c_raw, -x_word, start_c)
-        _, bend = _speed_and_bend(x_word[check - 1], c[check - 1], x_word[check], c[check])
+        _, bend = kinematics.speed_and_bend(x_word[check - 1], c[check - 1], x_word[check], c[check])
         check = check[bend > 8 * tolerance]
         a, b = check - 1, check
         worst = np.zeros(len(check))
         for t in (0.25, 0.5, 0.75):
-            on_machine = _machine_at(x_word[a], c[a], xyz[a, 2], x_word[b], c[b], xyz[b, 2], np.full(len(a), t))
+            on_machine = kinematics.interpolate(x_word[a], c[a], xyz[a, 2], x_word[b], c[b], xyz[b, 2],
+                                                np.full(len(a), t))
             chord = xyz[a] + (xyz[b] - xyz[a]) * t
             worst = np.maximum(worst, _norms(on_machine - chord))
         split = check[worst > tolerance]
@@ -1052,8 +968,8 @@ def _max_gouge(geo: _Geometry, op: Operation) -> float:
     offset = np.array([geo.centre[0], geo.centre[1], -geo.r])
 
     def at(moves, t):
-        return _machine_at(x0[moves], c0[moves], z0[moves], x1[moves], c1[moves], z1[moves], t) - offset
-    speed, bend = _speed_and_bend(x0, c0, x1, c1)
+        return kinematics.interpolate(x0[moves], c0[moves], z0[moves], x1[moves], c1[moves], z1[moves], t) - offset
+    speed, bend = kinematics.speed_and_bend(x0, c0, x1, c1)
     deepest, before = 0.0, geo.probe(at(np.zeros(1, int), np.zeros(1)))
     for moves in np.array_split(np.arange(len(op)), len(op) // _BLOCK + 1):
         ends = geo.probe(at(moves, np.ones(len(moves))))

@@ -72,17 +72,13 @@ from typing import Protocol
 
 import numpy as np
 
-from .errors import InputError
-from .program import FEED, RAPID, Operation, Program, Tool
-
-
-class TurnMillError(InputError):
-    """Input the turn-mill workflow cannot use; the message names what is wrong."""
-
+from . import kinematics
+from .kinematics import machine_to_part  # noqa: F401  (callers of turnmill.machine_to_part)
+from .program import FEED, RAPID, TOOL_DIRECTIONS, Program, Tool, TurnMillError, TurnMillOperation
 
 NEITHER, RADIAL, AXIAL, BOTH = 0, 1, 2, 3      # face labels: bit 1 = radial, bit 2 = axial
 LABEL_NAMES = ("neither", "radial", "axial", "both")
-DIRECTIONS = ("radial", "axial")
+DIRECTIONS = TOOL_DIRECTIONS
 
 FACING = 1e-6            # normal . direction above this counts as facing the tool
 LIFT = 1e-4              # ray origins are lifted this fraction of the part size along the normal
@@ -528,17 +524,10 @@ def _densify(points: np.ndarray, spacing: float, normals: np.ndarray):
 
 def densify_polar(points: np.ndarray, tolerance: float) -> np.ndarray:
     """Split part-space segments so that linear X-C interpolation between the points bends away
-    from the straight segment by at most ``tolerance``.  A sweep of d radians at radius R bends
-    by R (1 - cos(d / 2))."""
+    from the straight segment by at most ``tolerance`` (:func:`kinematics.polar_split_counts`)."""
     if len(points) < 2:
         return points
-    rho = np.hypot(points[:, 0], points[:, 1])
-    theta = np.arctan2(points[:, 1], points[:, 0])
-    sweep = np.abs((np.diff(theta) + np.pi) % (2 * np.pi) - np.pi)
-    reach = np.maximum(rho[:-1], rho[1:])
-    limit = 2.0 * np.arccos(np.clip(1.0 - tolerance / np.maximum(reach, 1e-12), -1.0, 1.0))
-    counts = np.maximum(1, np.ceil(sweep / limit - 1e-9)).astype(int)
-    return _subdivide(points, counts)
+    return _subdivide(points, kinematics.polar_split_counts(points, tolerance))
 
 
 def _clear_ball(surface: _Triangles, centres: np.ndarray, r: float, allowance: float):
@@ -909,62 +898,10 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
 
 
 # ----- machine coordinates and operations ------------------------------------------------------
-def machine_to_part(xyz: np.ndarray, c_degrees: np.ndarray) -> np.ndarray:
-    """Machine (X, 0, Z) at C -> part coordinates: the point at radius X, part angle C."""
-    xyz = np.asarray(xyz, dtype=float).reshape(-1, 3)
-    angle = np.radians(np.asarray(c_degrees, dtype=float))
-    return np.column_stack([xyz[:, 0] * np.cos(angle), xyz[:, 0] * np.sin(angle), xyz[:, 2]])
-
-
-@dataclass
-class TurnMillOperation(Operation):
-    """An X-Z-C operation: ``xyz`` = (X, 0, Z) of the tool tip, X the radius from the axis,
-    ``rotary = {"c": degrees}``.  ``direction`` is the turret tool: "radial" (along machine X,
-    pointing at the axis) or "axial" (along Z, pointing down).  Lengths and cycle times are
-    measured in part coordinates, where the tool actually cuts."""
-
-    direction: str = "radial"
-
-    def validate(self):
-        super().validate()
-        if self.direction not in DIRECTIONS:
-            raise TurnMillError(f"operation {self.name!r}: direction must be one of {DIRECTIONS}")
-        if set(self.rotary) != {"c"}:
-            raise TurnMillError(f"operation {self.name!r}: an X-Z-C operation moves exactly the C axis")
-        if np.any(self.xyz[:, 1] != 0):
-            raise TurnMillError(f"operation {self.name!r}: the machine has no Y axis (Y must be 0)")
-
-    def part_points(self) -> np.ndarray:
-        """Tool-tip positions in part coordinates."""
-        return machine_to_part(self.xyz, self.rotary["c"])
-
-    def tool_axes(self) -> np.ndarray:
-        """Unit tool-axis vectors (tip towards holder) in part coordinates."""
-        if self.direction == "axial":
-            return np.tile([0.0, 0.0, 1.0], (len(self), 1))
-        angle = np.radians(self.rotary["c"])
-        return np.column_stack([np.cos(angle), np.sin(angle), np.zeros(len(self))])
-
-    def ball_centres(self) -> np.ndarray:
-        return self.part_points() + self.tool.radius * self.tool_axes()
-
-    def move_lengths(self) -> np.ndarray:
-        if not len(self):
-            return np.empty(0)
-        points = self.part_points()
-        start = machine_to_part(self.start, self.rotary["c"][:1])
-        return np.linalg.norm(np.diff(np.vstack([start, points]), axis=0), axis=1)
-
-
 def _machine(centres: np.ndarray, direction: str, r: float):
     """Tool-tip machine X, Z and the part angle (radians) for ball centres.  On the axis, where
-    the angle is undefined, the previous angle is kept."""
-    rho = np.hypot(centres[:, 0], centres[:, 1])
-    angle = np.arctan2(centres[:, 1], centres[:, 0])
-    defined = rho > 1e-9
-    if not defined.all():
-        last = np.maximum.accumulate(np.where(defined, np.arange(len(rho)), 0))
-        angle = np.where(defined, angle, angle[last])
+    the angle is undefined, the previous angle is kept (:func:`kinematics.polar`)."""
+    rho, angle = kinematics.polar(centres)
     if direction == "radial":
         return rho - r, centres[:, 2], angle
     return rho, centres[:, 2] - r, angle
