@@ -659,6 +659,8 @@ MESSAGE_TEMPLATES = {
     'operation {}: spindle speed must be >= 0': '工程 {0}：主軸回転数は0以上にしてください',
     'operation {}: rotary axis {} has {} values for {} moves': '工程 {0}：回転軸 {1} の値が {2} 個ありますが、移動は {3} 個です',
     'operation {}: rotary axis {} has a non-finite value': '工程 {0}：回転軸 {1} に有限でない値があります',
+    'operation {}: texture must be a GougeTexture or None, got {}':
+        '工程 {0}：テクスチャは GougeTexture か None にしてください（指定は {1}）',
     'line {}: cannot read {}': '{0} 行目：{1} を読めません',
     'line {}: expected one G or M code, got {}': '{0} 行目：GコードかMコードを1つ書いてください（{1}）',
     'the lines give different tool diameters {}: one punch is simulated': '行ごとに工具径が異なります {0}。シミュレーションできるパンチは1本です',

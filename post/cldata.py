@@ -31,8 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.program import FEED, RAPID, Operation, Program
-from ..toolpath.turnmill import TurnMillOperation, machine_to_part
+from ..toolpath.program import FEED, RAPID, Operation, Program, TurnMillOperation
 from .gcode import PostError, comment_text, format_duration
 from .registry import Post
 
@@ -99,7 +98,7 @@ class CLDataPost(Post):
         if not np.all(np.isin(op.kind, (RAPID, FEED))):
             raise PostError(f"operation {op.name!r} has arc moves; the CL data writer writes GOTO points only")
         if isinstance(op, TurnMillOperation):
-            return machine_to_part(op.start, op.rotary["c"][:1])[0], op.part_points(), op.tool_axes()
+            return op.part_start(), op.part_points(), op.tool_axes()
         if op.rotary:
             raise PostError(f"operation {op.name!r} moves rotary axes {sorted(op.rotary)} without a tool direction; "
                             f"the CL data writer knows X-Z-C turn-mill and 3-axis operations")

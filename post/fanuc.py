@@ -18,7 +18,7 @@ untouched, and a move with both X and Y is split with Y interpolated along it.
 """
 from __future__ import annotations
 
-from ..toolpath.engrave import GougeTexture
+from ..toolpath.program import GougeTexture
 
 from .gcode import GcodePost, PostError, fmt
 

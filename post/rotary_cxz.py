@@ -1,7 +1,8 @@
 """C-X-Z rotary-table posts (W2): the board turns on C, the bit moves in X (= -R) and Z.
 
 Moves come from :mod:`toolpath.rotary`: xyz = (X word, 0, tool-tip Z), rotary["c"] in
-degrees (continuous), feed in mm/min along the path on the part.  Cutting moves are written
+degrees (continuous), feed in mm/min along the path on the part (frames, move lengths and
+the table's timing: :mod:`toolpath.kinematics`).  Cutting moves are written
 in inverse-time feed, ``G93``, with ``F`` = 1 / minutes for the block on every G01 (both
 controllers require it there), so a move that turns the table is timed by the distance the
 bit travels over the wood and never read as degrees per minute.  ``G94`` is restored after
@@ -24,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath import rotary
+from ..toolpath import kinematics
 from ..toolpath.program import FEED, RAPID, Operation, Program
 from .fanuc import FanucPost
 from .gcode import GcodePost, PostError, comment_text, fmt
@@ -38,7 +39,7 @@ class RotaryCXZPost(GcodePost):
     angle_decimals = 4
     feed_decimals = 4
 
-    def __init__(self, work_offset: str | None = None, max_table_rpm: float = rotary.DEFAULT_MAX_TABLE_RPM):
+    def __init__(self, work_offset: str | None = None, max_table_rpm: float = kinematics.DEFAULT_MAX_TABLE_RPM):
         super().__init__(work_offset)
         self.max_table_rpm = max_table_rpm
 
@@ -65,7 +66,7 @@ class RotaryCXZPost(GcodePost):
 
     def operation_seconds(self, op: Operation, rapid_rate: float) -> float:
         """The table's speed limit counts too."""
-        return rotary.cycle_time(op, rapid_rate, self.max_table_rpm)
+        return kinematics.cycle_time(op, rapid_rate, self.max_table_rpm)
 
     def to_text(self, program: Program) -> str:
         lines = self.opening(program)
@@ -88,7 +89,7 @@ class RotaryCXZPost(GcodePost):
 
     def rotary_moves(self, op: Operation) -> list:
         """Modal X C Z blocks; every G01 carries its inverse-time F; unchanged blocks dropped."""
-        inverse_time = rotary.inverse_time_feed(op, self.max_table_rpm)
+        inverse_time = kinematics.inverse_time_feed(op, self.max_table_rpm)
         last = {"X": self.n(op.start[0]), "C": self.a(op.rotary["c"][0]), "Z": self.n(op.start[2])}
         lines, mode = [], None
         for kind, x, z, c, f in zip(op.kind.tolist(), op.xyz[:, 0].tolist(), op.xyz[:, 2].tolist(),

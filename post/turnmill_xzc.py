@@ -50,8 +50,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..toolpath.program import FEED, RAPID, Operation, Program
-from ..toolpath.turnmill import TurnMillOperation
+from ..toolpath.program import FEED, RAPID, Operation, Program, TurnMillOperation
 from .gcode import GcodePost, PostError, comment_text, fmt
 
 # mm: a move shorter than this in the part (C turning with the tool on the axis) is timed as this long

@@ -15,8 +15,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import tools
+from . import kinematics, tools
 from .errors import InputError
+from .texture import GougeTexture
 from .tools import KINDS as TOOL_KINDS, TIP_ANGLE_DEG  # noqa: F401 (re-exported)
 
 RAPID, FEED, ARC_CW, ARC_CCW = 0, 1, 2, 3
@@ -85,10 +86,11 @@ class Operation:
     Rotary axis "c" is a table turning the part about Z: with the table at C, the tool at
     machine (x, y) touches the part point R(C) (x, y) (R = rotation by C, counter-clockwise).
     The axes move linearly in machine coordinates, so a move traces a curve on the part, and
-    lengths and times are measured along that curve.
+    lengths and times are measured along that curve (:mod:`kinematics` has the conversion and
+    the length convention).
     ``start`` is where the tool is before the first move (normally above the clearance plane).
-    ``texture`` carries a request a post may honour itself (e.g. the gouge texture that a
-    controller macro applies at run time); the moves are then the untextured path.
+    ``texture`` carries a request a post may honour itself: a :class:`GougeTexture` that a
+    controller macro applies at run time; the moves are then the untextured path.
     """
 
     name: str
@@ -103,7 +105,7 @@ class Operation:
     clearance_z: float = 20.0
     safe_z: float = 100.0
     start: np.ndarray | None = None
-    texture: object | None = None
+    texture: GougeTexture | None = None
     coolant: bool = False
     comment: str = ""
 
@@ -145,6 +147,9 @@ class Operation:
             raise ProgramError(f"operation {self.name!r}: an arc has no centre")
         if not (np.isfinite(self.spindle_rpm) and self.spindle_rpm >= 0):
             raise ProgramError(f"operation {self.name!r}: spindle speed must be >= 0")
+        if self.texture is not None and not isinstance(self.texture, GougeTexture):
+            raise ProgramError(f"operation {self.name!r}: texture must be a GougeTexture or None, "
+                               f"got {type(self.texture).__name__}")
 
     def __len__(self):
         return len(self.kind)
@@ -165,8 +170,7 @@ class Operation:
         a = self.start_points()
         b = self.xyz
         if "c" in self.rotary and len(self):
-            c = self.rotary["c"]
-            return table_move_lengths(a, b, np.concatenate([[c[0]], c[:-1]]), c)
+            return kinematics.traced_lengths(*kinematics.operation_c_moves(self))
         length = np.linalg.norm(b - a, axis=1)
         arcs = np.flatnonzero((self.kind == ARC_CW) | (self.kind == ARC_CCW))
         if len(arcs):
@@ -206,25 +210,53 @@ class Operation:
                 "min_feed_z_mm": round(zmin, 4), "max_feed_z_mm": round(zmax, 4)}
 
 
-# 8-point Gauss-Legendre nodes on [0, 1] and weights: the speed along a table move is smooth.
-_GAUSS_X, _GAUSS_W = np.polynomial.legendre.leggauss(8)
-_GAUSS_T, _GAUSS_W = (_GAUSS_X + 1) / 2, _GAUSS_W / 2
+class TurnMillError(InputError):
+    """Input the turn-mill workflow cannot use; the message names what is wrong."""
 
 
-def table_move_lengths(a: np.ndarray, b: np.ndarray, c0: np.ndarray, c1: np.ndarray) -> np.ndarray:
-    """Length on the part of moves from a to b (machine xyz) while the C table turns c0 -> c1 (deg).
+TOOL_DIRECTIONS = ("radial", "axial")   # the turret tools of an X-Z-C turn-mill centre
 
-    The part point is p = R(C) m with m the machine point, so |dp/dt|^2 =
-    |m'|^2 + C'^2 |m|^2 + 2 C' (m_x m'_y - m_y m'_x) + z'^2, integrated by Gauss-Legendre.
-    """
-    d = b - a
-    dc = np.radians(c1 - c0)[:, None]
-    mx = a[:, 0:1] + d[:, 0:1] * _GAUSS_T[None, :]
-    my = a[:, 1:2] + d[:, 1:2] * _GAUSS_T[None, :]
-    planar = (d[:, 0:1] ** 2 + d[:, 1:2] ** 2 + dc ** 2 * (mx ** 2 + my ** 2)
-              + 2 * dc * (mx * d[:, 1:2] - my * d[:, 0:1]))
-    speed = np.sqrt(np.maximum(planar, 0.0) + d[:, 2:3] ** 2)
-    return speed @ _GAUSS_W
+
+@dataclass
+class TurnMillOperation(Operation):
+    """An X-Z-C operation: ``xyz`` = (X, 0, Z) of the tool tip, X the radius from the axis,
+    ``rotary = {"c": degrees}``.  ``direction`` is the turret tool: "radial" (along machine X,
+    pointing at the axis) or "axial" (along Z, pointing down).  Lengths and cycle times are
+    measured in part coordinates, where the tool actually cuts, along the chord between the part
+    points (:func:`kinematics.chord_lengths`, the turn-mill exception the module notes explain)."""
+
+    direction: str = "radial"
+
+    def validate(self):
+        super().validate()
+        if self.direction not in TOOL_DIRECTIONS:
+            raise TurnMillError(f"operation {self.name!r}: direction must be one of {TOOL_DIRECTIONS}")
+        if set(self.rotary) != {"c"}:
+            raise TurnMillError(f"operation {self.name!r}: an X-Z-C operation moves exactly the C axis")
+        if np.any(self.xyz[:, 1] != 0):
+            raise TurnMillError(f"operation {self.name!r}: the machine has no Y axis (Y must be 0)")
+
+    def part_start(self) -> np.ndarray:
+        """Where the tool tip is before the first move, in part coordinates (3,)."""
+        return kinematics.machine_to_part(self.start, self.rotary["c"][:1])[0]
+
+    def part_points(self) -> np.ndarray:
+        """Tool-tip positions in part coordinates."""
+        return kinematics.part_points(self)
+
+    def tool_axes(self) -> np.ndarray:
+        """Unit tool-axis vectors (tip towards holder) in part coordinates."""
+        if self.direction == "axial":
+            return np.tile([0.0, 0.0, 1.0], (len(self), 1))
+        return kinematics.radial_axes(self.rotary["c"])
+
+    def ball_centres(self) -> np.ndarray:
+        return self.part_points() + self.tool.radius * self.tool_axes()
+
+    def move_lengths(self) -> np.ndarray:
+        if not len(self):
+            return np.empty(0)
+        return kinematics.chord_lengths(*kinematics.operation_c_moves(self))
 
 
 def arc_sweep(a: np.ndarray, b: np.ndarray, c: np.ndarray, clockwise: np.ndarray) -> np.ndarray:

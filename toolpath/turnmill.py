@@ -68,27 +68,21 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
-from typing import Protocol
 
 import numpy as np
 
-from .errors import InputError
-from .program import FEED, RAPID, Operation, Program, Tool
-
-
-class TurnMillError(InputError):
-    """Input the turn-mill workflow cannot use; the message names what is wrong."""
-
+from . import kinematics
+from .kinematics import machine_to_part  # noqa: F401  (callers of turnmill.machine_to_part)
+from .meshrays import (PAIR_BUDGET, RayEngine, Triangles, TrimeshRayEngine, check_mesh,  # noqa: F401
+                       face_normals, face_samples)
+from .program import FEED, RAPID, TOOL_DIRECTIONS, Program, Tool, TurnMillError, TurnMillOperation
 
 NEITHER, RADIAL, AXIAL, BOTH = 0, 1, 2, 3      # face labels: bit 1 = radial, bit 2 = axial
 LABEL_NAMES = ("neither", "radial", "axial", "both")
-DIRECTIONS = ("radial", "axial")
+DIRECTIONS = TOOL_DIRECTIONS
 
 FACING = 1e-6            # normal . direction above this counts as facing the tool
 LIFT = 1e-4              # ray origins are lifted this fraction of the part size along the normal
-MAX_SUBDIVISION = 16     # at most 16 x 16 classification samples per face
-PAIR_BUDGET = 1 << 20    # (query, triangle) pairs handled at once: bounds the memory
-QUERY_CHUNK = 256        # at most this many nearby queries are culled against the triangles together
 RAY_BATCH = 50_000       # rays cast at once between progress reports
 PUSH_ITERATIONS = 8      # rounds of pushing a ball centre clear of the surface (corners need 2-3)
 
@@ -185,53 +179,6 @@ class TurnMillSettings:
         return Tool(station, "ball", float(self.tool_diameter), name=direction)
 
 
-def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
-    """(vertices (n, 3) float, faces (m, 3) int) after the checks the workflow relies on:
-    finite coordinates, valid indices, no edge shared by more than two faces (slicing chains
-    sections edge to edge), consistent winding, and outward normals when the mesh is closed."""
-    try:
-        v = np.asarray(vertices, dtype=float)
-        f = np.asarray(faces)
-    except (TypeError, ValueError):
-        raise TurnMillError("vertices and faces must be numeric arrays") from None
-    if v.size == 0 or f.size == 0:
-        raise TurnMillError("the mesh is empty: it needs vertices and triangles")
-    if v.ndim != 2 or v.shape[1] != 3:
-        raise TurnMillError(f"vertices must have shape (n, 3), got {v.shape}")
-    if f.ndim != 2 or f.shape[1] != 3:
-        raise TurnMillError(f"faces must be triangles, shape (m, 3), got {f.shape}")
-    if not np.all(np.isfinite(v)):
-        raise TurnMillError("the mesh has NaN or infinite vertex coordinates")
-    if not np.issubdtype(f.dtype, np.integer):
-        raise TurnMillError(f"face indices must be integers, got {f.dtype}")
-    if f.min() < 0 or f.max() >= len(v):
-        raise TurnMillError(f"face indices must lie in 0..{len(v) - 1}")
-    f = f.astype(np.int64)
-    if np.any((f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])):
-        raise TurnMillError("a face uses the same vertex twice")
-    directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    _, counts = np.unique(directed.min(axis=1) * len(v) + directed.max(axis=1), return_counts=True)
-    if np.any(counts > 2):
-        raise TurnMillError(f"the mesh is non-manifold: {int(np.sum(counts > 2))} edge(s) are shared by more "
-                            f"than two faces")
-    if len(np.unique(directed[:, 0] * len(v) + directed[:, 1])) < len(directed):
-        raise TurnMillError("the faces are wound inconsistently (some normals are flipped): recalculate normals")
-    if np.all(counts == 2):
-        tri = v[f]
-        volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0
-        if volume < 0:
-            raise TurnMillError("the face normals point inward: flip them so they point out of the part")
-    return v, f
-
-
-def _face_normals(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Unit normals (zero for degenerate faces) and areas."""
-    cross = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
-    length = np.linalg.norm(cross, axis=1)
-    normals = np.divide(cross, length[:, None], out=np.zeros_like(cross), where=length[:, None] > 0)
-    return normals, 0.5 * length
-
-
 def _face_ids(face_ids, face_count: int) -> np.ndarray:
     ids = np.unique(np.asarray(face_ids, dtype=np.int64).reshape(-1))
     if len(ids) and (ids[0] < 0 or ids[-1] >= face_count):
@@ -239,204 +186,7 @@ def _face_ids(face_ids, face_count: int) -> np.ndarray:
     return ids
 
 
-# ----- ray casting ----------------------------------------------------------------------------
-class RayEngine(Protocol):
-    """What classification needs from a ray caster.  The Blender shell adds a
-    mathutils.bvhtree engine with the same method."""
-
-    def intersects_any(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
-        """(k,) bool: does the ray from each origin along each direction hit any face?"""
-
-
-class _Triangles:
-    """The mesh triangles with bounding boxes, for the numpy ray and nearest-point queries.
-    Queries are paired with triangles whose boxes overlap theirs, a chunk at a time."""
-
-    def __init__(self, triangles: np.ndarray):
-        normals, areas = _face_normals(triangles)
-        size = max(float(np.ptp(triangles.reshape(-1, 3), axis=0).max()), 1e-9)
-        tri = triangles[areas > 1e-14 * size * size]
-        self.a, self.b, self.c = tri[:, 0], tri[:, 1], tri[:, 2]
-        self.normal = normals[areas > 1e-14 * size * size]
-        self.lo = tri.min(axis=1)
-        self.hi = tri.max(axis=1)
-        pad = 1e-6 * size
-        self.box_lo = self.lo.min(axis=0) - pad
-        self.box_hi = self.hi.max(axis=0) + pad
-
-    def _pairs(self, lo: np.ndarray, hi: np.ndarray):
-        """Yield (query index, triangle index) arrays for overlapping boxes.  Queries are grouped by
-        the cell (1/16 of the part size) their box centre lies in, at most QUERY_CHUNK together.
-        Only the triangles meeting a group's box are tested pairwise.  Each group holds whole
-        queries."""
-        extent = self.box_hi - self.box_lo
-        cells = np.clip(np.floor((0.5 * (lo + hi) - self.box_lo) / (extent.max() / 16)), 0, 1023).astype(np.int64)
-        key = (cells[:, 0] * 1024 + cells[:, 1]) * 1024 + cells[:, 2]
-        order = np.argsort(key, kind="stable")
-        key = key[order]
-        first = np.r_[0, np.flatnonzero(np.diff(key)) + 1]
-        rank = np.arange(len(key)) - np.repeat(first, np.diff(np.r_[first, len(key)]))
-        bounds = np.r_[np.flatnonzero((np.r_[1, np.diff(key)] != 0) | (rank % QUERY_CHUNK == 0)), len(key)]
-        for begin, stop in zip(bounds[:-1], bounds[1:]):
-            query = order[begin:stop]
-            chunk_lo, chunk_hi = lo[query].min(axis=0), hi[query].max(axis=0)
-            near = np.flatnonzero(np.all((self.lo <= chunk_hi) & (self.hi >= chunk_lo), axis=1))
-            if not len(near):
-                continue
-            overlap = np.all((lo[query, None, :] <= self.hi[near][None]) & (hi[query, None, :] >= self.lo[near][None]),
-                             axis=2)
-            q, t = np.nonzero(overlap)
-            yield query[q], near[t]
-
-    def intersects_any(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
-        # Clip each ray where it leaves the mesh box, so it has a finite box to cull with.
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t1 = (self.box_lo - origins) / directions
-            t2 = (self.box_hi - origins) / directions
-            exit_t = np.where(directions != 0, np.maximum(t1, t2), np.inf).min(axis=1)
-        end = origins + directions * np.clip(exit_t, 0.0, None)[:, None]
-        hit = np.zeros(len(origins), dtype=bool)
-        for query, tri in self._pairs(np.minimum(origins, end), np.maximum(origins, end)):
-            found = _ray_hits(origins[query], directions[query], self.a[tri], self.b[tri], self.c[tri])
-            hit[query[found]] = True
-        return hit
-
-    def nearest(self, points: np.ndarray, reach: float) -> tuple[np.ndarray, np.ndarray]:
-        """Distance to the nearest surface point within ``reach`` (inf beyond) and that point."""
-        distance = np.full(len(points), np.inf)
-        closest = points.copy()
-        batch: list = []
-
-        def settle():
-            query = np.concatenate([q for q, _ in batch])
-            tri = np.concatenate([t for _, t in batch])
-            p = points[query]
-            box_gap = np.maximum(np.maximum(self.lo[tri] - p, p - self.hi[tri]), 0.0)
-            plane = np.abs(np.einsum("ij,ij->i", p - self.a[tri], self.normal[tri]))
-            near = (np.einsum("ij,ij->i", box_gap, box_gap) <= reach * reach) & (plane <= reach)
-            query, tri = query[near], tri[near]
-            batch.clear()
-            if not len(query):
-                return
-            q = _closest_on_triangles(points[query], self.a[tri], self.b[tri], self.c[tri])
-            d2 = np.einsum("ij,ij->i", points[query] - q, points[query] - q)
-            order = np.lexsort((d2, query))
-            first = order[np.r_[True, query[order][1:] != query[order][:-1]]]
-            distance[query[first]] = np.sqrt(d2[first])
-            closest[query[first]] = q[first]
-
-        pending = 0
-        for pair in self._pairs(points - reach, points + reach):
-            batch.append(pair)
-            pending += len(pair[0])
-            if pending >= PAIR_BUDGET // 4:
-                settle()
-                pending = 0
-        if batch:
-            settle()
-        return distance, closest
-
-
-def _ray_hits(o, d, a, b, c) -> np.ndarray:
-    """Moller-Trumbore for ray/triangle pairs; hits strictly in front of the origin."""
-    e1, e2 = b - a, c - a
-    p = np.cross(d, e2)
-    det = np.einsum("ij,ij->i", e1, p)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inv = 1.0 / det
-        s = o - a
-        u = np.einsum("ij,ij->i", s, p) * inv
-        q = np.cross(s, e1)
-        v = np.einsum("ij,ij->i", d, q) * inv
-        t = np.einsum("ij,ij->i", e2, q) * inv
-        return (det != 0) & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 0)
-
-
-def _closest_on_triangles(p, a, b, c) -> np.ndarray:
-    """Closest point on each triangle to each point (pairwise), Ericson's region test."""
-    def dot(x, y):
-        return np.einsum("ij,ij->i", x, y)
-
-    ab, ac = b - a, c - a
-    d1, d2 = dot(ab, p - a), dot(ac, p - a)
-    d3, d4 = dot(ab, p - b), dot(ac, p - b)
-    d5, d6 = dot(ab, p - c), dot(ac, p - c)
-    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
-    with np.errstate(divide="ignore", invalid="ignore"):
-        denom = va + vb + vc
-        result = a + ab * (vb / denom)[:, None] + ac * (vc / denom)[:, None]
-        # Later regions override earlier ones: Ericson tests A, B, AB, C, AC, BC, then the face.
-        on_bc = (va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0)
-        result = np.where(on_bc[:, None], b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))[:, None], result)
-        on_ac = (vb <= 0) & (d2 >= 0) & (d6 <= 0)
-        result = np.where(on_ac[:, None], a + ac * (d2 / (d2 - d6))[:, None], result)
-        result = np.where(((d6 >= 0) & (d5 <= d6))[:, None], c, result)
-        on_ab = (vc <= 0) & (d1 >= 0) & (d3 <= 0)
-        result = np.where(on_ab[:, None], a + ab * (d1 / (d1 - d3))[:, None], result)
-        result = np.where(((d3 >= 0) & (d4 <= d3))[:, None], b, result)
-        return np.where(((d1 <= 0) & (d2 <= 0))[:, None], a, result)
-
-
-class TrimeshRayEngine:
-    """The default :class:`RayEngine`.  It uses Embree through trimesh when embreex is installed.
-    Otherwise it uses a numpy Moller-Trumbore with bounding-box culling: trimesh's own numpy
-    intersector needs rtree, which is neither bundled nor installed.  Rays go ``chunk_size`` at a
-    time, because a large batch exhausts memory."""
-
-    def __init__(self, vertices, faces, chunk_size: int = 20000):
-        if not (isinstance(chunk_size, int) and chunk_size > 0):
-            raise TurnMillError(f"ray chunk size must be a positive integer, got {chunk_size!r}")
-        v, f = check_mesh(vertices, faces)
-        self.chunk_size = chunk_size
-        try:
-            import trimesh
-            from trimesh.ray.ray_pyembree import RayMeshIntersector
-        except ImportError:
-            self._cast = _Triangles(v[f]).intersects_any
-            self.backend = "numpy"
-        else:
-            self._cast = RayMeshIntersector(trimesh.Trimesh(v, f, process=False)).intersects_any
-            self.backend = "embree"
-
-    def intersects_any(self, origins: np.ndarray, directions: np.ndarray) -> np.ndarray:
-        origins = np.asarray(origins, dtype=float).reshape(-1, 3)
-        directions = np.asarray(directions, dtype=float).reshape(-1, 3)
-        hit = np.zeros(len(origins), dtype=bool)
-        for start in range(0, len(origins), self.chunk_size):
-            stop = start + self.chunk_size
-            hit[start:stop] = self._cast(origins[start:stop], directions[start:stop])
-        return hit
-
-
 # ----- classification -------------------------------------------------------------------------
-def _subtriangle_centroids(k: int) -> np.ndarray:
-    """(k*k, 2) barycentric weights of vertices 1 and 2: the centroids of the k*k sub-triangles."""
-    i, j = np.meshgrid(np.arange(k), np.arange(k), indexing="ij")
-    up = (i + j) <= k - 1
-    down = (i + j) <= k - 2
-    return np.vstack([np.column_stack([i[up] + 1 / 3, j[up] + 1 / 3]),
-                      np.column_stack([i[down] + 2 / 3, j[down] + 2 / 3])]) / k
-
-
-def face_samples(triangles: np.ndarray, spacing: float) -> tuple[np.ndarray, np.ndarray]:
-    """Deterministic area-weighted samples: each face is cut into k x k similar sub-triangles
-    (k from its area and ``spacing``, 2..16) and sampled at their centroids.  Returns the
-    points and the face each belongs to; degenerate faces get none."""
-    _, areas = _face_normals(triangles)
-    k = np.clip(np.ceil(np.sqrt(2.0 * areas) / spacing), 2, MAX_SUBDIVISION).astype(int)
-    k[areas <= 0] = 0
-    points, owner = [np.empty((0, 3))], [np.empty(0, dtype=np.int64)]
-    for level in np.unique(k[k > 0]):
-        ids = np.flatnonzero(k == level)
-        weights = _subtriangle_centroids(int(level))
-        tri = triangles[ids]
-        pts = (tri[:, None, 0] * (1 - weights.sum(axis=1))[None, :, None] + tri[:, None, 1] * weights[None, :, 0, None]
-               + tri[:, None, 2] * weights[None, :, 1, None])
-        points.append(pts.reshape(-1, 3))
-        owner.append(np.repeat(ids, len(weights)))
-    return np.vstack(points), np.concatenate(owner)
-
-
 def classify_faces(vertices, faces, engine: RayEngine | None = None, sample_spacing: float = 2.0,
                    progress=None) -> np.ndarray:
     """Label each face NEITHER / RADIAL / AXIAL / BOTH ((m,) int8) by casting rays from its samples.
@@ -446,7 +196,7 @@ def classify_faces(vertices, faces, engine: RayEngine | None = None, sample_spac
         raise TurnMillError(f"sample spacing must be a number > 0, got {sample_spacing!r}")
     engine = TrimeshRayEngine(v, f) if engine is None else engine
     triangles = v[f]
-    normals, _ = _face_normals(triangles)
+    normals, _ = face_normals(triangles)
     points, owner = face_samples(triangles, sample_spacing)
     n = normals[owner]
     origins = points + LIFT * float(np.ptp(v, axis=0).max()) * n
@@ -493,7 +243,7 @@ def path_faces(vertices, faces, labels) -> tuple[np.ndarray, np.ndarray]:
     if labels.shape != (len(f),) or not np.all(np.isin(labels, (NEITHER, RADIAL, AXIAL, BOTH))):
         raise TurnMillError(f"labels must be {len(f)} values from NEITHER, RADIAL, AXIAL, BOTH")
     triangles = v[f]
-    normals, _ = _face_normals(triangles)
+    normals, _ = face_normals(triangles)
     centre = triangles.mean(axis=1)
     rho = np.maximum(np.hypot(centre[:, 0], centre[:, 1]), 1e-12)
     radial_facing = (normals[:, 0] * centre[:, 0] + normals[:, 1] * centre[:, 1]) / rho
@@ -528,20 +278,13 @@ def _densify(points: np.ndarray, spacing: float, normals: np.ndarray):
 
 def densify_polar(points: np.ndarray, tolerance: float) -> np.ndarray:
     """Split part-space segments so that linear X-C interpolation between the points bends away
-    from the straight segment by at most ``tolerance``.  A sweep of d radians at radius R bends
-    by R (1 - cos(d / 2))."""
+    from the straight segment by at most ``tolerance`` (:func:`kinematics.polar_split_counts`)."""
     if len(points) < 2:
         return points
-    rho = np.hypot(points[:, 0], points[:, 1])
-    theta = np.arctan2(points[:, 1], points[:, 0])
-    sweep = np.abs((np.diff(theta) + np.pi) % (2 * np.pi) - np.pi)
-    reach = np.maximum(rho[:-1], rho[1:])
-    limit = 2.0 * np.arccos(np.clip(1.0 - tolerance / np.maximum(reach, 1e-12), -1.0, 1.0))
-    counts = np.maximum(1, np.ceil(sweep / limit - 1e-9)).astype(int)
-    return _subdivide(points, counts)
+    return _subdivide(points, kinematics.polar_split_counts(points, tolerance))
 
 
-def _clear_ball(surface: _Triangles, centres: np.ndarray, r: float, allowance: float):
+def _clear_ball(surface: Triangles, centres: np.ndarray, r: float, allowance: float):
     """Push ball centres straight away from their nearest surface point until no surface is closer
     than r.  This is how centres slide into a corner or stop at a wall.  Returns the centres and
     whether each is clear (nothing closer than r - allowance)."""
@@ -728,7 +471,7 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
         return []
     r, tol, step = settings.radius, settings.tolerance, settings.roughing_step
     sub = f[ids]
-    normals, _ = _face_normals(v[sub])
+    normals, _ = face_normals(v[sub])
     zlo, zhi = v[sub, 2].min(axis=1), v[sub, 2].max(axis=1)
     count = max(1, math.ceil((zhi.max() - zlo.min()) / settings.pick_feed - 1e-9))
     spacing = (zhi.max() - zlo.min()) / count
@@ -755,7 +498,7 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
                 shifts.append((1 if k == 0 else every) * spacing - 1e-9)
     if not polylines:
         return []
-    surface = _Triangles(v[f])
+    surface = Triangles(v[f])
     layers: dict = {}
     for k, runs in zip(layer_of, _fit_runs(polylines, closed_flags, surface, stock, settings, shifts)):
         layers.setdefault(k, []).extend(runs)
@@ -849,7 +592,7 @@ def _grid_passes(v, faces, surface, stock, settings) -> list:
     """The finishing passes of one axial feature: grid points on its faces, pushed clear, chained."""
     r, tol = settings.radius, settings.tolerance
     triangles = v[faces]
-    normals, areas = _face_normals(triangles)
+    normals, areas = face_normals(triangles)
     centroid = (triangles.mean(axis=1)[:, :2] * areas[:, None]).sum(axis=0) / max(areas.sum(), 1e-300)
     length = float(np.hypot(*centroid))
     outward = centroid / length if length > 1e-6 else np.array([1.0, 0.0])
@@ -888,7 +631,7 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
     ids = _face_ids(face_ids, len(f))
     if not len(ids):
         return []
-    surface = _Triangles(v[f])
+    surface = Triangles(v[f])
     r, tol = settings.radius, settings.tolerance
     finishing = [p for group in _components(f, ids) for p in _grid_passes(v, f[group], surface, stock, settings)]
     if not finishing:
@@ -909,62 +652,10 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
 
 
 # ----- machine coordinates and operations ------------------------------------------------------
-def machine_to_part(xyz: np.ndarray, c_degrees: np.ndarray) -> np.ndarray:
-    """Machine (X, 0, Z) at C -> part coordinates: the point at radius X, part angle C."""
-    xyz = np.asarray(xyz, dtype=float).reshape(-1, 3)
-    angle = np.radians(np.asarray(c_degrees, dtype=float))
-    return np.column_stack([xyz[:, 0] * np.cos(angle), xyz[:, 0] * np.sin(angle), xyz[:, 2]])
-
-
-@dataclass
-class TurnMillOperation(Operation):
-    """An X-Z-C operation: ``xyz`` = (X, 0, Z) of the tool tip, X the radius from the axis,
-    ``rotary = {"c": degrees}``.  ``direction`` is the turret tool: "radial" (along machine X,
-    pointing at the axis) or "axial" (along Z, pointing down).  Lengths and cycle times are
-    measured in part coordinates, where the tool actually cuts."""
-
-    direction: str = "radial"
-
-    def validate(self):
-        super().validate()
-        if self.direction not in DIRECTIONS:
-            raise TurnMillError(f"operation {self.name!r}: direction must be one of {DIRECTIONS}")
-        if set(self.rotary) != {"c"}:
-            raise TurnMillError(f"operation {self.name!r}: an X-Z-C operation moves exactly the C axis")
-        if np.any(self.xyz[:, 1] != 0):
-            raise TurnMillError(f"operation {self.name!r}: the machine has no Y axis (Y must be 0)")
-
-    def part_points(self) -> np.ndarray:
-        """Tool-tip positions in part coordinates."""
-        return machine_to_part(self.xyz, self.rotary["c"])
-
-    def tool_axes(self) -> np.ndarray:
-        """Unit tool-axis vectors (tip towards holder) in part coordinates."""
-        if self.direction == "axial":
-            return np.tile([0.0, 0.0, 1.0], (len(self), 1))
-        angle = np.radians(self.rotary["c"])
-        return np.column_stack([np.cos(angle), np.sin(angle), np.zeros(len(self))])
-
-    def ball_centres(self) -> np.ndarray:
-        return self.part_points() + self.tool.radius * self.tool_axes()
-
-    def move_lengths(self) -> np.ndarray:
-        if not len(self):
-            return np.empty(0)
-        points = self.part_points()
-        start = machine_to_part(self.start, self.rotary["c"][:1])
-        return np.linalg.norm(np.diff(np.vstack([start, points]), axis=0), axis=1)
-
-
 def _machine(centres: np.ndarray, direction: str, r: float):
     """Tool-tip machine X, Z and the part angle (radians) for ball centres.  On the axis, where
-    the angle is undefined, the previous angle is kept."""
-    rho = np.hypot(centres[:, 0], centres[:, 1])
-    angle = np.arctan2(centres[:, 1], centres[:, 0])
-    defined = rho > 1e-9
-    if not defined.all():
-        last = np.maximum.accumulate(np.where(defined, np.arange(len(rho)), 0))
-        angle = np.where(defined, angle, angle[last])
+    the angle is undefined, the previous angle is kept (:func:`kinematics.polar`)."""
+    rho, angle = kinematics.polar(centres)
     if direction == "radial":
         return rho - r, centres[:, 2], angle
     return rho, centres[:, 2] - r, angle

@@ -35,7 +35,8 @@ from .model import (
     CuttingTool, DrillingOperation, PlanarFace, PlaneMilling, PlungeHelix, PlungeRamp, Project, RoundHole,
     StepNcError, Unidirectional, Workingstep, read_project,
 )
-from .part21 import UNSET, Enum, Part21Writer, parse_part21, read_part21
+from .part21 import UNSET, Enum, parse_part21, read_part21
+from .part21_writer import Part21Writer
 
 # Rapids stop this far (mm) above the level already cut, and feeding starts there.
 APPROACH_GAP = 2.0

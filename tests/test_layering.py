@@ -1,0 +1,66 @@
+"""The layering rules, checked on the source: posts read only the IR, the core never imports Blender."""
+import ast
+import os
+
+import pytest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# What a post may take from toolpath/: the IR, the rotary-axis kinematics, the error base class.
+POST_MAY_IMPORT = {"program", "kinematics", "errors"}
+BLENDER = {"bpy", "bmesh", "mathutils", "gpu", "blf"}
+
+
+def python_files(folder):
+    for directory, _, names in os.walk(os.path.join(ROOT, folder)):
+        for name in sorted(names):
+            if name.endswith(".py"):
+                yield os.path.relpath(os.path.join(directory, name), ROOT)
+
+
+def imports(path):
+    """(module, level, names) of every import statement in the file; ``import a.b`` gives ("a.b", 0, [])."""
+    with open(os.path.join(ROOT, path), encoding="utf-8") as stream:
+        tree = ast.parse(stream.read(), path)
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                yield alias.name, 0, []
+        elif isinstance(node, ast.ImportFrom):
+            yield node.module or "", node.level, [alias.name for alias in node.names]
+
+
+def toolpath_modules_of_post(module, level, names):
+    """The toolpath modules a post/*.py import statement reaches (post/ sits beside toolpath/)."""
+    parts = module.split(".") if module else []
+    if level == 2 and parts[:1] == ["toolpath"]:
+        return [parts[1]] if len(parts) > 1 else names          # from ..toolpath.x import / from ..toolpath import x
+    if level == 2 and not parts:
+        return [f"toolpath.{n}" for n in names if n == "toolpath"]   # from .. import toolpath
+    if level == 0 and parts[:2] == ["kezuri", "toolpath"]:
+        return [parts[2]] if len(parts) > 2 else names
+    return []
+
+
+def test_the_checks_see_the_import_forms():
+    assert toolpath_modules_of_post("toolpath.turnmill", 2, ["TurnMillOperation"]) == ["turnmill"]
+    assert toolpath_modules_of_post("toolpath", 2, ["rotary"]) == ["rotary"]
+    assert toolpath_modules_of_post("", 2, ["toolpath"]) == ["toolpath.toolpath"]
+    assert toolpath_modules_of_post("kezuri.toolpath.engrave", 0, ["GougeTexture"]) == ["engrave"]
+    assert toolpath_modules_of_post("gcode", 1, ["GcodePost"]) == []
+
+
+@pytest.mark.parametrize("path", list(python_files("post")))
+def test_posts_import_only_the_ir_kinematics_and_errors(path):
+    reached = {m for statement in imports(path) for m in toolpath_modules_of_post(*statement)}
+    assert reached <= POST_MAY_IMPORT, f"{path} imports toolpath modules {sorted(reached - POST_MAY_IMPORT)}"
+
+
+@pytest.mark.parametrize("path", list(python_files("toolpath")) + list(python_files("post")))
+def test_the_core_and_the_posts_never_import_blender(path):
+    for module, level, _ in imports(path):
+        assert not (level == 0 and module.split(".")[0] in BLENDER), f"{path} imports {module}"
+
+
+def test_kinematics_imports_nothing_of_the_project():
+    """program.py imports kinematics, so kinematics must not import the IR (or anything else of ours)."""
+    assert [m for m, level, _ in imports("toolpath/kinematics.py") if level > 0] == []
