@@ -45,6 +45,7 @@ class Tool:
     corner_radius: float = 0.0
     flute_length: float = 20.0
     name: str = ""
+    label: str = ""    # what the tool is called in comments when the kind's name is wrong (e.g. "reamer")
 
     def __post_init__(self):
         if self.kind not in TOOL_KINDS:
@@ -64,7 +65,7 @@ class Tool:
 
     def describe(self) -> str:
         label = {"ball": "ball end mill", "flat": "flat end mill", "bull": "bull nose end mill",
-                 "drill": "drill", "vbit": "V-bit"}[self.kind]
+                 "drill": "drill", "vbit": "V-bit"}[self.kind] if not self.label else self.label
         text = f"T{self.number} {self.diameter:g} mm {label}"
         if self.kind == "bull":
             text += f" R{self.corner_radius:g}"
