@@ -817,6 +817,10 @@ MESSAGE_TEMPLATES = {
     "correct the feature depth or the stock":
         "{0} #{1} '{2}'：{3} が Z {4} に達し、素材の底（Z {6}、{7}）より {5} mm 下です；"
         "フィーチャの深さか素材を直してください",
+    'plate thickness must be a positive number of mm, got {}':
+        '板厚は正の数（mm）でなければなりません：{0}',
+    '{} cuts to Z {}, through the {} mm plate (its bottom is Z {}); make the cut shallower than the plate thickness':
+        '{0} は Z {1} まで削り、{2} mm の板を貫通します（板の底は Z {3}）；板厚より浅くしてください',
     '#{} MACHINING_WORKINGSTEP: its security plane (Z {}) is not above the feature #{} (Z {})':
         '#{0} MACHINING_WORKINGSTEP：安全平面（Z {1}）がフィーチャー #{2}（Z {3}）より上にありません',
     '{} mm cut {} mm at a time needs {} layers (more than {}): check axial_cutting_depth':
