@@ -77,7 +77,8 @@ def engrave_request(scene, depsgraph):
     work_offset, rapid_rate = settings.machine.work_offset, settings.machine.rapid_rate
 
     def compute(progress=None) -> EngraveJob:
-        result = core.plan(plate.outline, letters, engrave_settings, name=name, progress=progress)
+        result = core.plan(plate.outline, letters, engrave_settings, name=name, progress=progress,
+                           plate_thickness=float(plate.size[2]))
         result.program.work_offset = work_offset
         result.program.rapid_rate = rapid_rate
         result.program.notes = list(result.warnings)

@@ -99,8 +99,8 @@ def unfold_files(job: UnfoldJob, base_path: str) -> list:
     bends = job.quad.pattern.bend_lines()
     stem = os.path.splitext(base_path)[0]
     files = [write_atomic(stem + posts.extension(POST_FAMILIES, PUNCH_POST), job.nc),
-             write_atomic(stem + ".dxf", flat_export.to_dxf([outline], [job.contour], bends)),
-             write_atomic(stem + ".svg", flat_export.to_svg([outline], [job.contour], bends))]
+             write_atomic(stem + ".dxf", flat_export.to_dxf([outline], punch_paths=[job.contour], bend_lines=bends)),
+             write_atomic(stem + ".svg", flat_export.to_svg([outline], punch_paths=[job.contour], bend_lines=bends))]
     return files
 
 
@@ -168,8 +168,9 @@ def elbow_files(elbow: core.Elbow, base_path: str, props) -> list:
     """DXF and SVG of all the pieces, and one turret-punch program per piece (<stem>-1.nc ...)."""
     stem = os.path.splitext(base_path)[0]
     outlines = elbow_layout(elbow)
-    files = [write_atomic(stem + ".dxf", flat_export.to_dxf(outlines)),
-             write_atomic(stem + ".svg", flat_export.to_svg(outlines))]
+    punch_paths = [core.compensate_outline(outline, props.tool_diameter) for outline in outlines]
+    files = [write_atomic(stem + ".dxf", flat_export.to_dxf(outlines, punch_paths=punch_paths)),
+             write_atomic(stem + ".svg", flat_export.to_svg(outlines, punch_paths=punch_paths))]
     for index, (nc, _) in enumerate(elbow_punching(elbow, props), start=1):
         files.append(write_atomic(f"{stem}-{index}{posts.extension(POST_FAMILIES, PUNCH_POST)}", nc))
     return files

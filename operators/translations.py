@@ -785,6 +785,20 @@ MESSAGE_TEMPLATES = {
         '#{0} MILLING_TECHNOLOGY：spindle も cutspeed もありません',
     '#{} MILLING_TECHNOLOGY: no positive feedrate (nor feedrate_per_tooth with a known number of teeth)':
         '#{0} MILLING_TECHNOLOGY：正の feedrate がありません（刃数の分かる feedrate_per_tooth もありません）',
+    '#{} MILLING_TECHNOLOGY: spindle speed {} rpm ({}); a cutting operation needs a turning spindle':
+        '#{0} MILLING_TECHNOLOGY：主軸回転数 {1} rpm（{2}）；切削には主軸の回転が必要です',
+    "#{} MILLING_CUTTING_TOOL '{}': tool_top_angle {} degrees is not a drill point "
+    "(0 <= angle < 90, measured from the plane square to the axis)":
+        "#{0} MILLING_CUTTING_TOOL '{1}'：tool_top_angle {2} 度はドリルの先端角ではありません"
+        "（0 以上 90 未満、軸に直角な面から測る角度）",
+    "{} #{} '{}': its {} reaches Z {}, {} mm below the stock bottom (Z {}, {}); "
+    "correct the feature depth or the stock":
+        "{0} #{1} '{2}'：{3} が Z {4} に達し、素材の底（Z {6}、{7}）より {5} mm 下です；"
+        "フィーチャの深さか素材を直してください",
+    'plate thickness must be a positive number of mm, got {}':
+        '板厚は正の数（mm）でなければなりません：{0}',
+    '{} cuts to Z {}, through the {} mm plate (its bottom is Z {}); make the cut shallower than the plate thickness':
+        '{0} は Z {1} まで削り、{2} mm の板を貫通します（板の底は Z {3}）；板厚より浅くしてください',
     '#{} MACHINING_WORKINGSTEP: its security plane (Z {}) is not above the feature #{} (Z {})':
         '#{0} MACHINING_WORKINGSTEP：安全平面（Z {1}）がフィーチャー #{2}（Z {3}）より上にありません',
     '{} mm cut {} mm at a time needs {} layers (more than {}): check axial_cutting_depth':

@@ -5,9 +5,26 @@ Two modes for a textured engraving:
 * baked (``FanucPost``): the texture depths were drawn by the add-on and are written
   literally, so the program cuts exactly what the preview shows;
 * controller macro (``FanucMacroPost``): the paper's method.  The roughing path is written
-  untextured, called block by block through ``G66.1 P7023``; program O7023 reads the
-  millisecond clock ``#3001``, takes its last digit and applies the depth rule on the
-  controller, so each run of the program cuts a different texture.
+  untextured, called block by block through ``G66.1 P7023``; program O7023 draws a digit
+  0..9 for every gouge and applies the depth rule on the controller, so each run of the
+  program cuts a different texture.
+
+Where the digits come from.  The paper took the last decimal digit of the millisecond clock
+``#3001``.  On the paper's control that clock counts in 16 ms steps, so its last digit is always
+even and only digits 0 2 4 6 8 (five of the nine depths) ever occur.  O7023 instead keeps a
+pseudo-random generator in common variable ``#115``: the Lehmer (multiplicative congruential)
+generator ``x <- 2987 x mod 32749``.  32749 is prime and 2987 a primitive root of it, so the
+sequence runs through every value 1..32748 before repeating, and the digit ``FIX[10 x / 32749]``
+takes each value 0..9 with frequency 1/10 to within 1/3275 over a period.  The control computes
+with about 8 significant digits, so the constants are chosen to keep everything exact: the
+product 2987 x is at most 2987 * 32748 = 97 818 276 < 10^8, an integer the control holds exactly;
+the remainder is taken as ``p - 32749 FIX[p / 32749]`` and brought back into 0..32748 by one
+addition or subtraction if the division rounded across an integer.  ``#115`` is vacant after
+power-on (or holds something that is not a state 1..32748); the first gouge then seeds it once
+from the clock, ``FIX[frac(#3001 / 32749) * 32748] + 1`` (the clock's 16 ms granularity does not
+matter: 16 k mod 32749 reaches every residue).  Later runs continue the sequence, so each run
+still cuts a different texture.  Depth rule as in :mod:`..toolpath.engrave`: digit 0 and 5 both
+give the base depth, so the base occurs 2/10 of the time and each other depth 1/10.
 
 O7023 follows the published macro with its two defects fixed: ``IF[#28GT5]`` sent d = 5 to
 the shallow branch (depth -1.0, outside the stated range), here ``GE``; and
@@ -23,6 +40,11 @@ from ..toolpath.program import GougeTexture
 from .gcode import GcodePost, PostError, fmt
 
 MACRO_PROGRAM = 7023
+# O7023's pseudo-random generator (see the module docstring): x <- LCG_MULTIPLIER * x mod LCG_MODULUS
+# in common variable #LCG_STATE_VAR.
+LCG_MODULUS = 32749
+LCG_MULTIPLIER = 2987
+LCG_STATE_VAR = 115
 
 
 class FanucPost(GcodePost):
@@ -96,9 +118,12 @@ def macro_program(texture: GougeTexture, decimals: int = 3) -> str:
     """Program O7023, called modally by G66.1 for every block of the roughing path.
 
     Arguments: #24/#25/#26 = X/Y/Z of the calling block, #4/#5 = I/J, #9 = F; #4001 its
-    motion G-code.  Commons #110..#114 hold the texture settings and the drawn depth.
+    motion G-code.  Commons #110..#114 hold the texture settings and the drawn depth, #115 the
+    state of the digit generator (kept between calls and runs; seeded from #3001 when vacant).
     """
     n = lambda value: fmt(value, decimals)  # noqa: E731
+    m, a, x = LCG_MODULUS, LCG_MULTIPLIER, f"#{LCG_STATE_VAR}"
+    assert a * (m - 1) < 10**8, "the generator's product must stay exact in 8 digits"
     lines = [
         f"O{MACRO_PROGRAM} (KEZURI GOUGE TEXTURE)",
         "#1=#4001",
@@ -122,10 +147,20 @@ def macro_program(texture: GougeTexture, decimals: int = 3) -> str:
         "#8=-1",
         "N2",
         "#16=#15+#8*#113",
+        f"IF[{x}LT1]GOTO7 (GENERATOR STATE VACANT OR INVALID: SEED IT)",
+        f"IF[{x}GE{m}]GOTO7",
+        f"IF[{x}EQFIX[{x}]]GOTO8",
+        "N7",
+        f"#30=#3001/{m} (SEED ONCE FROM THE MILLISECOND CLOCK)",
+        f"{x}=FIX[[#30-FIX[#30]]*{m - 1}]+1",
+        "N8",
         "WHILE[[#24-#16]*#8GE0]DO1",
-        "#32=#3001 (MILLISECOND CLOCK)",
-        "#30=FIX[#32/10]*10",
-        "#28=#32-#30 (LAST DIGIT 0..9)",
+        f"#29={a}*{x} (NEXT STATE: {a}*X MOD {m}, EXACT BELOW 1E8)",
+        f"#30=FIX[#29/{m}]",
+        f"{x}=#29-#30*{m}",
+        f"IF[{x}LT0]THEN{x}={x}+{m}",
+        f"IF[{x}GE{m}]THEN{x}={x}-{m}",
+        f"#28=FIX[{x}*10/{m}] (DIGIT 0..9)",
         "IF[#28GE5]GOTO3",
         "#114=#110+#111*ROUND[#28*#112/[4*#111]] (0..4: SHALLOWER)",
         "GOTO4",

@@ -45,6 +45,9 @@ Supported (see the module tests for worked examples):
   (recorded only: no unit conversion), G28 (see ``home``), G40 G49 G80 G94, G43 H,
   G54..G59 (recorded; coordinates stay work coordinates), G90/G91, G65, G66.1, G67,
   X Y Z I J R F S T H, M00 M01 M02 M03 M04 M05 M06 M08 M09 M19 M30, M98 P [L], M99.
+* ``significant_digits=8`` models a control that keeps about 8 significant decimal digits:
+  every value stored in a variable is rounded to that many significant digits (expressions
+  are evaluated in double precision in between).  Default None: no rounding.
 * Numbers are taken at face value: ``X106`` is 106.0 mm (the "no decimal point means
   least input increment" rule is NOT implemented; our post always writes a point).
 * ``G65 P.. <args>`` and ``G66.1 P.. <args>`` use argument specification I
@@ -630,7 +633,8 @@ class _Interpreter:
     """Executes parsed programs block by block."""
 
     def __init__(self, programs: dict, main: int | None, clock, start, max_blocks: int,
-                 variables: Mapping | None, home: Mapping | None, max_call_depth: int):
+                 variables: Mapping | None, home: Mapping | None, max_call_depth: int,
+                 significant_digits: int | None = None):
         if not programs:
             raise MacroError("no program in the text")
         self.programs = programs
@@ -642,6 +646,9 @@ class _Interpreter:
         self.max_blocks = max_blocks
         self.home = {k.upper(): float(v) for k, v in (home or {}).items()}
         self.max_call_depth = max_call_depth
+        if significant_digits is not None and not (isinstance(significant_digits, int) and significant_digits >= 1):
+            raise MacroError(f"significant_digits must be a positive integer, got {significant_digits!r}")
+        self.significant_digits = significant_digits
         self.common: dict = {}
         main_locals: dict = {}
         for n, v in (variables or {}).items():
@@ -707,6 +714,8 @@ class _Interpreter:
             raise MacroError(f"variable #{n} cannot be assigned")
         if v is None:
             store.pop(n, None)
+        elif self.significant_digits is not None:
+            store[n] = float(f"{float(v):.{self.significant_digits - 1}e}")
         else:
             store[n] = float(v)
 
@@ -1041,7 +1050,7 @@ class _Interpreter:
 def run_program(text: str, clock: Iterable | None = None, start=(0.0, 0.0, 0.0),
                 max_blocks: int = 10_000_000, *, variables: Mapping | None = None,
                 home: Mapping | None = None, main: int | None = None,
-                max_call_depth: int = 4) -> MacroRun:
+                max_call_depth: int = 4, significant_digits: int | None = None) -> MacroRun:
     """Execute a Fanuc program text and return what it did.
 
     clock       values returned by successive reads of #3001 (milliseconds); None: reading it is an error
@@ -1052,9 +1061,11 @@ def run_program(text: str, clock: Iterable | None = None, start=(0.0, 0.0, 0.0),
                 at the intermediate point (G28 is always recorded as an Event)
     main        program number to start with (default: the first program in the text)
     max_call_depth  G65/G66.1 nesting limit (4 on a Series 16i/18i, 5 on later controls)
+    significant_digits  round every stored value to this many significant digits (None: exact)
     """
     programs = parse_programs(text)
-    return _Interpreter(programs, main, clock, start, max_blocks, variables, home, max_call_depth).run()
+    return _Interpreter(programs, main, clock, start, max_blocks, variables, home, max_call_depth,
+                        significant_digits).run()
 
 
 def eval_expression(expr: str, variables: Mapping | None = None, clock: Iterable | None = None):

@@ -170,8 +170,22 @@ def test_dxf_is_wellformed_r12(flat_job):
     sections = [pairs[i + 1][1] for i, p in enumerate(pairs) if p == (0, "SECTION")]
     assert sections == ["HEADER", "TABLES", "ENTITIES"]
     assert pairs.count((0, "SECTION")) == pairs.count((0, "ENDSEC"))
-    layers = [pairs[i + 1][1] for i, p in enumerate(pairs) if p == (0, "LAYER")]
-    assert {"PATTERN", "CUT"} <= set(layers)
+    # each LAYER table entry: name -> its line type (group 6)
+    layers = {}
+    for i, p in enumerate(pairs):
+        if p == (0, "LAYER"):
+            entry = dict(pairs[i + 1:i + 6])
+            layers[entry[2]] = entry[6]
+    assert layers["CUT"] == "CONTINUOUS" and layers["PUNCH_PATH"] == "CONTINUOUS"
+    assert layers["BEND"] == "DASHED"
+    assert "PATTERN" not in layers
+    # the DASHED line type is defined R12-style: 73 = number of dashes, 40 = their total length, 49 each
+    i = pairs.index((2, "DASHED"))
+    ltype = pairs[i:pairs.index((0, "ENDTAB"), i)]
+    dashes = [float(v) for c, v in ltype if c == 49]
+    assert (73, str(len(dashes))) in ltype and len(dashes) >= 2
+    assert any(d > 0 for d in dashes) and any(d < 0 for d in dashes)     # dashes and gaps
+    assert float(dict(ltype)[40]) == pytest.approx(sum(abs(d) for d in dashes))
 
     entities = dxf_entities(pairs)
     kinds = [e[0] for e in entities]
@@ -180,7 +194,7 @@ def test_dxf_is_wellformed_r12(flat_job):
     assert kinds.count("LINE") == len(bends)
     assert kinds.count("VERTEX") == len(outline) + len(cut)
     polylines = [i for i, k in enumerate(kinds) if k == "POLYLINE"]
-    for i, (layer, contour) in zip(polylines, (("PATTERN", outline), ("CUT", cut))):
+    for i, (layer, contour) in zip(polylines, (("CUT", outline), ("PUNCH_PATH", cut))):
         assert entities[i][1][8] == [layer] and entities[i][1][70] == ["1"]      # closed
         verts = entities[i + 1:i + 1 + len(contour)]
         assert all(v[0] == "VERTEX" and v[1][8] == [layer] for v in verts)
@@ -189,20 +203,62 @@ def test_dxf_is_wellformed_r12(flat_job):
         assert entities[i + 1 + len(contour)][0] == "SEQEND"
     for kind, codes in entities:
         if kind == "LINE":
-            assert codes[8] == ["PATTERN"] and set(codes) >= {10, 20, 11, 21}
+            assert codes[8] == ["BEND"] and codes[6] == ["DASHED"] and set(codes) >= {10, 20, 11, 21}
+
+
+def paper_quad_area_3d(divisions=5):
+    """Area of the paper's twisted quad as the surface that is unfolded, computed here from the
+    corners alone: L1 (P1 -> P2) and L3 (P4 -> P3) divided into N equal parts, each strip quad
+    a_i a_i+1 b_i+1 b_i split by the diagonal b_i - a_i+1 (the horizontal YR strips), and the
+    3-D triangle areas summed.  Unfolding a triangle is an isometry, so the flat pattern has
+    exactly this area."""
+    p1, p2, p3, p4 = PAPER_CORNERS
+    t = np.arange(divisions + 1)[:, None] / divisions
+    a, b = p1 + (p2 - p1) * t, p4 + (p3 - p4) * t
+    area = 0.0
+    for i in range(divisions):
+        for u, v, w in ((a[i], a[i + 1], b[i]), (a[i + 1], b[i + 1], b[i])):
+            area += 0.5 * np.linalg.norm(np.cross(v - u, w - u))
+    return area
+
+
+def shoelace(points):
+    x, y = np.asarray(points, float).T
+    return 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
 
 
 def test_dxf_reads_back_with_ezdxf(flat_job):
-    ezdxf = pytest.importorskip("ezdxf")
+    ezdxf = pytest.importorskip("ezdxf")     # pinned in requirements.txt: this runs in the suite
     outline, cut, bends = flat_job
     doc = ezdxf.read(io.StringIO(to_dxf([outline], [cut], bends)))
+    auditor = doc.audit()
+    assert not auditor.has_errors, [str(e.message) for e in auditor.errors]
+    assert doc.linetypes.has_entry("DASHED")
+    dashed = doc.linetypes.get("DASHED")
+    assert len(dashed.pattern_tags.tags) > 0 and not dashed.pattern_tags.is_complex_type()
+    assert doc.layers.get("BEND").dxf.linetype == "DASHED"
+    assert doc.layers.get("CUT").dxf.linetype == "CONTINUOUS"
     msp = doc.modelspace()
-    assert len(msp.query('POLYLINE[layer=="PATTERN"]')) == 1
+    assert {e.dxf.layer for e in msp} == {"CUT", "BEND", "PUNCH_PATH"}
     assert len(msp.query('POLYLINE[layer=="CUT"]')) == 1
-    assert len(msp.query('LINE[layer=="PATTERN"]')) == len(bends)
-    poly = msp.query('POLYLINE[layer=="CUT"]')[0]
-    assert poly.is_closed
-    np.testing.assert_allclose([tuple(p)[:2] for p in poly.points()], cut, atol=1e-6)
+    assert len(msp.query('POLYLINE[layer=="PUNCH_PATH"]')) == 1
+    bend_lines = msp.query('LINE[layer=="BEND"]')
+    assert len(bend_lines) == len(bends) == 9 and len(msp.query("LINE")) == len(bends)
+    assert all(line.dxf.linetype == "DASHED" for line in bend_lines)
+    punch = msp.query('POLYLINE[layer=="PUNCH_PATH"]')[0]
+    assert punch.is_closed
+    np.testing.assert_allclose([tuple(p)[:2] for p in punch.points()], cut, atol=1e-6)
+    # The CUT outline is the developed part: its area is the 3-D surface's (from the corners alone).
+    part = msp.query('POLYLINE[layer=="CUT"]')[0]
+    assert part.is_closed
+    expected = paper_quad_area_3d(5)
+    assert expected > 9000                                    # about 100 x 100 mm, twisted
+    assert shoelace([tuple(p)[:2] for p in part.points()]) == pytest.approx(expected, rel=1e-6)
+    # every bend line joins two outline vertices (a fold runs from edge to edge of the sheet)
+    ends = np.array([tuple(p)[:2] for p in part.points()])
+    for line in bend_lines:
+        for end in (line.dxf.start, line.dxf.end):
+            assert np.min(np.linalg.norm(ends - [end[0], end[1]], axis=1)) < 1e-6
 
 
 def test_svg_is_wellformed(flat_job):
@@ -216,13 +272,22 @@ def test_svg_is_wellformed(flat_job):
     vb = [float(v) for v in root.get("viewBox").split()]
     assert vb[2] == pytest.approx(float(root.get("width")[:-2]))
     groups = {g.get("id"): g for g in root.findall("s:g", ns)}
-    assert len(groups["PATTERN"].findall("s:path", ns)) == len(pattern)   # one path per contour
-    assert len(groups["CUT"].findall("s:path", ns)) == 1
-    assert len(groups["PATTERN"].findall("s:line", ns)) == len(bends)
-    d = groups["CUT"].find("s:path", ns).get("d")
+    assert set(groups) == {"CUT", "BEND", "PUNCH_PATH"}
+    assert all(g.get("class") == name for name, g in groups.items())
+    assert len(groups["CUT"].findall("s:path", ns)) == len(pattern)   # one path per contour
+    assert len(groups["PUNCH_PATH"].findall("s:path", ns)) == 1
+    assert len(groups["BEND"].findall("s:line", ns)) == len(bends)
+    assert not groups["BEND"].findall("s:path", ns) and not groups["CUT"].findall("s:line", ns)
+    dash = [float(v) for v in groups["BEND"].get("stroke-dasharray").split()]
+    assert len(dash) >= 2 and min(dash) > 0                       # the bend lines are dashed
+    assert groups["CUT"].get("stroke-dasharray") is None and groups["PUNCH_PATH"].get("stroke-dasharray") is None
+    d = groups["PUNCH_PATH"].find("s:path", ns).get("d")
     assert d.startswith("M ") and d.endswith(" Z")
     nums = np.array([float(v) for v in re.findall(r"-?\d+\.\d+", d)]).reshape(-1, 2)
     np.testing.assert_allclose(nums * [1, -1], cut, atol=1e-6)       # SVG y points down
+    d = groups["CUT"].find("s:path", ns).get("d")
+    nums = np.array([float(v) for v in re.findall(r"-?\d+\.\d+", d)]).reshape(-1, 2)
+    assert shoelace(nums) == pytest.approx(paper_quad_area_3d(5), rel=1e-6)
     # everything inside the viewBox
     allpts = np.vstack(pattern + [cut]) * [1, -1]
     assert np.all(allpts[:, 0] >= vb[0]) and np.all(allpts[:, 0] <= vb[0] + vb[2])

@@ -1,4 +1,5 @@
 """The Blender shell, run for real with the bpy wheel in background mode."""
+import os
 import re
 
 import numpy as np
@@ -202,3 +203,23 @@ def test_letters_from_mesh_faces_and_closed_curves(scene):
     for op in job.baked.operations:
         below = op.xyz[op.xyz[:, 2] < 0][:, :2]
         assert not region.contains_points(l_shape + o_ring, below).any(), op.name
+
+
+def test_a_base_depth_through_the_sample_plate_is_refused_in_the_shell_and_in_batch(scene, tmp_path):
+    import subprocess
+    import sys
+    thickness = scene.kezuri.stock.plate.dimensions.z       # the sample plate, in mm (a millimetre scene)
+    assert thickness == pytest.approx(20.0)
+    scene.kezuri.engrave.base_depth = -30.0
+    with pytest.raises(Exception, match=r"base depth -30 mm - amplitude 0\.8 mm cuts to Z -30\.8, through the "
+                                        r"20 mm plate") as error:
+        shell.run_engrave(scene, bpy.context.evaluated_depsgraph_get())
+    assert isinstance(error.value, ValueError)               # an InputError: shown to the user, not a bug
+    blend = tmp_path / "deep.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend), copy=True)
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    done = subprocess.run([sys.executable, os.path.join(root, "batch.py"), "engrave", "--blend", str(blend),
+                           "--out", str(tmp_path / "out")], capture_output=True, text=True, timeout=600, cwd=root)
+    assert done.returncode == 2, done.stderr[-2000:]
+    assert "through the 20 mm plate" in done.stderr and "Traceback" not in done.stderr
+    assert not (tmp_path / "out" / "engrave.nc").exists() and not list((tmp_path / "out").glob("*.n*"))

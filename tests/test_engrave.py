@@ -274,3 +274,29 @@ def test_cycle_time_matches_feed_lengths():
         assert op.cycle_time(5000) == pytest.approx(expected)
         assert op.feed_length() == pytest.approx(lengths[cutting].sum())
     assert math.isclose(baked.cycle_time(), sum(op.cycle_time(5000) for op in baked.operations))
+
+
+# ---------------------------------------------------------------- depth against the plate
+
+
+def test_a_cut_through_the_plate_is_refused_naming_the_setting_and_the_thickness():
+    deep = engrave.EngraveSettings(texture=engrave.GougeTexture(base_depth=-30.0))
+    # deepest gouge: -30 - 0.8 = -30.8, below the bottom (Z -20) of a 20 mm plate
+    with pytest.raises(engrave.EngraveError, match=r"base depth -30 mm - amplitude 0\.8 mm cuts to Z -30\.8, "
+                                                   r"through the 20 mm plate \(its bottom is Z -20\)"):
+        engrave.plan(PLATE, LETTERS, deep, plate_thickness=20.0)
+    # the paper's depths (deepest -2.8) on a 2.5 mm plate: through; on a 3 mm plate: fine
+    with pytest.raises(engrave.EngraveError, match=r"cuts to Z -2\.8, through the 2\.5 mm plate"):
+        engrave.plan(PLATE, LETTERS, plate_thickness=2.5)
+    result = engrave.plan(PLATE, LETTERS, plate_thickness=3.0)
+    _, depths = engrave.bake(result.program)
+    assert min(depths) >= -2.8 - 1e-9
+    # reaching the bottom exactly is through too; the band depth is checked as well
+    with pytest.raises(engrave.EngraveError, match=r"cuts to Z -2\.8, through the 2\.8 mm plate"):
+        engrave.plan(PLATE, LETTERS, plate_thickness=2.8)
+    band = engrave.EngraveSettings(band_depth=-12.0, burr_depth=-2.0)
+    with pytest.raises(engrave.EngraveError, match=r"band depth -12 mm cuts to Z -12, through the 10 mm plate"):
+        engrave.plan(PLATE, LETTERS, band, plate_thickness=10.0)
+    for bad in (0.0, -5.0, float("nan")):
+        with pytest.raises(engrave.EngraveError, match="plate thickness must be a positive number"):
+            engrave.plan(PLATE, LETTERS, plate_thickness=bad)

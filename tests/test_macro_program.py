@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from kezuri import post
+from kezuri.post.fanuc import macro_program
 from kezuri.toolpath import engrave
 from macrob import run_program
 from test_engrave import LETTERS, PLATE
@@ -25,16 +26,39 @@ def job():
     return engrave.plan(PLATE, LETTERS)
 
 
-@pytest.mark.parametrize("seed", [0, 1])
-def test_macro_program_cuts_what_the_baked_program_cuts(job, seed):
-    rng = np.random.default_rng(seed)
-    clock = [int(v) for v in rng.integers(0, 65536, size=5000)]   # #3001: milliseconds, wraps at 65536
-    digits = [c % 10 for c in clock]
+# The generator O7023 is documented to use (post/fanuc.py), modelled here with exact integers.
+M, A = 32749, 2987
+
+
+def seed_state(clock_ms: int) -> int:
+    """FIX[frac(#3001 / M) * (M - 1)] + 1, in integers: r = #3001 mod M, frac = r / M."""
+    return (clock_ms % M) * (M - 1) // M + 1
+
+
+def model_digits(state: int):
+    """Digits 0..9 of x <- A x mod M, digit = FIX[10 x / M]."""
+    while True:
+        state = A * state % M
+        yield 10 * state // M
+
+
+def clock_16ms(start_ms: int, step_ms: float = 7.0):
+    """#3001 on the paper's control: real time advances, the clock shows it in 16 ms steps."""
+    t = float(start_ms)
+    while True:
+        yield int(t // 16) * 16
+        t += step_ms
+
+
+@pytest.mark.parametrize("power_on_ms", [64172, 123456])
+def test_macro_program_cuts_what_the_baked_program_cuts(job, power_on_ms):
+    clock = clock_16ms(power_on_ms)
+    first_read = int(power_on_ms // 16) * 16
     macro_text = post.milling_post("fanuc-macro").to_text(job.program)
-    run = run_program(macro_text, clock=iter(clock), start=(0, 0, 100))
-    baked, depths = engrave.bake(job.program, digits=iter(digits))
+    run = run_program(macro_text, clock=clock, start=(0, 0, 100))
+    baked, depths = engrave.bake(job.program, digits=model_digits(seed_state(first_read)))
     baked_run = run_program(post.milling_post("fanuc").to_text(baked), start=(0, 0, 100))
-    assert run.clock_reads == len(depths) > 100
+    assert run.clock_reads == 1 and len(depths) > 100          # seeded once, then the generator
     macro_points, baked_points = path_points(run.moves), path_points(baked_run.moves)
     assert macro_points.shape == baked_points.shape
     assert np.max(np.abs(macro_points - baked_points)) < 1.5e-3   # both written to 0.001 mm
@@ -43,12 +67,102 @@ def test_macro_program_cuts_what_the_baked_program_cuts(job, seed):
     assert set(np.round(depths, 3)) <= set(np.round(rough_z, 3))
 
 
-def test_digit_five_lands_on_the_base_depth(job):
+def test_a_second_run_continues_the_sequence_without_reading_the_clock(job):
     macro_text = post.milling_post("fanuc-macro").to_text(job.program)
-    run = run_program(macro_text, clock=iter([64175] * 5000), start=(0, 0, 100))
-    feed_z = np.array([m.z for m in run.moves if m.kind == "feed"])
-    # Digit 5 every time: every gouge at -2.0 (the paper's GT5 would have cut at -1.0).
-    assert np.allclose(feed_z[feed_z < 0], -2.0)
+    first = run_program(macro_text, clock=iter([4096]), start=(0, 0, 100))
+    state = first.var(115)
+    assert 1 <= state < M and state == int(state)
+    second = run_program(macro_text, clock=None, start=(0, 0, 100), variables={115: state})  # a read would raise
+    assert second.clock_reads == 0
+    baked, _ = engrave.bake(job.program, digits=model_digits(int(state)))
+    baked_run = run_program(post.milling_post("fanuc").to_text(baked), start=(0, 0, 100))
+    assert np.max(np.abs(path_points(second.moves) - path_points(baked_run.moves))) < 1.5e-3
+    # a stale common variable that is not a generator state is replaced by a fresh seed
+    stale = run_program(macro_text, clock=iter([4096]), start=(0, 0, 100), variables={115: 2.5})
+    assert stale.clock_reads == 1 and stale.var(115) == first.var(115)
+
+
+def test_digit_five_lands_on_the_base_depth(job):
+    # Preset the generator so that the first draw is x = 16375: digit FIX[163750 / 32749] = 5.
+    before = 16375 * pow(A, -1, M) % M
+    assert A * before % M == 16375
+    macro_text = post.milling_post("fanuc-macro").to_text(job.program)
+    run = run_program(macro_text, start=(0, 0, 100), variables={115: before})
+    feed_z = [m.z for m in run.moves if m.kind == "feed" and m.z is not None and m.z < 0]
+    # The first gouge is at -2.0 (the paper's GT5 would have sent digit 5 to -1.0).
+    assert feed_z[0] == pytest.approx(-2.0)
+    assert -1.0 not in np.round(feed_z, 3)
+
+
+# ---------------------------------------------------------------- all nine depths on a real control
+
+# The paper's rule with its values (base -2.0, quantum 0.2, amplitude 0.8): digits 1..4 -> -2.0 + 0.2 d,
+# 6..9 -> -2.0 - 0.2 (d - 5), 0 and 5 -> -2.0.  A uniform digit therefore gives the base 2/10 of the
+# gouges and each of the other eight depths 1/10.
+PAPER_DEPTHS = {-2.0: 0.2, -1.8: 0.1, -1.6: 0.1, -1.4: 0.1, -1.2: 0.1, -2.2: 0.1, -2.4: 0.1, -2.6: 0.1, -2.8: 0.1}
+# chi-square with 8 degrees of freedom (9 depths): P(X > 26.12) = 0.001 (standard table).
+CHI2_8_999 = 26.12
+
+
+def long_raster(rows: int, length: float = 2000.0) -> str:
+    """A main program that sends `rows` X strokes of `length` mm through O7023 (one gouge per 20 mm)."""
+    lines = ["%", "O0001", "G90 G21 G54", "G00 X0. Y0. Z5.", "G01 Z-2. F300.", "G66.1 P7023"]
+    for row in range(rows):
+        lines.append(f"X{length if row % 2 == 0 else 0.0:.1f} F1200.")
+        lines.append(f"Y{row + 1:.1f}")
+    lines += ["G67", "G00 Z5.", "M30"]
+    return "\n".join(lines) + "\n" + macro_program(engrave.GougeTexture(), 3) + "%\n"
+
+
+def gouge_depths(run, text):
+    """Z of the gouge moves, in order: the moves made by O7023's block G#1X#16Z#114F#9."""
+    gouge_line = text.splitlines().index("G#1X#16Z#114F#9") + 1
+    return np.round([m.z for m in run.moves if m.line == gouge_line], 3)
+
+
+def test_the_clock_digit_of_a_16ms_control_reaches_only_five_digits():
+    # Why O7023 does not use the clock's last digit: 16 k ms always ends in an even digit.
+    reads = clock_16ms(64172)
+    assert {next(reads) % 10 for _ in range(10000)} == {0, 2, 4, 6, 8}
+
+
+@pytest.mark.parametrize("power_on_ms", [0, 64172, 1_999_990_000])
+def test_all_nine_depths_with_the_papers_frequencies(power_on_ms):
+    text = long_raster(rows=60)        # 60 strokes x 100 gouges
+    run = run_program(text, clock=clock_16ms(power_on_ms), start=(0, 0, 100), significant_digits=8)
+    depths = gouge_depths(run, text)
+    n = len(depths)
+    assert n == 60 * 100 and run.clock_reads == 1
+    values, counts = np.unique(depths, return_counts=True)
+    assert set(values.tolist()) == set(PAPER_DEPTHS)            # all nine depths, nothing else
+    observed = dict(zip(values.tolist(), counts.tolist()))
+    expected = {d: p * n for d, p in PAPER_DEPTHS.items()}
+    chi2 = sum((observed[d] - expected[d]) ** 2 / expected[d] for d in PAPER_DEPTHS)
+    # A uniform random digit passes this with probability 0.999; a generator with a missing or
+    # doubled digit gives chi2 in the hundreds (e.g. the clock digit's five: about 3000 here).
+    assert chi2 < CHI2_8_999, (chi2, observed)
+    # Successive gouges are independent: the 81 (depth, next depth) pairs against p_i p_j.
+    pairs = {}
+    for d0, d1 in zip(depths[:-1], depths[1:]):
+        pairs[(d0, d1)] = pairs.get((d0, d1), 0) + 1
+    m = n - 1
+    chi2_pairs = sum((pairs.get((a, b), 0) - m * pa * pb) ** 2 / (m * pa * pb)
+                     for a, pa in PAPER_DEPTHS.items() for b, pb in PAPER_DEPTHS.items())
+    # 64 degrees of freedom: the 0.999 quantile is 104.7 (Wilson-Hilferty); 120 leaves room for
+    # the not quite independent overlapping pairs.
+    assert chi2_pairs < 120, chi2_pairs
+    # The control's 8-digit arithmetic changes nothing in the generator: the run is the exact
+    # sequence from its first state (found from the final #115 by stepping back n draws).
+    final = run.var(115)
+    assert final == int(final) and 1 <= final < M
+    first_state = int(final) * pow(A, -n, M) % M
+    if power_on_ms < 10_000_000:
+        # a clock below 1e7 ms is seeded exactly (#3001 / 32749 keeps its fraction in 8 digits); a
+        # larger clock loses digits of the fraction, which only changes which valid state is the seed
+        assert first_state == seed_state(int(power_on_ms // 16) * 16)
+    rule = {0: -2.0, 1: -1.8, 2: -1.6, 3: -1.4, 4: -1.2, 5: -2.0, 6: -2.2, 7: -2.4, 8: -2.6, 9: -2.8}
+    digits = model_digits(first_state)
+    np.testing.assert_array_equal(depths, [rule[next(digits)] for _ in range(n)])
 
 
 def test_clock_digit_extraction_matches_the_paper_example():

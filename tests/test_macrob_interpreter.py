@@ -594,3 +594,14 @@ def test_corrected_paper_macro_on_the_paper_frame():
 def test_move_is_a_plain_record():
     m = Move("feed", 1.0, 2.0, 3.0, feed=100.0, line=5, start=(0.0, 0.0, 0.0))
     assert m.end == (1.0, 2.0, 3.0) and m.center is None
+
+
+def test_significant_digits_round_stored_values():
+    text = "%\nO0001\n#100=123456789\n#101=2987*32748\n#102=1/3\nM30\n%\n"
+    run = run_program(text, significant_digits=8)
+    assert run.var(100) == 123456790.0           # 9 digits do not fit: rounded to 8
+    assert run.var(101) == 97818276.0            # below 1e8: an integer is kept exactly
+    assert run.var(102) == 0.33333333
+    assert run_program(text).var(100) == 123456789.0
+    with pytest.raises(MacroError, match="significant_digits"):
+        run_program(text, significant_digits=0)

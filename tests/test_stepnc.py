@@ -297,17 +297,31 @@ def test_pocket_finishing_cuts_the_walls_and_the_floor(ex1_program):
     assert segment_distance(grid, a[at_floor], b[at_floor]).max() <= MILL_RADIUS + 0.01
 
 
-def test_hole_drilled_and_reamed_at_its_centre_to_its_depth(ex1_program):
+# ex1's HOLE1 is a through hole (#17 bottom condition #26 THROUGH_BOTTOM_CONDITION) whose depth plane #112
+# is at Z -30.  Its drill #31/#32 is 20 mm with tool_top_angle 31 degrees, the cutting edge's angle to
+# the plane square to the axis (the usual 118 degree point: 2 x (90 - 31)), so the point is
+# 10 x tan 31 deg = 6.0086 mm long.  Drilled through: the tip goes the point's length plus 2 mm below
+# Z -30, so the full 20 mm diameter is 2 mm past the bottom.
+EX1_DRILL_POINT = 10.0 * math.tan(math.radians(31.0))
+EX1_DRILL_BOTTOM = -30.0 - EX1_DRILL_POINT - 2.0          # -38.0086
+
+
+def test_hole_drilled_through_and_reamed_at_its_centre(ex1_program):
     drill, ream = by_name(ex1_program)["WS DRILL HOLE1"], by_name(ex1_program)["WS REAM HOLE1"]
+    assert EX1_DRILL_POINT == pytest.approx(6.0086, abs=1e-4)
     for op in (drill, ream):
         cutting = op.kind == FEED
         np.testing.assert_allclose(op.xyz[cutting, :2], [[20.0, 60.0]] * int(cutting.sum()))
-        assert op.xyz[:, 2].min() == pytest.approx(-30.0)
         assert np.all(op.xyz[:, :2] == [20.0, 60.0])
-    # DRILLING_TYPE_STRATEGY: half feed over the first 2 mm, 0.75 over the last 8 mm
+    assert drill.xyz[:, 2].min() == pytest.approx(EX1_DRILL_BOTTOM, abs=1e-9)
+    assert drill.xyz[:, 2].min() + EX1_DRILL_POINT < -30.0 - 1.99       # the full diameter is through
+    assert ream.xyz[:, 2].min() == pytest.approx(-30.0)                 # the reamer to the hole depth
+    # DRILLING_TYPE_STRATEGY: half feed over the first 2 mm, 0.75 over the last 8 mm (of the drill's travel)
     down = drill.xyz[drill.kind == FEED]
     feeds = drill.feed[drill.kind == FEED]
-    assert [(z, f) for z, f in zip(down[:, 2], feeds)] == [(-2.0, 900.0), (-22.0, 1800.0), (-30.0, 1350.0)]
+    np.testing.assert_allclose(np.column_stack([down[:, 2], feeds]),
+                               [(-2.0, 900.0), (EX1_DRILL_BOTTOM + 8.0, 1800.0), (EX1_DRILL_BOTTOM, 1350.0)])
+    assert any("through hole" in note and "-38.009" in note for note in ex1_program.notes)
     # the reamer leaves the bore at feed, not rapid
     assert ream.kind[np.argmin(ream.xyz[:, 2]) + 1] == FEED
 
@@ -327,8 +341,15 @@ def test_regions_and_depths_agree_with_nist(ex1_program):
     for (_, calls), op in ((segments[1], drill), (segments[2], ream)):
         feeds = np.array([[float(v) for v in args[:3]] for name, args in calls if name == "STRAIGHT_FEED"])
         assert np.all(feeds[:, :2] == [20.0, 60.0]) and np.all(op.xyz[op.kind == FEED, :2] == [20.0, 60.0])
-        # NIST drills 7.14 mm deeper for the drill point; we feed to the hole depth
-        assert feeds[:, 2].min() <= op.xyz[:, 2].min() == -30.0
+        if op is ream:
+            assert feeds[:, 2].min() == op.xyz[:, 2].min() == -30.0
+        else:
+            # NIST drills to Z -37.1378 (7.1378 mm past the bottom); we go the point length + 2 mm,
+            # to -38.0086: both put the full diameter (tip + 6.0086) below the Z -30 bottom.
+            assert feeds[:, 2].min() == pytest.approx(-37.1378)
+            assert op.xyz[:, 2].min() == pytest.approx(EX1_DRILL_BOTTOM)
+            assert abs(op.xyz[:, 2].min() - feeds[:, 2].min()) < 1.0
+            assert max(feeds[:, 2].min(), op.xyz[:, 2].min()) + EX1_DRILL_POINT < -30.0
 
 
 # --------------------------------------------------------------------------- reordering
@@ -426,6 +447,91 @@ def test_unsupported_strategy_and_tilted_feature_are_skipped():
     assert [ws.id for ws in loaded.workingsteps] == [10, 14]
     assert any("CONTOUR_SPIRAL #51 is not supported" in w and "#13" in w for w in loaded.warnings)
     assert sum("ROUND_HOLE #17 is not supported" in w for w in loaded.warnings) == 2
+
+
+def test_zero_or_negative_spindle_speed_is_refused_naming_the_workingstep():
+    text = replace_instance(ex1_text(), 45, "#45= MILLING_TECHNOLOGY(0.030,.TCP.,$,0.000,$,.F.,.F.,.F.,$);")
+    with pytest.raises(StepNcError, match=r"workingstep #11 'WS DRILL HOLE1': #45 MILLING_TECHNOLOGY: "
+                                          r"spindle speed 0 rpm \(spindle 0 rev/s\)"):
+        to_program(load_workplan(text))
+    # the spindle from a negative cutting speed: -1 m/s on the 22 mm reamer
+    text = replace_instance(ex1_text(), 48, "#48= MILLING_TECHNOLOGY(0.030,.TCP.,-1.000,$,$,.F.,.F.,.F.,$);")
+    with pytest.raises(StepNcError, match=r"workingstep #12 'WS REAM HOLE1': .*spindle speed -868\.\d+ rpm "
+                                          r"\(cutspeed -1 m/s\)"):
+        to_program(load_workplan(text))
+
+
+def test_tools_are_named_as_what_they_are(ex1_program):
+    ops = by_name(ex1_program)
+    assert ops["WS REAM HOLE1"].tool.describe() == "T3 22 mm reamer (REAMER_22MM)"
+    assert ops["WS DRILL HOLE1"].tool.describe() == "T2 20 mm twist drill (SPIRAL_DRILL_20MM)"
+    assert ops["WS ROUGH POCKET1"].tool.describe() == "T1 18 mm flat end mill (MILL 18MM)"
+    assert ops["WS REAM HOLE1"].tool.kind == "drill"        # the IR kind is unchanged
+    text = post.milling_post("fanuc").to_text(ex1_program)
+    tool_lines = [line for line in text.splitlines() if line.startswith("(TOOL:")]
+    assert any("22 MM REAMER" in line for line in tool_lines), tool_lines
+    assert not any("22 MM DRILL" in line for line in tool_lines)
+    centre = replace_instance(ex1_text(), 31, "#31= CENTER_DRILL(#32,2,.RIGHT.,.F.,0.840);")
+    program = to_program(load_workplan(centre))
+    assert by_name(program)["WS DRILL HOLE1"].tool.describe() == "T2 20 mm centre drill (SPIRAL_DRILL_20MM)"
+    # a centre drill is not a through-hole drill: no breakthrough below the hole's Z -30
+    assert by_name(program)["WS DRILL HOLE1"].xyz[:, 2].min() == pytest.approx(-30.0)
+
+
+POCKET1_AT = "#118= CARTESIAN_POINT('POCKET1: DEPTH ',(0.000,0.000,{z:.3f}));"
+STOCK_BLOCK = ("#400= BLOCK('STOCK',#401,150.000,150.000,{h:.3f});",
+               "#401= AXIS2_PLACEMENT_3D('STOCK',#402,#96,#97);",
+               "#402= CARTESIAN_POINT('STOCK CORNER',(-10.000,-10.000,{z0:.3f}));")
+
+
+def with_stock(text, bottom):
+    """ex1 with a workpiece BLOCK from Z `bottom` up to Z 5 (the planar face's top)."""
+    text = replace_instance(text, 4, "#4= WORKPIECE('SIMPLE WORKPIECE',#6,0.010,$,$,#400,(#66,#67,#68,#69));")
+    return add_instances(text, *(line.format(h=5.0 - bottom, z0=bottom) for line in STOCK_BLOCK))
+
+
+def test_feature_below_the_stock_bottom_is_refused():
+    # ex1 has no workpiece BLOCK: its through hole's depth plane (Z -30) is the stock bottom.
+    deep = replace_instance(ex1_text(), 118, POCKET1_AT.format(z=-35.0))
+    with pytest.raises(StepNcError, match=r"workingstep #13 'WS ROUGH POCKET1': ClosedPocket #18 'POCKET1': its depth "
+                                          r"reaches Z -35, 5 mm below the stock bottom \(Z -30, the depth of through "
+                                          r"feature #17 'HOLE1 D=22MM'\)"):
+        to_program(load_workplan(deep))
+    # with a 45 mm stock (Z -40 .. 5) the same pocket fits; 1 mm below Z -40 does not
+    finish = by_name(to_program(load_workplan(with_stock(deep, -40.0))))["WS FINISH POCKET1"]
+    assert finish.xyz[:, 2].min() == pytest.approx(-35.0)
+    deeper = with_stock(replace_instance(ex1_text(), 118, POCKET1_AT.format(z=-41.0)), -40.0)
+    with pytest.raises(StepNcError, match=r"'WS ROUGH POCKET1'.*Z -41, 1 mm below the stock bottom \(Z -40, "
+                                          r"the bottom of workpiece BLOCK #400\)"):
+        to_program(load_workplan(deeper))
+    # a blind hole (flat bottom) through a 25 mm stock: its Z -30 is 5 mm below the stock's Z -25
+    blind = replace_instance(with_stock(ex1_text(), -25.0), 26, "#26= FLAT_HOLE_BOTTOM();")
+    with pytest.raises(StepNcError, match=r"'WS DRILL HOLE1': RoundHole #17 'HOLE1 D=22MM': its depth reaches "
+                                          r"Z -30, 5 mm below the stock bottom \(Z -25"):
+        to_program(load_workplan(blind))
+    # and a drill's cutting_depth past the bottom of a blind hole
+    drilled = replace_instance(replace_instance(with_stock(ex1_text(), -40.0), 26, "#26= FLAT_HOLE_BOTTOM();"),
+                               20, "#20= DRILLING($,$,'DRILL HOLE1',10.000,$,#44,#45,#41,$,42.000,$,$,$,#46);")
+    with pytest.raises(StepNcError, match=r"'WS DRILL HOLE1': .*its cutting_depth 42 reaches Z -42, 2 mm below"):
+        to_program(load_workplan(drilled))
+
+
+def test_through_hole_breakthrough_from_the_file():
+    # overcut_length (attribute 8 of DRILLING) says how far past the bottom the drill goes: 3.5 mm
+    text = replace_instance(ex1_text(), 20, "#20= DRILLING($,$,'DRILL HOLE1',10.000,$,#44,#45,#41,3.500,$,$,$,$,#46);")
+    drill = by_name(to_program(load_workplan(text)))["WS DRILL HOLE1"]
+    assert drill.xyz[:, 2].min() == pytest.approx(-33.5)
+    # an explicit cutting_depth on a through hole is the file's own breakthrough: not refused
+    text = replace_instance(ex1_text(), 20, "#20= DRILLING($,$,'DRILL HOLE1',10.000,$,#44,#45,#41,$,36.000,$,$,$,#46);")
+    drill = by_name(to_program(load_workplan(text)))["WS DRILL HOLE1"]
+    assert drill.xyz[:, 2].min() == pytest.approx(-36.0)
+
+
+def test_unknown_stock_bottom_is_reported():
+    text = replace_instance(ex1_text(), 26, "#26= FLAT_HOLE_BOTTOM();")    # no through feature, no BLOCK
+    program = to_program(load_workplan(text))
+    assert any("stock bottom is unknown" in note for note in program.notes)
+    assert not any("stock bottom is unknown" in note for note in to_program(load_workplan(ex1_text())).notes)
 
 
 def test_dangling_reference_names_the_instance():

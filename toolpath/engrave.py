@@ -99,15 +99,29 @@ class EngraveResult:
 
 
 def plan(plate_loops, letters, settings: EngraveSettings = EngraveSettings(), name: str = "engrave",
-         progress=None) -> EngraveResult:
+         progress=None, plate_thickness: float | None = None) -> EngraveResult:
     """Plan the three operations.
 
     plate_loops: closed loops (mm, work XY; the plate top is Z = 0) of the plate face.
     letters:     [(object_name, [loop, ...]), ...]: each object's closed outlines (glyphs with
                  their counters, even-odd).
     progress:    optional callable(fraction, text).
+    plate_thickness: mm; every cut (the deepest gouge, the band and burr depths) must stay above
+                 the plate's bottom, Z = -thickness.  None: not checked (the caller does not know).
     """
     settings.validate()
+    if plate_thickness is not None:
+        if not (isinstance(plate_thickness, (int, float)) and math.isfinite(plate_thickness) and plate_thickness > 0):
+            raise EngraveError(f"plate thickness must be a positive number of mm, got {plate_thickness!r}")
+        texture = settings.texture
+        for setting, depth in ((f"base depth {texture.base_depth:g} mm - amplitude {texture.amplitude:g} mm",
+                                texture.deepest),
+                               (f"band depth {settings.band_depth:g} mm", settings.band_depth),
+                               (f"burr depth {settings.burr_depth:g} mm", settings.burr_depth)):
+            if depth <= -plate_thickness:
+                raise EngraveError(f"{setting} cuts to Z {depth:g}, through the {plate_thickness:g} mm plate "
+                                   f"(its bottom is Z {-plate_thickness:g}); make the cut shallower than the plate "
+                                   "thickness")
     report = progress or (lambda fraction, text: None)
     plate = rg.from_loops(plate_loops, "plate")
     if not letters:

@@ -44,6 +44,7 @@ class Tool:
     corner_radius: float = 0.0
     flute_length: float = 20.0
     name: str = ""
+    label: str = ""    # what the tool is called in comments when the kind's name is wrong (e.g. "reamer")
 
     def __post_init__(self):
         try:
@@ -69,7 +70,7 @@ class Tool:
         return tools.shape_of(self)
 
     def describe(self) -> str:
-        text = f"T{self.number} {self.diameter:g} mm {self.shape.describe()}"
+        text = f"T{self.number} {self.diameter:g} mm {self.label or self.shape.describe()}"
         return text + (f" ({self.name})" if self.name else "")
 
 

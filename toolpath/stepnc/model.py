@@ -573,6 +573,7 @@ class DrillingOperation:
     feed_on_retract: float | None
     its_machining_strategy: DrillingTypeStrategy | None
     spindle_stop_at_bottom: bool | None = None
+    overcut_length: float | None = None    # how far a through hole is drilled past its bottom
 
 
 MachiningOperation = Union[PlaneMilling, BottomAndSideMilling, DrillingOperation]
@@ -1052,9 +1053,11 @@ class _Reader:
                                  self.number(t, 11, "dwell_time_bottom", optional=True),
                                  self.number(t, 12, "feed_on_retract", optional=True),
                                  self.drilling_strategy(t, 13, "its_machining_strategy"))
+            overcut = self.length(t, 8, "overcut_length", optional=True)
             if t.type_name == "REAMING":
-                return DrillingOperation(*drilling, self.boolean(t, 14, "spindle_stop_at_bottom"))
-            return DrillingOperation(*drilling)
+                return DrillingOperation(*drilling, self.boolean(t, 14, "spindle_stop_at_bottom"),
+                                         overcut_length=overcut)
+            return DrillingOperation(*drilling, overcut_length=overcut)
         milling = common + (self.approach_retract(t, 9, "approach"), self.approach_retract(t, 10, "retract"),
                             self.milling_strategy(t, 11, "its_machining_strategy"),
                             self.length(t, 12, "axial_cutting_depth", optional=True))

@@ -50,6 +50,20 @@ MAX_PASSES = 5000
 DEFAULT_STEPOVER_RATIO = 0.5
 # A move at cutting depth between two paths is allowed when it stays this close (mm) to the region.
 LINK_TOLERANCE = 0.01
+# A through hole is drilled through: the drill's full diameter passes the stock bottom by this much (mm)
+# beyond the point's length.
+BREAKTHROUGH_CLEARANCE = 2.0
+# Drill point when the file gives no tool_top_angle: the usual 118 degrees included angle.  ISO 14649's
+# tool_top_angle is measured from the plane square to the axis (ex1's drill: 31 = (180 - 118) / 2).
+DEFAULT_TOOL_TOP_ANGLE = 31.0
+POINTED_DRILL_BODIES = ("TWIST_DRILL", "TAPERED_DRILL")
+THROUGH_CONDITIONS = ("THROUGH_BOTTOM_CONDITION", "THROUGH_POCKET_BOTTOM_CONDITION")
+# What a tool body is called in the NC comments (Tool.describe); bodies not listed use the IR kind's name.
+BODY_LABELS = {"TWIST_DRILL": "twist drill", "TAPERED_DRILL": "drill", "CENTER_DRILL": "centre drill",
+               "REAMER": "reamer", "TAPERED_REAMER": "reamer", "TAP": "tap", "COUNTERSINK": "countersink",
+               "COUNTERBORE": "counterbore", "FACEMILL": "face mill"}
+# A feature may reach this far (mm) below the stock bottom before it is refused (rounding in the file).
+DEPTH_TOLERANCE = 1e-6
 
 
 @dataclass(frozen=True)
@@ -112,6 +126,10 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
         numbers.setdefault(step.its_operation.its_tool.id, len(numbers) + 1)
     position = {step.id: index for index, step in enumerate(sequence)}
     notes = list(model.warnings)
+    bottom, source = stock_bottom(model)
+    if bottom is None:
+        notes.append("the stock bottom is unknown (no workpiece BLOCK and no through feature): feature depths "
+                     "are not checked against the stock")
     operations = []
     for step in sequence:
         if step.id not in enabled:
@@ -122,6 +140,8 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
                 notes.append(f"workingstep #{step.id} '{step.its_id}' assumes roughing #{rough.id} "
                              f"'{rough.its_id}' was done before it")
         try:
+            if bottom is not None:
+                check_depth(step, bottom, source)
             tool = tool_for(step.its_operation.its_tool, numbers[step.its_operation.its_tool.id])
             operation = plan_workingstep(step, tool, [rough.its_operation for rough in roughings], notes)
         except InputError as error:
@@ -129,6 +149,40 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
         if operation is not None:
             operations.append(operation)
     return Program(name or model.project.its_id or "STEP-NC", operations, notes=notes)
+
+
+def stock_bottom(model: LoadedWorkplan) -> tuple:
+    """(Z of the stock bottom, where it comes from), or (None, None) when the file does not say.
+
+    From the workpieces' bounding BLOCKs if there are any; otherwise from the through features
+    (a through hole's depth plane is the bottom of the stock it goes through), the deepest one.
+    """
+    boxes = [w.its_bounding_geometry for w in model.project.its_workpieces if w.its_bounding_geometry is not None]
+    if boxes:
+        block = min(boxes, key=lambda b: b.box()[0][2])
+        return float(block.box()[0][2]), f"the bottom of workpiece BLOCK #{block.id}"
+    through = [step.its_feature for step in model.workingsteps
+               if getattr(step.its_feature, "bottom_condition", None) in THROUGH_CONDITIONS]
+    if through:
+        feature = min(through, key=lambda f: f.bottom_z)
+        return feature.bottom_z, f"the depth of through feature #{feature.id} '{feature.its_id}'"
+    return None, None
+
+
+def check_depth(step: Workingstep, bottom: float, source: str):
+    """Refuse a workingstep that would cut below the stock bottom (a through feature's own
+    breakthrough below its depth plane is planned, not refused)."""
+    feature, operation = step.its_feature, step.its_operation
+    depth = feature.bottom_z
+    what = "depth"
+    if isinstance(operation, DrillingOperation) and operation.cutting_depth is not None:
+        depth, what = feature.top_z - operation.cutting_depth, f"cutting_depth {operation.cutting_depth:g}"
+        if getattr(feature, "bottom_condition", None) in THROUGH_CONDITIONS:
+            return   # the file asks for this much breakthrough
+    if depth < bottom - DEPTH_TOLERANCE:
+        raise StepNcError(f"{type(feature).__name__} #{feature.id} '{feature.its_id}': its {what} reaches Z "
+                          f"{depth:g}, {bottom - depth:g} mm below the stock bottom (Z {bottom:g}, {source}); "
+                          "correct the feature depth or the stock")
 
 
 def _roughings_of(step: Workingstep, workingsteps) -> list:
@@ -153,7 +207,8 @@ def tool_for(tool: CuttingTool, number: int) -> Tool:
     else:
         kind = "bull" if corner > 0 else "flat"
     extra = {"flute_length": dimension.cutting_edge_length} if dimension.cutting_edge_length else {}
-    return Tool(number, kind, dimension.diameter, min(corner, dimension.diameter / 2), name=tool.its_id, **extra)
+    return Tool(number, kind, dimension.diameter, min(corner, dimension.diameter / 2), name=tool.its_id,
+                label=BODY_LABELS.get(body.type_name, ""), **extra)
 
 
 def feed_and_speed(operation, tool: Tool) -> tuple:
@@ -165,6 +220,11 @@ def feed_and_speed(operation, tool: Tool) -> tuple:
         rpm = technology.cutspeed * 60000.0 / (math.pi * tool.diameter)
     if rpm is None:
         raise StepNcError(f"#{technology.id} MILLING_TECHNOLOGY: neither spindle nor cutspeed is given")
+    if not rpm > 0:
+        given = (f"spindle {technology.spindle:g} rev/s" if technology.spindle_rpm is not None
+                 else f"cutspeed {technology.cutspeed:g} m/s")
+        raise StepNcError(f"#{technology.id} MILLING_TECHNOLOGY: spindle speed {rpm:g} rpm ({given}); a cutting "
+                          "operation needs a turning spindle")
     feed = technology.feed_mm_min
     teeth = operation.its_tool.its_tool_body.number_of_teeth
     if feed is None and technology.feedrate_per_tooth and teeth:
@@ -632,6 +692,17 @@ def _sweeps(centres: CrossSection, distance: float, radius: float, leftover: Cro
     return (swept ^ leftover).area() > rg.MIN_AREA
 
 
+def drill_breakthrough(tool: CuttingTool) -> float:
+    """How far below a through hole's bottom the drill tip goes so the full diameter clears it:
+    the point's length, radius * tan(tool_top_angle), plus BREAKTHROUGH_CLEARANCE."""
+    dimension = tool.its_tool_body.dimension
+    angle = dimension.tool_top_angle if dimension.tool_top_angle is not None else DEFAULT_TOOL_TOP_ANGLE
+    if not 0 <= angle < 90:
+        raise StepNcError(f"#{tool.id} MILLING_CUTTING_TOOL '{tool.its_id}': tool_top_angle {angle:g} degrees "
+                          "is not a drill point (0 <= angle < 90, measured from the plane square to the axis)")
+    return dimension.diameter / 2 * math.tan(math.radians(angle)) + BREAKTHROUGH_CLEARANCE
+
+
 def _hole(operation: DrillingOperation, hole: RoundHole, clearance_z, feed, skip):
     """A straight feed to depth at the hole centre (no canned cycle, so every post can write it);
     DRILLING_TYPE_STRATEGY's reduced feeds over the first and last depths are honoured."""
@@ -641,7 +712,20 @@ def _hole(operation: DrillingOperation, hole: RoundHole, clearance_z, feed, skip
     x, y = hole.centre
     top = hole.top_z
     bottom = top - operation.cutting_depth if operation.cutting_depth is not None else hole.bottom_z
+    breakthrough = 0.0
+    why = ""
+    if operation.cutting_depth is None and hole.bottom_condition in THROUGH_CONDITIONS \
+            and operation.type_name == "DRILLING":
+        if operation.overcut_length is not None:
+            breakthrough, why = operation.overcut_length, "the operation's overcut_length"
+        elif operation.its_tool.its_tool_body.type_name in POINTED_DRILL_BODIES:
+            breakthrough = drill_breakthrough(operation.its_tool)
+            why = f"point length + {BREAKTHROUGH_CLEARANCE:g} mm"
+        bottom -= breakthrough
     motion = _Motion(clearance_z, feed)
+    if breakthrough:
+        motion.notes.append(f"through hole: the drill goes {breakthrough:.3f} mm below the hole bottom "
+                            f"({why}) to Z {bottom:.3f}")
     entry = min(top + APPROACH_GAP, clearance_z)
     motion.path.rapid(x, y, clearance_z)
     if entry < clearance_z:
