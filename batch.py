@@ -14,7 +14,9 @@ Commands (``python batch.py <command> --help`` for the options):
     demo      every workflow on its built-in sample part, each into a sub-folder of --out
 
 Each command writes its output files, ``report.json`` and a preview PNG into --out.
-Exit status: 0 on success, 2 on bad input (the message says what to fix).
+Exit status: 0 on success, 2 on bad input (the message says what to fix), 3 when the export gate
+refuses a program the simulation finds fault with (``--allow-findings`` writes it anyway, and
+``report.json`` records the override).
 """
 from __future__ import annotations
 
@@ -97,9 +99,13 @@ def main(argv: list) -> int:
     args.out = os.path.abspath(args.out)
     load_extension()
     from kezuri.operators.common import user_errors
+    from kezuri.operators.gate import REFUSED_STATUS, GateRefused
     try:
         os.makedirs(args.out, exist_ok=True)
         report = demo(args) if args.command == "demo" else commands()[args.command].run(args)
+    except GateRefused as error:
+        print(f"kezuri: {error}", file=sys.stderr)
+        return REFUSED_STATUS
     except user_errors() as error:
         print(f"kezuri: {error}", file=sys.stderr)
         return 2

@@ -18,6 +18,7 @@ from ..post import write_atomic
 from ..toolpath import engrave as core
 from ..toolpath.program import Tool
 from . import convert
+from . import gate
 from .common import SteppedOperator, run_reported
 from .preferences import scene_output_dir, scene_post
 from .properties import post_items, post_number
@@ -110,9 +111,14 @@ def program_for_post(job: EngraveJob, post_name: str):
     return job.result.program if posts.find(POST_FAMILIES, post_name).needs_texture else job.baked
 
 
-def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str | None = None) -> str:
+def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str | None = None,
+                   allow: bool | str = False, checked: bool = False) -> str:
+    """Write the program for ``post_name``; the export gate simulates it first unless the caller
+    has (``checked``); ``allow``: the gate's override (see :func:`gate.check`)."""
     post = posts.create(POST_FAMILIES, post_name, work_offset=work_offset)
     text = post.to_text(program_for_post(job, post_name))
+    if not checked:
+        gate.check(simulation(job), allow)
     return write_atomic(path, text)
 
 
@@ -190,7 +196,8 @@ class KEZURI_OT_engrave_export(bpy.types.Operator, ExportHelper):
     def execute(self, context):
         def work():
             job = run_engrave(context.scene, context.evaluated_depsgraph_get())
-            path = export_engrave(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset)
+            path = export_engrave(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset,
+                                  allow=context.scene.kezuri.simulation.acknowledged)
             self.report({"INFO"}, translate_message(f"Wrote {path}"))
             return {"FINISHED"}
         return run_reported(self, work)
@@ -205,6 +212,8 @@ def batch_arguments(p):
     p.add_argument("--blend", help="a .blend whose scene has the Kezuri plate and letters set")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
     p.add_argument("--seed", type=int)
+    p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
+                                                                 "finds gouges, rapids into material ...")
 
 
 def batch(args) -> dict:
@@ -222,12 +231,14 @@ def batch(args) -> dict:
     job = run_engrave(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "engrave"))
     seconds = time.perf_counter() - started
     nc_path = os.path.join(args.out, f"engrave{extension_for(post_name)}")
-    export_engrave(job, post_name, nc_path, props.machine.work_offset)
+    checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
+    export_engrave(job, post_name, nc_path, props.machine.work_offset, checked=True)
     wires = show_engrave(scene, job, show_rapids=False)
     toolpaths_png = preview.render_preview(scene, [props.stock.plate, *letter_objects(props.engrave)], wires,
                                            os.path.join(args.out, "engrave-toolpaths.png"))
-    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "engrave")
+    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "engrave", checked)
     return {
+        "gate": gate_report,
         "simulation": simulation_report,
         "toolpaths_preview": toolpaths_png,
         "workflow": "engrave",

@@ -219,6 +219,9 @@ class KEZURI_PT_simulate(KezuriPanel, bpy.types.Panel):
                 row = box.row(align=True)
                 row.label(text=finding.message)
                 row.operator("kezuri.frame_finding", text="", icon="ZOOM_SELECTED").index = index
+            blocking = sum(1 for f in props.findings if f.blocking)
+            if blocking:
+                box.prop(props, "allow_findings", text=f"Write despite these {blocking} finding(s)")
         else:
             layout.label(text="No findings", icon="CHECKMARK")
 

@@ -238,6 +238,8 @@ class KezuriTurnMill(bpy.types.PropertyGroup):
 class KezuriFinding(bpy.types.PropertyGroup):
     kind: StringProperty(name="Kind")
     message: StringProperty(name="Message")
+    blocking: BoolProperty(name="Blocks Export", default=False)
+    signature: StringProperty(name="Signature", options={"HIDDEN"})
     operation: IntProperty(name="Operation")
     move: IntProperty(name="Move")
     location: FloatVectorProperty(name="Location", size=3, subtype="XYZ")
@@ -253,6 +255,12 @@ def show_colours(props, context=None):
                 obj.data.color_attributes.active_color = attribute
 
 
+def acknowledge(props, context=None):
+    """Ticking "Write Despite Findings" acknowledges exactly the blocking findings now listed."""
+    props.acknowledged = ("\n".join(f.signature for f in props.findings if f.blocking)
+                          if props.allow_findings else "")
+
+
 class KezuriSimulation(bpy.types.PropertyGroup):
     engine: EnumProperty(name="Engine", default="heightfield", items=[
         ("heightfield", "Height Field", "Fast Z-map of the exact tool envelope (3-axis and C-X-Z jobs)"),
@@ -262,6 +270,10 @@ class KezuriSimulation(bpy.types.PropertyGroup):
         ("DEPTH", "Depth", "Light wood at the top, dark at the deepest cut"),
         ("OPERATION", "Operation", "Each operation's surface in its own colour")])
     findings: CollectionProperty(type=KezuriFinding)
+    allow_findings: BoolProperty(name="Write Despite Findings", default=False, update=acknowledge,
+                                 description="Export the program although the simulation found the faults listed "
+                                             "above (only these: a different finding stops the export again)")
+    acknowledged: StringProperty(name="Acknowledged Findings", options={"HIDDEN"})
 
 
 class KezuriSettings(bpy.types.PropertyGroup):

@@ -21,6 +21,7 @@ from ..post import write_atomic
 from ..toolpath import rotary as core
 from ..toolpath.program import Tool
 from . import convert
+from . import gate
 from .common import SteppedOperator, run_reported
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -104,10 +105,14 @@ def extension_for(post_name: str) -> str:
     return posts.extension(POST_FAMILIES, post_name)
 
 
-def export_rotary(job: RotaryJob, post_name: str, path: str) -> str:
+def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str = False, checked: bool = False) -> str:
+    """Write the program; the export gate simulates it first unless the caller has (``checked``)."""
     post = posts.create(POST_FAMILIES, post_name, work_offset=job.result.program.work_offset,
                         max_table_rpm=job.settings.max_table_rpm)
-    return write_atomic(path, post.to_text(job.result.program))
+    text = post.to_text(job.result.program)
+    if not checked:
+        gate.check(simulation(job), allow)
+    return write_atomic(path, text)
 
 
 def simulation(job: RotaryJob) -> SimulationSetup:
@@ -167,7 +172,7 @@ class KEZURI_OT_rotary_export(bpy.types.Operator, ExportHelper):
     def execute(self, context):
         def work():
             job = run_rotary(context.scene, context.evaluated_depsgraph_get())
-            path = export_rotary(job, self.post, self.filepath)
+            path = export_rotary(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged)
             self.report({"INFO"}, translate_message(f"Wrote {path}"))
             return {"FINISHED"}
         return run_reported(self, work)
@@ -208,6 +213,8 @@ CLASSES = (KEZURI_OT_rotary_generate, KEZURI_OT_rotary_export, KEZURI_OT_mark_po
 def batch_arguments(p):
     p.add_argument("--blend", help="a .blend with the block as Kezuri stock and pocket outlines marked")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
+    p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
+                                                                 "finds gouges, rapids into material ...")
 
 
 def batch(args) -> dict:
@@ -221,12 +228,14 @@ def batch(args) -> dict:
     started = time.perf_counter()
     job = run_rotary(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "rotary"))
     seconds = time.perf_counter() - started
-    nc_path = export_rotary(job, post_name, os.path.join(args.out, f"rotary{extension_for(post_name)}"))
+    checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
+    nc_path = export_rotary(job, post_name, os.path.join(args.out, f"rotary{extension_for(post_name)}"), checked=True)
     paths = show_rotary(scene, job)
     toolpaths_png = preview.render_preview(scene, [scene.kezuri.stock.plate], paths,
                                            os.path.join(args.out, "rotary-toolpaths.png"))
-    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "rotary")
+    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "rotary", checked)
     return {
+        "gate": gate_report,
         "simulation": simulation_report,
         "toolpaths_preview": toolpaths_png,
         "workflow": "rotary",

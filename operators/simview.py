@@ -108,26 +108,37 @@ def show_simulation(scene, job: SimulationJob, max_cells: int = 250_000):
     return obj
 
 
+def gate_key(finding) -> str:
+    """A finding as the export gate's override names it (see :func:`gate.finding_key`)."""
+    return f"{finding.kind} {finding.operation}:{finding.move}"
+
+
 def store_findings(scene, job: SimulationJob):
-    items = scene.kezuri.simulation.findings
+    """List the findings in the panel; a new list clears any earlier override of the export gate."""
+    props = scene.kezuri.simulation
+    props.allow_findings = False
+    items = props.findings
     items.clear()
+    blocking = set(map(id, core.blocking(job.result.findings)))
     for f in job.result.findings:
         item = items.add()
         item.kind, item.message = f.kind, translate_message(f.message)
+        item.blocking, item.signature = id(f) in blocking, gate_key(f)
         item.operation, item.move = f.operation, f.move
         if f.xy is not None:
             item.location = job.frame.to_world([(float(f.xy[0]), float(f.xy[1]), f.z or 0.0)])[0]
 
 
-def batch_simulation(scene, setup, out_dir: str, stem: str) -> tuple:
-    """Batch: cut ``setup``'s stock (height field, 0.1 mm), render the carved stock to
-    ``<stem>.png``: (report entry, png path)."""
+def batch_simulation(scene, setup, out_dir: str, stem: str, job: SimulationJob | None = None) -> tuple:
+    """Batch: cut ``setup``'s stock (height field, 0.1 mm) unless ``job`` has done it already (the
+    export gate's), render the carved stock to ``<stem>.png``: (report entry, png path)."""
     import os
 
     from . import preview
     from .common import Progress
 
-    job = run_setup(setup, "heightfield", 0.1, Progress(None, "simulate"))
+    if job is None:
+        job = run_setup(setup, "heightfield", 0.1, Progress(None, "simulate"))
     carved = show_simulation(scene, job)
     png = preview.render_preview(scene, [carved], [], os.path.join(out_dir, f"{stem}.png"), see_through=False,
                                  color_type="VERTEX")

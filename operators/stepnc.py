@@ -20,6 +20,7 @@ from ..toolpath.meshdata import prism
 from ..toolpath.program import Tool
 from ..toolpath.stepnc.solids import block_of, feature_solid, stock_box
 from . import convert
+from . import gate
 from .common import run_reported
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -101,13 +102,18 @@ def show_workplan(scene, loaded, program=None) -> list:
     return objects
 
 
-def export_nc(scene, post_name: str, path: str) -> tuple:
+def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progress=None) -> tuple:
+    """Convert the workplan, simulate it (the export gate) and write it: (path, program, gate's
+    simulation job, gate report)."""
     loaded = load_scene_workplan(scene)
     program = scene_program(scene, loaded)
     post = posts.create(POST_FAMILIES, post_name, work_offset=scene.kezuri.machine.work_offset)
     if post.needs_texture:
         raise posts.PostError(f"the {post.name} post writes textured engravings only; pick another post")
-    return write_atomic(path, post.to_text(program)), program
+    text = post.to_text(program)
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    checked, report = gate.check(simulation((loaded, program, frame)), allow, progress)
+    return write_atomic(path, text), program, checked, report
 
 
 def extension_for(post_name: str) -> str:
@@ -123,8 +129,14 @@ def stepnc_request(scene, depsgraph):
 
 
 def simulation(job) -> SimulationSetup:
+    """The program on the workpiece's block; drills may break through its bottom by their point
+    length and 2 mm (the workplan's through-hole rule), onto a spoil board."""
+    import math
+
     loaded, program, frame = job
-    return SimulationSetup(program, stock_box(loaded, program), {}, frame, "stepnc")
+    drills = [op.tool.radius for op in program.operations if op.tool.kind == "drill"]
+    clearance = max((r * math.tan(math.radians(31.0)) + 2.0 + 0.01 for r in drills), default=0.0)
+    return SimulationSetup(program, stock_box(loaded, program), {"fixture_clearance": clearance}, frame, "stepnc")
 
 
 def pockets_part21(scene, depsgraph) -> str:
@@ -219,7 +231,8 @@ class KEZURI_OT_stepnc_export(bpy.types.Operator, ExportHelper):
 
     def execute(self, context):
         def work():
-            path, _ = export_nc(context.scene, self.post, self.filepath)
+            path, *_ = export_nc(context.scene, self.post, self.filepath,
+                                 allow=context.scene.kezuri.simulation.acknowledged)
             self.report({"INFO"}, translate_message(f"Wrote {path}"))
             return {"FINISHED"}
         return run_reported(self, work)
@@ -296,6 +309,8 @@ def batch_arguments(p):
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES, texture=False))
     p.add_argument("--order", help="workingstep instance ids in the order to cut, e.g. 13,14,10 (default: "
                                    "the workplan's order); workingsteps left out are not cut")
+    p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
+                                                                 "finds gouges, rapids into material ...")
 
 
 def sample_file(out_dir: str) -> str:
@@ -336,14 +351,17 @@ def batch(args) -> dict:
     if args.order:
         apply_order(scene, args.order, path)
     post_name = args.post or "fanuc"
-    nc_path, program = export_nc(scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"))
+    from .common import Progress
+    nc_path, program, checked, gate_report = export_nc(
+        scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"), args.allow_findings,
+        Progress(None, "check"))
     objects = show_workplan(scene, loaded, program)
     solids = [o for o in objects if o.type == "MESH"]
     paths = [o for o in objects if o.type == "CURVE"]
     toolpaths_png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "stepnc-toolpaths.png"))
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
     simulation_report, png = simview.batch_simulation(scene, simulation((loaded, program, frame)), args.out,
-                                                      "stepnc")
+                                                      "stepnc", checked)
     steps = {step.id: step for step in loaded.workingsteps}
     order = [item.ident for item in scene.kezuri.stepnc.steps if item.enabled]
     workingsteps = []
@@ -352,6 +370,7 @@ def batch(args) -> dict:
         entry.update(tool=op.tool.describe(), moves=len(op))
         workingsteps.append(entry)
     return {
+        "gate": gate_report,
         "workflow": "stepnc",
         "simulation": simulation_report,
         "toolpaths_preview": toolpaths_png,

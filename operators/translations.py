@@ -147,6 +147,11 @@ PANEL_TEXTS = {
 # operators' own properties).
 PROPERTY_TEXTS = {
     "Colour": "色分け",
+    "Blocks Export": "書き出しを止める",
+    "Write Despite Findings": "指摘があっても書き出す",
+    "Export the program although the simulation found the faults listed above (only these: a different finding "
+    "stops the export again)":
+        "シミュレーションが上の不具合を見つけても、プログラムを書き出します（対象はこの指摘だけです。別の指摘があれば再び書き出しを止めます）",
     "Light wood at the top, dark at the deepest cut": "上面は明るく、最も深い切削ほど濃く",
     "Each operation's surface in its own colour": "各工程が仕上げた面をそれぞれの色で表示",
     # Simulation
@@ -875,6 +880,16 @@ MESSAGE_TEMPLATES = {
     'strip step {}: both rails stand still (rungs {} and {} coincide)': '帯のステップ {0}：両方のレールが進みません（横桟 {1} と {2} が一致）',
     'corners P{} and P{} coincide (zero-length {})': '頂点 P{0} と P{1} が一致しています（長さ0の {2}）',
     'CDL line {}: number {} before any record word': 'CDL {0} 行目：レコード名より前に数値 {1} があります',
+    'fixture clearance must be a finite number >= 0 mm, got {}': '治具との逃げ量は0 mm以上の有限の数にしてください（指定：{0}）',
+    "{}: move {} goes {} mm below the stock's bottom (Z {}) at ({}, {}): into the fixture or the table":
+        '{0}：移動 {1} が ({4}, {5}) で素材の底面（Z {3}）より {2} mm 下まで入り、治具かテーブルを削ります',
+    '{}: move {} cuts with the spindle at {} rpm': '{0}：移動 {1} は主軸 {2} rpm のまま切削します',
+    'not written: the simulation found {} fault(s) in the {} program: {}{}. Fix the job, or override knowingly '
+    '(batch: --allow-findings; panel: Simulate & Check > Write despite these findings)':
+        '書き出していません：シミュレーションが {1} プログラムに {0} 件の不具合を見つけました：{2}{3}。'
+        'ジョブを直すか、承知のうえで上書きしてください（バッチ：--allow-findings、パネル：シミュレーションと確認 > 指摘があっても書き出す）',
+    ' (and {} more)': '（ほか {0} 件）',
+    'Write despite these {} finding(s)': 'この {0} 件の指摘があっても書き出す',
     '{}: rapid move {} runs {} mm into material at ({}, {})': '{0}：早送り移動 {1} が ({3}, {4}) で材料に {2} mm 入り込みます',
     '{}: rapid move {} runs {} mm into material at {}': '{0}：早送り移動 {1} が {3} で材料に {2} mm 入り込みます',
     '{}: move {} cuts {} mm below the design at ({}, {}); {} mm^2 gouged in all':

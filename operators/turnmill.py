@@ -22,6 +22,7 @@ from ..post import write_atomic
 from ..toolpath import meshdata
 from ..toolpath import turnmill as core
 from . import convert
+from . import gate
 from .common import SteppedOperator, run_reported
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -163,9 +164,14 @@ def show_turnmill(scene, job: TurnMillJob) -> list:
     return objects
 
 
-def export_turnmill(job: TurnMillJob, post_name: str, path: str) -> str:
+def export_turnmill(job: TurnMillJob, post_name: str, path: str, allow: bool | str = False,
+                    checked: bool = False) -> str:
+    """Write the program; the export gate simulates it first unless the caller has (``checked``)."""
     post = posts.create(POST_FAMILIES, post_name)
-    return write_atomic(path, post.to_text(job.plan.program))
+    text = post.to_text(job.plan.program)
+    if not checked:
+        gate.check(simulation(job), allow)
+    return write_atomic(path, text)
 
 
 def extension_for(post_name: str) -> str:
@@ -272,7 +278,8 @@ class KEZURI_OT_turnmill_export(bpy.types.Operator, ExportHelper):
     def execute(self, context):
         def work():
             job = run_turnmill(context.scene, context.evaluated_depsgraph_get())
-            self.report({"INFO"}, translate_message(f"Wrote {export_turnmill(job, self.post, self.filepath)}"))
+            path = export_turnmill(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged)
+            self.report({"INFO"}, translate_message(f"Wrote {path}"))
             return {"FINISHED"}
         return run_reported(self, work)
 
@@ -289,6 +296,8 @@ def batch_arguments(p):
     p.add_argument("--engine", choices=["BVH", "TRIMESH"], help="ray engine (default: BVH, trimesh for --mesh)")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES), action="append",
                    help="write the program for this post (repeat for more; default: every turn-mill post)")
+    p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
+                                                                 "finds gouges, rapids into material ...")
 
 
 def read_mesh_file(path: str) -> tuple:
@@ -331,17 +340,21 @@ def batch(args) -> dict:
         centres = [p.center if part.matrix_world.is_identity else part.matrix_world @ p.center
                    for p in part.data.polygons]
         face_centroids = job.frame.to_work(np.array(centres, float))
+    from .common import Progress
+    checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
     names = args.post or posts.choices(POST_FAMILIES)
-    files = [export_turnmill(job, name, os.path.join(args.out, f"turnmill{extension_for(name)}"))
-             for name in dict.fromkeys(names)]
+    texts = {name: posts.create(POST_FAMILIES, name).to_text(job.plan.program) for name in dict.fromkeys(names)}
+    files = [write_atomic(os.path.join(args.out, f"turnmill{extension_for(name)}"), text)
+             for name, text in texts.items()]
     paths = show_turnmill(scene, job)
     if args.mesh:   # after show_turnmill, whose clean-up would remove it
         solids = [convert.mesh_object(scene, "Kezuri part (mesh file)", job.vertices, job.faces, job.frame)]
     else:
         solids = [scene.kezuri.turnmill.part]
     toolpaths_png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "turnmill-toolpaths.png"))
-    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "turnmill")
+    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "turnmill", checked)
     return {
+        "gate": gate_report,
         "workflow": "turnmill",
         "files": files,
         "preview": png,

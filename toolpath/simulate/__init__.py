@@ -41,8 +41,9 @@ XY), cut into chords within :data:`CHORD_TOLERANCE` and converted to part coordi
 
 Safety checks (:func:`check`, also part of every :func:`simulate` result): gouges below a
 design surface, rapids touching material (moves processed in order against the stock as it
-is at that moment), moves outside the machine travel, and plunges with tools that cannot
-plunge.  Every :class:`Finding` names the operation and the move index within it.
+is at that moment), moves outside the machine travel, plunges with tools that cannot
+plunge, tools going below a box stock's bottom (into the fixture) and cuts with the spindle
+stopped.  :func:`blocking` picks those that stop an export (the export gate).  Every :class:`Finding` names the operation and the move index within it.
 
 Coordinates are millimetres, Z is the tool tip.  Stock: a box, or a cylinder about the Z
 axis with its top face at z = 0 (a board on a rotary table).
@@ -56,11 +57,12 @@ swept solids), api.py (:func:`simulate` and :func:`check`).
 from __future__ import annotations
 
 from .api import check, simulate
+from .checks import BLOCKING_KINDS, blocking
 from .paths import can_plunge
 from .stock import (CHORD_TOLERANCE, ENGINES, GOUGE_TOLERANCE, KERNELS, MAX_CELLS, TOUCH_TOLERANCE, BoxStock,
                     CylinderStock, Finding, HeightField, SimulationCancelled, SimulationError, SimulationResult,
                     as_stock)
 
-__all__ = ["simulate", "check", "can_plunge", "as_stock", "BoxStock", "CylinderStock", "Finding", "HeightField",
+__all__ = ["simulate", "check", "blocking", "BLOCKING_KINDS", "can_plunge", "as_stock", "BoxStock", "CylinderStock", "Finding", "HeightField",
            "SimulationResult", "SimulationError", "SimulationCancelled", "ENGINES", "KERNELS", "CHORD_TOLERANCE",
            "TOUCH_TOLERANCE", "GOUGE_TOLERANCE", "MAX_CELLS"]

@@ -12,7 +12,7 @@ from manifold3d import Error, Manifold
 from ..program import FEED, RAPID
 from . import radiusmap as rmap
 from . import sweep
-from .checks import _design_heights, _findings, _travel_findings
+from .checks import _design_heights, _findings, _floor_findings, _spindle_findings, _travel_findings
 from .heightfield import _compiled_kernels, _grid, _Simulation
 from .paths import _chains, _operations, can_plunge
 from .stock import (ENGINES, GOUGE_TOLERANCE, MAX_CELLS, TOUCH_TOLERANCE, CylinderStock, Finding, HeightField,
@@ -32,7 +32,7 @@ def check(program_or_operations, stock, *, cell: float = 0.1, tolerance: float =
 def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell: float = 0.1,
              tolerance: float = 0.03, design=None, keep_regions=None, travel: dict | None = None,
              no_plunge_tools=(), progress=None, chunk: int = sweep.CHUNK_TRIANGLES,
-             kernel: str = "auto") -> SimulationResult:
+             kernel: str = "auto", fixture_clearance: float = 0.0) -> SimulationResult:
     """Cut the stock with the program and check it.
 
     ``stock``: a BoxStock, a CylinderStock or (x0, y0, z0, x1, y1, z1).
@@ -50,7 +50,10 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     swept pieces are unioned before they are subtracted from the stock (each is a progress step).
     ``kernel``: how the height field is computed: "numba" (compiled, several times faster),
     "numpy", or "auto" (numba where it can be imported, see :data:`KERNELS`); both give the
-    same heights.  The result's ``kernel`` says which ran.
+    same heights.  The result's ``kernel`` says which ran.  ``fixture_clearance``: how far below a
+    box stock's bottom a tool may go (a drill breaking through onto a spoil board); deeper is a
+    ``below_stock`` finding.  An operation that cuts with its spindle at 0 rpm is a
+    ``spindle_stopped`` finding.
     """
     started = time.perf_counter()
     if engine not in ENGINES:
@@ -71,6 +74,7 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     hf = _grid(stock, float(cell))
     design_z = _design_heights(hf, design, keep_regions)
     findings = _travel_findings(ops, travel) if travel else []
+    findings += _spindle_findings(ops) + _floor_findings(ops, stock, float(fixture_clearance))
     solid = None
     if engine == "manifold":
         solid = sweep.cut(_stock_solid(stock, tolerance), all_chains, tolerance, chunk,

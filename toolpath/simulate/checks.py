@@ -180,3 +180,51 @@ def _findings(sim: _Simulation, chains: list, ops: list, design_z) -> list:
                                     f"design at ({xy[0]:.2f}, {xy[1]:.2f}); {area:.1f} mm^2 gouged in all",
                                     chain.op_index, move, xy, worst))
     return findings
+
+
+# ----- the stock's floor and the spindle ---------------------------------------------------------
+
+def _floor_findings(ops: list, stock, fixture_clearance: float) -> list:
+    """A tool tip below the stock's bottom by more than ``fixture_clearance`` (a drill breaking
+    through onto a spoil board) cuts the fixture or the machine table: one finding per operation."""
+    if not (math.isfinite(fixture_clearance) and fixture_clearance >= 0):
+        raise SimulationError(f"fixture clearance must be a finite number >= 0 mm, got {fixture_clearance!r}")
+    bottom = getattr(stock, "z0", None)
+    if bottom is None:      # a bar on a rotary axis: its chuck side is not below the tool
+        return []
+    findings = []
+    for index, op in enumerate(ops):
+        if not len(op):
+            continue
+        xyz, _, move = _machine_samples(op)
+        depth = bottom - xyz[:, 2]
+        bad = depth > fixture_clearance + GOUGE_TOLERANCE
+        if bad.any():
+            worst = int(np.argmax(np.where(bad, depth, -np.inf)))
+            x, y = float(xyz[worst, 0]), float(xyz[worst, 1])
+            findings.append(Finding(
+                "below_stock", f"{op.name}: move {int(move[worst])} goes {depth[worst]:.3f} mm below the stock's "
+                f"bottom (Z {bottom:g}) at ({x:.2f}, {y:.2f}): into the fixture or the table",
+                index, int(move[worst]), (x, y), float(depth[worst]), float(xyz[worst, 2])))
+    return findings
+
+
+def _spindle_findings(ops: list) -> list:
+    """Feeding with the spindle stopped breaks the tool: every operation with cutting moves needs
+    a spindle speed above zero."""
+    findings = []
+    for index, op in enumerate(ops):
+        cutting = np.flatnonzero(op.kind != 0) if len(op) else []
+        if len(cutting) and not op.spindle_rpm > 0:
+            findings.append(Finding("spindle_stopped", f"{op.name}: move {int(cutting[0])} cuts with the spindle "
+                                    f"at {op.spindle_rpm:g} rpm", index, int(cutting[0])))
+    return findings
+
+
+# What stops an export (the export gate): everything a simulation can find.
+BLOCKING_KINDS = ("gouge", "rapid_in_material", "plunge", "below_stock", "spindle_stopped", "travel")
+
+
+def blocking(findings) -> list:
+    """The findings that stop a program from being written unless the user overrides them."""
+    return [f for f in findings if f.kind in BLOCKING_KINDS]

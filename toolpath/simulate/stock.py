@@ -112,7 +112,7 @@ class Finding:
     """One safety problem.  ``operation`` indexes the program's operations, ``move`` the
     operation's move arrays (a post maps it to an NC line)."""
 
-    kind: str                 # "gouge", "rapid_in_material", "plunge", "travel"
+    kind: str                 # "gouge", "rapid_in_material", "plunge", "travel", "below_stock", "spindle_stopped"
     message: str
     operation: int
     move: int

@@ -1,0 +1,72 @@
+"""The export gate: a program is simulated on its stock before it is written, and a program the
+simulation finds fault with (a gouge, a rapid into material, a plunge a tool cannot make, a cut
+below the stock into the fixture, a cut with the spindle stopped, a move outside the travel) is
+not written unless the user overrides it knowingly:
+
+* in the panel, Simulate & Check lists the findings and offers "Write despite these findings";
+  the override holds for exactly the findings it names (a different finding stops the export again);
+* in batch, ``--allow-findings``; a refusal exits with status 3 (bad input is 2).
+
+Either way the report records what was found and whether it was overridden.
+"""
+from __future__ import annotations
+
+import time
+
+from ..toolpath import simulate as core
+from ..toolpath.errors import InputError
+from . import simview
+
+GATE_CELL = 0.1        # mm: the height field the gate cuts (the batch preview's cell)
+REFUSED_STATUS = 3     # batch's exit status when the gate refuses a program
+
+
+class GateRefused(InputError):
+    """The simulation found faults in the program; nothing was written."""
+
+    def __init__(self, message: str, findings: list):
+        super().__init__(message)
+        self.findings = findings
+
+
+def describe(finding) -> str:
+    """One line per finding: the simulation's own message (operation, move, where, how deep)."""
+    return finding.message
+
+
+def finding_key(finding) -> str:
+    """A finding as an override names it: its kind, operation and move (not its wording or the
+    position, which the simulation's cell size shifts)."""
+    return simview.gate_key(finding)
+
+
+def signature(findings) -> str:
+    """What an override acknowledges: the findings' keys, in order."""
+    return "\n".join(finding_key(f) for f in findings)
+
+
+def check(setup, allow: bool | str = False, progress=None):
+    """Simulate ``setup`` (a workflow's :class:`SimulationSetup`) and decide.
+
+    ``allow``: True (batch's ``--allow-findings``) overrides any findings; a string (the panel's
+    acknowledged :func:`signature`) overrides exactly those findings.  Returns
+    ``(simulation job, gate report)``; raises :class:`GateRefused` (nothing written) otherwise.
+    """
+    started = time.perf_counter()
+    job = simview.run_setup(setup, "heightfield", GATE_CELL, progress)
+    faults = core.blocking(job.result.findings)
+    report = {"findings": [{"kind": f.kind, "operation": f.operation, "move": f.move, "message": f.message,
+                            "depth_mm": None if f.depth_mm is None else round(float(f.depth_mm), 4)}
+                           for f in faults],
+              "overridden": False, "seconds": round(time.perf_counter() - started, 3)}
+    if faults:
+        acknowledged = allow is True or (isinstance(allow, str) and allow and allow == signature(faults))
+        if not acknowledged:
+            listed = "; ".join(describe(f) for f in faults[:5])
+            more = f" (and {len(faults) - 5} more)" if len(faults) > 5 else ""
+            raise GateRefused(f"not written: the simulation found {len(faults)} fault(s) in the {setup.name} "
+                              f"program: {listed}{more}. Fix the job, or override knowingly "
+                              f"(batch: --allow-findings; panel: Simulate & Check > Write despite these findings)",
+                              faults)
+        report["overridden"] = True
+    return job, report
