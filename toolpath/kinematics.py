@@ -34,9 +34,10 @@ One exception remains, kept so the NC output does not change: the X-Z-C turn-mil
 (``program.TurnMillOperation``) times its moves by the **chord** between the part points
 (:func:`chord_lengths`): its planner splits every move until the traced curve stays within the
 chordal tolerance of that chord (:func:`polar_split_counts`), and its post's G93 F words and its
-cycle-time estimates have always used the chord.  Moving it to :func:`traced_lengths` changes
-nearly every F word of the turn-mill NC (by the spiral's extra length, a fraction of a percent on
-cutting moves) and the rapids' estimated time (C turns at the clearance radius).
+cycle-time estimates have always used the chord.  Moving it to :func:`traced_lengths` would change
+the last digits of nearly every G93 F word of the turn-mill NC (the built-in sample: cutting moves
+a few parts per million longer, at most 1e-4; 50769 of 52666 cutting moves' F words differ at
+3 decimals) and its cycle time (2496 s -> 2500 s, mostly rapids turning C at the clearance radius).
 """
 from __future__ import annotations
 
