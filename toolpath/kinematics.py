@@ -55,11 +55,12 @@ def _norms(v: np.ndarray) -> np.ndarray:
 
 # ----- points ---------------------------------------------------------------------------------
 def machine_to_part(xyz, c_degrees) -> np.ndarray:
-    """Machine (X, 0, Z) at C (degrees) -> part points (n, 3): the machine point turned by C.
-    (The machines have no Y; a Y word would turn with X.)"""
+    """Machine (X, Y, Z) at C (degrees) -> part points (n, 3): the machine point turned by C.
+    (Our machines have no Y; a Y word read from a program turns with X.)"""
     xyz = np.asarray(xyz, dtype=float).reshape(-1, 3)
     angle = np.radians(np.asarray(c_degrees, dtype=float).reshape(-1))
-    return np.column_stack([xyz[:, 0] * np.cos(angle), xyz[:, 0] * np.sin(angle), xyz[:, 2]])
+    cos, sin = np.cos(angle), np.sin(angle)
+    return np.column_stack([xyz[:, 0] * cos - xyz[:, 1] * sin, xyz[:, 0] * sin + xyz[:, 1] * cos, xyz[:, 2]])
 
 
 def from_cylindrical(x_word, c_deg) -> np.ndarray:

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import kinematics
 from ..program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool, arc_sweep
 from .stock import CHORD_TOLERANCE, SimulationError
 
@@ -109,13 +110,6 @@ def _chords(angle: np.ndarray, radius: np.ndarray) -> np.ndarray:
     return np.maximum(1, np.ceil(angle / np.maximum(step, 1e-9) - 1e-9)).astype(np.int64)
 
 
-def _to_part(xyz: np.ndarray, c_deg: np.ndarray) -> np.ndarray:
-    """Machine (X, Y, Z) at table angle C -> part coordinates: (X, Y) turned by +C."""
-    angle = np.radians(c_deg)
-    cos, sin = np.cos(angle), np.sin(angle)
-    return np.column_stack([xyz[:, 0] * cos - xyz[:, 1] * sin, xyz[:, 0] * sin + xyz[:, 1] * cos, xyz[:, 2]])
-
-
 def _chains(ops: list, no_plunge_tools) -> list:
     chains = []
     for index, op in enumerate(ops):
@@ -125,7 +119,7 @@ def _chains(ops: list, no_plunge_tools) -> list:
         start_c = op.rotary["c"][0] if "c" in op.rotary else 0.0
         machine = np.vstack([op.start[None, :], xyz])
         c_all = np.concatenate([[start_c], c])
-        points = _to_part(machine, c_all)
+        points = kinematics.machine_to_part(machine, c_all)
         # Drop repeated points: every segment then has a length.
         keep = np.ones(len(points), bool)
         keep[1:] = np.any(np.abs(np.diff(points, axis=0)) > 1e-9, axis=1)
