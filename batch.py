@@ -94,8 +94,21 @@ def parser() -> argparse.ArgumentParser:
     return main
 
 
+def parse(argv: list) -> argparse.Namespace:
+    """The command line, refused (exit 2) where argparse lets a malformed value through: an option
+    given ``--`` as its value arrives as a list."""
+    main_parser = parser()
+    args = main_parser.parse_args(argv)
+    sub = main_parser._subparsers._group_actions[0].choices[args.command]
+    for action in sub._actions:
+        value = getattr(args, action.dest, None)
+        if action.nargs is None and not isinstance(action, argparse._AppendAction) and isinstance(value, list):
+            sub.error(f"argument {'/'.join(action.option_strings)}: expected one value, got {value!r}")
+    return args
+
+
 def main(argv: list) -> int:
-    args = parser().parse_args(script_arguments(argv))
+    args = parse(script_arguments(argv))
     args.out = os.path.abspath(args.out)
     load_extension()
     from kezuri.operators.common import user_errors

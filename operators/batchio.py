@@ -28,3 +28,56 @@ def open_blend(path: str | None):
 def rounded(array, digits: int = 6):
     import numpy as np
     return np.round(np.asarray(array, float), digits).tolist()
+
+
+# ----- batch arguments, checked against their meaning -------------------------------------------
+
+def _limits(prop) -> tuple:
+    """(min, max) of a property definition (``FloatProperty(...)`` as written in properties.py)."""
+    keywords = getattr(prop, "keywords", {})
+    return keywords.get("min"), keywords.get("max")
+
+
+def number(option: str, lo=None, hi=None, *, integer: bool = False, lo_open: bool = False, unit: str = "",
+           prop=None):
+    """An argparse ``type`` that takes a finite number within [lo, hi] (``lo_open``: lo excluded),
+    or the hard limits of the property definition ``prop`` (so batch and the panel share one range),
+    and refuses anything else naming the option, the value given and the range: never a value the
+    scene would silently clamp to another job."""
+    import argparse
+    import math
+
+    if prop is not None:
+        lo, hi = _limits(prop)
+    kind = "an integer" if integer else "a number"
+    low = "" if lo is None else (f"{lo:g} <" if lo_open else f"{lo:g} <=")
+    high = "" if hi is None else f"<= {hi:g}"
+    allowed = " ".join(part for part in (low, option.lstrip("-"), high) if part) + (f" {unit}" if unit else "")
+
+    def parse(text: str):
+        try:
+            value = int(text) if integer else float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not {kind} (allowed: {allowed})") from None
+        if not math.isfinite(value) or (lo is not None and (value <= lo if lo_open else value < lo)) or \
+                (hi is not None and value > hi):
+            raise argparse.ArgumentTypeError(f"{text} is outside the allowed range {allowed}")
+        return value
+    parse.__name__ = option
+    return parse
+
+
+def set_exactly(group, name: str, value, option: str) -> None:
+    """Set a scene setting from a batch argument and make sure it took the value as given (Blender
+    clamps to a property's limits without a word)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise SceneInputError(f"{option}: {value!r} is not a value")
+    setattr(group, name, value)
+    held = getattr(group, name)
+    if isinstance(value, float) or isinstance(held, float):
+        same = abs(float(held) - float(value)) <= 1e-6 * max(1.0, abs(float(value)))
+    else:
+        same = held == value
+    if not same:
+        raise SceneInputError(f"{option} {value}: the setting would hold {held} instead; give a value the "
+                              f"setting allows")

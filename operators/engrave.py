@@ -211,7 +211,8 @@ CLASSES = (KEZURI_OT_engrave_generate, KEZURI_OT_engrave_export)
 def batch_arguments(p):
     p.add_argument("--blend", help="a .blend whose scene has the Kezuri plate and letters set")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
-    p.add_argument("--seed", type=int)
+    from .batchio import number
+    p.add_argument("--seed", type=number("--seed", 0, 2**31 - 1, integer=True))
     p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
                                                                  "finds gouges, rapids into material ...")
 
@@ -225,7 +226,7 @@ def batch(args) -> dict:
         samples.name_plate(scene)
     props = scene.kezuri
     if args.seed is not None:
-        props.engrave.seed = args.seed
+        batchio.set_exactly(props.engrave, "seed", args.seed, "--seed")
     post_name = args.post or scene_post(scene)
     started = time.perf_counter()
     job = run_engrave(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "engrave"))

@@ -15,7 +15,9 @@ def batch_arguments(p):
     p.add_argument("--rotary", choices=["c"], help="C words turn the part about Z")
     p.add_argument("--design", help="the finished part as STL/OBJ/PLY, for the gouge check")
     p.add_argument("--engine", choices=list(core.ENGINES), default="heightfield")
-    p.add_argument("--cell", type=float, default=0.1, help="height-field cell (mm)")
+    from .batchio import number
+    p.add_argument("--cell", type=number("--cell", 0.0, None, lo_open=True, unit="mm"), default=0.1,
+                   help="height-field cell (mm)")
 
 
 def parse_stock(text: str):

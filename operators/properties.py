@@ -129,7 +129,7 @@ UNFOLD_SETTINGS = {
                         minimum=0.0),
     "thickness": mm("Sheet Thickness", 1.6, "Sheet thickness; above 3.2 mm the punching line G79 is used",
                     minimum=0.01),
-    "pitch": mm("Nibbling Pitch", 2.0, "Distance between punch hits (Q word)", minimum=0.01),
+    "pitch": mm("Nibbling Pitch", 2.0, "Distance between punch hits (Q word)", minimum=0.1),
     "station": IntProperty(name="Station", default=302, min=1, max=999, description="Turret station (T word)"),
 }
 ELBOW_SETTINGS = {

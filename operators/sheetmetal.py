@@ -370,12 +370,13 @@ def unfold_arguments(p):
     source.add_argument("--cdl", help="CADKEY .CDL file with the quad's four LINE records")
     source.add_argument("--corners", help='"x,y,z;x,y,z;x,y,z;x,y,z" in mm (default: the paper\'s test quad)')
     source.add_argument("--blend", help="a .blend whose Kezuri sheet settings hold the corners")
-    p.add_argument("--divisions", type=int)
+    from .batchio import number
+    p.add_argument("--divisions", type=number("--divisions", integer=True, prop=UNFOLD_SETTINGS["divisions"]))
     p.add_argument("--direction", choices=["horizontal", "vertical"])
-    p.add_argument("--tool-diameter", type=float)
-    p.add_argument("--thickness", type=float)
-    p.add_argument("--pitch", type=float)
-    p.add_argument("--station", type=int)
+    p.add_argument("--tool-diameter", type=number("--tool-diameter", prop=UNFOLD_SETTINGS["tool_diameter"], unit="mm"))
+    p.add_argument("--thickness", type=number("--thickness", prop=UNFOLD_SETTINGS["thickness"], unit="mm"))
+    p.add_argument("--pitch", type=number("--pitch", prop=UNFOLD_SETTINGS["pitch"], unit="mm"))
+    p.add_argument("--station", type=number("--station", integer=True, prop=UNFOLD_SETTINGS["station"]))
 
 
 def parse_corners(text: str):
@@ -383,6 +384,8 @@ def parse_corners(text: str):
         corners = np.array([[float(v) for v in corner.split(",")] for corner in text.split(";")])
     except ValueError:
         raise convert.SceneInputError(f"--corners: not numbers: {text!r}") from None
+    if corners.shape == (4, 3) and not np.all(np.isfinite(corners)):
+        raise convert.SceneInputError(f"--corners: every coordinate must be a finite number of mm, got {text!r}")
     if corners.shape != (4, 3):
         raise convert.SceneInputError(f'--corners needs four "x,y,z" corners separated by ";", got {text!r}')
     return corners
@@ -395,7 +398,7 @@ def unfold_batch(args) -> dict:
     sheet = scene.kezuri.sheet
     for option in ("divisions", "direction", "tool_diameter", "thickness", "pitch", "station"):
         if getattr(args, option) is not None:
-            setattr(sheet, option, getattr(args, option))
+            batchio.set_exactly(sheet, option, getattr(args, option), "--" + option.replace("_", "-"))
     if args.cdl:
         if not os.path.isfile(args.cdl):
             raise FileNotFoundError(f"no such CDL file: {args.cdl}")
@@ -431,10 +434,11 @@ def unfold_batch(args) -> dict:
 
 
 def elbow_arguments(p):
-    p.add_argument("--diameter", type=float)
-    p.add_argument("--bend-radius", type=float)
-    p.add_argument("--angle", type=float)
-    p.add_argument("--pieces", type=int)
+    from .batchio import number
+    p.add_argument("--diameter", type=number("--diameter", prop=ELBOW_SETTINGS["elbow_diameter"], unit="mm"))
+    p.add_argument("--bend-radius", type=number("--bend-radius", prop=ELBOW_SETTINGS["elbow_radius"], unit="mm"))
+    p.add_argument("--angle", type=number("--angle", prop=ELBOW_SETTINGS["elbow_angle"], unit="degrees"))
+    p.add_argument("--pieces", type=number("--pieces", integer=True, prop=ELBOW_SETTINGS["elbow_pieces"]))
 
 
 def elbow_batch(args) -> dict:
@@ -445,7 +449,7 @@ def elbow_batch(args) -> dict:
     for option, name in (("diameter", "elbow_diameter"), ("bend_radius", "elbow_radius"),
                          ("angle", "elbow_angle"), ("pieces", "elbow_pieces")):
         if getattr(args, option) is not None:
-            setattr(sheet, name, getattr(args, option))
+            batchio.set_exactly(sheet, name, getattr(args, option), "--" + option.replace("_", "-"))
     result = run_elbow(sheet)
     files = elbow_files(result, os.path.join(args.out, "elbow.dxf"), sheet)
     objects = show_elbow(scene, result)

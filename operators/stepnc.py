@@ -314,7 +314,8 @@ def batch_arguments(p):
 
 
 def sample_file(out_dir: str) -> str:
-    """A 120 x 80 x 20 mm plate with a rectangular and an L-shaped pocket, as ISO 14649."""
+    """A 120 x 80 x 20 mm plate with a rectangular and an L-shaped pocket, as ISO 14649, written
+    as ``sample.stp`` into ``out_dir``."""
     pockets = [stepnc.PocketSpec("POCKET1", ((10, 10), (50, 10), (50, 40), (10, 40)), 8.0),
                stepnc.PocketSpec("POCKET2", ((65, 15), (110, 15), (110, 35), (85, 35), (85, 70), (65, 70)), 5.0)]
     text = stepnc.pockets_to_part21(((0, 0, -20), (120, 80, 0)), pockets, Tool(1, "flat", 6.0, flute_length=20.0),
@@ -343,7 +344,15 @@ def batch(args) -> dict:
     from . import batchio, preview, simview
 
     scene = batchio.open_blend(None)
-    path = args.input or sample_file(args.out)
+    import shutil
+    import tempfile
+
+    staging = None
+    if args.input:
+        path = args.input
+    else:   # the sample goes into --out only with the program: nothing is written before the job is checked
+        staging = tempfile.mkdtemp(prefix="kezuri-stepnc-")
+        path = sample_file(staging)
     if not os.path.isfile(path):
         raise FileNotFoundError(f"no such ISO 14649 file: {path}")
     loaded = stepnc.load_workplan(path)
@@ -355,6 +364,9 @@ def batch(args) -> dict:
     nc_path, program, checked, gate_report = export_nc(
         scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"), args.allow_findings,
         Progress(None, "check"))
+    if staging is not None:
+        path = sample_file(args.out)
+        shutil.rmtree(staging, ignore_errors=True)
     objects = show_workplan(scene, loaded, program)
     solids = [o for o in objects if o.type == "MESH"]
     paths = [o for o in objects if o.type == "CURVE"]

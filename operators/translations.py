@@ -906,6 +906,12 @@ MESSAGE_TEMPLATES = {
     '{}: {} cannot plunge, but move {} feeds {} mm straight in into material at {}':
         '{0}：{1} は突っ込み加工できませんが、移動 {2} が {4} で材料へ {3} mm まっすぐ送り込みます',
     # batch commands (operators/<workflow>.py) and the post registry
+    '{} is not {} (allowed: {})': '{0} は{1}ではありません（指定できる範囲：{2}）',
+    '{} is outside the allowed range {}': '{0} は指定できる範囲 {1} の外です',
+    '{}: {} is not a value': '{0}：{1} は値ではありません',
+    '{} {}: the setting would hold {} instead; give a value the setting allows':
+        '{0} {1}：設定には代わりに {2} が入ってしまいます。設定が受け付ける値を指定してください',
+    '--corners: every coordinate must be a finite number of mm, got {}': '--corners：座標はすべて有限の数 (mm) にしてください（指定：{0}）',
     'no such .blend file: {}': '.blend ファイルがありません：{0}',
     '--blend {}: not a .blend file Blender can open ({})': '--blend {0}：Blender で開ける .blend ファイルではありません（{1}）',
     '--stock {}: not numbers': '--stock {0}：数値ではありません',
