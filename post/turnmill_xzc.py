@@ -139,12 +139,15 @@ class TurnMillXZCPost(GcodePost):
                         f"C: PART ANGLE AT THE TOOL IN DEGREES)")
         return lines
 
-    def tool_change(self, op: Operation, first: bool) -> list:
+    def tool_change(self, op: Operation, first: bool, index: bool = True) -> list:
+        """Home, index the turret (only when the station changes: ``index``), plane, C axis on,
+        driven tool on.  The previous operation has already stopped the driven tool."""
         c = self.codes
         plane = c.radial_plane if op.direction == "radial" else c.axial_plane
         spindle = (c.tool_on_cw if op.spindle_cw else c.tool_on_ccw).format(rpm=int(round(op.spindle_rpm)))
-        return self._lines(f"(TURRET: {op.direction.upper()} TOOL, {comment_text(op.tool.describe())})", c.home,
-                           c.tool_select.format(station=op.tool.number), plane, c.c_axis_on, spindle)
+        select = (c.home, c.tool_select.format(station=op.tool.number)) if index else ()
+        return self._lines(f"(TURRET: {op.direction.upper()} TOOL, {comment_text(op.tool.describe())})", *select,
+                           plane, c.c_axis_on, spindle)
 
     def operation_end(self, op: Operation) -> list:
         return self._lines(self.codes.tool_off, self.codes.c_axis_off)
@@ -157,9 +160,11 @@ class TurnMillXZCPost(GcodePost):
 
     def to_text(self, program: Program) -> str:
         lines = self.opening(program)
+        station = None
         for index, op in enumerate(program.operations):
             lines.append(f"(OPERATION {index + 1}: {comment_text(op.name)})")
-            lines += self.tool_change(op, index == 0)
+            lines += self.tool_change(op, index == 0, index=op.tool.number != station)
+            station = op.tool.number
             lines += self.operation_moves(op)
             lines += self.operation_end(op)
         lines += self.ending(program)
