@@ -82,8 +82,8 @@ class ControllerLimits:
             return
         low, high = (-bounds, bounds) if word == "coordinate" else bounds
         if not low <= value <= high:
-            raise PostError(f"{where}: {WORD_NAMES[word]} {value:.6g} is outside the {low:g}..{high:g} the "
-                            f"control accepts ({self.source.split(';')[0]})")
+            raise PostError(f"{where}: {WORD_NAMES[word]} {value:.10g} is outside the {low:.10g}..{high:.10g} the "
+                            f"control accepts ({self.source.split(':')[0]})")
 
 
 WORD_NAMES = {"feed_per_minute": "feed F (mm/min)", "inverse_time_feed": "inverse-time feed F (G93, 1/min)",

@@ -153,3 +153,29 @@ def test_the_good_hand_written_program_passes():
     assert rules.check(FANUC_GOOD, "fanuc-mill") == []
     assert rules.check("G21 G90\nT1 M06\nG43 H1\nS1000 M03\nG93\nG01 X1 F10\nG94\nM05\nG49\nM30\n",
                        "linuxcnc") == []
+
+
+def test_short_moves_are_merged_within_tolerance_and_the_rest_timed_at_the_floor():
+    from kezuri.toolpath.program import FEED, Operation, Tool, merge_short_moves
+    tool = Tool(1, "flat", 6.0)
+    # Along X: 10 mm, then 0.0004 mm (below the 0.001 mm increment), then 10 mm: the middle point goes.
+    op = Operation("line", tool, 1000, [FEED] * 3, [[10, 0, 0], [10.0004, 0, 0], [20, 0, 0]], [600.0] * 3,
+                   start=[0, 0, 0])
+    merged = merge_short_moves(op, tolerance=0.01)
+    assert merged.xyz.tolist() == [[10, 0, 0], [20, 0, 0]]
+    # A 0.05 mm step at a right angle (0.05 mm off the merged chord, more than the tolerance): it stays.
+    corner = Operation("corner", tool, 1000, [FEED] * 3, [[10, 0, 0], [10, 0.05, 0], [0, 0.05, 0]], [600.0] * 3,
+                       start=[0, 0, 0])
+    assert len(merge_short_moves(corner, tolerance=0.01)) == 3
+
+
+def test_a_post_refuses_an_out_of_range_word_naming_operation_move_and_value():
+    from kezuri.toolpath.program import FEED, Operation, Tool
+    op = Operation("fast", Tool(1, "flat", 6.0), 1000, [FEED, FEED], [[0, 0, -1], [100, 0, -1]],
+                   [600.0, 300000.0], start=[0, 0, 5])
+    with pytest.raises(post.PostError, match=r"operation 'fast', move 2: feed F \(mm/min\) 300000 is outside "
+                                             r"the 0.001..240000"):
+        post.milling_post("fanuc").to_text(Program("p", [op]))
+    slow = op.replace(feed=np.array([600.0, 600.0]), xyz=np.array([[0, 0, -1], [200000, 0, -1]]))
+    with pytest.raises(post.PostError, match=r"coordinate 200000 is outside the -99999.999..99999.999"):
+        post.milling_post("fanuc").to_text(Program("p", [slow]))
