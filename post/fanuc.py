@@ -99,7 +99,7 @@ class FanucMacroPost(FanucPost):
     name = "fanuc-macro"
     label = "Fanuc (controller macro)"
     label_ja = "FANUC（制御装置マクロ）"
-    description = "Fanuc Custom Macro B: G66.1 P7023 draws the depths on the controller (generator seeded from #3001)"
+    description = "Fanuc Custom Macro B: G66.1 P7023 draws the depths on the controller (seeded from #3001)"
     description_ja = "FANUCカスタムマクロB：G66.1 P7023 が制御装置上でクロック #3001 を種に深さを乱数で決めます"
     order = 11
     needs_texture = True

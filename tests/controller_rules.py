@@ -128,11 +128,11 @@ def check(text: str, control: str) -> list:
             low, high = rules["n"]
             if not (low <= float(letters["N"]) <= high and "." not in letters["N"]):
                 bad("range", number, f"N{letters['N']} outside {low}..{high}")
-        if "S" in letters and (float(letters["S"]) < 0 or (rules["s"] is not None and float(letters["S"]) > rules["s"])):
+        if "S" in letters and not 0 <= float(letters["S"]) <= (rules["s"] if rules["s"] is not None else 1e99):
             bad("range", number, f"S{letters['S']} outside 0..{rules['s']}")
-        if "T" in letters and (float(letters["T"]) < 0 or (rules["t"] is not None and float(letters["T"]) > rules["t"])):
+        if "T" in letters and not 0 <= float(letters["T"]) <= (rules["t"] if rules["t"] is not None else 1e99):
             bad("range", number, f"T{letters['T']} outside 0..{rules['t']}")
-        if "H" in letters and (float(letters["H"]) < 0 or (rules["h"] is not None and float(letters["H"]) > rules["h"])):
+        if "H" in letters and not 0 <= float(letters["H"]) <= (rules["h"] if rules["h"] is not None else 1e99):
             bad("range", number, f"H{letters['H']} outside 0..{rules['h']}")
         # --- modes ---------------------------------------------------------------------------
         for g in gnum:

@@ -27,11 +27,10 @@ def max_f(text: str) -> float:
 def programs():
     """(name, control, text) of every program."""
     out = []
-    job = engrave.plan(PLATE, LETTERS)
-    baked, _ = engrave.bake(job.program if hasattr(job, "program") else job)
+    textured = engrave.plan(PLATE, LETTERS).program       # roughing carries its GougeTexture
+    baked, _ = engrave.bake(textured)
     for name, control in (("fanuc", "fanuc-mill"), ("linuxcnc", "linuxcnc"), ("grbl", "grbl")):
         out.append((f"engrave {name}", control, post.milling_post(name).to_text(baked)))
-    textured = job.program if hasattr(job, "program") else job
     out.append(("engrave fanuc-macro", "fanuc-mill", post.milling_post("fanuc-macro").to_text(textured)))
     sample = rotary.plan(*rotary.sample_job()).program
     for name, control in (("linuxcnc", "linuxcnc-cxz"), ("fanuc", "fanuc-cxz")):
@@ -179,3 +178,13 @@ def test_a_post_refuses_an_out_of_range_word_naming_operation_move_and_value():
     slow = op.replace(feed=np.array([600.0, 600.0]), xyz=np.array([[0, 0, -1], [200000, 0, -1]]))
     with pytest.raises(post.PostError, match=r"coordinate 200000 is outside the -99999.999..99999.999"):
         post.milling_post("fanuc").to_text(Program("p", [slow]))
+
+
+def test_fanuc_orients_the_spindle_before_the_change_when_asked():
+    from kezuri.post.fanuc import FanucPost
+    baked, _ = engrave.bake(engrave.plan(PLATE, LETTERS).program)
+    text = FanucPost(orient_spindle=True).to_text(baked)
+    first = baked.operations[0].tool.number
+    assert f"M05\nG91 G28 Z0.\nG90\nG49\nM19\nT{first:02d} M06\n" in text
+    assert rules.check(text, "fanuc-mill") == []
+    assert "M19" not in FanucPost().to_text(baked)
