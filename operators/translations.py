@@ -602,6 +602,8 @@ MESSAGE_TEMPLATES = {
     'part {}: no faces are selected (select them in Edit Mode, or switch off Selected Faces Only)':
         '部品 {0}：面が選択されていません（編集モードで選択するか、「選択面のみ」をオフにしてください）',
     'unknown post {}; choose one of {}': '不明なポスト {0}。{1} から選んでください',
+    '{}: {} {} is outside the {}..{} the control accepts ({})':
+        '{0}：{1} {2} は制御装置が受け付ける範囲 {3}..{4} の外です（{5}）',
     '{} must be a finite number {}, got {}': '{0} は有限の数値（{1}）にしてください（指定値 {2}）',
     'a contour must be a list of (x, y) points, got shape {}': '輪郭は (x, y) 点のリストにしてください（形状 {0}）',
     'tool side must be one of {}, got {}': '工具の側は {0} のいずれかにしてください（指定値 {1}）',

@@ -31,7 +31,15 @@ import math
 import numpy as np
 
 from .gcode import PostError
-from .registry import Post
+from .registry import ControllerLimits, Post
+
+AMADA_04P_LIMITS = ControllerLimits(
+    tool_number=(1, 999), sequence_number=(0, 999), coordinate=9999.99, resolution=0.01, decimal_point=True,
+    tool_changer=False, tool_change=("T... on the G69/G79 block (turret station, 3 digits)",),
+    program_start=("N000 G92 X.. Y..",), program_end=("G50",),
+    source=("Amada 04P turret punch programming conventions as published with the seed paper's Table 2: "
+            "N000..N999, G92 origin, G72 pattern point, G69 nibbling / G79 punching line, 2 decimals, "
+            "T 3 digits, G50 program end"))
 
 THICK_SHEET = 3.2          # mm: above this, G79 punching line instead of G69 nibbling
 MIN_SEGMENT = 0.01         # mm: the output resolution; shorter segments cannot be written
@@ -152,6 +160,7 @@ class AmadaPunchPost(Post):
     description_ja = "アマダ04P系タレットパンチ：G92 原点、G72 基準点、G69 ニブリング／G79 パンチング"
     family = "punch"
     extension = ".nc"
+    limits = AMADA_04P_LIMITS
 
     def __init__(self, **options):
         self.options = options

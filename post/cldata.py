@@ -33,7 +33,7 @@ import numpy as np
 
 from ..toolpath.program import FEED, RAPID, Operation, Program, TurnMillOperation
 from .gcode import PostError, comment_text, format_duration
-from .registry import Post
+from .registry import ControllerLimits, Post
 
 
 def _num(value: float, decimals: int) -> str:
@@ -51,6 +51,8 @@ class CLDataPost(Post):
     description_ja = "ポストプロセッサ用の、部品座標での工具位置（CL）データ"
     family = "cldata"
     extension = ".cls"
+    limits = ControllerLimits(resolution=1e-4, source="APT CL data (ISO 3592 / ISO 4343) is read by a post-processor, "
+                                                        "not a control: no word ranges; 4 decimals")
 
     def __init__(self, decimals: int = 4, axis_decimals: int = 6):
         self.decimals = decimals

@@ -38,6 +38,23 @@ from __future__ import annotations
 from ..toolpath.program import GougeTexture
 
 from .gcode import GcodePost, PostError, fmt
+from .registry import ControllerLimits
+
+# Fanuc 0i / 16 / 18 -M (machining centre), metric input, increment system IS-B (0.001 mm).
+FANUC_MILL_SOURCE = (
+    "FANUC Series 16/18/160/180-MODEL C for Machining Center, Operator's Manual B-62764EN: "
+    "5 Feed functions (inverse time feed G93: F 0.001..9999.999, every block; feed per minute); "
+    "Program configuration (O number 1..9999, % frame, N 1..99999, M30); Tool function (T, M06); "
+    "Tool length offset G43/G44/G49 (H offset numbers); Increment system IS-B (8 digits, 0.001 mm); "
+    "decimal point programming (X1 means 0.001 mm without a point).  FANUC Series 0i-MD/0i-MF "
+    "operator's manuals keep the same formats")
+FANUC_MILL_LIMITS = ControllerLimits(
+    feed_per_minute=(0.001, 240000.0), inverse_time_feed=(0.001, 9999.999), spindle_rpm=(0, 99999),
+    tool_number=(0, 9999), length_offset=(0, 99), sequence_number=(1, 99999), program_number=(1, 9999),
+    coordinate=99999.999, resolution=0.001, decimal_point=True, inverse_time_every_block=True, tool_changer=True,
+    tool_change=("M05", "G91 G28 Z0.", "G90", "G49", "[M19]", "T.. M06", "S.. M03", "G43 Z.. H.."),
+    program_start=("%", "O....", "G21 G17 G40 G49 G80 G90"), program_end=("M05", "G91 G28 Z0.", "M30", "%"),
+    source=FANUC_MILL_SOURCE)
 
 MACRO_PROGRAM = 7023
 # O7023's pseudo-random generator (see the module docstring): x <- LCG_MULTIPLIER * x mod LCG_MODULUS
@@ -58,12 +75,21 @@ class FanucPost(GcodePost):
     extension = ".nc"
     decimals = 3
     program_number = "O0001"
+    limits = FANUC_MILL_LIMITS
+
+    def __init__(self, work_offset: str | None = None, orient_spindle: bool = False):
+        super().__init__(work_offset)
+        self.orient_spindle = orient_spindle     # M19 before M06, for changers that need the keys aligned
 
     def length_offset(self, op):
         return [f"G43 Z{self.n(op.safe_z)} H{op.tool.number:02d}", f"Z{self.n(op.clearance_z)}"]
 
     def tool_change(self, op, first):
-        return [f"T{op.tool.number:02d} M06"]
+        """Spindle stopped, Z at the tool-change position (machine zero by G28 through the
+        incremental zero move), length offset cancelled, optionally the spindle oriented, then the
+        change; the spindle and the new offset follow before the first cut."""
+        return ["M05", "G91 G28 Z0.", "G90", "G49", *(["M19"] if self.orient_spindle else []),
+                f"T{op.tool.number:02d} M06"]
 
     def ending(self, program):
         return ["M05", "G91 G28 Z0.", "G28 X0. Y0.", "G90", "M30"]
@@ -73,7 +99,7 @@ class FanucMacroPost(FanucPost):
     name = "fanuc-macro"
     label = "Fanuc (controller macro)"
     label_ja = "FANUC（制御装置マクロ）"
-    description = "Fanuc Custom Macro B: G66.1 P7023 draws the depths on the controller from clock #3001"
+    description = "Fanuc Custom Macro B: G66.1 P7023 draws the depths on the controller (seeded from #3001)"
     description_ja = "FANUCカスタムマクロB：G66.1 P7023 が制御装置上でクロック #3001 を種に深さを乱数で決めます"
     order = 11
     needs_texture = True
@@ -106,7 +132,8 @@ class FanucMacroPost(FanucPost):
 
     def header(self, program):
         return super().header(program) + [
-            "(GOUGE TEXTURE: RANDOM DEPTHS DRAWN ON THE CONTROLLER BY O7023 FROM CLOCK #3001)"]
+            f"(GOUGE TEXTURE: RANDOM DEPTHS DRAWN ON THE CONTROLLER BY O{MACRO_PROGRAM}: LEHMER GENERATOR "
+            f"X = {LCG_MULTIPLIER} X MOD {LCG_MODULUS} IN #{LCG_STATE_VAR}, SEEDED ONCE FROM CLOCK #3001)"]
 
     def to_text(self, program):
         main = super().to_text(program)

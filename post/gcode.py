@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..toolpath.program import ARC_CW, FEED, RAPID, Operation, Program
-from .registry import Post, PostError
+from .registry import ControllerLimits, Post, PostError
 
 
 def fmt(value: float, decimals: int) -> str:
@@ -107,12 +107,41 @@ class GcodePost(Post):
             lines.append(f"{self.program_number} ({comment_text(program.name)[:30]})")
         return lines + self.header(program) + self.preamble(program)
 
+    def check_limits(self, op: Operation, inverse_time=None) -> None:
+        """Raise :class:`PostError` naming the operation, the move and the value when a word this
+        post writes for ``op`` is outside the control's ranges (:attr:`limits`): S, T, H, the
+        coordinates, F under G94 (``op.feed``) or, given ``inverse_time`` (F words per move, NaN
+        for rapids), F under G93."""
+        limits: ControllerLimits = self.limits
+        what = f"{self.name} post, operation {op.name!r}"
+        limits.check_word("spindle_rpm", float(op.spindle_rpm), what)
+        limits.check_word("tool_number", float(op.tool.number), what)
+        limits.check_word("length_offset", float(op.tool.number), what)
+        checks = [("coordinate", np.abs(op.xyz).max(axis=1) if len(op) else np.zeros(0))]
+        cutting = op.kind != RAPID
+        if inverse_time is None:
+            checks.append(("feed_per_minute", np.where(cutting, op.feed, np.nan)))
+        else:
+            checks.append(("inverse_time_feed", np.where(cutting, inverse_time, np.nan)))
+        for word, values in checks:
+            bounds = getattr(limits, word)
+            if bounds is None or not len(values):
+                continue
+            low, high = (-bounds, bounds) if word == "coordinate" else bounds
+            bad = np.flatnonzero(~np.isnan(values) & ((values < low) | (values > high)))
+            if len(bad):
+                limits.check_word(word, float(values[bad[0]]), f"{what}, move {int(bad[0]) + 1}")
+
     def to_text(self, program: Program) -> str:
         lines = self.opening(program)
         work_offset = self.work_offset or program.work_offset
+        tool = None
         for index, op in enumerate(program.operations):
+            self.check_limits(op)
             lines.append(f"(OPERATION {index + 1}: {comment_text(op.name)})")
-            lines += self.tool_change(op, index == 0)
+            if tool is None or op.tool.number != tool.number:   # never a change to the tool in the spindle
+                lines += self.tool_change(op, tool is None)
+                tool = op.tool
             lines.append(f"G00 G90 {work_offset} X{self.n(op.start[0])} Y{self.n(op.start[1])} {self.spindle_on(op)}")
             lines += self.length_offset(op)
             lines += self.operation_moves(op)

@@ -6,6 +6,18 @@ the operator changes the bit, re-zeroes Z on the plate top and presses cycle sta
 from __future__ import annotations
 
 from .gcode import GcodePost, comment_text
+from .registry import ControllerLimits
+
+GRBL_LIMITS = ControllerLimits(
+    feed_per_minute=(1e-3, 1e9), inverse_time_feed=(1e-3, 1e9), spindle_rpm=(0, 1e9), tool_number=None,
+    length_offset=None, sequence_number=(0, 9999999), coordinate=None, resolution=0.001, decimal_point=False,
+    inverse_time_every_block=True, tool_changer=False,
+    tool_change=("M05", "G00 Z..", "(CHANGE TO ...)", "M00"),
+    program_start=("G21 G17 G90 G94",), program_end=("M05", "M30"),
+    source=("Grbl v1.1 wiki, 'Grbl v1.1 Commands' (G-code supported: G0-G3, G17-G19, G20/G21, G28/G30, "
+            "G43.1/G49 dynamic length offset only, G54-G59, G90/G91, G93/G94, M0/M2/M30, M3-M5, M7-M9; "
+            "N line numbers up to 9999999; no M6 tool change, no G43 H) and grbl/protocol.h "
+            "(80-character line buffer)"))
 
 
 class GrblPost(GcodePost):
@@ -19,6 +31,7 @@ class GrblPost(GcodePost):
     extension = ".nc"
     decimals = 3
     percent_wrapped = False
+    limits = GRBL_LIMITS
 
     def preamble(self, program):
         return ["G21 G17 G90 G94"]

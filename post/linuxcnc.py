@@ -2,6 +2,21 @@
 from __future__ import annotations
 
 from .gcode import GcodePost
+from .registry import ControllerLimits
+
+# LinuxCNC 2.9 documentation, "G-code overview" and "G-Codes" / "M-Codes" pages.
+LINUXCNC_SOURCE = (
+    "LinuxCNC 2.9 G-Code reference: G93/G94/G95 feed rate mode (G93: an F word on every G1/G2/G3 "
+    "block; F 0 is an error); G43/G49 tool length offset (H = tool table entry >= 0); M6 tool change "
+    "(T >= 0); G-code overview: numbers (N line numbers 0..99999), S >= 0; M2/M30 program end, "
+    "% program delimiters optional")
+LINUXCNC_LIMITS = ControllerLimits(
+    feed_per_minute=(1e-4, 1e9), inverse_time_feed=(1e-4, 1e9), spindle_rpm=(0, 1e9), tool_number=(0, 99999),
+    length_offset=(0, 99999), sequence_number=(0, 99999), coordinate=None, resolution=0.0001,
+    decimal_point=False, inverse_time_every_block=True, tool_changer=True,
+    tool_change=("M05", "G49", "T.. M06", "S.. M03", "G43 H.."),
+    program_start=("%", "G21 G17 G40 G49 G80 G90 G94"), program_end=("M05", "G49", "M30", "%"),
+    source=LINUXCNC_SOURCE)
 
 
 class LinuxCNCPost(GcodePost):
@@ -14,6 +29,10 @@ class LinuxCNCPost(GcodePost):
     order = 20
     extension = ".ngc"
     decimals = 4
+    limits = LINUXCNC_LIMITS
+
+    def tool_change(self, op, first):
+        return ["M05", "G49", f"T{op.tool.number} M06"]
 
     def preamble(self, program):
         # G64 P: path blending within 0.01 mm, so texture ramps are cut as written.

@@ -51,17 +51,45 @@ class ControllerLimits:
     """What the control accepts, per word (inclusive ranges, mm and mm/min), and where it is written.
 
     ``None`` means the control sets no limit we know of.  ``source`` cites the manual (or manuals)
-    the numbers come from.
+    the numbers come from.  The posts check the words they write against these
+    (:meth:`check_word`); ``tool_change``, ``program_start`` and ``program_end`` describe the
+    sequences the post writes, for the header of the file and for the reader.
     """
 
     feed_per_minute: tuple | None = None        # F under G94 (mm/min)
     inverse_time_feed: tuple | None = None      # F under G93 (1/min)
+    feed_per_rev: tuple | None = None           # F under G95 (mm/rev)
     spindle_rpm: tuple | None = None            # S
     tool_number: tuple | None = None            # T
+    length_offset: tuple | None = None          # H (tool length offset number)
     sequence_number: tuple | None = None        # N
+    program_number: tuple | None = None         # O
     coordinate: float | None = None             # largest |X|, |Y|, |Z| the word format holds (mm)
     resolution: float = 0.001                   # least input increment (mm)
+    decimal_point: bool = False                 # every axis and F word needs a decimal point
+    inverse_time_every_block: bool = True       # G93: every G1/G2/G3 block carries its own F
+    tool_changer: bool = True                   # M06 changes the tool
+    tool_change: tuple = ()                     # the safe sequence before the cutting starts
+    program_start: tuple = ()
+    program_end: tuple = ()
     source: str = ""
+
+    def check_word(self, word: str, value: float, where: str) -> None:
+        """Raise :class:`PostError` when ``value`` of ``word`` (a field name above) is outside the
+        control's range; ``where`` names the operation and move for the message."""
+        bounds = getattr(self, word)
+        if bounds is None:
+            return
+        low, high = (-bounds, bounds) if word == "coordinate" else bounds
+        if not low <= value <= high:
+            raise PostError(f"{where}: {WORD_NAMES[word]} {value:.10g} is outside the {low:.10g}..{high:.10g} the "
+                            f"control accepts ({self.source.split(':')[0]})")
+
+
+WORD_NAMES = {"feed_per_minute": "feed F (mm/min)", "inverse_time_feed": "inverse-time feed F (G93, 1/min)",
+              "feed_per_rev": "feed F (mm/rev)", "spindle_rpm": "spindle speed S", "tool_number": "tool number T",
+              "length_offset": "length offset H", "sequence_number": "sequence number N",
+              "program_number": "program number O", "coordinate": "coordinate"}
 
 
 class Post:

@@ -18,8 +18,10 @@ Flavours:
   and C set as a rotary axis without roll-over (C may run past 360): ``%`` / ``O0001``
   frame, 3 decimals on every axis and always a decimal point, ``T01 M06``,
   ``G43 Z.. H01``, no ``G64``, ends ``G91 G28 Z0.`` (no X/Y reference return: the machine
-  has no Y, and X homes outside the board).  Fanuc limits the G93 F value (a parameter of
-  the control); very short moves near the rotation axis give large F values.
+  has no Y, and X homes outside the board).  Fanuc reads G93 F 0.001..9999.999 only: the
+  planner merges moves too short to time (:func:`toolpath.program.merge_short_moves`) and the
+  timing floor (:data:`toolpath.kinematics.SHORTEST_BLOCK_MINUTES`) keeps every F below 9000;
+  a word still out of range raises :class:`PostError` naming the operation and the move.
 """
 from __future__ import annotations
 
@@ -27,9 +29,9 @@ import numpy as np
 
 from ..toolpath import kinematics
 from ..toolpath.program import FEED, RAPID, Operation, Program
-from .fanuc import FanucPost
+from .fanuc import FANUC_MILL_LIMITS, FanucPost
 from .gcode import GcodePost, PostError, comment_text, fmt
-from .linuxcnc import LinuxCNCPost
+from .linuxcnc import LINUXCNC_LIMITS, LinuxCNCPost
 
 
 class RotaryCXZPost(GcodePost):
@@ -90,6 +92,7 @@ class RotaryCXZPost(GcodePost):
     def rotary_moves(self, op: Operation) -> list:
         """Modal X C Z blocks; every G01 carries its inverse-time F; unchanged blocks dropped."""
         inverse_time = kinematics.inverse_time_feed(op, self.max_table_rpm)
+        self.check_limits(op, inverse_time)
         last = {"X": self.n(op.start[0]), "C": self.a(op.rotary["c"][0]), "Z": self.n(op.start[2])}
         lines, mode = [], None
         for kind, x, z, c, f in zip(op.kind.tolist(), op.xyz[:, 0].tolist(), op.xyz[:, 2].tolist(),
@@ -119,6 +122,7 @@ class LinuxCNCRotaryPost(RotaryCXZPost, LinuxCNCPost):
     order = 10
     extension = ".ngc"
     decimals = 4
+    limits = LINUXCNC_LIMITS
 
 
 class FanucRotaryPost(RotaryCXZPost, FanucPost):
@@ -134,6 +138,7 @@ class FanucRotaryPost(RotaryCXZPost, FanucPost):
     decimals = 3
     angle_decimals = 3
     feed_decimals = 3
+    limits = FANUC_MILL_LIMITS       # a milling-type Fanuc control with the inverse-time option
 
     def preamble(self, program):
         return ["G21 G17 G40 G49 G80 G90 G94"]

@@ -23,7 +23,9 @@ the part angle brought to the tool, in degrees, unwrapped (continuous, never a j
 
 Feed: with C turning during a cut, a feed per minute would be applied to the linear axes alone
 and the cutting speed at the part would be wrong.  So cutting moves are written in inverse time
-(G93): F = 1 / minutes for the block, from the part-space length at the programmed feed.
+(G93): F = 1 / minutes for the block, from the part-space length at the programmed feed, never
+more than 9000 (a block takes at least :data:`toolpath.kinematics.SHORTEST_BLOCK_MINUTES`; the
+planner merges shorter moves first).
 ``inverse_time=False`` writes plain feeds per minute, for controls that handle rotary feed
 themselves.
 
@@ -50,11 +52,25 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..toolpath import kinematics
 from ..toolpath.program import FEED, RAPID, Operation, Program, TurnMillOperation
 from .gcode import GcodePost, PostError, comment_text, fmt
+from .linuxcnc import LINUXCNC_LIMITS
+from .registry import ControllerLimits
 
-# mm: a move shorter than this in the part (C turning with the tool on the axis) is timed as this long
-MIN_INVERSE_TIME_LENGTH = 1e-3
+# Fanuc 0i-T / 16/18-T style lathe control, metric, IS-B; the turn-mill codes (M154, M133 ...) are the
+# machine builder's, not Fanuc's, and the G93 range is that of the Fanuc inverse-time option.
+TURNMILL_LIMITS = ControllerLimits(
+    feed_per_minute=(0.001, 240000.0), inverse_time_feed=(0.001, 9999.999), spindle_rpm=(0, 99999),
+    tool_number=(1, 99), length_offset=None, sequence_number=(1, 99999), program_number=(1, 9999),
+    coordinate=99999.999, resolution=0.001, decimal_point=True, inverse_time_every_block=True, tool_changer=True,
+    tool_change=("M135", "M155", "G28 U0. W0.", "T.... (station and offset)", "G19/G17", "M154", "M133 P.."),
+    program_start=("%", "O....", "G21 G18 G40 G80"), program_end=("G28 U0. W0.", "M30", "%"),
+    source=("FANUC Series 0i-TD/0i-TF and 16/18-TC Operator's Manual (lathe system): program configuration "
+            "(O 1..9999, % frame, M30), tool function T + 2-digit offset, reference position return G28 U W, "
+            "X in diameter (parameter DIA), IS-B 8 digits 0.001 mm with decimal point; G93 inverse time "
+            "F 0.001..9999.999 as for the M series (B-62764EN 5); driven-tool and C-axis M codes per machine "
+            "builder"))
 
 
 @dataclass(frozen=True)
@@ -78,7 +94,7 @@ class TurnMillCodes:
 
 
 LINUXCNC_CODES = TurnMillCodes(
-    preamble="G21 G17 G40 G49 G80 G90 G94", home="", tool_select="T{station} M06 G43 H{station}",
+    preamble="G21 G17 G40 G49 G80 G90 G94", home="G49", tool_select="T{station} M06 G43 H{station}",
     c_axis_on="(C AXIS ON: SPINDLE IN POSITIONING MODE)", c_axis_off="(C AXIS OFF)",
     tool_on_cw="S{rpm} M03", tool_on_ccw="S{rpm} M04", tool_off="M05", inverse_time="G93", per_minute="G94",
     program_end="M30")
@@ -98,6 +114,7 @@ class TurnMillXZCPost(GcodePost):
     extension = ".nc"
     decimals = 3
     program_number = "O0001"
+    limits = TURNMILL_LIMITS
 
     def __init__(self, codes: TurnMillCodes | None = None, x_diameter: bool = True, inverse_time: bool = True):
         super().__init__(None)
@@ -122,12 +139,15 @@ class TurnMillXZCPost(GcodePost):
                         f"C: PART ANGLE AT THE TOOL IN DEGREES)")
         return lines
 
-    def tool_change(self, op: Operation, first: bool) -> list:
+    def tool_change(self, op: Operation, first: bool, index: bool = True) -> list:
+        """Home, index the turret (only when the station changes: ``index``), plane, C axis on,
+        driven tool on.  The previous operation has already stopped the driven tool."""
         c = self.codes
         plane = c.radial_plane if op.direction == "radial" else c.axial_plane
         spindle = (c.tool_on_cw if op.spindle_cw else c.tool_on_ccw).format(rpm=int(round(op.spindle_rpm)))
-        return self._lines(f"(TURRET: {op.direction.upper()} TOOL, {comment_text(op.tool.describe())})", c.home,
-                           c.tool_select.format(station=op.tool.number), plane, c.c_axis_on, spindle)
+        select = (c.home, c.tool_select.format(station=op.tool.number)) if index else ()
+        return self._lines(f"(TURRET: {op.direction.upper()} TOOL, {comment_text(op.tool.describe())})", *select,
+                           plane, c.c_axis_on, spindle)
 
     def operation_end(self, op: Operation) -> list:
         return self._lines(self.codes.tool_off, self.codes.c_axis_off)
@@ -140,9 +160,11 @@ class TurnMillXZCPost(GcodePost):
 
     def to_text(self, program: Program) -> str:
         lines = self.opening(program)
+        station = None
         for index, op in enumerate(program.operations):
             lines.append(f"(OPERATION {index + 1}: {comment_text(op.name)})")
-            lines += self.tool_change(op, index == 0)
+            lines += self.tool_change(op, index == 0, index=op.tool.number != station)
+            station = op.tool.number
             lines += self.operation_moves(op)
             lines += self.operation_end(op)
         lines += self.ending(program)
@@ -161,8 +183,13 @@ class TurnMillXZCPost(GcodePost):
             lines.append(self.codes.inverse_time)
         mode, feed_word = "G00", None
         lengths = op.move_lengths()
-        for kind, xyz, c, feed, length in zip(op.kind.tolist(), op.xyz.tolist(), c_values.tolist(), op.feed.tolist(),
-                                              lengths.tolist()):
+        cutting = op.kind == FEED
+        inverse_time = np.where(cutting, 1.0 / kinematics.block_minutes(lengths, np.where(cutting, op.feed, 1.0)),
+                                np.nan)
+        scaled = op.replace(xyz=op.xyz * [scale, 1.0, 1.0], start=op.start * [scale, 1.0, 1.0])
+        self.check_limits(scaled, inverse_time if self.inverse_time else None)
+        for kind, xyz, c, feed, f_inverse in zip(op.kind.tolist(), op.xyz.tolist(), c_values.tolist(),
+                                                 op.feed.tolist(), inverse_time.tolist()):
             new = {"X": self.n(xyz[0] * scale), "Z": self.n(xyz[2]), "C": self.n(c)}
             motion = [f"{axis}{text}" for axis, text in new.items() if text != words[axis]]
             if not motion:
@@ -171,7 +198,7 @@ class TurnMillXZCPost(GcodePost):
             block = ([code] if code != mode else []) + motion
             if kind == FEED:
                 if self.inverse_time:
-                    block.append(f"F{fmt(feed / max(length, MIN_INVERSE_TIME_LENGTH), 3)}")
+                    block.append(f"F{fmt(f_inverse, 3)}")
                 elif fmt(feed, 1) != feed_word:
                     feed_word = fmt(feed, 1)
                     block.append(f"F{feed_word}")
@@ -196,6 +223,7 @@ class TurnMillLinuxCNCPost(TurnMillXZCPost):
     extension = ".ngc"
     decimals = 4
     program_number = None
+    limits = LINUXCNC_LIMITS
 
     def __init__(self, inverse_time: bool = True):
         super().__init__(LINUXCNC_CODES, x_diameter=False, inverse_time=inverse_time)

@@ -44,6 +44,13 @@ from __future__ import annotations
 import numpy as np
 
 DEFAULT_MAX_TABLE_RPM = 60.0   # the C table as an axis, for feeds and time estimates
+# The shortest time a cutting block is timed at (minutes): 1/9000 min = 6.7 ms.  A control needs a few
+# milliseconds to read and plan each block anyway, and the inverse-time F word has a ceiling (Fanuc
+# 0i/16/18-M: G93 F 0.001..9999.999, i.e. at least 6 ms per block).  Planners first merge moves
+# shorter than this where the path stays within tolerance (``program.merge_short_moves``); a move
+# that remains is timed at this floor (so cut slower, honestly, and counted in the cycle time), never
+# given an F word the control cannot read.
+SHORTEST_BLOCK_MINUTES = 1.0 / 9000.0
 ON_AXIS = 1e-9                 # mm: points closer to the axis than this have no angle of their own
 _RAPID = 0                     # program.RAPID (program imports this module, not the other way)
 
@@ -193,20 +200,28 @@ def operation_c_moves(op) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarra
 def move_times(op, rapid_rate: float, max_table_rpm: float = DEFAULT_MAX_TABLE_RPM,
                lengths: np.ndarray | None = None) -> np.ndarray:
     """Seconds per move of a C-X-Z operation.  Cutting: path length on the part
-    (``op.move_lengths()``, :func:`traced_lengths`) / the move's feed, or longer when the table
-    cannot turn that fast; rapids: the slowest axis (X/Z at ``rapid_rate``, C at
+    (``op.move_lengths()``, :func:`traced_lengths`) / the move's feed, never less than
+    :data:`SHORTEST_BLOCK_MINUTES`, or longer when the table cannot turn that fast; rapids: the
+    slowest axis (X/Z at ``rapid_rate``, C at
     ``max_table_rpm``).  ``lengths``: ``op.move_lengths()`` when already at hand."""
     a, b, c0, c1 = operation_c_moves(op)
     table = np.abs(c1 - c0) / (360.0 * max_table_rpm)
     cutting = op.kind != _RAPID
     lengths = op.move_lengths() if lengths is None else lengths
-    minutes = np.where(cutting, lengths / np.where(cutting, op.feed, 1.0),
+    minutes = np.where(cutting, block_minutes(lengths, np.where(cutting, op.feed, 1.0)),
                        np.sqrt((b[:, 0] - a[:, 0]) ** 2 + (b[:, 2] - a[:, 2]) ** 2) / rapid_rate)
     return np.maximum(minutes, table) * 60.0
 
 
+def block_minutes(lengths, feed) -> np.ndarray:
+    """Minutes of cutting moves of ``lengths`` (mm) at ``feed`` (mm/min), never less than
+    :data:`SHORTEST_BLOCK_MINUTES` (the timing floor every G93 F word and time estimate uses)."""
+    return np.maximum(np.asarray(lengths, float) / np.asarray(feed, float), SHORTEST_BLOCK_MINUTES)
+
+
 def inverse_time_feed(op, max_table_rpm: float = DEFAULT_MAX_TABLE_RPM) -> np.ndarray:
-    """G93 F words: 1 / minutes for each cutting move (NaN for rapids)."""
+    """G93 F words: 1 / minutes for each cutting move (NaN for rapids); at most
+    1 / :data:`SHORTEST_BLOCK_MINUTES`."""
     minutes = move_times(op, 1.0, max_table_rpm) / 60.0   # (the rapid rate does not matter here)
     with np.errstate(divide="ignore"):
         return np.where(op.kind != _RAPID, 1.0 / minutes, np.nan)

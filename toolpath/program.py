@@ -259,6 +259,14 @@ class TurnMillOperation(Operation):
             return np.empty(0)
         return kinematics.chord_lengths(*kinematics.operation_c_moves(self))
 
+    def cycle_time(self, rapid_rate: float) -> float:
+        """Estimated seconds: cutting blocks timed as the post's G93 F words time them
+        (:func:`kinematics.block_minutes`), rapids at ``rapid_rate`` mm/min."""
+        lengths = self.move_lengths()
+        cutting = self.kind != RAPID
+        minutes = kinematics.block_minutes(lengths[cutting], self.feed[cutting]).sum()
+        return float(minutes * 60.0 + lengths[~cutting].sum() / rapid_rate * 60.0)
+
 
 def arc_sweep(a: np.ndarray, b: np.ndarray, c: np.ndarray, clockwise: np.ndarray) -> np.ndarray:
     """Signed sweep angle (radians) from a to b about c; a full circle when a == b."""
@@ -363,3 +371,73 @@ class PathBuilder:
         n = len(self._kind)
         return dict(kind=np.array(self._kind, dtype=np.int8), xyz=np.array(self._xyz, dtype=float).reshape(n, 3),
                     feed=np.array(self._feed, dtype=float), center=np.array(self._center, dtype=float).reshape(n, 3))
+
+
+def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kinematics.SHORTEST_BLOCK_MINUTES,
+                      resolution: float = 0.001) -> Operation:
+    """``op`` with its too-short straight cutting moves merged into their neighbours.
+
+    A cutting move is too short when it is shorter than ``resolution`` (the least increment a
+    control reads: it would be written as no motion, or as one digit of motion timed over the true
+    0.0001 mm) or takes less than ``min_minutes`` at its feed (a block the control cannot time: its
+    inverse-time F would pass the word's ceiling, :data:`kinematics.SHORTEST_BLOCK_MINUTES`).  Its end
+    point is dropped, so the move and the next straight cutting move become one, when the dropped
+    point stays within ``tolerance`` of the merged move (measured on the part: C is turned back with
+    :func:`kinematics.machine_to_part`, and for a C move the merged move's bend counts too); the last
+    move before a rapid merges with the one before it instead.  A merged move takes the lower feed of
+    the two.  A short move that cannot be merged within tolerance stays; the timing floor
+    (:func:`kinematics.block_minutes`) then times it, so it is cut slower, never written with an F
+    word the control cannot read.  Rapids and arcs are never touched.  The planners of the rotary
+    machines (:mod:`rotary`, :mod:`turnmill`) apply this to every operation they make.
+    """
+    n = len(op)
+    if n < 2:
+        return op
+    has_c = "c" in op.rotary
+    c_all = np.concatenate([[op.rotary["c"][0]], op.rotary["c"]]) if has_c else np.zeros(n + 1)
+    machine = np.vstack([op.start[None, :], op.xyz])          # point k = end of move k - 1; point 0 = start
+    part = kinematics.machine_to_part(machine, c_all) if has_c else machine
+    kind = np.concatenate([[RAPID], op.kind])                 # kind of the move ending at each point
+    feed = np.concatenate([[np.nan], op.feed])
+    lengths = np.concatenate([[0.0], op.move_lengths()])
+    short = (kind == FEED) & ((lengths < resolution) | (lengths / np.where(kind == FEED, feed, 1.0) < min_minutes))
+    keep = np.ones(n + 1, bool)
+    previous = np.arange(n + 1) - 1                           # the kept point before each point
+
+    def deviation(a, p, b) -> float:
+        """Distance of part point p from the part segment a-b, plus the bend of the merged C move."""
+        ab, ap = part[b] - part[a], part[p] - part[a]
+        t = float(np.clip(np.dot(ap, ab) / max(float(np.dot(ab, ab)), 1e-30), 0.0, 1.0))
+        off = float(np.linalg.norm(ap - t * ab))
+        if has_c:
+            _, bend = kinematics.speed_and_bend(machine[a, 0:1], c_all[a:a + 1], machine[b, 0:1], c_all[b:b + 1])
+            off += float(bend[0]) / 8.0
+        return off
+
+    for k in np.flatnonzero(short).tolist():
+        if not keep[k]:
+            continue
+        a = previous[k]
+        if a < 0:
+            continue
+        move_length = float(np.linalg.norm(part[k] - part[a]))
+        if move_length >= resolution and move_length / feed[k] >= min_minutes:
+            continue                                          # no longer short once an earlier point went
+        if k < n and kind[k + 1] == FEED:                     # drop k: a -> k -> k+1 becomes a -> k+1
+            drop, after = k, k + 1
+        elif kind[a] == FEED and previous[a] >= 0:            # drop a: prev(a) -> a -> k becomes prev(a) -> k
+            drop, after = a, k
+        else:
+            continue
+        if deviation(previous[drop], drop, after) > tolerance:
+            continue
+        keep[drop] = False
+        previous[after] = previous[drop]
+        feed[after] = min(feed[after], feed[drop])
+    if keep.all():
+        return op
+    moves = keep[1:]
+    changes = dict(kind=op.kind[moves], xyz=op.xyz[moves], feed=feed[1:][moves], center=op.center[moves])
+    if op.rotary:
+        changes["rotary"] = {axis: values[moves] for axis, values in op.rotary.items()}
+    return op.replace(**changes)

@@ -73,7 +73,7 @@ from . import kinematics
 from . import region as rg
 from .kinematics import (DEFAULT_MAX_TABLE_RPM, cycle_time, from_cylindrical, inverse_time_feed,  # noqa: F401
                          move_times, part_points, to_cylindrical, unwrap_c)
-from .program import RAPID, Operation, PathBuilder, Program
+from .program import RAPID, Operation, PathBuilder, Program, merge_short_moves
 from .rotary_curves import _Boundary, _by_arc_length, _circle, _closed_loops, _densify, _inner_point, follow_inside
 from .rotary_pocket import (_BLOCK, BOTTOMS, MAX_WALL_ANGLE, Block, Pocket, RotaryError,  # noqa: F401
                             RotarySettings, _Geometry, _is_number, _norms, _OutlineDistance, _same_point,
@@ -293,6 +293,7 @@ def _pocket_operation(geo: _Geometry, settings: RotarySettings, start_c):
                    feed=feed, rotary={"c": c}, clearance_z=settings.clearance_z, safe_z=settings.safe_z,
                    start=np.array([xyz[0, 0], 0.0, settings.safe_z]),
                    comment="C-X-Z pocket: X = -R, C degrees, tool tip Z, feeds along the part")
+    op = merge_short_moves(op, settings.tolerance)     # no block shorter than a control can time
 
     return (op, [(z - geo.r, c + offset) for z, c in rough], [(z - geo.r, c + offset) for z, c in wall],
             [c + offset for c in bottom])

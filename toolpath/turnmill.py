@@ -75,7 +75,8 @@ from . import kinematics
 from .kinematics import machine_to_part  # noqa: F401  (callers of turnmill.machine_to_part)
 from .meshrays import (PAIR_BUDGET, RayEngine, Triangles, TrimeshRayEngine, check_mesh,  # noqa: F401
                        face_normals, face_samples)
-from .program import FEED, RAPID, TOOL_DIRECTIONS, Program, Tool, TurnMillError, TurnMillOperation
+from .program import (FEED, RAPID, TOOL_DIRECTIONS, Program, Tool, TurnMillError, TurnMillOperation,
+                      merge_short_moves)
 
 NEITHER, RADIAL, AXIAL, BOTH = 0, 1, 2, 3      # face labels: bit 1 = radial, bit 2 = axial
 LABEL_NAMES = ("neither", "radial", "axial", "both")
@@ -701,9 +702,10 @@ def _operation(name, direction, layers, stock, settings) -> TurnMillOperation | 
     xs = np.concatenate(x)
     xyz = np.column_stack([xs, np.zeros(len(xs)), np.concatenate(z)])
     c = np.degrees(np.unwrap(np.concatenate(angle)))
-    return TurnMillOperation(name, settings.tool(direction), settings.spindle_rpm, np.concatenate(kind), xyz,
-                             np.concatenate(feed), rotary={"c": c}, clearance_z=z_clear, safe_z=z_clear,
-                             start=np.array([x_clear, 0.0, z_clear]), direction=direction)
+    op = TurnMillOperation(name, settings.tool(direction), settings.spindle_rpm, np.concatenate(kind), xyz,
+                           np.concatenate(feed), rotary={"c": c}, clearance_z=z_clear, safe_z=z_clear,
+                           start=np.array([x_clear, 0.0, z_clear]), direction=direction)
+    return merge_short_moves(op, settings.tolerance)   # no block shorter than a control can time
 
 
 @dataclass
@@ -758,8 +760,7 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
     for previous, op in zip(operations, operations[1:]):
         c = op.rotary["c"]
         c += 360.0 * np.round((previous.rotary["c"][-1] - c[0]) / 360.0)
-    notes = ["X = tool tip radius from the C axis, C = part angle brought to the tool at +X",
-             f"tolerance {settings.tolerance:g} mm, stepover {settings.pick_feed:.3f} mm, "
+    notes = [f"tolerance {settings.tolerance:g} mm, stepover {settings.pick_feed:.3f} mm, "
              f"roughing step {settings.roughing_step:g} mm"]
     program = Program(name, operations, rapid_rate=settings.rapid_rate, notes=notes)
     return TurnMillPlan(program, np.asarray(labels, dtype=np.int8), radial_ids, axial_ids, radial, axial)
