@@ -35,6 +35,7 @@ from .model import (
     CuttingTool, DrillingOperation, PlanarFace, PlaneMilling, PlungeHelix, PlungeRamp, Project, RoundHole,
     StepNcError, Unidirectional, Workingstep, read_project,
 )
+from .inprocess import InProcessStock
 from .part21 import UNSET, Enum, parse_part21, read_part21
 from .part21_writer import Part21Writer
 
@@ -131,6 +132,7 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
         notes.append("the stock bottom is unknown (no workpiece BLOCK and no through feature): feature depths "
                      "are not checked against the stock")
     operations = []
+    stock = in_process_stock(model)
     for step in sequence:
         if step.id not in enabled:
             continue
@@ -143,12 +145,46 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
             if bottom is not None:
                 check_depth(step, bottom, source)
             tool = tool_for(step.its_operation.its_tool, numbers[step.its_operation.its_tool.id])
-            operation = plan_workingstep(step, tool, [rough.its_operation for rough in roughings], notes)
+            operation = plan_workingstep(step, tool, [rough.its_operation for rough in roughings], notes, stock)
         except InputError as error:
             raise StepNcError(f"workingstep #{step.id} '{step.its_id}': {error}") from None
         if operation is not None:
             operations.append(operation)
+            stock.cut(operation)
     return Program(name or model.project.its_id or "STEP-NC", operations, notes=notes)
+
+
+# Without a workpiece BLOCK, the in-process stock covers the features and this much (mm) around them;
+# beyond it the material is taken as high as the highest feature top.
+UNKNOWN_STOCK_MARGIN = 50.0
+
+
+def in_process_stock(model: LoadedWorkplan) -> InProcessStock:
+    """The material before the first workingstep: the workpieces' BLOCKs (nothing outside them), or
+    when the file gives none, material up to the highest feature top everywhere."""
+    boxes = [w.its_bounding_geometry.box() for w in model.project.its_workpieces
+             if w.its_bounding_geometry is not None]
+    if boxes:
+        low = np.min([box[0] for box in boxes], axis=0)
+        high = np.max([box[1] for box in boxes], axis=0)
+        return InProcessStock(low[0], low[1], high[0], high[1], float(high[2]))
+    features = {step.its_feature.id: step.its_feature for step in model.workingsteps}.values()
+    top = max((feature.top_z for feature in features), default=0.0)
+    points = [_feature_xy(feature) for feature in features]
+    points = np.vstack([p for p in points if p is not None] or [np.zeros((1, 2))])
+    (x0, y0), (x1, y1) = points.min(axis=0) - UNKNOWN_STOCK_MARGIN, points.max(axis=0) + UNKNOWN_STOCK_MARGIN
+    return InProcessStock(x0, y0, x1, y1, top, outside=top)
+
+
+def _feature_xy(feature):
+    """Points (k, 2) around a feature in XY, or None."""
+    if isinstance(feature, ClosedPocket):
+        return np.asarray(feature.outline(), float)[:, :2]
+    if isinstance(feature, PlanarFace):
+        return np.asarray(feature.corners(), float)[:, :2]
+    if isinstance(feature, RoundHole):
+        return np.asarray(feature.centre, float)[None, :] + np.array([[-1, -1], [1, 1]]) * feature.diameter / 2
+    return None
 
 
 def stock_bottom(model: LoadedWorkplan) -> tuple:
@@ -235,10 +271,13 @@ def feed_and_speed(operation, tool: Tool) -> tuple:
     return feed, rpm, technology.spindle_clockwise
 
 
-def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list) -> Operation | None:
+def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list,
+                     stock: InProcessStock | None = None) -> Operation | None:
     """The Operation of one workingstep; None (with a note) when it cannot be machined.
 
-    ``roughings`` are the roughing operations of the same feature, used by finishing.
+    ``roughings`` are the roughing operations of the same feature, used by finishing.  ``stock``
+    is the material the workingsteps before it leave (approaches stop above it); None: the
+    workingstep assumes what it assumes (its roughings done, the feature top the stock top).
     """
     operation, feature = step.its_operation, step.its_feature
     safe_z = float(step.its_secplane.position.location[2])
@@ -251,20 +290,25 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
             raise StepNcError(f"#{operation.id} {operation.type_name}: retract_plane {operation.retract_plane:g} "
                               "must be above the feature (positive)")
         clearance_z = min(safe_z, feature.top_z + operation.retract_plane)
+    if stock is not None and stock.highest() + APPROACH_GAP > clearance_z:
+        # A retract plane over a feature below material not cut yet (a hole in a pocket floor
+        # drilled before the pocket): travel above the material instead.
+        clearance_z = min(safe_z, stock.highest() + APPROACH_GAP)
     feed, rpm, clockwise = feed_and_speed(operation, tool)
 
     def skip(reason):
         notes.append(f"workingstep #{step.id} '{step.its_id}' skipped: {reason}")
 
     if isinstance(operation, DrillingOperation) and isinstance(feature, RoundHole):
-        motion = _hole(operation, feature, clearance_z, feed, skip)
+        motion = _hole(operation, feature, tool, clearance_z, feed, skip, stock)
     elif isinstance(operation, PlaneMilling) and isinstance(feature, PlanarFace):
-        motion = _face(operation, feature, tool, clearance_z, feed, roughings, skip)
+        motion = _face(operation, feature, tool, clearance_z, feed, roughings, skip, stock)
     elif isinstance(operation, BottomAndSideMilling) and isinstance(feature, ClosedPocket):
         if operation.finishing:
-            motion = _pocket_finishing(operation, feature, tool, clearance_z, feed, clockwise, roughings, skip)
+            motion = _pocket_finishing(operation, feature, tool, clearance_z, feed, clockwise, roughings, skip,
+                                       stock)
         else:
-            motion = _pocket_roughing(operation, feature, tool, clearance_z, feed, clockwise, skip)
+            motion = _pocket_roughing(operation, feature, tool, clearance_z, feed, clockwise, skip, stock)
     else:
         skip(f"{operation.type_name} #{operation.id} on a {type(feature).__name__} #{feature.id} "
              "is not supported")
@@ -290,10 +334,19 @@ class _Motion:
     APPROACH_GAP above the level already cut, then approaches.  Consecutive paths at the same
     depth are joined by a feed move when the straight link stays inside ``region`` (the tool
     centre region); otherwise the tool retracts and approaches again.
+
+    The level already cut is the layer above (``cleared_z``) when that is safe: when the in-process
+    ``stock`` (what earlier workingsteps left), or this path cut at the layer above, bounds the
+    material under the tool there.  Otherwise the rapid stops APPROACH_GAP above that bound and the
+    approach feeds the rest (finishing before its roughing, any order of the workingsteps).
     """
 
-    def __init__(self, clearance_z, feed, approach=None, retract=None, region: CrossSection | None = None):
+    def __init__(self, clearance_z, feed, approach=None, retract=None, region: CrossSection | None = None,
+                 stock: InProcessStock | None = None, radius: float = 0.0):
         self.path = PathBuilder(clearance_z, feed, feed)
+        self.stock = stock
+        self.radius = radius
+        self.levels: dict = {}         # (id of a path list, index) -> the lowest level that path was cut at
         self.clearance_z = clearance_z
         self.approach = approach
         self.retract_strategy = retract
@@ -305,7 +358,8 @@ class _Motion:
     def cut(self, paths, z: float, cleared_z: float, link: bool = True):
         """Cut every path ((k, 2) XY points) at height z; the material above cleared_z is gone.
         ``link=False`` lifts between paths even when a link would fit (one-way strokes)."""
-        for points in paths:
+        for index, points in enumerate(paths):
+            key = (id(paths), index)
             points = np.asarray(points, float)
             here = self.path.position
             if (link and here is not None and abs(here[2] - z) < 1e-9
@@ -313,10 +367,27 @@ class _Motion:
                 self.path.line(points[0][0], points[0][1], z)
             else:
                 self.leave()
-                self._enter(points, z, min(cleared_z + APPROACH_GAP, self.clearance_z))
+                self._enter(points, z, self.entry_height(points[0], cleared_z, self.levels.get(key)))
+            self.levels[key] = min(z, self.levels.get(key, math.inf))
             for x, y in points[1:]:
                 self.previous_xy = np.array(self.path.position[:2])
                 self.path.line(x, y, z)
+
+    def material_top(self, xy, cut_here=None) -> float:
+        """The highest the material can be under the tool at ``xy`` (-inf: none): the in-process
+        stock's bound, lowered to ``cut_here`` when this operation already cut there (inf: no bound)."""
+        bound = math.inf if self.stock is None else self.stock.top_under(xy[0], xy[1], self.radius)
+        return min(bound, math.inf if cut_here is None else cut_here)
+
+    def entry_height(self, xy, cleared_z, cut_here=None) -> float:
+        """Where the rapid down to a cut stops: APPROACH_GAP above the layer cleared before, or above
+        the material when the material may be higher there."""
+        level = cleared_z
+        if self.stock is not None:
+            material = self.material_top(xy, cut_here)
+            if material > cleared_z + 1e-9:
+                level = material
+        return min(level + APPROACH_GAP, self.clearance_z)
 
     def _enter(self, points, z, top):
         x, y = points[0]
@@ -578,7 +649,7 @@ def _fill(region: CrossSection, strategy, stepover: float, radius: float, pocket
 # --------------------------------------------------------------------------- features
 
 
-def _face(operation: PlaneMilling, face: PlanarFace, tool: Tool, clearance_z, feed, roughings, skip):
+def _face(operation: PlaneMilling, face: PlanarFace, tool: Tool, clearance_z, feed, roughings, skip, stock=None):
     """Facing strokes layer by layer; finishing starts below what roughing of the face left."""
     strategy = operation.its_machining_strategy or Bidirectional(None, None, None, None, None)
     if isinstance(strategy, ContourParallel):
@@ -594,7 +665,7 @@ def _face(operation: PlaneMilling, face: PlanarFace, tool: Tool, clearance_z, fe
         paths = [np.vstack([s if k % 2 == 0 else s[::-1] for k, s in enumerate(strokes)])]
     else:
         paths = strokes
-    motion = _Motion(clearance_z, feed, operation.approach, operation.retract)
+    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
     cleared = start
     for z in _levels(start, floor, operation.axial_cutting_depth or tool.flute_length):
         motion.cut(paths, z, cleared)
@@ -628,7 +699,7 @@ def _facing_strokes(face: PlanarFace, strategy, radius: float, stepover: float) 
     return [np.array([start * direction + o * left, end * direction + o * left]) for o in offsets]
 
 
-def _pocket_roughing(operation, pocket, tool, clearance_z, feed, spindle_clockwise, skip):
+def _pocket_roughing(operation, pocket, tool, clearance_z, feed, spindle_clockwise, skip, stock=None):
     """The pocket less the allowances, cleared layer by layer."""
     strategy = operation.its_machining_strategy or Bidirectional(None, None, None, None, None)
     centres = centre_region(pocket, tool.radius + (operation.allowance_side or 0.0))
@@ -638,7 +709,7 @@ def _pocket_roughing(operation, pocket, tool, clearance_z, feed, spindle_clockwi
         return None
     stepover = _stepover(tool.diameter, strategy.overlap, operation.radial_cutting_depth)
     paths = _fill(centres, strategy, stepover, tool.radius, pocket, spindle_clockwise)
-    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres)
+    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres, stock, tool.radius)
     floor = pocket.bottom_z + (operation.allowance_bottom or 0.0)
     cleared = pocket.top_z
     for z in _levels(pocket.top_z, floor, operation.axial_cutting_depth or tool.flute_length):
@@ -647,7 +718,7 @@ def _pocket_roughing(operation, pocket, tool, clearance_z, feed, spindle_clockwi
     return motion
 
 
-def _pocket_finishing(operation, pocket, tool, clearance_z, feed, spindle_clockwise, roughings, skip):
+def _pocket_finishing(operation, pocket, tool, clearance_z, feed, spindle_clockwise, roughings, skip, stock=None):
     """Rings over what roughing left along the walls at every layer; the whole floor below the
     rough floor (everything at every layer when nothing roughs the pocket)."""
     strategy = operation.its_machining_strategy or ContourParallel(None, None, "CCW", None)
@@ -669,7 +740,7 @@ def _pocket_finishing(operation, pocket, tool, clearance_z, feed, spindle_clockw
                 raise StepNcError(f"more than {MAX_PASSES} finishing passes at a {stepover:g} mm stepover")
         ccw = _counter_clockwise(strategy, spindle_clockwise)
         wall_paths = _rings(centres, (distances or [0.0])[::-1], ccw, rg.centroid(centres))
-    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres)
+    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres, stock, tool.radius)
     if (pocket.planar_radius or 0.0) > tool.corner_radius + 1e-9:
         motion.notes.append(f"the floor fillet R{pocket.planar_radius:g} is cut with the tool's corner "
                             f"radius R{tool.corner_radius:g}")
@@ -703,7 +774,7 @@ def drill_breakthrough(tool: CuttingTool) -> float:
     return dimension.diameter / 2 * math.tan(math.radians(angle)) + BREAKTHROUGH_CLEARANCE
 
 
-def _hole(operation: DrillingOperation, hole: RoundHole, clearance_z, feed, skip):
+def _hole(operation: DrillingOperation, hole: RoundHole, tool: Tool, clearance_z, feed, skip, stock=None):
     """A straight feed to depth at the hole centre (no canned cycle, so every post can write it);
     DRILLING_TYPE_STRATEGY's reduced feeds over the first and last depths are honoured."""
     if operation.cutting_depth is None and operation.type_name == "CENTER_DRILLING":
@@ -722,11 +793,11 @@ def _hole(operation: DrillingOperation, hole: RoundHole, clearance_z, feed, skip
             breakthrough = drill_breakthrough(operation.its_tool)
             why = f"point length + {BREAKTHROUGH_CLEARANCE:g} mm"
         bottom -= breakthrough
-    motion = _Motion(clearance_z, feed)
+    motion = _Motion(clearance_z, feed, stock=stock, radius=tool.radius)
     if breakthrough:
         motion.notes.append(f"through hole: the drill goes {breakthrough:.3f} mm below the hole bottom "
                             f"({why}) to Z {bottom:.3f}")
-    entry = min(top + APPROACH_GAP, clearance_z)
+    entry = motion.entry_height((x, y), top)
     motion.path.rapid(x, y, clearance_z)
     if entry < clearance_z:
         motion.path.rapid(x, y, entry)
