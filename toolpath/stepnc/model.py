@@ -24,7 +24,7 @@ Units: lengths in mm, angles in degrees, feed in m/s and spindle in rev/s as in 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Union
 
 import numpy as np
@@ -931,15 +931,73 @@ class _Reader:
                 raise UnsupportedEntity(t.type_name, t.id, f"slanted walls (slope {slope:g} degrees)")
             bottom = self.entity(t, 7, "bottom_condition", ("PLANAR_POCKET_BOTTOM_CONDITION",
                                                              "THROUGH_POCKET_BOTTOM_CONDITION"), unsupported=True)
-            return ClosedPocket(t.id, its_id, placement, depth, bottom.type_name,
-                                self.length(t, 8, "planar_radius", optional=True),
-                                self.length(t, 9, "orthogonal_radius", optional=True),
-                                self.closed_profile(t, 10, "feature_boundary"))
+            pocket = ClosedPocket(t.id, its_id, placement, depth, bottom.type_name,
+                                  self.length(t, 8, "planar_radius", optional=True),
+                                  self.length(t, 9, "orthogonal_radius", optional=True),
+                                  self.closed_profile(t, 10, "feature_boundary"))
+            return self._profile_placement(t, pocket)
         if self.value(t, 6, "change_in_diameter", optional=True) is not None:
             raise UnsupportedEntity(t.type_name, t.id, "a tapered hole (change_in_diameter)")
         bottom = self.value(t, 7, "bottom_condition")
         bottom_name = _type_name(self.part21.get(bottom)) if isinstance(bottom, Ref) else ""
         return RoundHole(t.id, its_id, placement, depth, self.length(t, 5, "diameter"), bottom_name)
+
+    def _profile_placement(self, t, pocket: ClosedPocket) -> ClosedPocket:
+        """ISO 14649-10 places a profile in the feature's coordinates ("in reference to the
+        manufacturing_feature; if not given, at its zero point"), so the outline is the feature
+        placement composed with the profile's.  Some generators write the feature's absolute
+        placement again as the profile's; composed, the pocket lands twice as far from the origin.
+        When the composed outline leaves the workpiece's BLOCK and the profile placement read as
+        absolute keeps it on the stock (or, with no BLOCK, when the profile repeats the feature's
+        location), the absolute reading is taken, with a warning naming the feature.  A pocket off
+        the stock in both readings is cut as written, with a warning."""
+        profile = pocket.feature_boundary
+        own = profile.placement
+        if own is None or np.allclose(own.location[:2], 0.0, atol=1e-9):
+            return pocket
+        frame = pocket.feature_placement
+        rotation = frame.matrix()
+        relative = Placement(own.id, own.name,
+                             tuple(float(v) for v in rotation.T @ (np.array(own.location) - frame.location)),
+                             tuple(float(v) for v in rotation.T @ np.array(own.axis)),
+                             tuple(float(v) for v in rotation.T @ np.array(own.ref_direction)))
+        absolute = replace(pocket, feature_boundary=replace(profile, placement=relative))
+        what = f"#{t.id} CLOSED_POCKET '{pocket.its_id}'"
+        block = self._feature_block(t)
+        if block is None:
+            if np.allclose(own.location, frame.location, atol=1e-6):
+                self.warnings.append(
+                    f"{what}: its profile #{profile.id} repeats the pocket's placement #{frame.id} "
+                    f"({_xy(frame.location)}); read as one placement (the pocket at {_xy(frame.location)}), not "
+                    f"composed (which would put it at {_xy(pocket.outline().mean(axis=0))}); the file gives no "
+                    "stock BLOCK to check against")
+                return absolute
+            return pocket
+        composed_off = _beyond(pocket.outline(), block)
+        if composed_off <= POCKET_OFF_STOCK:
+            return pocket
+        absolute_off = _beyond(absolute.outline(), block)
+        if absolute_off <= POCKET_OFF_STOCK:
+            self.warnings.append(
+                f"{what}: composed with its profile's placement #{own.id} the pocket would reach "
+                f"{composed_off:.3g} mm beyond the stock BLOCK #{block.id}; the profile's placement is read as "
+                f"absolute (the generator wrote the pocket's placement twice): the pocket is cut at "
+                f"{_xy(absolute.outline().mean(axis=0))} on the stock")
+            return absolute
+        self.warnings.append(
+            f"{what}: reaches {composed_off:.3g} mm beyond the stock BLOCK #{block.id} (and "
+            f"{absolute_off:.3g} mm with its profile's placement read as absolute); cut as written, check the file")
+        return pocket
+
+    def _feature_block(self, t):
+        """The BLOCK of the feature's workpiece (attribute its_workpiece), or None."""
+        try:
+            piece = self.entity(t, 1, "its_workpiece", ("WORKPIECE",), optional=True, unsupported=True)
+        except (UnsupportedEntity, StepNcError):
+            return None
+        if piece is None:
+            return None
+        return self.memoised(piece, self.workpiece).its_bounding_geometry
 
     def _no_bosses(self, t, index):
         bosses = self.value(t, index, "its_boss", optional=True)
@@ -1111,6 +1169,23 @@ class _Reader:
         clamps = self.entities(t, 6, "clamping_positions", ("CARTESIAN_POINT",))
         return Workpiece(t.id, self.text(t, 0, "its_id"), self.number(t, 2, "global_tolerance", optional=True),
                          block, tuple(self.coordinates(point) for point in clamps))
+
+
+# A pocket outline may reach this far (mm) beyond the stock BLOCK before its placement is questioned.
+POCKET_OFF_STOCK = 1e-3
+
+
+def _xy(point) -> str:
+    return f"X{float(point[0]):g} Y{float(point[1]):g}"
+
+
+def _beyond(outline, block: Block) -> float:
+    """How far (mm) an XY outline reaches outside the block's XY rectangle (0: inside)."""
+    (x0, y0, _), (x1, y1, _) = block.box()
+    points = np.asarray(outline, float)[:, :2]
+    over = np.maximum.reduce([x0 - points[:, 0], points[:, 0] - x1, y0 - points[:, 1], points[:, 1] - y1,
+                              np.zeros(len(points))])
+    return float(over.max())
 
 
 def read_project(part21: Part21File) -> tuple:
