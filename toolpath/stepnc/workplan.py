@@ -307,6 +307,8 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
                                        stock)
         else:
             motion = _pocket_roughing(operation, feature, tool, clearance_z, feed, clockwise, skip, stock)
+    elif isinstance(operation, BottomAndSideMilling) and isinstance(feature, RoundHole):
+        motion = _hole_milling(operation, feature, tool, clearance_z, feed, clockwise, roughings, skip, stock)
     else:
         skip(f"{operation.type_name} #{operation.id} on a {type(feature).__name__} #{feature.id} "
              "is not supported")
@@ -538,6 +540,77 @@ def _sweeps(centres: CrossSection, distance: float, radius: float, leftover: Cro
         return False
     swept = _offset(ring_region, radius) - _offset(ring_region, -radius)
     return (swept ^ leftover).area() > rg.MIN_AREA
+
+
+# Hole bottoms an end mill cuts; a milled through hole goes this far (mm) below the hole bottom unless the
+# operation gives an overcut_length.
+MILLED_HOLE_BOTTOMS = ("FLAT_HOLE_BOTTOM", "") + THROUGH_CONDITIONS
+MILLED_BREAKTHROUGH = 1.0
+
+
+def _hole_milling(operation: BottomAndSideMilling, hole: RoundHole, tool: Tool, clearance_z, feed,
+                  spindle_clockwise, roughings, skip, stock=None):
+    """BOTTOM_AND_SIDE_ROUGH/FINISH_MILLING of a ROUND_HOLE by helical interpolation.
+
+    The tool centre runs on circles about the hole's axis, the outer one R - r - allowance_side
+    from it.  Each layer (axial_cutting_depth, default the tool radius) starts with one helical turn
+    down on the innermost circle and then steps out circle by circle (the stepover at most the
+    tool radius, the innermost circle within the tool radius of the axis, so no core stands).  A hole
+    at most twice the tool's diameter is one circle: plain helical interpolation.  Finishing after
+    roughing runs only the outer circle above the rough floor and every circle below it."""
+    if tool.kind == "drill":
+        skip(f"a {tool.label or 'drill'} cannot mill hole #{hole.id} sideways: give an end mill")
+        return None
+    if hole.bottom_condition not in MILLED_HOLE_BOTTOMS:
+        skip(f"hole #{hole.id} has a {hole.bottom_condition}: only flat and through hole bottoms are milled")
+        return None
+    outer = hole.diameter / 2 - tool.radius - (operation.allowance_side or 0.0)
+    if outer < 1e-3:
+        skip(f"the {tool.diameter:g} mm tool (allowance {operation.allowance_side or 0:g} mm) does not fit in the "
+             f"{hole.diameter:g} mm hole #{hole.id} with room to interpolate: drill or bore it")
+        return None
+    strategy = operation.its_machining_strategy
+    overlap = getattr(strategy, "overlap", None)
+    stepover = min(_stepover(tool.diameter, overlap, operation.radial_cutting_depth), tool.radius)
+    count = max(0, math.ceil((outer - tool.radius) / stepover - 1e-9))
+    radii = [outer - k * stepover for k in range(count, -1, -1)] if count else [outer]   # innermost first
+    ccw = strategy.rotation_direction == "CCW" if isinstance(strategy, ContourParallel) else spindle_clockwise
+    floor = hole.bottom_z + (operation.allowance_bottom or 0.0)
+    if hole.bottom_condition in THROUGH_CONDITIONS:
+        overcut = getattr(operation, "overcut_length", None)
+        floor = hole.bottom_z - (overcut if overcut is not None else MILLED_BREAKTHROUGH)
+    rough_floor = math.inf          # no roughing: every layer is below it (all circles)
+    if roughings:
+        rough_floor = min(hole.bottom_z + (rough.allowance_bottom or 0.0) for rough in roughings)
+    cx, cy = hole.centre
+    motion = _Motion(clearance_z, feed, stock=stock, radius=tool.radius)
+    path = motion.path
+    step = operation.axial_cutting_depth or tool.radius
+    levels = _levels(hole.top_z, floor, step)
+    rings = radii
+    for index, z in enumerate(levels):
+        rings = radii if z < rough_floor - 1e-9 else radii[-1:]
+        start = (cx + rings[0], cy)
+        if index == 0:
+            top = motion.entry_height(start, hole.top_z)
+            path.rapid(*start, clearance_z)
+            if top < clearance_z - 1e-9:
+                path.rapid(*start, top)
+        else:
+            if abs(path.position[0] - start[0]) > 1e-9:
+                path.line(*start, path.position[2])      # back in to the first circle, inside the cut
+            top = path.position[2]
+        turns = max(1, math.ceil((top - z) / step - 1e-9))
+        for k in range(1, turns + 1):                     # helical turns down to the layer
+            path.arc(*start, top - (top - z) * k / turns, cx, cy, clockwise=not ccw)
+        path.arc(*start, z, cx, cy, clockwise=not ccw)    # the layer's full circle
+        for radius in rings[1:]:
+            path.line(cx + radius, cy, z)
+            path.arc(cx + radius, cy, z, cx, cy, clockwise=not ccw)
+    if rings is radii and path.position is not None:     # the whole disc is cleared: off the wall to the axis
+        path.line(cx, cy, path.position[2])
+    path.retract()
+    return motion
 
 
 def drill_breakthrough(tool: CuttingTool) -> float:
