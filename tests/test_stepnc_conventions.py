@@ -18,7 +18,7 @@ TOOL_DIAMETER = 10.0
 
 def pocket_file(pocket_at=(75.0, 50.0), profile_at=None, block=True, size=(40.0, 24.0), finish_tool="#22",
                 finish_technology="#24", rough_technology="#24", hole=False, rough="BOTTOM_AND_SIDE_ROUGH_MILLING",
-                finish="BOTTOM_AND_SIDE_FINISH_MILLING") -> str:
+                finish="BOTTOM_AND_SIDE_FINISH_MILLING", general=False) -> str:
     """A 120 x 80 x 30 plate with one rectangular closed pocket 8 deep, roughed and finished with a
     10 mm end mill (and with ``hole``, a 8 mm hole drilled 10 deep at (20, 20) afterwards).
     ``profile_at``: the location written in the profile's own placement (None: ``$``, the profile at
@@ -29,6 +29,13 @@ def pocket_file(pocket_at=(75.0, 50.0), profile_at=None, block=True, size=(40.0,
     profile_placement = "$" if profile_at is None else "#40"
     bounding = "#7" if block else "$"
     steps = "#60,#61,#62" if hole else "#60,#61"
+    # ``general``: the same rectangle as a GENERAL_CLOSED_PROFILE of a closed POLYLINE
+    half = (length / 2, width / 2)
+    corners = "\n".join(f"#{71 + k}= CARTESIAN_POINT('POCKET1 CORNER {k + 1}',({sx * half[0]:.3f},{sy * half[1]:.3f},0.000));"
+                        for k, (sx, sy) in enumerate(((-1, -1), (1, -1), (1, 1), (-1, 1))))
+    profile = (f"#39= GENERAL_CLOSED_PROFILE({profile_placement},#70);\n#70= POLYLINE('POCKET1 OUTLINE',"
+               f"(#71,#72,#73,#74,#71));\n{corners}" if general else
+               f"#39= RECTANGULAR_CLOSED_PROFILE({profile_placement},#43,#44);")
     return f"""ISO-10303-21;
 HEADER;
 FILE_DESCRIPTION(('KEZURI TEST: PLACEMENT CONVENTIONS'),'2;1');
@@ -87,7 +94,7 @@ DATA;
 #36= AXIS2_PLACEMENT_3D('POCKET1 DEPTH',#37,#11,#12);
 #37= CARTESIAN_POINT('POCKET1 DEPTH',(0.000,0.000,-8.000));
 #38= PLANAR_POCKET_BOTTOM_CONDITION();
-#39= RECTANGULAR_CLOSED_PROFILE({profile_placement},#43,#44);
+{profile}
 #40= AXIS2_PLACEMENT_3D('POCKET1 PROFILE',#41,#11,#12);
 #41= CARTESIAN_POINT('POCKET1 PROFILE',{_point(profile_at)});
 #42= PLUS_MINUS_VALUE(0.010,0.010,3);
@@ -274,3 +281,22 @@ def test_the_new_warnings_have_japanese_templates():
     for message in messages:
         japanese = translations.japanese_message(message)
         assert japanese is not None and re.search(r"[\u3040-\u30ff\u4e00-\u9fff]", japanese), message
+
+
+def test_general_profile_placement_written_twice():
+    """The same convention on a GENERAL_CLOSED_PROFILE: its POLYLINE's corners are relative to the
+    profile's placement, which repeats the pocket's (75, 50)."""
+    text = pocket_file(pocket_at=(75.0, 50.0), profile_at=(75.0, 50.0, 0.0), general=True)
+    assert "GENERAL_CLOSED_PROFILE(#40,#70)" in text
+    n = numbers_from_text(text)
+    loaded = load_workplan(text)
+    assert len(loaded.warnings) == 1 and "#30 CLOSED_POCKET 'POCKET1'" in loaded.warnings[0]
+    low, high = finishing_extent(to_program(loaded))
+    half = np.array([n["length"], n["width"]]) / 2 - TOOL_DIAMETER / 2
+    np.testing.assert_allclose(low, n["pocket"][:2] - half, atol=0.01)
+    np.testing.assert_allclose(high, n["pocket"][:2] + half, atol=0.01)
+    # composed as the standard says when the profile sits at the feature's zero point: no warning
+    plain = load_workplan(pocket_file(pocket_at=(75.0, 50.0), general=True))
+    assert plain.warnings == ()
+    low, high = finishing_extent(to_program(plain))
+    np.testing.assert_allclose((low + high) / 2, n["pocket"][:2], atol=0.01)
