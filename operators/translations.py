@@ -943,6 +943,11 @@ MESSAGE_TEMPLATES = {
     '{}: {} mm per tooth is too much for the {} mm tool with {} teeth (at most {})':
         '{0}：1刃あたり {1} mm は刃数 {3} の {2} mm の工具には大きすぎます（上限 {4}）',
     '{}: {} mm per tooth is below {} mm: the tool rubs': '{0}：1刃あたり {1} mm は {2} mm 未満です：工具がこすれるだけです',
+    "#{} LINEAR_PATH: the slot's distance must be positive, found {}":
+        "#{0} LINEAR_PATH：溝の長さ（distance）は正の値にしてください（値 {1}）",
+    '#{} SQUARE_U_PROFILE: width must be positive, found {}': '#{0} SQUARE_U_PROFILE：幅は正の値にしてください（値 {1}）',
+    "the flat end of slot #{} keeps the tool's radius R{} in its corners":
+        "溝 #{0} の平らな端の隅には工具の半径 R{1} が残ります",
 }
 
 

@@ -434,17 +434,17 @@ def test_unsupported_feature_is_skipped_with_a_warning():
     text = replace_instance(ex1_text(), 2, "#2= WORKPLAN('MAIN WORKPLAN',(#10,#11,#200,#12,#203,#13,#14),$,#8,$);")
     text = add_instances(
         text,
-        "#200= MACHINING_WORKINGSTEP('WS ROUGH SLOT1',#62,#201,#22,$);",
-        "#201= SLOT('SLOT1',#4,(#22),#84,#65,#24,#202,());",
-        "#202= SQUARE_U_PROFILE($,#58,0.,$,0.,$);",
+        "#200= MACHINING_WORKINGSTEP('WS ROUGH STEP1',#62,#201,#22,$);",
+        "#201= STEP('STEP1',#4,(#22),#84,#65,#24,#202,());",     # (SLOT is read since step19)
+        "#202= VEE_PROFILE($,#58,90.,0.);",
         "#203= PROGRAM_STOP();")
     loaded = load_workplan(text)
     assert [ws.id for ws in loaded.workingsteps] == [10, 11, 12, 13, 14]
-    assert any("#200" in w and "SLOT #201 is not supported" in w for w in loaded.warnings)
+    assert any("#200" in w and "STEP #201 is not supported" in w for w in loaded.warnings)
     assert any("#203 PROGRAM_STOP" in w for w in loaded.warnings)
     program = to_program(loaded)
     assert len(program.operations) == 5
-    assert any("SLOT #201" in note for note in program.notes)
+    assert any("STEP #201" in note for note in program.notes)
 
 
 def test_unsupported_strategy_and_tilted_feature_are_skipped():

@@ -367,7 +367,64 @@ class RoundHole(_Feature):
         return tuple(float(v) for v in self.feature_placement.location[:2])
 
 
-Feature = Union[PlanarFace, ClosedPocket, RoundHole]
+SLOT_ENDS = ("OPEN_SLOT_END_TYPE", "RADIUSED_SLOT_END_TYPE", "FLAT_SLOT_END_TYPE")
+
+
+@dataclass(frozen=True)
+class Slot(_Feature):
+    """SLOT along a LINEAR_PATH with a SQUARE_U_PROFILE of ``width``.  ``ends``: the end types at the
+    path's start and end (OPEN: the slot runs out of the part, so the region the tools clear goes
+    one width beyond it; RADIUSED: a half circle of half the width; FLAT: square).  It answers what
+    the pocket strategies ask of a CLOSED_POCKET (outline, radii)."""
+
+    id: int
+    its_id: str
+    feature_placement: Placement
+    depth: Plane
+    course_of_travel: LinearPath
+    width: float
+    planar_radius: float | None
+    ends: tuple
+    orthogonal_radius = None
+    bottom_condition = "PLANAR_POCKET_BOTTOM_CONDITION"
+
+    def axis(self) -> tuple:
+        """(start, end) of the slot's centre line in world XY."""
+        path = self.course_of_travel
+        origin = (path.placement or IDENTITY).to_parent([(0.0, 0.0)])[0]
+        travel = (path.placement or IDENTITY).direction_to_parent(path.its_direction)
+        travel = travel / np.linalg.norm(travel) * path.distance
+        start, end = self.to_world_xy(np.array([origin, origin + travel]))
+        return start, end
+
+    @property
+    def course(self) -> tuple:
+        """The slot's direction in the feature's coordinates (the default raster direction)."""
+        path = self.course_of_travel
+        return tuple((path.placement or IDENTITY).direction_to_parent(path.its_direction))
+
+    def outline(self) -> np.ndarray:
+        """The region the slot removes in world XY (k, 2), counter-clockwise; open ends reach one
+        width beyond the part."""
+        start, end = self.axis()
+        along = (end - start) / np.linalg.norm(end - start)
+        side = np.array([-along[1], along[0]]) * self.width / 2
+        points = []
+        for point, kind, outward in ((end, self.ends[1], along), (start, self.ends[0], -along)):
+            if kind == "OPEN_SLOT_END_TYPE":
+                point = point + outward * self.width
+            if kind == "RADIUSED_SLOT_END_TYPE":
+                base = math.degrees(math.atan2(outward[1], outward[0]))
+                arc = _arc_points(np.append(point, 0.0), np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]),
+                                  self.width / 2, base - 90.0, 180.0)
+                points += list(arc[:, :2])
+            else:
+                turn = side if outward @ along > 0 else -side
+                points += [point - turn, point + turn]
+        return np.array(points)
+
+
+Feature = Union[PlanarFace, ClosedPocket, RoundHole, Slot]
 
 
 # --------------------------------------------------------------------------- tools and technology
@@ -899,7 +956,8 @@ class _Reader:
     # ---- features
 
     def feature(self, inst, index, name) -> Feature:
-        target = self.entity(inst, index, name, ("PLANAR_FACE", "CLOSED_POCKET", "ROUND_HOLE"), unsupported=True)
+        target = self.entity(inst, index, name, ("PLANAR_FACE", "CLOSED_POCKET", "ROUND_HOLE", "SLOT"),
+                             unsupported=True)
         return self.memoised(target, self._feature)
 
     def _feature(self, t) -> Feature:
@@ -936,11 +994,44 @@ class _Reader:
                                   self.length(t, 9, "orthogonal_radius", optional=True),
                                   self.closed_profile(t, 10, "feature_boundary"))
             return self._profile_placement(t, pocket)
+        if t.type_name == "SLOT":
+            return self._slot(t, its_id, placement, depth)
         if self.value(t, 6, "change_in_diameter", optional=True) is not None:
             raise UnsupportedEntity(t.type_name, t.id, "a tapered hole (change_in_diameter)")
         bottom = self.value(t, 7, "bottom_condition")
         bottom_name = _type_name(self.part21.get(bottom)) if isinstance(bottom, Ref) else ""
         return RoundHole(t.id, its_id, placement, depth, self.length(t, 5, "diameter"), bottom_name)
+
+    def _slot(self, t, its_id, placement, depth) -> Slot:
+        """SLOT(its_id, its_workpiece, its_operations, feature_placement, depth, course_of_travel,
+        swept_shape, end_conditions)."""
+        path = self.entity(t, 5, "course_of_travel", ("LINEAR_PATH",), unsupported=True)
+        course = LinearPath(path.id, self.placement(path, 0, "placement", optional=True),
+                            self.length(path, 1, "distance"), self.direction(path, 2, "its_direction"))
+        if course.distance <= 0:
+            raise StepNcError(f"#{path.id} LINEAR_PATH: the slot's distance must be positive, found "
+                              f"{course.distance:g}")
+        shape = self.entity(t, 6, "swept_shape", ("SQUARE_U_PROFILE",), unsupported=True)
+        if self.value(shape, 0, "placement", optional=True) is not None:
+            offset = self.placement(shape, 0, "placement")
+            if not np.allclose(offset.location, 0.0) or not np.allclose(offset.ref_direction, (1.0, 0.0, 0.0)):
+                raise UnsupportedEntity(shape.type_name, shape.id, "a profile placed off the slot's path")
+        width = self.length(shape, 1, "width")
+        if width <= 0:
+            raise StepNcError(f"#{shape.id} SQUARE_U_PROFILE: width must be positive, found {width:g}")
+        radii = [self.length(shape, 2, "first_radius", optional=True),
+                 self.length(shape, 4, "second_radius", optional=True)]
+        for index, name in ((3, "first_angle"), (5, "second_angle")):
+            angle = self.number(shape, index, name, optional=True)
+            if angle not in (None, 0.0, 90.0):
+                raise UnsupportedEntity(shape.type_name, shape.id, f"slanted walls ({name} {angle:g} degrees)")
+        ends = [_type_name(end) for end in self.entities(t, 7, "end_conditions")]
+        for end in ends:
+            if end not in SLOT_ENDS:
+                raise UnsupportedEntity(t.type_name, t.id, f"a {end}")
+        ends = (ends + ["RADIUSED_SLOT_END_TYPE"] * 2)[:2]   # not given: closed, as the tool's radius leaves it
+        floor = max((r for r in radii if r), default=None)
+        return Slot(t.id, its_id, placement, depth, course, width, floor, tuple(ends))
 
     def _profile_placement(self, t, pocket: ClosedPocket) -> ClosedPocket:
         """ISO 14649-10 places a profile in the feature's coordinates ("in reference to the

@@ -33,7 +33,7 @@ from ..program import Operation, Program, Tool
 from .inprocess import InProcessStock
 from .model import (
     DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourParallel, CuttingTool,
-    DrillingOperation, PlanarFace, PlaneMilling, Project, RoundHole, StepNcError, Unidirectional, Workingstep,
+    DrillingOperation, PlanarFace, PlaneMilling, Project, RoundHole, Slot, StepNcError, Unidirectional, Workingstep,
     read_project,
 )
 from .motion import (  # noqa: F401 (APPROACH_GAP ... re-exported: workplan.py was one module)
@@ -171,7 +171,7 @@ def in_process_stock(model: LoadedWorkplan) -> InProcessStock:
 
 def _feature_xy(feature):
     """Points (k, 2) around a feature in XY, or None."""
-    if isinstance(feature, ClosedPocket):
+    if isinstance(feature, (ClosedPocket, Slot)):
         return np.asarray(feature.outline(), float)[:, :2]
     if isinstance(feature, PlanarFace):
         return np.asarray(feature.corners(), float)[:, :2]
@@ -307,6 +307,15 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
                                        stock)
         else:
             motion = _pocket_roughing(operation, feature, tool, clearance_z, feed, clockwise, skip, stock)
+    elif isinstance(operation, BottomAndSideMilling) and isinstance(feature, Slot) \
+            and _slot_is_tool_wide(feature, tool, operation):
+        motion = _slot_centreline(operation, feature, tool, clearance_z, feed, skip, stock)
+    elif isinstance(operation, BottomAndSideMilling) and isinstance(feature, Slot):
+        if operation.finishing:     # a slot wider than the tool: cut as the pocket its outline is
+            motion = _pocket_finishing(operation, feature, tool, clearance_z, feed, clockwise, roughings, skip,
+                                       stock)
+        else:
+            motion = _pocket_roughing(operation, feature, tool, clearance_z, feed, clockwise, skip, stock)
     elif isinstance(operation, BottomAndSideMilling) and isinstance(feature, RoundHole):
         motion = _hole_milling(operation, feature, tool, clearance_z, feed, clockwise, roughings, skip, stock)
     else:
@@ -398,7 +407,7 @@ def _counter_clockwise(strategy, spindle_clockwise: bool) -> bool:
 
 def _raster_angle(strategy, pocket: ClosedPocket) -> float:
     """Degrees from +X of the feed direction (feature coordinates; default the feature's x axis)."""
-    local = strategy.feed_direction or (1.0, 0.0, 0.0)
+    local = strategy.feed_direction or getattr(pocket, "course", (1.0, 0.0, 0.0))   # a slot: along it
     world = pocket.feature_placement.direction_to_parent(local)
     return math.degrees(math.atan2(world[1], world[0]))
 
@@ -540,6 +549,49 @@ def _sweeps(centres: CrossSection, distance: float, radius: float, leftover: Cro
         return False
     swept = _offset(ring_region, radius) - _offset(ring_region, -radius)
     return (swept ^ leftover).area() > rg.MIN_AREA
+
+
+# A slot at most this much (mm) wider than the tool (plus twice allowance_side) is cut along its centre line.
+SLOT_FIT = 1e-3
+
+
+def _slot_is_tool_wide(slot: Slot, tool: Tool, operation: BottomAndSideMilling) -> bool:
+    return slot.width - 2 * (tool.radius + (operation.allowance_side or 0.0)) <= SLOT_FIT
+
+
+def _slot_centreline(operation: BottomAndSideMilling, slot: Slot, tool: Tool, clearance_z, feed, skip, stock=None):
+    """A slot as wide as the tool: layer by layer along its centre line, back and forth.  At an open
+    end the tool runs out until it is clear of the part (radius + FACING_RUNOUT); at a radiused end it
+    stops at the end's centre (the tool makes the half circle); at a flat end its edge stops on the end
+    (the corners keep the tool's radius, noted)."""
+    if tool.kind == "drill":
+        skip(f"a {tool.label or 'drill'} cannot mill slot #{slot.id}: give an end mill")
+        return None
+    allowance = operation.allowance_side or 0.0
+    if slot.width - 2 * (tool.radius + allowance) < -SLOT_FIT:
+        skip(f"the {tool.diameter:g} mm tool (allowance {allowance:g} mm) is wider than the {slot.width:g} mm "
+             f"slot #{slot.id}")
+        return None
+    start, end = slot.axis()
+    along = (end - start) / np.linalg.norm(end - start)
+    reach = {"OPEN_SLOT_END_TYPE": tool.radius + FACING_RUNOUT, "RADIUSED_SLOT_END_TYPE": 0.0,
+             "FLAT_SLOT_END_TYPE": -tool.radius - allowance}
+    first, last = start - along * reach[slot.ends[0]], end + along * reach[slot.ends[1]]
+    if (last - first) @ along <= 0:
+        skip(f"slot #{slot.id} is shorter than the {tool.diameter:g} mm tool")
+        return None
+    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
+    if "FLAT_SLOT_END_TYPE" in slot.ends:
+        motion.notes.append(f"the flat end of slot #{slot.id} keeps the tool's radius R{tool.radius:g} in its corners")
+    floor = slot.bottom_z + (operation.allowance_bottom or 0.0)
+    forward, backward = [np.array([first, last])], [np.array([last, first])]
+    cleared = slot.top_z
+    for index, z in enumerate(_levels(slot.top_z, floor, operation.axial_cutting_depth or tool.radius)):
+        paths, other = (forward, backward) if index % 2 == 0 else (backward, forward)
+        motion.cut(paths, z, cleared)
+        motion.levels[(id(other), 0)] = z     # the next layer starts where this one ended, cut to z
+        cleared = z
+    return motion
 
 
 # Hole bottoms an end mill cuts; a milled through hole goes this far (mm) below the hole bottom unless the
