@@ -64,12 +64,15 @@ def load_scene_workplan(scene):
 
 def scene_program(scene, loaded):
     props = scene.kezuri.stepnc
+    if not loaded.workingsteps:
+        raise convert.SceneInputError(stepnc.nothing_to_machine(loaded.warnings))
     order = [item.ident for item in props.steps]
     enabled = [item.ident for item in props.steps if item.enabled]
     if not enabled:
         raise convert.SceneInputError("every workingstep is switched off: nothing to export")
-    program = stepnc.to_program(loaded, order=order, enabled=enabled, name=scene.name)
-    program.notes = list(loaded.warnings) + list(program.notes)
+    program = stepnc.to_program(loaded, order=order, enabled=enabled, name=scene.name)   # notes: the file's too
+    if not program.operations:
+        raise convert.SceneInputError(stepnc.nothing_to_machine(program.notes))
     return program
 
 
@@ -375,10 +378,9 @@ def batch(args) -> dict:
     simulation_report, png = simview.batch_simulation(scene, simulation((loaded, program, frame)), args.out,
                                                       "stepnc", checked)
     steps = {step.id: step for step in loaded.workingsteps}
-    order = [item.ident for item in scene.kezuri.stepnc.steps if item.enabled]
     workingsteps = []
-    for ident, op in zip(order, program.operations):
-        entry = describe_step(steps[ident])
+    for op in program.operations:
+        entry = describe_step(steps[op.source_id])
         entry.update(tool=op.tool.describe(), moves=len(op))
         workingsteps.append(entry)
     return {

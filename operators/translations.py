@@ -508,6 +508,7 @@ MESSAGES = {
     "the face normals point inward: flip them so they point out of the part":
         "面の法線が内側を向いています：部品の外側を向くように反転してください",
     # toolpath/stepnc/workplan.py: notes the STEP-NC operators report as warnings
+    "the workplan has no workingstep": "ワークプランにワーキングステップがありません",
     "the reduced spindle speeds of DRILLING_TYPE_STRATEGY are not written (one spindle speed per operation)":
         "DRILLING_TYPE_STRATEGY の減速した主軸回転数は書き出しません（主軸回転数は工程ごとに1つです）",
     "the spindle is not stopped at the bottom (not written); the reamer is fed out":
@@ -935,6 +936,41 @@ MESSAGE_TEMPLATES = {
     'no workflow {}; the table has {}': 'ワークフロー {0} はありません。あるのは {1} です',
     'post class {} needs {}': 'ポストプロセッサのクラス {0} には {1} が必要です',
     'post {} ({}, {}) is already registered by {}.{}': 'ポストプロセッサ {0}（{1}、{2}）は {3}.{4} が登録済みです',
+    # toolpath/stepnc: warnings and notes on files written by other tools
+    "workingstep #{} '{}' skipped: {}": "ワーキングステップ #{0} '{1}' を飛ばしました：{2}",
+    'no workingstep can be machined: {}': '加工できるワーキングステップがありません：{0}',
+    "{}: its profile #{} repeats the pocket's placement #{} ({}); read as one placement (the pocket at {}), not "
+    "composed (which would put it at {}); the file gives no stock BLOCK to check against":
+        "{0}：輪郭 #{1} がポケットの配置 #{2}（{3}）を繰り返しています。合成せず1つの配置として読みました"
+        "（ポケットは {4}。合成すると {5}）。ファイルに照合できる素材 BLOCK がありません",
+    "{}: composed with its profile's placement #{} the pocket would reach {} mm beyond the stock BLOCK #{}; the "
+    "profile's placement is read as absolute (the generator wrote the pocket's placement twice): the pocket is cut "
+    "at {} on the stock":
+        "{0}：輪郭の配置 #{1} と合成するとポケットが素材 BLOCK #{3} から {2} mm はみ出します。輪郭の配置を絶対座標と"
+        "して読みました（生成元がポケットの配置を二重に書いています）：ポケットは素材上の {4} に加工します",
+    "{}: reaches {} mm beyond the stock BLOCK #{} (and {} mm with its profile's placement read as absolute); cut as "
+    "written, check the file":
+        "{0}：素材 BLOCK #{2} から {1} mm はみ出します（輪郭の配置を絶対座標として読んでも {3} mm）。"
+        "書かれたとおりに加工します。ファイルを確認してください",
+    "#{} MILLING_TECHNOLOGY: spindle {} rev/s would be S{}; the file gives rpm where ISO 14649 says rev/s (as "
+    "2012-era generators wrote it): S{} written":
+        "#{0} MILLING_TECHNOLOGY：主軸 {1} rev/s は S{2} になります。ISO 14649 が rev/s とするところにファイルは "
+        "rpm を書いています（2012年ごろの生成元の書き方）：S{3} と書き出します",
+    '{}: S{} is beyond any spindle (more than {} rpm)': '{0}：S{1} はどの主軸の能力も超えています（{2} rpm 超）',
+    "{}: S{} runs the {} mm tool's rim at {} m/min (more than {} m/min)":
+        "{0}：S{1} では {2} mm の工具の外周速度が {3} m/min になります（{4} m/min 超）",
+    '{}: feed {} mm/min is more than {} mm/min (was the feedrate written in another unit than m/s?)':
+        '{0}：送り {1} mm/min は {2} mm/min を超えています（feedrate が m/s 以外の単位で書かれていませんか？）',
+    '{}: {} mm per revolution is too much for the {} mm tool (at most {})':
+        '{0}：1回転あたり {1} mm は {2} mm の工具には大きすぎます（上限 {3}）',
+    '{}: {} mm per tooth is too much for the {} mm tool with {} teeth (at most {})':
+        '{0}：1刃あたり {1} mm は刃数 {3} の {2} mm の工具には大きすぎます（上限 {4}）',
+    '{}: {} mm per tooth is below {} mm: the tool rubs': '{0}：1刃あたり {1} mm は {2} mm 未満です：工具がこすれるだけです',
+    "#{} LINEAR_PATH: the slot's distance must be positive, found {}":
+        "#{0} LINEAR_PATH：溝の長さ（distance）は正の値にしてください（値 {1}）",
+    '#{} SQUARE_U_PROFILE: width must be positive, found {}': '#{0} SQUARE_U_PROFILE：幅は正の値にしてください（値 {1}）',
+    "the flat end of slot #{} keeps the tool's radius R{} in its corners":
+        "溝 #{0} の平らな端の隅には工具の半径 R{1} が残ります",
 }
 
 

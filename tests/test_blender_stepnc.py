@@ -55,7 +55,11 @@ def test_reordered_and_disabled_workingsteps_shape_the_nc(scene, tmp_path):
     loaded = stepnc.load_workplan(EX1)
     normal = {op.name: op for op in stepnc.to_program(loaded).operations}
     swapped = {op.name: op for op in stepnc.to_program(loaded, order=[10, 11, 12, 14, 13]).operations}
-    assert np.array_equal(normal["WS FINISH POCKET1"].xyz, swapped["WS FINISH POCKET1"].xyz)
+    # (the approach to the first floor layer, where the pocket's middle is still uncut, stops above the
+    # material instead: test_stepnc.py::test_finishing_before_its_roughing_is_reported_not_replanned)
+    early, planned = swapped["WS FINISH POCKET1"], normal["WS FINISH POCKET1"]
+    assert np.array_equal(early.xyz[:, :2], planned.xyz[:, :2]) and np.array_equal(early.kind, planned.kind)
+    assert np.count_nonzero(early.xyz[:, 2] != planned.xyz[:, 2]) == 1
 
 
 def test_blender_pockets_written_as_iso14649_read_back_the_same(scene, tmp_path):
@@ -140,4 +144,35 @@ def test_batch_stepnc_bad_file_names_the_line_and_writes_no_nc(tmp_path):
     done = run_batch("stepnc", "--input", str(bad), "--out", str(tmp_path / "out"))
     assert done.returncode == 2
     assert "line" in done.stderr and "#30" in done.stderr and "Traceback" not in done.stderr
+    assert not list((tmp_path / "out").glob("stepnc.*"))
+
+
+def test_batch_report_labels_each_operation_with_its_workingstep(tmp_path):
+    """Finishing (#61) has no feedrate and is skipped: report.json lists rough (#60) and drill (#62)
+    under their own names, the skip note once, one T number per distinct tool."""
+    from test_stepnc_conventions import pocket_file
+
+    source = tmp_path / "skipped.stp"
+    source.write_text(pocket_file(finish_technology="#124", finish_tool="#122", hole=True))
+    done = run_batch("stepnc", "--input", str(source), "--post", "linuxcnc", "--out", str(tmp_path / "out"))
+    assert done.returncode == 0, done.stderr[-3000:]
+    report = json.loads((tmp_path / "out" / "report.json").read_text())
+    assert [(s["id"], s["name"]) for s in report["workingsteps"]] == [(60, "WS ROUGH POCKET1"), (62, "WS DRILL HOLE1")]
+    assert [s["tool"].split()[0] for s in report["workingsteps"]] == ["T1", "T2"]
+    assert [op["name"] for op in report["operations"]] == ["WS ROUGH POCKET1", "WS DRILL HOLE1"]
+    skipped = [w for w in report["warnings"] if "skipped" in w]
+    assert len(skipped) == 1 and skipped[0].startswith("workingstep #61 'WS FINISH POCKET1' skipped")
+    assert report["simulation"]["rapid_collisions"] == []
+
+
+def test_batch_refusal_gives_the_reason_of_every_workingstep(tmp_path):
+    from test_stepnc_conventions import pocket_file
+
+    source = tmp_path / "unsupported.stp"
+    source.write_text(pocket_file(rough="SIDE_ROUGH_MILLING", finish="SIDE_FINISH_MILLING"))
+    done = run_batch("stepnc", "--input", str(source), "--out", str(tmp_path / "out"))
+    assert done.returncode == 2
+    assert "SIDE_ROUGH_MILLING #50 is not supported" in done.stderr
+    assert "SIDE_FINISH_MILLING #51 is not supported" in done.stderr
+    assert "switched off" not in done.stderr and "Traceback" not in done.stderr
     assert not list((tmp_path / "out").glob("stepnc.*"))

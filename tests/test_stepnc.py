@@ -376,8 +376,15 @@ def test_swapping_workingsteps_swaps_operations_and_nc(ex1, ex1_program):
 def test_finishing_before_its_roughing_is_reported_not_replanned(ex1, ex1_program):
     swapped = to_program(ex1, order=[10, 11, 12, 14, 13])
     assert any("assumes roughing #13" in note for note in swapped.notes)
-    np.testing.assert_array_equal(by_name(swapped)["WS FINISH POCKET1"].xyz,
-                                  by_name(ex1_program)["WS FINISH POCKET1"].xyz)
+    # The cuts are the same; only where the pocket's middle is still uncut (the first floor layer
+    # below the rough floor) the approach now stops above the material (test_stepnc_linking.py).
+    early, planned = by_name(swapped)["WS FINISH POCKET1"], by_name(ex1_program)["WS FINISH POCKET1"]
+    np.testing.assert_array_equal(early.kind, planned.kind)
+    np.testing.assert_array_equal(early.xyz[:, :2], planned.xyz[:, :2])
+    changed = np.flatnonzero(early.xyz[:, 2] != planned.xyz[:, 2])
+    assert len(changed) == 1 and early.kind[changed[0]] == RAPID
+    assert early.xyz[changed[0], 2] == pytest.approx(0.0 + 2.0)   # the pocket top (Z 0) + APPROACH_GAP
+    assert early.xyz[changed[0], 2] > planned.xyz[changed[0], 2]
     disabled = to_program(ex1, enabled=[10, 11, 12, 14])
     assert [op.name for op in disabled.operations] == ["WS FINISH PLANAR FACE1", "WS DRILL HOLE1", "WS REAM HOLE1",
                                                         "WS FINISH POCKET1"]
@@ -427,17 +434,17 @@ def test_unsupported_feature_is_skipped_with_a_warning():
     text = replace_instance(ex1_text(), 2, "#2= WORKPLAN('MAIN WORKPLAN',(#10,#11,#200,#12,#203,#13,#14),$,#8,$);")
     text = add_instances(
         text,
-        "#200= MACHINING_WORKINGSTEP('WS ROUGH SLOT1',#62,#201,#22,$);",
-        "#201= SLOT('SLOT1',#4,(#22),#84,#65,#24,#202,());",
-        "#202= SQUARE_U_PROFILE($,#58,0.,$,0.,$);",
+        "#200= MACHINING_WORKINGSTEP('WS ROUGH STEP1',#62,#201,#22,$);",
+        "#201= STEP('STEP1',#4,(#22),#84,#65,#24,#202,());",     # (SLOT is read since step19)
+        "#202= VEE_PROFILE($,#58,90.,0.);",
         "#203= PROGRAM_STOP();")
     loaded = load_workplan(text)
     assert [ws.id for ws in loaded.workingsteps] == [10, 11, 12, 13, 14]
-    assert any("#200" in w and "SLOT #201 is not supported" in w for w in loaded.warnings)
+    assert any("#200" in w and "STEP #201 is not supported" in w for w in loaded.warnings)
     assert any("#203 PROGRAM_STOP" in w for w in loaded.warnings)
     program = to_program(loaded)
     assert len(program.operations) == 5
-    assert any("SLOT #201" in note for note in program.notes)
+    assert any("STEP #201" in note for note in program.notes)
 
 
 def test_unsupported_strategy_and_tilted_feature_are_skipped():

@@ -109,6 +109,7 @@ class Operation:
     texture: GougeTexture | None = None
     coolant: bool = False
     comment: str = ""
+    source_id: int | None = None   # what the operation was made from (a STEP-NC workingstep's instance id)
 
     def __post_init__(self):
         self.kind = np.ascontiguousarray(self.kind, dtype=np.int8)

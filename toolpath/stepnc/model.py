@@ -24,7 +24,7 @@ Units: lengths in mm, angles in degrees, feed in m/s and spindle in rev/s as in 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Union
 
 import numpy as np
@@ -367,7 +367,64 @@ class RoundHole(_Feature):
         return tuple(float(v) for v in self.feature_placement.location[:2])
 
 
-Feature = Union[PlanarFace, ClosedPocket, RoundHole]
+SLOT_ENDS = ("OPEN_SLOT_END_TYPE", "RADIUSED_SLOT_END_TYPE", "FLAT_SLOT_END_TYPE")
+
+
+@dataclass(frozen=True)
+class Slot(_Feature):
+    """SLOT along a LINEAR_PATH with a SQUARE_U_PROFILE of ``width``.  ``ends``: the end types at the
+    path's start and end (OPEN: the slot runs out of the part, so the region the tools clear goes
+    one width beyond it; RADIUSED: a half circle of half the width; FLAT: square).  It answers what
+    the pocket strategies ask of a CLOSED_POCKET (outline, radii)."""
+
+    id: int
+    its_id: str
+    feature_placement: Placement
+    depth: Plane
+    course_of_travel: LinearPath
+    width: float
+    planar_radius: float | None
+    ends: tuple
+    orthogonal_radius = None
+    bottom_condition = "PLANAR_POCKET_BOTTOM_CONDITION"
+
+    def axis(self) -> tuple:
+        """(start, end) of the slot's centre line in world XY."""
+        path = self.course_of_travel
+        origin = (path.placement or IDENTITY).to_parent([(0.0, 0.0)])[0]
+        travel = (path.placement or IDENTITY).direction_to_parent(path.its_direction)
+        travel = travel / np.linalg.norm(travel) * path.distance
+        start, end = self.to_world_xy(np.array([origin, origin + travel]))
+        return start, end
+
+    @property
+    def course(self) -> tuple:
+        """The slot's direction in the feature's coordinates (the default raster direction)."""
+        path = self.course_of_travel
+        return tuple((path.placement or IDENTITY).direction_to_parent(path.its_direction))
+
+    def outline(self) -> np.ndarray:
+        """The region the slot removes in world XY (k, 2), counter-clockwise; open ends reach one
+        width beyond the part."""
+        start, end = self.axis()
+        along = (end - start) / np.linalg.norm(end - start)
+        side = np.array([-along[1], along[0]]) * self.width / 2
+        points = []
+        for point, kind, outward in ((end, self.ends[1], along), (start, self.ends[0], -along)):
+            if kind == "OPEN_SLOT_END_TYPE":
+                point = point + outward * self.width
+            if kind == "RADIUSED_SLOT_END_TYPE":
+                base = math.degrees(math.atan2(outward[1], outward[0]))
+                arc = _arc_points(np.append(point, 0.0), np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]),
+                                  self.width / 2, base - 90.0, 180.0)
+                points += list(arc[:, :2])
+            else:
+                turn = side if outward @ along > 0 else -side
+                points += [point - turn, point + turn]
+        return np.array(points)
+
+
+Feature = Union[PlanarFace, ClosedPocket, RoundHole, Slot]
 
 
 # --------------------------------------------------------------------------- tools and technology
@@ -899,7 +956,8 @@ class _Reader:
     # ---- features
 
     def feature(self, inst, index, name) -> Feature:
-        target = self.entity(inst, index, name, ("PLANAR_FACE", "CLOSED_POCKET", "ROUND_HOLE"), unsupported=True)
+        target = self.entity(inst, index, name, ("PLANAR_FACE", "CLOSED_POCKET", "ROUND_HOLE", "SLOT"),
+                             unsupported=True)
         return self.memoised(target, self._feature)
 
     def _feature(self, t) -> Feature:
@@ -931,15 +989,106 @@ class _Reader:
                 raise UnsupportedEntity(t.type_name, t.id, f"slanted walls (slope {slope:g} degrees)")
             bottom = self.entity(t, 7, "bottom_condition", ("PLANAR_POCKET_BOTTOM_CONDITION",
                                                              "THROUGH_POCKET_BOTTOM_CONDITION"), unsupported=True)
-            return ClosedPocket(t.id, its_id, placement, depth, bottom.type_name,
-                                self.length(t, 8, "planar_radius", optional=True),
-                                self.length(t, 9, "orthogonal_radius", optional=True),
-                                self.closed_profile(t, 10, "feature_boundary"))
+            pocket = ClosedPocket(t.id, its_id, placement, depth, bottom.type_name,
+                                  self.length(t, 8, "planar_radius", optional=True),
+                                  self.length(t, 9, "orthogonal_radius", optional=True),
+                                  self.closed_profile(t, 10, "feature_boundary"))
+            return self._profile_placement(t, pocket)
+        if t.type_name == "SLOT":
+            return self._slot(t, its_id, placement, depth)
         if self.value(t, 6, "change_in_diameter", optional=True) is not None:
             raise UnsupportedEntity(t.type_name, t.id, "a tapered hole (change_in_diameter)")
         bottom = self.value(t, 7, "bottom_condition")
         bottom_name = _type_name(self.part21.get(bottom)) if isinstance(bottom, Ref) else ""
         return RoundHole(t.id, its_id, placement, depth, self.length(t, 5, "diameter"), bottom_name)
+
+    def _slot(self, t, its_id, placement, depth) -> Slot:
+        """SLOT(its_id, its_workpiece, its_operations, feature_placement, depth, course_of_travel,
+        swept_shape, end_conditions)."""
+        path = self.entity(t, 5, "course_of_travel", ("LINEAR_PATH",), unsupported=True)
+        course = LinearPath(path.id, self.placement(path, 0, "placement", optional=True),
+                            self.length(path, 1, "distance"), self.direction(path, 2, "its_direction"))
+        if course.distance <= 0:
+            raise StepNcError(f"#{path.id} LINEAR_PATH: the slot's distance must be positive, found "
+                              f"{course.distance:g}")
+        shape = self.entity(t, 6, "swept_shape", ("SQUARE_U_PROFILE",), unsupported=True)
+        if self.value(shape, 0, "placement", optional=True) is not None:
+            offset = self.placement(shape, 0, "placement")
+            if not np.allclose(offset.location, 0.0) or not np.allclose(offset.ref_direction, (1.0, 0.0, 0.0)):
+                raise UnsupportedEntity(shape.type_name, shape.id, "a profile placed off the slot's path")
+        width = self.length(shape, 1, "width")
+        if width <= 0:
+            raise StepNcError(f"#{shape.id} SQUARE_U_PROFILE: width must be positive, found {width:g}")
+        radii = [self.length(shape, 2, "first_radius", optional=True),
+                 self.length(shape, 4, "second_radius", optional=True)]
+        for index, name in ((3, "first_angle"), (5, "second_angle")):
+            angle = self.number(shape, index, name, optional=True)
+            if angle not in (None, 0.0, 90.0):
+                raise UnsupportedEntity(shape.type_name, shape.id, f"slanted walls ({name} {angle:g} degrees)")
+        ends = [_type_name(end) for end in self.entities(t, 7, "end_conditions")]
+        for end in ends:
+            if end not in SLOT_ENDS:
+                raise UnsupportedEntity(t.type_name, t.id, f"a {end}")
+        ends = (ends + ["RADIUSED_SLOT_END_TYPE"] * 2)[:2]   # not given: closed, as the tool's radius leaves it
+        floor = max((r for r in radii if r), default=None)
+        return Slot(t.id, its_id, placement, depth, course, width, floor, tuple(ends))
+
+    def _profile_placement(self, t, pocket: ClosedPocket) -> ClosedPocket:
+        """ISO 14649-10 places a profile in the feature's coordinates ("in reference to the
+        manufacturing_feature; if not given, at its zero point"), so the outline is the feature
+        placement composed with the profile's.  Some generators write the feature's absolute
+        placement again as the profile's; composed, the pocket lands twice as far from the origin.
+        When the composed outline leaves the workpiece's BLOCK and the profile placement read as
+        absolute keeps it on the stock (or, with no BLOCK, when the profile repeats the feature's
+        location), the absolute reading is taken, with a warning naming the feature.  A pocket off
+        the stock in both readings is cut as written, with a warning."""
+        profile = pocket.feature_boundary
+        own = profile.placement
+        if own is None or np.allclose(own.location[:2], 0.0, atol=1e-9):
+            return pocket
+        frame = pocket.feature_placement
+        rotation = frame.matrix()
+        relative = Placement(own.id, own.name,
+                             tuple(float(v) for v in rotation.T @ (np.array(own.location) - frame.location)),
+                             tuple(float(v) for v in rotation.T @ np.array(own.axis)),
+                             tuple(float(v) for v in rotation.T @ np.array(own.ref_direction)))
+        absolute = replace(pocket, feature_boundary=replace(profile, placement=relative))
+        what = f"#{t.id} CLOSED_POCKET '{pocket.its_id}'"
+        block = self._feature_block(t)
+        if block is None:
+            if np.allclose(own.location, frame.location, atol=1e-6):
+                self.warnings.append(
+                    f"{what}: its profile #{profile.id} repeats the pocket's placement #{frame.id} "
+                    f"({_xy(frame.location)}); read as one placement (the pocket at {_xy(frame.location)}), not "
+                    f"composed (which would put it at {_xy(pocket.outline().mean(axis=0))}); the file gives no "
+                    "stock BLOCK to check against")
+                return absolute
+            return pocket
+        composed_off = _beyond(pocket.outline(), block)
+        if composed_off <= POCKET_OFF_STOCK:
+            return pocket
+        absolute_off = _beyond(absolute.outline(), block)
+        if absolute_off <= POCKET_OFF_STOCK:
+            self.warnings.append(
+                f"{what}: composed with its profile's placement #{own.id} the pocket would reach "
+                f"{composed_off:.3g} mm beyond the stock BLOCK #{block.id}; the profile's placement is read as "
+                f"absolute (the generator wrote the pocket's placement twice): the pocket is cut at "
+                f"{_xy(absolute.outline().mean(axis=0))} on the stock")
+            return absolute
+        self.warnings.append(
+            f"{what}: reaches {composed_off:.3g} mm beyond the stock BLOCK #{block.id} (and "
+            f"{absolute_off:.3g} mm with its profile's placement read as absolute); cut as written, check the file")
+        return pocket
+
+    def _feature_block(self, t):
+        """The BLOCK of the feature's workpiece (attribute its_workpiece), or None."""
+        try:
+            piece = self.entity(t, 1, "its_workpiece", ("WORKPIECE",), optional=True, unsupported=True)
+        except (UnsupportedEntity, StepNcError):
+            return None
+        if piece is None:
+            return None
+        return self.memoised(piece, self.workpiece).its_bounding_geometry
 
     def _no_bosses(self, t, index):
         bosses = self.value(t, index, "its_boss", optional=True)
@@ -1111,6 +1260,23 @@ class _Reader:
         clamps = self.entities(t, 6, "clamping_positions", ("CARTESIAN_POINT",))
         return Workpiece(t.id, self.text(t, 0, "its_id"), self.number(t, 2, "global_tolerance", optional=True),
                          block, tuple(self.coordinates(point) for point in clamps))
+
+
+# A pocket outline may reach this far (mm) beyond the stock BLOCK before its placement is questioned.
+POCKET_OFF_STOCK = 1e-3
+
+
+def _xy(point) -> str:
+    return f"X{float(point[0]):g} Y{float(point[1]):g}"
+
+
+def _beyond(outline, block: Block) -> float:
+    """How far (mm) an XY outline reaches outside the block's XY rectangle (0: inside)."""
+    (x0, y0, _), (x1, y1, _) = block.box()
+    points = np.asarray(outline, float)[:, :2]
+    over = np.maximum.reduce([x0 - points[:, 0], points[:, 0] - x1, y0 - points[:, 1], points[:, 1] - y1,
+                              np.zeros(len(points))])
+    return float(over.max())
 
 
 def read_project(part21: Part21File) -> tuple:

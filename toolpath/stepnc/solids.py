@@ -5,14 +5,14 @@ from __future__ import annotations
 import numpy as np
 
 from ..meshdata import prism
-from .model import ClosedPocket, PlanarFace, RoundHole
+from .model import ClosedPocket, PlanarFace, RoundHole, Slot
 
 
 def feature_solid(feature):
     """Vertices and faces of a prism showing where a feature removes material, or None for a
     feature of a kind not drawn."""
     top, bottom = feature.top_z, feature.bottom_z
-    if isinstance(feature, ClosedPocket):
+    if isinstance(feature, (ClosedPocket, Slot)):
         outline = np.asarray(feature.outline(), float)[:, :2]
     elif isinstance(feature, PlanarFace):
         outline = np.asarray(feature.corners(), float)

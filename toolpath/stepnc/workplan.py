@@ -25,31 +25,27 @@ import os
 from dataclasses import dataclass
 
 import numpy as np
-from manifold3d import CrossSection, JoinType
+from manifold3d import CrossSection
 
 from .. import region as rg
 from ..errors import InputError
-from ..program import ARC_CCW, ARC_CW, FEED, Operation, PathBuilder, Program, Tool
+from ..program import Operation, Program, Tool
+from .inprocess import InProcessStock
 from .model import (
-    CHORD_TOLERANCE, DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourParallel,
-    CuttingTool, DrillingOperation, PlanarFace, PlaneMilling, PlungeHelix, PlungeRamp, Project, RoundHole,
-    StepNcError, Unidirectional, Workingstep, read_project,
+    DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourParallel, CuttingTool,
+    DrillingOperation, PlanarFace, PlaneMilling, Project, RoundHole, Slot, StepNcError, Unidirectional, Workingstep,
+    read_project,
 )
-from .part21 import UNSET, Enum, parse_part21, read_part21
-from .part21_writer import Part21Writer
+from .motion import (  # noqa: F401 (APPROACH_GAP ... re-exported: workplan.py was one module)
+    APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, _empty, _levels, _Motion,
+    _offset, _ratio, _split_outside, _stepover,
+)
+from .part21 import parse_part21, read_part21
+from .pockets import PocketSpec, pockets_to_part21  # noqa: F401 (re-exported)
+from .technology import MissingTechnology, feed_and_speed  # noqa: F401 (re-exported)
 
-# Rapids stop this far (mm) above the level already cut, and feeding starts there.
-APPROACH_GAP = 2.0
 # A facing stroke starts and ends this far (mm) beyond the tool radius outside the face.
 FACING_RUNOUT = 2.0
-# Guards against values that would run for hours (a mistyped 1.E-9 radial depth): no stepover below
-# MIN_STEPOVER mm, no more than MAX_PASSES layers or contour passes in one operation.
-MIN_STEPOVER = 0.01
-MAX_PASSES = 5000
-# Stepover as a ratio of the tool diameter when the strategy gives neither overlap nor radial depth.
-DEFAULT_STEPOVER_RATIO = 0.5
-# A move at cutting depth between two paths is allowed when it stays this close (mm) to the region.
-LINK_TOLERANCE = 0.01
 # A through hole is drilled through: the drill's full diameter passes the stock bottom by this much (mm)
 # beyond the point's length.
 BREAKTHROUGH_CLEARANCE = 2.0
@@ -121,9 +117,7 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
                              f"given {order}")
         sequence = [steps[ident] for ident in order]
     enabled = set(steps) if enabled is None else set(enabled)
-    numbers = {}
-    for step in model.workingsteps:
-        numbers.setdefault(step.its_operation.its_tool.id, len(numbers) + 1)
+    numbers = tool_numbers(model.workingsteps)
     position = {step.id: index for index, step in enumerate(sequence)}
     notes = list(model.warnings)
     bottom, source = stock_bottom(model)
@@ -131,6 +125,7 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
         notes.append("the stock bottom is unknown (no workpiece BLOCK and no through feature): feature depths "
                      "are not checked against the stock")
     operations = []
+    stock = in_process_stock(model)
     for step in sequence:
         if step.id not in enabled:
             continue
@@ -143,12 +138,69 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
             if bottom is not None:
                 check_depth(step, bottom, source)
             tool = tool_for(step.its_operation.its_tool, numbers[step.its_operation.its_tool.id])
-            operation = plan_workingstep(step, tool, [rough.its_operation for rough in roughings], notes)
+            operation = plan_workingstep(step, tool, [rough.its_operation for rough in roughings], notes, stock)
         except InputError as error:
             raise StepNcError(f"workingstep #{step.id} '{step.its_id}': {error}") from None
         if operation is not None:
             operations.append(operation)
+            stock.cut(operation)
     return Program(name or model.project.its_id or "STEP-NC", operations, notes=notes)
+
+
+# Without a workpiece BLOCK, the in-process stock covers the features and this much (mm) around them;
+# beyond it the material is taken as high as the highest feature top.
+UNKNOWN_STOCK_MARGIN = 50.0
+
+
+def in_process_stock(model: LoadedWorkplan) -> InProcessStock:
+    """The material before the first workingstep: the workpieces' BLOCKs (nothing outside them), or
+    when the file gives none, material up to the highest feature top everywhere."""
+    boxes = [w.its_bounding_geometry.box() for w in model.project.its_workpieces
+             if w.its_bounding_geometry is not None]
+    if boxes:
+        low = np.min([box[0] for box in boxes], axis=0)
+        high = np.max([box[1] for box in boxes], axis=0)
+        return InProcessStock(low[0], low[1], high[0], high[1], float(high[2]))
+    features = {step.its_feature.id: step.its_feature for step in model.workingsteps}.values()
+    top = max((feature.top_z for feature in features), default=0.0)
+    points = [_feature_xy(feature) for feature in features]
+    points = np.vstack([p for p in points if p is not None] or [np.zeros((1, 2))])
+    (x0, y0), (x1, y1) = points.min(axis=0) - UNKNOWN_STOCK_MARGIN, points.max(axis=0) + UNKNOWN_STOCK_MARGIN
+    return InProcessStock(x0, y0, x1, y1, top, outside=top)
+
+
+def _feature_xy(feature):
+    """Points (k, 2) around a feature in XY, or None."""
+    if isinstance(feature, (ClosedPocket, Slot)):
+        return np.asarray(feature.outline(), float)[:, :2]
+    if isinstance(feature, PlanarFace):
+        return np.asarray(feature.corners(), float)[:, :2]
+    if isinstance(feature, RoundHole):
+        return np.asarray(feature.centre, float)[None, :] + np.array([[-1, -1], [1, 1]]) * feature.diameter / 2
+    return None
+
+
+def nothing_to_machine(notes) -> str:
+    """Why a file gives nothing to cut: the reason of every workingstep left out (from the
+    warnings of :func:`load_workplan` or the notes of :func:`to_program`)."""
+    reasons = [note for note in notes if " skipped" in note] or list(notes)
+    if not reasons:
+        return "the workplan has no workingstep"
+    return "no workingstep can be machined: " + "; ".join(reasons)
+
+
+def tool_numbers(workingsteps) -> dict:
+    """{MILLING_CUTTING_TOOL instance id: T number}: one number per distinct tool, in order of first
+    use.  Generators often write a new tool instance for every operation; instances with the same
+    name, body and dimensions are one tool."""
+    numbers, by_tool = {}, {}
+    for step in workingsteps:
+        tool = step.its_operation.its_tool
+        body = tool.its_tool_body
+        key = (tool.its_id, body.type_name, body.dimension, body.number_of_teeth, body.taper_angle,
+               tool.overall_assembly_length)
+        numbers[tool.id] = by_tool.setdefault(key, len(by_tool) + 1)
+    return numbers
 
 
 def stock_bottom(model: LoadedWorkplan) -> tuple:
@@ -211,34 +263,13 @@ def tool_for(tool: CuttingTool, number: int) -> Tool:
                 label=BODY_LABELS.get(body.type_name, ""), **extra)
 
 
-def feed_and_speed(operation, tool: Tool) -> tuple:
-    """(feed mm/min, spindle rpm, clockwise) from MILLING_TECHNOLOGY; the spindle may come from
-    the cutting speed and the feed from the feed per tooth."""
-    technology = operation.its_technology
-    rpm = technology.spindle_rpm
-    if rpm is None and technology.cutspeed:
-        rpm = technology.cutspeed * 60000.0 / (math.pi * tool.diameter)
-    if rpm is None:
-        raise StepNcError(f"#{technology.id} MILLING_TECHNOLOGY: neither spindle nor cutspeed is given")
-    if not rpm > 0:
-        given = (f"spindle {technology.spindle:g} rev/s" if technology.spindle_rpm is not None
-                 else f"cutspeed {technology.cutspeed:g} m/s")
-        raise StepNcError(f"#{technology.id} MILLING_TECHNOLOGY: spindle speed {rpm:g} rpm ({given}); a cutting "
-                          "operation needs a turning spindle")
-    feed = technology.feed_mm_min
-    teeth = operation.its_tool.its_tool_body.number_of_teeth
-    if feed is None and technology.feedrate_per_tooth and teeth:
-        feed = technology.feedrate_per_tooth * teeth * rpm
-    if not feed or feed <= 0:
-        raise StepNcError(f"#{technology.id} MILLING_TECHNOLOGY: no positive feedrate (nor feedrate_per_tooth "
-                          "with a known number of teeth)")
-    return feed, rpm, technology.spindle_clockwise
-
-
-def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list) -> Operation | None:
+def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list,
+                     stock: InProcessStock | None = None) -> Operation | None:
     """The Operation of one workingstep; None (with a note) when it cannot be machined.
 
-    ``roughings`` are the roughing operations of the same feature, used by finishing.
+    ``roughings`` are the roughing operations of the same feature, used by finishing.  ``stock``
+    is the material the workingsteps before it leave (approaches stop above it); None: the
+    workingstep assumes what it assumes (its roughings done, the feature top the stock top).
     """
     operation, feature = step.its_operation, step.its_feature
     safe_z = float(step.its_secplane.position.location[2])
@@ -251,20 +282,42 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
             raise StepNcError(f"#{operation.id} {operation.type_name}: retract_plane {operation.retract_plane:g} "
                               "must be above the feature (positive)")
         clearance_z = min(safe_z, feature.top_z + operation.retract_plane)
-    feed, rpm, clockwise = feed_and_speed(operation, tool)
-
+    if stock is not None and stock.highest() + APPROACH_GAP > clearance_z:
+        # A retract plane over a feature below material not cut yet (a hole in a pocket floor
+        # drilled before the pocket): travel above the material instead.
+        clearance_z = min(safe_z, stock.highest() + APPROACH_GAP)
     def skip(reason):
         notes.append(f"workingstep #{step.id} '{step.its_id}' skipped: {reason}")
 
+    checks: list = []
+    try:
+        feed, rpm, clockwise = feed_and_speed(operation, tool, checks)
+    except MissingTechnology as error:
+        skip(str(error))
+        return None
+    notes += [f"workingstep #{step.id} '{step.its_id}': {note}" for note in checks]
+
     if isinstance(operation, DrillingOperation) and isinstance(feature, RoundHole):
-        motion = _hole(operation, feature, clearance_z, feed, skip)
+        motion = _hole(operation, feature, tool, clearance_z, feed, skip, stock)
     elif isinstance(operation, PlaneMilling) and isinstance(feature, PlanarFace):
-        motion = _face(operation, feature, tool, clearance_z, feed, roughings, skip)
+        motion = _face(operation, feature, tool, clearance_z, feed, roughings, skip, stock)
     elif isinstance(operation, BottomAndSideMilling) and isinstance(feature, ClosedPocket):
         if operation.finishing:
-            motion = _pocket_finishing(operation, feature, tool, clearance_z, feed, clockwise, roughings, skip)
+            motion = _pocket_finishing(operation, feature, tool, clearance_z, feed, clockwise, roughings, skip,
+                                       stock)
         else:
-            motion = _pocket_roughing(operation, feature, tool, clearance_z, feed, clockwise, skip)
+            motion = _pocket_roughing(operation, feature, tool, clearance_z, feed, clockwise, skip, stock)
+    elif isinstance(operation, BottomAndSideMilling) and isinstance(feature, Slot) \
+            and _slot_is_tool_wide(feature, tool, operation):
+        motion = _slot_centreline(operation, feature, tool, clearance_z, feed, skip, stock)
+    elif isinstance(operation, BottomAndSideMilling) and isinstance(feature, Slot):
+        if operation.finishing:     # a slot wider than the tool: cut as the pocket its outline is
+            motion = _pocket_finishing(operation, feature, tool, clearance_z, feed, clockwise, roughings, skip,
+                                       stock)
+        else:
+            motion = _pocket_roughing(operation, feature, tool, clearance_z, feed, clockwise, skip, stock)
+    elif isinstance(operation, BottomAndSideMilling) and isinstance(feature, RoundHole):
+        motion = _hole_milling(operation, feature, tool, clearance_z, feed, clockwise, roughings, skip, stock)
     else:
         skip(f"{operation.type_name} #{operation.id} on a {type(feature).__name__} #{feature.id} "
              "is not supported")
@@ -277,205 +330,11 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
     notes += [f"workingstep #{step.id} '{step.its_id}': {note}" for note in motion.notes]
     functions = operation.its_machine_functions
     return motion.operation(step.its_id, tool, rpm, clockwise, safe_z, bool(functions and functions.coolant),
-                            f"#{step.id} {operation.type_name} {operation.its_id}")
-
-
-# --------------------------------------------------------------------------- motion
-
-
-class _Motion:
-    """The moves of one operation.
-
-    Between cuts the tool rapids at the clearance (retract) plane, rapids down to
-    APPROACH_GAP above the level already cut, then approaches.  Consecutive paths at the same
-    depth are joined by a feed move when the straight link stays inside ``region`` (the tool
-    centre region); otherwise the tool retracts and approaches again.
-    """
-
-    def __init__(self, clearance_z, feed, approach=None, retract=None, region: CrossSection | None = None):
-        self.path = PathBuilder(clearance_z, feed, feed)
-        self.clearance_z = clearance_z
-        self.approach = approach
-        self.retract_strategy = retract
-        self.region = None if region is None else _offset(region, LINK_TOLERANCE)  # None: never link
-        self.notes: list = []
-        self.entry_z = clearance_z     # where the last approach started (the retract ends there)
-        self.previous_xy = None        # the point before the current one along the cut (retract ramp)
-
-    def cut(self, paths, z: float, cleared_z: float, link: bool = True):
-        """Cut every path ((k, 2) XY points) at height z; the material above cleared_z is gone.
-        ``link=False`` lifts between paths even when a link would fit (one-way strokes)."""
-        for points in paths:
-            points = np.asarray(points, float)
-            here = self.path.position
-            if (link and here is not None and abs(here[2] - z) < 1e-9
-                    and _segment_inside(self.region, here[:2], points[0])):
-                self.path.line(points[0][0], points[0][1], z)
-            else:
-                self.leave()
-                self._enter(points, z, min(cleared_z + APPROACH_GAP, self.clearance_z))
-            for x, y in points[1:]:
-                self.previous_xy = np.array(self.path.position[:2])
-                self.path.line(x, y, z)
-
-    def _enter(self, points, z, top):
-        x, y = points[0]
-        self.path.rapid(x, y, self.clearance_z)
-        if top < self.clearance_z - 1e-9:
-            self.path.rapid(x, y, top)
-        self.entry_z = top
-        self._add(self._plunge(self.approach, points, top, z))
-        self.previous_xy = None
-
-    def leave(self):
-        """Retract (the approach strategy played backwards), then rapid to the clearance plane."""
-        here = self.path.position
-        if here is None or here[2] >= self.clearance_z - 1e-9:
-            return
-        if self.retract_strategy is not None and here[2] < self.entry_z:
-            back = [here[:2]] if self.previous_xy is None else [here[:2], self.previous_xy]
-            down = self._plunge(self.retract_strategy, np.array(back), self.entry_z, here[2])
-            self._add(_reversed(down, (here[0], here[1], self.entry_z)))
-        self.path.retract()
-
-    def _add(self, moves):
-        for kind, (x, y, z), centre in moves:
-            if kind == FEED:
-                self.path.line(x, y, z)
-            else:
-                self.path.arc(x, y, z, centre[0], centre[1], clockwise=kind == ARC_CW)
-
-    def _plunge(self, strategy, points, top, z) -> list:
-        """Moves from (points[0], top) down to (points[0], z): straight down, a ramp back and forth
-        along the first segment of the path, or a helix inside the region."""
-        start = np.asarray(points[0], float)
-        if isinstance(strategy, PlungeHelix) and strategy.angle < 90:
-            moves = self._helix(start, top, z, strategy.radius, strategy.angle)
-            if moves:
-                return moves
-            self.notes.append(f"no room for a {strategy.radius:g} mm helix at X{start[0]:.3f} Y{start[1]:.3f}; "
-                              "ramped instead")
-            strategy = PlungeRamp(strategy.tool_orientation, strategy.angle)
-        if isinstance(strategy, PlungeRamp) and strategy.angle < 90:
-            following = [p for p in np.asarray(points[1:], float) if np.linalg.norm(p - start) > 1e-3]
-            if following:
-                return _ramp(start, following[0], top, z, strategy.angle)
-        return [(FEED, (start[0], start[1], z), None)]
-
-    def _helix(self, start, top, z, radius, angle) -> list:
-        """Full counter-clockwise turns through ``start``, centred where the circle fits the region."""
-        if radius <= 0:
-            return []
-        turns = max(1, math.ceil((top - z) / (2 * math.pi * radius * math.tan(math.radians(angle))) - 1e-9))
-        circle = np.linspace(0, 2 * math.pi, 64, endpoint=False)
-        for direction in ((1, 0), (0, 1), (-1, 0), (0, -1)):
-            centre = start + radius * np.array(direction, float)
-            ring = centre + radius * np.column_stack([np.cos(circle), np.sin(circle)])
-            if self.region is None or rg.contains_points(self.region, ring).all():
-                return [(ARC_CCW, (start[0], start[1], top - (top - z) * k / turns), centre)
-                        for k in range(1, turns + 1)]
-        return []
-
-    def operation(self, name, tool, rpm, clockwise, safe_z, coolant, comment) -> Operation:
-        self.leave()
-        x, y, _ = self.path.position
-        self.path.rapid(x, y, safe_z)
-        arrays = self.path.arrays()
-        first = arrays["xyz"][0]
-        return Operation(name=name, tool=tool, spindle_rpm=rpm, spindle_cw=clockwise,
-                         clearance_z=self.clearance_z, safe_z=safe_z, start=[first[0], first[1], safe_z],
-                         coolant=coolant, comment=comment, **arrays)
-
-
-def _segment_inside(region: CrossSection | None, a, b) -> bool:
-    """Whether the straight move a -> b stays in ``region`` (tested every 0.2 mm)."""
-    if region is None:
-        return False
-    count = max(2, math.ceil(np.linalg.norm(np.subtract(b, a)) / 0.2) + 1)
-    return bool(rg.contains_points(region, np.linspace(a, b, count)).all())
-
-
-def _split_outside(chains: list, region: CrossSection) -> list:
-    """Cut the chains where a step between rows leaves the region (a chord across a rounded
-    inside corner), so the tool goes round instead of through the allowance."""
-    grown = _offset(region, LINK_TOLERANCE)
-    pieces = []
-    for chain in chains:
-        start = 0
-        for k in range(1, len(chain) - 1):
-            if not _segment_inside(grown, chain[k], chain[k + 1]):
-                pieces.append(chain[start:k + 1])
-                start = k + 1
-        pieces.append(chain[start:])
-    return [piece for piece in pieces if len(piece) >= 2]
-
-
-def _ramp(start, toward, top, z, angle) -> list:
-    """Zigzag ramp down along start -> toward at ``angle`` degrees (or steeper), back at start."""
-    segment = np.asarray(toward, float) - start
-    room = np.linalg.norm(segment)
-    run = (top - z) / math.tan(math.radians(angle))  # horizontal travel the angle needs
-    legs = 2 * max(1, math.ceil(run / (2 * room) - 1e-9))
-    far = start + segment / room * (run / legs)  # legs are chosen so this stays within the segment
-    return [(FEED, (*(far if k % 2 == 0 else start), top - (top - z) * (k + 1) / legs), None) for k in range(legs)]
-
-
-def _reversed(moves, before) -> list:
-    """The same path travelled backwards: from the last end point back to ``before``."""
-    points = [tuple(before)] + [end for _, end, _ in moves]
-    flipped = {ARC_CW: ARC_CCW, ARC_CCW: ARC_CW}
-    return [(flipped.get(kind, kind), points[i], centre) for i, (kind, _, centre) in reversed(list(enumerate(moves)))]
-
-
-def _levels(top: float, floor: float, step: float | None) -> list:
-    """Cutting levels below ``top`` down to ``floor``, evenly spaced and at most ``step`` apart."""
-    height = top - floor
-    if height <= 1e-9:
-        return []
-    count = max(1, math.ceil(height / step - 1e-9)) if step else 1
-    if count > MAX_PASSES:
-        raise StepNcError(f"{height:g} mm cut {step:g} mm at a time needs {count} layers (more than {MAX_PASSES}): "
-                          "check axial_cutting_depth")
-    return [top - height * k / count for k in range(1, count + 1)]
-
-
-def _ratio(value: float) -> float:
-    """ISO 14649 ratios run 0..1; values above 1 are read as percent, as older files (the
-    original Example 1) wrote them."""
-    return value / 100 if value > 1 else value
-
-
-def _stepover(diameter: float, overlap: float | None, radial: float | None) -> float:
-    """From the overlap (a ratio of the diameter) and the radial cutting depth: the smaller
-    when both are given."""
-    candidates = []
-    if overlap is not None:
-        candidates.append(diameter * (1 - _ratio(overlap)))
-    if radial:
-        candidates.append(radial)
-    stepover = min(candidates) if candidates else diameter * DEFAULT_STEPOVER_RATIO
-    if stepover < MIN_STEPOVER:
-        raise StepNcError(f"stepover {stepover:g} mm (overlap {overlap}, radial depth {radial}) is below "
-                          f"{MIN_STEPOVER} mm")
-    return stepover
+                            f"#{step.id} {operation.type_name} {operation.its_id}", step.id)
 
 
 # --------------------------------------------------------------------------- regions
 
-
-def _offset(region: CrossSection, delta: float) -> CrossSection:
-    """Round-join offset with arcs within CHORD_TOLERANCE (finer than region.offset, so finishing
-    passes keep the tool edge on the wall to a few microns)."""
-    if delta == 0:
-        return region
-    radius = abs(delta)
-    segments = 720 if radius <= CHORD_TOLERANCE else min(
-        3600, max(8, math.ceil(math.pi / math.acos(1 - CHORD_TOLERANCE / radius))))
-    return region.offset(delta, JoinType.Round, 2.0, segments)
-
-
-def _empty(region: CrossSection) -> bool:
-    return region.area() < rg.MIN_AREA
 
 
 def centre_region(pocket: ClosedPocket, distance: float) -> CrossSection:
@@ -548,7 +407,7 @@ def _counter_clockwise(strategy, spindle_clockwise: bool) -> bool:
 
 def _raster_angle(strategy, pocket: ClosedPocket) -> float:
     """Degrees from +X of the feed direction (feature coordinates; default the feature's x axis)."""
-    local = strategy.feed_direction or (1.0, 0.0, 0.0)
+    local = strategy.feed_direction or getattr(pocket, "course", (1.0, 0.0, 0.0))   # a slot: along it
     world = pocket.feature_placement.direction_to_parent(local)
     return math.degrees(math.atan2(world[1], world[0]))
 
@@ -578,7 +437,7 @@ def _fill(region: CrossSection, strategy, stepover: float, radius: float, pocket
 # --------------------------------------------------------------------------- features
 
 
-def _face(operation: PlaneMilling, face: PlanarFace, tool: Tool, clearance_z, feed, roughings, skip):
+def _face(operation: PlaneMilling, face: PlanarFace, tool: Tool, clearance_z, feed, roughings, skip, stock=None):
     """Facing strokes layer by layer; finishing starts below what roughing of the face left."""
     strategy = operation.its_machining_strategy or Bidirectional(None, None, None, None, None)
     if isinstance(strategy, ContourParallel):
@@ -594,7 +453,7 @@ def _face(operation: PlaneMilling, face: PlanarFace, tool: Tool, clearance_z, fe
         paths = [np.vstack([s if k % 2 == 0 else s[::-1] for k, s in enumerate(strokes)])]
     else:
         paths = strokes
-    motion = _Motion(clearance_z, feed, operation.approach, operation.retract)
+    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
     cleared = start
     for z in _levels(start, floor, operation.axial_cutting_depth or tool.flute_length):
         motion.cut(paths, z, cleared)
@@ -628,7 +487,7 @@ def _facing_strokes(face: PlanarFace, strategy, radius: float, stepover: float) 
     return [np.array([start * direction + o * left, end * direction + o * left]) for o in offsets]
 
 
-def _pocket_roughing(operation, pocket, tool, clearance_z, feed, spindle_clockwise, skip):
+def _pocket_roughing(operation, pocket, tool, clearance_z, feed, spindle_clockwise, skip, stock=None):
     """The pocket less the allowances, cleared layer by layer."""
     strategy = operation.its_machining_strategy or Bidirectional(None, None, None, None, None)
     centres = centre_region(pocket, tool.radius + (operation.allowance_side or 0.0))
@@ -638,7 +497,7 @@ def _pocket_roughing(operation, pocket, tool, clearance_z, feed, spindle_clockwi
         return None
     stepover = _stepover(tool.diameter, strategy.overlap, operation.radial_cutting_depth)
     paths = _fill(centres, strategy, stepover, tool.radius, pocket, spindle_clockwise)
-    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres)
+    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres, stock, tool.radius)
     floor = pocket.bottom_z + (operation.allowance_bottom or 0.0)
     cleared = pocket.top_z
     for z in _levels(pocket.top_z, floor, operation.axial_cutting_depth or tool.flute_length):
@@ -647,7 +506,7 @@ def _pocket_roughing(operation, pocket, tool, clearance_z, feed, spindle_clockwi
     return motion
 
 
-def _pocket_finishing(operation, pocket, tool, clearance_z, feed, spindle_clockwise, roughings, skip):
+def _pocket_finishing(operation, pocket, tool, clearance_z, feed, spindle_clockwise, roughings, skip, stock=None):
     """Rings over what roughing left along the walls at every layer; the whole floor below the
     rough floor (everything at every layer when nothing roughs the pocket)."""
     strategy = operation.its_machining_strategy or ContourParallel(None, None, "CCW", None)
@@ -669,7 +528,7 @@ def _pocket_finishing(operation, pocket, tool, clearance_z, feed, spindle_clockw
                 raise StepNcError(f"more than {MAX_PASSES} finishing passes at a {stepover:g} mm stepover")
         ccw = _counter_clockwise(strategy, spindle_clockwise)
         wall_paths = _rings(centres, (distances or [0.0])[::-1], ccw, rg.centroid(centres))
-    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres)
+    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres, stock, tool.radius)
     if (pocket.planar_radius or 0.0) > tool.corner_radius + 1e-9:
         motion.notes.append(f"the floor fillet R{pocket.planar_radius:g} is cut with the tool's corner "
                             f"radius R{tool.corner_radius:g}")
@@ -692,6 +551,120 @@ def _sweeps(centres: CrossSection, distance: float, radius: float, leftover: Cro
     return (swept ^ leftover).area() > rg.MIN_AREA
 
 
+# A slot at most this much (mm) wider than the tool (plus twice allowance_side) is cut along its centre line.
+SLOT_FIT = 1e-3
+
+
+def _slot_is_tool_wide(slot: Slot, tool: Tool, operation: BottomAndSideMilling) -> bool:
+    return slot.width - 2 * (tool.radius + (operation.allowance_side or 0.0)) <= SLOT_FIT
+
+
+def _slot_centreline(operation: BottomAndSideMilling, slot: Slot, tool: Tool, clearance_z, feed, skip, stock=None):
+    """A slot as wide as the tool: layer by layer along its centre line, back and forth.  At an open
+    end the tool runs out until it is clear of the part (radius + FACING_RUNOUT); at a radiused end it
+    stops at the end's centre (the tool makes the half circle); at a flat end its edge stops on the end
+    (the corners keep the tool's radius, noted)."""
+    if tool.kind == "drill":
+        skip(f"a {tool.label or 'drill'} cannot mill slot #{slot.id}: give an end mill")
+        return None
+    allowance = operation.allowance_side or 0.0
+    if slot.width - 2 * (tool.radius + allowance) < -SLOT_FIT:
+        skip(f"the {tool.diameter:g} mm tool (allowance {allowance:g} mm) is wider than the {slot.width:g} mm "
+             f"slot #{slot.id}")
+        return None
+    start, end = slot.axis()
+    along = (end - start) / np.linalg.norm(end - start)
+    reach = {"OPEN_SLOT_END_TYPE": tool.radius + FACING_RUNOUT, "RADIUSED_SLOT_END_TYPE": 0.0,
+             "FLAT_SLOT_END_TYPE": -tool.radius - allowance}
+    first, last = start - along * reach[slot.ends[0]], end + along * reach[slot.ends[1]]
+    if (last - first) @ along <= 0:
+        skip(f"slot #{slot.id} is shorter than the {tool.diameter:g} mm tool")
+        return None
+    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
+    if "FLAT_SLOT_END_TYPE" in slot.ends:
+        motion.notes.append(f"the flat end of slot #{slot.id} keeps the tool's radius R{tool.radius:g} in its corners")
+    floor = slot.bottom_z + (operation.allowance_bottom or 0.0)
+    forward, backward = [np.array([first, last])], [np.array([last, first])]
+    cleared = slot.top_z
+    for index, z in enumerate(_levels(slot.top_z, floor, operation.axial_cutting_depth or tool.radius)):
+        paths, other = (forward, backward) if index % 2 == 0 else (backward, forward)
+        motion.cut(paths, z, cleared)
+        motion.levels[(id(other), 0)] = z     # the next layer starts where this one ended, cut to z
+        cleared = z
+    return motion
+
+
+# Hole bottoms an end mill cuts; a milled through hole goes this far (mm) below the hole bottom unless the
+# operation gives an overcut_length.
+MILLED_HOLE_BOTTOMS = ("FLAT_HOLE_BOTTOM", "") + THROUGH_CONDITIONS
+MILLED_BREAKTHROUGH = 1.0
+
+
+def _hole_milling(operation: BottomAndSideMilling, hole: RoundHole, tool: Tool, clearance_z, feed,
+                  spindle_clockwise, roughings, skip, stock=None):
+    """BOTTOM_AND_SIDE_ROUGH/FINISH_MILLING of a ROUND_HOLE by helical interpolation.
+
+    The tool centre runs on circles about the hole's axis, the outer one R - r - allowance_side
+    from it.  Each layer (axial_cutting_depth, default the tool radius) starts with one helical turn
+    down on the innermost circle and then steps out circle by circle (the stepover at most the
+    tool radius, the innermost circle within the tool radius of the axis, so no core stands).  A hole
+    at most twice the tool's diameter is one circle: plain helical interpolation.  Finishing after
+    roughing runs only the outer circle above the rough floor and every circle below it."""
+    if tool.kind == "drill":
+        skip(f"a {tool.label or 'drill'} cannot mill hole #{hole.id} sideways: give an end mill")
+        return None
+    if hole.bottom_condition not in MILLED_HOLE_BOTTOMS:
+        skip(f"hole #{hole.id} has a {hole.bottom_condition}: only flat and through hole bottoms are milled")
+        return None
+    outer = hole.diameter / 2 - tool.radius - (operation.allowance_side or 0.0)
+    if outer < 1e-3:
+        skip(f"the {tool.diameter:g} mm tool (allowance {operation.allowance_side or 0:g} mm) does not fit in the "
+             f"{hole.diameter:g} mm hole #{hole.id} with room to interpolate: drill or bore it")
+        return None
+    strategy = operation.its_machining_strategy
+    overlap = getattr(strategy, "overlap", None)
+    stepover = min(_stepover(tool.diameter, overlap, operation.radial_cutting_depth), tool.radius)
+    count = max(0, math.ceil((outer - tool.radius) / stepover - 1e-9))
+    radii = [outer - k * stepover for k in range(count, -1, -1)] if count else [outer]   # innermost first
+    ccw = strategy.rotation_direction == "CCW" if isinstance(strategy, ContourParallel) else spindle_clockwise
+    floor = hole.bottom_z + (operation.allowance_bottom or 0.0)
+    if hole.bottom_condition in THROUGH_CONDITIONS:
+        overcut = getattr(operation, "overcut_length", None)
+        floor = hole.bottom_z - (overcut if overcut is not None else MILLED_BREAKTHROUGH)
+    rough_floor = math.inf          # no roughing: every layer is below it (all circles)
+    if roughings:
+        rough_floor = min(hole.bottom_z + (rough.allowance_bottom or 0.0) for rough in roughings)
+    cx, cy = hole.centre
+    motion = _Motion(clearance_z, feed, stock=stock, radius=tool.radius)
+    path = motion.path
+    step = operation.axial_cutting_depth or tool.radius
+    levels = _levels(hole.top_z, floor, step)
+    rings = radii
+    for index, z in enumerate(levels):
+        rings = radii if z < rough_floor - 1e-9 else radii[-1:]
+        start = (cx + rings[0], cy)
+        if index == 0:
+            top = motion.entry_height(start, hole.top_z)
+            path.rapid(*start, clearance_z)
+            if top < clearance_z - 1e-9:
+                path.rapid(*start, top)
+        else:
+            if abs(path.position[0] - start[0]) > 1e-9:
+                path.line(*start, path.position[2])      # back in to the first circle, inside the cut
+            top = path.position[2]
+        turns = max(1, math.ceil((top - z) / step - 1e-9))
+        for k in range(1, turns + 1):                     # helical turns down to the layer
+            path.arc(*start, top - (top - z) * k / turns, cx, cy, clockwise=not ccw)
+        path.arc(*start, z, cx, cy, clockwise=not ccw)    # the layer's full circle
+        for radius in rings[1:]:
+            path.line(cx + radius, cy, z)
+            path.arc(cx + radius, cy, z, cx, cy, clockwise=not ccw)
+    if rings is radii and path.position is not None:     # the whole disc is cleared: off the wall to the axis
+        path.line(cx, cy, path.position[2])
+    path.retract()
+    return motion
+
+
 def drill_breakthrough(tool: CuttingTool) -> float:
     """How far below a through hole's bottom the drill tip goes so the full diameter clears it:
     the point's length, radius * tan(tool_top_angle), plus BREAKTHROUGH_CLEARANCE."""
@@ -703,7 +676,7 @@ def drill_breakthrough(tool: CuttingTool) -> float:
     return dimension.diameter / 2 * math.tan(math.radians(angle)) + BREAKTHROUGH_CLEARANCE
 
 
-def _hole(operation: DrillingOperation, hole: RoundHole, clearance_z, feed, skip):
+def _hole(operation: DrillingOperation, hole: RoundHole, tool: Tool, clearance_z, feed, skip, stock=None):
     """A straight feed to depth at the hole centre (no canned cycle, so every post can write it);
     DRILLING_TYPE_STRATEGY's reduced feeds over the first and last depths are honoured."""
     if operation.cutting_depth is None and operation.type_name == "CENTER_DRILLING":
@@ -722,11 +695,11 @@ def _hole(operation: DrillingOperation, hole: RoundHole, clearance_z, feed, skip
             breakthrough = drill_breakthrough(operation.its_tool)
             why = f"point length + {BREAKTHROUGH_CLEARANCE:g} mm"
         bottom -= breakthrough
-    motion = _Motion(clearance_z, feed)
+    motion = _Motion(clearance_z, feed, stock=stock, radius=tool.radius)
     if breakthrough:
         motion.notes.append(f"through hole: the drill goes {breakthrough:.3f} mm below the hole bottom "
                             f"({why}) to Z {bottom:.3f}")
-    entry = min(top + APPROACH_GAP, clearance_z)
+    entry = motion.entry_height((x, y), top)
     motion.path.rapid(x, y, clearance_z)
     if entry < clearance_z:
         motion.path.rapid(x, y, entry)
@@ -753,132 +726,3 @@ def _hole(operation: DrillingOperation, hole: RoundHole, clearance_z, feed, skip
         motion.path.line(x, y, entry, feed * retract)
     motion.path.retract()
     return motion
-
-
-# --------------------------------------------------------------------------- pockets -> ISO 14649
-
-
-@dataclass(frozen=True)
-class PocketSpec:
-    """A pocket to write: a closed outline in XY (mm, at the stock top), its depth below the
-    top, and optionally the radius of its vertical corners (orthogonal_radius)."""
-
-    name: str
-    outline: tuple
-    depth: float
-    corner_radius: float = 0.0
-
-
-def _as_rectangle(outline: np.ndarray):
-    """(centre, unit x, length, width) when the outline is a rectangle, else None."""
-    if len(outline) != 4:
-        return None
-    edges = np.roll(outline, -1, axis=0) - outline
-    lengths = np.linalg.norm(edges, axis=1)
-    for k in range(4):
-        if abs(edges[k] @ edges[(k + 1) % 4]) > 1e-9 * lengths[k] * lengths[(k + 1) % 4]:
-            return None
-    return outline.mean(axis=0), edges[0] / lengths[0], float(lengths[0]), float(lengths[1])
-
-
-def pockets_to_part21(stock_box, pockets, tool: Tool, *, feed: float = 600.0, spindle_rpm: float = 10000.0,
-                      axial_depth: float | None = None, allowance_side: float = 0.5,
-                      allowance_bottom: float = 0.2, overlap: float = 0.5, ramp_angle: float = 5.0,
-                      retract_height: float = 5.0, security_height: float = 10.0,
-                      name: str = "KEZURI POCKETS") -> str:
-    """An ISO 14649 file (Part 21 text) that roughs and finishes each pocket in turn.
-
-    stock_box: ((xmin, ymin, zmin), (xmax, ymax, zmax)) of the stock, written as a BLOCK; the
-    pockets start at its top.  Per pocket: a CLOSED_POCKET with a RECTANGULAR_CLOSED_PROFILE
-    (when the outline is a rectangle) or a GENERAL_CLOSED_PROFILE POLYLINE, a roughing
-    workingstep (BOTTOM_AND_SIDE_ROUGH_MILLING, BIDIRECTIONAL along X, ``overlap`` a ratio of
-    the tool diameter, leaving the allowances) and a finishing one (CONTOUR_PARALLEL, climb).
-    Both plunge on a ramp of ``ramp_angle`` degrees (0: straight down the tool axis) and cut
-    layers of ``axial_depth`` (default: the tool radius).  Heights are above the stock top.
-    """
-    (x0, y0, z0), (x1, y1, z1) = (tuple(map(float, corner)) for corner in stock_box)
-    if not (x1 > x0 and y1 > y0 and z1 > z0):
-        raise StepNcError(f"stock box {stock_box} has no volume: give (min corner, max corner)")
-    if tool.kind not in ("flat", "ball", "bull"):
-        raise StepNcError(f"pockets need an end mill, not a {tool.kind}")
-    for value, what in ((feed, "feed"), (spindle_rpm, "spindle speed"), (retract_height, "retract height"),
-                        (security_height, "security height")):
-        if not (math.isfinite(value) and value > 0):
-            raise StepNcError(f"{what} must be a positive number, got {value}")
-    if not 0 <= overlap < 1:
-        raise StepNcError(f"overlap is a ratio of the tool diameter, 0 <= overlap < 1; got {overlap}")
-    if not 0 <= ramp_angle <= 90:
-        raise StepNcError(f"ramp angle must be 0..90 degrees, got {ramp_angle}")
-    axial_depth = tool.radius if axial_depth is None else axial_depth
-    pockets = list(pockets)
-    for pocket in pockets:
-        rg.validate_loop(pocket.outline, f"pocket {pocket.name!r}")
-        if not 0 < pocket.depth <= z1 - z0:
-            raise StepNcError(f"pocket {pocket.name!r}: depth {pocket.depth} must be above 0 and at most the stock "
-                             f"height {z1 - z0:g}")
-        if pocket.corner_radius < 0:
-            raise StepNcError(f"pocket {pocket.name!r}: corner radius must not be negative")
-
-    w = Part21Writer()
-    project, workplan, workpiece = w.reserve(), w.reserve(), w.reserve()
-    tolerance = w.add("PLUS_MINUS_VALUE", 0.01, 0.01, 3)
-
-    def placement(label, location, x_axis=(1.0, 0.0)):
-        return w.add("AXIS2_PLACEMENT_3D", label, w.add("CARTESIAN_POINT", label, [float(v) for v in location]),
-                     w.add("DIRECTION", "AXIS", [0.0, 0.0, 1.0]),
-                     w.add("DIRECTION", "REF_DIRECTION", [float(x_axis[0]), float(x_axis[1]), 0.0]))
-
-    def length(value):
-        return w.add("TOLERANCED_LENGTH_MEASURE", float(value), tolerance)
-
-    origin = placement("ORIGIN", (0.0, 0.0, 0.0))
-    secplane = w.add("PLANE", "SECURITY PLANE", placement("SECURITY PLANE", (0.0, 0.0, z1 + security_height)))
-    block = w.add("BLOCK", "STOCK", placement("STOCK", (x0, y0, z0)), x1 - x0, y1 - y0, z1 - z0)
-    w.define(workpiece, "WORKPIECE", "STOCK", UNSET, UNSET, UNSET, UNSET, block, [])
-    setup = w.add("SETUP", "SETUP", origin, secplane, [w.add("WORKPIECE_SETUP", workpiece, origin, UNSET, UNSET, [])])
-    body = {"flat": "ENDMILL", "ball": "BALL_ENDMILL", "bull": "BULLNOSE_ENDMILL"}[tool.kind]
-    dimension = w.add("MILLING_TOOL_DIMENSION", float(tool.diameter), UNSET, UNSET, float(tool.flute_length),
-                      float(tool.corner_radius), UNSET, UNSET)
-    # The IR tool has no gauge length: the cutting component records the flute length.
-    cutting_tool = w.add("MILLING_CUTTING_TOOL", tool.name or tool.describe(),
-                         w.add(body, dimension, UNSET, UNSET, UNSET, UNSET),
-                         [w.add("CUTTING_COMPONENT", float(tool.flute_length), UNSET, UNSET, UNSET, UNSET)],
-                         UNSET, UNSET, UNSET)
-    technology = w.add("MILLING_TECHNOLOGY", feed / 60000.0, Enum("TCP"), UNSET, -spindle_rpm / 60.0, UNSET,
-                       False, False, False, UNSET)
-    functions = w.add("MILLING_MACHINE_FUNCTIONS", False, UNSET, UNSET, False, UNSET, [], False, UNSET, UNSET, [])
-    approach = w.add("PLUNGE_RAMP", UNSET, float(ramp_angle)) if ramp_angle else w.add("PLUNGE_TOOLAXIS", UNSET)
-    bottom = w.add("PLANAR_POCKET_BOTTOM_CONDITION")
-    rough_strategy = w.add("BIDIRECTIONAL", float(overlap), True, w.add("DIRECTION", "FEED", [1.0, 0.0, 0.0]),
-                           Enum("LEFT"), UNSET)
-    finish_strategy = w.add("CONTOUR_PARALLEL", float(overlap), True, Enum("CCW"), Enum("CLIMB"))
-
-    steps = []
-    for pocket in pockets:
-        outline = np.asarray(pocket.outline, float)[:, :2]
-        if np.allclose(outline[0], outline[-1]):
-            outline = outline[:-1]
-        rectangle = _as_rectangle(outline)
-        if rectangle is not None:
-            centre, x_axis, profile_length, profile_width = rectangle
-            where = placement(pocket.name, (centre[0], centre[1], z1), x_axis)
-            profile = w.add("RECTANGULAR_CLOSED_PROFILE", UNSET, length(profile_width), length(profile_length))
-        else:
-            where = placement(pocket.name, (0.0, 0.0, z1))
-            corners = [w.add("CARTESIAN_POINT", "", [float(x), float(y), 0.0]) for x, y in outline]
-            profile = w.add("GENERAL_CLOSED_PROFILE", UNSET, w.add("POLYLINE", pocket.name, corners + corners[:1]))
-        depth = w.add("PLANE", f"DEPTH {pocket.name}", placement(f"DEPTH {pocket.name}", (0.0, 0.0, -pocket.depth)))
-        rough, finish = w.reserve(), w.reserve()
-        feature = w.add("CLOSED_POCKET", pocket.name, workpiece, [rough, finish], where, depth, [], UNSET, bottom,
-                        UNSET, length(pocket.corner_radius) if pocket.corner_radius else UNSET, profile)
-        w.define(rough, "BOTTOM_AND_SIDE_ROUGH_MILLING", UNSET, UNSET, f"ROUGH {pocket.name}", float(retract_height),
-                 UNSET, cutting_tool, technology, functions, UNSET, approach, UNSET, rough_strategy,
-                 float(axial_depth), UNSET, float(allowance_side), float(allowance_bottom))
-        w.define(finish, "BOTTOM_AND_SIDE_FINISH_MILLING", UNSET, UNSET, f"FINISH {pocket.name}",
-                 float(retract_height), UNSET, cutting_tool, technology, functions, UNSET, approach, UNSET,
-                 finish_strategy, float(axial_depth), UNSET, UNSET, UNSET)
-        steps.append(w.add("MACHINING_WORKINGSTEP", f"WS ROUGH {pocket.name}", secplane, feature, rough, UNSET))
-        steps.append(w.add("MACHINING_WORKINGSTEP", f"WS FINISH {pocket.name}", secplane, feature, finish, UNSET))
-    w.define(workplan, "WORKPLAN", "MAIN WORKPLAN", steps, UNSET, setup, UNSET)
-    w.define(project, "PROJECT", name, workplan, [workpiece], UNSET, UNSET, UNSET)
-    return w.text(description=(f"ISO 14649 workplan: {len(pockets)} pockets, rough and finish",), name=name)
