@@ -18,7 +18,7 @@ from ..post import write_atomic
 from ..toolpath import stepnc
 from ..toolpath.meshdata import prism
 from ..toolpath.program import Tool
-from ..toolpath.stepnc.solids import block_of, feature_solid, stock_box
+from ..toolpath.stepnc.solids import block_of, feature_solid, fixture_clearance, stock_box
 from . import convert
 from . import gate
 from .common import run_reported
@@ -134,12 +134,9 @@ def stepnc_request(scene, depsgraph):
 def simulation(job) -> SimulationSetup:
     """The program on the workpiece's block; drills may break through its bottom by their point
     length and 2 mm (the workplan's through-hole rule), onto a spoil board."""
-    import math
-
     loaded, program, frame = job
-    drills = [op.tool.radius for op in program.operations if op.tool.kind == "drill"]
-    clearance = max((r * math.tan(math.radians(31.0)) + 2.0 + 0.01 for r in drills), default=0.0)
-    return SimulationSetup(program, stock_box(loaded, program), {"fixture_clearance": clearance}, frame, "stepnc")
+    return SimulationSetup(program, stock_box(loaded, program), {"fixture_clearance": fixture_clearance(loaded)},
+                           frame, "stepnc")
 
 
 def pockets_part21(scene, depsgraph) -> str:

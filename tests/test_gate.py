@@ -2,10 +2,12 @@
 overrides it knowingly (batch --allow-findings, the panel's "Write Despite Findings"), and the
 report says so.
 
-The faulty job is a file written here in the ISO 14649 conventions of our own writer, with one
-edit a hand-editing user or another generator makes: the pocket sits 10 mm below the top of its
-BLOCK, so the rapids down to its retract plane (5 mm above the pocket) run through material."""
+The faulty job is NIST's ISO 14649 Example 1 with one attribute changed, as a user or another
+generator would write it: the DRILLING of the through hole HOLE1 asks for an overcut_length of
+12 mm, so the 20 mm drill goes 12 mm below the stock's bottom (the hole's depth plane, Z -30),
+4 mm deeper than the point length and 2 mm of the through-hole rule: into the fixture."""
 import json
+import math
 import os
 
 import numpy as np
@@ -18,15 +20,20 @@ from kezuri.toolpath.stepnc.solids import stock_box
 BOX = simulate.BoxStock(0.0, 0.0, -20.0, 40.0, 40.0, 0.0)
 
 
-def raised_block_file(folder) -> str:
-    pockets = [stepnc.PocketSpec("POCKET1", ((10, 10), (50, 10), (50, 40), (10, 40)), 8.0)]
-    text = stepnc.pockets_to_part21(((0, 0, -20), (120, 80, 10)), pockets, Tool(1, "flat", 6.0, flute_length=20.0),
-                                    name="RAISED BLOCK")
-    placed = "('POCKET1',(30.,25.,10.))"
-    assert text.count(placed) == 1
-    path = os.path.join(str(folder), "raised.stp")
-    with open(path, "w", encoding="ascii") as stream:
-        stream.write(text.replace(placed, "('POCKET1',(30.,25.,0.))"))
+FIXTURES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fixtures", "iso14649")
+DRILLING = "#20= DRILLING($,$,'DRILL HOLE1',10.000,$,#44,#45,#41,$,"
+OVERCUT = 12.0
+DRILL_RADIUS = 10.0                           # HOLE1's 20 mm twist drill
+POINT = DRILL_RADIUS * math.tan(math.radians(31.0)) + 2.0   # ex1 gives tool_top_angle 31: the workplan's rule
+
+
+def overcut_file(folder) -> str:
+    with open(os.path.join(FIXTURES, "ex1.stp"), encoding="latin-1") as stream:
+        text = stream.read()
+    assert text.count(DRILLING) == 1
+    path = os.path.join(str(folder), "ex1-overcut.stp")
+    with open(path, "w", encoding="latin-1") as stream:
+        stream.write(text.replace(DRILLING, DRILLING[:-2] + f"{OVERCUT:.1f},"))
     return path
 
 
@@ -56,56 +63,60 @@ bpy = pytest.importorskip("bpy")
 
 def test_the_gate_refuses_and_an_override_must_name_the_findings(tmp_path):
     from kezuri.operators import convert, gate, stepnc as shell
-    loaded = stepnc.load_workplan(raised_block_file(tmp_path))
+    loaded = stepnc.load_workplan(overcut_file(tmp_path))
     program = stepnc.to_program(loaded)
     setup = shell.simulation((loaded, program, convert.WorkFrame(1.0, (0.0, 0.0, 0.0))))
-    assert setup.stock.z1 == pytest.approx(10.0)                   # the BLOCK's top, from the file
+    assert setup.stock.z0 == pytest.approx(-30.0)                 # HOLE1's depth plane
+    assert setup.extra["fixture_clearance"] == pytest.approx(POINT + 0.01, abs=1e-6)
     with pytest.raises(gate.GateRefused) as refused:
         gate.check(setup)
-    kinds = {f.kind for f in refused.value.findings}
-    assert kinds == {"rapid_in_material"}
-    # Each rapid down from the 20 mm security plane to Z 5 meets the block's top at Z 10: 5 mm in.
-    assert max(f.depth_mm for f in refused.value.findings) == pytest.approx(5.0, abs=0.01)
-    assert "rapid move 0 runs 5.000 mm into material" in str(refused.value)
+    found = refused.value.findings
+    assert [f.kind for f in found] == ["below_stock"]
+    assert found[0].depth_mm == pytest.approx(OVERCUT, abs=1e-6)
+    assert "12.000 mm below the stock's bottom" in str(refused.value)
     _, report = gate.check(setup, True)
-    assert report["overridden"] and len(report["findings"]) == len(refused.value.findings)
-    _, report = gate.check(setup, gate.signature(refused.value.findings))
+    assert report["overridden"] and len(report["findings"]) == 1
+    _, report = gate.check(setup, gate.signature(found))
     assert report["overridden"]
     with pytest.raises(gate.GateRefused):
-        gate.check(setup, gate.signature(refused.value.findings[:1]))   # acknowledging some is not all
+        gate.check(setup, "below_stock 0:0")                       # another move is not this one
+    # The file without the overcut: the drill stops at the rule's breakthrough and the gate is quiet.
+    plain = stepnc.load_workplan(os.path.join(FIXTURES, "ex1.stp"))
+    _, report = gate.check(shell.simulation((plain, stepnc.to_program(plain), convert.WorkFrame(1.0, (0, 0, 0)))))
+    assert report["findings"] == [] and not report["overridden"]
 
 
 def test_batch_writes_nothing_and_exits_3_unless_allowed(tmp_path):
     from blender_helpers import run_batch
-    path = raised_block_file(tmp_path)
+    path = overcut_file(tmp_path)
     out = tmp_path / "refused"
     done = run_batch("stepnc", "--input", path, "--out", str(out))
     assert done.returncode == 3, done.stderr[-2000:]
-    assert "not written: the simulation found" in done.stderr and "Traceback" not in done.stderr
-    assert not (out / "stepnc.nc").exists() and not (out / "report.json").exists()
+    assert "not written: the simulation found 1 fault" in done.stderr and "Traceback" not in done.stderr
+    assert not out.exists() or not any(out.iterdir())
     out = tmp_path / "allowed"
     done = run_batch("stepnc", "--input", path, "--allow-findings", "--out", str(out))
     assert done.returncode == 0, done.stderr[-2000:]
     report = json.loads((out / "report.json").read_text())
     assert report["gate"]["overridden"] is True
-    assert {f["kind"] for f in report["gate"]["findings"]} == {"rapid_in_material"}
+    assert [(f["kind"], f["depth_mm"]) for f in report["gate"]["findings"]] == [("below_stock", OVERCUT)]
     assert (out / "stepnc.nc").exists()
 
 
 def test_the_panel_override_covers_the_findings_it_was_given(empty_scene, tmp_path):
     from kezuri.operators import stepnc as shell
-    path = raised_block_file(tmp_path)
+    path = overcut_file(tmp_path)
     shell.fill_workplan_list(empty_scene, path, stepnc.load_workplan(path))
     nc = str(tmp_path / "panel.nc")
-    with pytest.raises(RuntimeError, match="not written: the simulation found 4 fault"):   # an ERROR report
+    with pytest.raises(RuntimeError, match="not written: the simulation found 1 fault"):   # an ERROR report
         bpy.ops.kezuri.stepnc_export(filepath=nc, post="fanuc")
     assert not os.path.exists(nc)
     props = empty_scene.kezuri.simulation
     props.cell = 0.25                  # the override names moves, not positions: the gate's 0.1 mm check matches
     assert bpy.ops.kezuri.simulate(workflow="STEPNC") == {"FINISHED"}
-    assert sum(f.blocking for f in props.findings) == 4
+    assert sum(f.blocking for f in props.findings) == 1
     props.allow_findings = True
-    assert props.acknowledged.count("rapid_in_material") == 4
+    assert props.acknowledged.startswith("below_stock ")
     assert bpy.ops.kezuri.stepnc_export(filepath=nc, post="fanuc") == {"FINISHED"}
     assert os.path.exists(nc)
     assert bpy.ops.kezuri.simulate(workflow="STEPNC") == {"FINISHED"}     # a new simulation: a new decision

@@ -43,8 +43,26 @@ def stock_box(loaded, program):
     if box is not None:
         (x0, y0, z0), (x1, y1, z1) = box
         return BoxStock(x0, y0, z0, x1, y1, z1)
+    from .workplan import stock_bottom
+
     cuts = np.vstack([op.xyz[op.kind != 0] for op in program.operations])
     margin = max(op.tool.radius for op in program.operations) + 1.0
     top = max(step.its_feature.top_z for step in loaded.workingsteps)
     (x0, y0, z0), (x1, y1, _) = cuts.min(axis=0), cuts.max(axis=0)
-    return BoxStock(x0 - margin, y0 - margin, min(z0, top) - 1.0, x1 + margin, y1 + margin, top)
+    bottom, _ = stock_bottom(loaded)           # a through feature's depth plane is the stock's bottom
+    if bottom is None or not bottom < top:
+        bottom = min(z0, top) - 1.0
+    return BoxStock(x0 - margin, y0 - margin, bottom, x1 + margin, y1 + margin, top)
+
+
+def fixture_clearance(loaded) -> float:
+    """How far below the stock's bottom the workplan's own rule takes a drill through a through
+    hole (point length + clearance, :func:`workplan.drill_breakthrough`): the simulation accepts that
+    much; a file asking for more (its overcut_length) is a finding the user must confirm."""
+    from .workplan import POINTED_DRILL_BODIES, THROUGH_CONDITIONS, drill_breakthrough
+
+    depths = [drill_breakthrough(step.its_operation.its_tool) for step in loaded.workingsteps
+              if getattr(step.its_feature, "bottom_condition", None) in THROUGH_CONDITIONS
+              and getattr(step.its_operation, "type_name", None) == "DRILLING"
+              and step.its_operation.its_tool.its_tool_body.type_name in POINTED_DRILL_BODIES]
+    return max(depths, default=0.0) + 0.01
