@@ -132,7 +132,10 @@ def test_simulated_bores_have_their_volume_and_no_findings(bores):
     text, loaded, program = bores
     centre1, d1, depth1 = hole_from_text(text, "BORE1")
     centre2, d2, depth2 = hole_from_text(text, "HOLE2")
-    result = simulate(program, BoxStock(0, 0, -30, 120, 80, 0), cell=0.2)
+    from kezuri.toolpath.stepnc.solids import fixture_clearance
+    clearance = fixture_clearance(loaded)
+    assert clearance == pytest.approx(1.01)         # the 1 mm a milled through hole goes below its bottom
+    result = simulate(program, BoxStock(0, 0, -30, 120, 80, 0), cell=0.2, fixture_clearance=clearance)
     assert result.findings == []
     expected = math.pi * (d1 / 2) ** 2 * depth1 + math.pi * (d2 / 2) ** 2 * min(depth2, 30.0)
     assert result.removed_volume_mm3 == pytest.approx(expected, rel=0.015)

@@ -59,10 +59,16 @@ def fixture_clearance(loaded) -> float:
     """How far below the stock's bottom the workplan's own rule takes a drill through a through
     hole (point length + clearance, :func:`workplan.drill_breakthrough`): the simulation accepts that
     much; a file asking for more (its overcut_length) is a finding the user must confirm."""
-    from .workplan import POINTED_DRILL_BODIES, THROUGH_CONDITIONS, drill_breakthrough
+    from .workplan import MILLED_BREAKTHROUGH, POINTED_DRILL_BODIES, THROUGH_CONDITIONS, drill_breakthrough
 
-    depths = [drill_breakthrough(step.its_operation.its_tool) for step in loaded.workingsteps
-              if getattr(step.its_feature, "bottom_condition", None) in THROUGH_CONDITIONS
-              and getattr(step.its_operation, "type_name", None) == "DRILLING"
-              and step.its_operation.its_tool.its_tool_body.type_name in POINTED_DRILL_BODIES]
+    depths = []
+    for step in loaded.workingsteps:
+        if getattr(step.its_feature, "bottom_condition", None) not in THROUGH_CONDITIONS:
+            continue
+        operation = step.its_operation
+        if getattr(operation, "type_name", None) == "DRILLING":
+            if operation.its_tool.its_tool_body.type_name in POINTED_DRILL_BODIES:
+                depths.append(drill_breakthrough(operation.its_tool))
+        else:                # a through hole milled to size goes MILLED_BREAKTHROUGH below its bottom
+            depths.append(MILLED_BREAKTHROUGH)
     return max(depths, default=0.0) + 0.01
