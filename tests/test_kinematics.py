@@ -136,14 +136,14 @@ def test_the_traced_length_is_the_length_of_the_interpolated_curve():
 
 
 def test_operations_measure_moves_as_documented():
-    """A C operation measures along the traced curve; the turn-mill operation, the documented
-    exception, along the chord between its part points."""
+    """Every C operation, the turn-mill's included, measures along the traced curve: a quarter turn
+    at radius 20 is 10 pi long (the chord would be 20 sqrt 2)."""
     kind, xyz, c = [FEED, FEED], [[-20.0, 0.0, 0.0], [-20.0, 0.0, 0.0]], [0.0, 360.0]
     op = Operation("o", Tool(1, "ball", 6.0), 1000, kind, xyz, [100.0, 100.0], rotary={"c": c}, start=[-20, 0, 0])
     assert np.allclose(op.move_lengths(), [0.0, 2 * math.pi * 20.0])
     turn = TurnMillOperation("t", Tool(1, "ball", 6.0), 1000, kind, np.abs(xyz), [100.0, 100.0],
                              rotary={"c": [0.0, 90.0]}, start=[20, 0, 0])
-    assert np.allclose(turn.move_lengths(), [0.0, 20.0 * math.sqrt(2)])
+    assert np.allclose(turn.move_lengths(), [0.0, 10.0 * math.pi])
 
 
 def test_table_timing_uses_the_traced_length_and_the_table_speed():

@@ -30,14 +30,12 @@ radius R is 2 pi R; a move without C motion is its straight length.  This is wha
 inverse-time F words and cycle-time estimates are made of (:func:`inverse_time_feed`,
 :func:`cycle_time`), and what the rotary planner's feeds mean.
 
-One exception remains, kept so the NC output does not change: the X-Z-C turn-mill operation
-(``program.TurnMillOperation``) times its moves by the **chord** between the part points
-(:func:`chord_lengths`): its planner splits every move until the traced curve stays within the
-chordal tolerance of that chord (:func:`polar_split_counts`), and its post's G93 F words and its
-cycle-time estimates have always used the chord.  Moving it to :func:`traced_lengths` would change
-the last digits of nearly every G93 F word of the turn-mill NC (the built-in sample: cutting moves
-a few parts per million longer, at most 1e-4; 50769 of 52666 cutting moves' F words differ at
-3 decimals) and its cycle time (2496 s -> 2500 s, mostly rapids turning C at the clearance radius).
+The X-Z-C turn-mill operation (``program.TurnMillOperation``) measures its moves the same way.
+(It once used the chord between the part points, :func:`chord_lengths`, still here for its planner,
+which splits every move until the traced curve stays within the chordal tolerance of that chord,
+:func:`polar_split_counts`.  Moving it to the traced length made its cutting moves a few parts per
+million longer, at most 1e-4, and the sample's cycle time 2496 s -> 2500 s, mostly rapids turning
+C at the clearance radius.)
 """
 from __future__ import annotations
 

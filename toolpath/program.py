@@ -224,8 +224,8 @@ class TurnMillOperation(Operation):
     """An X-Z-C operation: ``xyz`` = (X, 0, Z) of the tool tip, X the radius from the axis,
     ``rotary = {"c": degrees}``.  ``direction`` is the turret tool: "radial" (along machine X,
     pointing at the axis) or "axial" (along Z, pointing down).  Lengths and cycle times are
-    measured in part coordinates, where the tool actually cuts, along the chord between the part
-    points (:func:`kinematics.chord_lengths`, the turn-mill exception the module notes explain)."""
+    measured in part coordinates, where the tool actually cuts, along the curve the tool tip traces
+    (:func:`kinematics.traced_lengths`, the one convention of every C move)."""
 
     direction: str = "radial"
 
@@ -254,11 +254,6 @@ class TurnMillOperation(Operation):
 
     def ball_centres(self) -> np.ndarray:
         return self.part_points() + self.tool.radius * self.tool_axes()
-
-    def move_lengths(self) -> np.ndarray:
-        if not len(self):
-            return np.empty(0)
-        return kinematics.chord_lengths(*kinematics.operation_c_moves(self))
 
     def cycle_time(self, rapid_rate: float) -> float:
         """Estimated seconds: cutting blocks timed as the post's G93 F words time them
