@@ -31,19 +31,36 @@ def _timed(work):
     return value, time.perf_counter() - wall, time.process_time() - cpu
 
 
-def _ocl(vertices, faces, xy):
+def _ocl_child(path):
+    """In a process of its own (OpenCAMLib's OpenMP and numba's threads crash when they share
+    one): drop the cutter on the points saved in ``path`` and save the heights and times."""
     import opencamlib as ocl
 
+    data = np.load(path)
     surface = ocl.STLSurf()
-    for tri in vertices[faces]:
+    for tri in data["vertices"][data["faces"]]:
         surface.addTriangle(ocl.Triangle(*[ocl.Point(*map(float, p)) for p in tri]))
     batch = ocl.BatchDropCutter()
     batch.setSTL(surface)
-    batch.setCutter(ocl.BallCutter(TOOL_DIAMETER, 50.0))
-    for x, y in xy:
+    cutter = ocl.BallCutter(TOOL_DIAMETER, 50.0)     # kept alive: OpenCAMLib holds only a pointer to it
+    batch.setCutter(cutter)
+    for x, y in data["xy"]:
         batch.appendPoint(ocl.CLPoint(float(x), float(y), FLOOR))
     _, wall, cpu = _timed(batch.run)
-    return np.array([p.z for p in batch.getCLPoints()]), wall, cpu
+    np.savez(path, z=np.array([p.z for p in batch.getCLPoints()]), times=np.array([wall, cpu]))
+
+
+def _ocl(vertices, faces, xy):
+    import subprocess
+    import sys
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "points.npz")
+        np.savez(path, vertices=vertices, faces=faces, xy=xy)
+        subprocess.run([sys.executable, os.path.abspath(__file__), path], check=True)
+        done = np.load(path)
+        return done["z"], float(done["times"][0]), float(done["times"][1])
 
 
 def run():
@@ -88,3 +105,9 @@ def run():
                            f"wall; max |dz| {diff:.1e} mm (target 1e-3 mm, 100x)"
                            + (f"; every {ocl_stride}th point, scaled" if ocl_stride > 1 else ""))})
     return rows
+
+
+if __name__ == "__main__":
+    import sys
+
+    _ocl_child(sys.argv[1])

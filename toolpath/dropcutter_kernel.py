@@ -101,42 +101,10 @@ def _edge_derivative(kind, R, rc, fr, k, m, t, u):
 
 @_jit
 def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, best):
-    """The highest tool tip over (cx, cy) that touches triangle ``tri`` (3, 3), if above ``best``."""
+    """The highest tool tip over (cx, cy) that touches triangle ``tri`` (3, 3), if above ``best``.
+    The facet first (most often the contact on a smooth surface), then the edges and vertices,
+    each skipped when its highest point is no higher than the best tip so far."""
     R2 = R * R
-    for v in range(3):
-        dx = tri[v, 0] - cx
-        dy = tri[v, 1] - cy
-        d2 = dx * dx + dy * dy
-        if d2 <= R2:
-            z = tri[v, 2] - height(kind, R, rc, fr, k, math.sqrt(d2))
-            if z > best:
-                best = z
-    for e in range(3):
-        p = tri[e]
-        q = tri[(e + 1) % 3]
-        ex = q[0] - p[0]
-        ey = q[1] - p[1]
-        length = math.sqrt(ex * ex + ey * ey)
-        if length <= 1e-12:
-            continue
-        ux = ex / length
-        uy = ey / length
-        wx = cx - p[0]
-        wy = cy - p[1]
-        s0 = wx * ux + wy * uy
-        t = abs(wx * uy - wy * ux)
-        if t > R:
-            continue
-        w = math.sqrt(R2 - t * t)
-        ua = max(-s0, -w)
-        ub = min(length - s0, w)
-        if ua > ub:
-            continue
-        m = (q[2] - p[2]) / length
-        u = edge_best(kind, R, rc, fr, k, m, t, ua, ub)
-        z = p[2] + m * (s0 + u) - height(kind, R, rc, fr, k, min(math.sqrt(t * t + u * u), R))
-        if z > best:
-            best = z
     if plane[3] > 0.0:                  # not a vertical facet
         gx = plane[0]
         gy = plane[1]
@@ -160,6 +128,44 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, best):
                 break
         if inside:
             z = plane[2] + gx * x + gy * y - height(kind, R, rc, fr, k, d)
+            if z > best:
+                best = z
+    for e in range(3):
+        p = tri[e]
+        q = tri[(e + 1) % 3]
+        if max(p[2], q[2]) <= best:
+            continue
+        ex = q[0] - p[0]
+        ey = q[1] - p[1]
+        length = math.sqrt(ex * ex + ey * ey)
+        if length <= 1e-12:
+            continue
+        ux = ex / length
+        uy = ey / length
+        wx = cx - p[0]
+        wy = cy - p[1]
+        s0 = wx * ux + wy * uy
+        t = abs(wx * uy - wy * ux)
+        if t > R:
+            continue
+        w = math.sqrt(R2 - t * t)
+        ua = max(-s0, -w)
+        ub = min(length - s0, w)
+        if ua > ub:
+            continue
+        m = (q[2] - p[2]) / length
+        u = edge_best(kind, R, rc, fr, k, m, t, ua, ub)
+        z = p[2] + m * (s0 + u) - height(kind, R, rc, fr, k, min(math.sqrt(t * t + u * u), R))
+        if z > best:
+            best = z
+    for v in range(3):
+        if tri[v, 2] <= best:
+            continue                    # h >= 0: a vertex lifts the tip to at most its own Z
+        dx = tri[v, 0] - cx
+        dy = tri[v, 1] - cy
+        d2 = dx * dx + dy * dy
+        if d2 <= R2:
+            z = tri[v, 2] - height(kind, R, rc, fr, k, math.sqrt(d2))
             if z > best:
                 best = z
     return best
