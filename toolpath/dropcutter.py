@@ -192,6 +192,27 @@ def closed_outward(vertices, faces) -> bool:
     return bool(volume > 0)
 
 
+def precomputed(mesh: Mesh, profile: np.ndarray) -> np.ndarray:
+    """Per triangle, what the compiled kernel needs that depends on the triangle and the tool
+    alone: the facet contact's offset from the axis (x, y) and the tool's height there, then per
+    edge its XY unit direction (x, y), XY length and slope: (n, 15)."""
+    gx, gy = mesh.planes[:, 0], mesh.planes[:, 1]
+    g = np.hypot(gx, gy)
+    d = np.where(g > 0, facet_support(profile, g), 0.0)
+    safe = np.where(g > 0, g, 1.0)
+    columns = [d * gx / safe, d * gy / safe, underside(profile, d)]
+    t = mesh.tris
+    for e in range(3):
+        p, q = t[:, e], t[:, (e + 1) % 3]
+        ex, ey = q[:, 0] - p[:, 0], q[:, 1] - p[:, 1]
+        length = np.hypot(ex, ey)
+        ok = length > 1e-12
+        safe = np.where(ok, length, 1.0)
+        columns += [np.where(ok, ex / safe, 0.0), np.where(ok, ey / safe, 0.0), np.where(ok, length, 0.0),
+                    np.where(ok, (q[:, 2] - p[:, 2]) / safe, 0.0)]
+    return np.ascontiguousarray(np.column_stack(columns))
+
+
 class Buckets:
     """Triangles per XY bucket (grown by the tool's reach), each bucket by falling top Z."""
 
@@ -267,6 +288,7 @@ class DropCutter:
         self.floor = float(floor)
         self.compiled = _kernel_module(kernel)
         self.kernel = "numpy" if self.compiled is None else "numba"
+        self.pre = precomputed(self.mesh, self.profile) if self.compiled is not None else None
 
     def points(self, xy, progress=None) -> np.ndarray:
         """Tip Z over every point (n, 2)."""
@@ -282,7 +304,8 @@ class DropCutter:
             if self.compiled is not None:
                 b = self.buckets
                 view = out[part]
-                self.compiled.drop_points(x[part], y[part], view, self.mesh.tris, self.mesh.planes, self.mesh.zmax,
+                self.compiled.drop_points(x[part], y[part], view, self.mesh.tris, self.mesh.planes, self.pre,
+                                          self.mesh.zmax,
                                           b.bbox, b.start, b.entries, b.grid, self.profile)
             else:
                 out[part] = self._numpy(x[part], y[part], out[part])

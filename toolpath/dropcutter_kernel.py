@@ -100,24 +100,17 @@ def _edge_derivative(kind, R, rc, fr, k, m, t, u):
 
 
 @_jit
-def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, best):
+def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, pre, best):
     """The highest tool tip over (cx, cy) that touches triangle ``tri`` (3, 3), if above ``best``.
-    The facet first (most often the contact on a smooth surface), then the edges and vertices,
-    each skipped when its highest point is no higher than the best tip so far."""
+    ``pre`` holds what depends on the triangle and the tool only (dropcutter.precomputed): the
+    facet's contact offset from the axis and the tool's height there, and per edge its XY unit
+    direction, XY length and slope.  The facet first (most often the contact on a smooth
+    surface), then the edges and vertices, each skipped when its highest point is no higher
+    than the best tip so far."""
     R2 = R * R
     if plane[3] > 0.0:                  # not a vertical facet
-        gx = plane[0]
-        gy = plane[1]
-        g = math.sqrt(gx * gx + gy * gy)
-        d = support(kind, R, rc, fr, k, g)
-        if g > 0.0:
-            x = cx + d * gx / g
-            y = cy + d * gy / g
-        else:
-            x = cx
-            y = cy
-            d = 0.0
-        # inside the triangle in XY: three edge functions of one sign
+        x = cx + pre[0]
+        y = cy + pre[1]
         inside = True
         sign = plane[4]
         for e in range(3):
@@ -127,7 +120,7 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, best):
                 inside = False
                 break
         if inside:
-            z = plane[2] + gx * x + gy * y - height(kind, R, rc, fr, k, d)
+            z = plane[2] + plane[0] * x + plane[1] * y - pre[2]
             if z > best:
                 best = z
     for e in range(3):
@@ -135,13 +128,11 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, best):
         q = tri[(e + 1) % 3]
         if max(p[2], q[2]) <= best:
             continue
-        ex = q[0] - p[0]
-        ey = q[1] - p[1]
-        length = math.sqrt(ex * ex + ey * ey)
+        length = pre[5 + 4 * e]
         if length <= 1e-12:
             continue
-        ux = ex / length
-        uy = ey / length
+        ux = pre[3 + 4 * e]
+        uy = pre[4 + 4 * e]
         wx = cx - p[0]
         wy = cy - p[1]
         s0 = wx * ux + wy * uy
@@ -153,7 +144,7 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, best):
         ub = min(length - s0, w)
         if ua > ub:
             continue
-        m = (q[2] - p[2]) / length
+        m = pre[6 + 4 * e]
         u = edge_best(kind, R, rc, fr, k, m, t, ua, ub)
         z = p[2] + m * (s0 + u) - height(kind, R, rc, fr, k, min(math.sqrt(t * t + u * u), R))
         if z > best:
@@ -172,7 +163,7 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, best):
 
 
 @_jit
-def drop_points(px, py, out, tris, planes, zmax, bbox, start, entries, grid, prof):
+def drop_points(px, py, out, tris, planes, pre, zmax, bbox, start, entries, grid, prof):
     """out[i] = the highest tip Z over (px[i], py[i]) (out holds the floor on entry)."""
     kind = int(prof[0])
     R, rc, fr, k = prof[1], prof[2], prof[3], prof[4]
@@ -200,5 +191,5 @@ def drop_points(px, py, out, tris, planes, zmax, bbox, start, entries, grid, pro
             near2 = gx * gx + gy * gy
             if near2 > R * R or zmax[t] - height(kind, R, rc, fr, k, math.sqrt(near2)) <= best:
                 continue
-            best = triangle_drop(kind, R, rc, fr, k, cx, cy, tris[t], planes[t], best)
+            best = triangle_drop(kind, R, rc, fr, k, cx, cy, tris[t], planes[t], pre[t], best)
         out[i] = best
