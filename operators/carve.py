@@ -305,7 +305,7 @@ def batch(args) -> dict:
         "preview": png,
         "toolpaths_preview": toolpaths_png,
         "simulation": simview.report_of(simulated.result),
-        "scallop": {"asked_mm": props.scallop, **{k: (round(v, 5) if isinstance(v, float) else batchio.rounded(v, 3))
+        "scallop": {"asked_mm": round(props.scallop, 6), **{k: (round(v, 5) if isinstance(v, float) else batchio.rounded(v, 3))
                                                   for k, v in scallop.items()}},
         "toolpath_seconds": round(job.seconds, 3),
         "stock": batchio.rounded(result.stock, 4),
