@@ -219,3 +219,22 @@ def test_bad_input_is_named():
         dc.DropCutter(np.eye(3), [[0, 1, 2]], Tool(1, "ball", 6.0), allowance=-1)
     with pytest.raises(dc.DropCutterError, match="kernel"):
         dc.DropCutter(np.eye(3), [[0, 1, 2]], Tool(1, "ball", 6.0), kernel="fortran")
+
+
+def test_skipping_faces_turned_down_on_a_closed_mesh_changes_nothing():
+    """A closed, outward mesh is dropped on its faces that are not turned down; the same
+    triangles with every face on its own vertices (not closed: all faces used) give the same tips."""
+    trimesh = pytest.importorskip("trimesh")
+    rng = np.random.default_rng(11)
+    mesh = trimesh.creation.capsule(height=8.0, radius=5.0, count=[16, 16])
+    v = np.asarray(mesh.vertices) + rng.normal(0, 0.2, size=mesh.vertices.shape)
+    f = np.asarray(mesh.faces)
+    assert dc.closed_outward(v, f)
+    loose_v, loose_f = v[f].reshape(-1, 3), np.arange(3 * len(f)).reshape(-1, 3)
+    assert not dc.closed_outward(loose_v, loose_f)
+    xy = rng.uniform(-9, 9, size=(400, 2))
+    for tool in (Tool(1, "ball", 4.0), Tool(1, "flat", 3.0), Tool(1, "vbit", 6.0)):
+        closed = dc.DropCutter(v, f, tool, floor=-50)
+        assert len(closed.mesh.tris) < len(f)
+        loose = dc.DropCutter(loose_v, loose_f, tool, floor=-50)
+        assert closed.points(xy) == pytest.approx(loose.points(xy), abs=1e-12)
