@@ -155,6 +155,26 @@ class KEZURI_PT_turnmill(KezuriPanel, bpy.types.Panel):
         layout.operator("kezuri.turnmill_export", icon="EXPORT")
 
 
+class KEZURI_PT_carve(KezuriPanel, bpy.types.Panel):
+    bl_idname = "KEZURI_PT_carve"
+    bl_label = "Carve"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        props = context.scene.kezuri.carve
+        layout.prop(props, "design")
+        row = layout.row(align=True)
+        row.operator("kezuri.carve_sample", text="Wave Relief", icon="MESH_GRID").sample = "wave"
+        row.operator("kezuri.carve_sample", text="Domed Plate", icon="MESH_UVSPHERE").sample = "dome"
+        for name in ("stock_above", "scallop", "raster_angle", "finish_diameter", "rough"):
+            layout.prop(props, name)
+        row = layout.row(align=True)
+        row.scale_y = 1.4
+        row.operator("kezuri.carve_generate", icon="MOD_DISPLACE")
+        layout.operator("kezuri.carve_export", icon="EXPORT")
+
+
 class KEZURI_PT_sheet(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_sheet"
     bl_label = "Sheet Metal"
@@ -239,8 +259,16 @@ KEZURI_PT_rotary_settings = property_subpanel(
 KEZURI_PT_turnmill_settings = property_subpanel(
     "KEZURI_PT_turnmill_settings", "Tool & Tolerance", "KEZURI_PT_turnmill", "turnmill",
     ("tool_diameter", "tolerance", "sample_spacing", "feed", "spindle_rpm"))
+KEZURI_PT_carve_roughing = property_subpanel(
+    "KEZURI_PT_carve_roughing", "Roughing", "KEZURI_PT_carve", "carve",
+    ("rough_diameter", "rough_tool_number", "allowance", "step_down", "rough_stepover"))
+KEZURI_PT_carve_settings = property_subpanel(
+    "KEZURI_PT_carve_settings", "Finishing, Feeds & Heights", "KEZURI_PT_carve", "carve",
+    ("finish_tool_number", "max_slope", "sample_spacing", "rough_rpm", "finish_rpm", "rough_feed", "finish_feed",
+     "plunge_feed", "clearance", "safe_z", "show_rapids"))
 
 CLASSES = (KEZURI_PT_machine, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
            KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_stepnc,
-           KEZURI_PT_stepnc_write, KEZURI_PT_turnmill, KEZURI_PT_turnmill_settings, KEZURI_PT_sheet,
+           KEZURI_PT_stepnc_write, KEZURI_PT_turnmill, KEZURI_PT_turnmill_settings, KEZURI_PT_carve,
+           KEZURI_PT_carve_roughing, KEZURI_PT_carve_settings, KEZURI_PT_sheet,
            KEZURI_PT_sheet_elbow, KEZURI_PT_simulate)

@@ -235,6 +235,44 @@ class KezuriTurnMill(bpy.types.PropertyGroup):
         ("TRIMESH", "trimesh", "trimesh (Embree when bundled), as in batch runs")])
 
 
+class KezuriCarve(bpy.types.PropertyGroup):
+    design: PointerProperty(name="Design", type=bpy.types.Object, poll=_mesh_poll,
+                            description="The surface to carve: a mesh in work coordinates, its top at the stock top")
+    stock_above: mm("Stock Above Design", 0.0, "How far the stock's top stands above the design's highest point",
+                    minimum=0.0)
+    rough: BoolProperty(name="Roughing", default=True,
+                        description="Rough in Z levels with the flat end mill before finishing")
+    rough_diameter: mm("Roughing Diameter", 6.0, "Flat end mill for roughing", minimum=0.1)
+    rough_tool_number: IntProperty(name="Roughing Tool Number", default=1, min=0, max=999,
+                                   description="Tool number of the roughing end mill")
+    allowance: mm("Allowance", 0.5, "Stock roughing leaves on the design", minimum=0.0)
+    step_down: mm("Step Down", 3.0, "Depth between roughing levels", minimum=0.01)
+    rough_stepover: mm("Roughing Stepover", 2.4, "Distance between roughing passes", minimum=0.01)
+    finish_diameter: mm("Ball Diameter", 3.0, "Ball end mill for finishing", minimum=0.1)
+    finish_tool_number: IntProperty(name="Ball Tool Number", default=2, min=0, max=999,
+                                    description="Tool number of the finishing ball end mill")
+    scallop: mm("Scallop Height", 0.02, "Height of the ridges the ball may leave between passes; the stepover "
+                "follows from it", minimum=0.0001)
+    raster_angle: FloatProperty(name="Raster Angle", default=0.0, min=-180.0, max=180.0,
+                                description="Direction of the finishing passes, degrees from +X")
+    max_slope: FloatProperty(name="Max Slope", default=60.0, min=0.0, max=89.0,
+                             description="Steeper slopes across the raster do not shrink the stepover further "
+                                         "(degrees)")
+    sample_spacing: mm("Point Spacing", 0.25, "Distance between points along a pass (refined where the surface "
+                       "bends)", minimum=0.01)
+    rough_rpm: FloatProperty(name="Roughing Spindle", default=16000.0, min=1.0,
+                             description="Spindle speed for roughing (rpm)")
+    finish_rpm: FloatProperty(name="Finishing Spindle", default=18000.0, min=1.0,
+                              description="Spindle speed for finishing (rpm)")
+    rough_feed: FloatProperty(name="Roughing Feed", default=1500.0, min=1.0, description="Roughing feed (mm/min)")
+    finish_feed: FloatProperty(name="Finishing Feed", default=2000.0, min=1.0,
+                               description="Finishing feed (mm/min)")
+    plunge_feed: FloatProperty(name="Plunge Feed", default=400.0, min=1.0, description="Feed into the work (mm/min)")
+    clearance: mm("Clearance", 5.0, "Height above the stock top for moves between cuts", minimum=0.1)
+    safe_z: mm("Safe Z", 50.0, "Height above the stock top at the start and the end", minimum=0.1)
+    show_rapids: BoolProperty(name="Show Rapids", default=False, description="Show the rapid moves in the preview")
+
+
 class KezuriFinding(bpy.types.PropertyGroup):
     kind: StringProperty(name="Kind")
     message: StringProperty(name="Message")
@@ -284,11 +322,12 @@ class KezuriSettings(bpy.types.PropertyGroup):
     rotary: PointerProperty(type=KezuriRotary)
     stepnc: PointerProperty(type=KezuriStepNC)
     turnmill: PointerProperty(type=KezuriTurnMill)
+    carve: PointerProperty(type=KezuriCarve)
     simulation: PointerProperty(type=KezuriSimulation)
 
 
 CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriPocket, KezuriRotary, KezuriWorkingstep,
-           KezuriStepNC, KezuriTurnMill, KezuriFinding, KezuriSimulation, KezuriSettings)
+           KezuriStepNC, KezuriTurnMill, KezuriCarve, KezuriFinding, KezuriSimulation, KezuriSettings)
 
 
 def register():

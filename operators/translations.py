@@ -52,6 +52,10 @@ OPERATOR_LABELS = {
     "Classify Faces": "面を分類",
     "Generate Turn-Mill Paths": "複合加工の工具経路を生成",
     "Export Turn-Mill NC": "複合加工NCを書き出し",
+    # carve.py
+    "Generate Carving": "曲面加工パスを生成",
+    "Export Carving NC": "曲面加工NCを書き出し",
+    "Add Sample Design": "サンプル形状を追加",
     # sheetmetal.py
     "Unfold Twisted Quad": "ねじれ四辺形を展開",
     "Corners from Selected Face": "選択面から頂点を取得",
@@ -67,6 +71,8 @@ OPERATOR_TEXTS = {
     "CADKEY CDL (.cdl)": "CADKEY CDL (.cdl)",
     "ISO 14649 STEP-NC (.stp, .p21)": "ISO 14649 STEP-NC (.stp, .p21)",
     "ISO 14649 STEP-NC (.stp)": "ISO 14649 STEP-NC (.stp)",
+    "Wave Relief": "波のレリーフ",
+    "Domed Plate": "ドーム形の銘板",
 }
 
 # Operator tooltips (the operator classes' docstrings).
@@ -74,6 +80,11 @@ OPERATOR_DESCRIPTIONS = {
     "Cut the stock with the job's toolpaths and check for gouges, rapids through material and moves outside "
     "the machine": "ジョブの工具経路で素材を削り、削り込み・材料内の早送り・機械のストローク外の移動を調べます",
     "Put the 3D cursor on a finding and centre the view on it": "指摘箇所に3Dカーソルを置き、ビューの中心に表示します",
+    "Write the carving NC program for the chosen controller": "選んだ制御装置用に曲面加工のNCプログラムを書き出します",
+    "Plan the Z-level roughing and the ball finishing raster over the design mesh, and show the toolpaths":
+        "設計形状のメッシュに Z 等高線荒加工とボール仕上げの走査を計画し、工具経路を表示します",
+    "Add a built-in design (a wave relief or a domed plate, in mm) and pick it as the design":
+        "組み込みの形状（波のレリーフかドーム形の銘板、mm 単位）を追加し、設計形状に選びます",
     "Add a tool to the library": "工具ライブラリに工具を追加します",
     "Remove the selected tool from the library": "選択した工具を工具ライブラリから削除します",
     "Use a tool from the library for the engraving's roughing ball or finishing flat":
@@ -134,6 +145,9 @@ PANEL_TEXTS = {
     "Write Pockets as ISO 14649": "ポケットをISO 14649で書き出し",
     "Turn-Mill": "複合加工",
     "Tool & Tolerance": "工具と公差",
+    "Carve": "曲面加工",
+    "Roughing": "荒加工",
+    "Finishing, Feeds & Heights": "仕上げ・送り・高さ",
     "Sheet Metal": "板金",
     "Pipe Elbow": "エビ管",
     "Tool Library": "工具ライブラリ",
@@ -161,6 +175,9 @@ PROPERTY_TEXTS = {
     "The pockets on the rotating table": "回転テーブルのポケット",
     "The imported ISO 14649 workplan": "読み込んだISO 14649ワークプラン",
     "The turn-mill part's radial and axial operations": "複合加工部品の径方向・軸方向の加工工程",
+    "Carving": "曲面加工",
+    "Roughing and finishing of a 3-D surface (relief, domed plate, any mesh)":
+        "3次元曲面（レリーフ、ドーム形の板、任意のメッシュ）の荒加工と仕上げ",
     "Kind": "種類",
     "Location": "位置",
     "Message": "メッセージ",
@@ -368,6 +385,54 @@ PROPERTY_TEXTS = {
     "Blender's BVHTree": "BlenderのBVHTree",
     "trimesh": "trimesh",
     "trimesh (Embree when bundled), as in batch runs": "trimesh（同梱されていればEmbree）。バッチ実行と同じです",
+    # Carve (3-D surfaces)
+    "Clearance": "クリアランス",
+    "Step Down": "切込み深さ",
+    "Design": "設計形状",
+    "The surface to carve: a mesh in work coordinates, its top at the stock top":
+        "加工する曲面：ワーク座標のメッシュ（上端を素材の上面に合わせる）",
+    "Stock Above Design": "設計形状上の素材の余り",
+    "How far the stock's top stands above the design's highest point (mm)":
+        "素材の上面が設計形状の最も高い点からどれだけ上にあるか (mm)",
+    "Rough in Z levels with the flat end mill before finishing": "仕上げの前にフラットエンドミルで Z 等高線荒加工をします",
+    "Roughing Diameter": "荒加工の工具径",
+    "Flat end mill for roughing (mm)": "荒加工用フラットエンドミルの直径 (mm)",
+    "Roughing Tool Number": "荒加工の工具番号",
+    "Tool number of the roughing end mill": "荒加工エンドミルの工具番号",
+    "Stock roughing leaves on the design (mm)": "荒加工が設計形状の上に残す取り代 (mm)",
+    "Depth between roughing levels (mm)": "荒加工の段と段の深さ (mm)",
+    "Roughing Stepover": "荒加工のピックフィード",
+    "Distance between roughing passes (mm)": "荒加工のパスの間隔 (mm)",
+    "Ball end mill for finishing (mm)": "仕上げ用ボールエンドミルの直径 (mm)",
+    "Ball Tool Number": "ボールの工具番号",
+    "Tool number of the finishing ball end mill": "仕上げボールエンドミルの工具番号",
+    "Scallop Height": "カスプ高さ",
+    "Height of the ridges the ball may leave between passes; the stepover follows from it (mm)":
+        "パスの間にボールが残してよい山の高さ。ピックフィードはこれから決まります (mm)",
+    "Direction of the finishing passes, degrees from +X": "仕上げパスの向き（+X からの角度、度）",
+    "Max Slope": "最大傾斜",
+    "Steeper slopes across the raster do not shrink the stepover further (degrees)":
+        "走査に直交する方向でこれより急な傾斜では、ピックフィードをそれ以上狭めません（度）",
+    "Point Spacing": "点の間隔",
+    "Distance between points along a pass (refined where the surface bends) (mm)":
+        "パスに沿った点の間隔（曲面が曲がるところでは細かくします） (mm)",
+    "Roughing Spindle": "荒加工の主軸回転数",
+    "Spindle speed for roughing (rpm)": "荒加工の主軸回転数 (rpm)",
+    "Finishing Spindle": "仕上げの主軸回転数",
+    "Spindle speed for finishing (rpm)": "仕上げの主軸回転数 (rpm)",
+    "Roughing Feed": "荒加工の送り速度",
+    "Roughing feed (mm/min)": "荒加工の送り速度 (mm/min)",
+    "Finishing Feed": "仕上げの送り速度",
+    "Finishing feed (mm/min)": "仕上げの送り速度 (mm/min)",
+    "Feed into the work (mm/min)": "ワークへの突込み送り速度 (mm/min)",
+    "Height above the stock top for moves between cuts (mm)": "切削と切削の間を移動する、素材上面からの高さ (mm)",
+    "Height above the stock top at the start and the end (mm)": "開始時と終了時の素材上面からの高さ (mm)",
+    "Show the rapid moves in the preview": "プレビューに早送りを表示します",
+    "Sample": "サンプル",
+    "Wave Relief": "波のレリーフ",
+    "A 120 x 80 mm plate with a wave on top": "上面が波形の 120 x 80 mm の板",
+    "Domed Plate": "ドーム形の銘板",
+    "A 160 x 60 mm domed name plate with a raised ring": "縁に盛り上がった輪のある 160 x 60 mm のドーム形銘板",
     # Preferences: tool library
     "Number": "工具番号",
     "Tool (pocket) number, T word": "工具（ポット）番号、Tワード",
@@ -416,6 +481,8 @@ MESSAGES = {
     "Pick the part (a mesh) in the Turn-Mill panel": "複合加工パネルで部品（メッシュ）を選んでください",
     "pick the part (a mesh around the Z axis) in the Turn-Mill panel":
         "複合加工パネルで部品（Z軸まわりのメッシュ）を選んでください",
+    "Pick the design (a mesh) in the Carve panel": "曲面加工パネルで設計形状（メッシュ）を選んでください",
+    "pick the design (a mesh) in the Carve panel": "曲面加工パネルで設計形状（メッシュ）を選んでください",
     "Corners taken from the selected face": "選択した面から頂点を取得しました",
     "Kezuri preferences are not available": "Kezuriのプリファレンスを利用できません",
     "No such tool in the library": "その工具は工具ライブラリにありません",
@@ -471,6 +538,13 @@ MESSAGES = {
     "simulation cancelled": "シミュレーションを中止しました",
     "simulate needs a Program, an Operation or a list of Operations":
         "シミュレーションには Program、Operation、または Operation のリストが必要です",
+    # toolpath/dropcutter.py, toolpath/carve.py
+    "a vertex has a non-finite coordinate": "頂点に有限でない座標があります",
+    "a query point has a non-finite coordinate": "問い合わせ点に有限でない座標があります",
+    "a path needs at least two points": "経路には少なくとも2点が必要です",
+    "the design mesh has no triangles": "設計形状のメッシュに三角形がありません",
+    "the design mesh has a non-finite vertex": "設計形状のメッシュに有限でない頂点があります",
+    "the design does not lie over the simulated stock": "設計形状がシミュレーションした素材の上にありません",
     "design must be a function z(x, y), a mesh with vertices and faces, or a number":
         "設計形状は関数 z(x, y)、頂点と面を持つメッシュ、または数値で指定してください",
     "radial turn-mill operations cut a bar: give a cylinder stock about the C axis":
@@ -931,6 +1005,34 @@ MESSAGE_TEMPLATES = {
     '--order: #{} is not a workingstep of {} ({})': '--order：#{0} は {1} のワーキングステップではありません（{2}）',
     'no such ISO 14649 file: {}': 'ISO 14649 ファイルがありません：{0}',
     'no such mesh file: {}': 'メッシュファイルがありません：{0}',
+    # toolpath/dropcutter.py, toolpath/carve.py, operators/carve.py
+    'stock allowance must be a number >= 0 mm, got {}': '取り代は 0 mm 以上の数値にしてください（指定：{0}）',
+    'a {} cannot leave a stock allowance (use a ball, flat or bull nose)':
+        '{0} では取り代を残せません（ボール・フラット・ブルノーズを使ってください）',
+    'vertices must be an (n, 3) array of mm, got shape {}': '頂点は (n, 3) の mm の配列にしてください（形：{0}）',
+    'faces must be an (m, 3) array of vertex indices, got shape {}': '面は (m, 3) の頂点番号の配列にしてください（形：{0}）',
+    'a face refers to vertex {}, but there are {}': '面が頂点 {0} を参照していますが、頂点は {1} 個です',
+    'kernel must be one of {}, got {}': 'カーネルは {0} のいずれかにしてください（指定：{1}）',
+    'the numba drop-cutter kernel is not available: {}': 'numba のドロップカッター用カーネルが使えません：{0}',
+    'spacing and tolerance must be > 0 mm, got {}, {}': '間隔と許容値は 0 mm より大きくしてください（指定：{0}、{1}）',
+    '{} must be a number >= 0, got {}': '{0} は 0 以上の数値にしてください（指定：{1}）',
+    '{} must be greater than 0': '{0} は 0 より大きくしてください',
+    'finishing needs a ball end mill (the scallop rule is a ball\'s), got a {}':
+        '仕上げにはボールエンドミルが必要です（カスプ高さの式はボールのものです）。指定は {0} です',
+    'roughing needs a flat, ball or bull nose end mill, got a {}':
+        '荒加工にはフラット・ボール・ブルノーズのエンドミルが必要です。指定は {0} です',
+    'scallop {} mm must be smaller than the ball\'s radius {} mm': 'カスプ高さ {0} mm はボールの半径 {1} mm より小さくしてください',
+    'roughing stepover {} mm is wider than the {} mm tool': '荒加工のピックフィード {0} mm が工具径 {1} mm より広くなっています',
+    'max slope must be 0..90 degrees, got {}': '最大傾斜は 0～90 度にしてください（指定：{0}）',
+    'safe Z {} mm must be at least the clearance {} mm': '安全高さ Z {0} mm はクリアランス {1} mm 以上にしてください',
+    'the design mesh needs (n, 3) vertices, got shape {}': '設計形状のメッシュには (n, 3) の頂点が必要です（形：{0}）',
+    'the design mesh is flat in X or Y ({} x {} mm): nothing to carve':
+        '設計形状のメッシュが X か Y 方向に平らです（{0} x {1} mm）：加工するものがありません',
+    'stock top {} mm is below the design\'s highest point {} mm': '素材の上面 {0} mm が設計形状の最も高い点 {1} mm より下です',
+    'faces slope up to {} degrees across the finishing raster; the stepover allows for {} degrees, so the scallop is higher there':
+        '仕上げの走査に直交する方向で面の傾斜が最大 {0} 度あります。ピックフィードは {1} 度までを見込んでいるので、そこではカスプが高くなります',
+    'design {} has no faces': '設計形状 {0} に面がありません',
+    'Carving planned: {} moves, stepover {} mm, about {} min': '曲面加工を計画しました：{0} 移動、ピックフィード {1} mm、約 {2} 分',
     '{}: not a readable mesh ({})': '{0}：読み込めるメッシュではありません（{1}）',
     '{}: the mesh has no faces': '{0}：メッシュに面がありません',
     'no workflow {}; the table has {}': 'ワークフロー {0} はありません。あるのは {1} です',

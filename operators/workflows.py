@@ -5,10 +5,10 @@ the demo loop over :data:`WORKFLOWS`; nothing else lists the workflows.
 """
 from __future__ import annotations
 
-from . import engrave, ncfile, rotary, sheetmetal, stepnc, turnmill
+from . import carve, engrave, ncfile, rotary, sheetmetal, stepnc, turnmill
 
 WORKFLOWS = (engrave.WORKFLOW, rotary.WORKFLOW, stepnc.WORKFLOW, turnmill.WORKFLOW, sheetmetal.WORKFLOW,
-             ncfile.WORKFLOW)
+             carve.WORKFLOW, ncfile.WORKFLOW)
 
 
 def simulated() -> list:

@@ -84,6 +84,8 @@ NUMERIC = [
     ("unfold", "--station", 1, 999, True, False),
     ("engrave", "--seed", 0, 2**31 - 1, True, False),
     ("simulate", "--cell", 0.0, None, False, True),
+    ("carve", "--angle", -180.0, 180.0, False, False),
+    ("carve", "--scallop", 0.0001, None, False, False),
 ]
 SIMULATE_REQUIRED = ("--nc", "x.nc", "--tool", "ball:6", "--stock", "box:0,0,-10,10,10,0")
 

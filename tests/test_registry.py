@@ -119,9 +119,9 @@ def test_the_workflow_table_drives_batch_and_simulate():
     from kezuri.operators import simulate, workflows
     batch = load_batch()
     names = list(batch.commands())
-    assert names == ["engrave", "rotary", "stepnc", "turnmill", "unfold", "elbow", "simulate"]
-    assert [w.key for w in workflows.simulated()] == ["ENGRAVE", "ROTARY", "STEPNC", "TURNMILL"]
-    assert [item[0] for item in simulate._ITEMS] == ["ENGRAVE", "ROTARY", "STEPNC", "TURNMILL"]
+    assert names == ["engrave", "rotary", "stepnc", "turnmill", "unfold", "elbow", "carve", "simulate"]
+    assert [w.key for w in workflows.simulated()] == ["ENGRAVE", "ROTARY", "STEPNC", "TURNMILL", "CARVE"]
+    assert [item[0] for item in simulate._ITEMS] == ["ENGRAVE", "ROTARY", "STEPNC", "TURNMILL", "CARVE"]
     for workflow in workflows.WORKFLOWS:
         for family in workflow.post_families:
             assert family in post.FAMILIES

@@ -1,0 +1,344 @@
+"""Carving 3-D surfaces in Blender: the design mesh, Z-level roughing and a ball finishing raster.
+
+The design is a mesh object (a relief, a domed plate, any mesh), taken in world coordinates
+converted to millimetres: the work zero is the scene's origin, so model the design with its top
+at Z 0 (the stock top) as the samples are.  The stock is the design's box, from its lowest
+point up to its highest plus "Stock Above Design".
+"""
+from __future__ import annotations
+
+import os
+import time
+from dataclasses import dataclass
+from types import SimpleNamespace
+
+import bpy
+import numpy as np
+from bpy.props import EnumProperty, StringProperty
+from bpy_extras.io_utils import ExportHelper
+
+from .. import post as posts
+from ..post import write_atomic
+from ..toolpath import carve as core
+from ..toolpath import carve_samples, meshdata
+from ..toolpath.program import Tool
+from ..toolpath.simulate import BoxStock
+from . import convert
+from .common import SteppedOperator, run_reported
+from .preferences import scene_output_dir, scene_post
+from .properties import post_items, post_number
+from .translations import translate_message
+from .workflow import BatchCommand, SimulationSetup, Workflow
+
+POST_FAMILIES = ("milling",)
+
+PREFIX = "Kezuri Carve"
+COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "finishing": (0.1, 0.6, 1.0, 1.0), "rapid": (0.9, 0.1, 0.1, 1.0)}
+
+
+@dataclass
+class CarveJob:
+    result: core.CarveResult
+    vertices: np.ndarray          # the design in work mm
+    faces: np.ndarray             # its triangles
+    frame: convert.WorkFrame
+    seconds: float
+
+
+def settings_from(props) -> core.CarveSettings:
+    return core.CarveSettings(
+        rough_tool=Tool(props.rough_tool_number, "flat", props.rough_diameter, name="roughing"),
+        finish_tool=Tool(props.finish_tool_number, "ball", props.finish_diameter, name="finishing"),
+        rough=props.rough, allowance=props.allowance, step_down=props.step_down,
+        rough_stepover=props.rough_stepover, scallop=props.scallop, raster_angle=props.raster_angle,
+        max_slope_deg=props.max_slope, sample_spacing=props.sample_spacing, rough_rpm=props.rough_rpm,
+        finish_rpm=props.finish_rpm, rough_feed=props.rough_feed, finish_feed=props.finish_feed,
+        plunge_feed=props.plunge_feed, clearance=props.clearance, safe_z=props.safe_z)
+
+
+def design_mesh(scene, depsgraph) -> tuple:
+    """The Carve panel's design as triangles in work mm: (vertices, faces, frame)."""
+    obj = scene.kezuri.carve.design
+    if obj is None or obj.type != "MESH":
+        raise convert.SceneInputError("pick the design (a mesh) in the Carve panel")
+    world, polygons, _ = convert.evaluated_mesh_arrays(obj, depsgraph)
+    if not polygons:
+        raise convert.SceneInputError(f"design {obj.name!r} has no faces")
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    faces, _ = meshdata.triangulated(polygons)
+    return frame.to_work(world), faces, frame
+
+
+def run_on_mesh(vertices, faces, settings: core.CarveSettings, frame, stock_above: float = 0.0, name="carve",
+                work_offset="G54", rapid_rate=5000.0, progress=None) -> CarveJob:
+    """Plan (timed) without touching Blender data."""
+    vertices, faces = core.check_mesh(vertices, faces)
+    started = time.perf_counter()
+    result = core.plan(vertices, faces, settings, name=name, stock_top=float(vertices[:, 2].max()) + stock_above,
+                       progress=progress)
+    result.program.work_offset = work_offset
+    result.program.rapid_rate = rapid_rate
+    return CarveJob(result, vertices, faces, frame, time.perf_counter() - started)
+
+
+def carve_request(scene, depsgraph):
+    """Read the design and the settings; return ``compute(progress)``, which plans the job
+    without touching Blender data (so it can run in steps)."""
+    props = scene.kezuri.carve
+    vertices, faces, frame = design_mesh(scene, depsgraph)
+    settings, name, above = settings_from(props), scene.name, props.stock_above
+    machine = scene.kezuri.machine
+    offset, rate = machine.work_offset, machine.rapid_rate
+    return lambda progress=None: run_on_mesh(vertices, faces, settings, frame, above, name, offset, rate, progress)
+
+
+def run_carve(scene, depsgraph, progress=None) -> CarveJob:
+    return carve_request(scene, depsgraph)(progress)
+
+
+def show_carve(scene, job: CarveJob, show_rapids: bool = False) -> list:
+    """Replace the previous carving preview with this job's toolpaths."""
+    convert.remove_objects(PREFIX)
+    objects = []
+    for op in job.result.program.operations:
+        cutting, rapid = convert.operation_paths(op)
+        objects.append(convert.polyline_object(scene, f"{PREFIX} {op.name}", cutting, job.frame,
+                                               COLOURS.get(op.name, (1, 1, 1, 1)), tube_mm=0.15))
+        if show_rapids and rapid:
+            objects.append(convert.polyline_object(scene, f"{PREFIX} {op.name} rapids", rapid, job.frame,
+                                                   COLOURS["rapid"], tube_mm=0.15))
+    return objects
+
+
+def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | None = None,
+                 allow: bool | str = False, checked: bool = False) -> str:
+    """Write the program; the export gate simulates it first unless the caller has (``checked``)."""
+    from . import gate
+
+    post = posts.create(POST_FAMILIES, post_name, work_offset=work_offset)
+    text = post.to_text(job.result.program)
+    if not checked:
+        gate.check(simulation(job), allow)
+    return write_atomic(path, text)
+
+
+def extension_for(post_name: str) -> str:
+    return posts.extension(POST_FAMILIES, post_name)
+
+
+def simulation(job: CarveJob) -> SimulationSetup:
+    """The program on the design's box, checked against the design mesh."""
+    x0, y0, z0, x1, y1, z1 = job.result.stock
+    return SimulationSetup(job.result.program, BoxStock(x0, y0, z0, x1, y1, z1),
+                           {"design": SimpleNamespace(vertices=job.vertices, faces=job.faces)}, job.frame, "carve")
+
+
+def add_sample(scene, sample: str = "wave"):
+    """The built-in design (``carve_samples.SAMPLES``) as a mesh object, set as the design."""
+    vertices, faces = carve_samples.SAMPLES[sample]()
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    mesh = bpy.data.meshes.new(f"Carve sample ({sample})")
+    mesh.vertices.add(len(vertices))
+    mesh.vertices.foreach_set("co", frame.to_world(vertices).astype(np.float32).ravel())
+    mesh.loops.add(3 * len(faces))
+    mesh.loops.foreach_set("vertex_index", np.asarray(faces, np.int32).ravel())
+    mesh.polygons.add(len(faces))
+    mesh.polygons.foreach_set("loop_start", np.arange(0, 3 * len(faces), 3, dtype=np.int32))
+    mesh.polygons.foreach_set("loop_total", np.full(len(faces), 3, np.int32))
+    mesh.update()
+    obj = bpy.data.objects.new(mesh.name, mesh)
+    obj.color = (0.85, 0.72, 0.52, 1.0)
+    scene.collection.objects.link(obj)
+    scene.kezuri.carve.design = obj
+    return obj
+
+
+def _poll_design(cls, context) -> bool:
+    design = context.scene.kezuri.carve.design
+    if design is None or design.type != "MESH":
+        cls.poll_message_set("Pick the design (a mesh) in the Carve panel")
+        return False
+    return True
+
+
+class KEZURI_OT_carve_generate(SteppedOperator, bpy.types.Operator):
+    """Plan the Z-level roughing and the ball finishing raster over the design mesh, and show the toolpaths"""
+
+    bl_idname = "kezuri.carve_generate"
+    bl_label = "Generate Carving"
+    bl_options = {"REGISTER", "UNDO"}
+    progress_label = "carve"
+
+    @classmethod
+    def poll(cls, context):
+        return _poll_design(cls, context)
+
+    def prepare(self, context):
+        return carve_request(context.scene, context.evaluated_depsgraph_get())
+
+    def finish(self, context, job):
+        show_carve(context.scene, job, context.scene.kezuri.carve.show_rapids)
+        for warning in job.result.warnings:
+            self.report({"WARNING"}, translate_message(warning))
+        program = job.result.program
+        self.report({"INFO"}, translate_message(
+            f"Carving planned: {sum(len(op) for op in program.operations)} moves, stepover "
+            f"{job.result.stepover:.3f} mm, about {program.cycle_time() / 60:.1f} min"))
+        return {"FINISHED"}
+
+
+class KEZURI_OT_carve_sample(bpy.types.Operator):
+    """Add a built-in design (a wave relief or a domed plate, in mm) and pick it as the design"""
+
+    bl_idname = "kezuri.carve_sample"
+    bl_label = "Add Sample Design"
+    bl_options = {"REGISTER", "UNDO"}
+
+    sample: EnumProperty(name="Sample", items=[
+        ("wave", "Wave Relief", "A 120 x 80 mm plate with a wave on top"),
+        ("dome", "Domed Plate", "A 160 x 60 mm domed name plate with a raised ring")])
+
+    def execute(self, context):
+        def work():
+            add_sample(context.scene, self.sample)
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+class KEZURI_OT_carve_export(bpy.types.Operator, ExportHelper):
+    """Write the carving NC program for the chosen controller"""
+
+    bl_idname = "kezuri.carve_export"
+    bl_label = "Export Carving NC"
+    bl_options = {"REGISTER"}
+
+    filename_ext = ".nc"
+    filter_glob: StringProperty(default="*.nc;*.ngc;*.tap", options={"HIDDEN"})
+    post: EnumProperty(name="Post", items=post_items(POST_FAMILIES), default=post_number("fanuc"))
+
+    @classmethod
+    def poll(cls, context):
+        return _poll_design(cls, context)
+
+    def invoke(self, context, event):
+        self.post = scene_post(context.scene, context)
+        self.filename_ext = extension_for(self.post)
+        folder = scene_output_dir(context.scene, context)
+        self.filepath = os.path.join(folder, bpy.path.clean_name(context.scene.name) + "-carve" + self.filename_ext)
+        return ExportHelper.invoke(self, context, event)
+
+    def check(self, context):
+        self.filename_ext = extension_for(self.post)
+        return ExportHelper.check(self, context)
+
+    def execute(self, context):
+        def work():
+            job = run_carve(context.scene, context.evaluated_depsgraph_get())
+            path = export_carve(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset,
+                                allow=context.scene.kezuri.simulation.acknowledged)
+            self.report({"INFO"}, translate_message(f"Wrote {path}"))
+            return {"FINISHED"}
+        return run_reported(self, work)
+
+
+CLASSES = (KEZURI_OT_carve_generate, KEZURI_OT_carve_sample, KEZURI_OT_carve_export)
+
+
+# ----- batch: ``batch.py carve`` -------------------------------------------------------------
+
+def batch_arguments(p):
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--blend", help="a .blend whose Carve panel names the design mesh")
+    source.add_argument("--mesh", help="an STL/OBJ/PLY of the design in mm (work zero: its origin)")
+    source.add_argument("--sample", choices=sorted(carve_samples.SAMPLES), help="a built-in design (default: wave)")
+    p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
+    from .batchio import number
+    from .properties import KezuriCarve
+    p.add_argument("--scallop", type=number("--scallop", prop=KezuriCarve.__annotations__["scallop"], unit="mm"),
+                   help="scallop height in mm the finishing may leave")
+    p.add_argument("--angle", type=number("--angle", prop=KezuriCarve.__annotations__["raster_angle"],
+                                          unit="degrees"), help="finishing raster angle in degrees")
+    p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
+                                                                 "finds gouges, rapids into material ...")
+
+
+def read_mesh_file(path: str) -> tuple:
+    """Vertices (mm) and triangles of an STL/OBJ/PLY design."""
+    import trimesh
+
+    if not os.path.isfile(path):
+        raise FileNotFoundError(f"no such mesh file: {path}")
+    try:
+        loaded = trimesh.load(path, force="mesh")
+    except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file
+        raise core.CarveError(f"{path}: not a readable mesh ({error})") from None
+    return core.check_mesh(np.asarray(loaded.vertices, float), np.asarray(loaded.faces))
+
+
+def batch(args) -> dict:
+    import trimesh
+
+    from . import batchio, preview, simview
+    from .common import Progress
+
+    scene = batchio.open_blend(args.blend)
+    props = scene.kezuri.carve
+    if args.scallop is not None:
+        batchio.set_exactly(props, "scallop", args.scallop, "--scallop")
+    if args.angle is not None:
+        batchio.set_exactly(props, "raster_angle", args.angle, "--angle")
+    machine = scene.kezuri.machine
+    if args.mesh:
+        vertices, faces = read_mesh_file(args.mesh)
+        frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+        job = run_on_mesh(vertices, faces, settings_from(props), frame, props.stock_above,
+                          os.path.splitext(os.path.basename(args.mesh))[0], machine.work_offset, machine.rapid_rate,
+                          Progress(None, "carve"))
+    else:
+        if not args.blend:
+            add_sample(scene, args.sample or "wave")
+        job = run_carve(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "carve"))
+    post_name = args.post or scene_post(scene)
+    nc_path = os.path.join(args.out, f"carve{extension_for(post_name)}")
+    from . import gate
+    simulated, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
+    export_carve(job, post_name, nc_path, machine.work_offset, checked=True)
+    design_path = os.path.join(args.out, "design.stl")
+    trimesh.Trimesh(job.vertices, job.faces, process=False).export(design_path)
+    paths = show_carve(scene, job)
+    solids = [convert.mesh_object(scene, f"{PREFIX} design", job.vertices, job.faces, job.frame)]
+    toolpaths_png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "carve-toolpaths.png"))
+    carved = simview.show_simulation(scene, simulated)
+    png = preview.render_preview(scene, [carved], [], os.path.join(args.out, "carve.png"), see_through=False,
+                                 color_type="VERTEX")
+    scallop = core.measured_scallop(simulated.result.heightfield, job.vertices, job.faces)
+    result = job.result
+    return {
+        "gate": gate_report,
+        "workflow": "carve",
+        "post": post_name,
+        "files": [nc_path, design_path],
+        "preview": png,
+        "toolpaths_preview": toolpaths_png,
+        "simulation": simview.report_of(simulated.result),
+        "scallop": {"asked_mm": round(props.scallop, 6), **{k: (round(v, 5) if isinstance(v, float) else batchio.rounded(v, 3))
+                                                  for k, v in scallop.items()}},
+        "toolpath_seconds": round(job.seconds, 3),
+        "stock": batchio.rounded(result.stock, 4),
+        "stepover_mm": round(result.stepover, 5),
+        "flat_stepover_mm": round(result.flat_stepover, 5),
+        "steepest_slope_deg": round(result.steepest_slope_deg, 2),
+        "roughing_levels": batchio.rounded(result.levels, 4),
+        "operations": [{**summary, "tool": op.tool.describe(), "tool_kind": op.tool.kind,
+                        "tool_diameter_mm": op.tool.diameter}
+                       for op, summary in zip(result.program.operations, result.program.summary())],
+        "cycle_time_s": round(result.program.cycle_time(), 1),
+        "warnings": result.warnings,
+    }
+
+
+WORKFLOW = Workflow(
+    "CARVE", "Carving", "Roughing and finishing of a 3-D surface (relief, domed plate, any mesh)", classes=CLASSES,
+    post_families=POST_FAMILIES, request=carve_request, simulation=simulation,
+    commands=(BatchCommand("carve", "3-D surface carving of a mesh: Z-level roughing, ball finishing raster",
+                           batch_arguments, batch, demo=("--post", "linuxcnc")),))

@@ -1,0 +1,369 @@
+"""Carving a 3-D surface (a relief, a domed plate, any mesh) with 3-axis tools.
+
+The design is a triangle mesh in millimetres; the stock is the box of its XY extent from its
+lowest point up to ``stock_top`` (default: its highest point).  Every tool position comes from
+the drop cutter (:mod:`.dropcutter`), so no move of either operation goes below the design:
+
+* **Roughing** (flat end mill by default) in Z levels ``step_down`` apart, on height-field
+  offsets: along parallel raster lines the tool's drop-cutter height with the stock allowance
+  (the tool grown by the allowance, exact) is computed once; level L cuts at max(L, that
+  height), only where the level above left material (where the grown tool's height is below
+  the level above), retracting between runs.  The last level follows the grown tool's height
+  everywhere, so roughing leaves the allowance all over (plus the steps on slopes).
+* **Finishing** (ball end mill) by one zigzag raster at ``raster_angle`` over the whole stock,
+  the tool dropped along it and the path refined until it stands within ``tolerance`` of the
+  dropped tool everywhere.  The stepover comes from the scallop height h asked for: on a
+  level surface a ball of radius r leaves h between passes s = 2 sqrt(2 r h - h^2) apart;
+  across a slope of angle a the passes are s / cos(a) apart on the surface, so the raster
+  spacing is s * cos(a_max), a_max the steepest slope of the design across the raster
+  direction (capped at ``max_slope_deg``: steeper faces are reported, their scallop is higher).
+  On a convex bend of radius rho the passes' contacts stand further apart than on a plane
+  (h ~ s^2 (1/r + 1/rho) / 8), so the spacing is also multiplied by sqrt(rho / (rho + r)), rho
+  the sharpest convex bend between upward faces (the angle between their normals over the
+  distance between their centroids), and by 0.95 (:data:`MARGIN`: that estimate from facets
+  is good to a few percent).  The raster runs out to 0.7 r beyond the stock, so the
+  ball's last contacts reach the stock's edge.
+
+Output: a :class:`~.program.Program` with one operation per tool, written by every milling post.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .dropcutter import DropCutter, DropCutterError
+from .errors import InputError
+from .program import Operation, PathBuilder, Program, Tool
+
+
+MARGIN = 0.95       # the bend radius is estimated from facets: 5 % spare on the finishing stepover
+
+
+class CarveError(InputError):
+    """Carving settings or a design mesh that cannot be used; the message names the value."""
+
+
+@dataclass(frozen=True)
+class CarveSettings:
+    rough_tool: Tool = Tool(1, "flat", 6.0, name="roughing")
+    finish_tool: Tool = Tool(2, "ball", 3.0, name="finishing")
+    rough: bool = True                # rough in Z levels before finishing
+    allowance: float = 0.5            # mm roughing leaves on the design
+    step_down: float = 3.0            # mm between roughing levels
+    rough_stepover: float = 2.4       # mm between roughing raster lines
+    scallop: float = 0.02             # mm scallop height the finishing may leave
+    raster_angle: float = 0.0         # degrees from +X, finishing (roughing runs across it)
+    max_slope_deg: float = 60.0       # slopes steeper than this do not shrink the stepover further
+    sample_spacing: float = 0.25      # mm between dropped points along a raster line
+    tolerance: float = 0.0003         # mm the path may stand above the dropped tool between points
+    rough_rpm: float = 16000.0
+    finish_rpm: float = 18000.0
+    rough_feed: float = 1500.0
+    finish_feed: float = 2000.0
+    plunge_feed: float = 400.0
+    clearance: float = 5.0            # mm above the stock top for moves between cuts
+    safe_z: float = 50.0              # mm above the stock top at the start and end
+
+    def check(self):
+        for name in ("allowance", "step_down", "rough_stepover", "scallop", "sample_spacing", "tolerance",
+                     "rough_feed", "finish_feed", "plunge_feed", "clearance", "safe_z"):
+            value = getattr(self, name)
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
+                raise CarveError(f"{name.replace('_', ' ')} must be a number >= 0, got {value!r}")
+            if value == 0 and name != "allowance":
+                raise CarveError(f"{name.replace('_', ' ')} must be greater than 0")
+        if self.finish_tool.kind != "ball":
+            raise CarveError(f"finishing needs a ball end mill (the scallop rule is a ball's), got a "
+                             f"{self.finish_tool.describe()}")
+        if self.rough and self.rough_tool.shape.pointed:
+            raise CarveError(f"roughing needs a flat, ball or bull nose end mill, got a {self.rough_tool.describe()}")
+        if self.scallop >= self.finish_tool.radius:
+            raise CarveError(f"scallop {self.scallop} mm must be smaller than the ball's radius "
+                             f"{self.finish_tool.radius} mm")
+        if self.rough_stepover > self.rough_tool.diameter:
+            raise CarveError(f"roughing stepover {self.rough_stepover} mm is wider than the "
+                             f"{self.rough_tool.diameter} mm tool")
+        if not 0 <= self.max_slope_deg < 90:
+            raise CarveError(f"max slope must be 0..90 degrees, got {self.max_slope_deg}")
+        if self.safe_z < self.clearance:
+            raise CarveError(f"safe Z {self.safe_z} mm must be at least the clearance {self.clearance} mm")
+
+
+@dataclass
+class CarveResult:
+    program: Program
+    stock: tuple                      # (x0, y0, z0, x1, y1, z1) in mm
+    stepover: float                   # finishing raster spacing in mm
+    flat_stepover: float              # what a level surface would allow
+    steepest_slope_deg: float         # across the raster, over the upward faces
+    convex_radius: float              # the sharpest convex bend of the design (mm; inf: none)
+    levels: list                      # roughing Z levels
+    warnings: list = field(default_factory=list)
+
+
+def ball_stepover(radius: float, scallop: float) -> float:
+    """Stepover of a ball of ``radius`` leaving ``scallop`` on a level surface."""
+    return 2.0 * math.sqrt(2.0 * radius * scallop - scallop * scallop)
+
+
+def check_mesh(vertices, faces) -> tuple:
+    vertices = np.asarray(vertices, float)
+    faces = np.asarray(faces)
+    if vertices.ndim != 2 or vertices.shape[-1] != 3 or len(vertices) < 3:
+        raise CarveError(f"the design mesh needs (n, 3) vertices, got shape {vertices.shape}")
+    if faces.ndim != 2 or faces.shape[-1] != 3 or not len(faces):
+        raise CarveError("the design mesh has no triangles")
+    if not np.all(np.isfinite(vertices)):
+        raise CarveError("the design mesh has a non-finite vertex")
+    size = vertices.max(axis=0) - vertices.min(axis=0)
+    if size[0] <= 0 or size[1] <= 0:
+        raise CarveError(f"the design mesh is flat in X or Y ({size[0]:g} x {size[1]:g} mm): nothing to carve")
+    return vertices, faces.astype(np.int64)
+
+
+def steepest_slope(vertices, faces, angle_deg: float) -> float:
+    """Steepest slope (degrees) across the raster direction over the mesh's upward faces."""
+    tri = vertices[faces]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    up = normal[:, 2] > 1e-9 * np.linalg.norm(normal, axis=1)
+    if not up.any():
+        return 0.0
+    across = np.array([-math.sin(math.radians(angle_deg)), math.cos(math.radians(angle_deg))])
+    gradient = -normal[up, :2] / normal[up, 2:3]
+    return float(math.degrees(math.atan(np.abs(gradient @ across).max())))
+
+
+def sharpest_convex_radius(vertices, faces, min_up: float = 0.3) -> float:
+    """Smallest radius of a convex bend between two upward faces (normal Z above ``min_up``):
+    the angle between their normals over the distance between their centroids; inf if none."""
+    tri = vertices[faces]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    length = np.linalg.norm(normal, axis=1)
+    ok = length > 0
+    unit = np.where(ok[:, None], normal / np.where(ok, length, 1)[:, None], 0)
+    edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    owner = np.tile(np.arange(len(faces)), 3)
+    order = np.lexsort((edges[:, 1], edges[:, 0]))
+    edges, owner = edges[order], owner[order]
+    same = np.all(edges[1:] == edges[:-1], axis=1)
+    a, b = owner[:-1][same], owner[1:][same]
+    up = (unit[a, 2] > min_up) & (unit[b, 2] > min_up)
+    a, b = a[up], b[up]
+    centre = tri.mean(axis=1)
+    gap = centre[b] - centre[a]
+    convex = np.einsum("ij,ij->i", unit[b] - unit[a], gap) < 0     # normals turn away: a ridge
+    angle = np.arccos(np.clip(np.einsum("ij,ij->i", unit[a], unit[b]), -1, 1))
+    bend = convex & (angle > 1e-9)
+    if not bend.any():
+        return math.inf
+    return float(np.min(np.linalg.norm(gap[bend], axis=1) / angle[bend]))
+
+
+def raster_lines(bounds: tuple, angle_deg: float, spacing: float) -> list:
+    """Lines at ``angle_deg`` ``spacing`` apart covering the rectangle (x0, y0, x1, y1), each
+    clipped to it, as (2, 2) arrays; the first and last touch the rectangle's extreme corners."""
+    x0, y0, x1, y1 = bounds
+    a = math.radians(angle_deg)
+    u = np.array([math.cos(a), math.sin(a)])
+    v = np.array([-u[1], u[0]])
+    corners = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
+    offsets = corners @ v
+    lo, hi = offsets.min(), offsets.max()
+    count = max(1, math.ceil((hi - lo) / spacing - 1e-9))
+    lines = []
+    for k in range(count + 1):
+        c = lo + (hi - lo) * k / count
+        base = c * v
+        # clip base + t*u to the rectangle
+        t_lo, t_hi = -np.inf, np.inf
+        for axis, (low, high) in enumerate(((x0, x1), (y0, y1))):
+            if abs(u[axis]) < 1e-12:
+                if not low - 1e-9 <= base[axis] <= high + 1e-9:
+                    t_lo, t_hi = 1.0, 0.0
+                continue
+            ta, tb = (low - base[axis]) / u[axis], (high - base[axis]) / u[axis]
+            t_lo, t_hi = max(t_lo, min(ta, tb)), min(t_hi, max(ta, tb))
+        if t_lo <= t_hi + 1e-12:
+            start, end = base + t_lo * u, base + max(t_hi, t_lo) * u
+            start = np.clip(start, [x0, y0], [x1, y1])
+            end = np.clip(end, [x0, y0], [x1, y1])
+            lines.append(np.array([start, end]))
+    return lines
+
+
+def _zigzag(lines: list) -> np.ndarray:
+    points = []
+    for k, line in enumerate(lines):
+        points.extend(line if k % 2 == 0 else line[::-1])
+    points = np.array(points)
+    keep = np.concatenate([[True], np.linalg.norm(np.diff(points, axis=0), axis=1) > 1e-9])
+    return points[keep]
+
+
+def plan(vertices, faces, settings: CarveSettings | None = None, *, name: str = "carve",
+         stock_top: float | None = None, progress=None, kernel: str = "auto") -> CarveResult:
+    """Roughing and finishing of the design mesh; see the module docstring."""
+    settings = settings or CarveSettings()
+    settings.check()
+    vertices, faces = check_mesh(vertices, faces)
+    report = progress or (lambda fraction, text="": None)
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    top = float(hi[2]) if stock_top is None else float(stock_top)
+    if not math.isfinite(top) or top < hi[2] - 1e-9:
+        raise CarveError(f"stock top {stock_top!r} mm is below the design's highest point {hi[2]:.3f} mm")
+    bounds = (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
+    bottom = float(lo[2])
+    warnings = []
+    operations = []
+    levels = []
+    clearance_z, safe_z = top + settings.clearance, top + settings.safe_z
+    try:
+        if settings.rough:
+            report(0.0, "roughing")
+            rough, levels = _roughing(vertices, faces, settings, bounds, top, bottom, clearance_z, safe_z, kernel,
+                                      lambda f, text="": report(0.5 * f, "roughing"))
+            if rough is not None:
+                operations.append(rough)
+        flat = ball_stepover(settings.finish_tool.radius, settings.scallop)
+        slope = steepest_slope(vertices, faces, settings.raster_angle)
+        if slope > settings.max_slope_deg:
+            warnings.append(f"faces slope up to {slope:.0f} degrees across the finishing raster; the stepover "
+                            f"allows for {settings.max_slope_deg:g} degrees, so the scallop is higher there")
+        rho = sharpest_convex_radius(vertices, faces)
+        r = settings.finish_tool.radius
+        stepover = MARGIN * flat * math.cos(math.radians(min(slope, settings.max_slope_deg))) * math.sqrt(rho / (rho + r)
+                                                                                                  if rho < math.inf
+                                                                                                  else 1.0)
+        report(0.5, "finishing")
+        operations.append(_finishing(vertices, faces, settings, bounds, top, bottom, stepover, clearance_z, safe_z,
+                                     kernel, lambda f, text="": report(0.5 + 0.5 * f, "finishing")))
+    except DropCutterError as error:
+        raise CarveError(str(error)) from None
+    report(1.0, "done")
+    program = Program(name, operations, notes=list(warnings))
+    return CarveResult(program, (bounds[0], bounds[1], bottom, bounds[2], bounds[3], top), stepover, flat, slope,
+                       rho, levels, warnings)
+
+
+def _roughing(vertices, faces, s: CarveSettings, bounds, top, bottom, clearance_z, safe_z, kernel, report):
+    cutter = DropCutter(vertices, faces, s.rough_tool, allowance=s.allowance, floor=bottom, kernel=kernel)
+    lines = raster_lines(bounds, s.raster_angle + 90.0, s.rough_stepover)
+    spacing = min(s.sample_spacing * 2, s.rough_tool.radius / 2)
+    dropped = []
+    for k, line in enumerate(lines):
+        if np.linalg.norm(line[1] - line[0]) < 1e-9:
+            continue
+        dropped.append(cutter.path(line if k % 2 == 0 else line[::-1], spacing, max(s.allowance / 4, s.tolerance)))
+        report(0.6 * (k + 1) / len(lines))
+    lowest = min(float(p[:, 2].min()) for p in dropped)
+    levels = []
+    level = top
+    while level > lowest + 1e-9:
+        level = max(level - s.step_down, lowest)
+        levels.append(level)
+    if not levels:
+        return None, []
+    builder = PathBuilder(clearance_z, s.rough_feed, s.plunge_feed, surface_z=top)
+    above = top
+    for n, level in enumerate(levels):
+        for points in dropped:
+            material = points[:, 2] < above - 1e-9
+            if not material.any():
+                continue
+            grown = material.copy()        # one more point each side: the tool enters and leaves on the surface
+            grown[1:] |= material[:-1]
+            grown[:-1] |= material[1:]
+            edges = np.flatnonzero(np.diff(np.concatenate([[0], grown.astype(np.int8), [0]])))
+            for start, end in zip(edges[::2], edges[1::2]):
+                run = points[start:end].copy()
+                run[:, 2] = np.maximum(run[:, 2], level)
+                builder.plunge(*run[0])
+                builder.polyline(run[1:])
+        above = level
+        report(0.6 + 0.4 * (n + 1) / len(levels))
+    builder.retract()
+    builder.rapid(builder.position[0], builder.position[1], safe_z)
+    tool = s.rough_tool
+    return Operation("roughing", tool, s.rough_rpm, clearance_z=clearance_z, safe_z=safe_z,
+                     comment=f"Z levels {s.step_down:g} mm, allowance {s.allowance:g} mm",
+                     **builder.arrays()), levels
+
+
+def _finishing(vertices, faces, s: CarveSettings, bounds, top, bottom, stepover, clearance_z, safe_z, kernel,
+               report):
+    cutter = DropCutter(vertices, faces, s.finish_tool, floor=-np.inf, kernel=kernel)
+    # out to 0.7 r beyond the stock: the ball's last contacts reach the stock's edge, and no
+    # point of the grown box is further than r from a box-shaped design (0.7 * sqrt(2) < 1)
+    g = 0.7 * s.finish_tool.radius
+    path = _zigzag(raster_lines((bounds[0] - g, bounds[1] - g, bounds[2] + g, bounds[3] + g), s.raster_angle,
+                                stepover))
+    if len(path) < 2:
+        path = np.vstack([path, path])
+    chunks = []
+    pieces = max(1, len(path) // 16)
+    for k in range(0, len(path) - 1, pieces):
+        part = cutter.path(path[k:k + pieces + 1], s.sample_spacing, s.tolerance)
+        chunks.append(part if not chunks else part[1:])
+        report(min(1.0, (k + pieces) / (len(path) - 1)))
+    points = np.vstack(chunks)
+    builder = PathBuilder(clearance_z, s.finish_feed, s.plunge_feed, surface_z=top)
+    # where nothing is under the ball (beyond a design that does not fill its box) the path
+    # breaks: retract, and come down again where the ball meets the design
+    touching = np.isfinite(points[:, 2])
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], touching.astype(np.int8), [0]])))
+    for start, end in zip(edges[::2], edges[1::2]):
+        run = _drop_collinear(points[start:end], s.tolerance / 2)
+        builder.plunge(*run[0])
+        builder.polyline(run[1:])
+    builder.retract()
+    builder.rapid(builder.position[0], builder.position[1], safe_z)
+    return Operation("finishing", s.finish_tool, s.finish_rpm, clearance_z=clearance_z, safe_z=safe_z,
+                     comment=f"raster {s.raster_angle:g} deg, stepover {stepover:.3f} mm, scallop {s.scallop:g} mm",
+                     **builder.arrays())
+
+
+def _drop_collinear(points: np.ndarray, tolerance: float) -> np.ndarray:
+    """Leave out points within ``tolerance`` of the line through their neighbours (one pass,
+    never two neighbours in a row, so no point ends up further than that from the path)."""
+    if len(points) < 3:
+        return points
+    a, b, c = points[:-2], points[1:-1], points[2:]
+    ac = c - a
+    length = np.linalg.norm(ac, axis=1)
+    t = np.einsum("ij,ij->i", b - a, ac) / np.where(length > 0, length ** 2, 1)
+    off = np.linalg.norm(a + ac * t[:, None] - b, axis=1)
+    below = (b[:, 2] <= (a + ac * t[:, None])[:, 2] + tolerance)
+    drop = (off <= tolerance) & below & (t > 0) & (t < 1)
+    # never two in a row: keep every other of a run
+    keep = np.ones(len(points), bool)
+    candidates = np.flatnonzero(drop) + 1
+    last = -2
+    for i in candidates:
+        if i != last + 1:
+            keep[i] = False
+            last = i
+        else:
+            last = -2
+    return points[keep]
+
+
+def measured_scallop(heightfield, vertices, faces) -> dict:
+    """What the finishing left on the design, from a simulated height field: the largest
+    height of material above the design measured along the surface normal (the vertical
+    excess times the cosine of the design's slope there, from the design's heights on the
+    grid), the largest vertical excess, where the first is, and the deepest cut below the design."""
+    from .simulate.checks import _mesh_top
+
+    top = _mesh_top(heightfield, np.asarray(vertices, float), np.asarray(faces, np.int64))
+    known = np.isfinite(top) & heightfield.inside
+    if not known.any():
+        raise CarveError("the design does not lie over the simulated stock")
+    excess = np.where(known, heightfield.heights.astype(float) - top, -np.inf)
+    gx, gy = np.gradient(np.where(known, top, 0.0), heightfield.cell_x, heightfield.cell_y)
+    normal = excess / np.sqrt(1 + gx * gx + gy * gy)
+    i, j = np.unravel_index(int(np.argmax(normal)), normal.shape)
+    return {"max_scallop_mm": float(normal[i, j]), "max_vertical_excess_mm": float(excess[known].max()),
+            "at": [float(heightfield.x()[i]), float(heightfield.y()[j])],
+            "deepest_below_design_mm": float(max(0.0, -excess[known].min()))}

@@ -1,0 +1,56 @@
+"""Sample designs for carving, built in code: closed meshes whose top is a height map.
+
+``wave_relief``: a 120 x 80 mm plate whose top is a wave, z = -4 + 3 sin(2 pi x / 60) cos(2 pi y / 50).
+``domed_plate``: a 160 x 60 mm name plate whose top is a spherical cap of radius 400 mm with a
+raised, rounded ring along its edge (a frame for a name), on a 0.5 mm grid (a coarser one
+leaves facet creases in the ring's hollow that no ball reaches).
+Work zero: the top of the stock (the design's highest point is at z = 0 or just below).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def heightmap_solid(x: np.ndarray, y: np.ndarray, top: np.ndarray, bottom: float) -> tuple:
+    """A closed, outward-facing triangle mesh: the height map ``top`` (nx, ny) over the grid
+    x (nx,) by y (ny,), four vertical sides and a flat bottom at ``bottom``."""
+    nx, ny = len(x), len(y)
+    gx, gy = np.meshgrid(x, y, indexing="ij")
+    upper = np.column_stack([gx.ravel(), gy.ravel(), np.asarray(top, float).ravel()])
+    lower = upper.copy()
+    lower[:, 2] = bottom
+    vertices = np.vstack([upper, lower])
+    index = np.arange(nx * ny).reshape(nx, ny)
+    a, b = index[:-1, :-1].ravel(), index[1:, :-1].ravel()
+    c, d = index[1:, 1:].ravel(), index[:-1, 1:].ravel()
+    top_faces = np.vstack([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    bottom_faces = top_faces[:, ::-1] + nx * ny
+    ring = np.concatenate([index[:, 0], index[-1, 1:], index[-2::-1, -1], index[0, -2:0:-1]])  # counter-clockwise
+    p, q = ring, np.roll(ring, -1)
+    side = np.vstack([np.column_stack([p, p + nx * ny, q + nx * ny]), np.column_stack([p, q + nx * ny, q])])
+    return vertices, np.vstack([top_faces, bottom_faces, side]).astype(np.int64)
+
+
+def wave_relief(cell: float = 1.0) -> tuple:
+    x = np.linspace(-60, 60, int(round(120 / cell)) + 1)
+    y = np.linspace(-40, 40, int(round(80 / cell)) + 1)
+    gx, gy = np.meshgrid(x, y, indexing="ij")
+    top = -4.0 + 3.0 * np.sin(2 * np.pi * gx / 60) * np.cos(2 * np.pi * gy / 50)
+    return heightmap_solid(x, y, top, -15.0)
+
+
+def domed_plate(cell: float = 0.5) -> tuple:
+    x = np.linspace(-80, 80, int(round(160 / cell)) + 1)
+    y = np.linspace(-30, 30, int(round(60 / cell)) + 1)
+    gx, gy = np.meshgrid(x, y, indexing="ij")
+    radius = 400.0
+    dome = np.sqrt(radius ** 2 - gx ** 2 - gy ** 2) - radius - 2.0
+    # a rounded ring 7 mm inside the edge, 1.2 mm high, 12 mm wide (a cosine bump)
+    # (the distance inside a rectangle with 14 mm corner radii, so the ring has no crease)
+    cx, cy = np.maximum(np.abs(gx) - 66, 0), np.maximum(np.abs(gy) - 16, 0)
+    inset = np.where((cx > 0) & (cy > 0), 14 - np.hypot(cx, cy), np.minimum(80 - np.abs(gx), 30 - np.abs(gy)))
+    bump = np.where(np.abs(inset - 7.0) < 6.0, 0.6 * (1 + np.cos(np.pi * (inset - 7.0) / 6.0)), 0.0)
+    return heightmap_solid(x, y, dome + bump, -12.0)
+
+
+SAMPLES = {"wave": wave_relief, "dome": domed_plate}

@@ -1,0 +1,195 @@
+"""Compiled drop-cutter kernel (numba): the closed forms of dropcutter.py, point by point.
+
+For each query point the kernel walks the triangles of the point's bucket in order of falling
+top Z and stops as soon as a triangle's highest vertex is no higher than the tool tip found so
+far (a triangle cannot lift the tool above its own top: every tool's underside is at or above
+its tip).  Each triangle is tested as dropcutter.py's numpy path tests it: its three vertices,
+its facet (the support point of the tool in the facet's gradient direction, when it falls
+inside the triangle) and its three edges (the concave 1-D maximum along the edge, clamped to
+the part of the edge under the tool).  dropcutter.py imports this module only when numba is
+wanted and importable.
+
+Tool codes and parameters (``prof``): kind 0 rounded (flat radius ``fr`` + corner ``rc``:
+ball, flat, bull nose), 1 cone (``k`` = 1 / tan(half angle), radius ``R``).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+_jit = njit(cache=True, nogil=True)
+
+ROUNDED, CONE = 0, 1
+BISECTIONS = 64
+
+
+@_jit
+def height(kind, R, rc, fr, k, d):
+    """Height of the tool's underside above its tip at distance d (d <= R)."""
+    if kind == CONE:
+        return k * d
+    if d <= fr:
+        return 0.0
+    off = d - fr
+    return rc - math.sqrt(max(rc * rc - off * off, 0.0))
+
+
+@_jit
+def slope(kind, R, rc, fr, k, d):
+    """dh/dd, the underside's slope at distance d (inf at the rim of a flat or bull nose)."""
+    if kind == CONE:
+        return k
+    if d <= fr:
+        return 0.0
+    off = d - fr
+    q = rc * rc - off * off
+    if q <= 0.0:
+        return np.inf
+    return off / math.sqrt(q)
+
+
+@_jit
+def support(kind, R, rc, fr, k, g):
+    """Distance from the axis of the point where the tool touches a plane of gradient g
+    (|grad z|) first, as dropcutter.facet_support."""
+    if kind == CONE:
+        return 0.0 if g <= k else R
+    if g <= 0.0:
+        return 0.0
+    if rc <= 0.0:
+        return R
+    return fr + rc * g / math.sqrt(1.0 + g * g)
+
+
+@_jit
+def edge_best(kind, R, rc, fr, k, m, t, ua, ub):
+    """The u in [ua, ub] where z0 + m*u - h(sqrt(t^2 + u^2)) is largest (a concave function)."""
+    if kind == CONE:
+        if abs(m) < k:
+            u = m * t / math.sqrt(k * k - m * m)
+        else:
+            u = np.inf if m > 0 else -np.inf
+    elif rc <= 0.0:                      # flat: linear along the edge
+        u = np.inf if m > 0 else (-np.inf if m < 0 else ua)
+    elif fr <= 0.0:                      # ball
+        u = m * math.sqrt(max(rc * rc - t * t, 0.0) / (1.0 + m * m))
+    else:                                # bull nose: bisection on the falling derivative
+        lo, hi = ua, ub
+        if _edge_derivative(kind, R, rc, fr, k, m, t, lo) <= 0.0:
+            return lo
+        if _edge_derivative(kind, R, rc, fr, k, m, t, hi) >= 0.0:
+            return hi
+        for _ in range(BISECTIONS):
+            mid = 0.5 * (lo + hi)
+            if _edge_derivative(kind, R, rc, fr, k, m, t, mid) > 0.0:
+                lo = mid
+            else:
+                hi = mid
+        u = 0.5 * (lo + hi)
+    return min(max(u, ua), ub)
+
+
+@_jit
+def _edge_derivative(kind, R, rc, fr, k, m, t, u):
+    d = math.sqrt(t * t + u * u)
+    if d <= 0.0:
+        return m
+    return m - slope(kind, R, rc, fr, k, d) * u / d
+
+
+@_jit
+def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, pre, best):
+    """The highest tool tip over (cx, cy) that touches triangle ``tri`` (3, 3), if above ``best``.
+    ``pre`` holds what depends on the triangle and the tool only (dropcutter.precomputed): the
+    facet's contact offset from the axis and the tool's height there, and per edge its XY unit
+    direction, XY length and slope.  The facet first (most often the contact on a smooth
+    surface), then the edges and vertices, each skipped when its highest point is no higher
+    than the best tip so far."""
+    R2 = R * R
+    if plane[3] > 0.0:                  # not a vertical facet
+        x = cx + pre[0]
+        y = cy + pre[1]
+        inside = True
+        sign = plane[4]
+        for e in range(3):
+            p = tri[e]
+            q = tri[(e + 1) % 3]
+            if sign * ((q[0] - p[0]) * (y - p[1]) - (q[1] - p[1]) * (x - p[0])) < 0.0:
+                inside = False
+                break
+        if inside:
+            z = plane[2] + plane[0] * x + plane[1] * y - pre[2]
+            if z > best:
+                best = z
+    for e in range(3):
+        p = tri[e]
+        q = tri[(e + 1) % 3]
+        if max(p[2], q[2]) <= best:
+            continue
+        length = pre[5 + 4 * e]
+        if length <= 1e-12:
+            continue
+        ux = pre[3 + 4 * e]
+        uy = pre[4 + 4 * e]
+        wx = cx - p[0]
+        wy = cy - p[1]
+        s0 = wx * ux + wy * uy
+        t = abs(wx * uy - wy * ux)
+        if t > R:
+            continue
+        w = math.sqrt(R2 - t * t)
+        ua = max(-s0, -w)
+        ub = min(length - s0, w)
+        if ua > ub:
+            continue
+        m = pre[6 + 4 * e]
+        u = edge_best(kind, R, rc, fr, k, m, t, ua, ub)
+        z = p[2] + m * (s0 + u) - height(kind, R, rc, fr, k, min(math.sqrt(t * t + u * u), R))
+        if z > best:
+            best = z
+    for v in range(3):
+        if tri[v, 2] <= best:
+            continue                    # h >= 0: a vertex lifts the tip to at most its own Z
+        dx = tri[v, 0] - cx
+        dy = tri[v, 1] - cy
+        d2 = dx * dx + dy * dy
+        if d2 <= R2:
+            z = tri[v, 2] - height(kind, R, rc, fr, k, math.sqrt(d2))
+            if z > best:
+                best = z
+    return best
+
+
+@_jit
+def drop_points(px, py, out, tris, planes, pre, zmax, bbox, start, entries, grid, prof):
+    """out[i] = the highest tip Z over (px[i], py[i]) (out holds the floor on entry)."""
+    kind = int(prof[0])
+    R, rc, fr, k = prof[1], prof[2], prof[3], prof[4]
+    bx0, by0, size = grid[0], grid[1], grid[2]
+    nbx, nby = int(grid[3]), int(grid[4])
+    for i in range(len(px)):
+        cx = px[i]
+        cy = py[i]
+        fi = (cx - bx0) / size
+        fj = (cy - by0) / size
+        if not (fi >= 0.0 and fj >= 0.0 and fi < nbx and fj < nby):
+            continue
+        b = int(fi) * nby + int(fj)
+        best = out[i]
+        for n in range(start[b], start[b + 1]):
+            t = entries[n]
+            if zmax[t] <= best:
+                break                   # sorted by falling top Z: nothing further can lift the tool
+            if cx < bbox[t, 0] or cx > bbox[t, 2] or cy < bbox[t, 1] or cy > bbox[t, 3]:
+                continue
+            # the triangle's XY box is ``R`` inside the grown one: no part of the triangle is
+            # nearer the axis than the box, so it lifts the tip to at most zmax - h(that distance)
+            gx = max(bbox[t, 0] + R - cx, cx - (bbox[t, 2] - R), 0.0)
+            gy = max(bbox[t, 1] + R - cy, cy - (bbox[t, 3] - R), 0.0)
+            near2 = gx * gx + gy * gy
+            if near2 > R * R or zmax[t] - height(kind, R, rc, fr, k, math.sqrt(near2)) <= best:
+                continue
+            best = triangle_drop(kind, R, rc, fr, k, cx, cy, tris[t], planes[t], pre[t], best)
+        out[i] = best
