@@ -308,6 +308,9 @@ def _finishing(vertices, faces, s: CarveSettings, bounds, top, bottom, stepover,
         chunks.append(part if not chunks else part[1:])
         report(min(1.0, (k + pieces) / (len(path) - 1)))
     points = np.vstack(chunks)
+    # beside a design's side wall the ball would drop past its foot: the tip stays on the stock's
+    # bottom (the table is below it), where the ball still clears the wall
+    points[:, 2] = np.where(np.isfinite(points[:, 2]), np.maximum(points[:, 2], bottom), points[:, 2])
     builder = PathBuilder(clearance_z, s.finish_feed, s.plunge_feed, surface_z=top)
     # where nothing is under the ball (beyond a design that does not fill its box) the path
     # breaks: retract, and come down again where the ball meets the design
