@@ -342,7 +342,29 @@ def test_gouge_check_sees_a_gouge():
     result = rotary.plan(SMALL_BLOCK, [VERTICAL])
     op = result.program.operations[0]
     deeper = op.replace(xyz=op.xyz - np.array([0, 0, 0.3]))
-    assert rotary.max_gouge(VERTICAL, deeper, SMALL_BLOCK) == pytest.approx(0.3 - SETTINGS.standoff, abs=1e-3)
+    assert rotary.max_gouge(VERTICAL, deeper, SMALL_BLOCK) == pytest.approx(0.3, abs=1e-3)  # the floor was exact
+
+
+def test_simulated_flat_floor_is_at_the_depth_and_not_gouged():
+    # The floor spiral used to stand tolerance + ARC_TOLERANCE = 0.015 mm proud of the floor.
+    from kezuri.toolpath import simulate as sim
+    result = rotary.plan(SMALL_BLOCK, [VERTICAL])
+    (x0, y0), (x1, y1) = VERTICAL.outline.min(axis=0), VERTICAL.outline.max(axis=0)
+
+    def design(x, y):
+        return np.where((x >= x0) & (x <= x1) & (y >= y0) & (y <= y1), -VERTICAL.depth, 0.0)
+    found = sim.simulate(result.program, sim.BoxStock(-40, -40, -20, 40, 40, 0), cell=0.05, design=design)
+    assert found.findings == []
+    hf = found.heightfield
+    x, y = np.meshgrid(hf.x(), hf.y(), indexing="ij")
+    middle = (x > x0 + 2 * R) & (x < x1 - 2 * R) & (y > y0 + 2 * R) & (y < y1 - 2 * R)
+    # The deepest point of the floor is the depth (the ball's tip runs on it), within 0.001 mm.
+    assert hf.heights[middle].min() == pytest.approx(-VERTICAL.depth, abs=1e-3)
+    # and nothing is below it anywhere
+    assert hf.heights.min() >= -VERTICAL.depth - 1e-3
+    # Between the spiral's turns the scallop of a ball at pitch P: r - sqrt(r^2 - (P/2)^2).
+    scallop = R - math.sqrt(R * R - (SETTINGS.stepover / 2) ** 2)
+    assert hf.heights[middle].max() <= -VERTICAL.depth + scallop + 0.02
 
 
 def box_penetration(pocket, centres):
@@ -446,7 +468,8 @@ def test_floor_spiral_covers_the_floor(sample):
     nearest = np.array([np.min(np.linalg.norm(floor[:, :2] - p, axis=1)) for p in grid])
     # Passes stepover apart, points spacing apart: nothing farther than half the diagonal.
     assert nearest.max() <= math.hypot(SETTINGS.stepover, SETTINGS.spacing) / 2 + 0.02
-    assert np.allclose(floor[:, 2], -path.pocket.depth + SETTINGS.standoff)
+    assert np.allclose(np.vstack(path.bottom)[:, 2], -path.pocket.depth)    # on the floor, no stand-off
+    assert np.allclose(path.wall[-1][1][:, 2], -path.pocket.depth + SETTINGS.standoff)
 
 
 def test_bowl_helix_has_pitch_p_along_the_surface(sample):

@@ -42,9 +42,11 @@ the rotation axis, then translated to its real centre and converted to C-X-Z:
    Points are ``spacing`` (the paper's alpha) apart along circles and spirals, and at
    most ``spacing`` apart along outlines (outline vertices are kept so corners are not cut).
 
-Finishing passes stand ``tolerance + region.ARC_TOLERANCE`` off the design surface, so the
+Finishing passes stand ``tolerance + region.ARC_TOLERANCE`` off the walls and a bowl, so the
 polygonal approximation of round offsets and the machine's rotary interpolation never
-gouge: the surfaces are left at most that much proud (plus the scallops).  :func:`max_gouge` checks it against
+gouge: those surfaces are left at most that much proud (plus the scallops).  A flat floor
+is cut at its depth exactly: the floor spiral keeps Z constant, and both those errors are in
+plan, so it keeps the stand-off from the walls only.  :func:`max_gouge` checks it against
 the analytic pocket: from ball positions along the interpolated machine motion it bounds the
 penetration in between, probing more positions only where that bound is not tight.
 
@@ -57,12 +59,13 @@ rims only (wall angle 0).
 
 Cycle time, compared with the paper: the built-in sample (:func:`sample_job`, three pockets
 in a 105 mm block, 6 mm bit, P = alpha = 1 mm, 1500 mm/min on the wood, 300 mm/min plunges)
-is estimated at 8 min 43 s (slanted tray 5:14, peanut 2:21, bowl 1:07); the paper machined
+is estimated at 8 min 46 s (slanted tray 5:16, peanut 2:23, bowl 1:07); the paper machined
 its three pockets in 8 min 22 s.  Its feeds and pocket sizes are not published, so this
 is a sanity check of the order of magnitude, not a reproduction.
 """
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass, field
 
@@ -219,8 +222,10 @@ def _wall_finishing(geo: _Geometry, settings: RotarySettings) -> list:
 
 def _floor_spiral(geo: _Geometry, settings: RotarySettings) -> list:
     """One Archimedean spiral per piece of the floor (the pocket centre when it is on the
-    floor), pitch ``stepover``, clipped to the floor's tool-centre region."""
-    z = geo.floor_z(settings.standoff)
+    floor), pitch ``stepover``, clipped to the floor's tool-centre region.  The ball runs on
+    the floor itself (no stand-off): its Z is constant, so neither the rotary interpolation
+    nor the polygonal offsets (both in plan) can take it below the floor."""
+    z = geo.floor_z(0.0)
     b = settings.stepover / (2 * math.pi)
     chains = []
     for piece in rg.components(geo.bottom_region()):
@@ -278,7 +283,13 @@ def _pocket_operation(geo: _Geometry, settings: RotarySettings, start_c):
         chains[k] = _start_nearest(chains[k], chains[k - 1][-1])
     ends = np.array([c[-1] for c in chains[:-1]]).reshape(-1, 3)
     starts = np.array([c[0] for c in chains[1:]]).reshape(-1, 3)
-    linked = np.concatenate([[False], _safe_links(geo, ends, starts, settings.tolerance / 2)])
+    # Links keep tolerance / 2 off the walls and a bowl; over a flat floor, which the floor
+    # spiral runs on exactly, they only must not go below it.
+    floor_geo = geo
+    if geo.bottom == "flat":
+        floor_geo = copy.copy(geo)
+        floor_geo.depth = geo.depth + settings.tolerance / 2 + 1e-6     # (the bound's slack)
+    linked = np.concatenate([[False], _safe_links(floor_geo, ends, starts, settings.tolerance / 2)])
     for k, chain in enumerate(chains):
         if linked[k]:
             down = chain[0][2] < chains[k - 1][-1][2] - 1e-9

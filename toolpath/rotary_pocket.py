@@ -325,8 +325,8 @@ class _Geometry:
 
     def bottom_region(self) -> CrossSection:
         """Plan region the bottom finishing covers (a flat floor, or the bowl inside the rim)."""
-        if self.bottom == "flat":
-            return self.region_at(self.floor_z(self.standoff), self.standoff)
+        if self.bottom == "flat":        # the ball on the floor, the stand-off from the walls
+            return self.inset(self.wall_offset(self.floor_z(0.0)) + self.standoff)
         return self.inset(self.r + self.standoff)
 
     def rim_wall(self) -> float:
