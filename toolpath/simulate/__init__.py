@@ -31,8 +31,9 @@ One call, :func:`simulate`, with two engines behind it:
 ``"manifold"``
     Exact solids: the stock minus the swept tool, built in sweep.py (tubes of the tool's
     section along runs of moves, wedges of the tool at corners, hulls of the tool elsewhere),
-    unioned in chunks with ``Manifold.batch_boolean``.  Every piece lies inside the true
-    sweep, within ``tolerance`` of it, so the error is always material left.
+    unioned in chunks with ``Manifold.batch_boolean``.  Every piece lies within ``tolerance``
+    of the true sweep: the tool's corner is an area-equal polygon (no bias in volume), beyond
+    the sweep by at most ``sweep.outside`` (under 0.75 x tolerance); other errors leave material.
 
 Rotary C (SPEC W2, C-X-Z): the table turns about Z; a machine position (X, Y, C) is the part
 point ``Rot(C) @ (X, Y)`` (X = -R, C = the angle of the part point from the -X axis).

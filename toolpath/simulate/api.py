@@ -39,7 +39,8 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     ``engine``: "heightfield" (Z-map with ``cell`` mm columns) or "manifold" (exact solids;
     its safety checks still run on a height field of ``cell``).
     ``tolerance``: how far the tool shape may be approximated (manifold facets, the bull
-    nose's torus ring); always on the side of leaving material.
+    nose's torus ring); on the side of leaving material, but for the manifold engine's
+    area-equal tool corner (beyond the true tool by under 0.75 x tolerance).
     ``design``: the finished part, for gouge checks: a function z(x, y) on arrays, a mesh
     (anything with ``vertices`` and ``faces``, e.g. trimesh.Trimesh: its upper envelope), or
     a number (a floor plane).  ``keep_regions``: 2-D loops where nothing may be cut, or
