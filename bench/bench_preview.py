@@ -20,9 +20,7 @@ def _sample_jobs():
     import bpy
 
     import kezuri
-    from batch import stepnc_sample
-    from kezuri.operators import samples, stepnc
-    from kezuri.operators import simulate as shell
+    from kezuri.operators import samples, stepnc, workflows
     from kezuri.toolpath import stepnc as stepnc_core
 
     if not hasattr(bpy.types.Scene, "kezuri"):
@@ -33,12 +31,13 @@ def _sample_jobs():
         samples.clear_scene(scene)
         samples.set_millimetres(scene)
         if workflow == "STEPNC":
-            path = stepnc_sample(tempfile.mkdtemp())
+            path = stepnc.sample_file(tempfile.mkdtemp())
             stepnc.fill_workplan_list(scene, os.path.abspath(path), stepnc_core.load_workplan(path))
         else:
             makers[workflow](scene)
-        plan, setup = shell._simulation_setup(scene, workflow)
-        yield workflow.lower(), setup(plan(None))
+        flow = workflows.workflow_of(workflow)
+        setup = flow.simulation(flow.request(scene, bpy.context.evaluated_depsgraph_get())(None))
+        yield workflow.lower(), (setup.program, setup.stock, setup.extra, setup.frame, setup.name)
 
 
 def run():
