@@ -246,3 +246,77 @@ def test_random_bytes_as_a_design_file_are_refused_by_name(tmp_path):
     path.write_bytes(np.random.default_rng(7).bytes(3000))
     with pytest.raises(sim.SimulationError, match="design noise.stl: "):
         sim.simulate([slot_op()], BOX_STOCK, cell=0.5, design=load_design(str(path)), design_name="noise.stl")
+
+
+# ----- 3. no hang, whatever the mesh or number ----------------------------------------------------
+
+def _join_all_pairs(runs, surface, settings):
+    """The old join, comparing every run with every other: the reference ordering."""
+    remaining, passes = list(runs[1:]), [runs[0]]
+    for _ in range(len(remaining)):
+        end = passes[-1][-1]
+        to_start = np.array([np.linalg.norm(r[0] - end) for r in remaining])
+        to_end = np.array([np.linalg.norm(r[-1] - end) for r in remaining])
+        i = int(np.argmin(np.minimum(to_start, to_end)))
+        run = remaining.pop(i)
+        if to_end[i] < to_start[i]:
+            run = run[::-1]
+        if min(to_start[i], to_end[i]) <= 4 * settings.pick_feed and tm._link_clear(end, run[0], surface, settings):
+            passes[-1] = np.vstack([passes[-1], run])
+        else:
+            passes.append(run)
+    return passes
+
+
+def test_the_grid_join_orders_runs_exactly_as_the_all_pairs_one():
+    rng = np.random.default_rng(3)
+    settings = tm.TurnMillSettings()
+    far = tm.Triangles(np.array([[[500.0, 500, 500], [501, 500, 500], [500, 501, 500]]]))   # links always clear
+    starts = np.vstack([rng.uniform(-30, 30, (300, 3)), rng.uniform(-300, 300, (20, 3))])   # some far away
+    runs = [np.vstack([s, s + rng.normal(0, 2, 3), s + rng.normal(0, 4, 3)]) for s in starts]
+    with time_limit(60):
+        new = tm._join(runs, far, settings)
+    old = _join_all_pairs(runs, far, settings)
+    assert len(new) == len(old) and all(np.array_equal(a, b) for a, b in zip(new, old))
+
+
+def test_join_progress_can_cancel():
+    runs = [np.array([[float(i), 0, 0], [i + 0.5, 0, 0]]) for i in range(600)]
+    far = tm.Triangles(np.array([[[500.0, 500, 500], [501, 500, 500], [500, 501, 500]]]))
+    with pytest.raises(tm.TurnMillCancelled):
+        tm._join(runs, far, tm.TurnMillSettings(), lambda fraction: False)
+
+
+def test_turn_mill_on_a_plain_64_sided_cylinder_finishes():
+    # Before: the all-pairs join took 40 s at 8 sections and more than 8 minutes at 64.
+    done = run_python(
+        "import time, numpy as np, trimesh\n"
+        "from kezuri.toolpath import turnmill as tm\n"
+        "m = trimesh.creation.cylinder(radius=20, height=40, sections=64)\n"
+        "v = np.asarray(m.vertices)\n"
+        "stock = tm.Stock(float(np.hypot(v[:, 0], v[:, 1]).max()), float(v[:, 2].min()), float(v[:, 2].max()))\n"
+        "plan = tm.plan(v, m.faces, stock)\n"
+        "print(sum(len(op) for op in plan.program.operations))\n", timeout=240)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert int(done.stdout.split()[-1]) > 1000
+
+
+def test_nan_vertices_are_refused_up_front():
+    v, f, stock = tm.sample_part(48)
+    v = v.copy()
+    v[5, 1] = np.nan
+    with time_limit(20), pytest.raises(tm.TurnMillError, match="NaN or infinite vertex"):
+        tm.plan(v, f, stock)
+
+
+@pytest.mark.parametrize("pitch", ["0.00", "0.000001", "0.05"])
+def test_a_zero_or_tiny_pitch_is_refused_before_punching(pitch):
+    text = f"N000 G92 X1000.00 Y1040.00\nN001 G72 X0.00 Y0.00\nG69 I100.00 J0.00 P5.00 Q{pitch} T302\nG50\n"
+    with time_limit(10), pytest.raises(punch.PunchError, match="line 3: .*(Q \\(pitch\\) > 0|below the 0.1 mm)"):
+        punch.simulate_punching(text)
+
+
+def test_unfold_divisions_are_bounded():
+    quad = np.array([(0, 0, 0), (0, 30, 100), (100, 50, 100), (100, 40, 0)], float)
+    with time_limit(10), pytest.raises(unfold.UnfoldError, match="from 1 to 1000, got 100000"):
+        unfold.unfold_twisted_quad(quad, 100_000)

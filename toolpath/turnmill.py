@@ -73,7 +73,7 @@ import numpy as np
 
 from . import kinematics
 from .kinematics import machine_to_part  # noqa: F401  (callers of turnmill.machine_to_part)
-from .meshrays import (PAIR_BUDGET, RayEngine, Triangles, TrimeshRayEngine, check_mesh,  # noqa: F401
+from .meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEngine, check_mesh,  # noqa: F401
                        face_normals, face_samples)
 from .program import FEED, RAPID, TOOL_DIRECTIONS, Program, Tool, TurnMillError, TurnMillOperation
 
@@ -89,6 +89,10 @@ PUSH_ITERATIONS = 8      # rounds of pushing a ball centre clear of the surface 
 # The grid search order of the axial chaining (paper 4.4): outward, counter-clockwise, inward,
 # clockwise, as (step along the outward axis, step along the counter-clockwise axis).
 NEIGHBOUR_ORDER = ((1, 0), (0, 1), (-1, 0), (0, -1))
+
+
+class TurnMillCancelled(Exception):
+    """The progress callback asked to stop."""
 
 
 # ----- inputs ---------------------------------------------------------------------------------
@@ -350,22 +354,106 @@ def _link_clear(a: np.ndarray, b: np.ndarray, surface, settings) -> bool:
     return bool(np.all(distance >= settings.radius - settings.tolerance / 10))
 
 
-def _join(runs: list, surface, settings) -> list:
+class _RunEnds:
+    """The two ends of every run on a grid, for "which remaining run end is nearest to this
+    point?" without comparing every run with every other: the cells round the point are searched
+    ring by ring until nothing unsearched can be nearer; far from every run (rare: a jump to
+    another feature) the remaining ends are compared at once with numpy."""
+
+    RINGS = 3        # rings searched before the numpy comparison of everything left
+
+    def __init__(self, runs: list, cell: float):
+        self.points = np.array([p for r in runs for p in (r[0], r[-1])], dtype=float).reshape(-1, 3)
+        self.alive = np.ones(len(runs), dtype=bool)
+        self.left = len(runs)
+        self.cell = float(cell)
+        keys = np.floor(self.points / self.cell).astype(np.int64)
+        order = np.lexsort(keys.T[::-1])
+        self.grid: dict = {}
+        for key, group in itertools.groupby(order.tolist(), key=lambda i: tuple(keys[i])):
+            self.grid[key] = np.array(list(group), dtype=np.int64)
+
+    def remove(self, run: int) -> None:
+        self.alive[run] = False
+        self.left -= 1
+
+    def _best(self, ids: np.ndarray, q: np.ndarray):
+        ids = ids[self.alive[ids // 2]]
+        if not len(ids):
+            return None
+        d = np.sqrt(((self.points[ids] - q) ** 2).sum(axis=1))
+        k = np.lexsort((ids // 2, d))[0]
+        return float(d[k]), int(ids[k] // 2)
+
+    def nearest(self, q: np.ndarray) -> tuple:
+        """(distance, run) of the nearest remaining run end; ties go to the lowest run."""
+        centre = np.floor(q / self.cell).astype(np.int64)
+        best = None
+        for ring in range(self.RINGS + 1):
+            ids = [self.grid[key] for key in _ring_keys(centre, ring) if key in self.grid]
+            if ids:
+                found = self._best(np.concatenate(ids), q)
+                if found is not None and (best is None or found < best):
+                    best = found
+            # everything not searched yet is at least ring * cell away
+            if best is not None and best[0] < ring * self.cell:
+                return best
+        return self._best(np.flatnonzero(np.repeat(self.alive, 2)), q)
+
+
+def _ring_keys(centre: np.ndarray, ring: int):
+    """Grid keys at Chebyshev distance ``ring`` from ``centre``."""
+    cx, cy, cz = (int(v) for v in centre)
+    if ring == 0:
+        yield (cx, cy, cz)
+        return
+    span = range(-ring, ring + 1)
+    for dx in span:
+        for dy in span:
+            if abs(dx) == ring or abs(dy) == ring:
+                for dz in span:
+                    yield (cx + dx, cy + dy, cz + dz)
+            else:
+                yield (cx + dx, cy + dy, cz - ring)
+                yield (cx + dx, cy + dy, cz + ring)
+
+
+def _join_layers(layers: dict, surface, settings, progress=None) -> list:
+    """:func:`_join` on every layer, outermost first; ``progress(fraction)`` over all of them."""
+    total = max(1, sum(len(runs) for runs in layers.values()))
+    done, joined = 0, []
+    for k in range(max(layers), -1, -1):
+        runs = layers.get(k, [])
+        report = None if progress is None else \
+            (lambda fraction, base=done, size=len(runs): progress((base + fraction * size) / total))
+        joined.append(_join(runs, surface, settings, report))
+        done += len(runs)
+    return joined
+
+
+def _join(runs: list, surface, settings, progress=None) -> list:
     """Order the runs of one layer nearest first (a run may be reversed), and join a run to the
-    one before it into a pass when the gap is at most four stepovers and the straight link is clear."""
+    one before it into a pass when the gap is at most four stepovers and the straight link is clear.
+
+    The nearest run is found on a grid of run ends (:class:`_RunEnds`), so the time follows the
+    number of runs, not its square.  ``progress(fraction)`` is called every 256 runs; returning
+    False cancels (:class:`TurnMillCancelled`)."""
     if not runs:
         return []
-    remaining = list(runs[1:])
+    ends = _RunEnds(runs, 4 * settings.pick_feed)
+    ends.remove(0)
     passes = [runs[0]]
-    for _ in range(len(remaining)):
+    for count in range(1, len(runs)):
+        if progress is not None and count % 256 == 0 and progress(count / len(runs)) is False:
+            raise TurnMillCancelled("turn-mill planning cancelled")
         end = passes[-1][-1]
-        to_start = np.array([np.linalg.norm(r[0] - end) for r in remaining])
-        to_end = np.array([np.linalg.norm(r[-1] - end) for r in remaining])
-        i = int(np.argmin(np.minimum(to_start, to_end)))
-        run = remaining.pop(i)
-        if to_end[i] < to_start[i]:
+        gap, i = ends.nearest(end)
+        ends.remove(i)
+        run = runs[i]
+        to_start, to_end = np.linalg.norm(run[0] - end), np.linalg.norm(run[-1] - end)
+        if to_end < to_start:
             run = run[::-1]
-        if min(to_start[i], to_end[i]) <= 4 * settings.pick_feed and _link_clear(end, run[0], surface, settings):
+        if min(to_start, to_end) <= 4 * settings.pick_feed and _link_clear(end, run[0], surface, settings):
             passes[-1] = np.vstack([passes[-1], run])
         else:
             passes.append(run)
@@ -449,7 +537,7 @@ def _offset_section(points, normals, closed, r, max_turn):
     return _dedupe(np.vstack(centres), np.vstack(centre_normals))
 
 
-def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings) -> list:
+def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings, progress=None) -> list:
     """Ball-centre passes (part coordinates, (k, 3) arrays) for the radial tool, one list per
     layer: the outermost roughing layer first, the finishing layer (on the surface) last.
 
@@ -502,7 +590,7 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
     layers: dict = {}
     for k, runs in zip(layer_of, _fit_runs(polylines, closed_flags, surface, stock, settings, shifts)):
         layers.setdefault(k, []).extend(runs)
-    return [_join(layers.get(k, []), surface, settings) for k in range(max(layers), -1, -1)]
+    return _join_layers(layers, surface, settings, progress)
 
 
 # ----- axial paths ----------------------------------------------------------------------------
@@ -530,29 +618,44 @@ def _components(faces: np.ndarray, ids: np.ndarray) -> list:
 
 
 def _project_down(xy: np.ndarray, triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Height and face of the highest triangle above/below each XY point (NaN, -1 where none)."""
+    """Height and face of the highest triangle above/below each XY point (NaN, -1 where none).
+    Each point is tested only against the triangles filed in its cell of a :class:`BoxGrid`
+    (ties: the lowest face)."""
     z = np.full(len(xy), np.nan)
     face = np.full(len(xy), -1)
+    if not len(xy) or not len(triangles):
+        return z, face
     flat = triangles[:, :, :2]
     lo, hi = flat.min(axis=1), flat.max(axis=1)
-    step = max(1, PAIR_BUDGET // len(triangles))
-    for start in range(0, len(xy), step):
-        chunk = xy[start:start + step]
-        query, tri = np.nonzero(np.all((chunk[:, None] >= lo[None] - 1e-9) & (chunk[:, None] <= hi[None] + 1e-9),
-                                       axis=2))
-        a, b, c = triangles[tri, 0], triangles[tri, 1], triangles[tri, 2]
-        e1, e2, p = b[:, :2] - a[:, :2], c[:, :2] - a[:, :2], chunk[query] - a[:, :2]
+    grid = BoxGrid(lo - 1e-9, hi + 1e-9)
+    start, stop = grid.listed(grid.cells_of(xy))
+    count = stop - start
+    ends = np.cumsum(count)
+    begin = 0
+    while begin < len(xy):
+        # as many points as keep the (point, triangle) pairs within the budget
+        end = max(begin + 1, int(np.searchsorted(ends, (ends[begin - 1] if begin else 0) + PAIR_BUDGET,
+                                                 side="right")))
+        c = count[begin:end]
+        query = np.repeat(np.arange(begin, end), c)
+        take = np.repeat(start[begin:end] - np.cumsum(c) + c, c) + np.arange(int(c.sum()))
+        tri = grid.boxes[take]
+        keep = np.all((xy[query] >= lo[tri] - 1e-9) & (xy[query] <= hi[tri] + 1e-9), axis=1)
+        query, tri = query[keep], tri[keep]
+        a, b, c3 = triangles[tri, 0], triangles[tri, 1], triangles[tri, 2]
+        e1, e2, p = b[:, :2] - a[:, :2], c3[:, :2] - a[:, :2], xy[query] - a[:, :2]
         det = e1[:, 0] * e2[:, 1] - e2[:, 0] * e1[:, 1]
         with np.errstate(divide="ignore", invalid="ignore"):
             l1 = (p[:, 0] * e2[:, 1] - e2[:, 0] * p[:, 1]) / det
             l2 = (e1[:, 0] * p[:, 1] - p[:, 0] * e1[:, 1]) / det
         inside = (np.abs(det) > 1e-12) & (l1 >= -1e-9) & (l2 >= -1e-9) & (l1 + l2 <= 1 + 1e-9)
         query, tri, height = query[inside], tri[inside], (a[:, 2] + l1 * (b[:, 2] - a[:, 2])
-                                                          + l2 * (c[:, 2] - a[:, 2]))[inside]
-        order = np.lexsort((-height, query))
+                                                          + l2 * (c3[:, 2] - a[:, 2]))[inside]
+        order = np.lexsort((tri, -height, query))
         first = order[np.r_[True, query[order][1:] != query[order][:-1]]] if len(order) else order
-        z[start + query[first]] = height[first]
-        face[start + query[first]] = tri[first]
+        z[query[first]] = height[first]
+        face[query[first]] = tri[first]
+        begin = end
     return z, face
 
 
@@ -618,7 +721,7 @@ def _grid_passes(v, faces, surface, stock, settings) -> list:
     return [_dedupe(np.array([grid[c] for c in path])) for path in chain_cells(occupied.reshape(ns, nw))]
 
 
-def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings) -> list:
+def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings, progress=None) -> list:
     """Ball-centre passes for the axial tool, one list per layer: the highest roughing copy first,
     the finishing layer (on the faces) last.
 
@@ -648,7 +751,7 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
     if copies:
         for k, runs in zip(layer_of, _fit_runs(copies, [False] * len(copies), surface, stock, settings)):
             layers.setdefault(k, []).extend(runs)
-    return [_join(layers.get(k, []), surface, settings) for k in range(max(layers), -1, -1)]
+    return _join_layers(layers, surface, settings, progress)
 
 
 # ----- machine coordinates and operations ------------------------------------------------------
@@ -725,7 +828,8 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
     """Classify the faces (or use ``labels``), generate the radial and axial layers, and build the
     program: radial roughing, radial finishing (radial station), axial roughing, axial finishing
     (axial station).  Operations with nothing to cut are left out.
-    ``progress``: optional callable(fraction, text)."""
+    ``progress``: optional callable(fraction, text); while the passes are joined, returning False
+    cancels (:class:`TurnMillCancelled`)."""
     report = progress or (lambda fraction, text="": None)
     settings = TurnMillSettings() if settings is None else settings
     if not isinstance(stock, Stock):
@@ -741,9 +845,11 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
                                 lambda fraction, text="": report(0.5 * fraction, text))
     radial_ids, axial_ids = path_faces(v, f, labels)
     report(0.5, "radial layers")
-    radial = radial_layers(v, f, radial_ids, stock, settings)
+    radial = radial_layers(v, f, radial_ids, stock, settings,
+                           lambda fraction: report(0.5 + 0.3 * fraction, "radial layers"))
     report(0.8, "axial layers")
-    axial = axial_layers(v, f, axial_ids, stock, settings)
+    axial = axial_layers(v, f, axial_ids, stock, settings,
+                         lambda fraction: report(0.8 + 0.15 * fraction, "axial layers"))
     report(0.95, "operations")
     operations = []
     for direction, layers in (("radial", radial), ("axial", axial)):
