@@ -320,3 +320,88 @@ def test_unfold_divisions_are_bounded():
     quad = np.array([(0, 0, 0), (0, 30, 100), (100, 50, 100), (100, 40, 0)], float)
     with time_limit(10), pytest.raises(unfold.UnfoldError, match="from 1 to 1000, got 100000"):
         unfold.unfold_twisted_quad(quad, 100_000)
+
+
+# ----- 4. tracebacks and partial output in the core -----------------------------------------------
+
+def part21_text(data: str) -> str:
+    return ("ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+            f"FILE_SCHEMA(('X'));\nENDSEC;\nDATA;\n{data}\nENDSEC;\nEND-ISO-10303-21;\n")
+
+
+def test_deeply_nested_part21_lists_are_refused_not_a_recursion_error():
+    with time_limit(20), pytest.raises(part21.Part21Error, match="line 8, .*lists nested more than 100 deep"):
+        part21.parse_part21(part21_text("#1=A(" + "(" * 5000 + "1" + ")" * 5000 + ");"))
+    nested = part21.parse_part21(part21_text("#1=A(" + "(" * 99 + "1" + ")" * 99 + ");")).instances[1].params
+    for _ in range(99):
+        nested = nested[0]
+    assert nested == [1]
+
+
+def test_stale_temporary_files_of_ours_are_cleaned_at_the_next_write(tmp_path):
+    old = time.time() - 2 * 3600
+    stale = tmp_path / ".kezuri-abc123_x.part"
+    stale_png = tmp_path / ".kezuri-zz99yy00.part.png"
+    fresh = tmp_path / ".kezuri-fresh000.part"            # a write still running
+    theirs = tmp_path / ".kezuri-notours.tmp"
+    mine = tmp_path / "notes.part"
+    for path in (stale, stale_png, fresh, theirs, mine):
+        path.write_text("x")
+    for path in (stale, stale_png, theirs, mine):
+        os.utime(path, (old, old))
+    output.write_atomic(str(tmp_path / "job.nc"), "G0 X0\n")
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".kezuri-fresh000.part", ".kezuri-notours.tmp",
+                                                            "job.nc", "notes.part"]
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders")
+def test_an_unwritable_folder_is_an_output_error_naming_the_path(tmp_path):
+    folder = tmp_path / "locked"
+    folder.mkdir()
+    folder.chmod(0o500)
+    try:
+        with pytest.raises(output.OutputError, match=f"cannot write {folder}/job.nc: Permission denied"):
+            output.write_atomic(str(folder / "job.nc"), "G0 X0\n")
+        assert isinstance(output.OutputError("x"), InputError)
+    finally:
+        folder.chmod(0o700)
+    assert list(folder.iterdir()) == []
+
+
+def test_a_folder_that_cannot_be_made_is_an_output_error_naming_it(tmp_path):
+    (tmp_path / "plain").write_text("a file, not a folder")
+    with pytest.raises(output.OutputError, match=f"cannot write {tmp_path}/plain/job.nc: cannot make the folder "
+                                                 f"{tmp_path}/plain"):
+        output.write_atomic(str(tmp_path / "plain" / "job.nc"), "G0 X0\n")
+
+
+def test_a_full_disk_is_an_output_error_and_leaves_nothing(tmp_path, monkeypatch):
+    def full(fd):
+        raise OSError(28, "No space left on device")
+    monkeypatch.setattr(output.os, "fsync", full)
+    with pytest.raises(output.OutputError, match=f"cannot write {tmp_path}/job.nc: No space left on device"):
+        output.write_atomic(str(tmp_path / "job.nc"), "G0 X0\n")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_non_ascii_text_is_an_output_error_not_a_unicode_traceback(tmp_path):
+    with pytest.raises(output.OutputError, match=r"the text is not ASCII \('é' at character 4\)"):
+        output.write_atomic(str(tmp_path / "job.nc"), "(caf\u00e9)\n")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_atomic_path_renames_what_was_written_and_removes_a_failed_write(tmp_path):
+    target = tmp_path / "preview.png"
+    with output.atomic_path(str(target)) as temp:
+        assert temp.endswith(".png") and os.path.dirname(temp) == str(tmp_path) and not os.path.exists(temp)
+        with open(temp, "wb") as stream:
+            stream.write(b"\x89PNG")
+    assert target.read_bytes() == b"\x89PNG" and sorted(p.name for p in tmp_path.iterdir()) == ["preview.png"]
+    with pytest.raises(output.OutputError, match="nothing was written"):
+        with output.atomic_path(str(tmp_path / "other.png")):
+            pass
+    with pytest.raises(RuntimeError):
+        with output.atomic_path(str(target)) as temp:
+            open(temp, "wb").write(b"half")
+            raise RuntimeError("render failed")
+    assert target.read_bytes() == b"\x89PNG" and sorted(p.name for p in tmp_path.iterdir()) == ["preview.png"]
