@@ -288,7 +288,8 @@ def test_join_progress_can_cancel():
 
 
 def test_turn_mill_on_a_plain_64_sided_cylinder_finishes():
-    # Before: the all-pairs join took 40 s at 8 sections and more than 8 minutes at 64.
+    # Before: the all-pairs join took 40 s at 8 sections and more than 8 minutes at 64; the open
+    # tube (no end caps) the same.
     done = run_python(
         "import time, numpy as np, trimesh\n"
         "from kezuri.toolpath import turnmill as tm\n"
@@ -296,9 +297,12 @@ def test_turn_mill_on_a_plain_64_sided_cylinder_finishes():
         "v = np.asarray(m.vertices)\n"
         "stock = tm.Stock(float(np.hypot(v[:, 0], v[:, 1]).max()), float(v[:, 2].min()), float(v[:, 2].max()))\n"
         "plan = tm.plan(v, m.faces, stock)\n"
-        "print(sum(len(op) for op in plan.program.operations))\n", timeout=240)
+        "print(sum(len(op) for op in plan.program.operations))\n"
+        "tube = m.faces[np.abs(m.face_normals[:, 2]) < 0.5]\n"
+        "print(sum(len(op) for op in tm.plan(v, tube, stock).program.operations))\n", timeout=240)
     assert done.returncode == 0, done.stderr[-2000:]
-    assert int(done.stdout.split()[-1]) > 1000
+    closed, tube = (int(n) for n in done.stdout.split()[-2:])
+    assert closed > 1000 and tube > 1000
 
 
 def test_nan_vertices_are_refused_up_front():
@@ -405,3 +409,32 @@ def test_atomic_path_renames_what_was_written_and_removes_a_failed_write(tmp_pat
             open(temp, "wb").write(b"half")
             raise RuntimeError("render failed")
     assert target.read_bytes() == b"\x89PNG" and sorted(p.name for p in tmp_path.iterdir()) == ["preview.png"]
+
+
+# ----- the batch command: what the reader set aside and what was repaired reach the report ---------
+
+def test_batch_simulate_reports_what_it_ignored_and_repaired(tmp_path):
+    import json
+
+    from blender_helpers import run_batch
+    nc = tmp_path / "slot.ngc"
+    nc.write_text("(slot)\nG21 G90\nM8\nG0 X5 Y20 Z5\nG1 Z-2 F100\nX35\nG0 Z5\nM9\nM2\n")
+    design = block()
+    design.faces = design.faces[:, ::-1]                  # inside out
+    design.export(str(tmp_path / "part.stl"))
+    done = run_batch("simulate", "--nc", str(nc), "--tool", "flat:6", "--stock", "box:0,0,-10,40,40,0",
+                     "--design", str(tmp_path / "part.stl"), "--cell", "0.5", "--out", str(tmp_path / "out"),
+                     timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    report = json.loads((tmp_path / "out" / "report.json").read_text())["simulation"]
+    assert [(e["code"], e["first_line"]) for e in report["nc_ignored"]] == [("comment", 1), ("M8", 3), ("F", 5),
+                                                                            ("M9", 8)]
+    assert report["warnings"] == ["design part.stl: the mesh was inside out (its normals pointed inward); its faces "
+                                  "were flipped"]
+    assert report["max_gouge_mm"] == pytest.approx(1.0, abs=1e-3)      # the block's top is z = -1, the slot 2 deep
+    bad = tmp_path / "bad.ngc"
+    bad.write_text("G21 G90\nG0 X5 Y20 Z5\nG81 X10 Y10 Z-4 R1 F100\n")
+    done = run_batch("simulate", "--nc", str(bad), "--tool", "flat:6", "--stock", "box:0,0,-10,40,40,0",
+                     "--out", str(tmp_path / "out2"), timeout=300)
+    assert done.returncode == 2 and "line 3: G81 canned cycles are not simulated" in done.stderr
+    assert "Traceback" not in done.stderr
