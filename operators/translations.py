@@ -930,9 +930,10 @@ MESSAGE_TEMPLATES = {
     'design {}: not a readable mesh ({})':
         '設計形状 {0}：読み込めるメッシュではありません（{1}）',
     'line {}: {} is not a word (a letter and a number) in {}':
-        '{0}行目：{1} はワード（英字と数値）ではありません：{2}',
-    'line {}: {} is not followed by a number{} in {}':
-        '{0}行目：{1} の後に数値がありません{2}：{3}',
+        '{0}行目：{1}：ワード（英字と数値）ではありません：{2}',
+    'line {}: {} is not followed by a number in {}': '{0}行目：{1} の後に数値がありません：{2}',
+    'line {}: {} is not followed by a number (found {}) in {}':
+        '{0}行目：{1} の後に数値がありません（{2} があります）：{3}',
     'line {}: {}{} is not a number G-code can have in {}':
         '{0}行目：{1}{2} はGコードで使える数値ではありません：{3}',
     'line {}: {}{}E...: exponents are not allowed in G-code numbers, in {}':
@@ -950,11 +951,11 @@ MESSAGE_TEMPLATES = {
     'line {}: {} is given twice in {}':
         '{0}行目：{1} が2回指定されています：{2}',
     'line {}: {} are both motions in {}':
-        '{0}行目：{1} はどちらも移動指令です：{2}',
+        '{0}行目：{1}：どちらも移動指令です：{2}',
     'line {}: {} {}: {}':
         '{0}行目：{1} {2}：{3}',
     'line {}: {} is not a code this reader knows: {}':
-        '{0}行目：{1} はこの読み込みで扱えないコードです：{2}',
+        '{0}行目：{1}：この読み込みで扱えないコードです：{2}',
     'line {}: R-format arcs are not supported; use I and J: {}':
         '{0}行目：R指定の円弧には対応していません。I と J を使ってください：{1}',
     'line {}: the {} word is not supported here: {}':
@@ -1011,6 +1012,57 @@ MESSAGE_TEMPLATES = {
         '{0} を書き込めません：テキストが ASCII ではありません（{2} 文字目の {1}）',
     'cannot write {}: {}':
         '{0} を書き込めません：{1}',
+    # toolpath/ncread.py: the refused codes (REFUSED), each its own template so the reason is Japanese too
+    'line {}: {} NURBS are not simulated: {}':
+        '{0}行目：{1}：NURBS はシミュレーションしません：{2}',
+    'line {}: {} cancels a coordinate rotation, which the reader does not follow: {}':
+        '{0}行目：{1}：座標回転を取り消しますが、読み込みでは扱えません：{2}',
+    'line {}: {} canned cycles are not simulated: {}':
+        '{0}行目：{1}：固定サイクルはシミュレーションしません：{2}',
+    'line {}: {} changes tool or offset tables, which the reader does not follow: {}':
+        '{0}行目：{1}：工具・オフセット表を変更しますが、読み込みでは扱えません：{2}',
+    'line {}: {} constant surface speed is not simulated: {}':
+        '{0}行目：{1}：周速一定制御はシミュレーションしません：{2}',
+    'line {}: {} cutter radius compensation is not simulated: {}':
+        '{0}行目：{1}：工具径補正はシミュレーションしません：{2}',
+    'line {}: {} feed per revolution is not simulated: {}':
+        '{0}行目：{1}：回転当たり送りはシミュレーションしません：{2}',
+    'line {}: {} macro calls are not simulated: {}':
+        '{0}行目：{1}：マクロ呼び出しはシミュレーションしません：{2}',
+    'line {}: {} moves in machine coordinates, which the reader does not know: {}':
+        '{0}行目：{1}：機械座標で移動しますが、読み込みでは機械座標が分かりません：{2}',
+    'line {}: {} probing moves are not simulated: {}':
+        '{0}行目：{1}：プローブ移動はシミュレーションしません：{2}',
+    'line {}: {} resets coordinate offsets, which the reader does not follow: {}':
+        '{0}行目：{1}：座標オフセットをリセットしますが、読み込みでは扱えません：{2}',
+    'line {}: {} restores coordinate offsets, which the reader does not follow: {}':
+        '{0}行目：{1}：座標オフセットを復元しますが、読み込みでは扱えません：{2}',
+    'line {}: {} returns to a reference point the reader does not know: {}':
+        '{0}行目：{1}：読み込みでは分からない基準点へ戻ります：{2}',
+    'line {}: {} rotates the coordinate system, which the reader does not follow: {}':
+        '{0}行目：{1}：座標系を回転しますが、読み込みでは扱えません：{2}',
+    'line {}: {} selects another plane; only the XY plane (G17) is read: {}':
+        '{0}行目：{1}：別の平面を選びます。読めるのは XY 平面（G17）だけです：{2}',
+    'line {}: {} sets a coordinate offset, which the reader does not follow: {}':
+        '{0}行目：{1}：座標オフセットを設定しますが、読み込みでは扱えません：{2}',
+    'line {}: {} sets a local coordinate offset, which the reader does not follow: {}':
+        '{0}行目：{1}：ローカル座標オフセットを設定しますが、読み込みでは扱えません：{2}',
+    'line {}: {} sets absolute arc centres, which the reader does not follow (use incremental I, J): {}':
+        '{0}行目：{1}：円弧中心をアブソリュートにしますが、読み込みでは扱えません（インクリメンタルの I、J を使ってください）：{2}',
+    'line {}: {} sets the reference point, which the reader does not know: {}':
+        '{0}行目：{1}：基準点を設定しますが、読み込みでは分かりません：{2}',
+    'line {}: {} splines are not simulated: {}':
+        '{0}行目：{1}：スプラインはシミュレーションしません：{2}',
+    'line {}: {} subprogram calls are not simulated: {}':
+        '{0}行目：{1}：サブプログラム呼び出しはシミュレーションしません：{2}',
+    'line {}: {} subprogram returns are not simulated: {}':
+        '{0}行目：{1}：サブプログラムからの復帰はシミュレーションしません：{2}',
+    'line {}: {} suspends coordinate offsets, which the reader does not follow: {}':
+        '{0}行目：{1}：座標オフセットを一時停止しますが、読み込みでは扱えません：{2}',
+    'line {}: {} tapping is not simulated: {}':
+        '{0}行目：{1}：タッピングはシミュレーションしません：{2}',
+    'line {}: {} threading is not simulated: {}':
+        '{0}行目：{1}：ねじ切りはシミュレーションしません：{2}',
 }
 
 

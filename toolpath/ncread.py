@@ -135,8 +135,10 @@ def _words(line: str, number: int, raw: str) -> list:
         text, end = match.group(1), match.end()
         if not text:
             after = line[end:end + 8].strip()
-            raise NCReadError(f"line {number}: {letter} is not followed by a number"
-                              f"{f' (found {after!r})' if after else ''} in {raw.strip()!r}")
+            if after:
+                raise NCReadError(f"line {number}: {letter} is not followed by a number (found {after!r}) in "
+                                  f"{raw.strip()!r}")
+            raise NCReadError(f"line {number}: {letter} is not followed by a number in {raw.strip()!r}")
         if not NUMBER.fullmatch(text):
             raise NCReadError(f"line {number}: {letter}{text} is not a number G-code can have in {raw.strip()!r}")
         if end < len(line) and line[end] == "E" and end + 1 < len(line) and line[end + 1] in "0123456789+-":
