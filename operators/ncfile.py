@@ -33,6 +33,17 @@ def parse_stock(text: str):
     raise core.SimulationError(f"--stock {text!r}: give box:x0,y0,z0,x1,y1,z1 or cylinder:R,H")
 
 
+def load_design(path: str):
+    """The design mesh of an STL/OBJ/PLY file; a file trimesh cannot read is an error naming it
+    (random bytes load as a mesh without faces, which the simulation refuses by name)."""
+    import trimesh
+
+    try:
+        return trimesh.load(path, force="mesh")
+    except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file
+        raise core.SimulationError(f"design {os.path.basename(path)}: not a readable mesh ({error})") from None
+
+
 def batch(args) -> dict:
     import trimesh
 
@@ -43,16 +54,20 @@ def batch(args) -> dict:
     if not os.path.isfile(args.nc):
         raise FileNotFoundError(f"no such NC file: {args.nc}")
     with open(args.nc, encoding="latin-1") as stream:
-        op, lines = ncread.read_nc(stream.read(), ncread.parse_tool(args.tool), os.path.basename(args.nc))
+        read = ncread.read_nc(stream.read(), ncread.parse_tool(args.tool), os.path.basename(args.nc))
+    op, lines = read
     if not args.rotary:
         op.rotary = {}
     design = None
     if args.design:
         if not os.path.isfile(args.design):
             raise FileNotFoundError(f"no such design file: {args.design}")
-        design = trimesh.load(args.design, force="mesh")
-    result = core.simulate([op], parse_stock(args.stock), engine=args.engine, cell=args.cell, design=design)
+        design = load_design(args.design)
+    result = core.simulate([op], parse_stock(args.stock), engine=args.engine, cell=args.cell, design=design,
+                           design_name=os.path.basename(args.design or ""))
     report = simview.report_of(result)
+    report["nc_ignored"] = read.ignored          # what the reader read and set aside, per code
+    report["warnings"] = list(result.warnings)   # what the simulation repaired in its input
     for entry in report["gouges"] + report["rapid_collisions"] + report["other_findings"]:
         entry["line"] = lines[entry["move"]]
     vertices, faces = result.mesh()

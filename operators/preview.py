@@ -10,13 +10,17 @@ import math
 import bpy
 from mathutils import Vector
 
+from ..post.output import atomic_path
+
 
 def render_preview(scene, solids, paths, path: str, resolution=(1200, 800), see_through: bool = True,
                    color_type: str = "OBJECT"):
     """Render ``solids`` (stock, parts) and ``paths`` (toolpath curves) to ``path`` (PNG).
 
     ``see_through`` renders the solids half transparent, so toolpaths below the stock's top
-    (all of them, before simulation) stay visible."""
+    (all of them, before simulation) stay visible.  The picture is rendered to a temporary file
+    beside ``path`` and renamed (:func:`..post.output.atomic_path`): a failed render leaves no
+    half-written PNG."""
     temp_collection = bpy.data.collections.new("Kezuri preview render")
     scene.collection.children.link(temp_collection)
     shown = set(solids) | set(paths)
@@ -46,14 +50,15 @@ def render_preview(scene, solids, paths, path: str, resolution=(1200, 800), see_
         render.resolution_x, render.resolution_y = resolution
         render.resolution_percentage = 100
         render.image_settings.file_format = "PNG"
-        render.filepath = path
         shading = scene.display.shading
         shading.light = "STUDIO"
         shading.color_type = color_type      # "VERTEX": the colour attribute (simulated stock by depth)
         shading.show_cavity = True
         shading.show_xray = see_through
         shading.xray_alpha = 0.55
-        bpy.ops.render.render(write_still=True)
+        with atomic_path(path) as temp:
+            render.filepath = temp
+            bpy.ops.render.render(write_still=True)
     finally:
         scene.camera = previous_camera
         for obj in hidden:

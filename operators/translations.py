@@ -560,7 +560,6 @@ MESSAGES = {
     "simulate_punching needs the NC text or a PunchProgram":
         "simulate_punching には NC テキストまたは PunchProgram が必要です",
     "margin must be a number > 0": "余白は 0 より大きい数にしてください",
-    "the program has more than 200000 hits: check the pitches Q": "ヒット数が 200000 を超えています：ピッチ Q を確認してください",
     "the program's lines are tool-centre paths (P0): give the punch diameter":
         "プログラムの線は工具中心の経路（P0）です：パンチの直径を指定してください",
     "the pattern does not overlap what is left of the sheet: are the pattern and the program in the same coordinates?":
@@ -599,6 +598,7 @@ MESSAGES = {
     "bend lines: non-finite coordinate": "曲げ線：有限でない座標があります",
     "nothing to export": "書き出すものがありません",
     "the program has no operations": "プログラムに加工工程がありません",
+    'the NC program must be text': 'NCプログラムはテキストにしてください',
 }
 
 
@@ -1073,6 +1073,142 @@ MESSAGE_TEMPLATES = {
     '#{} SQUARE_U_PROFILE: width must be positive, found {}': '#{0} SQUARE_U_PROFILE：幅は正の値にしてください（値 {1}）',
     "the flat end of slot #{} keeps the tool's radius R{} in its corners":
         "溝 #{0} の平らな端の隅には工具の半径 R{1} が残ります",
+    'design {}: not a readable mesh ({})':
+        '設計形状 {0}：読み込めるメッシュではありません（{1}）',
+    'line {}: {} is not a word (a letter and a number) in {}':
+        '{0}行目：{1}：ワード（英字と数値）ではありません：{2}',
+    'line {}: {} is not followed by a number in {}': '{0}行目：{1} の後に数値がありません：{2}',
+    'line {}: {} is not followed by a number (found {}) in {}':
+        '{0}行目：{1} の後に数値がありません（{2} があります）：{3}',
+    'line {}: {}{} is not a number G-code can have in {}':
+        '{0}行目：{1}{2} はGコードで使える数値ではありません：{3}',
+    'line {}: {}{}E...: exponents are not allowed in G-code numbers, in {}':
+        '{0}行目：{1}{2}E...：Gコードの数値に指数表記は使えません：{3}',
+    'line {}: {}{} is out of range in {}':
+        '{0}行目：{1}{2} は範囲外です：{3}',
+    'line {}: unbalanced or nested parenthesis in {}':
+        '{0}行目：括弧の対応が取れていないか入れ子になっています：{1}',
+    'line {}: the arc has no radius (its centre is its start or end point) in {}':
+        '{0}行目：円弧に半径がありません（中心が始点または終点です）：{1}',
+    "line {}: the arc's end lies {} mm off its circle (radius {} mm at the start, {} mm at the end; LinuxCNC allows {} mm) in {}":
+        '{0}行目：円弧の終点が円から {1} mm ずれています（始点の半径 {2} mm、終点の半径 {3} mm。LinuxCNC の許容は {4} mm）：{5}',
+    'line {}: N{} is not a sequence number in {}':
+        '{0}行目：N{1} はシーケンス番号ではありません：{2}',
+    'line {}: {} is given twice in {}':
+        '{0}行目：{1} が2回指定されています：{2}',
+    'line {}: {} are both motions in {}':
+        '{0}行目：{1}：どちらも移動指令です：{2}',
+    'line {}: {} {}: {}':
+        '{0}行目：{1} {2}：{3}',
+    'line {}: {} is not a code this reader knows: {}':
+        '{0}行目：{1}：この読み込みで扱えないコードです：{2}',
+    'line {}: R-format arcs are not supported; use I and J: {}':
+        '{0}行目：R指定の円弧には対応していません。I と J を使ってください：{1}',
+    'line {}: the {} word is not supported here: {}':
+        '{0}行目：{1} ワードはここでは使えません：{2}',
+    'line {}: G28 is followed only as G91 G28 with zero words (home is not known to the reader): {}':
+        '{0}行目：G28 はゼロのワードを伴う G91 G28 だけに対応します（原点位置は分かりません）：{1}',
+    'line {}: I or J without an arc move in {}':
+        '{0}行目：円弧移動でないのに I または J があります：{1}',
+    'line {}: a move before any G0/G1/G2/G3: {}':
+        '{0}行目：G0/G1/G2/G3 より前に移動があります：{1}',
+    'line {}: an incremental (G91) move before any absolute position of {}: {}':
+        '{0}行目：{1} の絶対位置が分かる前にインクリメンタル（G91）移動があります：{2}',
+    'line {}: an arc needs I and J: {}':
+        '{0}行目：円弧には I と J が必要です：{1}',
+    "line {}: an arc before the tool's XY position is known: {}":
+        '{0}行目：工具のXY位置が分かる前に円弧があります：{1}',
+    '--tool {}: sizes must be finite numbers > 0, the corner radius at most half the diameter':
+        '--tool {0}：寸法は 0 より大きい有限の数で、コーナー半径は直径の半分以下にしてください',
+    'cell {} mm is too coarse for a stock {} mm across (fewer than {} cells): give a cell from {} to {} mm':
+        'セル {0} mm は幅 {1} mm の素材には粗すぎます（{2} セル未満）：{3}～{4} mm のセルを指定してください',
+    'design {}: vertices and faces must be numeric arrays':
+        '設計形状 {0}：頂点と面は数値の配列にしてください',
+    'design {}: the mesh has no faces (an empty or unreadable mesh file)':
+        '設計形状 {0}：メッシュに面がありません（空または読み込めないメッシュファイル）',
+    'design {}: needs (n, 3) vertices and (m, 3) triangles, got {} and {}':
+        '設計形状 {0}：(n, 3) の頂点と (m, 3) の三角形が必要ですが、{1} と {2} でした',
+    'design {}: face indices must be integers in 0..{}':
+        '設計形状 {0}：面の頂点番号は 0..{1} の整数にしてください',
+    'design {}: the mesh has NaN or infinite vertex coordinates':
+        '設計形状 {0}：メッシュの頂点座標に NaN または無限大があります',
+    "design {}: the mesh is not a closed solid: {}; close it (e.g. Blender's Fill Holes, or 3D-Print Toolbox > Make Manifold)":
+        '設計形状 {0}：メッシュが閉じた立体ではありません：{1}。閉じてください（例：Blender の「穴を埋める」や 3D-Print Toolbox の「Make Manifold」）',
+    'design {}: the faces are wound inconsistently (some normals are flipped): recalculate normals':
+        '設計形状 {0}：面の向きがそろっていません（一部の法線が反転しています）：法線を再計算してください',
+    'design {}: the mesh encloses no volume':
+        '設計形状 {0}：メッシュが体積を囲んでいません',
+    'design {}: the part ({}, {}, {})..({}, {}, {}) does not overlap the stock: are both in the same coordinates?':
+        '設計形状 {0}：部品 ({1}, {2}, {3})..({4}, {5}, {6}) が素材と重なりません：同じ座標系ですか？',
+    'design {}: the part stands {} mm outside the stock (more than {} mm): it cannot be cut from this stock':
+        '設計形状 {0}：部品が素材から {1} mm はみ出しています（{2} mm 超）：この素材からは削り出せません',
+    'design {}: the mesh was inside out (its normals pointed inward); its faces were flipped':
+        '設計形状 {0}：メッシュが裏返しでした（法線が内向き）。面を反転しました',
+    'line {}: the pitch Q{} is below the {} mm a turret punch nibbles at (give Q from {} mm up): {}':
+        '{0}行目：ピッチ Q{1} はタレットパンチのニブリングの下限 {2} mm を下回っています（Q は {3} mm 以上にしてください）：{4}',
+    'line {}: the program has more than {} hits by this line (at most {} are simulated): check the pitches Q':
+        '{0}行目：この行までにヒット数が {1} を超えています（シミュレーションできるのは {2} まで）：ピッチ Q を確認してください',
+    '{} must be from {} to {}, got {}':
+        '{0} は {1}～{2} にしてください（指定値 {3}）',
+    'cannot write {}: nothing was written':
+        '{0} を書き込めません：何も書き込まれませんでした',
+    'cannot write {}: cannot make the folder {} ({})':
+        '{0} を書き込めません：フォルダー {1} を作れません（{2}）',
+    'cannot write {}: the text is not ASCII ({} at character {})':
+        '{0} を書き込めません：テキストが ASCII ではありません（{2} 文字目の {1}）',
+    'cannot write {}: {}':
+        '{0} を書き込めません：{1}',
+    # toolpath/ncread.py: the refused codes (REFUSED), each its own template so the reason is Japanese too
+    'line {}: {} NURBS are not simulated: {}':
+        '{0}行目：{1}：NURBS はシミュレーションしません：{2}',
+    'line {}: {} cancels a coordinate rotation, which the reader does not follow: {}':
+        '{0}行目：{1}：座標回転を取り消しますが、読み込みでは扱えません：{2}',
+    'line {}: {} canned cycles are not simulated: {}':
+        '{0}行目：{1}：固定サイクルはシミュレーションしません：{2}',
+    'line {}: {} changes tool or offset tables, which the reader does not follow: {}':
+        '{0}行目：{1}：工具・オフセット表を変更しますが、読み込みでは扱えません：{2}',
+    'line {}: {} constant surface speed is not simulated: {}':
+        '{0}行目：{1}：周速一定制御はシミュレーションしません：{2}',
+    'line {}: {} cutter radius compensation is not simulated: {}':
+        '{0}行目：{1}：工具径補正はシミュレーションしません：{2}',
+    'line {}: {} feed per revolution is not simulated: {}':
+        '{0}行目：{1}：回転当たり送りはシミュレーションしません：{2}',
+    'line {}: {} macro calls are not simulated: {}':
+        '{0}行目：{1}：マクロ呼び出しはシミュレーションしません：{2}',
+    'line {}: {} moves in machine coordinates, which the reader does not know: {}':
+        '{0}行目：{1}：機械座標で移動しますが、読み込みでは機械座標が分かりません：{2}',
+    'line {}: {} probing moves are not simulated: {}':
+        '{0}行目：{1}：プローブ移動はシミュレーションしません：{2}',
+    'line {}: {} resets coordinate offsets, which the reader does not follow: {}':
+        '{0}行目：{1}：座標オフセットをリセットしますが、読み込みでは扱えません：{2}',
+    'line {}: {} restores coordinate offsets, which the reader does not follow: {}':
+        '{0}行目：{1}：座標オフセットを復元しますが、読み込みでは扱えません：{2}',
+    'line {}: {} returns to a reference point the reader does not know: {}':
+        '{0}行目：{1}：読み込みでは分からない基準点へ戻ります：{2}',
+    'line {}: {} rotates the coordinate system, which the reader does not follow: {}':
+        '{0}行目：{1}：座標系を回転しますが、読み込みでは扱えません：{2}',
+    'line {}: {} selects another plane; only the XY plane (G17) is read: {}':
+        '{0}行目：{1}：別の平面を選びます。読めるのは XY 平面（G17）だけです：{2}',
+    'line {}: {} sets a coordinate offset, which the reader does not follow: {}':
+        '{0}行目：{1}：座標オフセットを設定しますが、読み込みでは扱えません：{2}',
+    'line {}: {} sets a local coordinate offset, which the reader does not follow: {}':
+        '{0}行目：{1}：ローカル座標オフセットを設定しますが、読み込みでは扱えません：{2}',
+    'line {}: {} sets absolute arc centres, which the reader does not follow (use incremental I, J): {}':
+        '{0}行目：{1}：円弧中心をアブソリュートにしますが、読み込みでは扱えません（インクリメンタルの I、J を使ってください）：{2}',
+    'line {}: {} sets the reference point, which the reader does not know: {}':
+        '{0}行目：{1}：基準点を設定しますが、読み込みでは分かりません：{2}',
+    'line {}: {} splines are not simulated: {}':
+        '{0}行目：{1}：スプラインはシミュレーションしません：{2}',
+    'line {}: {} subprogram calls are not simulated: {}':
+        '{0}行目：{1}：サブプログラム呼び出しはシミュレーションしません：{2}',
+    'line {}: {} subprogram returns are not simulated: {}':
+        '{0}行目：{1}：サブプログラムからの復帰はシミュレーションしません：{2}',
+    'line {}: {} suspends coordinate offsets, which the reader does not follow: {}':
+        '{0}行目：{1}：座標オフセットを一時停止しますが、読み込みでは扱えません：{2}',
+    'line {}: {} tapping is not simulated: {}':
+        '{0}行目：{1}：タッピングはシミュレーションしません：{2}',
+    'line {}: {} threading is not simulated: {}':
+        '{0}行目：{1}：ねじ切りはシミュレーションしません：{2}',
 }
 
 

@@ -1,8 +1,30 @@
-"""Atomic file output: an NC file is either complete or not there at all."""
+"""Atomic file output: an NC file is either complete or not there at all.
+
+Every file is written to a temporary ``.kezuri-XXXXXXXX.part`` file beside it and renamed.  A
+process killed mid-write (kill -9, a crash) leaves its temporary file behind: the next write
+into that folder removes ours that are older than :data:`STALE_SECONDS`, by name, and nothing
+else.  A write that fails (full disk, unwritable folder, text that is not ASCII) raises
+:class:`OutputError`, naming the path and the reason.
+"""
 from __future__ import annotations
 
+import contextlib
 import os
+import re
 import tempfile
+import time
+
+from ..toolpath.errors import InputError
+
+PREFIX, SUFFIX = ".kezuri-", ".part"
+STALE_SECONDS = 3600.0      # a temporary file of ours this old belongs to a write that died
+# mkstemp's names: the prefix, 8 characters of [a-z0-9_], the suffix (plus an extension from
+# :func:`atomic_path`)
+_OURS = re.compile(r"\.kezuri-[a-z0-9_]{8}\.part(\.[A-Za-z0-9]{1,8})?\Z")
+
+
+class OutputError(InputError):
+    """A file could not be written; the message names the path and the reason."""
 
 
 def _umask() -> int:
@@ -11,18 +33,62 @@ def _umask() -> int:
     return mask
 
 
+def _why(error: OSError) -> str:
+    return error.strerror or str(error)
+
+
+def clean_stale_temporaries(folder: str, older_than: float = STALE_SECONDS) -> list:
+    """Remove our temporary files (by name) in ``folder`` last modified more than ``older_than``
+    seconds ago; returns their paths.  Anything it cannot list or remove is left alone."""
+    removed = []
+    now = time.time()
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return removed
+    for entry in entries:
+        if not _OURS.match(entry.name):
+            continue
+        try:
+            if entry.is_file(follow_symlinks=False) and now - entry.stat(follow_symlinks=False).st_mtime > older_than:
+                os.unlink(entry.path)
+                removed.append(entry.path)
+        except OSError:
+            continue
+    return removed
+
+
+def _folder_of(path: str) -> str:
+    folder = os.path.dirname(path)
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as error:
+        raise OutputError(f"cannot write {path}: cannot make the folder {folder} ({_why(error)})") from None
+    clean_stale_temporaries(folder)
+    return folder
+
+
 def write_atomic(path: str, text: str | bytes) -> str:
     """Write ``text`` (ASCII) or ``bytes`` to ``path`` through a temporary file in the same folder,
     then rename.
 
     A crash or a full disk leaves the previous file (or none), never a half-written program.
+    Raises :class:`OutputError` naming the path when it cannot write.
     """
     path = os.path.abspath(path)
-    folder = os.path.dirname(path)
-    os.makedirs(folder, exist_ok=True)
-    handle, temp = tempfile.mkstemp(prefix=".kezuri-", suffix=".part", dir=folder)
+    folder = _folder_of(path)
+    binary = isinstance(text, bytes)
+    if not binary:
+        try:
+            text.encode("ascii")
+        except UnicodeEncodeError as error:
+            raise OutputError(f"cannot write {path}: the text is not ASCII ({text[error.start:error.end]!r} at "
+                              f"character {error.start})") from None
     try:
-        binary = isinstance(text, bytes)
+        handle, temp = tempfile.mkstemp(prefix=PREFIX, suffix=SUFFIX, dir=folder)
+    except OSError as error:
+        raise OutputError(f"cannot write {path}: {_why(error)}") from None
+    try:
         with os.fdopen(handle, "wb" if binary else "w", **({} if binary else {"encoding": "ascii",
                                                                                  "newline": "\n"})) as stream:
             stream.write(text)
@@ -30,8 +96,51 @@ def write_atomic(path: str, text: str | bytes) -> str:
             os.fsync(stream.fileno())
         os.chmod(temp, 0o666 & ~_umask())          # mkstemp makes 0600; give the usual permissions
         os.replace(temp, path)
+    except OSError as error:
+        _remove(temp)
+        raise OutputError(f"cannot write {path}: {_why(error)}") from None
     except BaseException:
-        if os.path.exists(temp):
-            os.unlink(temp)
+        _remove(temp)
         raise
     return path
+
+
+def _remove(temp: str) -> None:
+    with contextlib.suppress(OSError):
+        os.unlink(temp)
+
+
+@contextlib.contextmanager
+def atomic_path(path: str):
+    """For a writer that needs a file name (Blender's renderer writing a PNG): yields a temporary
+    path beside ``path`` with the same extension; when the block ends without error the file
+    written there is renamed onto ``path``, otherwise it is removed.  Raises :class:`OutputError`
+    naming ``path`` when the folder cannot be written or nothing was written.
+
+        with atomic_path("out/preview.png") as temp:
+            scene.render.filepath = temp
+            bpy.ops.render.render(write_still=True)
+    """
+    path = os.path.abspath(path)
+    folder = _folder_of(path)
+    extension = os.path.splitext(path)[1]
+    if not re.fullmatch(r"(\.[A-Za-z0-9]{1,8})?", extension):
+        extension = ""
+    try:
+        handle, temp = tempfile.mkstemp(prefix=PREFIX, suffix=SUFFIX + extension, dir=folder)
+        os.close(handle)
+        os.unlink(temp)             # the writer makes it; a leftover empty file would hide a failed write
+    except OSError as error:
+        raise OutputError(f"cannot write {path}: {_why(error)}") from None
+    try:
+        yield temp
+        if not os.path.isfile(temp):
+            raise OutputError(f"cannot write {path}: nothing was written")
+        os.chmod(temp, 0o666 & ~_umask())
+        os.replace(temp, path)
+    except OSError as error:
+        _remove(temp)
+        raise OutputError(f"cannot write {path}: {_why(error)}") from None
+    except BaseException:
+        _remove(temp)
+        raise

@@ -7,6 +7,7 @@ import pytest
 
 import rs274
 from kezuri import post
+from kezuri.post import output
 from kezuri.post.gcode import PostError, fmt
 from kezuri.toolpath import engrave
 from kezuri.toolpath.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool
@@ -150,8 +151,8 @@ def test_atomic_write_leaves_no_partial_file(tmp_path):
     target = tmp_path / "job.nc"
     post.write_atomic(str(target), "G0 X1.\n")
     assert target.read_text() == "G0 X1.\n"
-    with pytest.raises(UnicodeEncodeError):
-        post.write_atomic(str(target), "G0 X2. (\u524a)\n")   # not ASCII: the write fails midway
+    with pytest.raises(output.OutputError, match="not ASCII"):
+        post.write_atomic(str(target), "G0 X2. (\u524a)\n")   # not ASCII: the write fails
     assert target.read_text() == "G0 X1.\n"                   # the old program is intact
     assert sorted(os.listdir(tmp_path)) == ["job.nc"]         # and no temp file is left
 

@@ -135,8 +135,10 @@ def test_program_end_is_required_and_final():
     with pytest.raises(punch.PunchError, match="different tool diameters"):
         punch.read_amada(program(["N001 G72 X0.00 Y0.00", "G69 I1.00 J0.00 P2.00 Q1.00 T302",
                                   "N002 G72 X1.00 Y0.00", "G69 I1.00 J0.00 P3.00 Q1.00 T302"]))
-    with pytest.raises(punch.PunchError, match="more than 200000 hits"):
+    with pytest.raises(punch.PunchError, match=r"line 3: the pitch Q0.001 is below the 0.1 mm"):
         one_line("G69 I1000.00 J0.00 P0.00 Q0.001 T302")
+    with pytest.raises(punch.PunchError, match=r"line 3: the program has more than 20000 hits"):
+        one_line("G69 I2000.10 J0.00 P0.00 Q0.10 T302")      # 20002 hits: 2000.1 / 0.1 steps, both ends
     with pytest.raises(punch.PunchError, match="must be text"):
         punch.read_amada(b"G50")
 

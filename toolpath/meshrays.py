@@ -77,6 +77,78 @@ class RayEngine(Protocol):
         """(k,) bool: does the ray from each origin along each direction hit any face?"""
 
 
+class BoxGrid:
+    """Axis-aligned boxes (triangles' bounds) filed on a uniform grid, for "which boxes can meet
+    this region?" without testing every box: each box is listed in every cell it touches.  The
+    cell follows the boxes' median size (so a box lies in a few cells), coarsened until the
+    listing stays within ``budget`` entries."""
+
+    def __init__(self, lo: np.ndarray, hi: np.ndarray, budget: int = 1 << 23):
+        self.dims = lo.shape[1]
+        self.origin = lo.min(axis=0) if len(lo) else np.zeros(self.dims)
+        extent = float(np.max(hi.max(axis=0) - self.origin)) if len(lo) else 1.0
+        size = float(np.median(np.max(hi - lo, axis=1))) if len(lo) else extent
+        self.cell = max(size, extent / 1024, 1e-9)
+        while True:
+            first = np.floor((lo - self.origin) / self.cell).astype(np.int64)
+            last = np.floor((hi - self.origin) / self.cell).astype(np.int64)
+            span = last - first + 1
+            count = np.prod(span, axis=1)
+            if int(count.sum()) <= budget:
+                break
+            self.cell *= 2
+        self.shape = last.max(axis=0) + 1 if len(lo) else np.ones(self.dims, np.int64)
+        box = np.repeat(np.arange(len(lo)), count)
+        # the k-th cell of box b: unravel k over its span
+        k = np.arange(len(box)) - np.repeat(np.cumsum(count) - count, count)
+        index = np.zeros((len(box), self.dims), np.int64)
+        for axis in range(self.dims - 1, -1, -1):
+            index[:, axis] = first[box, axis] + k % span[box, axis]
+            k //= span[box, axis]
+        keys = self._keys(index)
+        order = np.lexsort((box, keys))
+        self.keys, self.boxes = keys[order], box[order]
+        self.unique, self.starts = np.unique(self.keys, return_index=True)
+        self.ends = np.r_[self.starts[1:], len(self.keys)]
+
+    def _keys(self, index: np.ndarray) -> np.ndarray:
+        key = np.zeros(len(index), np.int64)
+        for axis in range(self.dims):
+            key = key * (int(self.shape[axis]) + 1) + index[:, axis]
+        return key
+
+    def cells_of(self, points: np.ndarray) -> np.ndarray:
+        """The key of the cell each point lies in (-1 outside the grid)."""
+        index = np.floor((points - self.origin) / self.cell).astype(np.int64)
+        inside = np.all((index >= 0) & (index < self.shape), axis=1)
+        keys = np.full(len(points), -1, np.int64)
+        keys[inside] = self._keys(index[inside])
+        return keys
+
+    def listed(self, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(start, stop) of each key's boxes in ``self.boxes`` (empty for keys with none)."""
+        if not len(self.unique):
+            return np.zeros(len(keys), np.int64), np.zeros(len(keys), np.int64)
+        where = np.clip(np.searchsorted(self.unique, keys), 0, len(self.unique) - 1)
+        found = (keys >= 0) & (self.unique[where] == keys)
+        return np.where(found, self.starts[where], 0), np.where(found, self.ends[where], 0)
+
+    def near(self, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+        """Sorted indices of the boxes listed in the cells the box lo..hi touches (a superset of
+        those meeting it)."""
+        first = np.maximum(np.floor((lo - self.origin) / self.cell).astype(np.int64), 0)
+        last = np.minimum(np.floor((hi - self.origin) / self.cell).astype(np.int64), self.shape - 1)
+        if np.any(last < first):
+            return np.empty(0, np.int64)
+        axes = np.meshgrid(*[np.arange(a, b + 1) for a, b in zip(first, last)], indexing="ij")
+        start, stop = self.listed(self._keys(np.column_stack([a.ravel() for a in axes])))
+        count = stop - start
+        if not count.sum():
+            return np.empty(0, np.int64)
+        take = np.repeat(start - np.cumsum(count) + count, count) + np.arange(int(count.sum()))
+        return np.unique(self.boxes[take])
+
+
 class Triangles:
     """The mesh triangles with bounding boxes, for the numpy ray and nearest-point queries.
     Queries are paired with triangles whose boxes overlap theirs, a chunk at a time."""
@@ -92,6 +164,7 @@ class Triangles:
         pad = 1e-6 * size
         self.box_lo = self.lo.min(axis=0) - pad
         self.box_hi = self.hi.max(axis=0) + pad
+        self.grid = BoxGrid(self.lo, self.hi) if len(self.lo) else None
 
     def _pairs(self, lo: np.ndarray, hi: np.ndarray):
         """Yield (query index, triangle index) arrays for overlapping boxes.  Queries are grouped by
@@ -109,7 +182,10 @@ class Triangles:
         for begin, stop in zip(bounds[:-1], bounds[1:]):
             query = order[begin:stop]
             chunk_lo, chunk_hi = lo[query].min(axis=0), hi[query].max(axis=0)
-            near = np.flatnonzero(np.all((self.lo <= chunk_hi) & (self.hi >= chunk_lo), axis=1))
+            if self.grid is None:
+                continue
+            near = self.grid.near(chunk_lo, chunk_hi)      # the triangles filed round the chunk, sorted
+            near = near[np.all((self.lo[near] <= chunk_hi) & (self.hi[near] >= chunk_lo), axis=1)]
             if not len(near):
                 continue
             overlap = np.all((lo[query, None, :] <= self.hi[near][None]) & (hi[query, None, :] >= self.lo[near][None]),

@@ -26,7 +26,10 @@ from .errors import InputError
 _WORD = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
 _NEEDS = {"G92": "XY", "G72": "XY", "G69": "IJPQT", "G79": "IJPQDT"}
 ENDS = ("G50", "M30")
-MAX_HITS = 200_000          # more hits than this is a wrong pitch (Q0.001), not a part
+# Limits of a real turret punch, checked before anything is punched (the union of the hit discs
+# grows faster than the number of hits: 3,000 overlapping hits take half a second, 15,000 twenty).
+MIN_PITCH = 0.1             # mm: a nibbling pitch below this is a slip (Q0, Q0.001), not a part
+MAX_HITS = 20_000           # hits in one program: at ~5 hits/s, over an hour of punching
 _CHUNK = 1 << 20            # point x segment pairs per numpy block in the distance searches
 
 
@@ -121,6 +124,9 @@ def read_amada(text: str) -> PunchProgram:
         length, pitch, p = words["I"], words["Q"], words["P"]
         if length < 0 or pitch <= 0:
             raise PunchError(f"line {number}: I (length) must be >= 0 and Q (pitch) > 0, got {raw.strip()!r}")
+        if pitch < MIN_PITCH:
+            raise PunchError(f"line {number}: the pitch Q{pitch:g} is below the {MIN_PITCH} mm a turret punch "
+                             f"nibbles at (give Q from {MIN_PITCH} mm up): {raw.strip()!r}")
         if not words["T"].is_integer():
             raise PunchError(f"line {number}: cannot read {raw.strip()!r}")
         if code == "G79":
@@ -130,7 +136,8 @@ def read_amada(text: str) -> PunchProgram:
         steps = max(0, math.ceil(length / pitch - 1e-9))       # the 1e-9: 0.7 / 0.1 is 7, not 8
         count += steps + 1
         if count > MAX_HITS:
-            raise PunchError("the program has more than 200000 hits: check the pitches Q")
+            raise PunchError(f"line {number}: the program has more than {MAX_HITS} hits by this line (at most "
+                             f"{MAX_HITS} are simulated): check the pitches Q")
         along = _direction(words["J"])
         left = np.array([-along[1], along[0]])
         t = np.linspace(0.0, length, steps + 1)

@@ -73,10 +73,11 @@ import numpy as np
 
 from . import kinematics
 from .kinematics import machine_to_part  # noqa: F401  (callers of turnmill.machine_to_part)
-from .meshrays import (PAIR_BUDGET, RayEngine, Triangles, TrimeshRayEngine, check_mesh,  # noqa: F401
+from .meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEngine, check_mesh,  # noqa: F401
                        face_normals, face_samples)
 from .program import (FEED, RAPID, TOOL_DIRECTIONS, Program, Tool, TurnMillError, TurnMillOperation,
                       merge_short_moves)
+from .turnjoin import TurnMillCancelled, _join, _join_layers, _link_clear  # noqa: F401  (callers of turnmill.*)
 
 NEITHER, RADIAL, AXIAL, BOTH = 0, 1, 2, 3      # face labels: bit 1 = radial, bit 2 = axial
 LABEL_NAMES = ("neither", "radial", "axial", "both")
@@ -339,40 +340,6 @@ def _fit_runs(polylines: list, closed: list, surface, stock, settings, max_z_shi
     return runs
 
 
-def _link_clear(a: np.ndarray, b: np.ndarray, surface, settings) -> bool:
-    """Can the ball feed straight from centre a to centre b?  Points a stepover apart along the
-    link must each be clear by r: between them the ball then dips by at most the scallop height,
-    the tolerance, as along the passes."""
-    count = max(1, math.ceil(np.linalg.norm(b - a) / settings.pick_feed))
-    points = a + (b - a) * (np.arange(1, count)[:, None] / count)
-    if not len(points):
-        return True
-    distance, _ = surface.nearest(points, settings.radius)
-    return bool(np.all(distance >= settings.radius - settings.tolerance / 10))
-
-
-def _join(runs: list, surface, settings) -> list:
-    """Order the runs of one layer nearest first (a run may be reversed), and join a run to the
-    one before it into a pass when the gap is at most four stepovers and the straight link is clear."""
-    if not runs:
-        return []
-    remaining = list(runs[1:])
-    passes = [runs[0]]
-    for _ in range(len(remaining)):
-        end = passes[-1][-1]
-        to_start = np.array([np.linalg.norm(r[0] - end) for r in remaining])
-        to_end = np.array([np.linalg.norm(r[-1] - end) for r in remaining])
-        i = int(np.argmin(np.minimum(to_start, to_end)))
-        run = remaining.pop(i)
-        if to_end[i] < to_start[i]:
-            run = run[::-1]
-        if min(to_start[i], to_end[i]) <= 4 * settings.pick_feed and _link_clear(end, run[0], surface, settings):
-            passes[-1] = np.vstack([passes[-1], run])
-        else:
-            passes.append(run)
-    return passes
-
-
 # ----- radial paths ---------------------------------------------------------------------------
 def _sections(v, faces, normals, zlo, zhi, z) -> list:
     """Polylines where the plane at height z cuts the faces: (points, segment normals, closed).
@@ -450,7 +417,7 @@ def _offset_section(points, normals, closed, r, max_turn):
     return _dedupe(np.vstack(centres), np.vstack(centre_normals))
 
 
-def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings) -> list:
+def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings, progress=None) -> list:
     """Ball-centre passes (part coordinates, (k, 3) arrays) for the radial tool, one list per
     layer: the outermost roughing layer first, the finishing layer (on the surface) last.
 
@@ -503,7 +470,7 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
     layers: dict = {}
     for k, runs in zip(layer_of, _fit_runs(polylines, closed_flags, surface, stock, settings, shifts)):
         layers.setdefault(k, []).extend(runs)
-    return [_join(layers.get(k, []), surface, settings) for k in range(max(layers), -1, -1)]
+    return _join_layers(layers, surface, settings, progress)
 
 
 # ----- axial paths ----------------------------------------------------------------------------
@@ -531,29 +498,44 @@ def _components(faces: np.ndarray, ids: np.ndarray) -> list:
 
 
 def _project_down(xy: np.ndarray, triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Height and face of the highest triangle above/below each XY point (NaN, -1 where none)."""
+    """Height and face of the highest triangle above/below each XY point (NaN, -1 where none).
+    Each point is tested only against the triangles filed in its cell of a :class:`BoxGrid`
+    (ties: the lowest face)."""
     z = np.full(len(xy), np.nan)
     face = np.full(len(xy), -1)
+    if not len(xy) or not len(triangles):
+        return z, face
     flat = triangles[:, :, :2]
     lo, hi = flat.min(axis=1), flat.max(axis=1)
-    step = max(1, PAIR_BUDGET // len(triangles))
-    for start in range(0, len(xy), step):
-        chunk = xy[start:start + step]
-        query, tri = np.nonzero(np.all((chunk[:, None] >= lo[None] - 1e-9) & (chunk[:, None] <= hi[None] + 1e-9),
-                                       axis=2))
-        a, b, c = triangles[tri, 0], triangles[tri, 1], triangles[tri, 2]
-        e1, e2, p = b[:, :2] - a[:, :2], c[:, :2] - a[:, :2], chunk[query] - a[:, :2]
+    grid = BoxGrid(lo - 1e-9, hi + 1e-9)
+    start, stop = grid.listed(grid.cells_of(xy))
+    count = stop - start
+    ends = np.cumsum(count)
+    begin = 0
+    while begin < len(xy):
+        # as many points as keep the (point, triangle) pairs within the budget
+        end = max(begin + 1, int(np.searchsorted(ends, (ends[begin - 1] if begin else 0) + PAIR_BUDGET,
+                                                 side="right")))
+        c = count[begin:end]
+        query = np.repeat(np.arange(begin, end), c)
+        take = np.repeat(start[begin:end] - np.cumsum(c) + c, c) + np.arange(int(c.sum()))
+        tri = grid.boxes[take]
+        keep = np.all((xy[query] >= lo[tri] - 1e-9) & (xy[query] <= hi[tri] + 1e-9), axis=1)
+        query, tri = query[keep], tri[keep]
+        a, b, c3 = triangles[tri, 0], triangles[tri, 1], triangles[tri, 2]
+        e1, e2, p = b[:, :2] - a[:, :2], c3[:, :2] - a[:, :2], xy[query] - a[:, :2]
         det = e1[:, 0] * e2[:, 1] - e2[:, 0] * e1[:, 1]
         with np.errstate(divide="ignore", invalid="ignore"):
             l1 = (p[:, 0] * e2[:, 1] - e2[:, 0] * p[:, 1]) / det
             l2 = (e1[:, 0] * p[:, 1] - p[:, 0] * e1[:, 1]) / det
         inside = (np.abs(det) > 1e-12) & (l1 >= -1e-9) & (l2 >= -1e-9) & (l1 + l2 <= 1 + 1e-9)
         query, tri, height = query[inside], tri[inside], (a[:, 2] + l1 * (b[:, 2] - a[:, 2])
-                                                          + l2 * (c[:, 2] - a[:, 2]))[inside]
-        order = np.lexsort((-height, query))
+                                                          + l2 * (c3[:, 2] - a[:, 2]))[inside]
+        order = np.lexsort((tri, -height, query))
         first = order[np.r_[True, query[order][1:] != query[order][:-1]]] if len(order) else order
-        z[start + query[first]] = height[first]
-        face[start + query[first]] = tri[first]
+        z[query[first]] = height[first]
+        face[query[first]] = tri[first]
+        begin = end
     return z, face
 
 
@@ -619,7 +601,7 @@ def _grid_passes(v, faces, surface, stock, settings) -> list:
     return [_dedupe(np.array([grid[c] for c in path])) for path in chain_cells(occupied.reshape(ns, nw))]
 
 
-def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings) -> list:
+def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings, progress=None) -> list:
     """Ball-centre passes for the axial tool, one list per layer: the highest roughing copy first,
     the finishing layer (on the faces) last.
 
@@ -649,7 +631,7 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
     if copies:
         for k, runs in zip(layer_of, _fit_runs(copies, [False] * len(copies), surface, stock, settings)):
             layers.setdefault(k, []).extend(runs)
-    return [_join(layers.get(k, []), surface, settings) for k in range(max(layers), -1, -1)]
+    return _join_layers(layers, surface, settings, progress)
 
 
 # ----- machine coordinates and operations ------------------------------------------------------
@@ -727,7 +709,8 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
     """Classify the faces (or use ``labels``), generate the radial and axial layers, and build the
     program: radial roughing, radial finishing (radial station), axial roughing, axial finishing
     (axial station).  Operations with nothing to cut are left out.
-    ``progress``: optional callable(fraction, text)."""
+    ``progress``: optional callable(fraction, text); while the passes are joined, returning False
+    cancels (:class:`TurnMillCancelled`)."""
     report = progress or (lambda fraction, text="": None)
     settings = TurnMillSettings() if settings is None else settings
     if not isinstance(stock, Stock):
@@ -743,9 +726,11 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
                                 lambda fraction, text="": report(0.5 * fraction, text))
     radial_ids, axial_ids = path_faces(v, f, labels)
     report(0.5, "radial layers")
-    radial = radial_layers(v, f, radial_ids, stock, settings)
+    radial = radial_layers(v, f, radial_ids, stock, settings,
+                           lambda fraction: report(0.5 + 0.3 * fraction, "radial layers"))
     report(0.8, "axial layers")
-    axial = axial_layers(v, f, axial_ids, stock, settings)
+    axial = axial_layers(v, f, axial_ids, stock, settings,
+                         lambda fraction: report(0.8 + 0.15 * fraction, "axial layers"))
     report(0.95, "operations")
     operations = []
     for direction, layers in (("radial", radial), ("axial", axial)):

@@ -42,11 +42,16 @@ class UnfoldError(InputError):
 # Validation helpers
 
 
-def _check_count(value, what: str, minimum: int) -> int:
+MAX_DIVISIONS = 1000        # more strips than this are finer than any sheet can be bent or punched
+
+
+def _check_count(value, what: str, minimum: int, maximum: int = MAX_DIVISIONS) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise UnfoldError(f"{what} must be an integer, got {value!r}")
     if value < minimum:
         raise UnfoldError(f"{what} must be at least {minimum}, got {value}")
+    if value > maximum:
+        raise UnfoldError(f"{what} must be from {minimum} to {maximum}, got {value}")
     return int(value)
 
 

@@ -12,11 +12,15 @@ from manifold3d import Error, Manifold
 from ..program import FEED, RAPID
 from . import radiusmap as rmap
 from . import sweep
-from .checks import _design_heights, _findings, _floor_findings, _spindle_findings, _travel_findings
+from .checks import (_design_heights, _findings, _floor_findings, _spindle_findings, _travel_findings,
+                     check_design_mesh)
 from .heightfield import _compiled_kernels, _grid, _Simulation
 from .paths import _chains, _operations, can_plunge
 from .stock import (ENGINES, GOUGE_TOLERANCE, MAX_CELLS, TOUCH_TOLERANCE, CylinderStock, Finding, HeightField,
-                    SimulationCancelled, SimulationError, SimulationResult, _solid_of, _stock_solid, as_stock)
+                    SimulationCancelled, SimulationError, SimulationResult, _solid_of, _stock_box, _stock_solid,
+                    as_stock)
+
+MIN_CELLS_ACROSS = 4       # a cell coarser than a quarter of the stock's smaller side means nothing
 
 def check(program_or_operations, stock, *, cell: float = 0.1, tolerance: float = 0.03, design=None,
           keep_regions=None, travel: dict | None = None, no_plunge_tools=(), progress=None,
@@ -32,7 +36,7 @@ def check(program_or_operations, stock, *, cell: float = 0.1, tolerance: float =
 def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell: float = 0.1,
              tolerance: float = 0.03, design=None, keep_regions=None, travel: dict | None = None,
              no_plunge_tools=(), progress=None, chunk: int = sweep.CHUNK_TRIANGLES,
-             kernel: str = "auto", fixture_clearance: float = 0.0) -> SimulationResult:
+             kernel: str = "auto", fixture_clearance: float = 0.0, design_name: str = "design") -> SimulationResult:
     """Cut the stock with the program and check it.
 
     ``stock``: a BoxStock, a CylinderStock or (x0, y0, z0, x1, y1, z1).
@@ -54,7 +58,10 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     same heights.  The result's ``kernel`` says which ran.  ``fixture_clearance``: how far below a
     box stock's bottom a tool may go (a drill breaking through onto a spoil board); deeper is a
     ``below_stock`` finding.  An operation that cuts with its spindle at 0 rpm is a
-    ``spindle_stopped`` finding.
+    ``spindle_stopped`` finding.  A design mesh is checked first (:func:`check_design_mesh`,
+    named ``design_name`` in its messages); a repair it made is in the result's ``warnings``.
+    ``cell`` must lie between the finest the memory allows (:data:`MAX_CELLS`) and a quarter of
+    the stock's smaller side.
     """
     started = time.perf_counter()
     if engine not in ENGINES:
@@ -66,6 +73,10 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
         raise SimulationError(f"chunk must be a positive number of triangles, got {chunk!r}")
     kernels = _compiled_kernels(kernel)
     stock = as_stock(stock)
+    _check_cell(stock, float(cell))
+    warnings = []
+    if design is not None and hasattr(design, "vertices") and hasattr(design, "faces"):
+        design, warnings = check_design_mesh(design, stock, design_name)
     ops = _operations(program_or_operations)
     radial = [getattr(op, "direction", None) == "radial" for op in ops]
     if any(radial) and not isinstance(stock, CylinderStock):
@@ -92,6 +103,22 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
         sim = _Simulation(hf, tolerance, progress, kernels)
         sim.run(chains)
         findings += _findings(sim, chains, ops, design_z)
+    result = _result(stock, tolerance, findings, kernels, solid, design, hf, rm, chains, started)
+    result.warnings = warnings
+    return result
+
+
+def _check_cell(stock, cell: float) -> None:
+    (x0, y0, _), (x1, y1, _) = _stock_box(stock)
+    side = min(x1 - x0, y1 - y0)
+    coarsest = side / MIN_CELLS_ACROSS
+    if cell > coarsest:
+        finest = math.sqrt((x1 - x0) * (y1 - y0) / MAX_CELLS)
+        raise SimulationError(f"cell {cell:g} mm is too coarse for a stock {side:g} mm across (fewer than "
+                              f"{MIN_CELLS_ACROSS} cells): give a cell from {finest:.3g} to {coarsest:.3g} mm")
+
+
+def _result(stock, tolerance, findings, kernels, solid, design, hf, rm, chains, started) -> SimulationResult:
     seconds = time.perf_counter() - started
     ran = "numpy" if kernels is None else "numba"
     if solid is not None:

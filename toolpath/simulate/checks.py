@@ -228,3 +228,77 @@ BLOCKING_KINDS = ("gouge", "rapid_in_material", "plunge", "below_stock", "spindl
 def blocking(findings) -> list:
     """The findings that stop a program from being written unless the user overrides them."""
     return [f for f in findings if f.kind in BLOCKING_KINDS]
+
+
+# ----- the design mesh, before it is trusted ------------------------------------------------------
+
+DESIGN_SLACK = 0.05        # mm: how far a design may stand outside the stock (rounding of exported meshes)
+
+
+def check_design_mesh(design, stock, name: str = "design") -> tuple:
+    """(design, warnings): a mesh design checked before any gouge is measured against it.
+
+    Refused, naming ``name``: no faces (an empty or unreadable file loads as none), NaN or
+    infinite vertices, bad face indices, an open or non-manifold surface (an edge not shared by
+    exactly two faces, or faces wound against each other), no volume, no overlap with the stock,
+    or a part that stands outside the stock (it cannot be cut from it: every cut would gouge it).
+    Repaired and said in ``warnings``: an inside-out mesh (negative volume) gets its faces flipped.
+    Returns a plain ``SimpleNamespace(vertices, faces)`` when it repaired, else ``design`` itself."""
+    from types import SimpleNamespace
+
+    from .stock import _stock_box
+
+    try:
+        vertices = np.asarray(design.vertices, dtype=float)
+        faces = np.asarray(design.faces)
+    except (TypeError, ValueError):
+        raise SimulationError(f"design {name}: vertices and faces must be numeric arrays") from None
+    if faces.size == 0 or vertices.size == 0:
+        raise SimulationError(f"design {name}: the mesh has no faces (an empty or unreadable mesh file)")
+    if vertices.ndim != 2 or vertices.shape[1] < 3 or faces.ndim != 2 or faces.shape[1] != 3:
+        raise SimulationError(f"design {name}: needs (n, 3) vertices and (m, 3) triangles, got {vertices.shape} "
+                              f"and {faces.shape}")
+    vertices = vertices[:, :3]
+    if not np.issubdtype(faces.dtype, np.integer) or faces.min() < 0 or faces.max() >= len(vertices):
+        raise SimulationError(f"design {name}: face indices must be integers in 0..{len(vertices) - 1}")
+    if not np.isfinite(vertices).all():
+        raise SimulationError(f"design {name}: the mesh has NaN or infinite vertex coordinates")
+    faces = faces.astype(np.int64)
+    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    n = len(vertices)
+    undirected, counts = np.unique(directed.min(axis=1) * n + directed.max(axis=1), return_counts=True)
+    open_edges = int(np.sum(counts == 1))
+    if open_edges or np.any(counts > 2):
+        what = (f"{open_edges} edge(s) border only one face (a hole)" if open_edges
+                else f"{int(np.sum(counts > 2))} edge(s) are shared by more than two faces")
+        raise SimulationError(f"design {name}: the mesh is not a closed solid: {what}; close it (e.g. Blender's "
+                              "Fill Holes, or 3D-Print Toolbox > Make Manifold)")
+    if len(np.unique(directed[:, 0] * n + directed[:, 1])) < len(directed):
+        raise SimulationError(f"design {name}: the faces are wound inconsistently (some normals are flipped): "
+                              "recalculate normals")
+    tri = vertices[faces]
+    centre = vertices.mean(axis=0)
+    volume = float(np.einsum("ij,ij->i", tri[:, 0] - centre, np.cross(tri[:, 1] - centre, tri[:, 2] - centre)).sum()
+                   / 6.0)
+    size = float(np.ptp(vertices, axis=0).max())
+    if not abs(volume) > 1e-9 * max(size, 1.0) ** 3:
+        raise SimulationError(f"design {name}: the mesh encloses no volume")
+    warnings = []
+    if volume < 0:
+        warnings.append(f"design {name}: the mesh was inside out (its normals pointed inward); its faces were "
+                        "flipped")
+        design = SimpleNamespace(vertices=vertices, faces=faces[:, ::-1].copy())
+    (sx0, sy0, sz0), (sx1, sy1, sz1) = _stock_box(stock)
+    low, high = vertices.min(axis=0), vertices.max(axis=0)
+    if np.any(high <= (sx0, sy0, sz0)) or np.any(low >= (sx1, sy1, sz1)):
+        raise SimulationError(f"design {name}: the part ({low[0]:.3f}, {low[1]:.3f}, {low[2]:.3f})..({high[0]:.3f}, "
+                              f"{high[1]:.3f}, {high[2]:.3f}) does not overlap the stock: are both in the same "
+                              "coordinates?")
+    beyond = np.concatenate([(sx0, sy0, sz0) - low, high - (sx1, sy1, sz1)])
+    if hasattr(stock, "radius"):
+        beyond = np.append(beyond, float(np.hypot(vertices[:, 0], vertices[:, 1]).max()) - stock.radius)
+    worst = float(beyond.max())
+    if worst > DESIGN_SLACK:
+        raise SimulationError(f"design {name}: the part stands {worst:.3f} mm outside the stock (more than "
+                              f"{DESIGN_SLACK} mm): it cannot be cut from this stock")
+    return design, warnings

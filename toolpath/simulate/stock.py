@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from manifold3d import Manifold, Mesh
@@ -179,6 +179,8 @@ class SimulationResult:
     axial_cut: bool = True      # whether any operation cut the height field
     # The manifold engine with a closed design mesh: the volume of the design that was cut away.
     gouge_volume_mm3: float | None = None
+    # What the simulation repaired in its input and says so (an inside-out design flipped ...).
+    warnings: list = field(default_factory=list)
 
     def findings_of(self, kind: str) -> list:
         return [f for f in self.findings if f.kind == kind]

@@ -370,6 +370,9 @@ def _decode_string(raw: str) -> str:
         i = e.end()
 
 
+MAX_NESTING = 100   # lists inside lists: real files nest a few levels; deeper is refused, not a RecursionError
+
+
 class _Parser:
     """Scan the whole text into token strings, then recursive descent over them.
 
@@ -393,6 +396,7 @@ class _Parser:
         self.instance_id: int | None = None
         self.ref_sites: list[int] = []  # token indices of references, checked at the end
         self.instance_starts: list[tuple[int, int]] = []  # (token index, id), ascending
+        self.depth = 0  # lists being read, one inside the other
 
     # ---- positions and errors
 
@@ -561,6 +565,9 @@ class _Parser:
         if toks[i] == ")":
             self.i = i + 1
             return items
+        self.depth += 1
+        if self.depth > MAX_NESTING:
+            self.fail(f"lists nested more than {MAX_NESTING} deep", self.pos(self.i), self.instance_id)
         while True:
             tok = toks[i]
             c = tok[:1]
@@ -599,6 +606,7 @@ class _Parser:
                 continue
             if tok == ")":
                 self.i = i
+                self.depth -= 1
                 return items
             self.fail_at(i - 1, "',' or ')'")
 

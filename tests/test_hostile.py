@@ -1,0 +1,440 @@
+"""Hostile input to the core: every bad input is refused with a message naming it, never a
+traceback, a hang or a silently wrong answer.  Every test that could hang runs under a time
+limit (SIGALRM, or a subprocess with a timeout), so a hang fails instead of stalling CI."""
+import contextlib
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+import trimesh
+
+from kezuri.post import output
+from kezuri.toolpath import ncread, punch, unfold
+from kezuri.toolpath import simulate as sim
+from kezuri.toolpath import turnmill as tm
+from kezuri.toolpath.errors import InputError
+from kezuri.toolpath.program import Tool
+from kezuri.toolpath.stepnc import part21
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+FLAT6 = Tool(1, "flat", 6.0)
+
+
+@contextlib.contextmanager
+def time_limit(seconds: int):
+    """Fail (TimeoutError) when the block runs longer than ``seconds`` (checked between Python
+    bytecodes: long numpy calls finish first)."""
+    def expired(signum, frame):
+        raise TimeoutError(f"took more than {seconds} s")
+    previous = signal.signal(signal.SIGALRM, expired)
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def run_python(code: str, timeout: float) -> subprocess.CompletedProcess:
+    """``code`` in a fresh interpreter with the package loaded as ``kezuri``; killed after ``timeout``."""
+    prelude = ("import sys; sys.path.insert(0, %r); import conftest\n" % HERE)
+    return subprocess.run([sys.executable, "-c", prelude + code], capture_output=True, text=True, timeout=timeout,
+                          cwd=ROOT)
+
+
+def read(text):
+    with time_limit(20):
+        return ncread.read_nc(text, FLAT6)
+
+
+# ----- 1. the NC reader is strict like a control ------------------------------------------------
+
+START = "G21 G90\nG0 X0 Y0 Z5\n"
+
+
+@pytest.mark.parametrize("line, reason", [
+    ("G92 X0 Y0", "G92 sets a coordinate offset"),
+    ("G68 X0 Y0 R30", "G68 rotates the coordinate system"),
+    ("G38.2 Z-10 F50", "G38.2 probing moves are not simulated"),
+    ("G81 X10 Y10 Z-5 R1 F100", "G81 canned cycles are not simulated"),
+    ("G83 X10 Y10 Z-5 R1 Q1 F100", "G83 canned cycles are not simulated"),
+    ("G41 D1 X10", "G41 cutter radius compensation"),
+    ("G18", "G18 selects another plane; only the XY plane"),
+    ("G66.1 P7023", "G66.1 macro calls"),
+    ("M98 P100", "M98 subprogram calls"),
+    ("G12 X1", "G12 is not a code this reader knows"),
+    ("M123", "M123 is not a code this reader knows"),
+    ("G1 A10", "the A word is not supported"),
+    ("G1 XNAN", "X is not followed by a number \\(found 'NAN'\\)"),
+    ("G1 X-", "X- is not a number G-code can have"),
+    ("G1 X1.2.3", "X1.2.3 is not a number G-code can have"),
+    ("G1 X2E1", "X2E...: exponents are not allowed"),
+    ("G1 X" + "9" * 400, "X9+ is out of range"),
+    ("G1 X1 X2", "X is given twice"),
+    ("G0 G1 X1", "G0 and G1 are both motions"),
+    ("G1 X1 (open", "unbalanced or nested parenthesis"),
+    ("G1 I5 X1", "I or J without an arc move"),
+    ("G2 X10 Y0 R5", "R-format arcs are not supported"),
+    ("G2 X10 Y0", "an arc needs I and J"),
+    ("G2 X0 Y0 I0 J0", "the arc has no radius"),
+    ("G90 G28 Z0", "G28 is followed only as G91 G28"),
+    ("/G1 X1", "'/G1 X1' is not a word"),
+])
+def test_the_reader_stops_at_what_it_cannot_follow_naming_the_line(line, reason):
+    with pytest.raises(ncread.NCReadError, match=f"line 3: {reason}") as error:
+        read(START + line + "\nG1 X20\n")
+    assert repr(line) in str(error.value)          # the line itself
+
+
+def test_a_canned_cycle_is_refused_not_run_as_a_straight_feed():
+    # Before: G81 was ignored and its X, Y, Z cut as a G1 (1,651 mm^3 instead of a 132 mm^3 hole).
+    with pytest.raises(ncread.NCReadError, match="line 4: G81 canned cycles"):
+        read(START + "G1 Z1 F100\nG81 X10 Y10 Z-4 R1 F100\nG80\n")
+
+
+@pytest.mark.parametrize("radius, error, refused", [
+    (10.0, 0.02, False),     # under the absolute 0.028 mm
+    (10.0, 0.03, True),      # over it, and 0.3 % of the radius
+    (100.0, 0.05, False),    # over 0.028 mm, but only 0.05 % of the radius
+    (5000.0, 2.7, False),    # 0.054 %, under 100 x 0.028 mm = 2.83 mm
+    (5000.0, 2.9, True),     # over 100 x the absolute tolerance, whatever the radius
+])
+def test_arcs_are_held_to_linuxcncs_radius_tolerance(radius, error, refused):
+    """LinuxCNC (interp_internal.hh, interp_arc.cc): refused when the radius at the end differs
+    from the one at the start by more than 100 x 0.02*sqrt(2) mm, or by more than 0.02*sqrt(2) mm
+    and 0.1 % of the radius."""
+    end = radius + error    # start (r, 0), centre at the origin (I-r), end straight above it
+    text = f"G21 G90\nG0 X{radius:.4f} Y0 Z0\nG3 X0 Y{end:.4f} I{-radius:.4f} J0\n"
+    if refused:
+        with pytest.raises(ncread.NCReadError, match=rf"line 3: the arc's end lies {error:.4f} mm off its circle"):
+            read(text)
+    else:
+        op, lines = read(text)
+        assert lines == [2, 3] and np.allclose(op.center[1, :2], [0, 0])
+
+
+def test_inch_arcs_use_the_inch_tolerance():
+    # 0.002*sqrt(2) in = 0.0718 mm: 0.002 in off on a 1 in radius (0.2 %) is refused, 0.0015 in is not
+    read("G20 G90\nG0 X1 Y0 Z0\nG3 X0 Y1.0015 I-1 J0\n")
+    with pytest.raises(ncread.NCReadError, match="line 3: the arc's end lies 0.0762 mm"):
+        read("G20 G90\nG0 X1 Y0 Z0\nG3 X0 Y1.003 I-1 J0\n")
+
+
+def test_what_the_reader_sets_aside_is_listed_and_the_old_unpacking_still_works():
+    text = ("%\nO1000\n(job)\nN10 G21 G90 G17 G54\nT1 M6\nS8000 M3\nM8\nG0 X0 Y0 Z5 ; over the start\n"
+            "G1 Z-1 F200\nX10 (along)\nM9\nM5\nG91 G28 Z0\nM30\nG1 X1000\n")
+    result = read(text)
+    op, lines = result                         # the old (operation, lines) pair
+    assert lines == [8, 9, 10] and result.operation is op and result.lines == lines
+    assert np.allclose(op.xyz, [[0, 0, 5], [0, 0, -1], [10, 0, -1]])     # nothing read after M30
+    ignored = {entry["code"]: entry for entry in result.ignored}
+    assert ignored["comment"]["count"] == 3 and ignored["comment"]["first_line"] == 3
+    assert ignored["M8"]["meaning"] == "coolant on" and ignored["M8"]["first_line"] == 7
+    assert ignored["M6"]["count"] == 1 and ignored["F"]["count"] == 1 and ignored["S"]["count"] == 1
+    assert ignored["G28"]["first_line"] == 13 and ignored["G54"]["count"] == 1
+    assert [e["first_line"] for e in result.ignored] == sorted(e["first_line"] for e in result.ignored)
+
+
+def test_our_own_posts_read_back_without_refusals():
+    from kezuri import post
+    from kezuri.toolpath import engrave
+    from test_engrave import LETTERS, PLATE
+    baked, _ = engrave.bake(engrave.plan(PLATE, LETTERS).program)
+    for name in ("linuxcnc", "fanuc", "grbl"):
+        op, lines = read(post.milling_post(name).to_text(baked))
+        assert len(op) > 1000, name
+
+
+def test_a_cell_too_coarse_to_mean_anything_is_refused_like_a_too_fine_one():
+    op, _ = read(START + "G1 Z-2 F100\nX50\n")
+    stock = (-10, -10, -10, 110, 10, 0)       # 20 mm across its smaller side: cells up to 5 mm
+    with pytest.raises(sim.SimulationError, match=r"cell 1e\+09 mm is too coarse for a stock 20 mm across .*"
+                                                  r"give a cell from 0.00632 to 5 mm"):
+        sim.simulate([op], stock, cell=1e9)
+    with pytest.raises(sim.SimulationError, match="use a coarser cell"):
+        sim.simulate([op], stock, cell=1e-4)
+    assert sim.simulate([op], stock, cell=5.0).removed_volume_mm3 > 0
+
+
+# ----- hypothesis: random G-code lines ------------------------------------------------------------
+
+hypothesis = pytest.importorskip("hypothesis")
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+WORDS = st.builds(lambda letter, number: letter + number,
+                  st.sampled_from(list("GMXYZCIJKFSTHNPRQADE") + [" ", "(", ")", ";", "%", "/"]),
+                  st.one_of(st.from_regex(r"[-+]?[0-9]{0,4}(\.[0-9]{0,4})?", fullmatch=True),
+                            st.sampled_from(["NAN", "INF", "1.2.3", "2E1", "-", "", "00", "38.2", "81", "2", "3"])))
+LINES = st.lists(WORDS, min_size=0, max_size=8).map(" ".join)
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(LINES, min_size=1, max_size=6))
+def test_random_gcode_reads_cleanly_or_names_the_line(lines):
+    text = START + "\n".join(lines) + "\n"
+    try:
+        result = read(text)
+    except ncread.NCReadError as error:
+        message = str(error)
+        assert message.startswith("line ") or message == "the NC file has no moves", message
+        if message.startswith("line "):
+            number = int(message.split(":")[0][5:])
+            assert 1 <= number <= len(text.splitlines())
+    else:
+        op, numbers = result
+        assert len(op) == len(numbers) and np.isfinite(op.xyz).all()
+
+
+# ----- 2. design meshes are checked before they are trusted ---------------------------------------
+
+BOX_STOCK = (0, 0, -10, 40, 40, 0)
+
+
+def slot_op():
+    return read("G21 G90\nG0 X5 Y20 Z5\nG1 Z-2 F100\nX35\nG0 Z5\n")[0]
+
+
+def block(extents=(40, 40, 9), centre=(20, 20, -5.5)):
+    return trimesh.creation.box(extents=extents, transform=trimesh.transformations.translation_matrix(centre))
+
+
+def test_an_inside_out_design_is_flipped_and_said_so():
+    normal = sim.simulate([slot_op()], BOX_STOCK, cell=0.5, design=block())
+    flipped = block()
+    flipped.faces = flipped.faces[:, ::-1]
+    assert flipped.volume < 0
+    repaired = sim.simulate([slot_op()], BOX_STOCK, cell=0.5, design=flipped, design_name="part.stl")
+    assert repaired.warnings == ["design part.stl: the mesh was inside out (its normals pointed inward); its faces "
+                                 "were flipped"]
+    assert normal.warnings == []
+    # the block's top is z = -1, the slot 2 deep: 1 mm gouged either way
+    assert [f.depth_mm for f in repaired.findings_of("gouge")] == pytest.approx([1.0], abs=1e-3)
+    assert [f.depth_mm for f in normal.findings_of("gouge")] == pytest.approx([1.0], abs=1e-3)
+
+
+@pytest.mark.parametrize("make, message", [
+    (lambda: trimesh.Trimesh(), "design part.stl: the mesh has no faces"),
+    (lambda: trimesh.Trimesh(block().vertices, block().faces[1:], process=False),
+     r"design part.stl: the mesh is not a closed solid: 3 edge\(s\) border only one face"),
+    (lambda: trimesh.Trimesh(np.where(np.arange(24).reshape(8, 3) == 4, np.nan, block().vertices), block().faces,
+                             process=False), "NaN or infinite vertex coordinates"),
+    (lambda: block(centre=(200, 20, -5.5)), "does not overlap the stock"),
+    (lambda: block(extents=(60, 40, 9)), r"the part stands 10.000 mm outside the stock"),
+])
+def test_bad_designs_are_refused_naming_the_mesh(make, message):
+    with time_limit(60), pytest.raises(sim.SimulationError, match=message):
+        sim.simulate([slot_op()], BOX_STOCK, cell=0.5, design=make(), design_name="part.stl")
+
+
+def test_a_design_larger_than_the_stock_does_not_pass_silently():
+    # Before: a design 2 mm larger all round measured a gouge volume hundreds of times the removed volume.
+    big = block(extents=(44, 44, 14), centre=(20, 20, -5))
+    with pytest.raises(sim.SimulationError, match="2.000 mm outside the stock"):
+        sim.simulate([slot_op()], BOX_STOCK, engine="manifold", cell=0.5, design=big)
+
+
+def test_random_bytes_as_a_design_file_are_refused_by_name(tmp_path):
+    from kezuri.operators.ncfile import load_design
+    path = tmp_path / "noise.stl"
+    path.write_bytes(np.random.default_rng(7).bytes(3000))
+    with pytest.raises(sim.SimulationError, match="design noise.stl: "):
+        sim.simulate([slot_op()], BOX_STOCK, cell=0.5, design=load_design(str(path)), design_name="noise.stl")
+
+
+# ----- 3. no hang, whatever the mesh or number ----------------------------------------------------
+
+def _join_all_pairs(runs, surface, settings):
+    """The old join, comparing every run with every other: the reference ordering."""
+    remaining, passes = list(runs[1:]), [runs[0]]
+    for _ in range(len(remaining)):
+        end = passes[-1][-1]
+        to_start = np.array([np.linalg.norm(r[0] - end) for r in remaining])
+        to_end = np.array([np.linalg.norm(r[-1] - end) for r in remaining])
+        i = int(np.argmin(np.minimum(to_start, to_end)))
+        run = remaining.pop(i)
+        if to_end[i] < to_start[i]:
+            run = run[::-1]
+        if min(to_start[i], to_end[i]) <= 4 * settings.pick_feed and tm._link_clear(end, run[0], surface, settings):
+            passes[-1] = np.vstack([passes[-1], run])
+        else:
+            passes.append(run)
+    return passes
+
+
+def test_the_grid_join_orders_runs_exactly_as_the_all_pairs_one():
+    rng = np.random.default_rng(3)
+    settings = tm.TurnMillSettings()
+    far = tm.Triangles(np.array([[[500.0, 500, 500], [501, 500, 500], [500, 501, 500]]]))   # links always clear
+    starts = np.vstack([rng.uniform(-30, 30, (300, 3)), rng.uniform(-300, 300, (20, 3))])   # some far away
+    runs = [np.vstack([s, s + rng.normal(0, 2, 3), s + rng.normal(0, 4, 3)]) for s in starts]
+    with time_limit(60):
+        new = tm._join(runs, far, settings)
+    old = _join_all_pairs(runs, far, settings)
+    assert len(new) == len(old) and all(np.array_equal(a, b) for a, b in zip(new, old))
+
+
+def test_join_progress_can_cancel():
+    runs = [np.array([[float(i), 0, 0], [i + 0.5, 0, 0]]) for i in range(600)]
+    far = tm.Triangles(np.array([[[500.0, 500, 500], [501, 500, 500], [500, 501, 500]]]))
+    with pytest.raises(tm.TurnMillCancelled):
+        tm._join(runs, far, tm.TurnMillSettings(), lambda fraction: False)
+
+
+def test_turn_mill_on_a_plain_64_sided_cylinder_finishes():
+    # Before: the all-pairs join took 40 s at 8 sections and more than 8 minutes at 64; the open
+    # tube (no end caps) the same.
+    done = run_python(
+        "import time, numpy as np, trimesh\n"
+        "from kezuri.toolpath import turnmill as tm\n"
+        "m = trimesh.creation.cylinder(radius=20, height=40, sections=64)\n"
+        "v = np.asarray(m.vertices)\n"
+        "stock = tm.Stock(float(np.hypot(v[:, 0], v[:, 1]).max()), float(v[:, 2].min()), float(v[:, 2].max()))\n"
+        "plan = tm.plan(v, m.faces, stock)\n"
+        "print(sum(len(op) for op in plan.program.operations))\n"
+        "tube = m.faces[np.abs(m.face_normals[:, 2]) < 0.5]\n"
+        "print(sum(len(op) for op in tm.plan(v, tube, stock).program.operations))\n", timeout=240)
+    assert done.returncode == 0, done.stderr[-2000:]
+    closed, tube = (int(n) for n in done.stdout.split()[-2:])
+    assert closed > 1000 and tube > 1000
+
+
+def test_nan_vertices_are_refused_up_front():
+    v, f, stock = tm.sample_part(48)
+    v = v.copy()
+    v[5, 1] = np.nan
+    with time_limit(20), pytest.raises(tm.TurnMillError, match="NaN or infinite vertex"):
+        tm.plan(v, f, stock)
+
+
+@pytest.mark.parametrize("pitch", ["0.00", "0.000001", "0.05"])
+def test_a_zero_or_tiny_pitch_is_refused_before_punching(pitch):
+    text = f"N000 G92 X1000.00 Y1040.00\nN001 G72 X0.00 Y0.00\nG69 I100.00 J0.00 P5.00 Q{pitch} T302\nG50\n"
+    with time_limit(10), pytest.raises(punch.PunchError, match="line 3: .*(Q \\(pitch\\) > 0|below the 0.1 mm)"):
+        punch.simulate_punching(text)
+
+
+def test_unfold_divisions_are_bounded():
+    quad = np.array([(0, 0, 0), (0, 30, 100), (100, 50, 100), (100, 40, 0)], float)
+    with time_limit(10), pytest.raises(unfold.UnfoldError, match="from 1 to 1000, got 100000"):
+        unfold.unfold_twisted_quad(quad, 100_000)
+
+
+# ----- 4. tracebacks and partial output in the core -----------------------------------------------
+
+def part21_text(data: str) -> str:
+    return ("ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+            f"FILE_SCHEMA(('X'));\nENDSEC;\nDATA;\n{data}\nENDSEC;\nEND-ISO-10303-21;\n")
+
+
+def test_deeply_nested_part21_lists_are_refused_not_a_recursion_error():
+    with time_limit(20), pytest.raises(part21.Part21Error, match="line 8, .*lists nested more than 100 deep"):
+        part21.parse_part21(part21_text("#1=A(" + "(" * 5000 + "1" + ")" * 5000 + ");"))
+    nested = part21.parse_part21(part21_text("#1=A(" + "(" * 99 + "1" + ")" * 99 + ");")).instances[1].params
+    for _ in range(99):
+        nested = nested[0]
+    assert nested == [1]
+
+
+def test_stale_temporary_files_of_ours_are_cleaned_at_the_next_write(tmp_path):
+    old = time.time() - 2 * 3600
+    stale = tmp_path / ".kezuri-abc123_x.part"
+    stale_png = tmp_path / ".kezuri-zz99yy00.part.png"
+    fresh = tmp_path / ".kezuri-fresh000.part"            # a write still running
+    theirs = tmp_path / ".kezuri-notours.tmp"
+    mine = tmp_path / "notes.part"
+    for path in (stale, stale_png, fresh, theirs, mine):
+        path.write_text("x")
+    for path in (stale, stale_png, theirs, mine):
+        os.utime(path, (old, old))
+    output.write_atomic(str(tmp_path / "job.nc"), "G0 X0\n")
+    assert sorted(p.name for p in tmp_path.iterdir()) == [".kezuri-fresh000.part", ".kezuri-notours.tmp",
+                                                            "job.nc", "notes.part"]
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only folders")
+def test_an_unwritable_folder_is_an_output_error_naming_the_path(tmp_path):
+    folder = tmp_path / "locked"
+    folder.mkdir()
+    folder.chmod(0o500)
+    try:
+        with pytest.raises(output.OutputError, match=f"cannot write {folder}/job.nc: Permission denied"):
+            output.write_atomic(str(folder / "job.nc"), "G0 X0\n")
+        assert isinstance(output.OutputError("x"), InputError)
+    finally:
+        folder.chmod(0o700)
+    assert list(folder.iterdir()) == []
+
+
+def test_a_folder_that_cannot_be_made_is_an_output_error_naming_it(tmp_path):
+    (tmp_path / "plain").write_text("a file, not a folder")
+    with pytest.raises(output.OutputError, match=f"cannot write {tmp_path}/plain/job.nc: cannot make the folder "
+                                                 f"{tmp_path}/plain"):
+        output.write_atomic(str(tmp_path / "plain" / "job.nc"), "G0 X0\n")
+
+
+def test_a_full_disk_is_an_output_error_and_leaves_nothing(tmp_path, monkeypatch):
+    def full(fd):
+        raise OSError(28, "No space left on device")
+    monkeypatch.setattr(output.os, "fsync", full)
+    with pytest.raises(output.OutputError, match=f"cannot write {tmp_path}/job.nc: No space left on device"):
+        output.write_atomic(str(tmp_path / "job.nc"), "G0 X0\n")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_non_ascii_text_is_an_output_error_not_a_unicode_traceback(tmp_path):
+    with pytest.raises(output.OutputError, match=r"the text is not ASCII \('é' at character 4\)"):
+        output.write_atomic(str(tmp_path / "job.nc"), "(caf\u00e9)\n")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_atomic_path_renames_what_was_written_and_removes_a_failed_write(tmp_path):
+    target = tmp_path / "preview.png"
+    with output.atomic_path(str(target)) as temp:
+        assert temp.endswith(".png") and os.path.dirname(temp) == str(tmp_path) and not os.path.exists(temp)
+        with open(temp, "wb") as stream:
+            stream.write(b"\x89PNG")
+    assert target.read_bytes() == b"\x89PNG" and sorted(p.name for p in tmp_path.iterdir()) == ["preview.png"]
+    with pytest.raises(output.OutputError, match="nothing was written"):
+        with output.atomic_path(str(tmp_path / "other.png")):
+            pass
+    with pytest.raises(RuntimeError):
+        with output.atomic_path(str(target)) as temp:
+            open(temp, "wb").write(b"half")
+            raise RuntimeError("render failed")
+    assert target.read_bytes() == b"\x89PNG" and sorted(p.name for p in tmp_path.iterdir()) == ["preview.png"]
+
+
+# ----- the batch command: what the reader set aside and what was repaired reach the report ---------
+
+def test_batch_simulate_reports_what_it_ignored_and_repaired(tmp_path):
+    import json
+
+    from blender_helpers import run_batch
+    nc = tmp_path / "slot.ngc"
+    nc.write_text("(slot)\nG21 G90\nM8\nG0 X5 Y20 Z5\nG1 Z-2 F100\nX35\nG0 Z5\nM9\nM2\n")
+    design = block()
+    design.faces = design.faces[:, ::-1]                  # inside out
+    design.export(str(tmp_path / "part.stl"))
+    done = run_batch("simulate", "--nc", str(nc), "--tool", "flat:6", "--stock", "box:0,0,-10,40,40,0",
+                     "--design", str(tmp_path / "part.stl"), "--cell", "0.5", "--out", str(tmp_path / "out"),
+                     timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    report = json.loads((tmp_path / "out" / "report.json").read_text())["simulation"]
+    assert [(e["code"], e["first_line"]) for e in report["nc_ignored"]] == [("comment", 1), ("M8", 3), ("F", 5),
+                                                                            ("M9", 8)]
+    assert report["warnings"] == ["design part.stl: the mesh was inside out (its normals pointed inward); its faces "
+                                  "were flipped"]
+    assert report["max_gouge_mm"] == pytest.approx(1.0, abs=1e-3)      # the block's top is z = -1, the slot 2 deep
+    bad = tmp_path / "bad.ngc"
+    bad.write_text("G21 G90\nG0 X5 Y20 Z5\nG81 X10 Y10 Z-4 R1 F100\n")
+    done = run_batch("simulate", "--nc", str(bad), "--tool", "flat:6", "--stock", "box:0,0,-10,40,40,0",
+                     "--out", str(tmp_path / "out2"), timeout=300)
+    assert done.returncode == 2 and "line 3: G81 canned cycles are not simulated" in done.stderr
+    assert "Traceback" not in done.stderr
