@@ -307,12 +307,16 @@ def read_mesh_file(path: str) -> tuple:
     if not os.path.isfile(path):
         raise FileNotFoundError(f"no such mesh file: {path}")
     try:
-        loaded = trimesh.load(path, force="mesh")
+        loaded = trimesh.load(path, force="mesh", process=False)   # as the file says: trimesh drops NaN faces
     except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file
         raise core.TurnMillError(f"{path}: not a readable mesh ({error})") from None
     vertices, faces = np.asarray(loaded.vertices, float), np.asarray(loaded.faces)
+    if len(vertices) and np.all(np.isfinite(vertices)):     # then merge the STL's repeated corners
+        merged = trimesh.Trimesh(vertices, faces, process=True)
+        vertices, faces = np.asarray(merged.vertices, float), np.asarray(merged.faces)
     if not len(vertices) or not len(faces):
         raise core.TurnMillError(f"{path}: the mesh has no faces")
+    vertices, faces = core.check_mesh(vertices, faces)     # NaN vertices, bad indices: named before the stock
     radius = float(np.hypot(vertices[:, 0], vertices[:, 1]).max())
     return vertices, faces, core.Stock(radius, float(vertices[:, 2].min()), float(vertices[:, 2].max()))
 

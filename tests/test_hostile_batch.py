@@ -179,3 +179,11 @@ def test_the_suite_is_as_large_as_the_readme_says():
     if COUNT["cases"] < len(CONCRETE):
         pytest.skip("run with the whole module to count")
     assert COUNT["cases"] >= 500, COUNT
+
+
+def test_a_part_mesh_with_a_nan_vertex_is_named(tmp_path):
+    stl = tmp_path / "nan-part.stl"
+    stl.write_text("solid p\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 10 0 0\nvertex nan 10 0\n"
+                   "endloop\nendfacet\nendsolid p\n")
+    status, message, written = run("turnmill", "--mesh", str(stl))
+    refused(status, message, written, "finite")
