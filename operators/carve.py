@@ -24,6 +24,7 @@ from ..toolpath import carve_samples, meshdata
 from ..toolpath.program import Tool
 from ..toolpath.simulate import BoxStock
 from . import convert
+from . import gate
 from .common import SteppedOperator, run_reported
 from .preferences import scene_output_dir, scene_post
 from .properties import post_items, post_number
@@ -113,7 +114,6 @@ def show_carve(scene, job: CarveJob, show_rapids: bool = False) -> list:
 def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | None = None,
                  allow: bool | str = False, checked: bool = False) -> str:
     """Write the program; the export gate simulates it first unless the caller has (``checked``)."""
-    from . import gate
 
     post = posts.create(POST_FAMILIES, post_name, work_offset=work_offset)
     text = post.to_text(job.result.program)
@@ -258,8 +258,7 @@ def batch_arguments(p):
                    help="scallop height in mm the finishing may leave")
     p.add_argument("--angle", type=number("--angle", prop=KezuriCarve.__annotations__["raster_angle"],
                                           unit="degrees"), help="finishing raster angle in degrees")
-    p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
-                                                                 "finds gouges, rapids into material ...")
+    gate.allow_findings_argument(p)
 
 
 def read_mesh_file(path: str) -> tuple:
@@ -300,7 +299,6 @@ def batch(args) -> dict:
         job = run_carve(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "carve"))
     post_name = args.post or scene_post(scene)
     nc_path = os.path.join(args.out, f"carve{extension_for(post_name)}")
-    from . import gate
     simulated, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
     export_carve(job, post_name, nc_path, machine.work_offset, checked=True)
     design_path = os.path.join(args.out, "design.stl")

@@ -213,8 +213,7 @@ def batch_arguments(p):
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
     from .batchio import number
     p.add_argument("--seed", type=number("--seed", 0, 2**31 - 1, integer=True))
-    p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
-                                                                 "finds gouges, rapids into material ...")
+    gate.allow_findings_argument(p)
 
 
 def batch(args) -> dict:

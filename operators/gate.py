@@ -70,3 +70,10 @@ def check(setup, allow: bool | str = False, progress=None):
                               faults)
         report["overridden"] = True
     return job, report
+
+
+def allow_findings_argument(parser) -> None:
+    """Batch's override of the gate, the same option on every command that writes a program."""
+    parser.add_argument("--allow-findings", action="store_true",
+                        help="write the program even if the simulation finds gouges, rapids into material ... "
+                             "(the report records it)")

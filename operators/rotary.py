@@ -213,8 +213,7 @@ CLASSES = (KEZURI_OT_rotary_generate, KEZURI_OT_rotary_export, KEZURI_OT_mark_po
 def batch_arguments(p):
     p.add_argument("--blend", help="a .blend with the block as Kezuri stock and pocket outlines marked")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
-    p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
-                                                                 "finds gouges, rapids into material ...")
+    gate.allow_findings_argument(p)
 
 
 def batch(args) -> dict:

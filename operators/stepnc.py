@@ -309,8 +309,7 @@ def batch_arguments(p):
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES, texture=False))
     p.add_argument("--order", help="workingstep instance ids in the order to cut, e.g. 13,14,10 (default: "
                                    "the workplan's order); workingsteps left out are not cut")
-    p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
-                                                                 "finds gouges, rapids into material ...")
+    gate.allow_findings_argument(p)
 
 
 def sample_file(out_dir: str) -> str:

@@ -296,8 +296,7 @@ def batch_arguments(p):
     p.add_argument("--engine", choices=["BVH", "TRIMESH"], help="ray engine (default: BVH, trimesh for --mesh)")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES), action="append",
                    help="write the program for this post (repeat for more; default: every turn-mill post)")
-    p.add_argument("--allow-findings", action="store_true", help="write the program even if the simulation "
-                                                                 "finds gouges, rapids into material ...")
+    gate.allow_findings_argument(p)
 
 
 def read_mesh_file(path: str) -> tuple:

@@ -11,7 +11,6 @@ import importlib.util
 import io
 import math
 import os
-import signal
 import tempfile
 
 import pytest
@@ -19,6 +18,7 @@ import pytest
 bpy = pytest.importorskip("bpy")
 from hypothesis import HealthCheck, given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
+from test_hostile import time_limit  # noqa: E402  (one SIGALRM limit for both hostile suites)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASE_SECONDS = 120
@@ -33,19 +33,6 @@ def load_batch():
 
 
 BATCH = load_batch()
-
-
-@contextlib.contextmanager
-def time_limit(seconds: int):
-    def expired(signum, frame):
-        raise TimeoutError(f"a batch case ran over {seconds} s")
-    previous = signal.signal(signal.SIGALRM, expired)
-    signal.alarm(seconds)
-    try:
-        yield
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, previous)
 
 
 def run(*argv) -> tuple:
