@@ -15,7 +15,6 @@ from types import SimpleNamespace
 import bpy
 import numpy as np
 from bpy.props import EnumProperty, StringProperty
-from bpy_extras.io_utils import ExportHelper
 
 from .. import post as posts
 from ..post import write_atomic
@@ -26,7 +25,8 @@ from ..toolpath.simulate import BoxStock
 from . import convert
 from . import gate
 from .common import SteppedOperator, run_reported
-from .preferences import scene_output_dir, scene_post
+from .exporting import MillingExport
+from .preferences import scene_post
 from .properties import post_items, post_number
 from .translations import translate_message
 from .workflow import BatchCommand, SimulationSetup, Workflow
@@ -205,7 +205,7 @@ class KEZURI_OT_carve_sample(bpy.types.Operator):
         return run_reported(self, work)
 
 
-class KEZURI_OT_carve_export(bpy.types.Operator, ExportHelper):
+class KEZURI_OT_carve_export(MillingExport, bpy.types.Operator):
     """Write the carving NC program for the chosen controller"""
 
     bl_idname = "kezuri.carve_export"
@@ -220,25 +220,16 @@ class KEZURI_OT_carve_export(bpy.types.Operator, ExportHelper):
     def poll(cls, context):
         return _poll_design(cls, context)
 
-    def invoke(self, context, event):
-        self.post = scene_post(context.scene, context)
-        self.filename_ext = extension_for(self.post)
-        folder = scene_output_dir(context.scene, context)
-        self.filepath = os.path.join(folder, bpy.path.clean_name(context.scene.name) + "-carve" + self.filename_ext)
-        return ExportHelper.invoke(self, context, event)
+    file_suffix = "-carve"
 
-    def check(self, context):
-        self.filename_ext = extension_for(self.post)
-        return ExportHelper.check(self, context)
+    @staticmethod
+    def extension_for(post_name: str) -> str:
+        return extension_for(post_name)
 
-    def execute(self, context):
-        def work():
-            job = run_carve(context.scene, context.evaluated_depsgraph_get())
-            path = export_carve(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset,
-                                allow=context.scene.kezuri.simulation.acknowledged)
-            self.report({"INFO"}, translate_message(f"Wrote {path}"))
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def write(self, context) -> str:
+        job = run_carve(context.scene, context.evaluated_depsgraph_get())
+        return export_carve(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset,
+                            allow=context.scene.kezuri.simulation.acknowledged)
 
 
 CLASSES = (KEZURI_OT_carve_generate, KEZURI_OT_carve_sample, KEZURI_OT_carve_export)

@@ -11,7 +11,6 @@ from dataclasses import dataclass
 
 import bpy
 from bpy.props import EnumProperty, StringProperty
-from bpy_extras.io_utils import ExportHelper
 
 from .. import post as posts
 from ..post import write_atomic
@@ -19,8 +18,9 @@ from ..toolpath import engrave as core
 from ..toolpath.program import Tool
 from . import convert
 from . import gate
-from .common import SteppedOperator, run_reported
-from .preferences import scene_output_dir, scene_post
+from .common import SteppedOperator
+from .exporting import MillingExport
+from .preferences import scene_post
 from .properties import post_items, post_number
 from .translations import translate_message
 from .workflow import BatchCommand, SimulationSetup, Workflow
@@ -167,7 +167,7 @@ class KEZURI_OT_engrave_generate(SteppedOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class KEZURI_OT_engrave_export(bpy.types.Operator, ExportHelper):
+class KEZURI_OT_engrave_export(MillingExport, bpy.types.Operator):
     """Write the engraving NC program for the chosen controller"""
 
     bl_idname = "kezuri.engrave_export"
@@ -182,25 +182,14 @@ class KEZURI_OT_engrave_export(bpy.types.Operator, ExportHelper):
     def poll(cls, context):
         return KEZURI_OT_engrave_generate.poll(context)
 
-    def invoke(self, context, event):
-        self.post = scene_post(context.scene, context)
-        self.filename_ext = extension_for(self.post)
-        folder = scene_output_dir(context.scene, context)
-        self.filepath = os.path.join(folder, bpy.path.clean_name(context.scene.name) + self.filename_ext)
-        return ExportHelper.invoke(self, context, event)
+    @staticmethod
+    def extension_for(post_name: str) -> str:
+        return extension_for(post_name)
 
-    def check(self, context):
-        self.filename_ext = extension_for(self.post)
-        return ExportHelper.check(self, context)
-
-    def execute(self, context):
-        def work():
-            job = run_engrave(context.scene, context.evaluated_depsgraph_get())
-            path = export_engrave(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset,
-                                  allow=context.scene.kezuri.simulation.acknowledged)
-            self.report({"INFO"}, translate_message(f"Wrote {path}"))
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def write(self, context) -> str:
+        job = run_engrave(context.scene, context.evaluated_depsgraph_get())
+        return export_engrave(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset,
+                              allow=context.scene.kezuri.simulation.acknowledged)
 
 
 CLASSES = (KEZURI_OT_engrave_generate, KEZURI_OT_engrave_export)
