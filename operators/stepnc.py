@@ -352,20 +352,24 @@ def batch(args) -> dict:
     else:   # the sample goes into --out only with the program: nothing is written before the job is checked
         staging = tempfile.mkdtemp(prefix="kezuri-stepnc-")
         path = sample_file(staging)
-    if not os.path.isfile(path):
-        raise FileNotFoundError(f"no such ISO 14649 file: {path}")
-    loaded = stepnc.load_workplan(path)
-    fill_workplan_list(scene, os.path.abspath(path), loaded)
-    if args.order:
-        apply_order(scene, args.order, path)
-    post_name = args.post or "fanuc"
     from .common import Progress
-    nc_path, program, checked, gate_report = export_nc(
-        scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"), args.allow_findings,
-        Progress(None, "check"))
-    if staging is not None:
-        path = sample_file(args.out)
-        shutil.rmtree(staging, ignore_errors=True)
+    post_name = args.post or "fanuc"
+    try:
+        if not os.path.isfile(path):
+            raise FileNotFoundError(f"no such ISO 14649 file: {path}")
+        loaded = stepnc.load_workplan(path)
+        fill_workplan_list(scene, os.path.abspath(path), loaded)
+        if args.order:
+            apply_order(scene, args.order, path)
+        nc_path, program, checked, gate_report = export_nc(
+            scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"), args.allow_findings,
+            Progress(None, "check"))
+        if staging is not None:
+            path = sample_file(args.out)
+            scene.kezuri.stepnc.filepath = os.path.abspath(path)    # the scene points at the kept copy
+    finally:
+        if staging is not None:
+            shutil.rmtree(staging, ignore_errors=True)
     objects = show_workplan(scene, loaded, program)
     solids = [o for o in objects if o.type == "MESH"]
     paths = [o for o in objects if o.type == "CURVE"]

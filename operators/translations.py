@@ -795,7 +795,7 @@ MESSAGE_TEMPLATES = {
     'a {} mm cell gives {} x {} cells over the stock (more than {}); use a coarser cell':
         '{0} mm のセルでは素材が {1} x {2} セル（上限 {3} 超）になります。セルを粗くしてください',
     'kernel must be one of {}, got {}': 'カーネルは {0} のいずれかにしてください（指定値 {1}）',
-    'the numba kernel is not available: {}': 'numba カーネルは使えません：{0}',
+    'the {} is not available: {}': '{0} は使えません：{1}',
     'engine must be one of {}, got {}': 'エンジンは {0} のいずれかにしてください（指定値 {1}）',
     'chunk must be a positive number of triangles, got {}': 'チャンクは正の三角形数にしてください（指定値 {0}）',
     'stock box needs six finite numbers, got {}': '素材の直方体には有限の数値6つが必要です（指定値 {0}）',
@@ -1012,8 +1012,6 @@ MESSAGE_TEMPLATES = {
     'vertices must be an (n, 3) array of mm, got shape {}': '頂点は (n, 3) の mm の配列にしてください（形：{0}）',
     'faces must be an (m, 3) array of vertex indices, got shape {}': '面は (m, 3) の頂点番号の配列にしてください（形：{0}）',
     'a face refers to vertex {}, but there are {}': '面が頂点 {0} を参照していますが、頂点は {1} 個です',
-    'kernel must be one of {}, got {}': 'カーネルは {0} のいずれかにしてください（指定：{1}）',
-    'the numba drop-cutter kernel is not available: {}': 'numba のドロップカッター用カーネルが使えません：{0}',
     'spacing and tolerance must be > 0 mm, got {}, {}': '間隔と許容値は 0 mm より大きくしてください（指定：{0}、{1}）',
     '{} must be a number >= 0, got {}': '{0} は 0 以上の数値にしてください（指定：{1}）',
     '{} must be greater than 0': '{0} は 0 より大きくしてください',

@@ -88,13 +88,22 @@ def write_atomic(path: str, text: str | bytes) -> str:
         handle, temp = tempfile.mkstemp(prefix=PREFIX, suffix=SUFFIX, dir=folder)
     except OSError as error:
         raise OutputError(f"cannot write {path}: {_why(error)}") from None
-    try:
+    with _renamed_onto(temp, path):
         with os.fdopen(handle, "wb" if binary else "w", **({} if binary else {"encoding": "ascii",
                                                                                  "newline": "\n"})) as stream:
             stream.write(text)
             stream.flush()
             os.fsync(stream.fileno())
-        os.chmod(temp, 0o666 & ~_umask())          # mkstemp makes 0600; give the usual permissions
+    return path
+
+
+@contextlib.contextmanager
+def _renamed_onto(temp: str, path: str):
+    """When the block has written ``temp`` without error: the usual permissions (mkstemp makes
+    0600) and a rename onto ``path``; otherwise ``temp`` is removed and a write error names ``path``."""
+    try:
+        yield
+        os.chmod(temp, 0o666 & ~_umask())
         os.replace(temp, path)
     except OSError as error:
         _remove(temp)
@@ -102,7 +111,6 @@ def write_atomic(path: str, text: str | bytes) -> str:
     except BaseException:
         _remove(temp)
         raise
-    return path
 
 
 def _remove(temp: str) -> None:
@@ -132,15 +140,7 @@ def atomic_path(path: str):
         os.unlink(temp)             # the writer makes it; a leftover empty file would hide a failed write
     except OSError as error:
         raise OutputError(f"cannot write {path}: {_why(error)}") from None
-    try:
+    with _renamed_onto(temp, path):
         yield temp
         if not os.path.isfile(temp):
             raise OutputError(f"cannot write {path}: nothing was written")
-        os.chmod(temp, 0o666 & ~_umask())
-        os.replace(temp, path)
-    except OSError as error:
-        _remove(temp)
-        raise OutputError(f"cannot write {path}: {_why(error)}") from None
-    except BaseException:
-        _remove(temp)
-        raise

@@ -46,15 +46,14 @@ Everything is in millimetres; points with no triangle under the tool get ``floor
 from __future__ import annotations
 
 import math
-import os
 
 import numpy as np
 
+from .compiled import KERNELS, kernel_module  # noqa: F401 (KERNELS re-exported)
 from .errors import InputError
 
 PAIR_CHUNK = 1 << 20          # (point, triangle) pairs per numpy batch
 MAX_ENTRIES = 30_000_000      # bucket entries (triangle, bucket) kept at most; buckets grow beyond
-KERNELS = ("auto", "numba", "numpy")
 ROUNDED, CONE = 0, 1
 
 
@@ -256,20 +255,7 @@ class Buckets:
 
 
 def _kernel_module(kernel: str):
-    if kernel not in KERNELS:
-        raise DropCutterError(f"kernel must be one of {KERNELS}, got {kernel!r}")
-    if kernel == "numpy":
-        return None
-    why = "KEZURI_NO_NUMBA=1 is set"
-    if os.environ.get("KEZURI_NO_NUMBA") != "1":
-        try:
-            from . import dropcutter_kernel
-            return dropcutter_kernel
-        except (ImportError, OSError, RuntimeError) as error:
-            why = f"numba cannot be used ({error})"
-    if kernel == "numba":
-        raise DropCutterError(f"the numba drop-cutter kernel is not available: {why}")
-    return None
+    return kernel_module(kernel, f"{__package__}.dropcutter_kernel", DropCutterError, "numba drop-cutter kernel")
 
 
 class DropCutter:

@@ -3,13 +3,14 @@ families.py chain by chain, with the compiled kernels (kernel.py) or numpy."""
 from __future__ import annotations
 
 import math
-import os
 
 import numpy as np
 
+from ..compiled import kernel_module
+
 from .families import _columns, _Family, _families
 from .paths import _Chain
-from .stock import (KERNELS, MAX_CELLS, TOUCH_TOLERANCE, BoxStock, CylinderStock, HeightField,
+from .stock import (MAX_CELLS, TOUCH_TOLERANCE, BoxStock, CylinderStock, HeightField,
                     SimulationCancelled, SimulationError)
 
 _PAIR_BATCH = 32768        # (item, grid column) pairs per numpy batch
@@ -37,27 +38,9 @@ def _grid(stock, cell: float) -> HeightField:
 
 
 def _compiled_kernels(kernel: str):
-    """The compiled kernels module for ``kernel`` ("auto", "numba", "numpy"), or None for numpy.
-
-    numba is optional: "auto" falls back to numpy where it cannot be imported or where the
-    environment sets KEZURI_NO_NUMBA=1; "numba" then refuses."""
-    if kernel not in KERNELS:
-        raise SimulationError(f"kernel must be one of {KERNELS}, got {kernel!r}")
-    if kernel == "numpy":
-        return None
-    if os.environ.get("KEZURI_NO_NUMBA") == "1":
-        why = "KEZURI_NO_NUMBA=1 is set"
-    else:
-        try:
-            from . import kernel as heightfield_kernel
-            return heightfield_kernel
-        except (ImportError, OSError, RuntimeError) as error:
-            # OSError: llvmlite's library would not load; RuntimeError: numba finds no
-            # writable place for its cache of compiled kernels
-            why = f"numba cannot be used ({error})"
-    if kernel == "numba":
-        raise SimulationError(f"the numba kernel is not available: {why}")
-    return None
+    """The compiled kernels module for ``kernel`` ("auto", "numba", "numpy"), or None for numpy
+    (see :mod:`toolpath.compiled`)."""
+    return kernel_module(kernel, f"{__package__}.kernel", SimulationError, "numba kernel")
 
 
 class _Scratch:

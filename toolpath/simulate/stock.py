@@ -12,7 +12,7 @@ from . import radiusmap as rmap
 from . import sweep
 
 ENGINES = ("heightfield", "manifold")
-KERNELS = ("auto", "numba", "numpy")    # height field kernels; "auto": numba where it can be imported
+from ..compiled import KERNELS  # noqa: E402,F401  (height field kernels; "auto": numba where it can be imported)
 CHORD_TOLERANCE = 0.01     # mm: arcs and rotary moves are cut into chords this close to the path
 TOUCH_TOLERANCE = 1e-3     # mm: a rapid must go this deep into material to count as touching it
 GOUGE_TOLERANCE = 1e-3     # mm: cutting this far below the design is reported
