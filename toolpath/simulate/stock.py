@@ -61,6 +61,15 @@ class BoxStock:
 
 
 @dataclass(frozen=True)
+class SurfaceStock(BoxStock):
+    """A plate whose top is a surface: the box x0..x1, y0..y1, z0..z1 cut down to the upper
+    side of the mesh ``surface`` = (vertices (n, 3), faces (m, 3)), which must cover the box
+    (a curved name plate; the height-field engine only)."""
+
+    surface: tuple = field(default=(), compare=False, repr=False)
+
+
+@dataclass(frozen=True)
 class CylinderStock:
     """A disc of material on the rotary table, or a bar in a turn-mill chuck: axis Z through
     the origin, top (end) face at z = ``z_top`` (0 unless given)."""
