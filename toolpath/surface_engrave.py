@@ -133,8 +133,8 @@ def letters_solid(surface: Surface, letter_loops, bottom: float, margin: float =
     """The letters (shrunk by ``margin``) standing from ``bottom`` up to the surface: (vertices, faces)."""
     region = rg.offset(rg.from_loops(list(letter_loops), "letters"), -margin)
     x0, y0, x1, y1 = region.bounds()
-    top = _heightmap(surface, x0 - 1, y0 - 1, x1 + 1, y1 + 1, LETTER_CELL, bottom - 1)
-    prism = region.extrude(float(surface.vertices[:, 2].max() - bottom + 2)).translate((0, 0, bottom - 1))
+    top = _heightmap(surface, x0 - 1, y0 - 1, x1 + 1, y1 + 1, LETTER_CELL, bottom)
+    prism = region.extrude(float(surface.vertices[:, 2].max() - bottom + 1)).translate((0, 0, bottom))
     return _arrays(_manifold(*top) ^ prism)
 
 
