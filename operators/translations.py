@@ -1015,6 +1015,7 @@ MESSAGE_TEMPLATES = {
     'no such mesh file: {}': 'メッシュファイルがありません：{0}',
     # toolpath/surface_engrave.py, operators/engrave.py: engraving on a curved plate
     'surface {}: {}': '曲面 {0}：{1}',
+    'surface {}: vertices must be an (n, 3) array of numbers (mm)': '曲面 {0}：頂点は数値 (mm) の (n, 3) 配列にしてください',
     'surface {} does not cover the plate: nothing of it lies over or under X{} Y{}; it must be a mesh spanning the whole plate outline':
         '曲面 {0} が板材を覆っていません：X{1} Y{2} の上にも下にも面がありません。板材の輪郭全体にわたるメッシュにしてください',
     'surface {} does not cover the plate and the letters': '曲面 {0} が板材と文字を覆っていません',

@@ -15,6 +15,7 @@ import rs274
 from test_engrave import LETTERS, PLATE
 import controller_rules
 import test_macro_program as tm
+from test_hostile import time_limit
 
 R_DOME, R_CYL = 800.0, 150.0
 
@@ -48,10 +49,15 @@ def flat_tip_on_cylinder(x, y, r, radius=R_CYL):
     return np.sqrt(radius ** 2 - np.maximum(np.abs(y) - r, 0.0) ** 2) - radius
 
 
+PROGRESS = []
+
+
 @pytest.fixture(scope="module")
 def dome_job():
     surface = se.Surface(*se.dome(-101, -51, 101, 51, -20, cell=0.5), "dome")
-    return se.plan(PLATE, LETTERS, surface, plate_thickness=20)
+    with time_limit(120):
+        return se.plan(PLATE, LETTERS, surface, plate_thickness=20,
+                       progress=lambda fraction, text: PROGRESS.append(fraction))
 
 
 @pytest.fixture(scope="module")
@@ -206,3 +212,32 @@ def test_a_surface_above_the_clearance_plane_is_refused():
     v[:, 2] += 19.0
     with pytest.raises(se.EngraveError, match="rises to Z"):
         se.plan(PLATE, LETTERS, se.Surface(v, f, "high"))
+
+
+def test_progress_rises_to_one_and_stopping_it_stops_the_plan(dome_job):
+    assert PROGRESS[-1] == 1.0 and len(PROGRESS) > 20
+    assert all(b >= a - 1e-12 for a, b in zip(PROGRESS, PROGRESS[1:]))
+
+    class Stop(Exception):
+        pass
+
+    calls = []
+
+    def stop_half_way(fraction, text):
+        calls.append(fraction)
+        if fraction > 0.5:
+            raise Stop
+
+    with time_limit(60), pytest.raises(Stop):
+        se.plan(PLATE, LETTERS, dome_job.surface, progress=stop_half_way)
+    assert max(calls) < 0.7          # it stopped where it was asked to, not at the end
+
+
+@pytest.mark.parametrize("vertices, faces, message", [
+    (np.zeros((0, 3)), np.zeros((0, 3), int), "vertices must be"),
+    (np.array([[0, 0, 0], [1, 0, 0], [0, 1, np.nan]]), np.array([[0, 1, 2]]), "non-finite"),
+    (np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]]), np.array([[0, 1, 7]]), "refers to vertex 7"),
+])
+def test_a_broken_surface_mesh_is_refused_by_name(vertices, faces, message):
+    with pytest.raises(se.EngraveError, match=f"surface 'Bad': .*{message}"):
+        se.Surface(vertices, faces, "Bad")

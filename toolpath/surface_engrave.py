@@ -52,8 +52,13 @@ class Surface:
     def __init__(self, vertices, faces, name: str = "surface"):
         self.name = name
         try:
-            span = np.ptp(np.asarray(vertices, float)[:, :2], axis=0) if len(np.shape(vertices)) == 2 else (1, 1)
-            self.point = DropCutter(vertices, faces, _POINT, bucket=max(float(np.max(span)) / 256, 0.05))
+            try:
+                array = np.asarray(vertices, float)
+            except (TypeError, ValueError):
+                raise EngraveError(f"surface {name!r}: vertices must be an (n, 3) array of numbers (mm)") from None
+            usable = array.ndim == 2 and array.shape[1] == 3 and len(array) and np.all(np.isfinite(array))
+            span = float(np.max(np.ptp(array[:, :2], axis=0))) if usable else 1.0
+            self.point = DropCutter(vertices, faces, _POINT, bucket=max(span / 256, 0.05))
         except DropCutterError as error:
             raise EngraveError(f"surface {name!r}: {error}") from None
         self.vertices = np.asarray(vertices, float)
@@ -172,13 +177,15 @@ def _gouge_splits(op: Operation):
     return splits, textured
 
 
-def follow(op: Operation, surface: Surface, guard: DropCutter | None, marks: bool = False) -> tuple:
+def follow(op: Operation, surface: Surface, guard: DropCutter | None, marks: bool = False, progress=None) -> tuple:
     """``op`` (planned on a flat top at Z = 0) on the surface: (operation, lifted points).
 
     ``marks``: the operation is the untextured roughing for the controller macro; its rows
     are followed at the surface (depth 0) and carry ``texture_marks``: per move (1 where a
     new gouge depth is drawn at the move's start, else 0; how far along the gouge's ramp the
-    move ends, 0..1, 1 after the last full gouge; NaN: cut as programmed)."""
+    move ends, 0..1, 1 after the last full gouge; NaN: cut as programmed).
+    ``progress(fraction)`` is called as the work goes on (the shell's Esc cancels there)."""
+    tick = progress or (lambda fraction: None)
     if np.any((op.kind == ARC_CW) | (op.kind == ARC_CCW)):
         raise EngraveError(f"{op.name}: arcs cannot follow a surface")
     cutter = surface.cutter(op.tool)
@@ -211,7 +218,8 @@ def follow(op: Operation, surface: Surface, guard: DropCutter | None, marks: boo
             heights[i] = values[cursor:cursor + len(t)]
             cursor += len(t)
     # 2. halve where the contact between two samples stands above their chord
-    for _ in range(14):
+    for level in range(14):
+        tick(0.2 + 0.05 * level)
         mids = {}
         for i, t in params.items():
             long_enough = np.diff(t) * lengths[i] > 2 * MIN_STEP
@@ -237,7 +245,8 @@ def follow(op: Operation, surface: Surface, guard: DropCutter | None, marks: boo
     single = [i for i in range(len(op)) if i not in params]
     single_h = cutter.points(op.xyz[single, :2]) if single else np.empty(0)
     single_h = dict(zip(single, single_h))
-    kinds, points, feeds, marks_out, lifted = [], [], [], [], []
+    tick(0.9)
+    kinds, points, feeds, marks_out = [], [], [], []
     for i, kind in enumerate(op.kind):
         if i in params:
             t = params[i][1:]
@@ -250,19 +259,24 @@ def follow(op: Operation, surface: Surface, guard: DropCutter | None, marks: boo
             new, fraction = np.zeros(1), np.full(1, np.nan)
             above = kind == RAPID and op.xyz[i][2] >= op.clearance_z - 1e-9
             tip = np.array([op.xyz[i][2] if above else single_h[i] + op.xyz[i][2]])
-        if guard is not None and kind != RAPID:
-            floor = guard.points(xy)
-            over = floor > tip + 1e-9
-            if over.any():
-                lifted += [tuple(q) for q in xy[over]]
-                tip = np.maximum(tip, floor)
         kinds += [kind] * len(t)
         points.append(np.column_stack([xy, tip]))
         feeds += [op.feed[i]] * len(t)
         marks_out.append(np.column_stack([new, fraction]))
-    extra = {"texture_marks": np.vstack(marks_out)} if marks else {}
     xyz = np.vstack(points)
-    followed = op.replace(kind=np.array(kinds, np.int8), xyz=xyz, feed=np.array(feeds, float),
+    kinds = np.array(kinds, np.int8)
+    lifted = []
+    if guard is not None:
+        cutting = kinds != RAPID
+        floor = np.full(len(xyz), -np.inf)
+        floor[cutting] = guard.points(xyz[cutting, :2])
+        over = floor > xyz[:, 2] + 1e-9
+        if over.any():
+            lifted = [tuple(q) for q in xyz[over, :2]]
+            xyz[over, 2] = floor[over]
+    tick(1.0)
+    extra = {"texture_marks": np.vstack(marks_out)} if marks else {}
+    followed = op.replace(kind=kinds, xyz=xyz, feed=np.array(feeds, float),
                           center=np.full((len(xyz), 3), np.nan), **extra)
     return followed, lifted
 
@@ -328,14 +342,24 @@ def plan(plate_loops, letters, surface: Surface, settings: flat.EngraveSettings 
     baked_flat, depths = flat.bake(result.program)
     followed, macro_ops, lifted = [], [], []
     count = len(result.program.operations)
-    for index, (op, baked_op) in enumerate(zip(result.program.operations, baked_flat.operations)):
-        report(0.35 + 0.6 * index / count, f"following the surface: {op.name}")
+    steps = count + sum(op.texture is not None for op in result.program.operations)
+    done_steps = 0
+
+    def part(text):
+        first = done_steps
+        return lambda f: report(0.35 + 0.6 * (first + f) / steps, text)
+
+    for op, baked_op in zip(result.program.operations, baked_flat.operations):
+        text = f"following the surface: {op.name}"
+        report(0.35 + 0.6 * done_steps / steps, text)
         guard = DropCutter(*guard_mesh, op.tool)
-        done, lifts = follow(baked_op, surface, guard)
+        done, lifts = follow(baked_op, surface, guard, progress=part(text))
+        done_steps += 1
         followed.append(done)
         lifted += lifts
         if op.texture is not None:
-            marked, _ = follow(op, surface, guard, marks=True)
+            marked, _ = follow(op, surface, guard, marks=True, progress=part(text))
+            done_steps += 1
             macro_ops.append(marked)
         else:
             macro_ops.append(done)
