@@ -55,3 +55,32 @@ def test_a_surface_that_does_not_cover_the_plate_names_the_object(scene, tmp_pat
     with pytest.raises(RuntimeError, match="Small Dome.*does not cover the plate"):
         bpy.ops.kezuri.engrave_export(filepath=str(path), post="fanuc")
     assert not path.exists()
+
+
+def test_batch_refuses_an_unknown_surface_and_writes_nothing(tmp_path):
+    from blender_helpers import run_batch
+
+    done = run_batch("engrave", "--surface", "sphere", "--out", str(tmp_path / "o"))
+    assert done.returncode == 2 and "--surface sphere" in done.stderr and "Traceback" not in done.stderr
+    assert not (tmp_path / "o" / "engrave.nc").exists()
+
+
+def test_batch_on_the_cylinder_writes_the_program_and_the_design(tmp_path):
+    import json
+
+    import trimesh
+    from blender_helpers import run_batch
+
+    out = tmp_path / "o"
+    done = run_batch("engrave", "--surface", "cylinder", "--post", "linuxcnc", "--out", str(out))
+    assert done.returncode == 0, done.stderr[-2000:]
+    report = json.loads((out / "report.json").read_text())
+    assert report["gate"]["findings"] == [] and report["simulation"]["gouges"] == []
+    assert report["files"] == [str(out / "engrave.ngc"), str(out / "design.stl")]
+    design = trimesh.load(str(out / "design.stl"), force="mesh")
+    assert design.is_watertight
+    # the design is the cylinder lowered by the deepest cut (2.8 mm) with the letters up to it
+    v = np.asarray(design.vertices)
+    top = np.sqrt(R ** 2 - v[:, 1] ** 2) - R
+    assert np.all(v[:, 2] <= top + 1e-3)
+    assert np.any(np.abs(v[:, 2] - top) < 1e-3) and np.any(np.abs(v[:, 2] - (top - 2.8)) < 0.02)

@@ -154,6 +154,9 @@ def test_simulation_of_the_dome_job_finds_no_gouge_and_the_cut_depths(dome_job):
     assert np.abs(below[inside]).max() < 2e-3
     assert below.max() < 2.8 + 2e-3
     assert np.percentile(below[~inside], 90) > 1.0       # the face is textured, not left standing
+    # the volume removed is what lies between the dome and the cut (not the air above the dome)
+    analytic = np.sum(np.maximum(below, 0.0)) * hf.cell_x * hf.cell_y
+    assert result.removed_volume_mm3 == pytest.approx(analytic, rel=2e-3)
 
 
 def test_flat_surface_gives_the_flat_program():

@@ -47,6 +47,7 @@ def _grid(stock, cell: float) -> HeightField:
         if not np.all(np.isfinite(top)):
             raise SimulationError("the stock's top surface does not cover the plate")
         hf.heights[:] = np.clip(top, stock.bottom, stock.top)
+        object.__setattr__(hf, "initial", hf.heights.copy())
     if isinstance(stock, CylinderStock):
         hf.inside = np.hypot(hf.x()[:, None], hf.y()[None, :]) <= stock.radius
         hf.heights[~hf.inside] = -np.inf    # no material: nothing to cut or touch
