@@ -248,8 +248,7 @@ def macro_program(texture: GougeTexture, decimals: int = 3) -> str:
     state of the digit generator (kept between calls and runs; seeded from #3001 when vacant).
     """
     n = lambda value: fmt(value, decimals)  # noqa: E731
-    m, a, x = LCG_MODULUS, LCG_MULTIPLIER, f"#{LCG_STATE_VAR}"
-    assert a * (m - 1) < 10**8, "the generator's product must stay exact in 8 digits"
+    assert LCG_MULTIPLIER * (LCG_MODULUS - 1) < 10**8, "the generator's product must stay exact in 8 digits"
     lines = [
         f"O{MACRO_PROGRAM} (KEZURI GOUGE TEXTURE)",
         "#1=#4001",

@@ -1,14 +1,12 @@
 """The gouge texture on a curved plate (toolpath/surface_engrave.py), checked against closed forms:
 a ball or a flat end resting on a sphere or a cylinder has its tip where elementary geometry says,
 and every cut lies at the paper's depths below that, along the tool axis."""
-import math
-
 import numpy as np
 import pytest
 
 from kezuri import post
 from kezuri.toolpath import engrave, region as rg, surface_engrave as se
-from kezuri.toolpath.program import FEED, RAPID, Program
+from kezuri.toolpath.program import FEED, Program
 from kezuri.toolpath.simulate import simulate
 from macrob import run_program
 import rs274

@@ -118,9 +118,12 @@ def _heightmap(surface: Surface, x0, y0, x1, y1, cell, bottom, lift=0.0):
     y = np.linspace(y0, y1, max(2, int(math.ceil((y1 - y0) / cell)) + 1))
     gx, gy = np.meshgrid(x, y, indexing="ij")
     top = surface.heights(np.column_stack([gx.ravel(), gy.ravel()])).reshape(gx.shape)
-    if not np.all(np.isfinite(top)):
+    covered = np.isfinite(top)
+    if not covered.any():
         raise EngraveError(f"surface {surface.name!r} does not cover the plate and the letters")
-    return heightmap_solid(x, y, top + lift, bottom)
+    # outside a plate that does not fill its box the surface may end: nothing is cut there
+    top = np.where(covered, top, np.min(top[covered]))
+    return heightmap_solid(x, y, np.maximum(top + lift, bottom + 0.01), bottom)
 
 
 def _manifold(vertices, faces):
