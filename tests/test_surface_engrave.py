@@ -242,3 +242,42 @@ def test_progress_rises_to_one_and_stopping_it_stops_the_plan(dome_job):
 def test_a_broken_surface_mesh_is_refused_by_name(vertices, faces, message):
     with pytest.raises(se.EngraveError, match=f"surface 'Bad': .*{message}"):
         se.Surface(vertices, faces, "Bad")
+
+
+def ridged_surface():
+    """A flat plate top with a narrow raised ridge across it (a cosine bump 1.5 mm high, 5 mm wide,
+    along Y at X = -80): a tool placed by the depth under its tip alone would cut into its flanks."""
+    from kezuri.toolpath.carve_samples import heightmap_solid
+
+    x, y = np.linspace(-101, 101, 809), np.linspace(-51, 51, 103)
+    gx, _ = np.meshgrid(x, y, indexing="ij")
+    bump = np.where(np.abs(gx + 80) < 2.5, 0.75 * (1 + np.cos(np.pi * (gx + 80) / 2.5)), 0.0)
+    return heightmap_solid(x, y, bump - 1.5, -20.0)
+
+
+def test_a_raised_ridge_beside_the_cut_is_not_gouged():
+    surface = se.Surface(*ridged_surface(), "ridge")
+    with time_limit(120):
+        job = se.plan(PLATE, LETTERS, surface, plate_thickness=20)
+    limits = se.simulation_limits(surface, PLATE, LETTERS[0][1], job.result.program, -2.0, -20.0)
+    stock = se.plate_stock(surface, PLATE, 20.0)
+    window = (-90, -50, -70, 50)      # the ridge and the field beside it
+    result = simulate(job.baked, stock, cell=0.1, **limits)
+    assert not result.findings_of("gouge")
+    # the same depths measured under the tip alone (z = surface under the tip + depth) do gouge
+    # the ridge's flanks: the check is not blind to it
+    baked_flat, _ = engrave.bake(job.result.program)
+    naive_ops = []
+    for op in baked_flat.operations:
+        followed, _ = se.follow(op, surface, None)
+        xyz = followed.xyz.copy()
+        cutting = xyz[:, 2] < op.clearance_z - 1e-9
+        point = surface.heights(xyz[cutting, :2])
+        contact = surface.cutter(op.tool).points(xyz[cutting, :2])
+        xyz[cutting, 2] += point - contact
+        naive_ops.append(followed.replace(xyz=xyz))
+    naive = simulate(Program("naive", naive_ops), stock, cell=0.1, **limits)
+    gouges = naive.findings_of("gouge")
+    assert gouges and gouges[0].depth_mm > 0.05
+    x, y = gouges[0].xy
+    assert window[0] <= x <= window[2]
