@@ -281,3 +281,31 @@ def test_a_raised_ridge_beside_the_cut_is_not_gouged():
     assert gouges and gouges[0].depth_mm > 0.05
     x, y = gouges[0].xy
     assert window[0] <= x <= window[2]
+
+
+def test_the_letter_guard_lifts_a_tool_over_a_letter_to_its_top():
+    """A path planned straight through a letter (the planner never does this) is lifted by the
+    drop onto the letters' solid: beside the letter the ball rests on its top edge,
+    z = -(r - sqrt(r^2 - d^2)) at a distance d from the edge; over the letter on its top, z = 0."""
+    from kezuri.toolpath.program import PathBuilder, Tool, Operation
+
+    plane = se.Surface(np.array([[-60, -60, 0], [60, -60, 0], [60, 60, 0], [-60, 60, 0]], float),
+                       np.array([[0, 1, 2], [0, 2, 3]]), "plane")
+    square = [np.array([[-10, -10], [10, -10], [10, 10], [-10, 10]], float)]
+    guard_mesh = se.letters_solid(plane, square, -30.0)
+    ball = Tool(2, "ball", 6.0)
+    builder = PathBuilder(20.0, 1000.0, 300.0, 2.0)
+    builder.plunge(-30.0, 0.0, -2.0)
+    builder.line(30.0, 0.0, -2.0)
+    builder.retract()
+    arrays = builder.arrays()
+    op = Operation(name="through", tool=ball, spindle_rpm=6000, **arrays)
+    followed, lifted = se.follow(op, plane, se.DropCutter(*guard_mesh, ball))
+    assert lifted
+    cut = followed.xyz[(followed.kind == FEED) & (np.abs(followed.xyz[:, 1]) < 1e-9)
+                       & (followed.xyz[:, 2] < 1.0)]
+    edge = 10.0 - engrave.KEEP_MARGIN
+    d = np.abs(cut[:, 0]) - edge
+    expected = np.where(d <= 0, 0.0, np.where(d < 3.0, -(3.0 - np.sqrt(np.maximum(9.0 - d * d, 0.0))), -2.0))
+    expected = np.maximum(expected, -2.0)
+    assert np.max(np.abs(cut[:, 2] - expected)) < 1e-6
