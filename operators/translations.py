@@ -1019,6 +1019,8 @@ MESSAGE_TEMPLATES = {
     'surface {} does not cover the plate: nothing of it lies over or under X{} Y{}; it must be a mesh spanning the whole plate outline':
         '曲面 {0} が板材を覆っていません：X{1} Y{2} の上にも下にも面がありません。板材の輪郭全体にわたるメッシュにしてください',
     'surface {} does not cover the plate and the letters': '曲面 {0} が板材と文字を覆っていません',
+    'surface {} has a hole under the {} near X{} Y{}: it must cover the whole plate':
+        '曲面 {0} には {1} の下、X{2} Y{3} 付近に穴があります。板材全体を覆うようにしてください',
     '{}: arcs cannot follow a surface': '{0}：円弧は曲面に沿わせられません',
     '{} point(s) of the toolpaths were lifted to keep the tools off the letters (first near X{} Y{})':
         'ツールパスの {0} 点を文字に工具が当たらないよう持ち上げました（最初は X{1} Y{2} 付近）',

@@ -309,3 +309,16 @@ def test_the_letter_guard_lifts_a_tool_over_a_letter_to_its_top():
     expected = np.where(d <= 0, 0.0, np.where(d < 3.0, -(3.0 - np.sqrt(np.maximum(9.0 - d * d, 0.0))), -2.0))
     expected = np.maximum(expected, -2.0)
     assert np.max(np.abs(cut[:, 2] - expected)) < 1e-6
+
+
+def test_a_surface_with_a_small_hole_under_the_path_is_refused_by_name():
+    """A hole between the coverage check's 2 mm grid points, in the band beside the letter I where
+    the 1 mm flat end runs (X -47): the tool path finds it and names it."""
+    vertices, faces = se.dome(-101, -51, 101, 51, -20, cell=0.5)
+    centres = vertices[faces].mean(axis=1)
+    top = vertices[faces][:, :, 2].min(axis=1) > -19            # the top faces
+    hole = top & (np.abs(centres[:, 0] + 47.0) < 0.9) & (np.abs(centres[:, 1] - 1.0) < 0.9)
+    assert hole.sum() >= 2
+    surface = se.Surface(vertices, faces[~hole], "Holey")
+    with time_limit(120), pytest.raises(se.EngraveError, match="Holey.*hole under the"):
+        se.plan(PLATE, LETTERS, surface)

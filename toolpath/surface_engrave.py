@@ -58,11 +58,12 @@ class Surface:
                 raise EngraveError(f"surface {name!r}: vertices must be an (n, 3) array of numbers (mm)") from None
             usable = array.ndim == 2 and array.shape[1] == 3 and len(array) and np.all(np.isfinite(array))
             span = float(np.max(np.ptp(array[:, :2], axis=0))) if usable else 1.0
-            self.point = DropCutter(vertices, faces, _POINT, bucket=max(span / 256, 0.05))
+            DropCutter(vertices, faces, _POINT, bucket=max(span, 1.0))     # checks the arrays
         except DropCutterError as error:
             raise EngraveError(f"surface {name!r}: {error}") from None
-        self.vertices = np.asarray(vertices, float)
-        self.faces = np.asarray(faces, np.int64)
+        self.vertices = array
+        self.faces = _upper_side(array, np.asarray(faces, np.int64))
+        self.point = DropCutter(self.vertices, self.faces, _POINT, bucket=max(span / 256, 0.05))
         self._cutters = {}
 
     def heights(self, xy) -> np.ndarray:
@@ -92,6 +93,19 @@ class Surface:
             raise EngraveError(f"surface {self.name!r} does not cover the plate: nothing of it lies over or under "
                                f"X{x:.1f} Y{y:.1f}; it must be a mesh spanning the whole plate outline")
         return z
+
+
+def _upper_side(vertices, faces) -> np.ndarray:
+    """The faces that can be the top: a mesh with faces turned both up and down is a solid (the
+    plate with its bottom), so only the faces not turned down are kept.  Then a hole in its top is
+    a hole (the drop finds nothing there and the job is refused) rather than a view of its bottom."""
+    tri = vertices[faces]
+    nz = ((tri[:, 1, 0] - tri[:, 0, 0]) * (tri[:, 2, 1] - tri[:, 0, 1])
+          - (tri[:, 1, 1] - tri[:, 0, 1]) * (tri[:, 2, 0] - tri[:, 0, 0]))
+    scale = np.maximum(np.ptp(vertices[:, :2], axis=0).max(), 1e-9) ** 2 * 1e-12
+    if np.any(nz > scale) and np.any(nz < -scale):
+        return faces[nz >= -scale]
+    return faces
 
 
 def _bounds(loops):
@@ -268,6 +282,10 @@ def follow(op: Operation, surface: Surface, guard: DropCutter | None, marks: boo
         marks_out.append(np.column_stack([new, fraction]))
     xyz = np.vstack(points)
     kinds = np.array(kinds, np.int8)
+    if not np.all(np.isfinite(xyz[:, 2])):
+        x, y = xyz[int(np.flatnonzero(~np.isfinite(xyz[:, 2]))[0]), :2]
+        raise EngraveError(f"surface {surface.name!r} has a hole under the {op.name} near X{x:.1f} Y{y:.1f}: "
+                           "it must cover the whole plate")
     lifted = []
     if guard is not None:
         cutting = kinds != RAPID
