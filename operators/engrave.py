@@ -222,9 +222,10 @@ def batch(args) -> dict:
     nc_path = os.path.join(args.out, f"engrave{extension_for(post_name)}")
     checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
     export_engrave(job, post_name, nc_path, props.machine.work_offset, checked=True)
-    wires = show_engrave(scene, job, show_rapids=False)
-    toolpaths_png = preview.render_preview(scene, [props.stock.plate, *letter_objects(props.engrave)], wires,
-                                           os.path.join(args.out, "engrave-toolpaths.png"))
+    show_engrave(scene, job, show_rapids=False)
+    setup = simulation(job)
+    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "engrave-toolpaths.png"), job.baked.operations,
+                                         setup.stock, [], "ENGRAVING: TOOLPATHS")
     simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "engrave", checked)
     return {
         "gate": gate_report,

@@ -139,7 +139,7 @@ def batch_simulation(scene, setup, out_dir: str, stem: str, job: SimulationJob |
 
     if job is None:
         job = run_setup(setup, "heightfield", 0.1, Progress(None, "simulate"))
-    carved = show_simulation(scene, job)
-    png = preview.render_preview(scene, [carved], [], os.path.join(out_dir, f"{stem}.png"), see_through=False,
-                                 color_type="VERTEX")
+    show_simulation(scene, job)
+    png = preview.simulation_png(os.path.join(out_dir, f"{stem}.png"), job.result,
+                                 f"{stem.upper()}: SIMULATED STOCK", preview.SIDE_VIEW_DEG if stem == "turnmill" else 35.0)
     return report_of(job.result), png
