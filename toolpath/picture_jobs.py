@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import picture_font as font
-from .picture import INK, Picture, View
+from .picture import INK, Picture, PictureError, View
 from .program import ARC_CCW, ARC_CW, RAPID, arc_sweep
 
 CUT, PLUNGE, LINK, RAPID_ROLE = 0, 1, 2, 3
@@ -273,6 +273,8 @@ def simulation_picture(result, title: str = "", size=(1200, 800), tilt_deg: floa
 def sheet_picture(patterns, title: str = "", size=(1200, 800)):
     """Flat patterns seen from above: ``patterns`` = [dict(outline=(k, 2), bends=[(a, b) 2-D
     pairs], contour=(m, 2) or None, name=str)], already placed side by side (mm)."""
+    if not patterns:
+        raise PictureError("no pattern to draw")
     frame = [np.column_stack([p["outline"], np.zeros(len(p["outline"]))]) for p in patterns]
     frame += [np.column_stack([p["contour"], np.zeros(len(p["contour"]))]) for p in patterns
               if p.get("contour") is not None]
