@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
+from ..toolpath import picture_jobs
 from ..toolpath import simulate as core
 from . import convert
 from .common import CoreCall
@@ -92,10 +93,10 @@ def show_simulation(scene, job: SimulationJob, max_cells: int = 250_000):
     obj = convert.mesh_object(scene, f"{PREFIX} stock ({job.name})", vertices, faces, job.frame,
                               color=(0.85, 0.72, 0.52, 1.0))
     vertices = np.asarray(vertices, float)
-    depth = job.result.depth_at(vertices)
-    shade = np.clip(depth / max(float(depth.max()), 1e-9), 0, 1)[:, None]
-    light, dark = np.array([0.92, 0.80, 0.60, 1.0]), np.array([0.35, 0.20, 0.08, 1.0])
-    by_depth = light * (1 - shade) + dark * shade
+    # over the job's own depth range (0 .. its deepest cut), not the stock's thickness
+    depth, deepest = picture_jobs.surface_depth(job.result, vertices)
+    by_depth = np.column_stack([picture_jobs.depth_colours(depth, deepest) / 255.0, np.ones(len(depth))])
+    light = np.array([0.92, 0.80, 0.60, 1.0])
     by_operation = np.tile(light, (len(vertices), 1))
     operation = job.result.operation_at(vertices)
     cut = (operation >= 0) & (depth > 1e-6)

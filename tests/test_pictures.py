@@ -227,3 +227,29 @@ def test_warm_kernels_leaves_nothing_to_compile_for_a_real_job():
     simulate(ops, BoxStock(-1, -1, -4, 9, 9, 0), cell=0.2, kernel="numba")
     simulate([warmup._radial_operation()], CylinderStock(11.0, 8.0, 0.0), cell=0.3, kernel="numba")
     assert signatures() == before
+
+
+def test_viewport_depth_colours_span_the_jobs_depth(empty_scene):
+    """The simulated stock's "Kezuri depth" colours: the 1 mm pocket floor in a 20 mm plate is
+    the ramp's deepest colour, the uncut top its lightest (issue #21: was almost uniform)."""
+    from kezuri.operators import convert, simview
+
+    scene = empty_scene
+    stock = BoxStock(0, 0, -20, 40, 40, 0)
+    op = Operation("p", Tool(1, "flat", 6.0), 9000, [RAPID] + [FEED] * 5,
+                   [(15, 15, 5), (15, 15, -1), (25, 15, -1), (25, 25, -1), (15, 25, -1), (15, 15, -1)],
+                   [np.nan] + [300] * 5)
+    result = simulate([op], stock, cell=0.25, kernel="numpy")
+    job = simview.SimulationJob(result, convert.WorkFrame(1.0, (0.0, 0.0, 0.0)), "pocket")
+    obj = simview.show_simulation(scene, job)
+    colours = np.empty(len(obj.data.vertices) * 4, np.float32)
+    obj.data.color_attributes["Kezuri depth"].data.foreach_get("color", colours)
+    colours = colours.reshape(-1, 4)[:, :3]
+    co = np.empty(len(obj.data.vertices) * 3)
+    obj.data.vertices.foreach_get("co", co)
+    co = co.reshape(-1, 3)
+    floor = np.isclose(co[:, 2], -1.0) & (np.hypot(co[:, 0] - 15, co[:, 1] - 20) < 1.0)
+    top = np.isclose(co[:, 2], 0.0) & (co[:, 0] < 6) & (co[:, 1] < 6)
+    assert floor.any() and top.any()
+    assert np.allclose(colours[floor], pj.DEPTH_RAMP[-1] / 255, atol=1e-3)
+    assert np.allclose(colours[top], pj.DEPTH_RAMP[0] / 255, atol=1e-3)
