@@ -210,12 +210,13 @@ def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 
         picture.triangles(view, vertices, faces, colour)
     stock_outline(picture, view, stock)
     counts = {}
+    thin = sum(len(a) for a, _, _ in pieces) > 20_000      # dense paths: 1 px lines, the part shows through
     for role in (RAPID_ROLE, LINK, CUT, PLUNGE):
         name = ROLES[role]
         a = np.vstack([a[r == role] for a, _, r in pieces]) if pieces else np.zeros((0, 3))
         b = np.vstack([b[r == role] for _, b, r in pieces]) if pieces else np.zeros((0, 3))
         counts[name] = len(a)
-        picture.segments(view, a, b, ROLE_COLOURS[name], 3 if role == PLUNGE else 2,
+        picture.segments(view, a, b, ROLE_COLOURS[name], (3 if role == PLUNGE else 2) - thin,
                          dash=6.0 if role == RAPID_ROLE else 0.0)
     deepest = deepest_cut(operations, stock)
     _header(picture, title, [stock_label(stock), f"DEEPEST CUT {mm(deepest)} MM"])
