@@ -300,8 +300,10 @@ def batch(args) -> dict:
                                          simulation(job).stock,
                                          [(job.vertices, job.faces, preview.picture_jobs.PART_COLOUR)],
                                          "CARVING: TOOLPATHS OVER THE DESIGN")
-    simview.show_simulation(scene, simulated)
-    png = preview.simulation_png(os.path.join(args.out, "carve.png"), simulated.result, "CARVING: SIMULATED STOCK")
+    mesh = simulated.result.mesh(250_000)
+    simview.show_simulation(scene, simulated, mesh=mesh)
+    png = preview.simulation_png(os.path.join(args.out, "carve.png"), simulated.result, "CARVING: SIMULATED STOCK",
+                                 mesh=mesh)
     scallop = core.measured_scallop(simulated.result.heightfield, job.vertices, job.faces)
     result = job.result
     return {

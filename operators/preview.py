@@ -44,9 +44,10 @@ def toolpath_png(path: str, operations, stock, solids=(), title: str = "", tilt_
     return write_atomic(path, picture.png())
 
 
-def simulation_png(path: str, result, title: str = "", tilt_deg: float = 35.0) -> str:
-    """The simulated stock coloured by depth over the job's own depth range."""
-    picture = picture_jobs.simulation_picture(result, title, SIZE, tilt_deg)
+def simulation_png(path: str, result, title: str = "", tilt_deg: float = 35.0, mesh=None) -> str:
+    """The simulated stock coloured by depth over the job's own depth range (``mesh``: the
+    stock's (vertices, faces) if already built)."""
+    picture = picture_jobs.simulation_picture(result, title, SIZE, tilt_deg, mesh=mesh)
     return write_atomic(path, picture.png())
 
 

@@ -85,11 +85,12 @@ def report_of(result: core.SimulationResult) -> dict:
     }
 
 
-def show_simulation(scene, job: SimulationJob, max_cells: int = 250_000):
+def show_simulation(scene, job: SimulationJob, max_cells: int = 250_000, mesh=None):
     """The simulated stock as a mesh in the Kezuri collection (replaces the last one), with two
-    colour attributes: by depth, and by the operation whose surface shows there."""
+    colour attributes: by depth, and by the operation whose surface shows there.  ``mesh``: the
+    stock's (vertices, faces) if already built (else ``job.result.mesh(max_cells)``)."""
     convert.remove_objects(PREFIX)
-    vertices, faces = job.result.mesh(max_cells)
+    vertices, faces = job.result.mesh(max_cells) if mesh is None else mesh
     obj = convert.mesh_object(scene, f"{PREFIX} stock ({job.name})", vertices, faces, job.frame,
                               color=(0.85, 0.72, 0.52, 1.0))
     vertices = np.asarray(vertices, float)
@@ -140,7 +141,9 @@ def batch_simulation(scene, setup, out_dir: str, stem: str, job: SimulationJob |
 
     if job is None:
         job = run_setup(setup, "heightfield", 0.1, Progress(None, "simulate"))
-    show_simulation(scene, job)
+    mesh = job.result.mesh(250_000)       # built once: the scene's object and the picture
+    show_simulation(scene, job, mesh=mesh)
     png = preview.simulation_png(os.path.join(out_dir, f"{stem}.png"), job.result,
-                                 f"{stem.upper()}: SIMULATED STOCK", preview.SIDE_VIEW_DEG if stem == "turnmill" else 35.0)
+                                 f"{stem.upper()}: SIMULATED STOCK", preview.SIDE_VIEW_DEG if stem == "turnmill" else 35.0,
+                                 mesh)
     return report_of(job.result), png

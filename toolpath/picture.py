@@ -200,7 +200,8 @@ class Picture:
 
 
 def rasterise(x, y, z, faces, width: int, height: int) -> tuple:
-    """The nearest fragment of every covered pixel: (flat pixel index, depth, face index).
+    """The nearest fragment of every covered pixel: (flat pixel index, depth, face index); where
+    fragments tie for nearest (on an edge two triangles share), each is returned.
 
     Scan conversion, vectorised over all triangles at once: every (triangle, pixel row) pair
     gets the span of pixel centres between the triangle's edges on that row; depth comes from
@@ -251,8 +252,7 @@ def rasterise(x, y, z, faces, width: int, height: int) -> tuple:
     if not pixels:
         return np.zeros(0, np.int64), np.zeros(0), np.zeros(0, np.int64)
     pixel, depth, owner = np.concatenate(pixels), np.concatenate(depths), np.concatenate(owners)
-    order = np.lexsort((depth, pixel))
-    pixel, depth, owner = pixel[order], depth[order], owner[order]
-    last = np.ones(len(pixel), bool)
-    last[:-1] = pixel[1:] != pixel[:-1]
-    return pixel[last], depth[last], owner[last]
+    nearest = np.full(width * height, -np.inf)
+    np.maximum.at(nearest, pixel, depth)          # no sort: the nearest depth of every pixel
+    won = depth == nearest[pixel]                 # (fragments tied at a shared edge: any one of them)
+    return pixel[won], depth[won], owner[won]
