@@ -285,16 +285,14 @@ def batch(args) -> dict:
     checked, gate_report = gate.check(setup, args.allow_findings, Progress(None, "check"))
     export_engrave(job, post_name, nc_path, props.machine.work_offset, checked=True)
     files = [nc_path]
+    solids = []
     if job.surface is not None:
-        import trimesh
-
         design = setup.extra["design"]
-        files.append(os.path.join(args.out, "design.stl"))
-        trimesh.Trimesh(design.vertices, design.faces, process=False).export(files[-1])
-    wires = show_engrave(scene, job, show_rapids=False)
-    plate = props.engrave.surface if job.surface is not None else props.stock.plate
-    toolpaths_png = preview.render_preview(scene, [plate, *letter_objects(props.engrave)], wires,
-                                           os.path.join(args.out, "engrave-toolpaths.png"))
+        files.append(batchio.write_stl(os.path.join(args.out, "design.stl"), design.vertices, design.faces))
+        solids = [(design.vertices, design.faces, preview.picture_jobs.PART_COLOUR)]
+    show_engrave(scene, job, show_rapids=False)
+    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "engrave-toolpaths.png"), job.baked.operations,
+                                         setup.stock, solids, "ENGRAVING: TOOLPATHS")
     simulation_report, png = simview.batch_simulation(scene, setup, args.out, "engrave", checked)
     return {
         "gate": gate_report,

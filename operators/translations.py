@@ -607,6 +607,9 @@ MESSAGES = {
     "nothing to export": "書き出すものがありません",
     "the program has no operations": "プログラムに加工工程がありません",
     'the NC program must be text': 'NCプログラムはテキストにしてください',
+    # toolpath/picture.py, toolpath/picture_jobs.py
+    "nothing to draw: no finite point to frame": "描くものがありません：枠に収める有限の点がありません",
+    "no pattern to draw": "描く展開図がありません",
 }
 
 
@@ -1236,6 +1239,14 @@ MESSAGE_TEMPLATES = {
         '{0}行目：{1}：タッピングはシミュレーションしません：{2}',
     'line {}: {} threading is not simulated: {}':
         '{0}行目：{1}：ねじ切りはシミュレーションしません：{2}',
+    # toolpath/picture.py, operators/convert.py, operators/__init__.py
+    'picture size must be whole pixels, 16..8192, got {} x {}':
+        '画像の大きさは 16〜8192 の整数ピクセルにしてください（指定値 {0} x {1}）',
+    'the drawing area {} is too small': '描画領域 {0} が小さすぎます',
+    'an image must be (height, width, 3), got {}': '画像は (高さ, 幅, 3) の配列にしてください（指定値 {0}）',
+    'mesh {}: a face index is outside 0..{}': 'メッシュ {0}：面の頂点番号が 0〜{1} の範囲外です',
+    'Kezuri: the simulation kernels were not compiled ahead ({}); the first Simulate compiles them':
+        'Kezuri：シミュレーションのカーネルを前もってコンパイルできませんでした（{0}）。最初のシミュレーションでコンパイルします',
 }
 
 
