@@ -266,7 +266,6 @@ def read_mesh_file(path: str) -> tuple:
 
 
 def batch(args) -> dict:
-
     from . import batchio, preview, simview
     from .common import Progress
 
