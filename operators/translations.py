@@ -1071,6 +1071,53 @@ MESSAGE_TEMPLATES = {
     '#{} SQUARE_U_PROFILE: width must be positive, found {}': '#{0} SQUARE_U_PROFILE：幅は正の値にしてください（値 {1}）',
     "the flat end of slot #{} keeps the tool's radius R{} in its corners":
         "溝 #{0} の平らな端の隅には工具の半径 R{1} が残ります",
+    # toolpath/stepnc/ap238*.py: the AP238 integrated form
+    '#{} {}: {} must refer to an instance, found {}': '#{0} {1}：{2} はインスタンスを参照してください（値 {3}）',
+    '#{} {}: the value must be a number, found {}': '#{0} {1}：値は数値にしてください（値 {2}）',
+    'an AP238 file needs exactly one MACHINING_PROJECT, this one has {}':
+        'AP238 ファイルには MACHINING_PROJECT がちょうど1つ必要ですが、このファイルには {0} 個あります',
+    "#{} MACHINING_PROJECT: no main MACHINING_WORKPLAN (a PRODUCT_DEFINITION_PROCESS 'machining' of its "
+    "PRODUCT_DEFINITION #{})":
+        "#{0} MACHINING_PROJECT：メインの MACHINING_WORKPLAN がありません（PRODUCT_DEFINITION #{1} の "
+        "PRODUCT_DEFINITION_PROCESS 'machining'）",
+    '#{} {}: no PRODUCT_DEFINITION_FORMATION and PRODUCT_DEFINITION refer to it':
+        '#{0} {1}：これを参照する PRODUCT_DEFINITION_FORMATION と PRODUCT_DEFINITION がありません',
+    '#{} BLOCK_SHAPE_REPRESENTATION: no {} item': '#{0} BLOCK_SHAPE_REPRESENTATION：{1} の項目がありません',
+    '#{} MACHINING_WORKPLAN contains itself (through #{})': '#{0} MACHINING_WORKPLAN が（#{1} を通じて）自身を含んでいます',
+    "#{} MACHINING_WORKINGSTEP '{}': no 'security plane' ACTION_PROPERTY with a PLANE":
+        "#{0} MACHINING_WORKINGSTEP '{1}'：PLANE を持つ ACTION_PROPERTY 'security plane'（安全平面）がありません",
+    "#{} MACHINING_WORKINGSTEP '{}': needs one MACHINING_OPERATION_RELATIONSHIP, found {}":
+        "#{0} MACHINING_WORKINGSTEP '{1}'：MACHINING_OPERATION_RELATIONSHIP が1つ必要ですが {2} 個あります",
+    "#{} MACHINING_WORKINGSTEP '{}': no feature (a MACHINING_FEATURE_RELATIONSHIP to a MACHINING_FEATURE_PROCESS "
+    "with a PROPERTY_PROCESS)":
+        "#{0} MACHINING_WORKINGSTEP '{1}'：フィーチャがありません（PROPERTY_PROCESS を持つ MACHINING_FEATURE_PROCESS "
+        "への MACHINING_FEATURE_RELATIONSHIP）",
+    "#{} {} '{}': no {} (a feature component through a SHAPE_ASPECT '{} occurrence')":
+        "#{0} {1} '{2}'：{3} がありません（SHAPE_ASPECT '{4} occurrence' を通じたフィーチャ要素）",
+    '#{} {}: no length item in its representation': '#{0} {1}：表現に長さの項目がありません',
+    "#{} {}: no '{}' item in its representation": "#{0} {1}：表現に '{2}' の項目がありません",
+    "#{} PATH_FEATURE_COMPONENT: a linear path needs a DIRECTION and a 'distance'":
+        "#{0} PATH_FEATURE_COMPONENT：直線の経路には DIRECTION と 'distance' が必要です",
+    "#{} RECTANGULAR_CLOSED_PROFILE: needs 'width' and 'length' items":
+        "#{0} RECTANGULAR_CLOSED_PROFILE：'width' と 'length' の項目が必要です",
+    '#{} CLOSED_PATH_PROFILE: no curve in its PATH_SHAPE_REPRESENTATION':
+        '#{0} CLOSED_PATH_PROFILE：PATH_SHAPE_REPRESENTATION に曲線がありません',
+    "#{} {} '{}': no PRODUCT_DEFINITION_SHAPE refers to it": "#{0} {1} '{2}'：これを参照する PRODUCT_DEFINITION_SHAPE がありません",
+    "#{} {} '{}': no placement (an AXIS2_PLACEMENT_3D 'orientation' in the SHAPE_REPRESENTATION_WITH_PARAMETERS of "
+    "its PRODUCT_DEFINITION_SHAPE)":
+        "#{0} {1} '{2}'：配置がありません（PRODUCT_DEFINITION_SHAPE の SHAPE_REPRESENTATION_WITH_PARAMETERS にある "
+        "AXIS2_PLACEMENT_3D 'orientation'）",
+    "#{} {} '{}': no depth (a PLANE in its SHAPE_REPRESENTATION 'maximum feature limit')":
+        "#{0} {1} '{2}'：深さがありません（SHAPE_REPRESENTATION 'maximum feature limit' の PLANE）",
+    "#{} POCKET '{}': no bottom condition (a POCKET_BOTTOM through a 'bottom condition occurrence')":
+        "#{0} POCKET '{1}'：底の条件がありません（'bottom condition occurrence' を通じた POCKET_BOTTOM）",
+    "#{} MACHINING_TOOL_BODY_REPRESENTATION '{}': no 'effective cutting diameter' item":
+        "#{0} MACHINING_TOOL_BODY_REPRESENTATION '{1}'：'effective cutting diameter'（有効切削径）の項目がありません",
+    "#{} {} '{}': needs one MACHINING_TOOL whose usage lists it, found {}":
+        "#{0} {1} '{2}'：usage にこれを挙げる MACHINING_TOOL が1つ必要ですが {3} 個あります",
+    "#{} {} '{}': no MACHINING_TECHNOLOGY_RELATIONSHIP": "#{0} {1} '{2}'：MACHINING_TECHNOLOGY_RELATIONSHIP がありません",
+    "#{} MACHINING_TOOL '{}': no 'tool body' RESOURCE_PROPERTY with a MACHINING_TOOL_BODY_REPRESENTATION":
+        "#{0} MACHINING_TOOL '{1}'：MACHINING_TOOL_BODY_REPRESENTATION を持つ RESOURCE_PROPERTY 'tool body' がありません",
     'design {}: not a readable mesh ({})':
         '設計形状 {0}：読み込めるメッシュではありません（{1}）',
     'line {}: {} is not a word (a letter and a number) in {}':

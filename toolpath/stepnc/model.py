@@ -1286,6 +1286,10 @@ def read_project(part21: Part21File) -> tuple:
     are left out of the model, each with a warning naming the entity type and instance.
     """
     projects = part21.by_type("PROJECT")
+    if not projects and part21.by_type("MACHINING_PROJECT"):
+        from .ap238 import to_arm    # the AP238 integrated form: read as its ISO 14649 rendition
+        part21 = to_arm(part21)
+        projects = part21.by_type("PROJECT")
     if len(projects) != 1:
         raise StepNcError(f"an ISO 14649 file needs exactly one PROJECT, this one has {len(projects)}")
     reader = _Reader(part21)
