@@ -1118,6 +1118,31 @@ MESSAGE_TEMPLATES = {
     "#{} {} '{}': no MACHINING_TECHNOLOGY_RELATIONSHIP": "#{0} {1} '{2}'：MACHINING_TECHNOLOGY_RELATIONSHIP がありません",
     "#{} MACHINING_TOOL '{}': no 'tool body' RESOURCE_PROPERTY with a MACHINING_TOOL_BODY_REPRESENTATION":
         "#{0} MACHINING_TOOL '{1}'：MACHINING_TOOL_BODY_REPRESENTATION を持つ RESOURCE_PROPERTY 'tool body' がありません",
+    # toolpath/stepnc/freeform.py and model.py: explicit toolpaths and rapid movements
+    '#{} COMPOSITE_CURVE: a segment starts away from the end of the one before it':
+        '#{0} COMPOSITE_CURVE：セグメントが前のセグメントの終点から離れて始まっています',
+    '#{} HELIX: the pitch is zero': '#{0} HELIX：ピッチが0です',
+    '#{} TRIMMED_CURVE: sense_agreement .T. contradicts the pitch of the HELIX #{} (its second point is below its '
+    'first)':
+        '#{0} TRIMMED_CURVE：sense_agreement .T. が HELIX #{1} のピッチと矛盾します（2点目が1点目より下にあります）',
+    '#{} TRIMMED_CURVE: sense_agreement .F. contradicts the pitch of the HELIX #{} (its second point is above its '
+    'first)':
+        '#{0} TRIMMED_CURVE：sense_agreement .F. が HELIX #{1} のピッチと矛盾します（2点目が1点目より上にあります）',
+    '#{} TRIMMED_CURVE: its points are not on the HELIX #{} (angle and height disagree)':
+        '#{0} TRIMMED_CURVE：点が HELIX #{1} 上にありません（角度と高さが合いません）',
+    "rapid movement #{} '{}' skipped: {}": "早送り移動 #{0} '{1}' を飛ばしました：{2}",
+    "rapid movement #{} '{}' skipped: no workingstep before it in its workplan, so no tool to move":
+        "早送り移動 #{0} '{1}' を飛ばしました：ワークプランで前にワーキングステップがなく、動かす工具がありません",
+    "rapid movement #{} '{}' after workingstep #{} left out: the path planned for the workingstep makes its own "
+    "links":
+        "ワーキングステップ #{2} の後の早送り移動 #{0} '{1}' は使いません：そのワーキングステップ用に計画した経路が"
+        "自前でつなぎます",
+    'trajectory #{} starts {} mm from the end of the one before it: joined by a straight feed move':
+        '軌跡 #{0} は前の軌跡の終点から {1} mm 離れて始まります：直線の切削送りでつなぎました',
+    "trajectory #{} asks for S{}; the operation's S{} is written (one spindle speed per operation)":
+        "軌跡 #{0} は S{1} を指定していますが、オペレーションの S{2} を書き出します（オペレーションごとに主軸回転数は1つ）",
+    '{} #{} is not supported': '{0} #{1} は対応していません',
+    '{} #{} is not supported ({})': '{0} #{1} は対応していません（{2}）',
     'design {}: not a readable mesh ({})':
         '設計形状 {0}：読み込めるメッシュではありません（{1}）',
     'line {}: {} is not a word (a letter and a number) in {}':

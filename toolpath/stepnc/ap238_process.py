@@ -5,10 +5,8 @@ from __future__ import annotations
 from .ap238 import (APPROACHES, MILLING, OPERATIONS, STRATEGIES, TOOL_BODIES, _enum, _item_name, _kind, _measure,
                     _params, _placeholder_name, _text)
 from .model import StepNcError
-from .part21 import UNSET, Enum, Ref
+from .part21 import UNSET, Ref
 
-LENGTHS_MILLING = ("axial cutting depth",)
-ANGLE_TYPES = ("PLANE_ANGLE_MEASURE_WITH_UNIT",)
 
 
 def _value(aim, properties: dict, name: str, kind: str = "length", item_name: str | None = None):
@@ -202,4 +200,4 @@ def drilling_strategy(aim, method):
 
 
 __all__ = ["operation_to_arm", "tool", "milling_technology", "machine_functions", "strategy", "approach",
-           "drilling_strategy", "Enum"]
+           "drilling_strategy"]

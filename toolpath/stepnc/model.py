@@ -186,12 +186,28 @@ class Circle:
 
 
 @dataclass(frozen=True)
+class Helix:
+    """HELIX(name, position, radius, pitch) as NIST's ISO 14649 toolkit writes it (ex1E): turns about
+    the z axis of ``position``, rising ``pitch`` per counter-clockwise turn.  Only trimmed by points."""
+
+    id: int
+    name: str
+    position: Placement
+    radius: float
+    pitch: float
+
+    def frame(self):
+        m = self.position.matrix()
+        return np.array(self.position.location, float), m[:, 0], m[:, 1]
+
+
+@dataclass(frozen=True)
 class TrimmedCurve:
     """TRIMMED_CURVE of a LINE or CIRCLE.  A trim is a point (x, y, z) or a parameter."""
 
     id: int
     name: str
-    basis_curve: Union[Line, Circle]
+    basis_curve: Union[Line, Circle, Helix]
     trim_1: Union[Vec3, float]
     trim_2: Union[Vec3, float]
     sense_agreement: bool
@@ -633,7 +649,50 @@ class DrillingOperation:
     overcut_length: float | None = None    # how far a through hole is drilled past its bottom
 
 
-MachiningOperation = Union[PlaneMilling, BottomAndSideMilling, DrillingOperation]
+@dataclass(frozen=True)
+class Trajectory:
+    """CUTTER_LOCATION_TRAJECTORY(its_priority, its_type, its_speed, its_technology, its_machine_functions,
+    its_direction, basiccurve, its_toolaxis, surface_normal): the tool centre point along ``basiccurve``
+    (reversed when its_direction is .F.), at rapid when its_speed is .RAPID., else at its technology's
+    feed (the operation's when it has none)."""
+
+    id: int
+    rapid: bool
+    its_technology: MillingTechnology | None
+    forward: bool
+    basiccurve: object
+
+
+@dataclass(frozen=True)
+class FreeformOperation:
+    """FREEFORM_OPERATION with explicit toolpaths (a TOOLPATH_LIST of trajectories), given in the
+    coordinates of the workingstep's feature."""
+
+    id: int
+    type_name: str
+    its_id: str
+    retract_plane: float | None
+    its_tool: CuttingTool
+    its_technology: MillingTechnology
+    its_machine_functions: MachineFunctions | None
+    its_toolpath: tuple
+    finishing = False
+    its_machining_strategy = None
+    allowance_bottom = None
+    allowance_side = None
+
+
+@dataclass(frozen=True)
+class RapidMovement:
+    """RAPID_MOVEMENT(its_id, its_secplane, its_toolpath, its_tool_direction): rapids along its
+    trajectories, in the workpiece's coordinates, with the tool of the workingstep before it."""
+
+    id: int
+    its_id: str
+    its_toolpath: tuple
+
+
+MachiningOperation = Union[PlaneMilling, BottomAndSideMilling, DrillingOperation, FreeformOperation]
 
 
 # --------------------------------------------------------------------------- executables and project
@@ -648,6 +707,7 @@ class Workingstep:
     its_secplane: Plane
     its_feature: Feature
     its_operation: MachiningOperation
+    rapids_after: tuple = ()     # RAPID_MOVEMENTs that follow it in the workplan
 
 
 @dataclass(frozen=True)
@@ -895,8 +955,9 @@ class _Reader:
         if t.type_name == "CIRCLE":
             return self._circle(t)
         if t.type_name == "TRIMMED_CURVE":
-            basis = self.entity(t, 1, "basis_curve", ("LINE", "CIRCLE"), unsupported=True)
-            basis = self.memoised(basis, self._line if basis.type_name == "LINE" else self._circle)
+            basis = self.entity(t, 1, "basis_curve", ("LINE", "CIRCLE", "HELIX"), unsupported=True)
+            basis = self.memoised(basis, {"LINE": self._line, "CIRCLE": self._circle,
+                                          "HELIX": self._helix}[basis.type_name])
             sense = self.boolean(t, 4, "sense_agreement")
             master = self.enum(t, 5, "master_representation", optional=True) or "UNSPECIFIED"
             return TrimmedCurve(t.id, self.text(t, 0, "name"), basis, self._trim(t, 2, "trim_1", master),
@@ -916,6 +977,10 @@ class _Reader:
         vector = self.entity(t, 2, "dir", ("VECTOR",))
         return Line(t.id, self.text(t, 0, "name"), self.point(t, 1, "pnt"),
                     self.direction(vector, 1, "orientation"), self.number(vector, 2, "magnitude"))
+
+    def _helix(self, t) -> Helix:
+        return Helix(t.id, self.text(t, 0, "name"), self.placement(t, 1, "position"), self.length(t, 2, "radius"),
+                     self.number(t, 3, "pitch"))
 
     def _circle(self, t) -> Circle:
         return Circle(t.id, self.text(t, 0, "name"), self.placement(t, 1, "position"),
@@ -1187,7 +1252,8 @@ class _Reader:
     def operation(self, inst, index, name) -> MachiningOperation:
         target = self.entity(inst, index, name, ("PLANE_ROUGH_MILLING", "PLANE_FINISH_MILLING",
                                                  "BOTTOM_AND_SIDE_ROUGH_MILLING", "BOTTOM_AND_SIDE_FINISH_MILLING",
-                                                 "DRILLING", "CENTER_DRILLING", "REAMING"), unsupported=True)
+                                                 "DRILLING", "CENTER_DRILLING", "REAMING", "FREEFORM_OPERATION"),
+                             unsupported=True)
         return self.memoised(target, self._operation)
 
     def _operation(self, t) -> MachiningOperation:
@@ -1196,6 +1262,12 @@ class _Reader:
         common = (t.id, t.type_name, self.text(t, 2, "its_id"), self.length(t, 3, "retract_plane", optional=True),
                   self.tool(t, 5, "its_tool"), self.technology(t, 6, "its_technology"),
                   self.machine_functions(t, 7, "its_machine_functions"))
+        if t.type_name == "FREEFORM_OPERATION":
+            if self.value(t, 0, "its_toolpath", optional=True) is None:
+                strategy = self.value(t, 11, "its_machining_strategy", optional=True)
+                raise UnsupportedEntity(t.type_name, t.id, "no explicit toolpaths (its_toolpath); a freeform "
+                                        f"strategy{'' if strategy is None else ' ' + repr(strategy)} is not planned")
+            return FreeformOperation(*common, self.toolpaths(t, 0, "its_toolpath"))
         if t.type_name in ("DRILLING", "CENTER_DRILLING", "REAMING"):
             drilling = common + (self.length(t, 9, "cutting_depth", optional=True),
                                  self.length(t, 10, "previous_diameter", optional=True),
@@ -1216,6 +1288,29 @@ class _Reader:
                                     self.length(t, 14, "allowance_side", optional=True),
                                     self.length(t, 15, "allowance_bottom", optional=True))
 
+    def toolpaths(self, inst, index, name) -> tuple:
+        """The CUTTER_LOCATION_TRAJECTORYs of a TOOLPATH_LIST."""
+        listing = self.entity(inst, index, name, ("TOOLPATH_LIST",))
+        found = []
+        for t in self.entities(listing, 0, "its_list"):
+            if t.type_name != "CUTTER_LOCATION_TRAJECTORY":
+                raise UnsupportedEntity(t.type_name, t.id, f"in the toolpath list #{listing.id}")
+            axis = self.value(t, 7, "its_toolaxis", optional=True)
+            if axis is not None:
+                raise UnsupportedEntity(t.type_name, t.id, "a tool axis curve (its_toolaxis): only +Z is machined")
+            speed = self.value(t, 2, "its_speed", optional=True)
+            if speed is not None and speed != Enum("RAPID"):
+                raise UnsupportedEntity(t.type_name, t.id, f"a speed profile {speed!r} (its_speed)")
+            technology = None if self.value(t, 3, "its_technology", optional=True) is None \
+                else self.technology(t, 3, "its_technology")
+            forward = self.boolean(t, 5, "its_direction", optional=True)
+            found.append(Trajectory(t.id, speed == Enum("RAPID"), technology, forward is not False,
+                                    self.curve(t, 6, "basiccurve")))
+        return tuple(found)
+
+    def rapid_movement(self, t) -> RapidMovement:
+        return RapidMovement(t.id, self.text(t, 0, "its_id"), self.toolpaths(t, 2, "its_toolpath"))
+
     # ---- executables
 
     def workingstep(self, t) -> Workingstep:
@@ -1235,6 +1330,18 @@ class _Reader:
                 except UnsupportedEntity as error:
                     self.warnings.append(f"workingstep #{element.id} '{self.text(element, 0, 'its_id')}' "
                                          f"skipped: {error}")
+            elif _type_name(element) == "RAPID_MOVEMENT":
+                try:
+                    rapid = self.rapid_movement(element)
+                except UnsupportedEntity as error:
+                    self.warnings.append(f"rapid movement #{element.id} '{self.text(element, 0, 'its_id')}' "
+                                         f"skipped: {error}")
+                    continue
+                if elements and isinstance(elements[-1], Workingstep):
+                    elements[-1] = replace(elements[-1], rapids_after=elements[-1].rapids_after + (rapid,))
+                else:
+                    self.warnings.append(f"rapid movement #{element.id} '{rapid.its_id}' skipped: no workingstep "
+                                         "before it in its workplan, so no tool to move")
             else:
                 self.warnings.append(f"#{element.id} {_type_name(element)} in workplan #{t.id} skipped: "
                                      "only workingsteps and workplans are supported")

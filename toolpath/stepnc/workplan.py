@@ -30,11 +30,12 @@ from manifold3d import CrossSection
 from .. import region as rg
 from ..errors import InputError
 from ..program import Operation, Program, Tool
+from .freeform import plan_freeform
 from .inprocess import InProcessStock
 from .model import (
     DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourParallel, CuttingTool,
-    DrillingOperation, PlanarFace, PlaneMilling, Project, RoundHole, Slot, StepNcError, Unidirectional, Workingstep,
-    read_project,
+    DrillingOperation, FreeformOperation, PlanarFace, PlaneMilling, Project, RoundHole, Slot, StepNcError,
+    Unidirectional, Workingstep, read_project,
 )
 from .motion import (  # noqa: F401 (APPROACH_GAP ... re-exported: workplan.py was one module)
     APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, _empty, _levels, _Motion,
@@ -297,7 +298,9 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
         return None
     notes += [f"workingstep #{step.id} '{step.its_id}': {note}" for note in checks]
 
-    if isinstance(operation, DrillingOperation) and isinstance(feature, RoundHole):
+    if isinstance(operation, FreeformOperation):
+        motion = plan_freeform(step, tool, clearance_z, stock)
+    elif isinstance(operation, DrillingOperation) and isinstance(feature, RoundHole):
         motion = _hole(operation, feature, tool, clearance_z, feed, skip, stock)
     elif isinstance(operation, PlaneMilling) and isinstance(feature, PlanarFace):
         motion = _face(operation, feature, tool, clearance_z, feed, roughings, skip, stock)
@@ -328,6 +331,9 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
         skip("nothing to cut (the feature has no depth left for this operation)")
         return None
     notes += [f"workingstep #{step.id} '{step.its_id}': {note}" for note in motion.notes]
+    if not isinstance(operation, FreeformOperation):
+        notes += [f"rapid movement #{rapid.id} '{rapid.its_id}' after workingstep #{step.id} left out: the path "
+                  "planned for the workingstep makes its own links" for rapid in step.rapids_after]
     functions = operation.its_machine_functions
     return motion.operation(step.its_id, tool, rpm, clockwise, safe_z, bool(functions and functions.coolant),
                             f"#{step.id} {operation.type_name} {operation.its_id}", step.id)
