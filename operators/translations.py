@@ -1143,6 +1143,8 @@ MESSAGE_TEMPLATES = {
         "軌跡 #{0} は S{1} を指定していますが、オペレーションの S{2} を書き出します（オペレーションごとに主軸回転数は1つ）",
     '{} #{} is not supported': '{0} #{1} は対応していません',
     '{} #{} is not supported ({})': '{0} #{1} は対応していません（{2}）',
+    "{}: no contour pass on planar face #{}, its strokes run out past the face's edges":
+        "{0}：平面 #{1} には輪郭パスを入れません。往復の送りが面の縁の外まで抜けます",
     'design {}: not a readable mesh ({})':
         '設計形状 {0}：読み込めるメッシュではありません（{1}）',
     'line {}: {} is not a word (a letter and a number) in {}':

@@ -54,7 +54,8 @@ TOOL_BODIES = {"endmill": "ENDMILL", "tapered endmill": "TAPERED_ENDMILL", "ball
                "twist drill": "TWIST_DRILL", "tapered drill": "TAPERED_DRILL", "center drill": "CENTER_DRILL",
                "reamer": "REAMER", "tapered reamer": "TAPERED_REAMER"}
 STRATEGIES = {"bidirectional": "BIDIRECTIONAL", "unidirectional": "UNIDIRECTIONAL",
-              "contour parallel": "CONTOUR_PARALLEL", "contour bidirectional": "CONTOUR_BIDIRECTIONAL"}
+              "contour parallel": "CONTOUR_PARALLEL", "contour bidirectional": "CONTOUR_BIDIRECTIONAL",
+              "bidirectional contour": "BIDIRECTIONAL_CONTOUR"}
 APPROACHES = {"plunge toolaxis": "PLUNGE_TOOLAXIS", "plunge ramp": "PLUNGE_RAMP", "plunge helix": "PLUNGE_HELIX"}
 HOLE_BOTTOMS = {"through": "THROUGH_BOTTOM_CONDITION", "flat": "FLAT_HOLE_BOTTOM",
                 "conical": "CONICAL_HOLE_BOTTOM", "spherical": "SPHERICAL_HOLE_BOTTOM",

@@ -159,7 +159,7 @@ def strategy(aim, method):
     elif arm == "CONTOUR_PARALLEL":
         params = [overlap, multiple, _enum(_value(aim, p, "rotation direction", "text")),
                   _enum(_value(aim, p, "cutmode", "text"))]
-    else:    # CONTOUR_BIDIRECTIONAL(overlap, multiple, feed_direction, stepover_direction, rotation_direction, spiral_cutmode)
+    else:    # CONTOUR_BIDIRECTIONAL / BIDIRECTIONAL_CONTOUR(overlap, multiple, feed_direction, stepover_direction, rotation_direction, spiral_cutmode)
         params = [overlap, multiple, feed, _enum(_value(aim, p, "stepover direction", "text")),
                   _enum(_value(aim, p, "rotation direction", "text")),
                   _enum(_value(aim, p, "spiral cutmode", "text"))]

@@ -543,7 +543,19 @@ class ContourParallel:
     cutmode: str | None
 
 
-MillingStrategy = Union[Bidirectional, Unidirectional, ContourParallel]
+@dataclass(frozen=True)
+class ContourBidirectional(Bidirectional):
+    """CONTOUR_BIDIRECTIONAL (``contour_first``) or BIDIRECTIONAL_CONTOUR: zigzag strokes along
+    ``feed_direction`` stepping to ``stepover_direction``, and one contour pass along the boundary,
+    before the strokes or after them, turning ``rotation_direction`` (CW / CCW) or, when that is not
+    given, climb or conventional as ``spiral_cutmode`` says."""
+
+    rotation_direction: str | None = None
+    spiral_cutmode: str | None = None
+    contour_first: bool = True
+
+
+MillingStrategy = Union[Bidirectional, Unidirectional, ContourParallel, ContourBidirectional]
 
 
 @dataclass(frozen=True)
@@ -1200,7 +1212,8 @@ class _Reader:
 
     def milling_strategy(self, inst, index, name) -> MillingStrategy | None:
         target = self.entity(inst, index, name, ("BIDIRECTIONAL", "BIDIRECTIONAL_MILLING", "UNIDIRECTIONAL",
-                                                 "UNIDIRECTIONAL_MILLING", "CONTOUR_PARALLEL"),
+                                                 "UNIDIRECTIONAL_MILLING", "CONTOUR_PARALLEL", "CONTOUR_BIDIRECTIONAL",
+                                                 "BIDIRECTIONAL_CONTOUR"),
                              optional=True, unsupported=True)
         if target is None:
             return None
@@ -1208,6 +1221,12 @@ class _Reader:
         def convert(t):
             overlap = self.number(t, 0, "overlap", optional=True)
             multiple = self.boolean(t, 1, "allow_multiple_passes", optional=True)
+            if t.type_name in ("CONTOUR_BIDIRECTIONAL", "BIDIRECTIONAL_CONTOUR"):
+                return ContourBidirectional(overlap, multiple, self.direction(t, 2, "feed_direction", optional=True),
+                                            self.enum(t, 3, "stepover_direction", optional=True), None,
+                                            self.enum(t, 4, "rotation_direction", optional=True),
+                                            self.enum(t, 5, "spiral_cutmode", optional=True),
+                                            t.type_name == "CONTOUR_BIDIRECTIONAL")
             if t.type_name.startswith("BIDIRECTIONAL"):
                 return Bidirectional(overlap, multiple, self.direction(t, 2, "feed_direction", optional=True),
                                      self.enum(t, 3, "stepover_direction", optional=True),

@@ -33,9 +33,9 @@ from ..program import Operation, Program, Tool
 from .freeform import plan_freeform
 from .inprocess import InProcessStock
 from .model import (
-    DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourParallel, CuttingTool,
-    DrillingOperation, FreeformOperation, PlanarFace, PlaneMilling, Project, RoundHole, Slot, StepNcError,
-    Unidirectional, Workingstep, read_project,
+    DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourBidirectional, ContourParallel,
+    CuttingTool, DrillingOperation, FreeformOperation, PlanarFace, PlaneMilling, Project, RoundHole, Slot,
+    StepNcError, Unidirectional, Workingstep, read_project,
 )
 from .motion import (  # noqa: F401 (APPROACH_GAP ... re-exported: workplan.py was one module)
     APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, _empty, _levels, _Motion,
@@ -405,9 +405,12 @@ def _ring_distances(region: CrossSection, stepover: float) -> list:
 
 
 def _counter_clockwise(strategy, spindle_clockwise: bool) -> bool:
-    """Ring direction: CONTOUR_PARALLEL's own; otherwise climb milling along the pocket wall."""
-    if isinstance(strategy, ContourParallel):
+    """Ring direction: CONTOUR_PARALLEL's (CONTOUR_BIDIRECTIONAL's) own; a CONTOUR_BIDIRECTIONAL's spiral_cutmode;
+    otherwise climb milling along the pocket wall."""
+    if getattr(strategy, "rotation_direction", None) in ("CW", "CCW"):
         return strategy.rotation_direction == "CCW"
+    if getattr(strategy, "spiral_cutmode", None) == "CONVENTIONAL":
+        return not spindle_clockwise
     return spindle_clockwise
 
 
@@ -428,6 +431,10 @@ def _fill(region: CrossSection, strategy, stepover: float, radius: float, pocket
         distances = _ring_distances(region, min(stepover, radius))
         return _rings(region, distances[::-1], ccw, rg.centroid(region))
     angle = _raster_angle(strategy, pocket)
+    if isinstance(strategy, ContourBidirectional) and strategy.contour_first:     # the contour, then the zigzag
+        ring = _rings(region, [0.0], ccw, rg.centroid(region))
+        turn = 180.0 if strategy.stepover_direction == "RIGHT" else 0.0
+        return ring + _split_outside(rg.zigzag(region, stepover, angle + turn), region)
     if isinstance(strategy, Bidirectional):
         turn = 180.0 if strategy.stepover_direction == "RIGHT" else 0.0
         chains = _split_outside(rg.zigzag(region, stepover, angle + turn), region)
@@ -460,6 +467,9 @@ def _face(operation: PlaneMilling, face: PlanarFace, tool: Tool, clearance_z, fe
     else:
         paths = strokes
     motion = _Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
+    if isinstance(strategy, ContourBidirectional):
+        motion.notes.append(f"{'CONTOUR_BIDIRECTIONAL' if strategy.contour_first else 'BIDIRECTIONAL_CONTOUR'}: no "
+                            f"contour pass on planar face #{face.id}, its strokes run out past the face's edges")
     cleared = start
     for z in _levels(start, floor, operation.axial_cutting_depth or tool.flute_length):
         motion.cut(paths, z, cleared)
