@@ -1145,6 +1145,9 @@ MESSAGE_TEMPLATES = {
     '{} #{} is not supported ({})': '{0} #{1} は対応していません（{2}）',
     "{}: no contour pass on planar face #{}, its strokes run out past the face's edges":
         "{0}：平面 #{1} には輪郭パスを入れません。往復の送りが面の縁の外まで抜けます",
+    '#{} GENERAL_PATH: the swept_path has no length': '#{0} GENERAL_PATH：swept_path に長さがありません',
+    '#{} {}: radius must be positive and sweep_angle within 0 to 360 degrees, found radius {} and sweep {}':
+        '#{0} {1}：半径は正、sweep_angle は0〜360度にしてください（半径 {2}、角度 {3}）',
     'design {}: not a readable mesh ({})':
         '設計形状 {0}：読み込めるメッシュではありません（{1}）',
     'line {}: {} is not a word (a letter and a number) in {}':

@@ -307,6 +307,41 @@ class LinearPath:
     distance: float
     its_direction: Vec3
 
+    def local_points(self) -> np.ndarray:
+        """The path's start and end in the feature's coordinates."""
+        origin = (self.placement or IDENTITY).to_parent([(0.0, 0.0)])[0]
+        travel = (self.placement or IDENTITY).direction_to_parent(self.its_direction)
+        return np.array([origin, origin + travel / np.linalg.norm(travel) * self.distance])
+
+
+@dataclass(frozen=True)
+class CircularPath:
+    """PARTIAL_CIRCULAR_PATH(placement, radius, sweep_angle) or COMPLETE_CIRCULAR_PATH(placement, radius):
+    an arc of ``radius`` about the placement's origin, from the point on its x axis, ``sweep_angle``
+    degrees counter-clockwise about its z axis (negative: clockwise); 360 for the complete circle."""
+
+    id: int
+    placement: Placement | None
+    radius: float
+    sweep_angle: float
+
+    def local_points(self) -> np.ndarray:
+        frame = self.placement or IDENTITY
+        m = frame.matrix()
+        return _arc_points(np.array(frame.location, float), m[:, 0], m[:, 1], self.radius, 0.0, self.sweep_angle)
+
+
+@dataclass(frozen=True)
+class GeneralPath:
+    """GENERAL_PATH(placement, swept_path): the slot's centre line is the curve, in the placement."""
+
+    id: int
+    placement: Placement | None
+    swept_path: object
+
+    def local_points(self) -> np.ndarray:
+        return (self.placement or IDENTITY).to_parent(self.swept_path.sample())
+
 
 @dataclass(frozen=True)
 class LinearProfile:
@@ -397,31 +432,72 @@ class Slot(_Feature):
     its_id: str
     feature_placement: Placement
     depth: Plane
-    course_of_travel: LinearPath
+    course_of_travel: Union[LinearPath, CircularPath, GeneralPath]
     width: float
     planar_radius: float | None
     ends: tuple
     orthogonal_radius = None
     bottom_condition = "PLANAR_POCKET_BOTTOM_CONDITION"
 
+    def centreline(self) -> np.ndarray:
+        """The slot's centre line in world XY, (k, 2): a straight line, an arc or a curve."""
+        return self.to_world_xy(self.course_of_travel.local_points())
+
+    @property
+    def closed(self) -> bool:
+        """A slot round a complete circle (or along a closed curve) has no ends."""
+        line = self.centreline()
+        return len(line) > 2 and bool(np.linalg.norm(line[0] - line[-1]) < 1e-6)
+
     def axis(self) -> tuple:
         """(start, end) of the slot's centre line in world XY."""
-        path = self.course_of_travel
-        origin = (path.placement or IDENTITY).to_parent([(0.0, 0.0)])[0]
-        travel = (path.placement or IDENTITY).direction_to_parent(path.its_direction)
-        travel = travel / np.linalg.norm(travel) * path.distance
-        start, end = self.to_world_xy(np.array([origin, origin + travel]))
-        return start, end
+        line = self.centreline()
+        return line[0], line[-1]
 
     @property
     def course(self) -> tuple:
-        """The slot's direction in the feature's coordinates (the default raster direction)."""
-        path = self.course_of_travel
-        return tuple((path.placement or IDENTITY).direction_to_parent(path.its_direction))
+        """The slot's direction at its start in the feature's coordinates (the default raster direction)."""
+        local = self.course_of_travel.local_points()
+        step = next((p - local[0] for p in local[1:] if np.linalg.norm(p - local[0]) > 1e-9), np.array([1.0, 0, 0]))
+        return tuple(step / np.linalg.norm(step))
+
+    def region(self):
+        """The region the slot removes in world XY (a CrossSection): the centre line swept by the
+        width, with round joins; radiused ends round, flat ends square, open ends one width beyond."""
+        if isinstance(self.course_of_travel, LinearPath):
+            return rg.from_loops([self.outline()], f"slot #{self.id} '{self.its_id}'")
+        line = self.centreline()
+        half = self.width / 2
+        if not self.closed:
+            line = line.copy()
+            for index, inward, kind in ((0, 1, self.ends[0]), (-1, -2, self.ends[1])):
+                if kind == "OPEN_SLOT_END_TYPE":
+                    tangent = line[index] - line[inward]
+                    line[index] = line[index] + tangent / np.linalg.norm(tangent) * self.width
+        polygons = []
+        for a, b in zip(line[:-1], line[1:]):
+            along = b - a
+            if np.linalg.norm(along) < 1e-12:
+                continue
+            side = np.array([-along[1], along[0]]) / np.linalg.norm(along) * half
+            polygons.append(np.array([a - side, b - side, b + side, a + side]))
+        joints = line[1:-1] if not self.closed else line[:-1]
+        disks = list(joints)
+        for point, kind in ((line[0], self.ends[0]), (line[-1], self.ends[1])):
+            if kind == "RADIUSED_SLOT_END_TYPE" and not self.closed:
+                disks.append(point)
+        count = rg.circle_segments(half)
+        ring = np.column_stack([np.cos(np.linspace(0, 2 * math.pi, count, endpoint=False)),
+                                np.sin(np.linspace(0, 2 * math.pi, count, endpoint=False))]) * half
+        polygons += [ring + point for point in disks]
+        return rg.union_of_faces([p if rg.signed_area(p) > 0 else p[::-1] for p in polygons],
+                                 f"slot #{self.id} '{self.its_id}'")
 
     def outline(self) -> np.ndarray:
         """The region the slot removes in world XY (k, 2), counter-clockwise; open ends reach one
-        width beyond the part."""
+        width beyond the part.  A curved slot: the outer loop of :meth:`region`."""
+        if not isinstance(self.course_of_travel, LinearPath):
+            return max(rg.loops(self.region()), key=lambda loop: abs(rg.signed_area(loop)))
         start, end = self.axis()
         along = (end - start) / np.linalg.norm(end - start)
         side = np.array([-along[1], along[0]]) * self.width / 2
@@ -1082,12 +1158,9 @@ class _Reader:
     def _slot(self, t, its_id, placement, depth) -> Slot:
         """SLOT(its_id, its_workpiece, its_operations, feature_placement, depth, course_of_travel,
         swept_shape, end_conditions)."""
-        path = self.entity(t, 5, "course_of_travel", ("LINEAR_PATH",), unsupported=True)
-        course = LinearPath(path.id, self.placement(path, 0, "placement", optional=True),
-                            self.length(path, 1, "distance"), self.direction(path, 2, "its_direction"))
-        if course.distance <= 0:
-            raise StepNcError(f"#{path.id} LINEAR_PATH: the slot's distance must be positive, found "
-                              f"{course.distance:g}")
+        path = self.entity(t, 5, "course_of_travel", ("LINEAR_PATH", "PARTIAL_CIRCULAR_PATH",
+                                                      "COMPLETE_CIRCULAR_PATH", "GENERAL_PATH"), unsupported=True)
+        course = self._travel_path(path)
         shape = self.entity(t, 6, "swept_shape", ("SQUARE_U_PROFILE",), unsupported=True)
         if self.value(shape, 0, "placement", optional=True) is not None:
             offset = self.placement(shape, 0, "placement")
@@ -1109,6 +1182,33 @@ class _Reader:
         ends = (ends + ["RADIUSED_SLOT_END_TYPE"] * 2)[:2]   # not given: closed, as the tool's radius leaves it
         floor = max((r for r in radii if r), default=None)
         return Slot(t.id, its_id, placement, depth, course, width, floor, tuple(ends))
+
+    def _travel_path(self, path):
+        """LINEAR_PATH(placement, distance, its_direction), PARTIAL_CIRCULAR_PATH(placement, radius,
+        sweep_angle), COMPLETE_CIRCULAR_PATH(placement, radius) or GENERAL_PATH(placement, swept_path)."""
+        placement = self.placement(path, 0, "placement", optional=True)
+        if placement is not None and not placement.is_vertical:
+            raise UnsupportedEntity(path.type_name, path.id, "a path whose placement tilts the tool axis")
+        if path.type_name == "LINEAR_PATH":
+            course = LinearPath(path.id, placement, self.length(path, 1, "distance"),
+                                self.direction(path, 2, "its_direction"))
+            if course.distance <= 0:
+                raise StepNcError(f"#{path.id} LINEAR_PATH: the slot's distance must be positive, found "
+                                  f"{course.distance:g}")
+            return course
+        if path.type_name == "GENERAL_PATH":
+            course = GeneralPath(path.id, placement, self.curve(path, 1, "swept_path"))
+            if len(course.local_points()) < 2 or np.ptp(course.local_points()[:, :2], axis=0).max() < 1e-6:
+                raise StepNcError(f"#{path.id} GENERAL_PATH: the swept_path has no length")
+            if np.ptp(course.local_points()[:, 2]) > 1e-6:
+                raise UnsupportedEntity(path.type_name, path.id, "a swept_path that is not level")
+            return course
+        radius = self.length(path, 1, "radius")
+        sweep = 360.0 if path.type_name == "COMPLETE_CIRCULAR_PATH" else self.number(path, 2, "sweep_angle")
+        if radius <= 0 or not 0 < abs(sweep) <= 360.0:
+            raise StepNcError(f"#{path.id} {path.type_name}: radius must be positive and sweep_angle within "
+                              f"0 to 360 degrees, found radius {radius:g} and sweep {sweep:g}")
+        return CircularPath(path.id, placement, radius, sweep)
 
     def _profile_placement(self, t, pocket: ClosedPocket) -> ClosedPocket:
         """ISO 14649-10 places a profile in the feature's coordinates ("in reference to the

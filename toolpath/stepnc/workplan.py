@@ -351,7 +351,8 @@ def centre_region(pocket: ClosedPocket, distance: float) -> CrossSection:
     offset once; otherwise the outline shrunk by R grows by R - distance.  One offset instead of
     three keeps the corners free of the slivers that polygonal arcs leave when offset again.
     """
-    region = rg.from_loops([pocket.outline()], f"pocket #{pocket.id} '{pocket.its_id}'")
+    region = pocket.region() if isinstance(pocket, Slot) else \
+        rg.from_loops([pocket.outline()], f"pocket #{pocket.id} '{pocket.its_id}'")
     radius = pocket.orthogonal_radius or 0.0
     if distance >= radius:
         return _offset(region, -distance)
@@ -588,19 +589,20 @@ def _slot_centreline(operation: BottomAndSideMilling, slot: Slot, tool: Tool, cl
         skip(f"the {tool.diameter:g} mm tool (allowance {allowance:g} mm) is wider than the {slot.width:g} mm "
              f"slot #{slot.id}")
         return None
-    start, end = slot.axis()
-    along = (end - start) / np.linalg.norm(end - start)
     reach = {"OPEN_SLOT_END_TYPE": tool.radius + FACING_RUNOUT, "RADIUSED_SLOT_END_TYPE": 0.0,
              "FLAT_SLOT_END_TYPE": -tool.radius - allowance}
-    first, last = start - along * reach[slot.ends[0]], end + along * reach[slot.ends[1]]
-    if (last - first) @ along <= 0:
+    line = slot.centreline()
+    if not slot.closed:
+        line = _stretched(line, reach[slot.ends[0]], reach[slot.ends[1]])
+    if line is None:
         skip(f"slot #{slot.id} is shorter than the {tool.diameter:g} mm tool")
         return None
     motion = _Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
     if "FLAT_SLOT_END_TYPE" in slot.ends:
         motion.notes.append(f"the flat end of slot #{slot.id} keeps the tool's radius R{tool.radius:g} in its corners")
     floor = slot.bottom_z + (operation.allowance_bottom or 0.0)
-    forward, backward = [np.array([first, last])], [np.array([last, first])]
+    forward = [line]
+    backward = forward if slot.closed else [line[::-1]]     # round a closed slot always the same way
     cleared = slot.top_z
     for index, z in enumerate(_levels(slot.top_z, floor, operation.axial_cutting_depth or tool.radius)):
         paths, other = (forward, backward) if index % 2 == 0 else (backward, forward)
@@ -608,6 +610,30 @@ def _slot_centreline(operation: BottomAndSideMilling, slot: Slot, tool: Tool, cl
         motion.levels[(id(other), 0)] = z     # the next layer starts where this one ended, cut to z
         cleared = z
     return motion
+
+
+def _stretched(line, before: float, after: float):
+    """A polyline lengthened (positive) or shortened (negative) at its ends along itself; None when
+    nothing is left."""
+    line = np.asarray(line, float)
+    for _ in range(2):
+        amount = before
+        if amount >= 0:
+            tangent = line[0] - line[1]
+            line = np.vstack([line[0] + tangent / np.linalg.norm(tangent) * amount, line[1:]])
+        else:
+            amount = -amount
+            while len(line) >= 2:
+                step = np.linalg.norm(line[1] - line[0])
+                if step > amount + 1e-9:
+                    line = np.vstack([line[0] + (line[1] - line[0]) * amount / step, line[1:]])
+                    break
+                amount -= step
+                line = line[1:]
+            if len(line) < 2:
+                return None
+        line, before = line[::-1], after
+    return line
 
 
 # Hole bottoms an end mill cuts; a milled through hole goes this far (mm) below the hole bottom unless the
