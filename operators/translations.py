@@ -1146,6 +1146,12 @@ MESSAGE_TEMPLATES = {
     "{}: no contour pass on planar face #{}, its strokes run out past the face's edges":
         "{0}：平面 #{1} には輪郭パスを入れません。往復の送りが面の縁の外まで抜けます",
     '#{} GENERAL_PATH: the swept_path has no length': '#{0} GENERAL_PATH：swept_path に長さがありません',
+    "{}: the holes {} start on its floor (Z {}) and lie in it only with its profile's placement #{} read as "
+    "absolute, not composed with the pocket's #{}; read so (the generator wrote the pocket's placement twice): the "
+    "pocket is cut at {}":
+        "{0}：穴 {1} はポケットの底（Z {2}）から始まり、輪郭の配置 #{3} をポケットの配置 #{4} と合成せず絶対座標として"
+        "読んだときだけポケットの中にあります。そのように読みました（生成元がポケットの配置を二重に書いています）："
+        "ポケットは {5} に加工します",
     '#{} {}: radius must be positive and sweep_angle within 0 to 360 degrees, found radius {} and sweep {}':
         '#{0} {1}：半径は正、sweep_angle は0〜360度にしてください（半径 {2}、角度 {3}）',
     'design {}: not a readable mesh ({})':

@@ -1232,6 +1232,18 @@ class _Reader:
         absolute = replace(pocket, feature_boundary=replace(profile, placement=relative))
         what = f"#{t.id} CLOSED_POCKET '{pocket.its_id}'"
         block = self._feature_block(t)
+        holes = self._floor_holes(pocket)
+        if holes and (block is None or _beyond(absolute.outline(), block) <= POCKET_OFF_STOCK):
+            inside_absolute, inside_composed = (_inside(candidate.outline(), holes) for candidate in (absolute, pocket))
+            if inside_absolute and not inside_composed:
+                self.warnings.append(
+                    f"{what}: the holes {', '.join(f'#{h} at {_xy(c)}' for h, c in holes)} start on its floor "
+                    f"(Z {pocket.bottom_z:g}) and lie in it only with its profile's placement #{own.id} read as "
+                    f"absolute, not composed with the pocket's #{frame.id}; read so (the generator wrote the "
+                    f"pocket's placement twice): the pocket is cut at {_xy(absolute.outline().mean(axis=0))}")
+                return absolute
+            if inside_composed:
+                return pocket
         if block is None:
             if np.allclose(own.location, frame.location, atol=1e-6):
                 self.warnings.append(
@@ -1256,6 +1268,20 @@ class _Reader:
             f"{what}: reaches {composed_off:.3g} mm beyond the stock BLOCK #{block.id} (and "
             f"{absolute_off:.3g} mm with its profile's placement read as absolute); cut as written, check the file")
         return pocket
+
+    def _floor_holes(self, pocket: ClosedPocket) -> list:
+        """[(id, centre xy)] of the file's ROUND_HOLEs that start on the pocket's floor (drilled from it)."""
+        found = []
+        for hole in self.part21.by_type("ROUND_HOLE"):
+            if not isinstance(hole, Instance):
+                continue
+            try:
+                placement = self.placement(hole, 3, "feature_placement")
+            except (StepNcError, UnsupportedEntity):
+                continue
+            if placement.is_vertical and abs(placement.location[2] - pocket.bottom_z) < 1e-6:
+                found.append((hole.id, placement.location[:2]))
+        return found
 
     def _feature_block(self, t):
         """The BLOCK of the feature's workpiece (attribute its_workpiece), or None."""
@@ -1494,6 +1520,12 @@ POCKET_OFF_STOCK = 1e-3
 
 def _xy(point) -> str:
     return f"X{float(point[0]):g} Y{float(point[1]):g}"
+
+
+def _inside(outline, holes) -> bool:
+    """Whether every hole centre lies inside the outline."""
+    region = rg.from_loops([np.asarray(outline, float)[:, :2]])
+    return bool(rg.contains_points(region, np.array([c[:2] for _, c in holes], float)).all())
 
 
 def _beyond(outline, block: Block) -> float:
