@@ -1146,6 +1146,9 @@ MESSAGE_TEMPLATES = {
     "{}: no contour pass on planar face #{}, its strokes run out past the face's edges":
         "{0}：平面 #{1} には輪郭パスを入れません。往復の送りが面の縁の外まで抜けます",
     '#{} GENERAL_PATH: the swept_path has no length': '#{0} GENERAL_PATH：swept_path に長さがありません',
+    'the stock bottom is unknown (no workpiece BLOCK and no through feature): feature depths are not checked '
+    'against the stock':
+        '素材の底が分かりません（ワークの BLOCK も貫通フィーチャもありません）：フィーチャの深さを素材と照合していません',
     "{}: the holes {} start on its floor (Z {}) and lie in it only with its profile's placement #{} read as "
     "absolute, not composed with the pocket's #{}; read so (the generator wrote the pocket's placement twice): the "
     "pocket is cut at {}":
