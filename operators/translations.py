@@ -1118,10 +1118,16 @@ MESSAGE_TEMPLATES = {
     "#{} {} '{}': no MACHINING_TECHNOLOGY_RELATIONSHIP": "#{0} {1} '{2}'：MACHINING_TECHNOLOGY_RELATIONSHIP がありません",
     "#{} MACHINING_TOOL '{}': no 'tool body' RESOURCE_PROPERTY with a MACHINING_TOOL_BODY_REPRESENTATION":
         "#{0} MACHINING_TOOL '{1}'：MACHINING_TOOL_BODY_REPRESENTATION を持つ RESOURCE_PROPERTY 'tool body' がありません",
+    '#{} {}: attribute number {} is missing; the instance has {} attributes':
+        '#{0} {1}：{2} 番目の属性がありません（このインスタンスの属性は {3} 個）',
+    'the AP238 data does not follow the mapping of ISO 10303-238 near #{} ({}: {})':
+        'AP238 のデータが ISO 10303-238 の対応付けに従っていません（#{0} 付近、{1}：{2}）',
     # toolpath/stepnc/freeform.py and model.py: explicit toolpaths and rapid movements
     '#{} COMPOSITE_CURVE: a segment starts away from the end of the one before it':
         '#{0} COMPOSITE_CURVE：セグメントが前のセグメントの終点から離れて始まっています',
     '#{} HELIX: the pitch is zero': '#{0} HELIX：ピッチが0です',
+    '#{} TRIMMED_CURVE: its points lie {} and {} mm from the axis of #{}, whose radius is {} mm':
+        '#{0} TRIMMED_CURVE：点が #{3} の軸から {1} mm と {2} mm の位置にありますが、その半径は {4} mm です',
     '#{} TRIMMED_CURVE: sense_agreement .T. contradicts the pitch of the HELIX #{} (its second point is below its '
     'first)':
         '#{0} TRIMMED_CURVE：sense_agreement .T. が HELIX #{1} のピッチと矛盾します（2点目が1点目より下にあります）',

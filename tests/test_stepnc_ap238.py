@@ -8,6 +8,7 @@ instances with feature components.  Both files must give the same NC, byte for b
 checked against numbers read from the AP238 text with regular expressions.
 """
 import os
+import random
 import re
 
 import numpy as np
@@ -17,9 +18,11 @@ import rs274
 from kezuri import post
 from kezuri.toolpath.program import FEED
 from kezuri.toolpath.simulate import blocking, simulate
+from kezuri.toolpath.errors import InputError
 from kezuri.toolpath.stepnc.model import StepNcError
 from kezuri.toolpath.stepnc.solids import fixture_clearance, stock_box
 from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from test_hostile import time_limit
 
 FIXTURES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fixtures", "iso14649")
 ARM = os.path.join(FIXTURES, "ex1.stp")
@@ -146,3 +149,30 @@ def test_malformed_ap238_files_are_named():
         load_workplan(aim_text().replace("#1206=ACTION_PROPERTY('security plane'", "#1206=ACTION_PROPERTY('x'"))
     with pytest.raises(StepNcError, match=r"#18 POCKET 'POCKET1': no boundary"):
         load_workplan(aim_text().replace("'boundary occurrence'", "'edge occurrence'"))
+
+
+def test_broken_ap238_files_never_give_a_traceback():
+    """Instances dropped, attributes cut off, references unset, numbers turned to strings: a named
+    error or a program, never another exception (seeded, so the same 150 files every run)."""
+    lines = aim_text().splitlines()
+    data = [i for i, line in enumerate(lines) if re.match(r"^#\d+=", line)]
+    rng = random.Random(19)
+    with time_limit(240):
+        for _ in range(150):
+            broken = list(lines)
+            for _ in range(rng.randint(1, 3)):
+                i = rng.choice(data)
+                head, body = broken[i].split("=", 1)
+                kind = rng.randrange(4)
+                if kind == 0:
+                    broken[i] = ""
+                elif kind == 1:
+                    broken[i] = re.sub(r",[^,()]*\);$", ");", broken[i])
+                elif kind == 2 and re.findall(r"#\d+", body):
+                    broken[i] = head + "=" + body.replace(rng.choice(re.findall(r"#\d+", body)), "$", 1)
+                else:
+                    broken[i] = re.sub(r"\(([-\d.]+)\)", "('x')", broken[i], count=1)
+            try:
+                to_program(load_workplan("\n".join(broken)))
+            except InputError:
+                pass

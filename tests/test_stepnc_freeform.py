@@ -214,3 +214,11 @@ def test_what_is_not_converted_is_named():
                for w in first.warnings)
     speed = load_workplan(freeform_file(hole_speed="#26"))
     assert any("workingstep #60" in w and "a speed profile" in w for w in speed.warnings)
+
+
+def test_an_arc_whose_points_are_off_its_circle_is_refused_by_name():
+    from kezuri.toolpath.stepnc.model import StepNcError
+    text = freeform_file().replace("#426= CIRCLE('arc circle',#427,5.000);", "#426= CIRCLE('arc circle',#427,4.000);")
+    with pytest.raises(StepNcError, match=r"#423 TRIMMED_CURVE: its points lie 5 and 5 mm from the axis of #426, "
+                                          r"whose radius is 4 mm"):
+        to_program(load_workplan(text))

@@ -83,6 +83,15 @@ def _params(inst, part: str | None = None) -> list:
     return inst.params
 
 
+def _at(inst, index: int):
+    """Attribute ``index`` of an instance (of its last part for a complex one), named when missing."""
+    params = _params(inst)
+    if index >= len(params):
+        raise StepNcError(f"#{inst.id} {_kind(inst)}: attribute number {index + 1} is missing; the instance has "
+                          f"{len(params)} attributes")
+    return params[index]
+
+
 def _item_name(inst) -> str:
     if isinstance(inst, ComplexInstance):
         for part in ("REPRESENTATION_ITEM", "SHAPE_ASPECT"):
@@ -106,6 +115,7 @@ class _Aim:
         self.out = dict(part21.instances)
         self.next_id = max(part21.instances, default=0) + 1
         self.done: set = set()
+        self.current = 0        # the instance being translated (named when the data is malformed)
 
     # ---- navigation
 
@@ -128,8 +138,8 @@ class _Aim:
         """The related_method of each ``relationship`` (action_method_relationship) from ``inst``."""
         found = []
         for rel in self.referrers(inst, relationship, 2):
-            if name is None or str(rel.params[0]).lower() == name:
-                found.append(self.get(rel.params[3], "related_method", rel))
+            if name is None or str(_at(rel, 0)).lower() == name:
+                found.append(self.get(_at(rel, 3), "related_method", rel))
         return found
 
     def new(self, type_name: str, params: list) -> Ref:
@@ -149,12 +159,12 @@ class _Aim:
         items = {}
         for owner in owners:
             for holder in self.referrers(owner, link, index):
-                rep = self.get(holder.params[-1] if link != "SHAPE_DEFINITION_REPRESENTATION" else holder.params[1],
+                rep = self.get(holder.params[-1] if link != "SHAPE_DEFINITION_REPRESENTATION" else _at(holder, 1),
                                "representation", holder)
-                rep_name = str(holder.params[0]) if link.startswith(("ACTION", "RESOURCE")) else ""
-                for ref in _params(rep)[1] if len(_params(rep)) > 1 and isinstance(_params(rep)[1], list) else []:
+                rep_name = str(_at(holder, 0)) if link.startswith(("ACTION", "RESOURCE")) else ""
+                for ref in _at(rep, 1) if len(_params(rep)) > 1 and isinstance(_at(rep, 1), list) else []:
                     item = self.get(ref, "items", rep)
-                    items.setdefault(str(_params(owner)[0]).lower(), []).append((rep_name.lower(), item, rep))
+                    items.setdefault(str(_at(owner, 0)).lower(), []).append((rep_name.lower(), item, rep))
         return items
 
     def action_properties(self, method) -> dict:
@@ -172,8 +182,8 @@ class _Aim:
             for pd in self.referrers(definition, kind, 2):
                 for link in ("SHAPE_DEFINITION_REPRESENTATION", "PROPERTY_DEFINITION_REPRESENTATION"):
                     for holder in self.referrers(pd, link, 0):
-                        rep = self.get(holder.params[1], "used_representation", holder)
-                        for ref in _params(rep)[1] if isinstance(_params(rep)[1], list) else []:
+                        rep = self.get(_at(holder, 1), "used_representation", holder)
+                        for ref in _at(rep, 1) if isinstance(_at(rep, 1), list) else []:
                             found.append((rep, self.get(ref, "items", rep), pd))
         return found
 
@@ -211,7 +221,7 @@ class _Aim:
             element = self.part21.instances.get(getattr(ref, "id", None))
             if element is None or len(_params(element)) < 2:
                 continue
-            base, exponent = _params(element)[0], float(_params(element)[1])
+            base, exponent = _at(element, 0), float(_at(element, 1))
             base_inst = self.part21.instances.get(getattr(base, "id", None))
             if base_inst is None:
                 continue
@@ -268,29 +278,37 @@ def _placeholder_name(words: str) -> str:
 
 def to_arm(part21: Part21File) -> Part21File:
     """The ISO 14649 ARM rendition of an AP238 AIM file (see the module's description)."""
-    return _Translator(part21).run()
+    translator = _Translator(part21)
+    try:
+        return translator.run()
+    except (IndexError, KeyError, TypeError, AttributeError, ValueError, ZeroDivisionError) as error:
+        if isinstance(error, StepNcError):
+            raise
+        raise StepNcError(f"the AP238 data does not follow the mapping of ISO 10303-238 near #{translator.current} "
+                          f"({type(error).__name__}: {error})") from None
 
 
 class _Translator(_Aim):
 
     def run(self) -> Part21File:
         projects = self.part21.by_type("MACHINING_PROJECT")
+        self.current = projects[0].id if projects else 0
         if len(projects) != 1:
             raise StepNcError(f"an AP238 file needs exactly one MACHINING_PROJECT, this one has {len(projects)}")
         project = projects[0]
         definition = self._definition_of(project)
         workplan = None
         for association in self.referrers(definition, "PROCESS_PRODUCT_ASSOCIATION", 2):
-            process = self.get(association.params[3], "process", association)
-            if _params(process)[0] == "machining":
-                workplan = self.get(_params(process)[2], "chosen_method", process)
+            process = self.get(_at(association, 3), "process", association)
+            if _at(process, 0) == "machining":
+                workplan = self.get(_at(process, 2), "chosen_method", process)
         if workplan is None or "MACHINING_WORKPLAN" not in workplan.type_names:
             raise StepNcError(f"#{project.id} MACHINING_PROJECT: no main MACHINING_WORKPLAN (a PRODUCT_DEFINITION_PROCESS "
                               f"'machining' of its PRODUCT_DEFINITION #{definition.id})")
-        pieces = [self.get(rel.params[4], "related_product_definition", rel)
+        pieces = [self.get(_at(rel, 4), "related_product_definition", rel)
                   for rel in self.referrers(definition, "MACHINING_PROJECT_WORKPIECE_RELATIONSHIP", 3)]
         main = self.workplan(workplan, ())
-        self.put(project.id, "PROJECT", [str(project.params[0]), main, [self.workpiece(p) for p in pieces],
+        self.put(project.id, "PROJECT", [str(_at(project, 0)), main, [self.workpiece(p) for p in pieces],
                                          UNSET, UNSET, UNSET])
         return Part21File(self.part21.header, self.out, self.part21.data_sections)
 
@@ -308,31 +326,31 @@ class _Translator(_Aim):
             return Ref(definition.id)
         tolerance, clamps = UNSET, []
         for rep, item, pd in self.shape_items(definition):
-            name = str(_params(pd)[0]).lower()
+            name = str(_at(pd, 0)).lower()
             if name == "global tolerance":
                 tolerance = self.length(item)
             elif name == "clamping position" and "CARTESIAN_POINT" in item.type_names:
                 clamps.append(Ref(item.id))
         block = UNSET
         for usage in self.referrers(definition, "MAKE_FROM_USAGE_OPTION", 3):
-            stock = self.get(usage.params[4], "related_product_definition", usage)
+            stock = self.get(_at(usage, 4), "related_product_definition", usage)
             for rep, item, pd in self.shape_items(stock):
                 if "BLOCK_SHAPE_REPRESENTATION" in rep.type_names and block is UNSET:
                     block = self.block(rep)
-        return self.put(definition.id, "WORKPIECE", [str(_params(definition)[0]), UNSET,
+        return self.put(definition.id, "WORKPIECE", [str(_at(definition, 0)), UNSET,
                                                      UNSET if tolerance is None else tolerance, UNSET, UNSET, block,
                                                      clamps])
 
     def block(self, rep) -> Ref:
         values = {"orientation": UNSET}
-        for ref in _params(rep)[1]:
+        for ref in _at(rep, 1):
             item = self.get(ref, "items", rep)
             name = _item_name(item).lower()
             values[name] = Ref(item.id) if "AXIS2_PLACEMENT_3D" in item.type_names else self.length(item)
         missing = [n for n in ("orientation", "length", "width", "height") if values.get(n) in (None, UNSET)]
         if missing:
             raise StepNcError(f"#{rep.id} BLOCK_SHAPE_REPRESENTATION: no {', '.join(missing)} item")
-        return self.put(rep.id, "BLOCK", [_item_name(rep) if isinstance(_params(rep)[0], str) else "",
+        return self.put(rep.id, "BLOCK", [_item_name(rep) if isinstance(_at(rep, 0), str) else "",
                                           values["orientation"], values["length"], values["width"], values["height"]])
 
     # ---- executables
@@ -344,63 +362,65 @@ class _Translator(_Aim):
                        key=lambda rel: (_position(rel), rel.id))
         elements = []
         for rel in steps:
-            element = self.get(rel.params[3], "related_method", rel)
+            element = self.get(_at(rel, 3), "related_method", rel)
             if "MACHINING_WORKPLAN" in element.type_names:
                 elements.append(self.workplan(element, seen + (workplan.id,)))
             elif "MACHINING_WORKINGSTEP" in element.type_names:
                 elements.append(self.workingstep(element))
             else:
                 elements.append(Ref(element.id))     # the ISO 14649 reader names it and leaves it out
-        return self.put(workplan.id, "WORKPLAN", [str(_params(workplan)[0]), elements, UNSET,
+        return self.put(workplan.id, "WORKPLAN", [str(_at(workplan, 0)), elements, UNSET,
                                                   self.setup(workplan), UNSET])
 
     def setup(self, workplan):
         for process in self.referrers(workplan, "PRODUCT_DEFINITION_PROCESS", 2):
-            if _params(process)[0] != "setup":
+            if _at(process, 0) != "setup":
                 continue
             for association in self.referrers(process, "PROCESS_PRODUCT_ASSOCIATION", 3):
-                definition = self.get(association.params[2], "defined_product", association)
+                definition = self.get(_at(association, 2), "defined_product", association)
                 plane, origin = UNSET, UNSET
                 for rep, item, pd in self.shape_items(definition):
-                    if item.type_names[0] == "PLANE" and str(_params(pd)[0]).lower() == "security plane":
+                    if item.type_names[0] == "PLANE" and str(_at(pd, 0)).lower() == "security plane":
                         plane = Ref(item.id)
                     elif "AXIS2_PLACEMENT_3D" in item.type_names:
                         origin = Ref(item.id)
                 if plane is UNSET:
                     return UNSET
-                formation = self.get(_params(definition)[2], "formation", definition)
-                name = _params(self.get(_params(formation)[2], "of_product", formation))[0]
+                formation = self.get(_at(definition, 2), "formation", definition)
+                name = _params(self.get(_at(formation, 2), "of_product", formation))[0]
                 return self.new("SETUP", [str(name), origin, plane, []])
         return UNSET
 
     def workingstep(self, step) -> Ref:
+        self.current = step.id
         if step.id in self.done:
             return Ref(step.id)
         properties = self.action_properties(step)
         plane = next((Ref(item.id) for _, item, _ in properties.get("security plane", [])
                       if item.type_names[0] in ("PLANE", "ELEMENTARY_SURFACE")), None)
         if plane is None:
-            raise StepNcError(f"#{step.id} MACHINING_WORKINGSTEP '{_params(step)[0]}': no 'security plane' "
+            raise StepNcError(f"#{step.id} MACHINING_WORKINGSTEP '{_at(step, 0)}': no 'security plane' "
                               "ACTION_PROPERTY with a PLANE")
         operations = self.related(step, "MACHINING_OPERATION_RELATIONSHIP")
         if len(operations) != 1:
-            raise StepNcError(f"#{step.id} MACHINING_WORKINGSTEP '{_params(step)[0]}': needs one "
+            raise StepNcError(f"#{step.id} MACHINING_WORKINGSTEP '{_at(step, 0)}': needs one "
                               f"MACHINING_OPERATION_RELATIONSHIP, found {len(operations)}")
         feature = self.feature_of(step)
-        return self.put(step.id, "MACHINING_WORKINGSTEP", [str(_params(step)[0]), plane, feature,
+        return self.put(step.id, "MACHINING_WORKINGSTEP", [str(_at(step, 0)), plane, feature,
                                                            self.operation(operations[0]), UNSET])
 
     def feature_of(self, step) -> Ref:
         for process in self.related(step, "MACHINING_FEATURE_RELATIONSHIP"):
             for prop in self.referrers(process, "PROPERTY_PROCESS", 2):
                 for association in self.referrers(prop, "PROCESS_PROPERTY_ASSOCIATION", 2):
-                    return self.feature(self.get(association.params[3], "property_or_shape", association))
-        raise StepNcError(f"#{step.id} MACHINING_WORKINGSTEP '{_params(step)[0]}': no feature (a "
+                    return self.feature(self.get(_at(association, 3), "property_or_shape", association))
+        raise StepNcError(f"#{step.id} MACHINING_WORKINGSTEP '{_at(step, 0)}': no feature (a "
                           "MACHINING_FEATURE_RELATIONSHIP to a MACHINING_FEATURE_PROCESS with a PROPERTY_PROCESS)")
 
     # ---- features and their components
 
     def feature(self, feature) -> Ref:
+        self.current = feature.id
         if feature.id in self.done:
             return Ref(feature.id)
         from .ap238_features import feature_to_arm
@@ -409,6 +429,7 @@ class _Translator(_Aim):
     # ---- operations, tools, technology, strategies
 
     def operation(self, op) -> Ref:
+        self.current = op.id
         if op.id in self.done:
             return Ref(op.id)
         from .ap238_process import operation_to_arm
@@ -416,5 +437,5 @@ class _Translator(_Aim):
 
 
 def _position(rel) -> float:
-    value = rel.params[4] if len(rel.params) > 4 else None
+    value = _at(rel, 4) if len(rel.params) > 4 else None
     return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else 0.0

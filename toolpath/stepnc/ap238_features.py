@@ -13,7 +13,7 @@ sits at the feature's zero point), so it is never composed twice.
 """
 from __future__ import annotations
 
-from .ap238 import HOLE_BOTTOMS, POCKET_BOTTOMS, SLOT_ENDS, _item_name, _kind, _params, _placeholder_name
+from .ap238 import HOLE_BOTTOMS, POCKET_BOTTOMS, SLOT_ENDS, _at, _item_name, _kind, _placeholder_name
 from .model import StepNcError
 from .part21 import UNSET, Ref
 
@@ -38,7 +38,7 @@ def feature_to_arm(aim, feature) -> Ref:
         if "AXIS2_PLACEMENT_3D" in item.type_names and name in ("orientation", "") and placement is None:
             placement = item
         elif item.type_names[0] in ("PLANE", "ELEMENTARY_SURFACE") and \
-                str(_params(rep)[0]).lower() == "maximum feature limit":
+                str(_at(rep, 0)).lower() == "maximum feature limit":
             depth = item
         elif "MEASURE_WITH_UNIT" in item.type_names or item.type_names[0] == "MEASURE_REPRESENTATION_ITEM":
             measures[name] = aim.length(item)
@@ -76,7 +76,7 @@ def feature_to_arm(aim, feature) -> Ref:
         ends = []
         for role in ("end condition", "course of travel start", "course of travel end"):
             for end in parts.get(role, []):
-                ends.append(aim.put(end.id, SLOT_ENDS.get(str(_params(end)[1]).lower(), "SLOT_END_TYPE"), []))
+                ends.append(aim.put(end.id, SLOT_ENDS.get(str(_at(end, 1)).lower(), "SLOT_END_TYPE"), []))
         return aim.put(feature.id, "SLOT", head + [path, swept, ends])
     # POCKET: closed when its boundary is a closed profile
     boundary = _required(parts, "boundary", feature, its_id)
@@ -92,7 +92,7 @@ def feature_to_arm(aim, feature) -> Ref:
 def _workpiece(aim, feature, aspect):
     shape = aim.part21.instances.get(getattr(aspect[2], "id", None))
     if shape is not None and "PRODUCT_DEFINITION_SHAPE" in shape.type_names:
-        definition = aim.part21.instances.get(getattr(_params(shape)[2], "id", None))
+        definition = aim.part21.instances.get(getattr(_at(shape, 2), "id", None))
         if definition is not None and "PRODUCT_DEFINITION" in definition.type_names:
             return aim.workpiece(definition)
     return UNSET
@@ -103,11 +103,11 @@ def _components(aim, shapes) -> dict:
     found = {}
     for shape in shapes:
         for occurrence in aim.referrers(shape, "SHAPE_ASPECT", 2):
-            role = str(occurrence.params[1]).lower()
+            role = str(_at(occurrence, 1)).lower()
             role = role[:-len(" occurrence")] if role.endswith(" occurrence") else role
             for link in ("SHAPE_DEFINING_RELATIONSHIP", "FEATURE_COMPONENT_RELATIONSHIP"):
                 for rel in aim.referrers(occurrence, link, 3):
-                    found.setdefault(role, []).append(aim.get(rel.params[2], "relating_shape_aspect", rel))
+                    found.setdefault(role, []).append(aim.get(_at(rel, 2), "relating_shape_aspect", rel))
     return found
 
 
@@ -149,8 +149,8 @@ def _own_placement(aim, component, feature_placement):
 
 
 def _linear_path(aim, path, feature_placement) -> Ref:
-    if str(_params(path)[1]).lower() != "linear":
-        return aim.put(path.id, _placeholder_name(f"{_params(path)[1]} path"), [])
+    if str(_at(path, 1)).lower() != "linear":
+        return aim.put(path.id, _placeholder_name(f"{_at(path, 1)} path"), [])
     direction = next((Ref(item.id) for rep, item, _ in aim.shape_items(path) if "DIRECTION" in item.type_names), None)
     values = _lengths(aim, path)
     if direction is None or values.get("distance") is None:
@@ -163,7 +163,7 @@ def _bottom(aim, parts, names) -> Ref:
     bottom = parts.get("bottom condition", [None])[0]
     if bottom is None:
         return UNSET
-    words = str(_params(bottom)[1]).lower()
+    words = str(_at(bottom, 1)).lower()
     return aim.put(bottom.id, names.get(words, _placeholder_name(f"{words} {bottom.type_names[0]}")), [])
 
 

@@ -2,8 +2,8 @@
 instances (see :mod:`.ap238`).  Property names are those of ISO 10303-238 clause 5."""
 from __future__ import annotations
 
-from .ap238 import (APPROACHES, MILLING, OPERATIONS, STRATEGIES, TOOL_BODIES, _enum, _item_name, _kind, _measure,
-                    _params, _placeholder_name, _text)
+from .ap238 import (APPROACHES, MILLING, OPERATIONS, STRATEGIES, TOOL_BODIES, _at, _enum, _item_name, _kind,
+                    _measure, _placeholder_name, _text)
 from .model import StepNcError
 from .part21 import UNSET, Ref
 
@@ -36,7 +36,7 @@ def _value(aim, properties: dict, name: str, kind: str = "length", item_name: st
 def operation_to_arm(aim, op) -> Ref:
     kind = op.type_names[0] if len(op.type_names) == 1 else next(
         (t for t in op.type_names if t.endswith("_OPERATION")), op.type_names[0])
-    description = str(_params(op)[1]).strip().lower()
+    description = str(_at(op, 1)).strip().lower()
     arm = OPERATIONS.get((kind, description))
     if arm is None:
         # an operation the ISO 14649 reader does not machine: named after its kind and description
@@ -45,21 +45,21 @@ def operation_to_arm(aim, op) -> Ref:
         return aim.put(op.id, name, [])
     properties = aim.action_properties(op)
     tools = [t for t in aim.part21.by_type("MACHINING_TOOL")
-             if isinstance(_params(t)[2], list) and Ref(op.id) in _params(t)[2]]
+             if isinstance(_at(t, 2), list) and Ref(op.id) in _at(t, 2)]
     if len(tools) != 1:
-        raise StepNcError(f"#{op.id} {_kind(op)} '{_params(op)[0]}': needs one MACHINING_TOOL whose usage lists it, "
+        raise StepNcError(f"#{op.id} {_kind(op)} '{_at(op, 0)}': needs one MACHINING_TOOL whose usage lists it, "
                           f"found {len(tools)}")
     technology = aim.related(op, "MACHINING_TECHNOLOGY_RELATIONSHIP")
     if not technology:
-        raise StepNcError(f"#{op.id} {_kind(op)} '{_params(op)[0]}': no MACHINING_TECHNOLOGY_RELATIONSHIP")
+        raise StepNcError(f"#{op.id} {_kind(op)} '{_at(op, 0)}': no MACHINING_TECHNOLOGY_RELATIONSHIP")
     functions = aim.related(op, "MACHINING_FUNCTIONS_RELATIONSHIP")
-    common = [UNSET, UNSET, str(_params(op)[0]), _value(aim, properties, "retract plane"), UNSET,
+    common = [UNSET, UNSET, str(_at(op, 0)), _value(aim, properties, "retract plane"), UNSET,
               tool(aim, tools[0]), milling_technology(aim, technology[0]),
               machine_functions(aim, functions[0]) if functions else UNSET,
               _value(aim, properties, "overcut length")]
     strategies = {}
     for rel in aim.referrers(op, "MACHINING_STRATEGY_RELATIONSHIP", 2):
-        strategies[str(rel.params[0]).lower()] = aim.get(rel.params[3], "related_method", rel)
+        strategies[str(_at(rel, 0)).lower()] = aim.get(_at(rel, 3), "related_method", rel)
     if arm in MILLING:
         params = common + [approach(aim, strategies.get("approach")), approach(aim, strategies.get("retract")),
                            strategy(aim, strategies.get("machining")),
@@ -85,11 +85,11 @@ def tool(aim, machining_tool) -> Ref:
         return Ref(machining_tool.id)
     bodies = [(link, item, rep) for link, item, rep in aim.resource_properties(machining_tool).get("tool body", [])]
     if not bodies:
-        raise StepNcError(f"#{machining_tool.id} MACHINING_TOOL '{_params(machining_tool)[0]}': no 'tool body' "
+        raise StepNcError(f"#{machining_tool.id} MACHINING_TOOL '{_at(machining_tool, 0)}': no 'tool body' "
                           "RESOURCE_PROPERTY with a MACHINING_TOOL_BODY_REPRESENTATION")
     rep = bodies[0][2]
     items = {_item_name(item).lower(): item for _, item, _ in bodies}
-    body_name = str(_params(rep)[0]).strip().lower() or str(_params(machining_tool)[1]).strip().lower()
+    body_name = str(_at(rep, 0)).strip().lower() or str(_at(machining_tool, 1)).strip().lower()
 
     def length(name):
         value, unit = _measure(items[name]) if name in items else (None, None)
@@ -114,7 +114,7 @@ def tool(aim, machining_tool) -> Ref:
     body_type = TOOL_BODIES.get(body_name, _placeholder_name(body_name))
     body = aim.put(rep.id, body_type, [dimension, UNSET if teeth is UNSET else int(round(teeth)), UNSET, UNSET,
                                        UNSET, number("taper angle")])
-    return aim.put(machining_tool.id, "MILLING_CUTTING_TOOL", [str(_params(machining_tool)[0]), body, [],
+    return aim.put(machining_tool.id, "MILLING_CUTTING_TOOL", [str(_at(machining_tool, 0)), body, [],
                                                                 length("overall assembly length"), UNSET, UNSET])
 
 
@@ -142,7 +142,7 @@ def strategy(aim, method):
         return UNSET
     if method.id in aim.done:
         return Ref(method.id)
-    description = str(_params(method)[1]).strip().lower()
+    description = str(_at(method, 1)).strip().lower()
     arm = STRATEGIES.get(description)
     if arm is None:
         return aim.put(method.id, _placeholder_name(description), [])
@@ -171,7 +171,7 @@ def approach(aim, method):
         return UNSET
     if method.id in aim.done:
         return Ref(method.id)
-    description = str(_params(method)[1]).strip().lower()
+    description = str(_at(method, 1)).strip().lower()
     arm = APPROACHES.get(description)
     if arm is None:
         return aim.put(method.id, _placeholder_name(description), [])

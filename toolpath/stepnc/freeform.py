@@ -88,6 +88,10 @@ def _turning(curve: TrimmedCurve, basis) -> tuple:
         if abs(sweep) < 1e-9:
             sweep = 2 * math.pi if curve.sense_agreement else -2 * math.pi
     radius = np.linalg.norm((start - centre) - ((start - centre) @ axis) * axis)
+    reach = np.linalg.norm((end - centre) - ((end - centre) @ axis) * axis)
+    if basis.radius <= 1e-6 or max(abs(radius - basis.radius), abs(reach - basis.radius)) > JOIN_TOLERANCE:
+        raise StepNcError(f"#{curve.id} TRIMMED_CURVE: its points lie {radius:.4g} and {reach:.4g} mm from the axis "
+                          f"of #{basis.id}, whose radius is {basis.radius:g} mm")
     count = max(1, math.ceil(abs(math.degrees(sweep)) / MAX_ARC_SWEEP - 1e-9))
     counter_clockwise = (sweep > 0) == (axis[2] > 0)
     moves = []
