@@ -1098,6 +1098,12 @@ MESSAGE_TEMPLATES = {
     "#{} {}: no '{}' item in its representation": "#{0} {1}：表現に '{2}' の項目がありません",
     "#{} PATH_FEATURE_COMPONENT: a linear path needs a DIRECTION and a 'distance'":
         "#{0} PATH_FEATURE_COMPONENT：直線の経路には DIRECTION と 'distance' が必要です",
+    "#{} PATH_FEATURE_COMPONENT: a circular path needs a 'radius'":
+        "#{0} PATH_FEATURE_COMPONENT：円弧の経路には 'radius' が必要です",
+    "#{} PATH_FEATURE_COMPONENT: a partial circular path needs a 'sweep angle'":
+        "#{0} PATH_FEATURE_COMPONENT：部分円弧の経路には 'sweep angle' が必要です",
+    "#{} PATH_FEATURE_COMPONENT: a complex path needs a curve ('sweep path')":
+        "#{0} PATH_FEATURE_COMPONENT：一般の経路には曲線（'sweep path'）が必要です",
     "#{} RECTANGULAR_CLOSED_PROFILE: needs 'width' and 'length' items":
         "#{0} RECTANGULAR_CLOSED_PROFILE：'width' と 'length' の項目が必要です",
     '#{} CLOSED_PATH_PROFILE: no curve in its PATH_SHAPE_REPRESENTATION':

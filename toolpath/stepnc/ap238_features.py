@@ -13,7 +13,7 @@ sits at the feature's zero point), so it is never composed twice.
 """
 from __future__ import annotations
 
-from .ap238 import HOLE_BOTTOMS, POCKET_BOTTOMS, SLOT_ENDS, _at, _item_name, _kind, _placeholder_name
+from .ap238 import HOLE_BOTTOMS, POCKET_BOTTOMS, SLOT_ENDS, _at, _item_name, _kind, _measure, _placeholder_name
 from .model import StepNcError
 from .part21 import UNSET, Ref
 
@@ -73,10 +73,8 @@ def feature_to_arm(aim, feature) -> Ref:
             swept = aim.put(shape.id, "SQUARE_U_PROFILE", [UNSET, values.get("width", UNSET),
                                                            values.get("first radius", UNSET), UNSET,
                                                            values.get("second radius", UNSET), UNSET])
-        ends = []
-        for role in ("end condition", "course of travel start", "course of travel end"):
-            for end in parts.get(role, []):
-                ends.append(aim.put(end.id, SLOT_ENDS.get(str(_at(end, 1)).lower(), "SLOT_END_TYPE"), []))
+        ends = [aim.put(end.id, SLOT_ENDS.get(str(_at(end, 1)).lower(), _placeholder_name(f"{_at(end, 1)} slot end")),
+                        []) for end in _slot_ends(aim, shapes)]
         return aim.put(feature.id, "SLOT", head + [path, swept, ends])
     # POCKET: closed when its boundary is a closed profile
     boundary = _required(parts, "boundary", feature, its_id)
@@ -109,6 +107,19 @@ def _components(aim, shapes) -> dict:
                 for rel in aim.referrers(occurrence, link, 3):
                     found.setdefault(role, []).append(aim.get(_at(rel, 2), "relating_shape_aspect", rel))
     return found
+
+
+def _slot_ends(aim, shapes) -> list:
+    """The SLOT_ENDs of a slot, the 'course of travel start' one first."""
+    found = []
+    for shape in shapes:
+        for occurrence in aim.referrers(shape, "SHAPE_ASPECT", 2):
+            if str(_at(occurrence, 1)).lower() != "end condition occurrence":
+                continue
+            for rel in aim.referrers(occurrence, "FEATURE_COMPONENT_RELATIONSHIP", 3):
+                order = {"course of travel start": 0, "course of travel end": 1}.get(str(_at(rel, 0)).lower(), 2)
+                found.append((order, rel.id, aim.get(_at(rel, 2), "relating_shape_aspect", rel)))
+    return [end for _, _, end in sorted(found, key=lambda item: item[:2])]
 
 
 def _required(parts, role, feature, its_id):
@@ -149,14 +160,47 @@ def _own_placement(aim, component, feature_placement):
 
 
 def _linear_path(aim, path, feature_placement) -> Ref:
-    if str(_at(path, 1)).lower() != "linear":
+    """A PATH_FEATURE_COMPONENT: 'linear' (a 'distance' and a DIRECTION), 'partial circular' ('radius',
+    'sweep angle'), 'complete circular' ('radius') or 'complex' (a curve in a PATH_SHAPE_REPRESENTATION
+    'sweep path'), each placed by its own 'orientation' if it has one."""
+    kind = str(_at(path, 1)).lower()
+    own = _own_placement(aim, path, feature_placement)
+    if kind in ("partial circular", "complete circular"):
+        values = _lengths(aim, path)
+        if values.get("radius") is None:
+            raise StepNcError(f"#{path.id} PATH_FEATURE_COMPONENT: a circular path needs a 'radius'")
+        if kind == "complete circular":
+            return aim.put(path.id, "COMPLETE_CIRCULAR_PATH", [own, values["radius"]])
+        sweep = next((_angle(aim, item) for _, item, _ in aim.shape_items(path)
+                      if _item_name(item).lower() == "sweep angle"), None)
+        if sweep is None:
+            raise StepNcError(f"#{path.id} PATH_FEATURE_COMPONENT: a partial circular path needs a 'sweep angle'")
+        return aim.put(path.id, "PARTIAL_CIRCULAR_PATH", [own, values["radius"], sweep])
+    if kind == "complex":
+        curves = [item for rep, item, _ in aim.shape_items(path)
+                  if item.type_names[0] in ("POLYLINE", "TRIMMED_CURVE", "COMPOSITE_CURVE", "CIRCLE",
+                                            "B_SPLINE_CURVE_WITH_KNOTS")]
+        if not curves:
+            raise StepNcError(f"#{path.id} PATH_FEATURE_COMPONENT: a complex path needs a curve ('sweep path')")
+        return aim.put(path.id, "GENERAL_PATH", [own, Ref(curves[0].id)])
+    if kind != "linear":
         return aim.put(path.id, _placeholder_name(f"{_at(path, 1)} path"), [])
     direction = next((Ref(item.id) for rep, item, _ in aim.shape_items(path) if "DIRECTION" in item.type_names), None)
     values = _lengths(aim, path)
     if direction is None or values.get("distance") is None:
         raise StepNcError(f"#{path.id} PATH_FEATURE_COMPONENT: a linear path needs a DIRECTION and a 'distance'")
-    return aim.put(path.id, "LINEAR_PATH", [_own_placement(aim, path, feature_placement), values["distance"],
-                                            direction])
+    return aim.put(path.id, "LINEAR_PATH", [own, values["distance"], direction])
+
+
+def _angle(aim, item) -> float | None:
+    """Degrees of a plane angle measure (its unit degrees or radians)."""
+    value, unit = _measure(item)
+    if value is None:
+        return None
+    target = aim.part21.instances.get(getattr(unit, "id", None))
+    if target is not None and "SI_UNIT" in target.type_names:
+        return value * 180.0 / 3.141592653589793
+    return value
 
 
 def _bottom(aim, parts, names) -> Ref:
