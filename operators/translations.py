@@ -1132,6 +1132,15 @@ MESSAGE_TEMPLATES = {
     '#{} COMPOSITE_CURVE: a segment starts away from the end of the one before it':
         '#{0} COMPOSITE_CURVE：セグメントが前のセグメントの終点から離れて始まっています',
     '#{} HELIX: the pitch is zero': '#{0} HELIX：ピッチが0です',
+    '#{} TRIMMED_CURVE: {} turns about #{}, more than {}': '#{0} TRIMMED_CURVE：#{2} の周りを {1} 回転します（上限 {3}）',
+    '#{} B_SPLINE_CURVE_WITH_KNOTS: its control polygon is {} mm long, more than {} mm':
+        '#{0} B_SPLINE_CURVE_WITH_KNOTS：制御多角形の長さが {1} mm あり、{2} mm を超えています',
+    '#{} B_SPLINE_CURVE_WITH_KNOTS: degree, knot_multiplicities and knots must be a degree of 1 to 25 and two '
+    'lists of the same length (multiplicities 1 to degree + 1)':
+        '#{0} B_SPLINE_CURVE_WITH_KNOTS：degree は1〜25、knot_multiplicities と knots は同じ長さのリスト'
+        '（多重度は1〜次数+1）にしてください',
+    '#{} B_SPLINE_CURVE_WITH_KNOTS: {} control points of degree {} need {} non-decreasing knots, found {}':
+        '#{0} B_SPLINE_CURVE_WITH_KNOTS：次数 {2} の制御点 {1} 個には単調非減少のノットが {3} 個必要ですが {4} 個です',
     '#{} TRIMMED_CURVE: its points lie {} and {} mm from the axis of #{}, whose radius is {} mm':
         '#{0} TRIMMED_CURVE：点が #{3} の軸から {1} mm と {2} mm の位置にありますが、その半径は {4} mm です',
     '#{} TRIMMED_CURVE: sense_agreement .T. contradicts the pitch of the HELIX #{} (its second point is below its '

@@ -52,7 +52,7 @@ def test_the_new_warnings_and_notes_have_japanese_templates():
     from kezuri.operators import translations
 
     texts = [every_feature_unsupported(), freeform_file(pocket_list="#501", hole_speed="#26"),
-             freeform_file(before="#66,"), slot_file(general_curve="#87", path3_placement="#44"), pocket_file(),
+             freeform_file(before="#66,"), slot_file(path3_placement="#44"), pocket_file(),
              aim_text().replace("('','contour parallel','','');\n#5101", "('','contour spiral','','');\n#5101")]
     messages = []
     for text in texts:

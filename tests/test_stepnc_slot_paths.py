@@ -193,10 +193,35 @@ def test_rs274_accepts_the_curved_slots(slots):
     assert points[np.array(kinds) == "feed"][:, 2].min() == pytest.approx(-5.0, abs=1e-3)
 
 
+def test_a_b_spline_centre_line_is_followed():
+    """The L's corner points as the control points of a quadratic B-spline (knots 0,0,0,1,1,1): a Bezier
+    curve, B(t) = (1-t)^2 P0 + 2t(1-t) P1 + t^2 P2, evaluated here in closed form."""
+    loaded = load_workplan(slot_file(general_curve="#87"))
+    assert [s.id for s in loaded.workingsteps] == [60, 61, 62, 63] and loaded.warnings == ()
+    p0, p1, p2 = l_slot_line()
+    t = np.linspace(0, 1, 20001)[:, None]
+    bezier = (1 - t) ** 2 * p0 + 2 * t * (1 - t) * p1 + t ** 2 * p2
+    sampled = loaded.workingsteps[2].its_feature.centreline()
+    assert np.allclose(sampled[[0, -1]], [p0, p2])
+    gap = np.min(np.linalg.norm(sampled[:, None, :] - bezier[None, :, :], axis=2), axis=1)
+    assert gap.max() < 0.002                                  # on the curve (the closed form sampled 0.002 mm apart)
+    finish = to_program(loaded).operations[3]
+    floor = finish.xyz[finish.kind == FEED]
+    floor = floor[floor[:, 1] >= 0]
+    rim = np.column_stack([np.cos(np.linspace(0, 2 * np.pi, 72)), np.sin(np.linspace(0, 2 * np.pi, 72))]) * 5.0
+    edge = (floor[:, None, :2] + rim[None, :, :]).reshape(-1, 2)
+    assert within(edge, bezier[::20], measure(78) / 2 + 0.01).all()
+
+
 def test_paths_not_machined_are_named():
-    spline = load_workplan(slot_file(general_curve="#87"))
+    rational = slot_file(general_curve="#88").replace(
+        "#90= PLUS_MINUS_VALUE", "#88=(BOUNDED_CURVE()B_SPLINE_CURVE(2,(#84,#85,#86),.UNSPECIFIED.,.F.,.F.)"
+        "B_SPLINE_CURVE_WITH_KNOTS((3,3),(0.,1.),.UNSPECIFIED.)CURVE()GEOMETRIC_REPRESENTATION_ITEM()"
+        "RATIONAL_B_SPLINE_CURVE((1.,0.7,1.))REPRESENTATION_ITEM('L ARC'));\n#90= PLUS_MINUS_VALUE")
+    spline = load_workplan(rational)
     assert [s.id for s in spline.workingsteps] == [60, 61]
-    assert any("'WS ROUGH L SLOT' skipped: B_SPLINE_CURVE_WITH_KNOTS #87 is not supported" in w
+    assert any("'WS ROUGH L SLOT' skipped: (BOUNDED_CURVE B_SPLINE_CURVE B_SPLINE_CURVE_WITH_KNOTS CURVE "
+               "GEOMETRIC_REPRESENTATION_ITEM RATIONAL_B_SPLINE_CURVE REPRESENTATION_ITEM) #88 is not supported" in w
                for w in spline.warnings)
     tilted = load_workplan(slot_file(path3_placement="#44"))
     assert any("'WS RING GROOVE' skipped: COMPLETE_CIRCULAR_PATH #43 is not supported" in w for w in tilted.warnings)

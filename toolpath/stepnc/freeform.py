@@ -20,19 +20,21 @@ import math
 import numpy as np
 
 from ..program import ARC_CCW, ARC_CW, FEED, RAPID
-from .model import CompositeCurve, Helix, Line, Polyline, StepNcError, TrimmedCurve, UnsupportedEntity
+from .model import BSplineCurve, CompositeCurve, Helix, Line, Polyline, StepNcError, TrimmedCurve, UnsupportedEntity
 from .motion import _Motion
 from .technology import feed_and_speed
 
 # A helix or circle is cut in arcs of at most this sweep (degrees); every post writes them as G2/G3.
 MAX_ARC_SWEEP = 180.0
+# A helix of more turns than this is refused (a mistyped pitch, not hours of circles).
+MAX_TURNS = 1000
 # The trajectories of one operation must join within this distance (mm).
 JOIN_TOLERANCE = 1e-3
 
 
 def curve_moves(curve) -> tuple:
     """(start point, [(kind, end, centre)]) of a curve, in its own coordinates; kind FEED or an arc."""
-    if isinstance(curve, Polyline):
+    if isinstance(curve, (Polyline, BSplineCurve)):
         points = curve.sample()
         return points[0], [(FEED, p, None) for p in points[1:]]
     if isinstance(curve, CompositeCurve):
@@ -92,6 +94,9 @@ def _turning(curve: TrimmedCurve, basis) -> tuple:
     if basis.radius <= 1e-6 or max(abs(radius - basis.radius), abs(reach - basis.radius)) > JOIN_TOLERANCE:
         raise StepNcError(f"#{curve.id} TRIMMED_CURVE: its points lie {radius:.4g} and {reach:.4g} mm from the axis "
                           f"of #{basis.id}, whose radius is {basis.radius:g} mm")
+    if abs(sweep) > MAX_TURNS * 2 * math.pi:
+        raise StepNcError(f"#{curve.id} TRIMMED_CURVE: {abs(sweep) / (2 * math.pi):.6g} turns about #{basis.id}, "
+                          f"more than {MAX_TURNS}")
     count = max(1, math.ceil(abs(math.degrees(sweep)) / MAX_ARC_SWEEP - 1e-9))
     counter_clockwise = (sweep > 0) == (axis[2] > 0)
     moves = []

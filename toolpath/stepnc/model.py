@@ -259,7 +259,46 @@ class CompositeCurve:
         return np.vstack(pieces)
 
 
-Curve = Union[Polyline, Circle, TrimmedCurve, CompositeCurve]
+# A B-spline curve is sampled at most this far (mm) apart along its control polygon: chord error within
+# 0.001 mm where the curve bends no tighter than a 5 mm radius.
+BSPLINE_STEP = 0.2
+
+
+@dataclass(frozen=True)
+class BSplineCurve:
+    """B_SPLINE_CURVE_WITH_KNOTS (non-rational): ``knots`` expanded by their multiplicities."""
+
+    id: int
+    name: str
+    degree: int
+    control_points: tuple
+    knots: tuple
+
+    def at(self, u: float) -> np.ndarray:
+        """The point at parameter u (de Boor)."""
+        p, knots, points = self.degree, np.array(self.knots), np.array(self.control_points, float)
+        k = int(np.clip(np.searchsorted(knots, u, side="right") - 1, p, len(points) - 1))
+        d = [points[j + k - p].copy() for j in range(p + 1)]
+        for r in range(1, p + 1):
+            for j in range(p, r - 1, -1):
+                left, right = knots[j + k - p], knots[j + 1 + k - r]
+                alpha = 0.0 if right == left else (u - left) / (right - left)
+                d[j] = (1 - alpha) * d[j - 1] + alpha * d[j]
+        return d[p]
+
+    def sample(self) -> np.ndarray:
+        knots, points = np.array(self.knots), np.array(self.control_points, float)
+        start, end = knots[self.degree], knots[len(points)]
+        spans = [(a, b) for a, b in zip(knots[self.degree:len(points)], knots[self.degree + 1:len(points) + 1])
+                 if b > a]
+        length = float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
+        per_span = max(16, math.ceil(length / BSPLINE_STEP / max(1, len(spans))))
+        params = [start] + [a + (b - a) * i / per_span for a, b in spans for i in range(1, per_span + 1)]
+        params[-1] = end
+        return np.array([self.at(u) for u in params])
+
+
+Curve = Union[Polyline, Circle, TrimmedCurve, CompositeCurve, BSplineCurve]
 
 
 # --------------------------------------------------------------------------- profiles and features
@@ -1032,8 +1071,8 @@ class _Reader:
         return self.memoised(target, convert)
 
     def curve(self, inst, index, name):
-        target = self.entity(inst, index, name, ("POLYLINE", "TRIMMED_CURVE", "COMPOSITE_CURVE", "CIRCLE"),
-                             unsupported=True)
+        target = self.entity(inst, index, name, ("POLYLINE", "TRIMMED_CURVE", "COMPOSITE_CURVE", "CIRCLE",
+                                                 "B_SPLINE_CURVE_WITH_KNOTS"), unsupported=True)
         return self.memoised(target, self._curve)
 
     def _curve(self, t):
@@ -1042,6 +1081,8 @@ class _Reader:
             return Polyline(t.id, self.text(t, 0, "name"), tuple(self.coordinates(p) for p in points))
         if t.type_name == "CIRCLE":
             return self._circle(t)
+        if t.type_name == "B_SPLINE_CURVE_WITH_KNOTS":
+            return self._bspline(t)
         if t.type_name == "TRIMMED_CURVE":
             basis = self.entity(t, 1, "basis_curve", ("LINE", "CIRCLE", "HELIX"), unsupported=True)
             basis = self.memoised(basis, {"LINE": self._line, "CIRCLE": self._circle,
@@ -1065,6 +1106,32 @@ class _Reader:
         vector = self.entity(t, 2, "dir", ("VECTOR",))
         return Line(t.id, self.text(t, 0, "name"), self.point(t, 1, "pnt"),
                     self.direction(vector, 1, "orientation"), self.number(vector, 2, "magnitude"))
+
+    def _bspline(self, t) -> BSplineCurve:
+        """B_SPLINE_CURVE_WITH_KNOTS(name, degree, control_points_list, curve_form, closed_curve,
+        self_intersect, knot_multiplicities, knots, knot_spec)."""
+        degree = self.value(t, 1, "degree")
+        points = tuple(self.coordinates(p) for p in self.entities(t, 2, "control_points_list", ("CARTESIAN_POINT",)))
+        multiplicities, values = self.value(t, 6, "knot_multiplicities"), self.value(t, 7, "knots")
+        if (not isinstance(degree, int) or isinstance(degree, bool) or not 1 <= degree <= 25
+                or not isinstance(multiplicities, list) or not isinstance(values, list)
+                or len(multiplicities) != len(values)
+                or not all(isinstance(m, int) and not isinstance(m, bool) and 1 <= m <= degree + 1
+                           for m in multiplicities)
+                or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                           for v in values)):
+            raise StepNcError(f"#{t.id} B_SPLINE_CURVE_WITH_KNOTS: degree, knot_multiplicities and knots must be a "
+                              "degree of 1 to 25 and two lists of the same length (multiplicities 1 to degree + 1)")
+        knots = tuple(float(v) for v, m in zip(values, multiplicities) for _ in range(m))
+        if (len(knots) != len(points) + degree + 1 or any(b < a for a, b in zip(knots, knots[1:]))
+                or len(points) > 100000 or not knots[len(points)] > knots[degree]):
+            raise StepNcError(f"#{t.id} B_SPLINE_CURVE_WITH_KNOTS: {len(points)} control points of degree {degree} "
+                              f"need {len(points) + degree + 1} non-decreasing knots, found {len(knots)}")
+        polygon = float(np.linalg.norm(np.diff(np.array(points, float), axis=0), axis=1).sum())
+        if not polygon <= MAX_LENGTH:
+            raise StepNcError(f"#{t.id} B_SPLINE_CURVE_WITH_KNOTS: its control polygon is {polygon:g} mm long, more "
+                              f"than {MAX_LENGTH:g} mm")
+        return BSplineCurve(t.id, self.text(t, 0, "name"), degree, points, knots)
 
     def _helix(self, t) -> Helix:
         return Helix(t.id, self.text(t, 0, "name"), self.placement(t, 1, "position"), self.length(t, 2, "radius"),
