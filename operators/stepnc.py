@@ -168,7 +168,7 @@ class KEZURI_OT_import_stepnc(bpy.types.Operator, ImportHelper):
     bl_options = {"REGISTER", "UNDO"}
 
     filename_ext = ".stp"
-    filter_glob: StringProperty(default="*.stp;*.step;*.p21;*.STP;*.P21", options={"HIDDEN"})
+    filter_glob: StringProperty(default="*.stp;*.step;*.p21;*.stpnc;*.STP;*.P21;*.STPNC", options={"HIDDEN"})
 
     def execute(self, context):
         def work():

@@ -1103,6 +1103,113 @@ MESSAGE_TEMPLATES = {
     '#{} SQUARE_U_PROFILE: width must be positive, found {}': '#{0} SQUARE_U_PROFILE：幅は正の値にしてください（値 {1}）',
     "the flat end of slot #{} keeps the tool's radius R{} in its corners":
         "溝 #{0} の平らな端の隅には工具の半径 R{1} が残ります",
+    # toolpath/stepnc/ap238*.py: the AP238 integrated form
+    '#{} {}: {} must refer to an instance, found {}': '#{0} {1}：{2} はインスタンスを参照してください（値 {3}）',
+    '#{} {}: the value must be a number, found {}': '#{0} {1}：値は数値にしてください（値 {2}）',
+    'an AP238 file needs exactly one MACHINING_PROJECT, this one has {}':
+        'AP238 ファイルには MACHINING_PROJECT がちょうど1つ必要ですが、このファイルには {0} 個あります',
+    "#{} MACHINING_PROJECT: no main MACHINING_WORKPLAN (a PRODUCT_DEFINITION_PROCESS 'machining' of its "
+    "PRODUCT_DEFINITION #{})":
+        "#{0} MACHINING_PROJECT：メインの MACHINING_WORKPLAN がありません（PRODUCT_DEFINITION #{1} の "
+        "PRODUCT_DEFINITION_PROCESS 'machining'）",
+    '#{} {}: no PRODUCT_DEFINITION_FORMATION and PRODUCT_DEFINITION refer to it':
+        '#{0} {1}：これを参照する PRODUCT_DEFINITION_FORMATION と PRODUCT_DEFINITION がありません',
+    '#{} BLOCK_SHAPE_REPRESENTATION: no {} item': '#{0} BLOCK_SHAPE_REPRESENTATION：{1} の項目がありません',
+    '#{} MACHINING_WORKPLAN contains itself (through #{})': '#{0} MACHINING_WORKPLAN が（#{1} を通じて）自身を含んでいます',
+    "#{} MACHINING_WORKINGSTEP '{}': no 'security plane' ACTION_PROPERTY with a PLANE":
+        "#{0} MACHINING_WORKINGSTEP '{1}'：PLANE を持つ ACTION_PROPERTY 'security plane'（安全平面）がありません",
+    "#{} MACHINING_WORKINGSTEP '{}': needs one MACHINING_OPERATION_RELATIONSHIP, found {}":
+        "#{0} MACHINING_WORKINGSTEP '{1}'：MACHINING_OPERATION_RELATIONSHIP が1つ必要ですが {2} 個あります",
+    "#{} MACHINING_WORKINGSTEP '{}': no feature (a MACHINING_FEATURE_RELATIONSHIP to a MACHINING_FEATURE_PROCESS "
+    "with a PROPERTY_PROCESS)":
+        "#{0} MACHINING_WORKINGSTEP '{1}'：フィーチャがありません（PROPERTY_PROCESS を持つ MACHINING_FEATURE_PROCESS "
+        "への MACHINING_FEATURE_RELATIONSHIP）",
+    "#{} {} '{}': no {} (a feature component through a SHAPE_ASPECT '{} occurrence')":
+        "#{0} {1} '{2}'：{3} がありません（SHAPE_ASPECT '{4} occurrence' を通じたフィーチャ要素）",
+    '#{} {}: no length item in its representation': '#{0} {1}：表現に長さの項目がありません',
+    "#{} {}: no '{}' item in its representation": "#{0} {1}：表現に '{2}' の項目がありません",
+    "#{} PATH_FEATURE_COMPONENT: a linear path needs a DIRECTION and a 'distance'":
+        "#{0} PATH_FEATURE_COMPONENT：直線の経路には DIRECTION と 'distance' が必要です",
+    "#{} PATH_FEATURE_COMPONENT: a circular path needs a 'radius'":
+        "#{0} PATH_FEATURE_COMPONENT：円弧の経路には 'radius' が必要です",
+    "#{} PATH_FEATURE_COMPONENT: a partial circular path needs a 'sweep angle'":
+        "#{0} PATH_FEATURE_COMPONENT：部分円弧の経路には 'sweep angle' が必要です",
+    "#{} PATH_FEATURE_COMPONENT: a complex path needs a curve ('sweep path')":
+        "#{0} PATH_FEATURE_COMPONENT：一般の経路には曲線（'sweep path'）が必要です",
+    "#{} RECTANGULAR_CLOSED_PROFILE: needs 'width' and 'length' items":
+        "#{0} RECTANGULAR_CLOSED_PROFILE：'width' と 'length' の項目が必要です",
+    '#{} CLOSED_PATH_PROFILE: no curve in its PATH_SHAPE_REPRESENTATION':
+        '#{0} CLOSED_PATH_PROFILE：PATH_SHAPE_REPRESENTATION に曲線がありません',
+    "#{} {} '{}': no PRODUCT_DEFINITION_SHAPE refers to it": "#{0} {1} '{2}'：これを参照する PRODUCT_DEFINITION_SHAPE がありません",
+    "#{} {} '{}': no placement (an AXIS2_PLACEMENT_3D 'orientation' in the SHAPE_REPRESENTATION_WITH_PARAMETERS of "
+    "its PRODUCT_DEFINITION_SHAPE)":
+        "#{0} {1} '{2}'：配置がありません（PRODUCT_DEFINITION_SHAPE の SHAPE_REPRESENTATION_WITH_PARAMETERS にある "
+        "AXIS2_PLACEMENT_3D 'orientation'）",
+    "#{} {} '{}': no depth (a PLANE in its SHAPE_REPRESENTATION 'maximum feature limit')":
+        "#{0} {1} '{2}'：深さがありません（SHAPE_REPRESENTATION 'maximum feature limit' の PLANE）",
+    "#{} POCKET '{}': no bottom condition (a POCKET_BOTTOM through a 'bottom condition occurrence')":
+        "#{0} POCKET '{1}'：底の条件がありません（'bottom condition occurrence' を通じた POCKET_BOTTOM）",
+    "#{} MACHINING_TOOL_BODY_REPRESENTATION '{}': no 'effective cutting diameter' item":
+        "#{0} MACHINING_TOOL_BODY_REPRESENTATION '{1}'：'effective cutting diameter'（有効切削径）の項目がありません",
+    "#{} {} '{}': needs one MACHINING_TOOL whose usage lists it, found {}":
+        "#{0} {1} '{2}'：usage にこれを挙げる MACHINING_TOOL が1つ必要ですが {3} 個あります",
+    "#{} {} '{}': no MACHINING_TECHNOLOGY_RELATIONSHIP": "#{0} {1} '{2}'：MACHINING_TECHNOLOGY_RELATIONSHIP がありません",
+    "#{} MACHINING_TOOL '{}': no 'tool body' RESOURCE_PROPERTY with a MACHINING_TOOL_BODY_REPRESENTATION":
+        "#{0} MACHINING_TOOL '{1}'：MACHINING_TOOL_BODY_REPRESENTATION を持つ RESOURCE_PROPERTY 'tool body' がありません",
+    '#{} {}: attribute number {} is missing; the instance has {} attributes':
+        '#{0} {1}：{2} 番目の属性がありません（このインスタンスの属性は {3} 個）',
+    'the AP238 data does not follow the mapping of ISO 10303-238 near #{} ({}: {})':
+        'AP238 のデータが ISO 10303-238 の対応付けに従っていません（#{0} 付近、{1}：{2}）',
+    # toolpath/stepnc/freeform.py and model.py: explicit toolpaths and rapid movements
+    '#{} COMPOSITE_CURVE: a segment starts away from the end of the one before it':
+        '#{0} COMPOSITE_CURVE：セグメントが前のセグメントの終点から離れて始まっています',
+    '#{} HELIX: the pitch is zero': '#{0} HELIX：ピッチが0です',
+    '#{} TRIMMED_CURVE: {} turns about #{}, more than {}': '#{0} TRIMMED_CURVE：#{2} の周りを {1} 回転します（上限 {3}）',
+    '#{} B_SPLINE_CURVE_WITH_KNOTS: its control polygon is {} mm long, more than {} mm':
+        '#{0} B_SPLINE_CURVE_WITH_KNOTS：制御多角形の長さが {1} mm あり、{2} mm を超えています',
+    '#{} B_SPLINE_CURVE_WITH_KNOTS: degree, knot_multiplicities and knots must be a degree of 1 to 25 and two '
+    'lists of the same length (multiplicities 1 to degree + 1)':
+        '#{0} B_SPLINE_CURVE_WITH_KNOTS：degree は1〜25、knot_multiplicities と knots は同じ長さのリスト'
+        '（多重度は1〜次数+1）にしてください',
+    '#{} B_SPLINE_CURVE_WITH_KNOTS: {} control points of degree {} need {} non-decreasing knots, found {}':
+        '#{0} B_SPLINE_CURVE_WITH_KNOTS：次数 {2} の制御点 {1} 個には単調非減少のノットが {3} 個必要ですが {4} 個です',
+    '#{} TRIMMED_CURVE: its points lie {} and {} mm from the axis of #{}, whose radius is {} mm':
+        '#{0} TRIMMED_CURVE：点が #{3} の軸から {1} mm と {2} mm の位置にありますが、その半径は {4} mm です',
+    '#{} TRIMMED_CURVE: sense_agreement .T. contradicts the pitch of the HELIX #{} (its second point is below its '
+    'first)':
+        '#{0} TRIMMED_CURVE：sense_agreement .T. が HELIX #{1} のピッチと矛盾します（2点目が1点目より下にあります）',
+    '#{} TRIMMED_CURVE: sense_agreement .F. contradicts the pitch of the HELIX #{} (its second point is above its '
+    'first)':
+        '#{0} TRIMMED_CURVE：sense_agreement .F. が HELIX #{1} のピッチと矛盾します（2点目が1点目より上にあります）',
+    '#{} TRIMMED_CURVE: its points are not on the HELIX #{} (angle and height disagree)':
+        '#{0} TRIMMED_CURVE：点が HELIX #{1} 上にありません（角度と高さが合いません）',
+    "rapid movement #{} '{}' skipped: {}": "早送り移動 #{0} '{1}' を飛ばしました：{2}",
+    "rapid movement #{} '{}' skipped: no workingstep before it in its workplan, so no tool to move":
+        "早送り移動 #{0} '{1}' を飛ばしました：ワークプランで前にワーキングステップがなく、動かす工具がありません",
+    "rapid movement #{} '{}' after workingstep #{} left out: the path planned for the workingstep makes its own "
+    "links":
+        "ワーキングステップ #{2} の後の早送り移動 #{0} '{1}' は使いません：そのワーキングステップ用に計画した経路が"
+        "自前でつなぎます",
+    'trajectory #{} starts {} mm from the end of the one before it: joined by a straight feed move':
+        '軌跡 #{0} は前の軌跡の終点から {1} mm 離れて始まります：直線の切削送りでつなぎました',
+    "trajectory #{} asks for S{}; the operation's S{} is written (one spindle speed per operation)":
+        "軌跡 #{0} は S{1} を指定していますが、オペレーションの S{2} を書き出します（オペレーションごとに主軸回転数は1つ）",
+    '{} #{} is not supported': '{0} #{1} は対応していません',
+    '{} #{} is not supported ({})': '{0} #{1} は対応していません（{2}）',
+    "{}: no contour pass on planar face #{}, its strokes run out past the face's edges":
+        "{0}：平面 #{1} には輪郭パスを入れません。往復の送りが面の縁の外まで抜けます",
+    '#{} GENERAL_PATH: the swept_path has no length': '#{0} GENERAL_PATH：swept_path に長さがありません',
+    'the stock bottom is unknown (no workpiece BLOCK and no through feature): feature depths are not checked '
+    'against the stock':
+        '素材の底が分かりません（ワークの BLOCK も貫通フィーチャもありません）：フィーチャの深さを素材と照合していません',
+    "{}: the holes {} start on its floor (Z {}) and lie in it only with its profile's placement #{} read as "
+    "absolute, not composed with the pocket's #{}; read so (the generator wrote the pocket's placement twice): the "
+    "pocket is cut at {}":
+        "{0}：穴 {1} はポケットの底（Z {2}）から始まり、輪郭の配置 #{3} をポケットの配置 #{4} と合成せず絶対座標として"
+        "読んだときだけポケットの中にあります。そのように読みました（生成元がポケットの配置を二重に書いています）："
+        "ポケットは {5} に加工します",
+    '#{} {}: radius must be positive and sweep_angle within 0 to 360 degrees, found radius {} and sweep {}':
+        '#{0} {1}：半径は正、sweep_angle は0〜360度にしてください（半径 {2}、角度 {3}）',
     'design {}: not a readable mesh ({})':
         '設計形状 {0}：読み込めるメッシュではありません（{1}）',
     'line {}: {} is not a word (a letter and a number) in {}':

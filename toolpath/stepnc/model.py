@@ -186,12 +186,28 @@ class Circle:
 
 
 @dataclass(frozen=True)
+class Helix:
+    """HELIX(name, position, radius, pitch) as NIST's ISO 14649 toolkit writes it (ex1E): turns about
+    the z axis of ``position``, rising ``pitch`` per counter-clockwise turn.  Only trimmed by points."""
+
+    id: int
+    name: str
+    position: Placement
+    radius: float
+    pitch: float
+
+    def frame(self):
+        m = self.position.matrix()
+        return np.array(self.position.location, float), m[:, 0], m[:, 1]
+
+
+@dataclass(frozen=True)
 class TrimmedCurve:
     """TRIMMED_CURVE of a LINE or CIRCLE.  A trim is a point (x, y, z) or a parameter."""
 
     id: int
     name: str
-    basis_curve: Union[Line, Circle]
+    basis_curve: Union[Line, Circle, Helix]
     trim_1: Union[Vec3, float]
     trim_2: Union[Vec3, float]
     sense_agreement: bool
@@ -243,7 +259,46 @@ class CompositeCurve:
         return np.vstack(pieces)
 
 
-Curve = Union[Polyline, Circle, TrimmedCurve, CompositeCurve]
+# A B-spline curve is sampled at most this far (mm) apart along its control polygon: chord error within
+# 0.001 mm where the curve bends no tighter than a 5 mm radius.
+BSPLINE_STEP = 0.2
+
+
+@dataclass(frozen=True)
+class BSplineCurve:
+    """B_SPLINE_CURVE_WITH_KNOTS (non-rational): ``knots`` expanded by their multiplicities."""
+
+    id: int
+    name: str
+    degree: int
+    control_points: tuple
+    knots: tuple
+
+    def at(self, u: float) -> np.ndarray:
+        """The point at parameter u (de Boor)."""
+        p, knots, points = self.degree, np.array(self.knots), np.array(self.control_points, float)
+        k = int(np.clip(np.searchsorted(knots, u, side="right") - 1, p, len(points) - 1))
+        d = [points[j + k - p].copy() for j in range(p + 1)]
+        for r in range(1, p + 1):
+            for j in range(p, r - 1, -1):
+                left, right = knots[j + k - p], knots[j + 1 + k - r]
+                alpha = 0.0 if right == left else (u - left) / (right - left)
+                d[j] = (1 - alpha) * d[j - 1] + alpha * d[j]
+        return d[p]
+
+    def sample(self) -> np.ndarray:
+        knots, points = np.array(self.knots), np.array(self.control_points, float)
+        start, end = knots[self.degree], knots[len(points)]
+        spans = [(a, b) for a, b in zip(knots[self.degree:len(points)], knots[self.degree + 1:len(points) + 1])
+                 if b > a]
+        length = float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
+        per_span = max(16, math.ceil(length / BSPLINE_STEP / max(1, len(spans))))
+        params = [start] + [a + (b - a) * i / per_span for a, b in spans for i in range(1, per_span + 1)]
+        params[-1] = end
+        return np.array([self.at(u) for u in params])
+
+
+Curve = Union[Polyline, Circle, TrimmedCurve, CompositeCurve, BSplineCurve]
 
 
 # --------------------------------------------------------------------------- profiles and features
@@ -290,6 +345,41 @@ class LinearPath:
     placement: Placement | None
     distance: float
     its_direction: Vec3
+
+    def local_points(self) -> np.ndarray:
+        """The path's start and end in the feature's coordinates."""
+        origin = (self.placement or IDENTITY).to_parent([(0.0, 0.0)])[0]
+        travel = (self.placement or IDENTITY).direction_to_parent(self.its_direction)
+        return np.array([origin, origin + travel / np.linalg.norm(travel) * self.distance])
+
+
+@dataclass(frozen=True)
+class CircularPath:
+    """PARTIAL_CIRCULAR_PATH(placement, radius, sweep_angle) or COMPLETE_CIRCULAR_PATH(placement, radius):
+    an arc of ``radius`` about the placement's origin, from the point on its x axis, ``sweep_angle``
+    degrees counter-clockwise about its z axis (negative: clockwise); 360 for the complete circle."""
+
+    id: int
+    placement: Placement | None
+    radius: float
+    sweep_angle: float
+
+    def local_points(self) -> np.ndarray:
+        frame = self.placement or IDENTITY
+        m = frame.matrix()
+        return _arc_points(np.array(frame.location, float), m[:, 0], m[:, 1], self.radius, 0.0, self.sweep_angle)
+
+
+@dataclass(frozen=True)
+class GeneralPath:
+    """GENERAL_PATH(placement, swept_path): the slot's centre line is the curve, in the placement."""
+
+    id: int
+    placement: Placement | None
+    swept_path: object
+
+    def local_points(self) -> np.ndarray:
+        return (self.placement or IDENTITY).to_parent(self.swept_path.sample())
 
 
 @dataclass(frozen=True)
@@ -381,31 +471,72 @@ class Slot(_Feature):
     its_id: str
     feature_placement: Placement
     depth: Plane
-    course_of_travel: LinearPath
+    course_of_travel: Union[LinearPath, CircularPath, GeneralPath]
     width: float
     planar_radius: float | None
     ends: tuple
     orthogonal_radius = None
     bottom_condition = "PLANAR_POCKET_BOTTOM_CONDITION"
 
+    def centreline(self) -> np.ndarray:
+        """The slot's centre line in world XY, (k, 2): a straight line, an arc or a curve."""
+        return self.to_world_xy(self.course_of_travel.local_points())
+
+    @property
+    def closed(self) -> bool:
+        """A slot round a complete circle (or along a closed curve) has no ends."""
+        line = self.centreline()
+        return len(line) > 2 and bool(np.linalg.norm(line[0] - line[-1]) < 1e-6)
+
     def axis(self) -> tuple:
         """(start, end) of the slot's centre line in world XY."""
-        path = self.course_of_travel
-        origin = (path.placement or IDENTITY).to_parent([(0.0, 0.0)])[0]
-        travel = (path.placement or IDENTITY).direction_to_parent(path.its_direction)
-        travel = travel / np.linalg.norm(travel) * path.distance
-        start, end = self.to_world_xy(np.array([origin, origin + travel]))
-        return start, end
+        line = self.centreline()
+        return line[0], line[-1]
 
     @property
     def course(self) -> tuple:
-        """The slot's direction in the feature's coordinates (the default raster direction)."""
-        path = self.course_of_travel
-        return tuple((path.placement or IDENTITY).direction_to_parent(path.its_direction))
+        """The slot's direction at its start in the feature's coordinates (the default raster direction)."""
+        local = self.course_of_travel.local_points()
+        step = next((p - local[0] for p in local[1:] if np.linalg.norm(p - local[0]) > 1e-9), np.array([1.0, 0, 0]))
+        return tuple(step / np.linalg.norm(step))
+
+    def region(self):
+        """The region the slot removes in world XY (a CrossSection): the centre line swept by the
+        width, with round joins; radiused ends round, flat ends square, open ends one width beyond."""
+        if isinstance(self.course_of_travel, LinearPath):
+            return rg.from_loops([self.outline()], f"slot #{self.id} '{self.its_id}'")
+        line = self.centreline()
+        half = self.width / 2
+        if not self.closed:
+            line = line.copy()
+            for index, inward, kind in ((0, 1, self.ends[0]), (-1, -2, self.ends[1])):
+                if kind == "OPEN_SLOT_END_TYPE":
+                    tangent = line[index] - line[inward]
+                    line[index] = line[index] + tangent / np.linalg.norm(tangent) * self.width
+        polygons = []
+        for a, b in zip(line[:-1], line[1:]):
+            along = b - a
+            if np.linalg.norm(along) < 1e-12:
+                continue
+            side = np.array([-along[1], along[0]]) / np.linalg.norm(along) * half
+            polygons.append(np.array([a - side, b - side, b + side, a + side]))
+        joints = line[1:-1] if not self.closed else line[:-1]
+        disks = list(joints)
+        for point, kind in ((line[0], self.ends[0]), (line[-1], self.ends[1])):
+            if kind == "RADIUSED_SLOT_END_TYPE" and not self.closed:
+                disks.append(point)
+        count = rg.circle_segments(half)
+        ring = np.column_stack([np.cos(np.linspace(0, 2 * math.pi, count, endpoint=False)),
+                                np.sin(np.linspace(0, 2 * math.pi, count, endpoint=False))]) * half
+        polygons += [ring + point for point in disks]
+        return rg.union_of_faces([p if rg.signed_area(p) > 0 else p[::-1] for p in polygons],
+                                 f"slot #{self.id} '{self.its_id}'")
 
     def outline(self) -> np.ndarray:
         """The region the slot removes in world XY (k, 2), counter-clockwise; open ends reach one
-        width beyond the part."""
+        width beyond the part.  A curved slot: the outer loop of :meth:`region`."""
+        if not isinstance(self.course_of_travel, LinearPath):
+            return max(rg.loops(self.region()), key=lambda loop: abs(rg.signed_area(loop)))
         start, end = self.axis()
         along = (end - start) / np.linalg.norm(end - start)
         side = np.array([-along[1], along[0]]) * self.width / 2
@@ -527,7 +658,19 @@ class ContourParallel:
     cutmode: str | None
 
 
-MillingStrategy = Union[Bidirectional, Unidirectional, ContourParallel]
+@dataclass(frozen=True)
+class ContourBidirectional(Bidirectional):
+    """CONTOUR_BIDIRECTIONAL (``contour_first``) or BIDIRECTIONAL_CONTOUR: zigzag strokes along
+    ``feed_direction`` stepping to ``stepover_direction``, and one contour pass along the boundary,
+    before the strokes or after them, turning ``rotation_direction`` (CW / CCW) or, when that is not
+    given, climb or conventional as ``spiral_cutmode`` says."""
+
+    rotation_direction: str | None = None
+    spiral_cutmode: str | None = None
+    contour_first: bool = True
+
+
+MillingStrategy = Union[Bidirectional, Unidirectional, ContourParallel, ContourBidirectional]
 
 
 @dataclass(frozen=True)
@@ -633,7 +776,50 @@ class DrillingOperation:
     overcut_length: float | None = None    # how far a through hole is drilled past its bottom
 
 
-MachiningOperation = Union[PlaneMilling, BottomAndSideMilling, DrillingOperation]
+@dataclass(frozen=True)
+class Trajectory:
+    """CUTTER_LOCATION_TRAJECTORY(its_priority, its_type, its_speed, its_technology, its_machine_functions,
+    its_direction, basiccurve, its_toolaxis, surface_normal): the tool centre point along ``basiccurve``
+    (reversed when its_direction is .F.), at rapid when its_speed is .RAPID., else at its technology's
+    feed (the operation's when it has none)."""
+
+    id: int
+    rapid: bool
+    its_technology: MillingTechnology | None
+    forward: bool
+    basiccurve: object
+
+
+@dataclass(frozen=True)
+class FreeformOperation:
+    """FREEFORM_OPERATION with explicit toolpaths (a TOOLPATH_LIST of trajectories), given in the
+    coordinates of the workingstep's feature."""
+
+    id: int
+    type_name: str
+    its_id: str
+    retract_plane: float | None
+    its_tool: CuttingTool
+    its_technology: MillingTechnology
+    its_machine_functions: MachineFunctions | None
+    its_toolpath: tuple
+    finishing = False
+    its_machining_strategy = None
+    allowance_bottom = None
+    allowance_side = None
+
+
+@dataclass(frozen=True)
+class RapidMovement:
+    """RAPID_MOVEMENT(its_id, its_secplane, its_toolpath, its_tool_direction): rapids along its
+    trajectories, in the workpiece's coordinates, with the tool of the workingstep before it."""
+
+    id: int
+    its_id: str
+    its_toolpath: tuple
+
+
+MachiningOperation = Union[PlaneMilling, BottomAndSideMilling, DrillingOperation, FreeformOperation]
 
 
 # --------------------------------------------------------------------------- executables and project
@@ -648,6 +834,7 @@ class Workingstep:
     its_secplane: Plane
     its_feature: Feature
     its_operation: MachiningOperation
+    rapids_after: tuple = ()     # RAPID_MOVEMENTs that follow it in the workplan
 
 
 @dataclass(frozen=True)
@@ -884,8 +1071,8 @@ class _Reader:
         return self.memoised(target, convert)
 
     def curve(self, inst, index, name):
-        target = self.entity(inst, index, name, ("POLYLINE", "TRIMMED_CURVE", "COMPOSITE_CURVE", "CIRCLE"),
-                             unsupported=True)
+        target = self.entity(inst, index, name, ("POLYLINE", "TRIMMED_CURVE", "COMPOSITE_CURVE", "CIRCLE",
+                                                 "B_SPLINE_CURVE_WITH_KNOTS"), unsupported=True)
         return self.memoised(target, self._curve)
 
     def _curve(self, t):
@@ -894,9 +1081,12 @@ class _Reader:
             return Polyline(t.id, self.text(t, 0, "name"), tuple(self.coordinates(p) for p in points))
         if t.type_name == "CIRCLE":
             return self._circle(t)
+        if t.type_name == "B_SPLINE_CURVE_WITH_KNOTS":
+            return self._bspline(t)
         if t.type_name == "TRIMMED_CURVE":
-            basis = self.entity(t, 1, "basis_curve", ("LINE", "CIRCLE"), unsupported=True)
-            basis = self.memoised(basis, self._line if basis.type_name == "LINE" else self._circle)
+            basis = self.entity(t, 1, "basis_curve", ("LINE", "CIRCLE", "HELIX"), unsupported=True)
+            basis = self.memoised(basis, {"LINE": self._line, "CIRCLE": self._circle,
+                                          "HELIX": self._helix}[basis.type_name])
             sense = self.boolean(t, 4, "sense_agreement")
             master = self.enum(t, 5, "master_representation", optional=True) or "UNSPECIFIED"
             return TrimmedCurve(t.id, self.text(t, 0, "name"), basis, self._trim(t, 2, "trim_1", master),
@@ -916,6 +1106,36 @@ class _Reader:
         vector = self.entity(t, 2, "dir", ("VECTOR",))
         return Line(t.id, self.text(t, 0, "name"), self.point(t, 1, "pnt"),
                     self.direction(vector, 1, "orientation"), self.number(vector, 2, "magnitude"))
+
+    def _bspline(self, t) -> BSplineCurve:
+        """B_SPLINE_CURVE_WITH_KNOTS(name, degree, control_points_list, curve_form, closed_curve,
+        self_intersect, knot_multiplicities, knots, knot_spec)."""
+        degree = self.value(t, 1, "degree")
+        points = tuple(self.coordinates(p) for p in self.entities(t, 2, "control_points_list", ("CARTESIAN_POINT",)))
+        multiplicities, values = self.value(t, 6, "knot_multiplicities"), self.value(t, 7, "knots")
+        if (not isinstance(degree, int) or isinstance(degree, bool) or not 1 <= degree <= 25
+                or not isinstance(multiplicities, list) or not isinstance(values, list)
+                or len(multiplicities) != len(values)
+                or not all(isinstance(m, int) and not isinstance(m, bool) and 1 <= m <= degree + 1
+                           for m in multiplicities)
+                or not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                           for v in values)):
+            raise StepNcError(f"#{t.id} B_SPLINE_CURVE_WITH_KNOTS: degree, knot_multiplicities and knots must be a "
+                              "degree of 1 to 25 and two lists of the same length (multiplicities 1 to degree + 1)")
+        knots = tuple(float(v) for v, m in zip(values, multiplicities) for _ in range(m))
+        if (len(knots) != len(points) + degree + 1 or any(b < a for a, b in zip(knots, knots[1:]))
+                or len(points) > 100000 or not knots[len(points)] > knots[degree]):
+            raise StepNcError(f"#{t.id} B_SPLINE_CURVE_WITH_KNOTS: {len(points)} control points of degree {degree} "
+                              f"need {len(points) + degree + 1} non-decreasing knots, found {len(knots)}")
+        polygon = float(np.linalg.norm(np.diff(np.array(points, float), axis=0), axis=1).sum())
+        if not polygon <= MAX_LENGTH:
+            raise StepNcError(f"#{t.id} B_SPLINE_CURVE_WITH_KNOTS: its control polygon is {polygon:g} mm long, more "
+                              f"than {MAX_LENGTH:g} mm")
+        return BSplineCurve(t.id, self.text(t, 0, "name"), degree, points, knots)
+
+    def _helix(self, t) -> Helix:
+        return Helix(t.id, self.text(t, 0, "name"), self.placement(t, 1, "position"), self.length(t, 2, "radius"),
+                     self.number(t, 3, "pitch"))
 
     def _circle(self, t) -> Circle:
         return Circle(t.id, self.text(t, 0, "name"), self.placement(t, 1, "position"),
@@ -1005,12 +1225,9 @@ class _Reader:
     def _slot(self, t, its_id, placement, depth) -> Slot:
         """SLOT(its_id, its_workpiece, its_operations, feature_placement, depth, course_of_travel,
         swept_shape, end_conditions)."""
-        path = self.entity(t, 5, "course_of_travel", ("LINEAR_PATH",), unsupported=True)
-        course = LinearPath(path.id, self.placement(path, 0, "placement", optional=True),
-                            self.length(path, 1, "distance"), self.direction(path, 2, "its_direction"))
-        if course.distance <= 0:
-            raise StepNcError(f"#{path.id} LINEAR_PATH: the slot's distance must be positive, found "
-                              f"{course.distance:g}")
+        path = self.entity(t, 5, "course_of_travel", ("LINEAR_PATH", "PARTIAL_CIRCULAR_PATH",
+                                                      "COMPLETE_CIRCULAR_PATH", "GENERAL_PATH"), unsupported=True)
+        course = self._travel_path(path)
         shape = self.entity(t, 6, "swept_shape", ("SQUARE_U_PROFILE",), unsupported=True)
         if self.value(shape, 0, "placement", optional=True) is not None:
             offset = self.placement(shape, 0, "placement")
@@ -1032,6 +1249,33 @@ class _Reader:
         ends = (ends + ["RADIUSED_SLOT_END_TYPE"] * 2)[:2]   # not given: closed, as the tool's radius leaves it
         floor = max((r for r in radii if r), default=None)
         return Slot(t.id, its_id, placement, depth, course, width, floor, tuple(ends))
+
+    def _travel_path(self, path):
+        """LINEAR_PATH(placement, distance, its_direction), PARTIAL_CIRCULAR_PATH(placement, radius,
+        sweep_angle), COMPLETE_CIRCULAR_PATH(placement, radius) or GENERAL_PATH(placement, swept_path)."""
+        placement = self.placement(path, 0, "placement", optional=True)
+        if placement is not None and not placement.is_vertical:
+            raise UnsupportedEntity(path.type_name, path.id, "a path whose placement tilts the tool axis")
+        if path.type_name == "LINEAR_PATH":
+            course = LinearPath(path.id, placement, self.length(path, 1, "distance"),
+                                self.direction(path, 2, "its_direction"))
+            if course.distance <= 0:
+                raise StepNcError(f"#{path.id} LINEAR_PATH: the slot's distance must be positive, found "
+                                  f"{course.distance:g}")
+            return course
+        if path.type_name == "GENERAL_PATH":
+            course = GeneralPath(path.id, placement, self.curve(path, 1, "swept_path"))
+            if len(course.local_points()) < 2 or np.ptp(course.local_points()[:, :2], axis=0).max() < 1e-6:
+                raise StepNcError(f"#{path.id} GENERAL_PATH: the swept_path has no length")
+            if np.ptp(course.local_points()[:, 2]) > 1e-6:
+                raise UnsupportedEntity(path.type_name, path.id, "a swept_path that is not level")
+            return course
+        radius = self.length(path, 1, "radius")
+        sweep = 360.0 if path.type_name == "COMPLETE_CIRCULAR_PATH" else self.number(path, 2, "sweep_angle")
+        if radius <= 0 or not 0 < abs(sweep) <= 360.0:
+            raise StepNcError(f"#{path.id} {path.type_name}: radius must be positive and sweep_angle within "
+                              f"0 to 360 degrees, found radius {radius:g} and sweep {sweep:g}")
+        return CircularPath(path.id, placement, radius, sweep)
 
     def _profile_placement(self, t, pocket: ClosedPocket) -> ClosedPocket:
         """ISO 14649-10 places a profile in the feature's coordinates ("in reference to the
@@ -1055,6 +1299,18 @@ class _Reader:
         absolute = replace(pocket, feature_boundary=replace(profile, placement=relative))
         what = f"#{t.id} CLOSED_POCKET '{pocket.its_id}'"
         block = self._feature_block(t)
+        holes = self._floor_holes(pocket)
+        if holes and (block is None or _beyond(absolute.outline(), block) <= POCKET_OFF_STOCK):
+            inside_absolute, inside_composed = (_inside(candidate.outline(), holes) for candidate in (absolute, pocket))
+            if inside_absolute and not inside_composed:
+                self.warnings.append(
+                    f"{what}: the holes {', '.join(f'#{h} at {_xy(c)}' for h, c in holes)} start on its floor "
+                    f"(Z {pocket.bottom_z:g}) and lie in it only with its profile's placement #{own.id} read as "
+                    f"absolute, not composed with the pocket's #{frame.id}; read so (the generator wrote the "
+                    f"pocket's placement twice): the pocket is cut at {_xy(absolute.outline().mean(axis=0))}")
+                return absolute
+            if inside_composed:
+                return pocket
         if block is None:
             if np.allclose(own.location, frame.location, atol=1e-6):
                 self.warnings.append(
@@ -1079,6 +1335,20 @@ class _Reader:
             f"{what}: reaches {composed_off:.3g} mm beyond the stock BLOCK #{block.id} (and "
             f"{absolute_off:.3g} mm with its profile's placement read as absolute); cut as written, check the file")
         return pocket
+
+    def _floor_holes(self, pocket: ClosedPocket) -> list:
+        """[(id, centre xy)] of the file's ROUND_HOLEs that start on the pocket's floor (drilled from it)."""
+        found = []
+        for hole in self.part21.by_type("ROUND_HOLE"):
+            if not isinstance(hole, Instance):
+                continue
+            try:
+                placement = self.placement(hole, 3, "feature_placement")
+            except (StepNcError, UnsupportedEntity):
+                continue
+            if placement.is_vertical and abs(placement.location[2] - pocket.bottom_z) < 1e-6:
+                found.append((hole.id, placement.location[:2]))
+        return found
 
     def _feature_block(self, t):
         """The BLOCK of the feature's workpiece (attribute its_workpiece), or None."""
@@ -1135,7 +1405,8 @@ class _Reader:
 
     def milling_strategy(self, inst, index, name) -> MillingStrategy | None:
         target = self.entity(inst, index, name, ("BIDIRECTIONAL", "BIDIRECTIONAL_MILLING", "UNIDIRECTIONAL",
-                                                 "UNIDIRECTIONAL_MILLING", "CONTOUR_PARALLEL"),
+                                                 "UNIDIRECTIONAL_MILLING", "CONTOUR_PARALLEL", "CONTOUR_BIDIRECTIONAL",
+                                                 "BIDIRECTIONAL_CONTOUR"),
                              optional=True, unsupported=True)
         if target is None:
             return None
@@ -1143,6 +1414,12 @@ class _Reader:
         def convert(t):
             overlap = self.number(t, 0, "overlap", optional=True)
             multiple = self.boolean(t, 1, "allow_multiple_passes", optional=True)
+            if t.type_name in ("CONTOUR_BIDIRECTIONAL", "BIDIRECTIONAL_CONTOUR"):
+                return ContourBidirectional(overlap, multiple, self.direction(t, 2, "feed_direction", optional=True),
+                                            self.enum(t, 3, "stepover_direction", optional=True), None,
+                                            self.enum(t, 4, "rotation_direction", optional=True),
+                                            self.enum(t, 5, "spiral_cutmode", optional=True),
+                                            t.type_name == "CONTOUR_BIDIRECTIONAL")
             if t.type_name.startswith("BIDIRECTIONAL"):
                 return Bidirectional(overlap, multiple, self.direction(t, 2, "feed_direction", optional=True),
                                      self.enum(t, 3, "stepover_direction", optional=True),
@@ -1187,7 +1464,8 @@ class _Reader:
     def operation(self, inst, index, name) -> MachiningOperation:
         target = self.entity(inst, index, name, ("PLANE_ROUGH_MILLING", "PLANE_FINISH_MILLING",
                                                  "BOTTOM_AND_SIDE_ROUGH_MILLING", "BOTTOM_AND_SIDE_FINISH_MILLING",
-                                                 "DRILLING", "CENTER_DRILLING", "REAMING"), unsupported=True)
+                                                 "DRILLING", "CENTER_DRILLING", "REAMING", "FREEFORM_OPERATION"),
+                             unsupported=True)
         return self.memoised(target, self._operation)
 
     def _operation(self, t) -> MachiningOperation:
@@ -1196,6 +1474,12 @@ class _Reader:
         common = (t.id, t.type_name, self.text(t, 2, "its_id"), self.length(t, 3, "retract_plane", optional=True),
                   self.tool(t, 5, "its_tool"), self.technology(t, 6, "its_technology"),
                   self.machine_functions(t, 7, "its_machine_functions"))
+        if t.type_name == "FREEFORM_OPERATION":
+            if self.value(t, 0, "its_toolpath", optional=True) is None:
+                strategy = self.value(t, 11, "its_machining_strategy", optional=True)
+                raise UnsupportedEntity(t.type_name, t.id, "no explicit toolpaths (its_toolpath); a freeform "
+                                        f"strategy{'' if strategy is None else ' ' + repr(strategy)} is not planned")
+            return FreeformOperation(*common, self.toolpaths(t, 0, "its_toolpath"))
         if t.type_name in ("DRILLING", "CENTER_DRILLING", "REAMING"):
             drilling = common + (self.length(t, 9, "cutting_depth", optional=True),
                                  self.length(t, 10, "previous_diameter", optional=True),
@@ -1216,6 +1500,29 @@ class _Reader:
                                     self.length(t, 14, "allowance_side", optional=True),
                                     self.length(t, 15, "allowance_bottom", optional=True))
 
+    def toolpaths(self, inst, index, name) -> tuple:
+        """The CUTTER_LOCATION_TRAJECTORYs of a TOOLPATH_LIST."""
+        listing = self.entity(inst, index, name, ("TOOLPATH_LIST",))
+        found = []
+        for t in self.entities(listing, 0, "its_list"):
+            if t.type_name != "CUTTER_LOCATION_TRAJECTORY":
+                raise UnsupportedEntity(t.type_name, t.id, f"in the toolpath list #{listing.id}")
+            axis = self.value(t, 7, "its_toolaxis", optional=True)
+            if axis is not None:
+                raise UnsupportedEntity(t.type_name, t.id, "a tool axis curve (its_toolaxis): only +Z is machined")
+            speed = self.value(t, 2, "its_speed", optional=True)
+            if speed is not None and speed != Enum("RAPID"):
+                raise UnsupportedEntity(t.type_name, t.id, f"a speed profile {speed!r} (its_speed)")
+            technology = None if self.value(t, 3, "its_technology", optional=True) is None \
+                else self.technology(t, 3, "its_technology")
+            forward = self.boolean(t, 5, "its_direction", optional=True)
+            found.append(Trajectory(t.id, speed == Enum("RAPID"), technology, forward is not False,
+                                    self.curve(t, 6, "basiccurve")))
+        return tuple(found)
+
+    def rapid_movement(self, t) -> RapidMovement:
+        return RapidMovement(t.id, self.text(t, 0, "its_id"), self.toolpaths(t, 2, "its_toolpath"))
+
     # ---- executables
 
     def workingstep(self, t) -> Workingstep:
@@ -1235,6 +1542,18 @@ class _Reader:
                 except UnsupportedEntity as error:
                     self.warnings.append(f"workingstep #{element.id} '{self.text(element, 0, 'its_id')}' "
                                          f"skipped: {error}")
+            elif _type_name(element) == "RAPID_MOVEMENT":
+                try:
+                    rapid = self.rapid_movement(element)
+                except UnsupportedEntity as error:
+                    self.warnings.append(f"rapid movement #{element.id} '{self.text(element, 0, 'its_id')}' "
+                                         f"skipped: {error}")
+                    continue
+                if elements and isinstance(elements[-1], Workingstep):
+                    elements[-1] = replace(elements[-1], rapids_after=elements[-1].rapids_after + (rapid,))
+                else:
+                    self.warnings.append(f"rapid movement #{element.id} '{rapid.its_id}' skipped: no workingstep "
+                                         "before it in its workplan, so no tool to move")
             else:
                 self.warnings.append(f"#{element.id} {_type_name(element)} in workplan #{t.id} skipped: "
                                      "only workingsteps and workplans are supported")
@@ -1270,6 +1589,12 @@ def _xy(point) -> str:
     return f"X{float(point[0]):g} Y{float(point[1]):g}"
 
 
+def _inside(outline, holes) -> bool:
+    """Whether every hole centre lies inside the outline."""
+    region = rg.from_loops([np.asarray(outline, float)[:, :2]])
+    return bool(rg.contains_points(region, np.array([c[:2] for _, c in holes], float)).all())
+
+
 def _beyond(outline, block: Block) -> float:
     """How far (mm) an XY outline reaches outside the block's XY rectangle (0: inside)."""
     (x0, y0, _), (x1, y1, _) = block.box()
@@ -1286,6 +1611,10 @@ def read_project(part21: Part21File) -> tuple:
     are left out of the model, each with a warning naming the entity type and instance.
     """
     projects = part21.by_type("PROJECT")
+    if not projects and part21.by_type("MACHINING_PROJECT"):
+        from .ap238 import to_arm    # the AP238 integrated form: read as its ISO 14649 rendition
+        part21 = to_arm(part21)
+        projects = part21.by_type("PROJECT")
     if len(projects) != 1:
         raise StepNcError(f"an ISO 14649 file needs exactly one PROJECT, this one has {len(projects)}")
     reader = _Reader(part21)

@@ -30,11 +30,12 @@ from manifold3d import CrossSection
 from .. import region as rg
 from ..errors import InputError
 from ..program import Operation, Program, Tool
+from .freeform import plan_freeform
 from .inprocess import InProcessStock
 from .model import (
-    DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourParallel, CuttingTool,
-    DrillingOperation, PlanarFace, PlaneMilling, Project, RoundHole, Slot, StepNcError, Unidirectional, Workingstep,
-    read_project,
+    DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourBidirectional, ContourParallel,
+    CuttingTool, DrillingOperation, FreeformOperation, PlanarFace, PlaneMilling, Project, RoundHole, Slot,
+    StepNcError, Unidirectional, Workingstep, read_project,
 )
 from .motion import (  # noqa: F401 (APPROACH_GAP ... re-exported: workplan.py was one module)
     APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, _empty, _levels, _Motion,
@@ -297,7 +298,9 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
         return None
     notes += [f"workingstep #{step.id} '{step.its_id}': {note}" for note in checks]
 
-    if isinstance(operation, DrillingOperation) and isinstance(feature, RoundHole):
+    if isinstance(operation, FreeformOperation):
+        motion = plan_freeform(step, tool, clearance_z, stock)
+    elif isinstance(operation, DrillingOperation) and isinstance(feature, RoundHole):
         motion = _hole(operation, feature, tool, clearance_z, feed, skip, stock)
     elif isinstance(operation, PlaneMilling) and isinstance(feature, PlanarFace):
         motion = _face(operation, feature, tool, clearance_z, feed, roughings, skip, stock)
@@ -328,6 +331,9 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
         skip("nothing to cut (the feature has no depth left for this operation)")
         return None
     notes += [f"workingstep #{step.id} '{step.its_id}': {note}" for note in motion.notes]
+    if not isinstance(operation, FreeformOperation):
+        notes += [f"rapid movement #{rapid.id} '{rapid.its_id}' after workingstep #{step.id} left out: the path "
+                  "planned for the workingstep makes its own links" for rapid in step.rapids_after]
     functions = operation.its_machine_functions
     return motion.operation(step.its_id, tool, rpm, clockwise, safe_z, bool(functions and functions.coolant),
                             f"#{step.id} {operation.type_name} {operation.its_id}", step.id)
@@ -345,7 +351,8 @@ def centre_region(pocket: ClosedPocket, distance: float) -> CrossSection:
     offset once; otherwise the outline shrunk by R grows by R - distance.  One offset instead of
     three keeps the corners free of the slivers that polygonal arcs leave when offset again.
     """
-    region = rg.from_loops([pocket.outline()], f"pocket #{pocket.id} '{pocket.its_id}'")
+    region = pocket.region() if isinstance(pocket, Slot) else \
+        rg.from_loops([pocket.outline()], f"pocket #{pocket.id} '{pocket.its_id}'")
     radius = pocket.orthogonal_radius or 0.0
     if distance >= radius:
         return _offset(region, -distance)
@@ -399,9 +406,12 @@ def _ring_distances(region: CrossSection, stepover: float) -> list:
 
 
 def _counter_clockwise(strategy, spindle_clockwise: bool) -> bool:
-    """Ring direction: CONTOUR_PARALLEL's own; otherwise climb milling along the pocket wall."""
-    if isinstance(strategy, ContourParallel):
+    """Ring direction: CONTOUR_PARALLEL's (CONTOUR_BIDIRECTIONAL's) own; a CONTOUR_BIDIRECTIONAL's spiral_cutmode;
+    otherwise climb milling along the pocket wall."""
+    if getattr(strategy, "rotation_direction", None) in ("CW", "CCW"):
         return strategy.rotation_direction == "CCW"
+    if getattr(strategy, "spiral_cutmode", None) == "CONVENTIONAL":
+        return not spindle_clockwise
     return spindle_clockwise
 
 
@@ -422,6 +432,10 @@ def _fill(region: CrossSection, strategy, stepover: float, radius: float, pocket
         distances = _ring_distances(region, min(stepover, radius))
         return _rings(region, distances[::-1], ccw, rg.centroid(region))
     angle = _raster_angle(strategy, pocket)
+    if isinstance(strategy, ContourBidirectional) and strategy.contour_first:     # the contour, then the zigzag
+        ring = _rings(region, [0.0], ccw, rg.centroid(region))
+        turn = 180.0 if strategy.stepover_direction == "RIGHT" else 0.0
+        return ring + _split_outside(rg.zigzag(region, stepover, angle + turn), region)
     if isinstance(strategy, Bidirectional):
         turn = 180.0 if strategy.stepover_direction == "RIGHT" else 0.0
         chains = _split_outside(rg.zigzag(region, stepover, angle + turn), region)
@@ -454,6 +468,9 @@ def _face(operation: PlaneMilling, face: PlanarFace, tool: Tool, clearance_z, fe
     else:
         paths = strokes
     motion = _Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
+    if isinstance(strategy, ContourBidirectional):
+        motion.notes.append(f"{'CONTOUR_BIDIRECTIONAL' if strategy.contour_first else 'BIDIRECTIONAL_CONTOUR'}: no "
+                            f"contour pass on planar face #{face.id}, its strokes run out past the face's edges")
     cleared = start
     for z in _levels(start, floor, operation.axial_cutting_depth or tool.flute_length):
         motion.cut(paths, z, cleared)
@@ -572,19 +589,20 @@ def _slot_centreline(operation: BottomAndSideMilling, slot: Slot, tool: Tool, cl
         skip(f"the {tool.diameter:g} mm tool (allowance {allowance:g} mm) is wider than the {slot.width:g} mm "
              f"slot #{slot.id}")
         return None
-    start, end = slot.axis()
-    along = (end - start) / np.linalg.norm(end - start)
     reach = {"OPEN_SLOT_END_TYPE": tool.radius + FACING_RUNOUT, "RADIUSED_SLOT_END_TYPE": 0.0,
              "FLAT_SLOT_END_TYPE": -tool.radius - allowance}
-    first, last = start - along * reach[slot.ends[0]], end + along * reach[slot.ends[1]]
-    if (last - first) @ along <= 0:
+    line = slot.centreline()
+    if not slot.closed:
+        line = _stretched(line, reach[slot.ends[0]], reach[slot.ends[1]])
+    if line is None:
         skip(f"slot #{slot.id} is shorter than the {tool.diameter:g} mm tool")
         return None
     motion = _Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
     if "FLAT_SLOT_END_TYPE" in slot.ends:
         motion.notes.append(f"the flat end of slot #{slot.id} keeps the tool's radius R{tool.radius:g} in its corners")
     floor = slot.bottom_z + (operation.allowance_bottom or 0.0)
-    forward, backward = [np.array([first, last])], [np.array([last, first])]
+    forward = [line]
+    backward = forward if slot.closed else [line[::-1]]     # round a closed slot always the same way
     cleared = slot.top_z
     for index, z in enumerate(_levels(slot.top_z, floor, operation.axial_cutting_depth or tool.radius)):
         paths, other = (forward, backward) if index % 2 == 0 else (backward, forward)
@@ -592,6 +610,30 @@ def _slot_centreline(operation: BottomAndSideMilling, slot: Slot, tool: Tool, cl
         motion.levels[(id(other), 0)] = z     # the next layer starts where this one ended, cut to z
         cleared = z
     return motion
+
+
+def _stretched(line, before: float, after: float):
+    """A polyline lengthened (positive) or shortened (negative) at its ends along itself; None when
+    nothing is left."""
+    line = np.asarray(line, float)
+    for _ in range(2):
+        amount = before
+        if amount >= 0:
+            tangent = line[0] - line[1]
+            line = np.vstack([line[0] + tangent / np.linalg.norm(tangent) * amount, line[1:]])
+        else:
+            amount = -amount
+            while len(line) >= 2:
+                step = np.linalg.norm(line[1] - line[0])
+                if step > amount + 1e-9:
+                    line = np.vstack([line[0] + (line[1] - line[0]) * amount / step, line[1:]])
+                    break
+                amount -= step
+                line = line[1:]
+            if len(line) < 2:
+                return None
+        line, before = line[::-1], after
+    return line
 
 
 # Hole bottoms an end mill cuts; a milled through hole goes this far (mm) below the hole bottom unless the
