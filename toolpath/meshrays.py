@@ -174,7 +174,13 @@ class Triangles:
         pad = 1e-6 * size
         self.box_lo = self.lo.min(axis=0) - pad
         self.box_hi = self.hi.max(axis=0) + pad
-        self.grid = BoxGrid(self.lo, self.hi) if len(self.lo) else None
+        self._grid = None           # built on the first numpy query (the compiled one uses a tree)
+
+    @property
+    def grid(self):
+        if self._grid is None and len(self.lo):
+            self._grid = BoxGrid(self.lo, self.hi)
+        return self._grid
 
     def _pairs(self, lo: np.ndarray, hi: np.ndarray):
         """Yield (query index, triangle index) arrays for overlapping boxes.  Queries are grouped by

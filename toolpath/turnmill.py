@@ -362,20 +362,22 @@ def _sections(v, faces, normals, zlo, zhi, z) -> list:
 
     start, start_key = crossing(np.argmax(above & ~after, axis=1))
     end, end_key = crossing(np.argmax(~above & after, axis=1))
-    successor = dict(zip(start_key.tolist(), range(len(cut))))
-    end_keys = end_key.tolist()
-    ends = set(end_keys)
-    seeds = [s for s in range(len(cut)) if start_key[s] not in ends] + list(range(len(cut)))
-    used = np.zeros(len(cut), dtype=bool)
+    # successor[i]: the segment starting where segment i ends (the last such, as a dict would keep)
+    order = np.argsort(start_key, kind="stable")
+    place = np.searchsorted(start_key[order], end_key, side="right") - 1
+    found = (place >= 0) & (start_key[order[np.maximum(place, 0)]] == end_key)
+    successor = np.where(found, order[np.maximum(place, 0)], -1).tolist()
+    seeds = np.flatnonzero(~np.isin(start_key, end_key)).tolist() + list(range(len(cut)))
+    used = bytearray(len(cut))
     chains = []
     for seed in seeds:
         if used[seed]:
             continue
         chain = [seed]
-        used[seed] = True
-        while (nxt := successor.get(end_keys[chain[-1]])) is not None and not used[nxt]:
+        used[seed] = 1
+        while (nxt := successor[chain[-1]]) >= 0 and not used[nxt]:
             chain.append(nxt)
-            used[nxt] = True
+            used[nxt] = 1
         closed = end_key[chain[-1]] == start_key[chain[0]]
         chains.append((np.vstack([start[chain[0]], end[chain]]), normals[cut[chain]], closed))
     return chains
