@@ -22,6 +22,7 @@ PAIR_BUDGET = 1 << 20    # (query, triangle) pairs handled at once: bounds the m
 QUERY_CHUNK = 256        # at most this many nearby queries are culled against the triangles together
 MAX_SUBDIVISION = 16     # at most 16 x 16 samples per face (face_samples)
 _LAST_CHECKED: list = []  # the content key of the last mesh that passed check_mesh
+_LAST_SURFACE: list = []  # [content key, Triangles] of the last Triangles.shared
 
 
 def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
@@ -175,6 +176,16 @@ class Triangles:
         self.box_lo = self.lo.min(axis=0) - pad
         self.box_hi = self.hi.max(axis=0) + pad
         self._grid = None           # built on the first numpy query (the compiled one uses a tree)
+
+    @classmethod
+    def shared(cls, triangles: np.ndarray) -> "Triangles":
+        """The Triangles of these triangles, reused while the same mesh is asked for again (the
+        radial and the axial layers query one part: one tree for both)."""
+        triangles = np.ascontiguousarray(triangles, dtype=float)
+        key = (triangles.shape, hashlib.blake2b(triangles.tobytes(), digest_size=16).digest())
+        if not (_LAST_SURFACE and _LAST_SURFACE[0] == key):
+            _LAST_SURFACE[:] = [key, cls(triangles)]
+        return _LAST_SURFACE[1]
 
     @property
     def grid(self):

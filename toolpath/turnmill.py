@@ -468,7 +468,7 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
                 shifts.append((1 if k == 0 else every) * spacing - 1e-9)
     if not polylines:
         return []
-    surface = Triangles(v[f])
+    surface = Triangles.shared(v[f])
     layers: dict = {}
     for k, runs in zip(layer_of, _fit_runs(polylines, closed_flags, surface, stock, settings, shifts)):
         layers.setdefault(k, []).extend(runs)
@@ -616,7 +616,7 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
     ids = _face_ids(face_ids, len(f))
     if not len(ids):
         return []
-    surface = Triangles(v[f])
+    surface = Triangles.shared(v[f])
     r, tol = settings.radius, settings.tolerance
     finishing = [p for group in _components(f, ids) for p in _grid_passes(v, f[group], surface, stock, settings)]
     if not finishing:
