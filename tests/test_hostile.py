@@ -623,3 +623,17 @@ def test_a_ball_on_a_finely_split_surface_finds_the_same_nearest_point():
     assert np.array_equal(np.isfinite(coarse[0]), np.isfinite(fine[0]))
     finite = np.isfinite(coarse[0])
     assert np.abs(coarse[0][finite] - fine[0][finite]).max() < 1e-9
+
+
+def test_the_self_crossing_search_is_a_cancel_point_of_the_simulation():
+    sphere = trimesh.creation.icosphere(subdivisions=5, radius=4.0)
+    sphere.apply_translation((20, 20, -5))
+    calls = []
+
+    def stop(fraction):
+        calls.append(fraction)
+        return False
+
+    with time_limit(60), pytest.raises(sim.SimulationCancelled):
+        sim.simulate([slot_op()], BOX_STOCK, cell=0.5, design=sphere, progress=stop)
+    assert calls == [0.0]            # stopped at the first chunk of the design check, before any cutting

@@ -58,9 +58,10 @@ def _candidates(grid: BoxGrid):
             yield boxes[take], boxes[take + gap]
 
 
-def self_crossing(vertices, faces) -> Crossing | None:
+def self_crossing(vertices, faces, progress=None) -> Crossing | None:
     """The faces of a mesh that cross each other (None if none do).  ``vertices`` (n, 3) finite,
-    ``faces`` (m, 3) valid indices (checked by the caller)."""
+    ``faces`` (m, 3) valid indices (checked by the caller).  ``progress``: optional callable(fraction),
+    called before each chunk of candidate pairs (a cancel point: it may raise)."""
     v = np.asarray(vertices, float)
     f = np.asarray(faces, np.int64)
     tri = v[f]
@@ -72,6 +73,8 @@ def self_crossing(vertices, faces) -> Crossing | None:
     seen = set()
     count, first = 0, None
     for a, b in _candidates(grid):
+        if progress is not None:
+            progress(0.0)
         overlap = np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
         a, b = a[overlap], b[overlap]
         for _ in range(2):          # drop a face wholly on one side of the other's plane; then swap

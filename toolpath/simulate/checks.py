@@ -236,7 +236,7 @@ def blocking(findings) -> list:
 DESIGN_SLACK = 0.05        # mm: how far a design may stand outside the stock (rounding of exported meshes)
 
 
-def check_design_mesh(design, stock, name: str = "design") -> tuple:
+def check_design_mesh(design, stock, name: str = "design", progress=None) -> tuple:
     """(design, warnings): a mesh design checked before any gouge is measured against it.
 
     Refused, naming ``name``: no faces (an empty or unreadable file loads as none), NaN or
@@ -245,7 +245,8 @@ def check_design_mesh(design, stock, name: str = "design") -> tuple:
     (:func:`selfcross.self_crossing`, naming the first pair and where), no volume, no overlap with the stock,
     or a part that stands outside the stock (it cannot be cut from it: every cut would gouge it).
     Repaired and said in ``warnings``: an inside-out mesh (negative volume) gets its faces flipped.
-    Returns a plain ``SimpleNamespace(vertices, faces)`` when it repaired, else ``design`` itself."""
+    Returns a plain ``SimpleNamespace(vertices, faces)`` when it repaired, else ``design`` itself.
+    ``progress``: optional callable(fraction), a cancel point during the self-crossing search."""
     from types import SimpleNamespace
 
     from .stock import _stock_box
@@ -278,7 +279,7 @@ def check_design_mesh(design, stock, name: str = "design") -> tuple:
     if len(np.unique(directed[:, 0] * n + directed[:, 1])) < len(directed):
         raise SimulationError(f"design {name}: the faces are wound inconsistently (some normals are flipped): "
                               "recalculate normals")
-    crossing = self_crossing(vertices, faces)
+    crossing = self_crossing(vertices, faces, progress)
     if crossing is not None:
         (i, j), (x, y, z) = crossing.faces, crossing.point
         raise SimulationError(f"design {name}: the mesh passes through itself ({crossing.pairs} pair(s) of faces "
