@@ -75,3 +75,14 @@ def set_exactly(group, name: str, value, option: str) -> None:
     if not same:
         raise SceneInputError(f"{option} {value}: the setting would hold {held} instead; give a value the "
                               f"setting allows")
+
+
+def write_stl(path: str, vertices, faces) -> str:
+    """A binary STL of (vertices mm, faces) written through temp + rename (the mesh a job was
+    machined against, ``design.stl``, for other tools to check the cut)."""
+    import trimesh
+
+    from ..post.output import write_atomic
+
+    data = trimesh.exchange.stl.export_stl(trimesh.Trimesh(vertices, faces, process=False))
+    return write_atomic(path, data)

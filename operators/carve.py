@@ -269,7 +269,6 @@ def read_mesh_file(path: str) -> tuple:
 
 
 def batch(args) -> dict:
-    import trimesh
 
     from . import batchio, preview, simview
     from .common import Progress
@@ -295,14 +294,17 @@ def batch(args) -> dict:
     nc_path = os.path.join(args.out, f"carve{extension_for(post_name)}")
     simulated, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
     export_carve(job, post_name, nc_path, machine.work_offset, checked=True)
-    design_path = os.path.join(args.out, "design.stl")
-    trimesh.Trimesh(job.vertices, job.faces, process=False).export(design_path)
-    paths = show_carve(scene, job)
-    solids = [convert.mesh_object(scene, f"{PREFIX} design", job.vertices, job.faces, job.frame)]
-    toolpaths_png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "carve-toolpaths.png"))
-    carved = simview.show_simulation(scene, simulated)
-    png = preview.render_preview(scene, [carved], [], os.path.join(args.out, "carve.png"), see_through=False,
-                                 color_type="VERTEX")
+    design_path = batchio.write_stl(os.path.join(args.out, "design.stl"), job.vertices, job.faces)
+    show_carve(scene, job)
+    convert.mesh_object(scene, f"{PREFIX} design", job.vertices, job.faces, job.frame)
+    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "carve-toolpaths.png"), job.result.program.operations,
+                                         simulation(job).stock,
+                                         [(job.vertices, job.faces, preview.picture_jobs.PART_COLOUR)],
+                                         "CARVING: TOOLPATHS OVER THE DESIGN")
+    mesh = simulated.result.mesh(250_000)
+    simview.show_simulation(scene, simulated, mesh=mesh)
+    png = preview.simulation_png(os.path.join(args.out, "carve.png"), simulated.result, "CARVING: SIMULATED STOCK",
+                                 mesh=mesh)
     scallop = core.measured_scallop(simulated.result.heightfield, job.vertices, job.faces)
     result = job.result
     return {

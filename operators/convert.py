@@ -207,12 +207,36 @@ def operation_paths(op) -> tuple:
     return split_runs(op.kind, np.vstack([op.start[None, :], op.xyz]))
 
 
+def fill_mesh(mesh, vertices, faces):
+    """Fill an empty mesh with (k, 3) vertices and faces (an (f, n) array or a list of index
+    sequences) with bulk array calls; faces drawn flat (the "sharp_face" attribute), as
+    ``Mesh.from_pydata`` does, without its per-element Python loops."""
+    vertices = np.ascontiguousarray(vertices, np.float32).reshape(-1, 3)
+    if isinstance(faces, np.ndarray) and faces.ndim == 2:
+        lengths = np.full(len(faces), faces.shape[1], np.int64)
+        flat = faces.astype(np.int32).ravel()
+    else:
+        lengths = np.fromiter((len(face) for face in faces), np.int64, len(faces))
+        flat = np.fromiter((int(i) for face in faces for i in face), np.int32, int(lengths.sum()))
+    if len(flat) and not (0 <= flat.min() and flat.max() < len(vertices)):
+        raise ValueError(f"mesh {mesh.name!r}: a face index is outside 0..{len(vertices) - 1}")
+    mesh.vertices.add(len(vertices))
+    mesh.vertices.foreach_set("co", vertices.ravel())
+    mesh.loops.add(len(flat))
+    mesh.polygons.add(len(lengths))
+    if len(lengths):
+        mesh.polygons.foreach_set("loop_start", (np.cumsum(lengths) - lengths).astype(np.int32))
+        mesh.polygons.foreach_set("vertices", flat)
+        sharp = mesh.attributes.new("sharp_face", "BOOLEAN", "FACE")
+        sharp.data.foreach_set("value", np.ones(len(lengths), bool))
+        mesh.update(calc_edges=True)
+    return mesh
+
+
 def mesh_object(scene, name: str, vertices_mm, faces, frame: WorkFrame, color=(0.8, 0.7, 0.5, 1)):
     """A mesh from work-mm vertices and triangle/polygon indices (simulated stock, flat patterns)."""
     mesh = bpy.data.meshes.new(name)
-    vertices = frame.to_world(np.asarray(vertices_mm, float))
-    mesh.from_pydata(vertices.tolist(), [], [[int(i) for i in face] for face in faces])
-    mesh.update()
+    fill_mesh(mesh, frame.to_world(np.asarray(vertices_mm, float)), faces)
     obj = bpy.data.objects.new(name, mesh)
     obj.color = color
     result_collection(scene).objects.link(obj)

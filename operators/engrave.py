@@ -10,11 +10,14 @@ import time
 from dataclasses import dataclass
 
 import bpy
+import numpy as np
 from bpy.props import EnumProperty, StringProperty
 
 from .. import post as posts
 from ..post import write_atomic
 from ..toolpath import engrave as core
+from ..toolpath import meshdata
+from ..toolpath import surface_engrave
 from ..toolpath.program import Tool
 from . import convert
 from . import gate
@@ -41,6 +44,7 @@ class EngraveJob:
     plate: convert.Plate
     letter_loops: list              # the letters' outlines, (k, 2) arrays in work mm
     settings: core.EngraveSettings
+    surface: object = None          # surface_engrave.SurfaceJob on a curved plate, else None
 
 
 def settings_from(props) -> core.EngraveSettings:
@@ -65,6 +69,21 @@ def letter_objects(props) -> list:
     return objects
 
 
+def surface_of(scene, depsgraph, frame):
+    """The Engrave panel's plate surface as a surface_engrave.Surface in work mm, or None."""
+    obj = scene.kezuri.engrave.surface
+    if obj is None:
+        return None
+    if obj.type != "MESH":
+        raise convert.SceneInputError(f"plate surface {obj.name!r} is not a mesh: pick a mesh object whose top "
+                                      "is the plate's top")
+    world, polygons, _ = convert.evaluated_mesh_arrays(obj, depsgraph)
+    if not polygons:
+        raise convert.SceneInputError(f"plate surface {obj.name!r} has no faces")
+    faces, _ = meshdata.triangulated(polygons)
+    return surface_engrave.Surface(frame.to_work(world), faces, obj.name)
+
+
 def engrave_request(scene, depsgraph):
     """Read the plate, the letters and the settings from the scene; return ``compute(progress)``,
     which plans the job without touching Blender data (so it can run in steps)."""
@@ -77,18 +96,26 @@ def engrave_request(scene, depsgraph):
     if not objects:
         raise convert.SceneInputError("no letters: pick a Text, curve or mesh object as Letters in the Engrave panel")
     letters = [(obj.name, convert.outlines_in_work(obj, depsgraph, plate.frame)) for obj in objects]
+    surface = surface_of(scene, depsgraph, plate.frame)
     engrave_settings, name = settings_from(props), scene.name
     work_offset, rapid_rate = settings.machine.work_offset, settings.machine.rapid_rate
 
     def compute(progress=None) -> EngraveJob:
+        loops = [loop for _, object_loops in letters for loop in object_loops]
+        if surface is not None:
+            curved = surface_engrave.plan(plate.outline, letters, surface, engrave_settings, name=name,
+                                          progress=progress, plate_thickness=float(plate.size[2]))
+            for program in (curved.result.program, curved.baked, curved.macro):
+                program.work_offset, program.rapid_rate = work_offset, rapid_rate
+                program.notes = list(curved.result.warnings)
+            return EngraveJob(curved.result, curved.baked, curved.depths, plate, loops, engrave_settings, curved)
         result = core.plan(plate.outline, letters, engrave_settings, name=name, progress=progress,
                            plate_thickness=float(plate.size[2]))
         result.program.work_offset = work_offset
         result.program.rapid_rate = rapid_rate
         result.program.notes = list(result.warnings)
         baked, depths = core.bake(result.program)
-        return EngraveJob(result, baked, depths, plate, [loop for _, loops in letters for loop in loops],
-                          engrave_settings)
+        return EngraveJob(result, baked, depths, plate, loops, engrave_settings)
     return compute
 
 
@@ -111,7 +138,9 @@ def show_engrave(scene, job: EngraveJob, show_rapids: bool = True) -> list:
 
 def program_for_post(job: EngraveJob, post_name: str):
     """The macro post writes the untextured path and lets the controller draw the depths."""
-    return job.result.program if posts.find(POST_FAMILIES, post_name).needs_texture else job.baked
+    if not posts.find(POST_FAMILIES, post_name).needs_texture:
+        return job.baked
+    return job.surface.macro if job.surface is not None else job.result.program
 
 
 def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str | None = None,
@@ -132,6 +161,12 @@ def extension_for(post_name: str) -> str:
 def simulation(job: EngraveJob) -> SimulationSetup:
     """The baked program on the plate; the letters must stand and nothing may go below the
     deepest planned cut."""
+    if job.surface is not None:
+        surface = job.surface.surface
+        extra = surface_engrave.simulation_limits(surface, job.plate.outline, job.letter_loops, job.result.program,
+                                                  job.settings.band_depth, -float(job.plate.size[2]))
+        return SimulationSetup(job.baked, surface_engrave.plate_stock(surface, job.plate.outline, job.plate.size[2]),
+                               extra, job.plate.frame, "engrave")
     extra = core.simulation_limits(job.letter_loops, job.result.program, job.settings.band_depth)
     return SimulationSetup(job.baked, core.plate_stock(job.plate.outline, job.plate.size[2]), extra, job.plate.frame,
                            "engrave")
@@ -206,7 +241,31 @@ def batch_arguments(p):
     from .batchio import number
     from .limits import RANGES
     p.add_argument("--seed", type=number("--seed", limit=RANGES["engrave"]["seed"]))
+    p.add_argument("--surface", help="the plate's curved top: " + ", ".join(surface_engrave.SURFACES)
+                   + " (built in, over the plate) or an STL/OBJ/PLY mesh in work mm (Z 0: the plate's top); "
+                   "default: flat")
     gate.allow_findings_argument(p)
+
+
+def add_surface(scene, which: str):
+    """Put a plate surface into the scene and pick it in the Engrave panel: a built-in one
+    (``surface_engrave.SURFACES``) over the plate's outline, or a mesh file in work mm."""
+    settings = scene.kezuri
+    plate = convert.plate_from_object(settings.stock.plate, bpy.context.evaluated_depsgraph_get(), scene,
+                                      settings.stock.origin)
+    if which in surface_engrave.SURFACES:
+        points = np.vstack(plate.outline)
+        (x0, y0), (x1, y1) = points.min(axis=0), points.max(axis=0)
+        vertices, faces = surface_engrave.SURFACES[which](x0 - 1, y0 - 1, x1 + 1, y1 + 1, -float(plate.size[2]))
+    elif not os.path.isfile(which):
+        raise convert.SceneInputError(f"--surface {which}: neither a built-in surface "
+                                      f"({', '.join(surface_engrave.SURFACES)}) nor a mesh file")
+    else:
+        from .carve import read_mesh_file
+        vertices, faces = read_mesh_file(which)
+    obj = convert.mesh_object(scene, "Plate Surface", vertices, faces, plate.frame)
+    settings.engrave.surface = obj
+    return obj
 
 
 def batch(args) -> dict:
@@ -219,17 +278,26 @@ def batch(args) -> dict:
     props = scene.kezuri
     if args.seed is not None:
         batchio.set_exactly(props.engrave, "seed", args.seed, "--seed")
+    if args.surface:
+        add_surface(scene, args.surface)
     post_name = args.post or scene_post(scene)
     started = time.perf_counter()
     job = run_engrave(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "engrave"))
     seconds = time.perf_counter() - started
     nc_path = os.path.join(args.out, f"engrave{extension_for(post_name)}")
-    checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
+    setup = simulation(job)
+    checked, gate_report = gate.check(setup, args.allow_findings, Progress(None, "check"))
     export_engrave(job, post_name, nc_path, props.machine.work_offset, checked=True)
-    wires = show_engrave(scene, job, show_rapids=False)
-    toolpaths_png = preview.render_preview(scene, [props.stock.plate, *letter_objects(props.engrave)], wires,
-                                           os.path.join(args.out, "engrave-toolpaths.png"))
-    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "engrave", checked)
+    files = [nc_path]
+    solids = []
+    if job.surface is not None:
+        design = setup.extra["design"]
+        files.append(batchio.write_stl(os.path.join(args.out, "design.stl"), design.vertices, design.faces))
+        solids = [(design.vertices, design.faces, preview.picture_jobs.PART_COLOUR)]
+    show_engrave(scene, job, show_rapids=False)
+    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "engrave-toolpaths.png"), job.baked.operations,
+                                         setup.stock, solids, "ENGRAVING: TOOLPATHS")
+    simulation_report, png = simview.batch_simulation(scene, setup, args.out, "engrave", checked)
     return {
         "gate": gate_report,
         "simulation": simulation_report,
@@ -237,7 +305,8 @@ def batch(args) -> dict:
         "workflow": "engrave",
         "post": post_name,
         "seed": props.engrave.seed,
-        "files": [nc_path],
+        "surface": props.engrave.surface.name if props.engrave.surface is not None else "flat",
+        "files": files,
         "preview": png,
         "toolpath_seconds": round(seconds, 3),
         "operations": program_for_post(job, post_name).summary(),
@@ -252,4 +321,12 @@ WORKFLOW = Workflow(
     "ENGRAVE", "Engraving", "The gouge-texture name plate", classes=CLASSES, post_families=POST_FAMILIES,
     request=engrave_request, simulation=simulation,
     commands=(BatchCommand("engrave", "gouge-texture name plate (W1)", batch_arguments, batch,
-                           demo=("--post", "linuxcnc")),))
+                           demo=("--post", "linuxcnc")),
+              BatchCommand("engrave-dome", "gouge-texture name plate on a domed plate (engrave --surface dome)",
+                           batch_arguments, lambda args: batch(_dome_default(args)),
+                           demo=("--post", "fanuc-macro"))))
+
+
+def _dome_default(args):
+    args.surface = args.surface or "dome"
+    return args

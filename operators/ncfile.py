@@ -76,9 +76,9 @@ def batch(args) -> dict:
                              trimesh.Trimesh(vertices, faces, process=False).export(file_type="stl"))
     scene = batchio.open_blend(None)
     job = simview.SimulationJob(result, convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0)), "nc")
-    carved = simview.show_simulation(scene, job)
-    png = preview.render_preview(scene, [carved], [], os.path.join(args.out, "simulated.png"), see_through=False,
-                                 color_type="VERTEX")
+    simview.show_simulation(scene, job, mesh=(vertices, faces))
+    png = preview.simulation_png(os.path.join(args.out, "simulated.png"), result,
+                                 f"NC FILE: {os.path.basename(args.nc)} SIMULATED", mesh=(vertices, faces))
     return {"workflow": "simulate", "files": [mesh_path], "preview": png, "nc": os.path.abspath(args.nc),
             "moves": len(op), "simulation": report}
 

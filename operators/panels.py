@@ -51,6 +51,7 @@ class KEZURI_PT_engrave(KezuriPanel, bpy.types.Panel):
         props = context.scene.kezuri.engrave
         layout.prop(props, "letters")
         layout.prop(props, "letters_collection")
+        layout.prop(props, "surface")
         row = layout.row(align=True)
         row.scale_y = 1.4
         row.operator("kezuri.engrave_generate", icon="MOD_NOISE")

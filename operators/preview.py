@@ -1,69 +1,56 @@
-"""Headless preview pictures (Workbench): the stock and the toolpaths, seen from above.
+"""Batch pictures, drawn by the core's software rasteriser (:mod:`..toolpath.picture_jobs`) from
+the toolpaths and the simulation's result: no renderer starts, the scene is only read.
 
-The camera is temporary and objects not in the picture are hidden only while it renders: the
-scene is left as it was.
+Each picture is written through :func:`..post.output.write_atomic`: a failed write leaves no
+half-written PNG.
 """
 from __future__ import annotations
 
-import math
+import numpy as np
 
-import bpy
-from mathutils import Vector
+from ..post.output import write_atomic
+from ..toolpath import picture_jobs
 
-from ..post.output import atomic_path
+SIZE = (1200, 800)
+SIDE_VIEW_DEG = 72.0     # a turned bar (axis Z) seen from the side, a little from above
 
 
-def render_preview(scene, solids, paths, path: str, resolution=(1200, 800), see_through: bool = True,
-                   color_type: str = "OBJECT"):
-    """Render ``solids`` (stock, parts) and ``paths`` (toolpath curves) to ``path`` (PNG).
+def object_solid(obj, frame, depsgraph=None, colour=picture_jobs.PART_COLOUR) -> tuple:
+    """(vertices in work mm, triangles, colour) of a Blender object's evaluated mesh, read with
+    bulk array calls (``foreach_get`` on its loop triangles)."""
+    import bpy
 
-    ``see_through`` renders the solids half transparent, so toolpaths below the stock's top
-    (all of them, before simulation) stay visible.  The picture is rendered to a temporary file
-    beside ``path`` and renamed (:func:`..post.output.atomic_path`): a failed render leaves no
-    half-written PNG."""
-    temp_collection = bpy.data.collections.new("Kezuri preview render")
-    scene.collection.children.link(temp_collection)
-    shown = set(solids) | set(paths)
-    hidden = [o for o in scene.objects if o not in shown and not o.hide_render]
-    for obj in hidden:
-        obj.hide_render = True
-    camera_data = bpy.data.cameras.new("Kezuri preview camera")
-    camera = bpy.data.objects.new("Kezuri preview camera", camera_data)
-    temp_collection.objects.link(camera)
-    previous_camera = scene.camera
+    depsgraph = depsgraph or bpy.context.evaluated_depsgraph_get()
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
     try:
-        corners = [obj.matrix_world @ Vector(c) for obj in shown for c in obj.bound_box]
-        lo = Vector((min(c.x for c in corners), min(c.y for c in corners), min(c.z for c in corners)))
-        hi = Vector((max(c.x for c in corners), max(c.y for c in corners), max(c.z for c in corners)))
-        centre = (lo + hi) / 2
-        size = max(hi.x - lo.x, (hi.y - lo.y) * resolution[0] / resolution[1], 1e-6)
-        tilt = math.radians(35)
-        distance = size * 2
-        camera.location = centre + Vector((0, -math.sin(tilt) * distance, math.cos(tilt) * distance))
-        camera.rotation_euler = (tilt, 0, 0)
-        camera_data.type = "ORTHO"
-        camera_data.ortho_scale = size * 1.08
-        camera_data.clip_end = distance * 4
-        scene.camera = camera
-        render = scene.render
-        render.engine = "BLENDER_WORKBENCH"
-        render.resolution_x, render.resolution_y = resolution
-        render.resolution_percentage = 100
-        render.image_settings.file_format = "PNG"
-        shading = scene.display.shading
-        shading.light = "STUDIO"
-        shading.color_type = color_type      # "VERTEX": the colour attribute (simulated stock by depth)
-        shading.show_cavity = True
-        shading.show_xray = see_through
-        shading.xray_alpha = 0.55
-        with atomic_path(path) as temp:
-            render.filepath = temp
-            bpy.ops.render.render(write_still=True)
+        if mesh is None:
+            return np.zeros((0, 3)), np.zeros((0, 3), np.int64), colour
+        mesh.calc_loop_triangles()
+        co = np.empty(len(mesh.vertices) * 3)
+        mesh.vertices.foreach_get("co", co)
+        triangles = np.empty(len(mesh.loop_triangles) * 3, np.int32)
+        mesh.loop_triangles.foreach_get("vertices", triangles)
     finally:
-        scene.camera = previous_camera
-        for obj in hidden:
-            obj.hide_render = False
-        bpy.data.objects.remove(camera, do_unlink=True)
-        bpy.data.cameras.remove(camera_data)
-        bpy.data.collections.remove(temp_collection)
-    return path
+        evaluated.to_mesh_clear()
+    matrix = np.array(obj.matrix_world)
+    world = co.reshape(-1, 3) @ matrix[:3, :3].T + matrix[:3, 3]
+    return frame.to_work(world), triangles.reshape(-1, 3).astype(np.int64), colour
+
+
+def toolpath_png(path: str, operations, stock, solids=(), title: str = "", tilt_deg: float = 35.0) -> str:
+    """The toolpaths (cut, plunge, link, rapid) over ``solids`` ([(vertices mm, faces, rgb)])."""
+    picture = picture_jobs.toolpath_picture(list(operations), stock, list(solids), title, SIZE, tilt_deg)
+    return write_atomic(path, picture.png())
+
+
+def simulation_png(path: str, result, title: str = "", tilt_deg: float = 35.0, mesh=None) -> str:
+    """The simulated stock coloured by depth over the job's own depth range (``mesh``: the
+    stock's (vertices, faces) if already built)."""
+    picture = picture_jobs.simulation_picture(result, title, SIZE, tilt_deg, mesh=mesh)
+    return write_atomic(path, picture.png())
+
+
+def sheet_png(path: str, patterns, title: str = "") -> str:
+    """Flat patterns from above: filled faces, dashed bend lines, cut contours."""
+    return write_atomic(path, picture_jobs.sheet_picture(patterns, title, SIZE).png())

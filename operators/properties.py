@@ -104,6 +104,10 @@ class KezuriEngrave(bpy.types.PropertyGroup):
     letters_collection: PointerProperty(name="More Letters", type=bpy.types.Collection,
                                         description="Optional: every Text, curve or mesh in this collection "
                                                     "is lettering too")
+    surface: PointerProperty(name="Plate Surface", type=bpy.types.Object, poll=_mesh_poll,
+                             description="Optional: a mesh whose top is the plate's curved top (a dome, a "
+                                         "cylinder, a sculpted board), spanning the whole plate outline; the "
+                                         "toolpaths follow it.  Empty: the flat top of the plate")
     # Roughing with the gouge texture
     rough_diameter: mm("Ball Diameter", 6.0, "Roughing ball end mill diameter", minimum=0.1)
     rough_tool_number: IntProperty(name="Ball Tool No.", default=2, min=0, max=999)

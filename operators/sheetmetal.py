@@ -417,11 +417,11 @@ def unfold_batch(args) -> dict:
         corners = corners_mm(sheet)
     job = run_unfold(corners, sheet)
     files = unfold_files(job, os.path.join(args.out, "unfold.nc"))
-    objects = show_unfold(scene, job)
-    png = preview.render_preview(scene, [o for o in objects if o.type == "MESH"],
-                                 [o for o in objects if o.type != "MESH"], os.path.join(args.out, "unfold.png"),
-                                 see_through=False)
+    show_unfold(scene, job)
     pattern = job.quad.pattern
+    png = preview.sheet_png(os.path.join(args.out, "unfold.png"),
+                            [dict(outline=pattern.outline, bends=[(s[0], s[1]) for s in pattern.bend_lines()], contour=job.contour,
+                                  name="FLAT PATTERN")], "UNFOLD: FLAT PATTERN, BEND LINES, PUNCH PATH")
     rounded = batchio.rounded
     return {
         "workflow": "unfold",
@@ -460,10 +460,11 @@ def elbow_batch(args) -> dict:
             batchio.set_exactly(sheet, name, getattr(args, option), "--" + option.replace("_", "-"))
     result = run_elbow(sheet)
     files = elbow_files(result, os.path.join(args.out, "elbow.dxf"), sheet)
-    objects = show_elbow(scene, result)
-    solids = [o for o in objects if o.type == "MESH" and len(o.data.polygons)]
-    wires = [o for o in objects if o not in solids]
-    png = preview.render_preview(scene, solids, wires, os.path.join(args.out, "elbow.png"), see_through=False)
+    show_elbow(scene, result)
+    png = preview.sheet_png(os.path.join(args.out, "elbow.png"),
+                            [dict(outline=outline, contour=core.compensate_outline(outline, sheet.tool_diameter),
+                                  name=f"PIECE {index}") for index, outline in enumerate(elbow_layout(result), 1)],
+                            "ELBOW: FLAT PATTERNS AND PUNCH PATHS")
     rounded = batchio.rounded
     return {
         "workflow": "elbow",

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
+from ..toolpath import picture_jobs
 from ..toolpath import simulate as core
 from . import convert
 from .common import CoreCall
@@ -84,18 +85,19 @@ def report_of(result: core.SimulationResult) -> dict:
     }
 
 
-def show_simulation(scene, job: SimulationJob, max_cells: int = 250_000):
+def show_simulation(scene, job: SimulationJob, max_cells: int = 250_000, mesh=None):
     """The simulated stock as a mesh in the Kezuri collection (replaces the last one), with two
-    colour attributes: by depth, and by the operation whose surface shows there."""
+    colour attributes: by depth, and by the operation whose surface shows there.  ``mesh``: the
+    stock's (vertices, faces) if already built (else ``job.result.mesh(max_cells)``)."""
     convert.remove_objects(PREFIX)
-    vertices, faces = job.result.mesh(max_cells)
+    vertices, faces = job.result.mesh(max_cells) if mesh is None else mesh
     obj = convert.mesh_object(scene, f"{PREFIX} stock ({job.name})", vertices, faces, job.frame,
                               color=(0.85, 0.72, 0.52, 1.0))
     vertices = np.asarray(vertices, float)
-    depth = job.result.depth_at(vertices)
-    shade = np.clip(depth / max(float(depth.max()), 1e-9), 0, 1)[:, None]
-    light, dark = np.array([0.92, 0.80, 0.60, 1.0]), np.array([0.35, 0.20, 0.08, 1.0])
-    by_depth = light * (1 - shade) + dark * shade
+    # over the job's own depth range (0 .. its deepest cut), not the stock's thickness
+    depth, deepest = picture_jobs.surface_depth(job.result, vertices)
+    by_depth = np.column_stack([picture_jobs.depth_colours(depth, deepest) / 255.0, np.ones(len(depth))])
+    light = np.array([0.92, 0.80, 0.60, 1.0])
     by_operation = np.tile(light, (len(vertices), 1))
     operation = job.result.operation_at(vertices)
     cut = (operation >= 0) & (depth > 1e-6)
@@ -139,7 +141,9 @@ def batch_simulation(scene, setup, out_dir: str, stem: str, job: SimulationJob |
 
     if job is None:
         job = run_setup(setup, "heightfield", 0.1, Progress(None, "simulate"))
-    carved = show_simulation(scene, job)
-    png = preview.render_preview(scene, [carved], [], os.path.join(out_dir, f"{stem}.png"), see_through=False,
-                                 color_type="VERTEX")
+    mesh = job.result.mesh(250_000)       # built once: the scene's object and the picture
+    show_simulation(scene, job, mesh=mesh)
+    png = preview.simulation_png(os.path.join(out_dir, f"{stem}.png"), job.result,
+                                 f"{stem.upper()}: SIMULATED STOCK", preview.SIDE_VIEW_DEG if stem == "turnmill" else 35.0,
+                                 mesh)
     return report_of(job.result), png

@@ -374,10 +374,12 @@ def batch(args) -> dict:
         if staging is not None:
             shutil.rmtree(staging, ignore_errors=True)
     objects = show_workplan(scene, loaded, program)
-    solids = [o for o in objects if o.type == "MESH"]
-    paths = [o for o in objects if o.type == "CURVE"]
-    toolpaths_png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "stepnc-toolpaths.png"))
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    solids = [preview.object_solid(o, frame, depsgraph) for o in objects if o.type == "MESH" and o.display_type != "WIRE"]
+    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "stepnc-toolpaths.png"), program.operations,
+                                         simulation((loaded, program, frame)).stock, solids,
+                                         "STEP-NC: FEATURES AND TOOLPATHS")
     simulation_report, png = simview.batch_simulation(scene, simulation((loaded, program, frame)), args.out,
                                                       "stepnc", checked)
     steps = {step.id: step for step in loaded.workingsteps}

@@ -249,6 +249,11 @@ PROPERTY_TEXTS = {
     "Vary each gouge length by up to this fraction (baked only)": "各刀跡の長さを最大でこの割合だけ変えます（ベイク時のみ）",
     "Seed": "シード",
     "Random seed of the baked texture: same seed, same program": "ベイクするテクスチャの乱数シード：同じシードなら同じプログラム",
+    "Plate Surface": "板材の曲面",
+    "Optional: a mesh whose top is the plate's curved top (a dome, a cylinder, a sculpted board), spanning the "
+    "whole plate outline; the toolpaths follow it.  Empty: the flat top of the plate":
+        "任意：上面が板材の曲がった上面になるメッシュ（ドーム、円筒、スカルプトした板など）。板材の輪郭全体を覆うこと。"
+        "ツールパスはこの面に沿います。空欄なら板材の平らな上面です",
     # Engrave: band finishing and burr contour
     "Flat Diameter": "フラット径",
     "Band finishing flat end mill diameter (mm)": "帯仕上げ用フラットエンドミルの直径 (mm)",
@@ -538,6 +543,9 @@ MESSAGES = {
     "simulation cancelled": "シミュレーションを中止しました",
     "simulate needs a Program, an Operation or a list of Operations":
         "シミュレーションには Program、Operation、または Operation のリストが必要です",
+    "the stock's top surface does not cover the plate": "素材の上面の曲面が板材を覆っていません",
+    'a plate with a curved top is simulated on the height field only (engine "heightfield")':
+        '上面が曲面の板材はハイトフィールドでのみシミュレーションできます（エンジン "heightfield"）',
     # toolpath/dropcutter.py, toolpath/carve.py
     "a vertex has a non-finite coordinate": "頂点に有限でない座標があります",
     "a query point has a non-finite coordinate": "問い合わせ点に有限でない座標があります",
@@ -599,6 +607,9 @@ MESSAGES = {
     "nothing to export": "書き出すものがありません",
     "the program has no operations": "プログラムに加工工程がありません",
     'the NC program must be text': 'NCプログラムはテキストにしてください',
+    # toolpath/picture.py, toolpath/picture_jobs.py
+    "nothing to draw: no finite point to frame": "描くものがありません：枠に収める有限の点がありません",
+    "no pattern to draw": "描く展開図がありません",
 }
 
 
@@ -1005,6 +1016,27 @@ MESSAGE_TEMPLATES = {
     '--order: #{} is not a workingstep of {} ({})': '--order：#{0} は {1} のワーキングステップではありません（{2}）',
     'no such ISO 14649 file: {}': 'ISO 14649 ファイルがありません：{0}',
     'no such mesh file: {}': 'メッシュファイルがありません：{0}',
+    # toolpath/surface_engrave.py, operators/engrave.py: engraving on a curved plate
+    'surface {}: {}': '曲面 {0}：{1}',
+    'surface {}: vertices must be an (n, 3) array of numbers (mm)': '曲面 {0}：頂点は数値 (mm) の (n, 3) 配列にしてください',
+    'surface {} does not cover the plate: nothing of it lies over or under X{} Y{}; it must be a mesh spanning the whole plate outline':
+        '曲面 {0} が板材を覆っていません：X{1} Y{2} の上にも下にも面がありません。板材の輪郭全体にわたるメッシュにしてください',
+    'surface {} does not cover the plate and the letters': '曲面 {0} が板材と文字を覆っていません',
+    'surface {} has a hole under the {} near X{} Y{}: it must cover the whole plate':
+        '曲面 {0} には {1} の下、X{2} Y{3} 付近に穴があります。板材全体を覆うようにしてください',
+    '{}: arcs cannot follow a surface': '{0}：円弧は曲面に沿わせられません',
+    '{} point(s) of the toolpaths were lifted to keep the tools off the letters (first near X{} Y{})':
+        'ツールパスの {0} 点を文字に工具が当たらないよう持ち上げました（最初は X{1} Y{2} 付近）',
+    'surface {} rises to Z {}: with the {} mm approach gap that reaches the clearance plane Z {}; lower the surface (the work zero) or raise the clearance plane':
+        '曲面 {0} は Z {1} まで高くなり、{2} mm のアプローチの隙間を足すとクリアランス高さ Z {3} に届きます。曲面（ワーク原点）を下げるかクリアランス高さを上げてください',
+    'on surface {} the deepest cut reaches Z {}, through the {} mm plate (its bottom is Z {}); make the cuts shallower or the plate thicker':
+        '曲面 {0} 上の最も深い切込みが Z {1} に達し、厚さ {2} mm の板材（底面 Z {3}）を貫通します。切込みを浅くするか板材を厚くしてください',
+    "plate surface {} is not a mesh: pick a mesh object whose top is the plate's top":
+        '板材の曲面 {0} はメッシュではありません：上面が板材の上面になるメッシュオブジェクトを選んでください',
+    'plate surface {} has no faces': '板材の曲面 {0} に面がありません',
+    '--surface {}: neither a built-in surface ({}) nor a mesh file': '--surface {0}：組み込みの曲面（{1}）でもメッシュファイルでもありません',
+    'operation {}: texture marks need a texture and one (flag, fraction) pair per move':
+        '工程 {0}：テクスチャの印にはテクスチャと、移動ごとに1組の（開始印, 割合）が必要です',
     # operators/limits.py: a panel or batch number outside its range
     '{}: {} = {} is outside the allowed range {}': '{0}：{1} = {2} は指定できる範囲 {3} の外です',
     # toolpath/dropcutter.py, toolpath/carve.py, operators/carve.py
@@ -1211,6 +1243,14 @@ MESSAGE_TEMPLATES = {
         '{0}行目：{1}：タッピングはシミュレーションしません：{2}',
     'line {}: {} threading is not simulated: {}':
         '{0}行目：{1}：ねじ切りはシミュレーションしません：{2}',
+    # toolpath/picture.py, operators/convert.py, operators/__init__.py
+    'picture size must be whole pixels, 16..8192, got {} x {}':
+        '画像の大きさは 16〜8192 の整数ピクセルにしてください（指定値 {0} x {1}）',
+    'the drawing area {} is too small': '描画領域 {0} が小さすぎます',
+    'an image must be (height, width, 3), got {}': '画像は (高さ, 幅, 3) の配列にしてください（指定値 {0}）',
+    'mesh {}: a face index is outside 0..{}': 'メッシュ {0}：面の頂点番号が 0〜{1} の範囲外です',
+    'Kezuri: the simulation kernels were not compiled ahead ({}); the first Simulate compiles them':
+        'Kezuri：シミュレーションのカーネルを前もってコンパイルできませんでした（{0}）。最初のシミュレーションでコンパイルします',
 }
 
 

@@ -119,7 +119,8 @@ def turnmill_request(scene, depsgraph):
     obj, vertices, faces, owner, frame = part_mesh(scene, depsgraph)
     selected = None
     if props.selected_only:
-        selected_polygons = np.array([p.select for p in obj.data.polygons], bool)
+        selected_polygons = np.zeros(len(obj.data.polygons), bool)
+        obj.data.polygons.foreach_get("select", selected_polygons)
         if not selected_polygons.any():
             raise convert.SceneInputError(f"part {obj.name!r}: no faces are selected (select them in Edit Mode, "
                                           "or switch off Selected Faces Only)")
@@ -344,21 +345,20 @@ def batch(args) -> dict:
         part = scene.kezuri.turnmill.part
         labels = polygon_labels(job.plan.labels, job.owner, len(part.data.polygons))
         colour_faces(part, labels)
-        centres = [p.center if part.matrix_world.is_identity else part.matrix_world @ p.center
-                   for p in part.data.polygons]
-        face_centroids = job.frame.to_work(np.array(centres, float))
+        centres = np.empty(len(part.data.polygons) * 3)
+        part.data.polygons.foreach_get("center", centres)
+        matrix = np.array(part.matrix_world)
+        face_centroids = job.frame.to_work(centres.reshape(-1, 3) @ matrix[:3, :3].T + matrix[:3, 3])
     from .common import Progress
     checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
     names = args.post or posts.choices(POST_FAMILIES)
     texts = {name: posts.create(POST_FAMILIES, name).to_text(job.plan.program) for name in dict.fromkeys(names)}
     files = [write_atomic(os.path.join(args.out, f"turnmill{extension_for(name)}"), text)
              for name, text in texts.items()]
-    paths = show_turnmill(scene, job)
-    if args.mesh:   # after show_turnmill, whose clean-up would remove it
-        solids = [convert.mesh_object(scene, "Kezuri part (mesh file)", job.vertices, job.faces, job.frame)]
-    else:
-        solids = [scene.kezuri.turnmill.part]
-    toolpaths_png = preview.render_preview(scene, solids, paths, os.path.join(args.out, "turnmill-toolpaths.png"))
+    show_turnmill(scene, job)
+    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "turnmill-toolpaths.png"), job.plan.program.operations,
+                                         job.stock, [(job.vertices, job.faces, preview.picture_jobs.PART_COLOUR)],
+                                         "TURN-MILL X-Z-C: TOOLPATHS ON THE PART", tilt_deg=preview.SIDE_VIEW_DEG)
     simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "turnmill", checked)
     return {
         "gate": gate_report,

@@ -35,7 +35,7 @@ untouched, and a move with both X and Y is split with Y interpolated along it.
 """
 from __future__ import annotations
 
-from ..toolpath.program import GougeTexture
+from ..toolpath.program import RAPID, GougeTexture
 
 from .gcode import GcodePost, PostError, fmt
 from .registry import ControllerLimits
@@ -57,6 +57,7 @@ FANUC_MILL_LIMITS = ControllerLimits(
     source=FANUC_MILL_SOURCE)
 
 MACRO_PROGRAM = 7023
+SURFACE_MACRO_PROGRAM = 7024     # the same texture on a curved plate (surface_macro_program)
 # O7023's pseudo-random generator (see the module docstring): x <- LCG_MULTIPLIER * x mod LCG_MODULUS
 # in common variable #LCG_STATE_VAR.
 LCG_MODULUS = 32749
@@ -128,7 +129,33 @@ class FanucMacroPost(FanucPost):
     def operation_moves(self, op):
         if op.texture is None:
             return super().operation_moves(op)
+        if op.texture_marks is not None:
+            return [f"G66.1 P{SURFACE_MACRO_PROGRAM}"] + self.marked_moves(op) + ["G67"]
         return [f"G66.1 P{MACRO_PROGRAM}"] + self.moves(op, op.start) + ["G67"]
+
+    def marked_moves(self, op) -> list:
+        """The surface-following roughing for O7024: a row block gives X, Y and Z (the surface)
+        in full, B1 where a new gouge starts and C its ramp position; other blocks as usual."""
+        lines, last, mode, feed_word = [], {}, None, None
+        last = {axis: self.n(value) for axis, value in zip("XYZ", op.start)}
+        for kind, xyz, f, (new, fraction) in zip(op.kind.tolist(), op.xyz.tolist(), op.feed.tolist(),
+                                                   op.texture_marks.tolist()):
+            code = "G00" if kind == RAPID else "G01"
+            axes = [(axis, self.n(value)) for axis, value in zip("XYZ", xyz)]
+            marked = fraction == fraction      # not NaN
+            motion = [f"{axis}{text}" for axis, text in axes if marked or text != last[axis]]
+            if not motion:
+                continue
+            words = ([code] if code != mode else []) + motion
+            if marked:
+                words += (["B1"] if new else []) + [f"C{fmt(fraction, 4)}"]
+            if kind != RAPID and fmt(f, 1) != feed_word:
+                feed_word = fmt(f, 1)
+                words.append(f"F{feed_word}")
+            lines.append(" ".join(words))
+            mode = code
+            last.update(axes)
+        return lines
 
     def header(self, program):
         return super().header(program) + [
@@ -138,7 +165,79 @@ class FanucMacroPost(FanucPost):
     def to_text(self, program):
         main = super().to_text(program)
         texture = next(op.texture for op in program.operations if op.texture is not None)
+        if any(op.texture_marks is not None for op in program.operations):
+            return main[:-2] + surface_macro_program(texture, self.decimals) + "%\n"
         return main[:-2] + macro_program(texture, self.decimals) + "%\n"
+
+
+def _texture_lines(texture, n) -> list:
+    return [f"#110={n(texture.base_depth)} (BASE DEPTH)",
+            f"#111={n(texture.quantum)} (DEPTH QUANTUM)",
+            f"#112={n(texture.amplitude)} (AMPLITUDE)",
+            f"#113={n(texture.spacing)} (GOUGE SPACING ALONG X)"]
+
+
+def _seed_lines() -> list:
+    """Seed the generator in #115 from the clock when it holds no state (labels N7, N8)."""
+    m, x = LCG_MODULUS, f"#{LCG_STATE_VAR}"
+    return [f"IF[{x}LT1]GOTO7 (GENERATOR STATE VACANT OR INVALID: SEED IT)",
+            f"IF[{x}GE{m}]GOTO7",
+            f"IF[{x}EQFIX[{x}]]GOTO8",
+            "N7",
+            f"#30=#3001/{m} (SEED ONCE FROM THE MILLISECOND CLOCK)",
+            f"{x}=FIX[[#30-FIX[#30]]*{m - 1}]+1",
+            "N8"]
+
+
+def _draw_lines() -> list:
+    """Step the generator, take a digit 0..9 and put its depth in #114 (labels N3, N4)."""
+    m, a, x = LCG_MODULUS, LCG_MULTIPLIER, f"#{LCG_STATE_VAR}"
+    return [f"#29={a}*{x} (NEXT STATE: {a}*X MOD {m}, EXACT BELOW 1E8)",
+            f"#30=FIX[#29/{m}]",
+            f"{x}=#29-#30*{m}",
+            f"IF[{x}LT0]THEN{x}={x}+{m}",
+            f"IF[{x}GE{m}]THEN{x}={x}-{m}",
+            f"#28=FIX[{x}*10/{m}] (DIGIT 0..9)",
+            "IF[#28GE5]GOTO3",
+            "#114=#110+#111*ROUND[#28*#112/[4*#111]] (0..4: SHALLOWER)",
+            "GOTO4",
+            "N3",
+            "#114=#110-#111*ROUND[[#28-5]*#112/[4*#111]] (5..9: DEEPER)",
+            "N4"]
+
+
+def surface_macro_program(texture: GougeTexture, decimals: int = 3) -> str:
+    """Program O7024: the gouge texture on a curved plate (``Operation.texture_marks``).
+
+    The roughing path follows the surface (Z: the tool touching it) and is split where a new
+    gouge begins; each block of a row carries B1 when a new depth is drawn as it starts and C,
+    how far along the gouge's ramp (0..1) it ends.  The block is cut to
+    Z + #117 + (#114 - #117) * C: the depth ramps from the last gouge's (#117) to the new one
+    (#114) below the surface.  A block without C (approach, retract, plunge) is cut as
+    programmed and the depth returns to the base.
+    """
+    n = lambda value: fmt(value, decimals)  # noqa: E731
+    lines = [
+        f"O{SURFACE_MACRO_PROGRAM} (KEZURI GOUGE TEXTURE ON A SURFACE)",
+        "#1=#4001",
+        "IF[#3EQ#0]GOTO10 (NO RAMP POSITION: AS PROGRAMMED)",
+        "IF[#1NE1]GOTO10",
+        *_texture_lines(texture, n),
+        "IF[#2EQ#0]GOTO5 (THE SAME GOUGE)",
+        "#117=#114 (THE DEPTH WHERE THIS GOUGE STARTS)",
+        *_seed_lines(),
+        *_draw_lines(),
+        "N5",
+        "G01X#24Y#25Z[#26+#117+[#114-#117]*#3]F#9",
+        "GOTO30",
+        "N10",
+        f"#114={n(texture.base_depth)} (BACK TO THE BASE DEPTH)",
+        "#117=#114",
+        "G#1X#24Y#25Z#26I#4J#5F#9",
+        "N30",
+        "M99",
+    ]
+    return "\n".join(lines) + "\n"
 
 
 def macro_program(texture: GougeTexture, decimals: int = 3) -> str:
@@ -149,8 +248,7 @@ def macro_program(texture: GougeTexture, decimals: int = 3) -> str:
     state of the digit generator (kept between calls and runs; seeded from #3001 when vacant).
     """
     n = lambda value: fmt(value, decimals)  # noqa: E731
-    m, a, x = LCG_MODULUS, LCG_MULTIPLIER, f"#{LCG_STATE_VAR}"
-    assert a * (m - 1) < 10**8, "the generator's product must stay exact in 8 digits"
+    assert LCG_MULTIPLIER * (LCG_MODULUS - 1) < 10**8, "the generator's product must stay exact in 8 digits"
     lines = [
         f"O{MACRO_PROGRAM} (KEZURI GOUGE TEXTURE)",
         "#1=#4001",
@@ -161,10 +259,7 @@ def macro_program(texture: GougeTexture, decimals: int = 3) -> str:
         "IF[#25NE#0]GOTO20 (Y ONLY: STEPOVER AT THE CURRENT DEPTH)",
         "GOTO10",
         "N1",
-        f"#110={n(texture.base_depth)} (BASE DEPTH)",
-        f"#111={n(texture.quantum)} (DEPTH QUANTUM)",
-        f"#112={n(texture.amplitude)} (AMPLITUDE)",
-        f"#113={n(texture.spacing)} (GOUGE SPACING ALONG X)",
+        *_texture_lines(texture, n),
         "#15=#5001 (X BEFORE THE BLOCK)",
         "#17=#5002 (Y BEFORE THE BLOCK)",
         "#6=#24-#15",
@@ -174,26 +269,9 @@ def macro_program(texture: GougeTexture, decimals: int = 3) -> str:
         "#8=-1",
         "N2",
         "#16=#15+#8*#113",
-        f"IF[{x}LT1]GOTO7 (GENERATOR STATE VACANT OR INVALID: SEED IT)",
-        f"IF[{x}GE{m}]GOTO7",
-        f"IF[{x}EQFIX[{x}]]GOTO8",
-        "N7",
-        f"#30=#3001/{m} (SEED ONCE FROM THE MILLISECOND CLOCK)",
-        f"{x}=FIX[[#30-FIX[#30]]*{m - 1}]+1",
-        "N8",
+        *_seed_lines(),
         "WHILE[[#24-#16]*#8GE0]DO1",
-        f"#29={a}*{x} (NEXT STATE: {a}*X MOD {m}, EXACT BELOW 1E8)",
-        f"#30=FIX[#29/{m}]",
-        f"{x}=#29-#30*{m}",
-        f"IF[{x}LT0]THEN{x}={x}+{m}",
-        f"IF[{x}GE{m}]THEN{x}={x}-{m}",
-        f"#28=FIX[{x}*10/{m}] (DIGIT 0..9)",
-        "IF[#28GE5]GOTO3",
-        "#114=#110+#111*ROUND[#28*#112/[4*#111]] (0..4: SHALLOWER)",
-        "GOTO4",
-        "N3",
-        "#114=#110-#111*ROUND[[#28-5]*#112/[4*#111]] (5..9: DEEPER)",
-        "N4",
+        *_draw_lines(),
         "IF[#25EQ#0]GOTO5",
         "#33=#17+[#25-#17]*[#16-#15]/#6",
         "G#1X#16Y#33Z#114F#9",

@@ -92,6 +92,9 @@ class Operation:
     ``start`` is where the tool is before the first move (normally above the clearance plane).
     ``texture`` carries a request a post may honour itself: a :class:`GougeTexture` that a
     controller macro applies at run time; the moves are then the untextured path.
+    ``texture_marks`` (n, 2), with a texture on a curved plate (:mod:`surface_engrave`): per move,
+    1 where a new gouge depth is drawn as the move starts (else 0), and how far along the gouge's
+    ramp the move ends (0..1; NaN: the move is cut as programmed); the macro adds the depth to Z.
     """
 
     name: str
@@ -107,6 +110,7 @@ class Operation:
     safe_z: float = 100.0
     start: np.ndarray | None = None
     texture: GougeTexture | None = None
+    texture_marks: np.ndarray | None = None
     coolant: bool = False
     comment: str = ""
     source_id: int | None = None   # what the operation was made from (a STEP-NC workingstep's instance id)
@@ -149,6 +153,11 @@ class Operation:
             raise ProgramError(f"operation {self.name!r}: an arc has no centre")
         if not (np.isfinite(self.spindle_rpm) and self.spindle_rpm >= 0):
             raise ProgramError(f"operation {self.name!r}: spindle speed must be >= 0")
+        if self.texture_marks is not None:
+            marks = np.asarray(self.texture_marks, float)
+            if marks.shape != (n, 2) or self.texture is None:
+                raise ProgramError(f"operation {self.name!r}: texture marks need a texture and one (flag, fraction) "
+                                   "pair per move")
         if self.texture is not None and not isinstance(self.texture, GougeTexture):
             raise ProgramError(f"operation {self.name!r}: texture must be a GougeTexture or None, "
                                f"got {type(self.texture).__name__}")

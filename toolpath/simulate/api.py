@@ -88,6 +88,9 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     findings = _travel_findings(ops, travel) if travel else []
     findings += _spindle_findings(ops) + _floor_findings(ops, stock, float(fixture_clearance))
     solid = None
+    if engine == "manifold" and getattr(stock, "surface", None):
+        raise SimulationError("a plate with a curved top is simulated on the height field only (engine "
+                              "\"heightfield\")")
     if engine == "manifold":
         solid = sweep.cut(_stock_solid(stock, tolerance), all_chains, tolerance, chunk,
                           _cancelling(_part_of(progress, 0.0, 0.8)))

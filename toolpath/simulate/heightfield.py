@@ -31,6 +31,23 @@ def _grid(stock, cell: float) -> HeightField:
                          "use a coarser cell")
     hf = HeightField(x0, y0, (x1 - x0) / nx, (y1 - y0) / ny, np.full((nx, ny), stock.top, np.float32),
                      np.ones((nx, ny), bool), stock.top, stock.bottom)
+    if getattr(stock, "surface", None):
+        from .checks import _mesh_top
+
+        vertices, faces = np.asarray(stock.surface[0], float), np.asarray(stock.surface[1], np.int64)
+        top = _mesh_top(hf, vertices, faces)
+        gaps = ~np.isfinite(top)
+        if gaps.any():      # cell centres on a triangle's edge: drop a point there
+            from ..dropcutter import DropCutter
+            from ..program import Tool
+
+            gx, gy = np.meshgrid(hf.x(), hf.y(), indexing="ij")
+            top[gaps] = DropCutter(vertices, faces, Tool(0, "flat", 0.002), bucket=1.0).points(
+                np.column_stack([gx[gaps], gy[gaps]]))
+        if not np.all(np.isfinite(top)):
+            raise SimulationError("the stock's top surface does not cover the plate")
+        hf.heights[:] = np.clip(top, stock.bottom, stock.top)
+        object.__setattr__(hf, "initial", hf.heights.copy())
     if isinstance(stock, CylinderStock):
         hf.inside = np.hypot(hf.x()[:, None], hf.y()[None, :]) <= stock.radius
         hf.heights[~hf.inside] = -np.inf    # no material: nothing to cut or touch

@@ -61,6 +61,15 @@ class BoxStock:
 
 
 @dataclass(frozen=True)
+class SurfaceStock(BoxStock):
+    """A plate whose top is a surface: the box x0..x1, y0..y1, z0..z1 cut down to the upper
+    side of the mesh ``surface`` = (vertices (n, 3), faces (m, 3)), which must cover the box
+    (a curved name plate; the height-field engine only)."""
+
+    surface: tuple = field(default=(), compare=False, repr=False)
+
+
+@dataclass(frozen=True)
 class CylinderStock:
     """A disc of material on the rotary table, or a bar in a turn-mill chuck: axis Z through
     the origin, top (end) face at z = ``z_top`` (0 unless given)."""
@@ -138,6 +147,7 @@ class HeightField:
     top: float
     bottom: float
     operation: np.ndarray | None = None
+    initial: np.ndarray | None = None      # the material's top before cutting where it is not flat (a surface stock)
 
     def operation_at(self, xy) -> np.ndarray:
         """The ``operation`` of the cells under (k, 2) points (clamped to the grid)."""
@@ -157,7 +167,8 @@ class HeightField:
         return self.y0 + (np.arange(self.shape[1]) + 0.5) * self.cell_y
 
     def removed_volume(self) -> float:
-        depth = self.top - np.clip(self.heights, self.bottom, self.top)
+        start = self.top if self.initial is None else self.initial
+        depth = np.maximum(start - np.clip(self.heights, self.bottom, self.top), 0.0)
         return float(np.sum(depth, where=self.inside, dtype=np.float64) * self.cell_x * self.cell_y)
 
 

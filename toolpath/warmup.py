@@ -1,0 +1,58 @@
+"""Compile the numba kernels ahead of the first Simulate.
+
+numba compiles a kernel the first time it is called with a given set of argument types, and
+with ``cache=True`` keeps the machine code on disk (beside the module, or where the install
+folder is read-only, in the user's cache folder: ``NUMBA_CACHE_DIR`` or numba's user-wide
+default).  :func:`warm_kernels` calls every kernel once through the same public calls a job
+makes, on tiny inputs (every tool shape; straight, arc and plunging moves; a radial turn-mill
+move; the drop-cutter), so the types match and the first real Simulate finds them compiled or
+loads them from the cache.  The shell runs it on a background thread after registering.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .program import ARC_CCW, FEED, RAPID, Operation, Tool, TurnMillOperation
+from .tools import KINDS
+
+
+def _box_operation(kind: str, number: int) -> Operation:
+    moves = [(RAPID, (1.0, 1.0, 5.0)), (RAPID, (1.0, 1.0, 1.0)), (FEED, (1.0, 1.0, -0.5)),
+             (FEED, (6.0, 2.0, -0.8)), (ARC_CCW, (6.0, 6.0, -0.8)), (FEED, (2.0, 6.0, -0.4)),
+             (RAPID, (2.0, 6.0, 5.0))]
+    centre = np.full((len(moves), 3), np.nan)
+    centre[4] = (6.0, 4.0, -0.8)
+    return Operation(f"warm {kind}", Tool(number, kind, 2.0), 10000, [k for k, _ in moves],
+                     [p for _, p in moves], [np.nan if k == RAPID else 300.0 for k, _ in moves], center=centre,
+                     clearance_z=5.0, safe_z=5.0)
+
+
+def _radial_operation() -> TurnMillOperation:
+    xyz = [(12.0, 0.0, -2.0), (9.5, 0.0, -2.0), (9.5, 0.0, -4.0), (12.0, 0.0, -4.0)]
+    kinds = [RAPID, FEED, FEED, RAPID]
+    return TurnMillOperation("warm radial", Tool(1, "ball", 2.0), 8000, kinds, xyz,
+                             [np.nan if k == RAPID else 300.0 for k in kinds],
+                             rotary={"c": np.array([0.0, 0.0, 40.0, 40.0])}, direction="radial",
+                             clearance_z=5.0, safe_z=5.0, start=np.array([12.0, 0.0, -2.0]))
+
+
+def warm_kernels() -> list:
+    """Run every compiled kernel once; returns what ran ("heightfield ball", ...).  Without
+    numba (or with KEZURI_NO_NUMBA=1) the numpy paths run and nothing is compiled."""
+    from .dropcutter import DropCutter
+    from .simulate import BoxStock, CylinderStock, simulate
+
+    ran = []
+    operations = [_box_operation(kind, number) for number, kind in enumerate(KINDS, start=1)]
+    for op in operations:
+        simulate([op], BoxStock(0.0, 0.0, -3.0, 8.0, 8.0, 0.0), cell=0.5)
+        ran.append(f"heightfield {op.tool.kind}")
+    simulate([_radial_operation()], CylinderStock(10.0, 10.0, 0.0), cell=0.5)
+    ran.append("radius map")
+    vertices = np.array([(0.0, 0.0, 0.0), (8.0, 0.0, 0.0), (8.0, 8.0, 1.0), (0.0, 8.0, 1.0)])
+    faces = np.array([(0, 1, 2), (0, 2, 3)])
+    xy = np.array([(2.0, 2.0), (4.0, 5.0)])
+    for op in operations:
+        DropCutter(vertices, faces, op.tool).points(xy)
+        ran.append(f"drop-cutter {op.tool.kind}")
+    return ran
