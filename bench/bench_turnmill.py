@@ -79,8 +79,8 @@ def run_planning():
          "target_s": 1.2 * base,
          "notes": f"{seconds / base:.1f}x the sample's time (target 1.2x); same moves: {same}, at most "
                   f"{apart:.2g} mm apart. "
-                  "Left: the ball-clearance nearest-surface queries still test every triangle within the "
-                  "ball's reach"},
+                  "Left (grows with the faces): classifying every face by rays, slicing the faces into "
+                  "sections, building the nearest-point tree"},
         {"name": "turnmill: plan a plain 64-sided cylinder", "seconds": plain_cylinder,
          "notes": "before the grid join: over 300 s"},
     ]

@@ -32,23 +32,17 @@ def rounded(array, digits: int = 6):
 
 # ----- batch arguments, checked against their meaning -------------------------------------------
 
-def _limits(prop) -> tuple:
-    """(min, max) of a property definition (``FloatProperty(...)`` as written in properties.py)."""
-    keywords = getattr(prop, "keywords", {})
-    return keywords.get("min"), keywords.get("max")
-
-
 def number(option: str, lo=None, hi=None, *, integer: bool = False, lo_open: bool = False, unit: str = "",
-           prop=None):
+           limit=None):
     """An argparse ``type`` that takes a finite number within [lo, hi] (``lo_open``: lo excluded),
-    or the hard limits of the property definition ``prop`` (so batch and the panel share one range),
+    or the range ``limit`` of ``limits.RANGES`` (so batch and the panel share one table),
     and refuses anything else naming the option, the value given and the range: never a value the
     scene would silently clamp to another job."""
     import argparse
     import math
 
-    if prop is not None:
-        lo, hi = _limits(prop)
+    if limit is not None:
+        lo, hi, lo_open, integer, unit = limit.lo, limit.hi, limit.lo_open, limit.integer, limit.unit
     kind = "an integer" if integer else "a number"
     low = "" if lo is None else (f"{lo:g} <" if lo_open else f"{lo:g} <=")
     high = "" if hi is None else f"<= {hi:g}"

@@ -26,6 +26,7 @@ from . import convert
 from . import gate
 from .common import SteppedOperator, run_reported
 from .exporting import MillingExport
+from .limits import check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -47,6 +48,7 @@ class CarveJob:
 
 
 def settings_from(props) -> core.CarveSettings:
+    check_group(props, "carve")
     return core.CarveSettings(
         rough_tool=Tool(props.rough_tool_number, "flat", props.rough_diameter, name="roughing"),
         finish_tool=Tool(props.finish_tool_number, "ball", props.finish_diameter, name="finishing"),
@@ -89,6 +91,7 @@ def carve_request(scene, depsgraph):
     vertices, faces, frame = design_mesh(scene, depsgraph)
     settings, name, above = settings_from(props), scene.name, props.stock_above
     machine = scene.kezuri.machine
+    check_group(machine, "machine")
     offset, rate = machine.work_offset, machine.rapid_rate
     return lambda progress=None: run_on_mesh(vertices, faces, settings, frame, above, name, offset, rate, progress)
 
@@ -244,11 +247,11 @@ def batch_arguments(p):
     source.add_argument("--sample", choices=sorted(carve_samples.SAMPLES), help="a built-in design (default: wave)")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
     from .batchio import number
-    from .properties import KezuriCarve
-    p.add_argument("--scallop", type=number("--scallop", prop=KezuriCarve.__annotations__["scallop"], unit="mm"),
+    from .limits import RANGES
+    p.add_argument("--scallop", type=number("--scallop", limit=RANGES["carve"]["scallop"]),
                    help="scallop height in mm the finishing may leave")
-    p.add_argument("--angle", type=number("--angle", prop=KezuriCarve.__annotations__["raster_angle"],
-                                          unit="degrees"), help="finishing raster angle in degrees")
+    p.add_argument("--angle", type=number("--angle", limit=RANGES["carve"]["raster_angle"]),
+                   help="finishing raster angle in degrees")
     gate.allow_findings_argument(p)
 
 

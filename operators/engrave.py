@@ -23,6 +23,7 @@ from . import convert
 from . import gate
 from .common import SteppedOperator
 from .exporting import MillingExport
+from .limits import check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -88,6 +89,8 @@ def engrave_request(scene, depsgraph):
     which plans the job without touching Blender data (so it can run in steps)."""
     settings = scene.kezuri
     props = settings.engrave
+    check_group(settings.machine, "machine")
+    check_group(props, "engrave")
     plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, settings.stock.origin)
     objects = [o for o in letter_objects(props) if o != settings.stock.plate]
     if not objects:
@@ -236,7 +239,8 @@ def batch_arguments(p):
     p.add_argument("--blend", help="a .blend whose scene has the Kezuri plate and letters set")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
     from .batchio import number
-    p.add_argument("--seed", type=number("--seed", 0, 2**31 - 1, integer=True))
+    from .limits import RANGES
+    p.add_argument("--seed", type=number("--seed", limit=RANGES["engrave"]["seed"]))
     p.add_argument("--surface", help="the plate's curved top: " + ", ".join(surface_engrave.SURFACES)
                    + " (built in, over the plate) or an STL/OBJ/PLY mesh in work mm (Z 0: the plate's top); "
                    "default: flat")

@@ -16,7 +16,8 @@ def batch_arguments(p):
     p.add_argument("--design", help="the finished part as STL/OBJ/PLY, for the gouge check")
     p.add_argument("--engine", choices=list(core.ENGINES), default="heightfield")
     from .batchio import number
-    p.add_argument("--cell", type=number("--cell", 0.0, None, lo_open=True, unit="mm"), default=0.1,
+    from .limits import RANGES
+    p.add_argument("--cell", type=number("--cell", limit=RANGES["simulation"]["cell"]), default=0.1,
                    help="height-field cell (mm)")
 
 

@@ -3,14 +3,17 @@
 Defaults are the source papers' values; every length is in millimetres whatever the scene
 units (a CNC user thinks in the machine's units, and G-code coming out 1000x too large is the
 commonest complaint about Blender CAM add-ons).
-"""
-from __future__ import annotations
 
+The numbers' ranges are in :mod:`.limits` (one table for the panel and batch): :func:`ranged`
+turns them into soft limits and drops the hard ones, so a bad value set from Python stays what
+it is and is refused by name when the job reads it, instead of being clamped into another job.
+"""
 import bpy
 from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty,
                        IntProperty, PointerProperty, StringProperty)
 
 from .. import post as posts
+from . import limits
 
 _ENUM_ITEMS: dict = {}   # Blender reads dynamic enum strings after the callback returns: keep them alive
 
@@ -55,6 +58,26 @@ def mm(name, default, description, minimum=None, maximum=None, soft_min=None, so
         if value is not None:
             options[key] = value
     return FloatProperty(**options)
+
+
+def ranged(settings: dict, group: str) -> dict:
+    """``settings`` (name -> property definition) with the ranges of ``limits.RANGES[group]`` as
+    soft limits and no hard ones."""
+    table = limits.RANGES[group]
+    result = {}
+    for name, prop in settings.items():
+        if name in table:
+            keywords = {k: v for k, v in prop.keywords.items() if k not in ("min", "max", "soft_min", "soft_max")}
+            prop = prop.function(**keywords, **limits.soft_limits(table[name]))
+        result[name] = prop
+    return result
+
+
+def limited(cls, group: str):
+    """Apply :func:`ranged` to a property group class's annotations (before registration)."""
+    cls.__annotations__ = ranged(dict(cls.__annotations__), group)
+    return cls
+
 
 
 class KezuriMachine(bpy.types.PropertyGroup):
@@ -123,7 +146,7 @@ class KezuriEngrave(bpy.types.PropertyGroup):
 
 
 # Shared by the Sheet Metal panel (scene settings) and the operators' redo panels.
-UNFOLD_SETTINGS = {
+UNFOLD_SETTINGS = ranged({
     "divisions": IntProperty(name="Divisions N", default=5, min=1, max=500,
                              description="Every edge of the quad is divided into N equal parts"),
     "direction": EnumProperty(name="Strips", default="horizontal", items=[
@@ -135,15 +158,15 @@ UNFOLD_SETTINGS = {
                     minimum=0.01),
     "pitch": mm("Nibbling Pitch", 2.0, "Distance between punch hits (Q word)", minimum=0.1),
     "station": IntProperty(name="Station", default=302, min=1, max=999, description="Turret station (T word)"),
-}
-ELBOW_SETTINGS = {
+}, "sheet")
+ELBOW_SETTINGS = ranged({
     "elbow_diameter": mm("Pipe Diameter", 100.0, "Neutral diameter of the pipe", minimum=0.1),
     "elbow_radius": mm("Bend Radius", 150.0, "Radius of the elbow's centre line", minimum=0.1),
     "elbow_angle": FloatProperty(name="Bend Angle", default=90.0, min=1.0, max=180.0,
                                  description="Angle the elbow turns the pipe through (degrees)"),
     "elbow_pieces": IntProperty(name="Pieces", default=5, min=2, max=60,
                                 description="Pieces in all, the two half pieces at the ends included"),
-}
+}, "sheet")
 
 
 def copies(settings: dict) -> dict:
@@ -157,11 +180,11 @@ PAPER_CORNERS = (0.0, 0.0, 0.0, 0.0, 30.0, 100.0, 100.0, 50.0, 100.0, 100.0, 40.
 
 
 class KezuriSheet(bpy.types.PropertyGroup):
-    __annotations__ = {
+    __annotations__ = ranged({
         "corners": FloatVectorProperty(name="Corners", size=12, default=PAPER_CORNERS,
                                        description="P1..P4 of the twisted quad, x y z each (mm)"),
         **UNFOLD_SETTINGS, **ELBOW_SETTINGS,
-    }
+    }, "sheet")
 
 
 class KezuriPocket(bpy.types.PropertyGroup):
@@ -329,6 +352,11 @@ class KezuriSettings(bpy.types.PropertyGroup):
     carve: PointerProperty(type=KezuriCarve)
     simulation: PointerProperty(type=KezuriSimulation)
 
+
+for _cls, _group in ((KezuriMachine, "machine"), (KezuriEngrave, "engrave"), (KezuriPocket, "pocket"),
+                     (KezuriRotary, "rotary"), (KezuriStepNC, "stepnc"), (KezuriTurnMill, "turnmill"),
+                     (KezuriCarve, "carve"), (KezuriSimulation, "simulation")):
+    limited(_cls, _group)
 
 CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriPocket, KezuriRotary, KezuriWorkingstep,
            KezuriStepNC, KezuriTurnMill, KezuriCarve, KezuriFinding, KezuriSimulation, KezuriSettings)

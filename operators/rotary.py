@@ -23,6 +23,7 @@ from ..toolpath.program import Tool
 from . import convert
 from . import gate
 from .common import SteppedOperator, run_reported
+from .limits import check_group
 from .properties import post_items, post_number
 from .translations import translate_message
 from .workflow import BatchCommand, SimulationSetup, Workflow
@@ -41,6 +42,7 @@ class RotaryJob:
 
 
 def settings_from(props) -> core.RotarySettings:
+    check_group(props, "rotary")
     return core.RotarySettings(
         tool=Tool(props.tool_number, "ball", props.tool_diameter, flute_length=props.flute_length,
                   name="pencil bit"),
@@ -57,6 +59,8 @@ def rotary_request(scene, depsgraph):
     """Read the block, the pockets and the settings; return ``compute(progress)``, which plans
     without touching Blender data (so it can run in steps)."""
     settings = scene.kezuri
+    check_group(settings.machine, "machine")
+    check_group(settings.rotary, "rotary")
     plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, "CENTER")
     size_x, size_y, thickness = plate.size
     block = core.Block(size_x, size_y, thickness)
@@ -67,6 +71,7 @@ def rotary_request(scene, depsgraph):
             raise convert.SceneInputError(f"pocket {obj.name!r}: the outline must be one closed loop, "
                                           f"found {len(loops)}")
         props = obj.kezuri_pocket
+        check_group(props, "pocket", where=f"pocket {obj.name!r}")
         pockets.append(core.Pocket(obj.name, loops[0], props.depth, props.wall_angle, props.bottom,
                                    props.sphere_radius if props.bottom == "sphere" else None))
     if not pockets:

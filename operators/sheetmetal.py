@@ -20,6 +20,7 @@ from ..toolpath import punch
 from ..toolpath import unfold as core
 from . import convert
 from .common import run_reported
+from .limits import check_group
 from .properties import ELBOW_SETTINGS, UNFOLD_SETTINGS, copies
 from .translations import translate_message
 from .workflow import BatchCommand, Workflow
@@ -47,10 +48,12 @@ class UnfoldJob:
 
 
 def corners_mm(props) -> np.ndarray:
+    check_group(props, "sheet", ["corners"])
     return np.array(props.corners, float).reshape(4, 3)
 
 
 def run_unfold(corners, props) -> UnfoldJob:
+    check_group(props, "sheet", list(UNFOLD_SETTINGS))
     quad = core.unfold_twisted_quad(corners, props.divisions, props.direction)
     contour = core.compensate_outline(quad.pattern.outline, props.tool_diameter)
     nc = punch_program(contour, props)
@@ -140,6 +143,7 @@ def show_unfold(scene, job: UnfoldJob) -> list:
 
 
 def run_elbow(props) -> core.Elbow:
+    check_group(props, "sheet", [*ELBOW_SETTINGS, "tool_diameter", "thickness", "pitch", "station"])
     return core.unfold_elbow(props.elbow_angle, props.elbow_radius, props.elbow_diameter, props.elbow_pieces)
 
 
@@ -226,6 +230,7 @@ class KEZURI_OT_unfold_quad(bpy.types.Operator):
     def execute(self, context):
         def work():
             sheet = context.scene.kezuri.sheet
+            check_group(self, "sheet", list(UNFOLD_SETTINGS))     # before the scene takes them
             for name in UNFOLD_SETTINGS:
                 setattr(sheet, name, getattr(self, name))
             job = run_unfold(corners_mm(sheet), sheet)
@@ -326,6 +331,7 @@ class KEZURI_OT_add_elbow(bpy.types.Operator):
     def execute(self, context):
         def work():
             sheet = context.scene.kezuri.sheet
+            check_group(self, "sheet", list(ELBOW_SETTINGS))      # before the scene takes them
             for name in ELBOW_SETTINGS:
                 setattr(sheet, name, getattr(self, name))
             elbow = run_elbow(sheet)
@@ -371,12 +377,13 @@ def unfold_arguments(p):
     source.add_argument("--corners", help='"x,y,z;x,y,z;x,y,z;x,y,z" in mm (default: the paper\'s test quad)')
     source.add_argument("--blend", help="a .blend whose Kezuri sheet settings hold the corners")
     from .batchio import number
-    p.add_argument("--divisions", type=number("--divisions", integer=True, prop=UNFOLD_SETTINGS["divisions"]))
+    from .limits import RANGES
+    p.add_argument("--divisions", type=number("--divisions", limit=RANGES["sheet"]["divisions"]))
     p.add_argument("--direction", choices=["horizontal", "vertical"])
-    p.add_argument("--tool-diameter", type=number("--tool-diameter", prop=UNFOLD_SETTINGS["tool_diameter"], unit="mm"))
-    p.add_argument("--thickness", type=number("--thickness", prop=UNFOLD_SETTINGS["thickness"], unit="mm"))
-    p.add_argument("--pitch", type=number("--pitch", prop=UNFOLD_SETTINGS["pitch"], unit="mm"))
-    p.add_argument("--station", type=number("--station", integer=True, prop=UNFOLD_SETTINGS["station"]))
+    p.add_argument("--tool-diameter", type=number("--tool-diameter", limit=RANGES["sheet"]["tool_diameter"]))
+    p.add_argument("--thickness", type=number("--thickness", limit=RANGES["sheet"]["thickness"]))
+    p.add_argument("--pitch", type=number("--pitch", limit=RANGES["sheet"]["pitch"]))
+    p.add_argument("--station", type=number("--station", limit=RANGES["sheet"]["station"]))
 
 
 def parse_corners(text: str):
@@ -435,10 +442,11 @@ def unfold_batch(args) -> dict:
 
 def elbow_arguments(p):
     from .batchio import number
-    p.add_argument("--diameter", type=number("--diameter", prop=ELBOW_SETTINGS["elbow_diameter"], unit="mm"))
-    p.add_argument("--bend-radius", type=number("--bend-radius", prop=ELBOW_SETTINGS["elbow_radius"], unit="mm"))
-    p.add_argument("--angle", type=number("--angle", prop=ELBOW_SETTINGS["elbow_angle"], unit="degrees"))
-    p.add_argument("--pieces", type=number("--pieces", integer=True, prop=ELBOW_SETTINGS["elbow_pieces"]))
+    from .limits import RANGES
+    p.add_argument("--diameter", type=number("--diameter", limit=RANGES["sheet"]["elbow_diameter"]))
+    p.add_argument("--bend-radius", type=number("--bend-radius", limit=RANGES["sheet"]["elbow_radius"]))
+    p.add_argument("--angle", type=number("--angle", limit=RANGES["sheet"]["elbow_angle"]))
+    p.add_argument("--pieces", type=number("--pieces", limit=RANGES["sheet"]["elbow_pieces"]))
 
 
 def elbow_batch(args) -> dict:

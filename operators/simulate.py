@@ -12,6 +12,7 @@ from bpy.props import EnumProperty, IntProperty
 
 from . import simview
 from .common import SteppedOperator
+from .limits import check_group
 from .translations import translate_message
 from .workflows import WORKFLOWS, simulated, workflow_of
 
@@ -47,6 +48,7 @@ class KEZURI_OT_simulate(SteppedOperator, bpy.types.Operator):
 
     def prepare(self, context):
         props = context.scene.kezuri.simulation
+        check_group(props, "simulation")
         return simulation_request(context.scene, self.workflow, props.engine, props.cell)
 
     def finish(self, context, job):

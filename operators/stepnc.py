@@ -22,6 +22,7 @@ from ..toolpath.stepnc.solids import block_of, feature_solid, fixture_clearance,
 from . import convert
 from . import gate
 from .common import run_reported
+from .limits import check_group
 from .properties import post_items, post_number
 from .translations import translate_message
 from .workflow import BatchCommand, SimulationSetup, Workflow
@@ -143,12 +144,14 @@ def pockets_part21(scene, depsgraph) -> str:
     """ISO 14649 text for the pockets modelled in the scene (outline objects marked as pockets,
     on the stock plate), roughed and finished with the STEP-NC panel's end mill."""
     settings = scene.kezuri
+    check_group(settings.stepnc, "stepnc")
     plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, settings.stock.origin)
     specs = []
     for obj in sorted((o for o in scene.objects if o.kezuri_pocket.enabled), key=lambda o: o.name):
         loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
         if len(loops) != 1:
             raise convert.SceneInputError(f"pocket {obj.name!r}: the outline must be one closed loop")
+        check_group(obj.kezuri_pocket, "pocket", ["depth"], where=f"pocket {obj.name!r}")
         specs.append(stepnc.PocketSpec(obj.name, tuple(map(tuple, loops[0])), obj.kezuri_pocket.depth))
     if not specs:
         raise convert.SceneInputError("no pockets: mark closed outline objects as pockets (with a depth)")

@@ -1037,6 +1037,8 @@ MESSAGE_TEMPLATES = {
     '--surface {}: neither a built-in surface ({}) nor a mesh file': '--surface {0}：組み込みの曲面（{1}）でもメッシュファイルでもありません',
     'operation {}: texture marks need a texture and one (flag, fraction) pair per move':
         '工程 {0}：テクスチャの印にはテクスチャと、移動ごとに1組の（開始印, 割合）が必要です',
+    # operators/limits.py: a panel or batch number outside its range
+    '{}: {} = {} is outside the allowed range {}': '{0}：{1} = {2} は指定できる範囲 {3} の外です',
     # toolpath/dropcutter.py, toolpath/carve.py, operators/carve.py
     'stock allowance must be a number >= 0 mm, got {}': '取り代は 0 mm 以上の数値にしてください（指定：{0}）',
     'a {} cannot leave a stock allowance (use a ball, flat or bull nose)':
@@ -1281,6 +1283,8 @@ MESSAGE_TEMPLATES = {
         '設計形状 {0}：部品が素材から {1} mm はみ出しています（{2} mm 超）：この素材からは削り出せません',
     'design {}: the mesh was inside out (its normals pointed inward); its faces were flipped':
         '設計形状 {0}：メッシュが裏返しでした（法線が内向き）。面を反転しました',
+    'design {}: the mesh passes through itself ({} pair(s) of faces cross, the first faces {} and {} at ({}, {}, {}) mm), so its inside is ambiguous: join the pieces with a boolean union (Blender: Boolean modifier, or 3D-Print Toolbox > Intersections to find them)':
+        '設計形状 {0}：メッシュが自己交差しています（交差する面の組 {1} 組、最初は面 {2} と {3}、位置 ({4}, {5}, {6}) mm）。内側が定まりません：ブーリアンの結合で一体にしてください（Blender：ブーリアンモディファイアー、交差の確認は 3D-Print Toolbox の Intersections）',
     'line {}: the pitch Q{} is below the {} mm a turret punch nibbles at (give Q from {} mm up): {}':
         '{0}行目：ピッチ Q{1} はタレットパンチのニブリングの下限 {2} mm を下回っています（Q は {3} mm 以上にしてください）：{4}',
     'line {}: the program has more than {} hits by this line (at most {} are simulated): check the pitches Q':

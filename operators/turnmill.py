@@ -24,6 +24,7 @@ from ..toolpath import turnmill as core
 from . import convert
 from . import gate
 from .common import SteppedOperator, run_reported
+from .limits import check_group
 from .properties import post_items, post_number
 from .translations import translate_message
 from .workflow import BatchCommand, SimulationSetup, Workflow
@@ -71,6 +72,7 @@ class TurnMillJob:
 
 
 def settings_from(props) -> core.TurnMillSettings:
+    check_group(props, "turnmill")
     return core.TurnMillSettings(tool_diameter=props.tool_diameter, tolerance=props.tolerance, feed=props.feed,
                                  spindle_rpm=props.spindle_rpm, sample_spacing=props.sample_spacing)
 
@@ -113,6 +115,7 @@ def turnmill_request(scene, depsgraph):
     """Read the part and the settings; return ``compute(progress)``, which classifies and plans
     without touching Blender data (so it can run in steps)."""
     props = scene.kezuri.turnmill
+    check_group(props, "turnmill")
     obj, vertices, faces, owner, frame = part_mesh(scene, depsgraph)
     selected = None
     if props.selected_only:
@@ -211,6 +214,7 @@ class KEZURI_OT_turnmill_classify(SteppedOperator, bpy.types.Operator):
 
     def prepare(self, context):
         props = context.scene.kezuri.turnmill
+        check_group(props, "turnmill", ["sample_spacing"])
         _, vertices, faces, owner, _ = part_mesh(context.scene, context.evaluated_depsgraph_get())
         vertices, faces = core.check_mesh(vertices, faces)
         engine_name, spacing = props.engine, props.sample_spacing

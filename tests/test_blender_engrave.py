@@ -162,7 +162,7 @@ def test_nan_vertex_is_refused(scene):
 
 def test_zero_stepover_is_refused(scene):
     scene.kezuri.engrave.stepover = 0.0
-    with pytest.raises(RuntimeError, match="stepover"):
+    with pytest.raises(RuntimeError, match=r"Stepover = 0 is outside the allowed range 0 < Stepover <= 100 mm"):
         bpy.ops.kezuri.engrave_generate()
 
 

@@ -438,3 +438,202 @@ def test_batch_simulate_reports_what_it_ignored_and_repaired(tmp_path):
                      "--out", str(tmp_path / "out2"), timeout=300)
     assert done.returncode == 2 and "line 3: G81 canned cycles are not simulated" in done.stderr
     assert "Traceback" not in done.stderr
+
+
+# ----- 5. long work has a cancel point --------------------------------------------------------------
+
+def nibbled_square(side: float, pitch: float) -> str:
+    """One G69 per side of a side x side square, P5 punch: 4 x (side / pitch + 1) hits."""
+    lines = ["N000 G92 X1000.00 Y1040.00", "N001 G72 X0.00 Y0.00"]
+    for (x, y), angle in zip([(0, 0), (side, 0), (side, side), (0, side)], (0, 90, 180, 270)):
+        lines.append(f"G72 X{x:.2f} Y{y:.2f}")
+        lines.append(f"G69 I{side:.2f} J{angle:.2f} P0.00 Q{pitch:.2f} T302")
+    return "\n".join(lines + ["G50"]) + "\n"
+
+
+def test_punching_many_hits_reports_progress_and_can_be_cancelled():
+    text = nibbled_square(200.0, 0.1)                     # 4 x 2001 hits
+    hits = len(punch.read_amada(text).hits)
+    assert hits == 4 * 2001
+    calls = []
+
+    def stop_at_second(fraction, text=""):
+        calls.append(fraction)
+        return len(calls) < 2
+
+    started = time.perf_counter()
+    with time_limit(20), pytest.raises(punch.PunchCancelled):
+        punch.simulate_punching(text, punch_diameter=5.0, progress=stop_at_second)
+    assert len(calls) == 2 and time.perf_counter() - started < 10
+    seen = []
+    with time_limit(120):
+        result = punch.simulate_punching(text, punch_diameter=5.0, progress=lambda f, t="": seen.append(f))
+    # a report before every batch of hits and one at the end, rising from 0 to 1
+    assert len(seen) == math.ceil(hits / punch.DISC_BATCH) + 1 and seen == sorted(seen)
+    assert seen[0] == 0.0 and seen[-1] == 1.0
+    # the batched union is the same sheet: the hits 0.1 mm apart on a 200 mm square leave a
+    # square part of side 200 - 5 = 195 (less its cusps, under 0.001 mm deep) and a frame
+    assert result.part_separated and result.part_area_mm2 == pytest.approx(195.0 ** 2, rel=1e-4)
+
+
+# ----- self-intersecting design meshes ------------------------------------------------------------
+
+def two_boxes_unjoined():
+    """Two closed 20 mm boxes overlapping by (13, 12, 11) mm, merged into one mesh without a boolean."""
+    a = trimesh.creation.box(extents=(20, 20, 8), transform=trimesh.transformations.translation_matrix((12, 12, -6)))
+    b = trimesh.creation.box(extents=(20, 20, 8), transform=trimesh.transformations.translation_matrix((19, 20, -5)))
+    return trimesh.util.concatenate([a, b])
+
+
+def bow_tie():
+    """A figure-8 outline (5,5)-(35,35)-(35,5)-(5,35) extruded from z = -8 to -1: closed and
+    consistently wound, but two side walls pass through each other along x = y = 20."""
+    outline = np.array([(5, 5), (35, 35), (35, 5), (5, 35)], float)
+    bottom = np.column_stack([outline, np.full(4, -8.0)])
+    top = np.column_stack([outline, np.full(4, -1.0)])
+    vertices = np.vstack([bottom, top])
+    faces = [(0, 2, 1), (0, 3, 2), (4, 5, 6), (4, 6, 7)]           # caps (a fan on each)
+    for k in range(4):
+        n = (k + 1) % 4
+        faces += [(k, n, 4 + n), (k, 4 + n, 4 + k)]
+    return trimesh.Trimesh(vertices, np.array(faces), process=False)
+
+
+def crossing_reference(mesh) -> set:
+    """Every pair of faces without a common vertex whose triangles meet, by brute force (trimesh's
+    own triangle-plane intersections are not used: each pair is cut by the other's plane here)."""
+    tri = np.asarray(mesh.vertices)[mesh.faces]
+    found = set()
+    for i in range(len(tri)):
+        for j in range(i + 1, len(tri)):
+            if set(mesh.faces[i]) & set(mesh.faces[j]):
+                continue
+            if crosses(tri[i], tri[j]) or crosses(tri[j], tri[i]):
+                found.add((i, j))
+    return found
+
+
+def crosses(t, u) -> bool:
+    """Does an edge of triangle t pass through triangle u (barycentric test on u's plane)?"""
+    n = np.cross(u[1] - u[0], u[2] - u[0])
+    for k in range(3):
+        p, q = t[k], t[(k + 1) % 3]
+        dp, dq = np.dot(p - u[0], n), np.dot(q - u[0], n)
+        if dp * dq >= 0:
+            continue
+        x = p + (q - p) * dp / (dp - dq)
+        areas = [np.dot(np.cross(u[(m + 1) % 3] - u[m], x - u[m]), n) for m in range(3)]
+        if min(areas) >= -1e-9 * np.dot(n, n):
+            return True
+    return False
+
+
+@pytest.mark.parametrize("make, where", [(two_boxes_unjoined, None), (bow_tie, (20.0, 20.0))])
+def test_a_self_intersecting_design_is_refused_naming_the_faces_and_a_place(make, where):
+    from kezuri.toolpath.selfcross import self_crossing
+    mesh = make()
+    stock = (0, 0, -10, 40, 40, 0)
+    reference = crossing_reference(mesh)
+    assert reference                                          # the mesh does cross itself
+    with time_limit(20):
+        found = self_crossing(mesh.vertices, mesh.faces)
+    assert found.pairs == len(reference) and tuple(sorted(found.faces)) in reference
+    # the place named lies on both faces of the pair named
+    tri = np.asarray(mesh.vertices)[mesh.faces]
+    for face in found.faces:
+        n = np.cross(tri[face, 1] - tri[face, 0], tri[face, 2] - tri[face, 0])
+        assert abs(np.dot(np.array(found.point) - tri[face, 0], n / np.linalg.norm(n))) < 1e-9
+    if where is not None:                                    # the bow-tie's walls cross on x = y = 20
+        assert found.point[:2] == pytest.approx(where)
+    with time_limit(60), pytest.raises(sim.SimulationError, match=r"design part.stl: the mesh passes through "
+                                                               r"itself \(\d+ pair\(s\) of faces cross, the first "
+                                                               r"faces \d+ and \d+ at \("):
+        sim.simulate([slot_op()], stock, cell=0.5, design=mesh, design_name="part.stl")
+
+
+def test_closed_meshes_that_do_not_cross_themselves_pass():
+    from kezuri.toolpath.selfcross import self_crossing
+    sphere = trimesh.creation.icosphere(subdivisions=3, radius=15)
+    torus = trimesh.creation.torus(major_radius=15, minor_radius=4)
+    both = trimesh.util.concatenate([block(), trimesh.creation.box(extents=(5, 5, 5), transform=trimesh.transformations
+                                                                   .translation_matrix((60, 0, 0)))])
+    for mesh in (sphere, torus, both, block()):
+        with time_limit(30):
+            assert self_crossing(mesh.vertices, mesh.faces) is None
+    assert crossing_reference(trimesh.creation.icosphere(subdivisions=1, radius=15)) == set()
+
+
+# ----- the ball-clearance query: branch and bound in a tree, the same answers as brute force -------
+
+def brute_nearest(points, tri, reach):
+    """Every point against every triangle: the closest point by Ericson's regions written again
+    here as a minimum over the face's interior projection, its three edges and its three corners."""
+    best = np.full(len(points), np.inf)
+    where = points.copy()
+    for a, b, c in tri:
+        n = np.cross(b - a, c - a)
+        n = n / np.linalg.norm(n)
+        candidates = []
+        foot = points - np.outer((points - a) @ n, n)               # projection on the face's plane
+        inside = np.ones(len(points), bool)
+        for p, q in ((a, b), (b, c), (c, a)):
+            inside &= np.cross(q - p, foot - p) @ n >= 0
+        candidates.append(np.where(inside[:, None], foot, np.nan))
+        for p, q in ((a, b), (b, c), (c, a)):
+            t = np.clip((points - p) @ (q - p) / ((q - p) @ (q - p)), 0, 1)
+            candidates.append(p + t[:, None] * (q - p))
+        for candidate in candidates:
+            d = np.linalg.norm(candidate - points, axis=1)
+            better = np.nan_to_num(d, nan=np.inf) < best
+            best[better], where[better] = d[better], candidate[better]
+    within = best <= reach
+    return np.where(within, best, np.inf), within, where
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_nearest_surface_point_is_the_brute_force_one(seed):
+    from kezuri.toolpath.meshrays import Triangles
+    rng = np.random.default_rng(seed)
+    mesh = trimesh.creation.icosphere(subdivisions=2, radius=20)
+    vertices = mesh.vertices + rng.normal(0, 1.5, mesh.vertices.shape)        # a lumpy closed part
+    tri = vertices[mesh.faces]
+    # points on paths (as the planner asks: near the previous one) and scattered ones
+    path = np.cumsum(rng.normal(0, 0.7, (400, 3)), axis=0) + (0, 0, 22)
+    points = np.vstack([path, rng.uniform(-30, 30, (600, 3))])
+    expected, within, where = brute_nearest(points, tri, 6.0)
+    assert 100 < within.sum() < len(points)
+    for kernel in ("auto", "numpy"):
+        with time_limit(300):
+            distance, closest = Triangles(tri, kernel=kernel).nearest(points, 6.0)
+        assert np.abs(distance[within] - expected[within]).max() < 1e-9, kernel
+        assert np.abs(closest[within] - where[within]).max() < 1e-9, kernel
+        assert np.all(distance[~within] > 6.0), kernel
+
+
+def test_a_ball_on_a_finely_split_surface_finds_the_same_nearest_point():
+    from kezuri.toolpath.meshrays import Triangles
+    v, f, _ = tm.sample_part(48)
+    dense_v, dense_f = trimesh.remesh.subdivide(*trimesh.remesh.subdivide(v, f))
+    rng = np.random.default_rng(3)
+    points = v[rng.integers(0, len(v), 2000)] + rng.normal(0, 3.0, (2000, 3))
+    with time_limit(300):
+        coarse = Triangles(v[f]).nearest(points, 3.0)
+        fine = Triangles(dense_v[dense_f]).nearest(points, 3.0)
+    assert np.isfinite(coarse[0]).sum() > 500
+    assert np.array_equal(np.isfinite(coarse[0]), np.isfinite(fine[0]))
+    finite = np.isfinite(coarse[0])
+    assert np.abs(coarse[0][finite] - fine[0][finite]).max() < 1e-9
+
+
+def test_the_self_crossing_search_is_a_cancel_point_of_the_simulation():
+    sphere = trimesh.creation.icosphere(subdivisions=5, radius=4.0)
+    sphere.apply_translation((20, 20, -5))
+    calls = []
+
+    def stop(fraction):
+        calls.append(fraction)
+        return False
+
+    with time_limit(60), pytest.raises(sim.SimulationCancelled):
+        sim.simulate([slot_op()], BOX_STOCK, cell=0.5, design=sphere, progress=stop)
+    assert calls == [0.0]            # stopped at the first chunk of the design check, before any cutting

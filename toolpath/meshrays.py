@@ -10,15 +10,19 @@ classification: Embree through trimesh when embreex is installed, otherwise :cla
 """
 from __future__ import annotations
 
+import hashlib
 from typing import Protocol
 
 import numpy as np
 
+from .compiled import kernel_module
 from .program import TurnMillError
 
 PAIR_BUDGET = 1 << 20    # (query, triangle) pairs handled at once: bounds the memory
 QUERY_CHUNK = 256        # at most this many nearby queries are culled against the triangles together
 MAX_SUBDIVISION = 16     # at most 16 x 16 samples per face (face_samples)
+_LAST_CHECKED: list = []  # the content key of the last mesh that passed check_mesh
+_LAST_SURFACE: list = []  # [content key, Triangles] of the last Triangles.shared
 
 
 def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
@@ -43,6 +47,9 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
     if f.min() < 0 or f.max() >= len(v):
         raise TurnMillError(f"face indices must lie in 0..{len(v) - 1}")
     f = f.astype(np.int64)
+    key = (v.shape, f.shape, hashlib.blake2b(v.tobytes() + f.tobytes(), digest_size=16).digest())
+    if _LAST_CHECKED and _LAST_CHECKED[0] == key:     # the planner checks the same mesh at each stage
+        return v, f
     if np.any((f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])):
         raise TurnMillError("a face uses the same vertex twice")
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
@@ -57,6 +64,7 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
         volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0
         if volume < 0:
             raise TurnMillError("the face normals point inward: flip them so they point out of the part")
+    _LAST_CHECKED[:] = [key]
     return v, f
 
 
@@ -153,18 +161,37 @@ class Triangles:
     """The mesh triangles with bounding boxes, for the numpy ray and nearest-point queries.
     Queries are paired with triangles whose boxes overlap theirs, a chunk at a time."""
 
-    def __init__(self, triangles: np.ndarray):
+    def __init__(self, triangles: np.ndarray, kernel: str = "auto"):
+        self.compiled = kernel_module(kernel, f"{__package__}.nearest_kernel", TurnMillError,
+                                      "numba nearest-point kernel")
+        self._tree = None
         normals, areas = face_normals(triangles)
         size = max(float(np.ptp(triangles.reshape(-1, 3), axis=0).max()), 1e-9)
         tri = triangles[areas > 1e-14 * size * size]
-        self.a, self.b, self.c = tri[:, 0], tri[:, 1], tri[:, 2]
+        self.a, self.b, self.c = (np.ascontiguousarray(tri[:, k]) for k in range(3))
         self.normal = normals[areas > 1e-14 * size * size]
         self.lo = tri.min(axis=1)
         self.hi = tri.max(axis=1)
         pad = 1e-6 * size
         self.box_lo = self.lo.min(axis=0) - pad
         self.box_hi = self.hi.max(axis=0) + pad
-        self.grid = BoxGrid(self.lo, self.hi) if len(self.lo) else None
+        self._grid = None           # built on the first numpy query (the compiled one uses a tree)
+
+    @classmethod
+    def shared(cls, triangles: np.ndarray) -> "Triangles":
+        """The Triangles of these triangles, reused while the same mesh is asked for again (the
+        radial and the axial layers query one part: one tree for both)."""
+        triangles = np.ascontiguousarray(triangles, dtype=float)
+        key = (triangles.shape, hashlib.blake2b(triangles.tobytes(), digest_size=16).digest())
+        if not (_LAST_SURFACE and _LAST_SURFACE[0] == key):
+            _LAST_SURFACE[:] = [key, cls(triangles)]
+        return _LAST_SURFACE[1]
+
+    @property
+    def grid(self):
+        if self._grid is None and len(self.lo):
+            self._grid = BoxGrid(self.lo, self.hi)
+        return self._grid
 
     def _pairs(self, lo: np.ndarray, hi: np.ndarray):
         """Yield (query index, triangle index) arrays for overlapping boxes.  Queries are grouped by
@@ -207,7 +234,19 @@ class Triangles:
         return hit
 
     def nearest(self, points: np.ndarray, reach: float) -> tuple[np.ndarray, np.ndarray]:
-        """Distance to the nearest surface point within ``reach`` (inf beyond) and that point."""
+        """Distance to the nearest surface point within ``reach`` (inf beyond) and that point.
+        Compiled: a branch-and-bound search in a tree of the triangles (nearest_kernel.py);
+        numpy: every triangle whose box meets the cube of side 2 ``reach`` round the point."""
+        points = np.ascontiguousarray(points, dtype=float)
+        if self.compiled is not None:
+            if not len(self.a) or not len(points):
+                return np.full(len(points), np.inf), points.copy()
+            if self._tree is None:
+                self._tree = self.compiled.build(self.lo, self.hi)
+            return self.compiled.nearest(points, float(reach), self.a, self.b, self.c, self.lo, self.hi, *self._tree)
+        return self._nearest_numpy(points, reach)
+
+    def _nearest_numpy(self, points: np.ndarray, reach: float) -> tuple[np.ndarray, np.ndarray]:
         distance = np.full(len(points), np.inf)
         closest = points.copy()
         batch: list = []

@@ -31,6 +31,7 @@ ENDS = ("G50", "M30")
 MIN_PITCH = 0.1             # mm: a nibbling pitch below this is a slip (Q0, Q0.001), not a part
 MAX_HITS = 20_000           # hits in one program: at ~5 hits/s, over an hour of punching
 _CHUNK = 1 << 20            # point x segment pairs per numpy block in the distance searches
+DISC_BATCH = 500            # hits united at once between progress reports (and cancel points)
 
 
 class PunchError(InputError):
@@ -269,13 +270,34 @@ def _nearest_hits(points: np.ndarray, program: PunchProgram) -> np.ndarray:
     return out
 
 
-def _discs(program: PunchProgram, r: float, tolerance: float) -> CrossSection:
-    """The union of the hit discs: a 4m-gon inscribed within ``tolerance``, a corner ahead."""
+class PunchCancelled(Exception):
+    """The progress callback asked to stop (returned False)."""
+
+
+def _reporter(progress):
+    """``progress(fraction, text)`` that raises :class:`PunchCancelled` when the callback returns False."""
+    def report(fraction: float, text: str = "") -> None:
+        if progress is not None and progress(fraction, text) is False:
+            raise PunchCancelled("punching simulation cancelled")
+    return report
+
+
+def _discs(program: PunchProgram, r: float, tolerance: float, progress=None) -> CrossSection:
+    """The union of the hit discs: a 4m-gon inscribed within ``tolerance``, a corner ahead.
+    United DISC_BATCH hits at a time, with a progress report (and a chance to cancel) after each."""
+    report = _reporter(progress)
     n = 4 * math.ceil(rg.circle_segments(r, tolerance) / 4)
     disc = CrossSection.circle(r, n)
     turned = {angle: disc.rotate(angle) for angle in np.unique(program.angles)}
-    return CrossSection.batch_boolean([turned[a].translate((float(x), float(y)))
-                                       for (x, y), a in zip(program.hits, program.angles)], OpType.Add)
+    parts = []
+    for start in range(0, len(program.hits), DISC_BATCH):
+        report(start / len(program.hits), "punching")
+        stop = start + DISC_BATCH
+        parts.append(CrossSection.batch_boolean([turned[a].translate((float(x), float(y))) for (x, y), a in
+                                                 zip(program.hits[start:stop], program.angles[start:stop])], OpType.Add))
+    united = parts[0] if len(parts) == 1 else CrossSection.batch_boolean(parts, OpType.Add)
+    report(1.0, "punching")
+    return united
 
 
 def _gouges(boundary: np.ndarray, bite: np.ndarray, program: PunchProgram, tolerance: float) -> list:
@@ -294,7 +316,7 @@ def _gouges(boundary: np.ndarray, bite: np.ndarray, program: PunchProgram, toler
 
 
 def simulate_punching(program_or_text, *, punch_diameter: float | None = None, pattern=None,
-                      margin: float | None = None, tolerance: float = 0.01) -> PunchResult:
+                      margin: float | None = None, tolerance: float = 0.01, progress=None) -> PunchResult:
     """Punch every hit of the program out of a blank and measure what is left.  The part is the
     piece holding most of the pattern; it is separated when it is not the frame round the blank.
 
@@ -304,7 +326,9 @@ def simulate_punching(program_or_text, *, punch_diameter: float | None = None, p
     compensation, in the program's coordinates; without it the part is the largest piece that
     is not the frame, and there are no scallops or gouges to measure.  ``margin``: blank round
     the hits beyond the punch radius (default the diameter).  ``tolerance``: the discs' chord
-    error and the depth below which a bite is not a gouge (mm)."""
+    error and the depth below which a bite is not a gouge (mm).  ``progress``: optional
+    callable(fraction, text) called while the hits are punched; returning False cancels
+    (:class:`PunchCancelled`)."""
     started = time.perf_counter()
     program = read_amada(program_or_text) if isinstance(program_or_text, str) else program_or_text
     if not isinstance(program, PunchProgram):
@@ -333,7 +357,7 @@ def simulate_punching(program_or_text, *, punch_diameter: float | None = None, p
     x0, y0 = hits.min(axis=0) - r - margin
     x1, y1 = hits.max(axis=0) + r + margin
     blank = rg.rectangle(x0, y0, x1, y1)
-    sheet = blank - _discs(program, r, tol)
+    sheet = blank - _discs(program, r, tol, progress)
     pieces = rg.components(sheet)
     # the margin keeps the frame whole round the blank: the only piece reaching its edges
     frame = next((p for p in pieces if np.allclose(p.bounds(), (x0, y0, x1, y1), atol=1e-6)), None)

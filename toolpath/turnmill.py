@@ -362,20 +362,22 @@ def _sections(v, faces, normals, zlo, zhi, z) -> list:
 
     start, start_key = crossing(np.argmax(above & ~after, axis=1))
     end, end_key = crossing(np.argmax(~above & after, axis=1))
-    successor = dict(zip(start_key.tolist(), range(len(cut))))
-    end_keys = end_key.tolist()
-    ends = set(end_keys)
-    seeds = [s for s in range(len(cut)) if start_key[s] not in ends] + list(range(len(cut)))
-    used = np.zeros(len(cut), dtype=bool)
+    # successor[i]: the segment starting where segment i ends (the last such, as a dict would keep)
+    order = np.argsort(start_key, kind="stable")
+    place = np.searchsorted(start_key[order], end_key, side="right") - 1
+    found = (place >= 0) & (start_key[order[np.maximum(place, 0)]] == end_key)
+    successor = np.where(found, order[np.maximum(place, 0)], -1).tolist()
+    seeds = np.flatnonzero(~np.isin(start_key, end_key)).tolist() + list(range(len(cut)))
+    used = bytearray(len(cut))
     chains = []
     for seed in seeds:
         if used[seed]:
             continue
         chain = [seed]
-        used[seed] = True
-        while (nxt := successor.get(end_keys[chain[-1]])) is not None and not used[nxt]:
+        used[seed] = 1
+        while (nxt := successor[chain[-1]]) >= 0 and not used[nxt]:
             chain.append(nxt)
-            used[nxt] = True
+            used[nxt] = 1
         closed = end_key[chain[-1]] == start_key[chain[0]]
         chains.append((np.vstack([start[chain[0]], end[chain]]), normals[cut[chain]], closed))
     return chains
@@ -466,7 +468,7 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
                 shifts.append((1 if k == 0 else every) * spacing - 1e-9)
     if not polylines:
         return []
-    surface = Triangles(v[f])
+    surface = Triangles.shared(v[f])
     layers: dict = {}
     for k, runs in zip(layer_of, _fit_runs(polylines, closed_flags, surface, stock, settings, shifts)):
         layers.setdefault(k, []).extend(runs)
@@ -614,7 +616,7 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
     ids = _face_ids(face_ids, len(f))
     if not len(ids):
         return []
-    surface = Triangles(v[f])
+    surface = Triangles.shared(v[f])
     r, tol = settings.radius, settings.tolerance
     finishing = [p for group in _components(f, ids) for p in _grid_passes(v, f[group], surface, stock, settings)]
     if not finishing:

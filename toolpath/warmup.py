@@ -5,8 +5,9 @@ with ``cache=True`` keeps the machine code on disk (beside the module, or where 
 folder is read-only, in the user's cache folder: ``NUMBA_CACHE_DIR`` or numba's user-wide
 default).  :func:`warm_kernels` calls every kernel once through the same public calls a job
 makes, on tiny inputs (every tool shape; straight, arc and plunging moves; a radial turn-mill
-move; the drop-cutter), so the types match and the first real Simulate finds them compiled or
-loads them from the cache.  The shell runs it on a background thread after registering.
+move; the drop-cutter; turn-mill's nearest-point query), so the types match and the first real
+Simulate (or turn-mill plan) finds them compiled or loads them from the cache.  The shell runs
+it on a background thread after registering.
 """
 from __future__ import annotations
 
@@ -40,6 +41,7 @@ def warm_kernels() -> list:
     """Run every compiled kernel once; returns what ran ("heightfield ball", ...).  Without
     numba (or with KEZURI_NO_NUMBA=1) the numpy paths run and nothing is compiled."""
     from .dropcutter import DropCutter
+    from .meshrays import Triangles
     from .simulate import BoxStock, CylinderStock, simulate
 
     ran = []
@@ -55,4 +57,6 @@ def warm_kernels() -> list:
     for op in operations:
         DropCutter(vertices, faces, op.tool).points(xy)
         ran.append(f"drop-cutter {op.tool.kind}")
+    Triangles(vertices[faces]).nearest(np.array([(2.0, 2.0, 3.0), (6.0, 5.0, 2.5)]), 5.0)   # turn-mill's
+    ran.append("nearest point")
     return ran

@@ -76,7 +76,7 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     _check_cell(stock, float(cell))
     warnings = []
     if design is not None and hasattr(design, "vertices") and hasattr(design, "faces"):
-        design, warnings = check_design_mesh(design, stock, design_name)
+        design, warnings = check_design_mesh(design, stock, design_name, _cancelling(_part_of(progress, 0.0, 0.0)))
     ops = _operations(program_or_operations)
     radial = [getattr(op, "direction", None) == "radial" for op in ops]
     if any(radial) and not isinstance(stock, CylinderStock):

@@ -8,6 +8,7 @@ import numpy as np
 from manifold3d import CrossSection
 
 from .. import region as rg
+from ..selfcross import self_crossing
 from .families import _halfline
 from .heightfield import _lowest_move, _Simulation
 from .paths import _machine_samples
@@ -235,15 +236,17 @@ def blocking(findings) -> list:
 DESIGN_SLACK = 0.05        # mm: how far a design may stand outside the stock (rounding of exported meshes)
 
 
-def check_design_mesh(design, stock, name: str = "design") -> tuple:
+def check_design_mesh(design, stock, name: str = "design", progress=None) -> tuple:
     """(design, warnings): a mesh design checked before any gouge is measured against it.
 
     Refused, naming ``name``: no faces (an empty or unreadable file loads as none), NaN or
     infinite vertices, bad face indices, an open or non-manifold surface (an edge not shared by
-    exactly two faces, or faces wound against each other), no volume, no overlap with the stock,
+    exactly two faces, or faces wound against each other), faces passing through each other
+    (:func:`selfcross.self_crossing`, naming the first pair and where), no volume, no overlap with the stock,
     or a part that stands outside the stock (it cannot be cut from it: every cut would gouge it).
     Repaired and said in ``warnings``: an inside-out mesh (negative volume) gets its faces flipped.
-    Returns a plain ``SimpleNamespace(vertices, faces)`` when it repaired, else ``design`` itself."""
+    Returns a plain ``SimpleNamespace(vertices, faces)`` when it repaired, else ``design`` itself.
+    ``progress``: optional callable(fraction), a cancel point during the self-crossing search."""
     from types import SimpleNamespace
 
     from .stock import _stock_box
@@ -276,6 +279,13 @@ def check_design_mesh(design, stock, name: str = "design") -> tuple:
     if len(np.unique(directed[:, 0] * n + directed[:, 1])) < len(directed):
         raise SimulationError(f"design {name}: the faces are wound inconsistently (some normals are flipped): "
                               "recalculate normals")
+    crossing = self_crossing(vertices, faces, progress)
+    if crossing is not None:
+        (i, j), (x, y, z) = crossing.faces, crossing.point
+        raise SimulationError(f"design {name}: the mesh passes through itself ({crossing.pairs} pair(s) of faces "
+                              f"cross, the first faces {i} and {j} at ({x:.3f}, {y:.3f}, {z:.3f}) mm), so its inside "
+                              "is ambiguous: join the pieces with a boolean union (Blender: Boolean modifier, or "
+                              "3D-Print Toolbox > Intersections to find them)")
     tri = vertices[faces]
     centre = vertices.mean(axis=0)
     volume = float(np.einsum("ij,ij->i", tri[:, 0] - centre, np.cross(tri[:, 1] - centre, tri[:, 2] - centre)).sum()
