@@ -117,6 +117,10 @@ RANGES: dict = {
     "simulation": {"cell": mm(0.0, lo_open=True)},
 }
 
+# A tool of the shop's library (the extension's preferences): checked when a job takes it.
+LIBRARY = {"number": TOOL_NUMBER, "diameter": DIAMETER, "corner_radius": mm(0.0, 50.0),
+           "flute_length": mm(0.1, 1000.0)}
+
 # What a group is called in a message (the panel it is set in).
 GROUP_NAMES = {"machine": "Machine", "engrave": "Engrave", "sheet": "Sheet Metal", "pocket": "Rotary Pocket",
                "rotary": "Rotary", "stepnc": "STEP-NC", "turnmill": "Turn-Mill", "carve": "Carve",
@@ -134,9 +138,10 @@ def soft_limits(limit: Range) -> dict:
     return keywords
 
 
-def problem(group: str, name: str, label: str, value, where: str = "") -> str | None:
-    """The message refusing ``value`` of property ``name`` (shown as ``label``), or None if allowed."""
-    limit = RANGES[group][name]
+def problem(group: str, name: str, label: str, value, where: str = "", limit: Range | None = None) -> str | None:
+    """The message refusing ``value`` of property ``name`` (shown as ``label``), or None if allowed
+    (``limit``: a range not in :data:`RANGES`, e.g. of :data:`LIBRARY`)."""
+    limit = limit or RANGES[group][name]
     values = list(value) if isinstance(value, (list, tuple)) else [value]
     for index, item in enumerate(values):
         if limit.allows(item):
@@ -162,5 +167,14 @@ def check_group(props, group: str, names=None, where: str = "") -> None:
         label = prop.name if prop is not None else name
         value = getattr(props, name)
         message = problem(group, name, label, tuple(value) if hasattr(value, "__len__") else value, where)
+        if message:
+            raise SettingError(message)
+
+
+def check_library_tool(tool) -> None:
+    """Refuse a library tool (``KezuriLibraryTool``) with a number outside :data:`LIBRARY`."""
+    for name, limit in LIBRARY.items():
+        prop = tool.bl_rna.properties[name]
+        message = problem("", name, prop.name, getattr(tool, name), f"Tool Library: {tool.name}", limit)
         if message:
             raise SettingError(message)

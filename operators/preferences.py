@@ -7,6 +7,7 @@ from __future__ import annotations
 import bpy
 from bpy.props import CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
+from .limits import LIBRARY, SettingError, check_library_tool, soft_limits
 from .properties import WORK_OFFSET_ITEMS, post_items, post_number
 from .translations import translate_message
 
@@ -23,11 +24,16 @@ TOOL_KIND_ITEMS = [
 
 class KezuriLibraryTool(bpy.types.PropertyGroup):
     name: StringProperty(name="Name", default="Tool")
-    number: IntProperty(name="Number", default=1, min=0, max=999, description="Tool (pocket) number, T word")
+    # soft limits only (limits.LIBRARY): a hard one would clamp a bad value without a word
+    number: IntProperty(name="Number", default=1, description="Tool (pocket) number, T word",
+                        **soft_limits(LIBRARY["number"]))
     kind: EnumProperty(name="Type", items=TOOL_KIND_ITEMS, default="flat")
-    diameter: FloatProperty(name="Diameter", default=6.0, min=0.01, description="Cutting diameter (mm)")
-    corner_radius: FloatProperty(name="Corner Radius", default=0.0, min=0.0, description="Bull nose radius (mm)")
-    flute_length: FloatProperty(name="Flute Length", default=20.0, min=0.1, description="Cutting length (mm)")
+    diameter: FloatProperty(name="Diameter", default=6.0, description="Cutting diameter (mm)",
+                            **soft_limits(LIBRARY["diameter"]))
+    corner_radius: FloatProperty(name="Corner Radius", default=0.0, description="Bull nose radius (mm)",
+                                 **soft_limits(LIBRARY["corner_radius"]))
+    flute_length: FloatProperty(name="Flute Length", default=20.0, description="Cutting length (mm)",
+                                **soft_limits(LIBRARY["flute_length"]))
 
 
 class KEZURI_UL_tools(bpy.types.UIList):
@@ -143,14 +149,19 @@ class KEZURI_OT_use_library_tool(bpy.types.Operator):
     bl_options = {"REGISTER", "UNDO"}
 
     slot: EnumProperty(name="For", items=[("rough", "Roughing Ball", ""), ("finish", "Finishing Flat", "")])
-    index: IntProperty(name="Library Index", default=0, min=0)
+    index: IntProperty(name="Library Index", default=0)
 
     def execute(self, context):
         prefs = preferences(context)
-        if prefs is None or self.index >= len(prefs.tools):
+        if prefs is None or not 0 <= self.index < len(prefs.tools):
             self.report({"ERROR"}, translate_message("No such tool in the library"))
             return {"CANCELLED"}
         tool = prefs.tools[self.index]
+        try:
+            check_library_tool(tool)
+        except SettingError as error:
+            self.report({"ERROR"}, translate_message(str(error)))
+            return {"CANCELLED"}
         wanted = "ball" if self.slot == "rough" else "flat"
         if tool.kind != wanted:
             self.report({"ERROR"},

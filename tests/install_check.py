@@ -80,6 +80,18 @@ tool = prefs.tools[-1]
 tool.kind, tool.diameter, tool.number = "ball", 8.0, 7
 bpy.ops.kezuri.use_library_tool(slot="rough", index=len(prefs.tools) - 1)
 result["rough_from_library"] = [scene.kezuri.engrave.rough_diameter, scene.kezuri.engrave.rough_tool_number]
+# A library tool with a number that means nothing is refused, not clamped into another tool.
+bad = prefs.tools.add()
+bad.name, bad.kind, bad.diameter, bad.number = "Broken", "ball", 0.0, 7
+try:
+    bpy.ops.kezuri.use_library_tool(slot="rough", index=len(prefs.tools) - 1)
+    result["bad_library_tool"] = "FINISHED"
+except RuntimeError as error:               # bpy.ops raises on an ERROR report
+    result["bad_library_tool"] = str(error)
+result["bad_library_diameter"] = bad.diameter
+result["rough_after_bad"] = [scene.kezuri.engrave.rough_diameter, scene.kezuri.engrave.rough_tool_number]
+bad.number = 1000
+result["bad_library_number"] = bad.number
 prefs.default_post = "grbl"
 preferences_module = importlib.import_module(package + ".operators.preferences")
 result["scene_post"] = preferences_module.scene_post(scene)
