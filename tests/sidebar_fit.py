@@ -240,7 +240,7 @@ class Walk:
                 cls.draw_item(cls, self.context, sub, data, element, 0, data, "", 0, 0)
                 self.node(sub._node, row_width, f"{where}: list row")
         elif kind == "prop":
-            self.prop(what, width, item[3], item[4], where)
+            self.prop(what, width - room_icon, item[3], item[4], where)
 
     def prop(self, what, width, split, decorate, where):
         data, name, text, index, expand = what
