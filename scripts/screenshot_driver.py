@@ -53,12 +53,21 @@ def grab() -> np.ndarray:
     """The X screen as an (height, width, 3) array, top row first."""
     ppm = subprocess.run("xwd -root -silent | convert xwd:- ppm:-", shell=True, check=True,
                          capture_output=True).stdout
-    header, rest = [], ppm
-    while len(header) < 4:                    # P6, width, height, maxval (no comments from convert)
-        token, rest = rest.split(maxsplit=1)
-        header.append(token)
+    header, at = [], 0
+    while len(header) < 4:                    # P6, width, height, maxval; "#" comments skipped
+        while ppm[at:at + 1].isspace():
+            at += 1
+        if ppm[at:at + 1] == b"#":
+            at = ppm.index(b"\n", at) + 1
+            continue
+        end = at
+        while not ppm[end:end + 1].isspace():
+            end += 1
+        header.append(ppm[at:end])
+        at = end
     width, height = int(header[1]), int(header[2])
-    return np.frombuffer(rest[:width * height * 3], np.uint8).reshape(height, width, 3)
+    pixels = ppm[at + 1:at + 1 + width * height * 3]
+    return np.frombuffer(pixels, np.uint8).reshape(height, width, 3)
 
 
 def shoot(name):
@@ -460,14 +469,18 @@ def tick():
         return next(STATE["steps"]) or 0.05
     except StopIteration:
         log(f"done: {len(FAILURES)} failure(s)")
-        bpy.ops.wm.quit_blender()
-        return None
+    except Exception as error:  # noqa: BLE001 - a timer that raises is dropped: Blender would stay open
+        import traceback
+        traceback.print_exc()
+        log(f"failed: the driver stopped: {type(error).__name__}: {error}")
+    bpy.ops.wm.quit_blender()
+    return None
 
 
 if PACKAGE is None:
     print("failed: Kezuri is not installed in this Blender", flush=True)
     bpy.ops.wm.quit_blender()
-elif not hasattr(bpy.types.Window, "event_simulate") or not bpy.app.use_event_simulate:
+elif "event_simulate" not in bpy.types.Window.bl_rna.functions or not bpy.app.use_event_simulate:
     print("failed: start Blender with --enable-event-simulate", flush=True)
     bpy.ops.wm.quit_blender()
 else:
