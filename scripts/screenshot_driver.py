@@ -25,7 +25,6 @@ OUT = os.environ.get("KEZURI_SCREENSHOTS", "/tmp/screenshots")
 BATCH = os.environ.get("KEZURI_BATCH", "/tmp/blender-demo")
 EXPORTS = os.environ.get("KEZURI_EXPORTS", "/tmp/kezuri-exports")
 PACKAGE = next((name for name in sys.modules if name.endswith(".kezuri") and name.startswith("bl_ext.")), None)
-BUTTON_GREY = 84            # the default theme's button and number field (wcol_tool, wcol_num) inner colour
 FAILURES = []
 
 
@@ -77,20 +76,26 @@ def shoot(name):
     log(f"screenshot {path}")
 
 
-def button_rows(image, window, sidebar, full=0.85):
-    """Rows of buttons in the sidebar, top to bottom: (top, bottom) in window coordinates
-    measured from the window's top, for rows whose button grey spans ``full`` of the layout."""
+def button_rows(image, window, sidebar):
+    """Rows of full-width buttons in the sidebar, top to bottom: (top, bottom) in window
+    coordinates from the window's top.  A row is a button row where a plain button grey (the
+    default theme's 84, 101 under the mouse) fills both ends of the layout: the centred text
+    stays clear of them, and a name | value row has the panel's background at its left end."""
     x0 = sidebar.x + 20
     x1 = sidebar.x + sidebar.width - 40        # leave the category tabs and the panel edge
     top = window.height - (sidebar.y + sidebar.height)
     strip = image[top:top + sidebar.height, x0:x1].astype(int)
-    grey = (np.abs(strip - BUTTON_GREY) <= 4).all(axis=2).mean(axis=1) >= full
+
+    def plain_grey(part):
+        return (part.max(axis=(1, 2)) - part.min(axis=(1, 2)) <= 6) & (part.mean(axis=(1, 2)) >= 75) & \
+            (part.mean(axis=(1, 2)) <= 115)
+    grey = plain_grey(strip[:, 25:45]) & plain_grey(strip[:, -30:-10])
     rows, start = [], None
     for y, on in enumerate(list(grey) + [False]):
         if on and start is None:
             start = y
         elif not on and start is not None:
-            if y - start >= 8:
+            if y - start >= 14:
                 rows.append((top + start, top + y))
             start = None
     return rows
@@ -182,8 +187,8 @@ def picker_row():
 
 
 def pick_job(key_name):
-    """Open the job picker and click the entry: Blender opens an enum menu with the current
-    entry under the mouse, one widget row (20 px) per entry."""
+    """Open the job picker with a click, then as a user at the keyboard: the menu opens with the
+    current entry under the mouse; the arrow keys move to the wanted one, Return picks it."""
     keys = [k for k, *_ in module("operators.workflows").job_items()]
     scene = bpy.context.scene
     row = picker_row()
@@ -191,10 +196,24 @@ def pick_job(key_name):
         log("failed: job picker not found")
         return
     yield from click_row(row, "job picker")
-    current, target = keys.index(scene.kezuri.job), keys.index(key_name)
+    yield from settle(6)
+    if not STATE.get("picker shot"):
+        shoot("job-picker")
+        STATE["picker shot"] = True
+    # The menu opens below the picker with the current entry highlighted (the theme's blue);
+    # entries are 23 px apart (Blender 4.3's menu rows at resolution scale 1).
     window, _, _, sidebar = view3d()
-    y = (row[0] + row[1]) / 2 + (target - current) * 20
-    yield from click_at(STATE["mouse"][0], y, f"job {key_name}")
+    image = grab().astype(int)
+    x = int(STATE["mouse"][0])
+    column = image[row[1]:row[1] + 400, x]
+    blue = np.nonzero((column[:, 2] - column[:, 0] > 60))[0]
+    if not len(blue):
+        log("failed: the job menu did not open")
+        return
+    current_y = row[1] + (blue[0] + blue[-1]) / 2 if blue[-1] - blue[0] < 30 else row[1] + blue[0] + 9
+    steps = keys.index(key_name) - keys.index(scene.kezuri.job)
+    yield from click_at(x, current_y + 23 * steps, f"job menu entry {key_name}")
+    yield from settle(6)
     if scene.kezuri.job != key_name:
         log(f"failed: the job picker shows {scene.kezuri.job}, not {key_name}")
         yield from key("ESC")
@@ -236,7 +255,11 @@ def through_file_browser(directory, filename, what):
     centre = (area.x + area.width // 2, area.y + area.height // 2)
     event("MOUSEMOVE", "NOTHING", *centre, window=window)
     yield from settle(2)
-    yield from key("RET", window=window)
+    # Return: the press runs the export and may close the window; release only into a live one
+    event("RET", "PRESS", window=window)
+    yield 0.05
+    if file_browser() and file_browser()[0] == window:
+        event("RET", "RELEASE", window=window)
     for _ in range(600):                      # the export runs the export gate: wait for it
         if not file_browser():
             break
