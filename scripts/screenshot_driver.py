@@ -79,8 +79,9 @@ def shoot(name):
 def button_rows(image, window, sidebar):
     """Rows of full-width buttons in the sidebar, top to bottom: (top, bottom) in window
     coordinates from the window's top.  A row is a button row where a plain button grey (the
-    default theme's 84, 101 under the mouse) fills both ends of the layout: the centred text
-    stays clear of them, and a name | value row has the panel's background at its left end."""
+    default theme's 84, 101 under the mouse) fills both ends of the layout (just after the icon,
+    just before the right edge): the centred text stays clear of them, and a name | value row
+    has the panel's background at its left end."""
     x0 = sidebar.x + 20
     x1 = sidebar.x + sidebar.width - 40        # leave the category tabs and the panel edge
     top = window.height - (sidebar.y + sidebar.height)
@@ -89,7 +90,7 @@ def button_rows(image, window, sidebar):
     def plain_grey(part):
         return (part.max(axis=(1, 2)) - part.min(axis=(1, 2)) <= 6) & (part.mean(axis=(1, 2)) >= 75) & \
             (part.mean(axis=(1, 2)) <= 115)
-    grey = plain_grey(strip[:, 25:45]) & plain_grey(strip[:, -30:-10])
+    grey = plain_grey(strip[:, 18:26]) & plain_grey(strip[:, -14:-6])     # after the icon; before the edge
     rows, start = [], None
     for y, on in enumerate(list(grey) + [False]):
         if on and start is None:
@@ -104,9 +105,8 @@ def button_rows(image, window, sidebar):
 def find_buttons():
     window, _, _, sidebar = view3d()
     rows = button_rows(grab(), window, sidebar)
-    heights = [b - t for t, b in rows]
-    normal = min(heights) if heights else 0
-    tall = [i for i, h in enumerate(heights) if h >= normal * 1.25]
+    ui_unit = 20 * bpy.context.preferences.system.ui_scale
+    tall = [i for i, (t, b) in enumerate(rows) if b - t >= 1.2 * ui_unit]    # scale_y 1.4: 28 px, others 20
     return rows, tall
 
 
@@ -267,16 +267,20 @@ def through_file_browser(directory, filename, what):
     return True
 
 
-def press_export(after_row_index, what, directory, filename):
-    """Export: the full-width button after the big Generate button; if what opens is not a file
-    browser (a menu: the post), Esc and the next row."""
-    rows, _ = find_buttons()
-    for row in rows[after_row_index + 1:after_row_index + 4]:
+def press_export(what, directory, filename):
+    """Export: the first full-width button under the big Generate button that opens a file
+    browser (a row that opens something else is closed with Esc)."""
+    rows, tall = find_buttons()
+    if not tall:
+        log(f"failed: {what}: no Generate button to find Export under")
+        return
+    for row in rows[tall[0] + 1:tall[0] + 4]:
         yield from click_row(row, f"{what} export")
-        yield from settle(10)
-        if file_browser():
-            yield from through_file_browser(directory, filename, what)
-            return
+        for _ in range(50):
+            if file_browser():
+                yield from through_file_browser(directory, filename, what)
+                return
+            yield 0.1
         yield from key("ESC")
     log(f"failed: {what}: no export button found")
 
@@ -325,9 +329,8 @@ def generate_and_export(key_name, what, filename, batch_path, picture, colours="
     frame_all()
     yield from settle(10)
     shoot(picture)
-    rows, index = pressed
     os.makedirs(EXPORTS, exist_ok=True)
-    yield from press_export(index, what, EXPORTS, filename)
+    yield from press_export(what, EXPORTS, filename)
     compare(os.path.join(EXPORTS, filename), os.path.join(BATCH, batch_path), what)
 
 
@@ -365,7 +368,7 @@ def stepnc():
 def turnmill():
     scene = bpy.context.scene
     fresh(scene, module("operators.samples").turnmill_part)
-    yield from generate_and_export("TURNMILL", "turnmill", "turnmill.ngc", "turnmill/turnmill.ngc", "turnmill",
+    yield from generate_and_export("TURNMILL", "turnmill", "turnmill.nc", "turnmill/turnmill.nc", "turnmill",
                                    "VERTEX")
 
 
@@ -375,8 +378,9 @@ def carve():
     fresh(scene)
     scene.kezuri.machine.post = "linuxcnc"
     yield from pick_job("CARVE")
-    rows, tall = find_buttons()
-    sample_row = rows[tall[0] - 1] if tall and tall[0] > 0 else None    # the last full row above Generate
+    picker = picker_row()
+    rows = [r for r in find_buttons()[0] if picker is None or r[0] > picker[1]]
+    sample_row = rows[0] if rows else None      # the first full-width row: Wave Relief | Domed Plate
     if sample_row is None:
         log("failed: carve: no sample buttons")
         return
@@ -415,6 +419,7 @@ def exact_simulation():
     fresh(scene, module("operators.samples").name_plate)
     scene.kezuri.simulation.engine = "manifold"
     common = module("operators.common")
+    yield from pick_job("ENGRAVE")
     yield from press_big(1, "exact simulate")
     yield from settle(20)
     shoot("simulate-running")
