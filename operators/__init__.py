@@ -4,7 +4,7 @@ from __future__ import annotations
 import bpy
 
 from . import panels, preferences, properties, simulate, translations
-from .workflows import WORKFLOWS
+from .workflows import WORKFLOWS, job_items
 
 CLASSES = (*preferences.CLASSES, *(cls for workflow in WORKFLOWS for cls in workflow.classes), *simulate.CLASSES,
            *panels.CLASSES)
@@ -12,7 +12,7 @@ MENUS = tuple(menu for workflow in WORKFLOWS for menu in workflow.menus)
 
 
 def register():
-    properties.register()
+    properties.register(job_items())
     for cls in CLASSES:
         bpy.utils.register_class(cls)
     for menu, draw in MENUS:

@@ -3,7 +3,7 @@
 The design is a mesh object (a relief, a domed plate, any mesh), taken in world coordinates
 converted to millimetres: the work zero is the scene's origin, so model the design with its top
 at Z 0 (the stock top) as the samples are.  The stock is the design's box, from its lowest
-point up to its highest plus "Stock Above Design".
+point up to its highest plus "Stock Above".
 """
 from __future__ import annotations
 

@@ -1,25 +1,83 @@
-"""View3D > Sidebar > CAM: the machine panel and one panel per workflow."""
+"""View3D > Sidebar > CAM: the job picker, the picked workflow's panels, Simulate & Check and
+Machine & Stock.
+
+The job (``scene.kezuri.job``, one entry per workflow of the table with panels) decides which
+workflow panels show: a panel with ``job = "ENGRAVE"`` shows only while Engraving is picked
+(its sub-panels follow their parent).  Every text fits the sidebar's default width in English
+and Japanese (tests/test_sidebar_fit.py measures it); what does not fit goes into tooltips.
+"""
 from __future__ import annotations
 
 import bpy
 
-from .workflows import simulated
+from .translations import iface
+from .workflows import workflow_of
 
 
 class KezuriPanel:
     bl_space_type = "VIEW_3D"
     bl_region_type = "UI"
     bl_category = "CAM"
+    job = ""          # the workflow key whose panels these are ("": every job)
+
+    @classmethod
+    def poll(cls, context):
+        return not cls.job or context.scene.kezuri.job == cls.job
+
+
+class KEZURI_PT_job(KezuriPanel, bpy.types.Panel):
+    # the job picker at the top of the tab (a comment: a docstring would be a tooltip)
+    bl_idname = "KEZURI_PT_job"
+    bl_label = "Job"
+    bl_options = {"HIDE_HEADER"}
+
+    def draw(self, context):
+        self.layout.prop(context.scene.kezuri, "job", text="", icon="TOOL_SETTINGS")
+
+
+NAME_SHARE = 0.5    # of the panel's width, for a setting's name (Blender's split gives it 0.4 less a column)
+
+# Short names of the simulation's finding kinds (the full message is the button's tooltip).
+FINDING_KINDS = {"gouge": "Gouge", "rapid_in_material": "Rapid in stock", "plunge": "Plunge",
+                 "spindle_stopped": "Spindle stopped", "travel": "Travel limit"}
+
+
+def field(layout, data, name: str, text: str | None = None, wide: bool = False):
+    """One setting on one line: its name right-aligned in the left half, the value in the right
+    half (the value's tooltip has the full description).  A check box takes the whole line; a
+    ``wide`` one (a menu of long names) has its name above and the whole line below."""
+    prop = data.bl_rna.properties[name]
+    if prop.type == "BOOLEAN":
+        layout.prop(data, name, text=text)
+        return
+    if wide:
+        column = layout.column(align=True)
+        column.label(text=prop.name if text is None else text)
+        column.prop(data, name, text="")
+        return
+    split = layout.split(factor=NAME_SHARE, align=True)
+    label = split.row()
+    label.alignment = "RIGHT"
+    label.label(text=prop.name if text is None else text)
+    split.prop(data, name, text="")
+
+
+def fields(layout, data, names):
+    for name in names:
+        field(layout, data, name)
+
+
+def big_button(layout, idname: str, icon: str, text: str | None = None):
+    row = layout.row(align=True)
+    row.scale_y = 1.4
+    return row.operator(idname, icon=icon) if text is None else row.operator(idname, icon=icon, text=text)
 
 
 def property_subpanel(idname: str, label: str, parent: str, group: str, names: tuple):
-    """A sub-panel, closed at first, listing ``names`` of ``scene.kezuri.<group>``."""
+    """A sub-panel, closed at first, listing ``names`` of ``scene.kezuri.<group>`` (shown with its
+    parent, so with the parent's job)."""
     def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        props = getattr(context.scene.kezuri, group)
-        for name in names:
-            layout.prop(props, name)
+        fields(self.layout, getattr(context.scene.kezuri, group), names)
     return type(idname, (KezuriPanel, bpy.types.Panel), {"bl_idname": idname, "bl_label": label, "bl_parent_id": parent,
                                                           "bl_options": {"DEFAULT_CLOSED"}, "draw": draw})
 
@@ -30,31 +88,23 @@ class KEZURI_PT_machine(KezuriPanel, bpy.types.Panel):
 
     def draw(self, context):
         layout = self.layout
-        layout.use_property_split = True
         settings = context.scene.kezuri
-        layout.prop(settings.machine, "post")
-        layout.prop(settings.machine, "work_offset")
-        layout.prop(settings.machine, "rapid_rate")
-        layout.prop(settings.machine, "output_dir")
+        field(layout, settings.machine, "post", wide=True)
+        fields(layout, settings.machine, ("work_offset", "rapid_rate", "output_dir"))
         layout.separator()
-        layout.prop(settings.stock, "plate")
-        layout.prop(settings.stock, "origin")
+        field(layout, settings.stock, "plate")
+        field(layout, settings.stock, "origin", wide=True)
 
 
 class KEZURI_PT_engrave(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_engrave"
+    job = "ENGRAVE"
     bl_label = "Engrave"
 
     def draw(self, context):
         layout = self.layout
-        layout.use_property_split = True
-        props = context.scene.kezuri.engrave
-        layout.prop(props, "letters")
-        layout.prop(props, "letters_collection")
-        layout.prop(props, "surface")
-        row = layout.row(align=True)
-        row.scale_y = 1.4
-        row.operator("kezuri.engrave_generate", icon="MOD_NOISE")
+        fields(layout, context.scene.kezuri.engrave, ("letters", "letters_collection", "surface"))
+        big_button(layout, "kezuri.engrave_generate", "MOD_NOISE")
         layout.operator("kezuri.engrave_export", icon="EXPORT")
 
 
@@ -66,43 +116,40 @@ class KEZURI_PT_engrave_texture(KezuriPanel, bpy.types.Panel):
 
     def draw(self, context):
         layout = self.layout
-        layout.use_property_split = True
-        props = context.scene.kezuri.engrave
         layout.menu("KEZURI_MT_library_tools", icon="TOOL_SETTINGS")
-        for name in ("rough_diameter", "rough_tool_number", "stepover", "raster_angle", "letter_clearance",
-                     "base_depth", "quantum", "amplitude", "spacing", "motion", "spacing_jitter", "seed"):
-            layout.prop(props, name)
+        fields(layout, context.scene.kezuri.engrave,
+               ("rough_diameter", "rough_tool_number", "stepover", "raster_angle", "letter_clearance", "base_depth",
+                "quantum", "amplitude", "spacing", "motion", "spacing_jitter", "seed"))
 
 
 class KEZURI_PT_rotary(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_rotary"
+    job = "ROTARY"
     bl_label = "Rotary Pockets"
 
     def draw(self, context):
         layout = self.layout
-        layout.use_property_split = True
         scene = context.scene
         pockets = [o for o in scene.objects if o.kezuri_pocket.enabled]
-        layout.label(text=f"Block: the stock object; {len(pockets)} pocket(s)", icon="INFO")
+        layout.label(text=f"{iface('Pockets')}: {len(pockets)}", icon="INFO", translate=False)
         obj = context.active_object
         if obj is not None and obj.type in {"MESH", "CURVE"} and obj != scene.kezuri.stock.plate:
             box = layout.box()
-            box.prop(obj.kezuri_pocket, "enabled", text=f"{obj.name} is a pocket")
+            box.label(text=obj.name, icon="OBJECT_DATA", translate=False)
+            box.prop(obj.kezuri_pocket, "enabled")
             if obj.kezuri_pocket.enabled:
-                for name in ("depth", "wall_angle", "bottom"):
-                    box.prop(obj.kezuri_pocket, name)
+                fields(box, obj.kezuri_pocket, ("depth", "wall_angle", "bottom"))
                 if obj.kezuri_pocket.bottom == "sphere":
-                    box.prop(obj.kezuri_pocket, "sphere_radius")
+                    field(box, obj.kezuri_pocket, "sphere_radius")
         layout.operator("kezuri.mark_pocket", icon="ADD")
-        row = layout.row(align=True)
-        row.scale_y = 1.4
-        row.operator("kezuri.rotary_generate", icon="DRIVER_ROTATIONAL_DIFFERENCE")
-        layout.prop(scene.kezuri.rotary, "post")
+        big_button(layout, "kezuri.rotary_generate", "DRIVER_ROTATIONAL_DIFFERENCE")
+        field(layout, scene.kezuri.rotary, "post", wide=True)
         layout.operator("kezuri.rotary_export", icon="EXPORT")
 
 
 class KEZURI_PT_stepnc(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_stepnc"
+    job = "STEPNC"
     bl_label = "STEP-NC Workplan"
 
     def draw(self, context):
@@ -110,15 +157,13 @@ class KEZURI_PT_stepnc(KezuriPanel, bpy.types.Panel):
         props = context.scene.kezuri.stepnc
         layout.operator("kezuri.import_stepnc", icon="IMPORT")
         if props.filepath:
-            layout.label(text=bpy.path.basename(props.filepath), icon="FILE")
-        row = layout.row()
-        row.template_list("KEZURI_UL_workingsteps", "", props, "steps", props, "active_step", rows=5)
-        column = row.column(align=True)
-        column.operator("kezuri.workingstep_move", icon="TRIA_UP", text="").direction = "UP"
-        column.operator("kezuri.workingstep_move", icon="TRIA_DOWN", text="").direction = "DOWN"
+            layout.label(text=bpy.path.basename(props.filepath), icon="FILE", translate=False)
+        # the list the whole width (its rows need it), the order buttons below it
+        layout.template_list("KEZURI_UL_workingsteps", "", props, "steps", props, "active_step", rows=5)
         row = layout.row(align=True)
-        row.scale_y = 1.4
-        row.operator("kezuri.stepnc_generate", icon="SEQ_STRIP_DUPLICATE")
+        row.operator("kezuri.workingstep_move", icon="TRIA_UP", text="").direction = "UP"
+        row.operator("kezuri.workingstep_move", icon="TRIA_DOWN", text="").direction = "DOWN"
+        big_button(layout, "kezuri.stepnc_generate", "SEQ_STRIP_DUPLICATE")
         layout.operator("kezuri.stepnc_export", icon="EXPORT")
 
 
@@ -130,75 +175,65 @@ class KEZURI_PT_stepnc_write(KezuriPanel, bpy.types.Panel):
 
     def draw(self, context):
         layout = self.layout
-        layout.use_property_split = True
-        props = context.scene.kezuri.stepnc
-        layout.label(text="Pockets: outline objects marked as pockets, on the stock")
-        for name in ("tool_diameter", "tool_number", "flute_length", "feed", "spindle_rpm"):
-            layout.prop(props, name)
+        layout.label(text="Pockets: objects marked as pockets", icon="INFO")
+        fields(layout, context.scene.kezuri.stepnc, ("tool_diameter", "tool_number", "flute_length", "feed",
+                                                     "spindle_rpm"))
         layout.operator("kezuri.export_stepnc", icon="EXPORT")
 
 
 class KEZURI_PT_turnmill(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_turnmill"
+    job = "TURNMILL"
     bl_label = "Turn-Mill"
 
     def draw(self, context):
         layout = self.layout
-        layout.use_property_split = True
-        props = context.scene.kezuri.turnmill
-        for name in ("part", "selected_only", "stock_radius", "stock_z_min", "stock_z_max", "engine"):
-            layout.prop(props, name)
-        row = layout.row(align=True)
-        row.operator("kezuri.turnmill_classify", icon="SHADING_RENDERED")
-        row = layout.row(align=True)
-        row.scale_y = 1.4
-        row.operator("kezuri.turnmill_generate", icon="MOD_SCREW")
+        fields(layout, context.scene.kezuri.turnmill,
+               ("part", "selected_only", "stock_radius", "stock_z_min", "stock_z_max", "engine"))
+        layout.operator("kezuri.turnmill_classify", icon="SHADING_RENDERED")
+        big_button(layout, "kezuri.turnmill_generate", "MOD_SCREW")
         layout.operator("kezuri.turnmill_export", icon="EXPORT")
 
 
 class KEZURI_PT_carve(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_carve"
+    job = "CARVE"
     bl_label = "Carve"
 
     def draw(self, context):
         layout = self.layout
-        layout.use_property_split = True
         props = context.scene.kezuri.carve
-        layout.prop(props, "design")
+        field(layout, props, "design")
         row = layout.row(align=True)
         row.operator("kezuri.carve_sample", text="Wave Relief", icon="MESH_GRID").sample = "wave"
         row.operator("kezuri.carve_sample", text="Domed Plate", icon="MESH_UVSPHERE").sample = "dome"
-        for name in ("stock_above", "scallop", "raster_angle", "finish_diameter", "rough"):
-            layout.prop(props, name)
-        row = layout.row(align=True)
-        row.scale_y = 1.4
-        row.operator("kezuri.carve_generate", icon="MOD_DISPLACE")
+        fields(layout, props, ("stock_above", "scallop", "raster_angle", "finish_diameter", "rough"))
+        big_button(layout, "kezuri.carve_generate", "MOD_DISPLACE")
         layout.operator("kezuri.carve_export", icon="EXPORT")
 
 
 class KEZURI_PT_sheet(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_sheet"
+    job = "SHEET"
     bl_label = "Sheet Metal"
 
     def draw(self, context):
         layout = self.layout
         sheet = context.scene.kezuri.sheet
-        layout.label(text="Twisted quad corners (mm)")
+        layout.label(text="Quad corners (mm)")
         grid = layout.column(align=True)
+        header = grid.row(align=True)
+        for text in ("", "X", "Y", "Z"):
+            header.label(text=text, translate=False)
         for corner in range(4):
             row = grid.row(align=True)
-            row.label(text=f"P{corner + 1}")
+            row.label(text=f"P{corner + 1}", translate=False)
             for axis in range(3):
-                row.prop(sheet, "corners", index=3 * corner + axis, text="XYZ"[axis])
-        row = layout.row(align=True)
-        row.operator("kezuri.quad_from_selection", icon="FACESEL")
-        row.operator("kezuri.import_cdl", text="CDL", icon="IMPORT")
-        layout.use_property_split = True
-        for name in ("divisions", "direction", "tool_diameter", "thickness", "pitch", "station"):
-            layout.prop(sheet, name)
-        row = layout.row(align=True)
-        row.scale_y = 1.4
-        row.operator("kezuri.unfold_quad", icon="MOD_UVPROJECT")
+                row.prop(sheet, "corners", index=3 * corner + axis, text="")
+        layout.operator("kezuri.quad_from_selection", text="From Selected Face", icon="FACESEL")
+        layout.operator("kezuri.import_cdl", text="Import CDL", icon="IMPORT")
+        fields(layout, sheet, ("divisions", "direction", "tool_diameter", "thickness", "pitch", "station"))
+        big_button(layout, "kezuri.unfold_quad", "MOD_UVPROJECT")
         layout.operator("kezuri.sheet_export", icon="EXPORT")
 
 
@@ -209,10 +244,7 @@ class KEZURI_PT_sheet_elbow(KezuriPanel, bpy.types.Panel):
 
     def draw(self, context):
         layout = self.layout
-        layout.use_property_split = True
-        sheet = context.scene.kezuri.sheet
-        for name in ("elbow_diameter", "elbow_radius", "elbow_angle", "elbow_pieces"):
-            layout.prop(sheet, name)
+        fields(layout, context.scene.kezuri.sheet, ("elbow_diameter", "elbow_radius", "elbow_angle", "elbow_pieces"))
         layout.operator("kezuri.add_elbow", icon="MESH_CYLINDER")
         layout.operator("kezuri.elbow_export", icon="EXPORT")
 
@@ -221,28 +253,28 @@ class KEZURI_PT_simulate(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_simulate"
     bl_label = "Simulate & Check"
 
+    @classmethod
+    def poll(cls, context):
+        return workflow_of(context.scene.kezuri.job).simulation is not None
+
     def draw(self, context):
         layout = self.layout
         props = context.scene.kezuri.simulation
-        layout.use_property_split = True
-        layout.prop(props, "engine")
+        field(layout, props, "engine")
         if props.engine == "heightfield":
-            layout.prop(props, "cell")
-        layout.prop(props, "colour_by")
-        layout.use_property_split = False
-        row = layout.row(align=True)
-        for workflow in simulated():
-            row.operator("kezuri.simulate", text=workflow.short_label).workflow = workflow.key
+            field(layout, props, "cell")
+        field(layout, props, "colour_by")
+        big_button(layout, "kezuri.simulate", "MOD_BOOLEAN").workflow = context.scene.kezuri.job
         if len(props.findings):
             box = layout.box()
-            box.label(text=f"{len(props.findings)} finding(s)", icon="ERROR")
+            box.label(text=f"{iface('Findings')}: {len(props.findings)}", icon="ERROR", translate=False)
             for index, finding in enumerate(props.findings[:20]):
-                row = box.row(align=True)
-                row.label(text=finding.message)
-                row.operator("kezuri.frame_finding", text="", icon="ZOOM_SELECTED").index = index
+                # the short kind and move on the button, the whole message in its tooltip
+                text = f"{iface(FINDING_KINDS.get(finding.kind, finding.kind))} · {finding.move}"
+                box.operator("kezuri.frame_finding", text=text, icon="ZOOM_SELECTED", translate=False).index = index
             blocking = sum(1 for f in props.findings if f.blocking)
             if blocking:
-                box.prop(props, "allow_findings", text=f"Write despite these {blocking} finding(s)")
+                box.prop(props, "allow_findings")
         else:
             layout.label(text="No findings", icon="CHECKMARK")
 
@@ -268,8 +300,8 @@ KEZURI_PT_carve_settings = property_subpanel(
     ("finish_tool_number", "max_slope", "sample_spacing", "rough_rpm", "finish_rpm", "rough_feed", "finish_feed",
      "plunge_feed", "clearance", "safe_z", "show_rapids"))
 
-CLASSES = (KEZURI_PT_machine, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
+CLASSES = (KEZURI_PT_job, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
            KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_stepnc,
            KEZURI_PT_stepnc_write, KEZURI_PT_turnmill, KEZURI_PT_turnmill_settings, KEZURI_PT_carve,
            KEZURI_PT_carve_roughing, KEZURI_PT_carve_settings, KEZURI_PT_sheet,
-           KEZURI_PT_sheet_elbow, KEZURI_PT_simulate)
+           KEZURI_PT_sheet_elbow, KEZURI_PT_simulate, KEZURI_PT_machine)

@@ -227,6 +227,9 @@ class KezuriWorkingstep(bpy.types.PropertyGroup):
     name: StringProperty(name="Name")
     feature: StringProperty(name="Feature")
     operation: StringProperty(name="Operation")
+    feature_name: StringProperty(name="Feature Name", description="The feature's name in the file")
+    step: StringProperty(name="Step", description="The operation in a word (rough, finish, drill ...)")
+    tool: StringProperty(name="Tool", description="Tool number and diameter")
     enabled: BoolProperty(name="Cut", default=True, description="Include this workingstep in the NC program")
 
 
@@ -254,7 +257,7 @@ class KezuriTurnMill(bpy.types.PropertyGroup):
     stock_z_max: mm("Stock Z Max", 0.0, "End face of the stock")
     tool_diameter: mm("Ball Diameter", 6.0, "Ball end mill on both turret stations", minimum=0.1)
     tolerance: mm("Chordal Tolerance", 0.01, "Point spacing and scallops follow this tolerance", minimum=0.0001)
-    sample_spacing: mm("Ray Sample Spacing", 2.0, "Distance between ray samples on each face", minimum=0.01)
+    sample_spacing: mm("Ray Spacing", 2.0, "Distance between ray samples on each face", minimum=0.01)
     feed: FloatProperty(name="Feed", default=500.0, min=1.0, description="Cutting feed (mm/min)")
     spindle_rpm: FloatProperty(name="Spindle", default=4000.0, min=1.0, description="Driven tool speed (rpm)")
     engine: EnumProperty(name="Ray Engine", default="BVH", items=[
@@ -265,12 +268,12 @@ class KezuriTurnMill(bpy.types.PropertyGroup):
 class KezuriCarve(bpy.types.PropertyGroup):
     design: PointerProperty(name="Design", type=bpy.types.Object, poll=_mesh_poll,
                             description="The surface to carve: a mesh in work coordinates, its top at the stock top")
-    stock_above: mm("Stock Above Design", 0.0, "How far the stock's top stands above the design's highest point",
+    stock_above: mm("Stock Above", 0.0, "How far the stock's top stands above the design's highest point",
                     minimum=0.0)
     rough: BoolProperty(name="Roughing", default=True,
                         description="Rough in Z levels with the flat end mill before finishing")
     rough_diameter: mm("Roughing Diameter", 6.0, "Flat end mill for roughing", minimum=0.1)
-    rough_tool_number: IntProperty(name="Roughing Tool Number", default=1, min=0, max=999,
+    rough_tool_number: IntProperty(name="Roughing Tool No.", default=1, min=0, max=999,
                                    description="Tool number of the roughing end mill")
     allowance: mm("Allowance", 0.5, "Stock roughing leaves on the design", minimum=0.0)
     step_down: mm("Step Down", 3.0, "Depth between roughing levels", minimum=0.01)
@@ -362,7 +365,12 @@ CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriPocket,
            KezuriStepNC, KezuriTurnMill, KezuriCarve, KezuriFinding, KezuriSimulation, KezuriSettings)
 
 
-def register():
+def register(jobs: list):
+    """``jobs``: the job picker's items, (key, label, description) per workflow with panels
+    (:func:`.workflows.job_items`)."""
+    KezuriSettings.__annotations__["job"] = EnumProperty(
+        name="Job", items=jobs, default=jobs[0][0],
+        description="The job the CAM tab shows: its panels, and Machine & Stock")
     for cls in CLASSES:
         bpy.utils.register_class(cls)
     bpy.types.Scene.kezuri = PointerProperty(type=KezuriSettings)

@@ -70,6 +70,14 @@ class KEZURI_OT_frame_finding(bpy.types.Operator):
 
     index: IntProperty(default=0, min=0)
 
+    @classmethod
+    def description(cls, context, properties):
+        """The finding's whole message (the button shows its kind and move)."""
+        items = context.scene.kezuri.simulation.findings
+        if properties.index < len(items):
+            return translate_message(items[properties.index].message)
+        return bpy.app.translations.pgettext_tip(cls.__doc__)
+
     def execute(self, context):
         items = context.scene.kezuri.simulation.findings
         if self.index >= len(items):

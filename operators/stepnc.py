@@ -18,13 +18,14 @@ from ..post import write_atomic
 from ..toolpath import stepnc
 from ..toolpath.meshdata import prism
 from ..toolpath.program import Tool
+from ..toolpath.stepnc.workplan import tool_numbers
 from ..toolpath.stepnc.solids import block_of, feature_solid, fixture_clearance, stock_box
 from . import convert
 from . import gate
 from .common import run_reported
 from .limits import check_group
 from .properties import post_items, post_number
-from .translations import translate_message
+from .translations import iface, translate_message
 from .workflow import BatchCommand, SimulationSetup, Workflow
 
 POST_FAMILIES = ("milling",)
@@ -41,15 +42,33 @@ def describe_step(step) -> dict:
             "operation": type(operation).__name__ + (" (finishing)" if getattr(operation, "finishing", False) else "")}
 
 
+# What a workingstep does, in the few words its row in the list has room for.
+STEP_WORDS = {"PLANE_ROUGH_MILLING": "face rough", "PLANE_FINISH_MILLING": "face",
+              "BOTTOM_AND_SIDE_ROUGH_MILLING": "rough", "BOTTOM_AND_SIDE_FINISH_MILLING": "finish",
+              "DRILLING": "drill", "CENTER_DRILLING": "centre drill", "REAMING": "ream"}
+
+
+def step_row(step, numbers: dict) -> tuple:
+    """(feature, operation, tool) of a workingstep's row, e.g. ("POCKET1", "rough", "T2 Ø10"):
+    the feature's name in the file, the operation in a word, the tool number and diameter."""
+    operation = step.its_operation
+    tool = operation.its_tool
+    diameter = tool.its_tool_body.dimension.diameter
+    return (step.its_feature.its_id, STEP_WORDS.get(operation.type_name, operation.type_name.lower()),
+            f"T{numbers[tool.id]} Ø{diameter:g}")
+
+
 def fill_workplan_list(scene, path: str, loaded) -> None:
     props = scene.kezuri.stepnc
     props.filepath = path
     props.steps.clear()
+    numbers = tool_numbers(loaded.workingsteps)
     for step in loaded.workingsteps:
         item = props.steps.add()
         info = describe_step(step)
         item.ident, item.name, item.feature, item.operation = info["id"], info["name"], info["feature"], \
             info["operation"]
+        item.feature_name, item.step, item.tool = step_row(step, numbers)
         item.enabled = True
     props.active_step = 0
 
@@ -286,10 +305,10 @@ class KEZURI_OT_workingstep_move(bpy.types.Operator):
 
 class KEZURI_UL_workingsteps(bpy.types.UIList):
     def draw_item(self, context, layout, data, item, icon, active_data, active_property, index=0, flt_flag=0):
+        # feature · operation · tool (the full names and the instance number are in the file)
         row = layout.row(align=True)
         row.prop(item, "enabled", text="")
-        row.label(text=f"#{item.ident} {item.name}")
-        row.label(text=item.operation)
+        row.label(text=f"{item.feature_name} · {iface(item.step)} · {item.tool}", translate=False)
 
 
 def menu_import(self, context):

@@ -67,7 +67,8 @@ OPERATOR_LABELS = {
 
 # Texts given to layout.operator(text=...): Blender looks them up in the operator's context.
 OPERATOR_TEXTS = {
-    "CDL": "CDL",
+    "Import CDL": "CDLを読み込み",
+    "From Selected Face": "選択面から取得",
     "CADKEY CDL (.cdl)": "CADKEY CDL (.cdl)",
     "ISO 14649 STEP-NC (.stp, .p21)": "ISO 14649 STEP-NC (.stp, .p21)",
     "ISO 14649 STEP-NC (.stp)": "ISO 14649 STEP-NC (.stp)",
@@ -151,10 +152,25 @@ PANEL_TEXTS = {
     "Sheet Metal": "板金",
     "Pipe Elbow": "エビ管",
     "Tool Library": "工具ライブラリ",
-    "Twisted quad corners (mm)": "ねじれ四辺形の頂点 (mm)",
-    "Pockets: outline objects marked as pockets, on the stock": "ポケット：素材の上の、ポケットに指定した輪郭オブジェクト",
+    "Quad corners (mm)": "四辺形の頂点 (mm)",
+    "Pockets: objects marked as pockets": "ポケット：ポケット指定の輪郭",
     "The tool library is empty (Preferences > Add-ons > Kezuri CAM)":
         "工具ライブラリが空です（プリファレンス > アドオン > Kezuri CAM）",
+    # CAM tab (issue #21): parts of composed labels, finding kinds, a workingstep's operation word
+    "Pockets": "ポケット",
+    "Findings": "指摘",
+    "Gouge": "削り込み",
+    "Rapid in stock": "素材内の早送り",
+    "Plunge": "突込み",
+    "Spindle stopped": "主軸停止中",
+    "Travel limit": "ストローク超過",
+    "face rough": "正面荒",
+    "face": "正面",
+    "rough": "荒",
+    "finish": "仕上げ",
+    "drill": "穴あけ",
+    "centre drill": "センタ穴",
+    "ream": "リーマ",
 }
 
 # Property names and descriptions, enum items (operators/properties.py, preferences.py and the
@@ -185,7 +201,7 @@ PROPERTY_TEXTS = {
     "Cell Size": "セルサイズ",
     "Height-field grid spacing (mm)": "ハイトフィールドの格子間隔（mm）",
     "Engine": "エンジン",
-    "Height Field": "ハイトフィールド",
+    "Height Field": "ハイトマップ",
     "Fast Z-map of the exact tool envelope (3-axis and C-X-Z jobs)":
         "工具包絡面を正確に求める高速Zマップ（3軸とC-X-Zのジョブ）",
     "Exact Solid": "厳密ソリッド",
@@ -262,11 +278,11 @@ PROPERTY_TEXTS = {
     "Width of the flat band cut around every letter (mm)": "各文字の周りに平らに削る帯の幅 (mm)",
     "Band Depth": "帯の深さ",
     "Depth of the band around the letters (mm)": "文字の周りの帯の深さ (mm)",
-    "Band Stepover": "帯のステップオーバー",
+    "Band Stepover": "帯のステップ",
     "Distance between the band's contour passes (mm)": "帯の輪郭加工パスの間隔 (mm)",
     # Engrave: feeds and heights
     "Ball Spindle": "ボールの主軸回転数",
-    "Flat Spindle": "フラットの主軸回転数",
+    "Flat Spindle": "フラット回転数",
     "Spindle speed (rpm)": "主軸回転数 (rpm)",
     "Ball Feed": "ボールの送り速度",
     "Flat Feed": "フラットの送り速度",
@@ -344,9 +360,9 @@ PROPERTY_TEXTS = {
     "Deepest roughing layer (mm)": "荒加工の1層あたりの最大切込み深さ (mm)",
     "Allowance": "仕上げ代",
     "Stock roughing leaves for finishing (mm)": "荒加工で仕上げ用に残す取り代 (mm)",
-    "Wall Stepover": "壁面のステップオーバー",
+    "Wall Stepover": "壁面ステップ",
     "Wall finishing pitch along the wall (mm)": "壁面に沿った壁面仕上げのピッチ (mm)",
-    "Table Speed Limit": "テーブル回転数の上限",
+    "Table Speed Limit": "テーブル上限回転",
     "Fastest the face plate turns (rpm), for feeds and times": "面板の最高回転数 (rpm)。送り速度と加工時間の計算に使います",
     # STEP-NC (ISO 14649) workplan
     "Instance": "インスタンス番号",
@@ -361,7 +377,7 @@ PROPERTY_TEXTS = {
     "Active Workingstep": "アクティブなワーキングステップ",
     "End Mill Diameter": "エンドミル径",
     "Flat end mill for pockets written as ISO 14649 (mm)": "ISO 14649で書き出すポケット用のフラットエンドミル径 (mm)",
-    "End Mill Tool No.": "エンドミルの工具番号",
+    "End Mill Tool No.": "エンドミル番号",
     "Cutting length of the end mill (mm)": "エンドミルの刃長 (mm)",
     "Feed": "送り速度",
     "Up": "上へ",
@@ -382,7 +398,7 @@ PROPERTY_TEXTS = {
     "Ball end mill on both turret stations (mm)": "両方のタレットステーションのボールエンドミルの直径 (mm)",
     "Chordal Tolerance": "弦誤差の許容値",
     "Point spacing and scallops follow this tolerance (mm)": "点の間隔とカスプ高さをこの許容値に合わせます (mm)",
-    "Ray Sample Spacing": "レイのサンプル間隔",
+    "Ray Spacing": "レイの間隔",
     "Distance between ray samples on each face (mm)": "各面上のレイのサンプル点の間隔 (mm)",
     "Driven tool speed (rpm)": "回転工具の回転数 (rpm)",
     "Ray Engine": "レイ判定エンジン",
@@ -396,17 +412,17 @@ PROPERTY_TEXTS = {
     "Design": "設計形状",
     "The surface to carve: a mesh in work coordinates, its top at the stock top":
         "加工する曲面：ワーク座標のメッシュ（上端を素材の上面に合わせる）",
-    "Stock Above Design": "設計形状上の素材の余り",
+    "Stock Above": "上面の余肉",
     "How far the stock's top stands above the design's highest point (mm)":
         "素材の上面が設計形状の最も高い点からどれだけ上にあるか (mm)",
     "Rough in Z levels with the flat end mill before finishing": "仕上げの前にフラットエンドミルで Z 等高線荒加工をします",
     "Roughing Diameter": "荒加工の工具径",
     "Flat end mill for roughing (mm)": "荒加工用フラットエンドミルの直径 (mm)",
-    "Roughing Tool Number": "荒加工の工具番号",
+    "Roughing Tool No.": "荒加工の工具番号",
     "Tool number of the roughing end mill": "荒加工エンドミルの工具番号",
     "Stock roughing leaves on the design (mm)": "荒加工が設計形状の上に残す取り代 (mm)",
     "Depth between roughing levels (mm)": "荒加工の段と段の深さ (mm)",
-    "Roughing Stepover": "荒加工のピックフィード",
+    "Roughing Stepover": "荒ピックフィード",
     "Distance between roughing passes (mm)": "荒加工のパスの間隔 (mm)",
     "Ball end mill for finishing (mm)": "仕上げ用ボールエンドミルの直径 (mm)",
     "Ball Tool Number": "ボールの工具番号",
@@ -468,6 +484,16 @@ PROPERTY_TEXTS = {
     "Finishing Flat": "仕上げ用フラット",
     "Library Index": "ライブラリ内の番号",
     "Pocket": "ポケット",
+    # CAM tab (issue #21): the job picker, the workingstep list's columns
+    "The job the CAM tab shows: its panels, and Machine & Stock": "CAMタブに表示するジョブ（そのパネルと機械・素材）",
+    "Twisted quads and pipe elbows: flat patterns, turret-punch NC, DXF, SVG":
+        "ねじれ四辺形とエビ管：展開図、タレットパンチNC、DXF、SVG",
+    "Feature Name": "フィーチャ名",
+    "The feature's name in the file": "ファイル内のフィーチャの名前",
+    "Step": "工程",
+    "The operation in a word (rough, finish, drill ...)": "加工工程をひとことで（荒、仕上げ、穴あけ…）",
+    "Tool": "工具",
+    "Tool number and diameter": "工具番号と工具径",
 }
 
 # Fixed messages: poll messages, reports and the errors the operators show (run_reported).
@@ -623,6 +649,12 @@ def _compiled_templates() -> list:
     """(regex, Japanese) for every template, the most literal text first: the most specific wins."""
     ordered = sorted(MESSAGE_TEMPLATES.items(), key=lambda item: -len(item[0].replace("{}", "")))
     return [(_template_pattern(english), japanese) for english, japanese in ordered]
+
+
+def iface(text: str) -> str:
+    """``text`` in the interface language, for a label put together from parts (Blender
+    translates a label's whole text only)."""
+    return bpy.app.translations.pgettext_iface(text)
 
 
 def reports_in_japanese() -> bool:

@@ -26,3 +26,8 @@ def workflow_of(key: str):
 def commands() -> dict:
     """Batch commands by name: every workflow's."""
     return {command.name: command for workflow in WORKFLOWS for command in workflow.commands}
+
+
+def job_items() -> list:
+    """The CAM tab's job picker: (key, label, description) of every workflow with panels."""
+    return [(w.key, w.label, w.description) for w in WORKFLOWS if w.classes]

@@ -1,316 +1,515 @@
-"""Runs inside a real Blender window (scripts/screenshots.sh starts it under Xvfb) and takes a
-screenshot of every Kezuri workflow in use: the CAM sidebar tab open, the workflow's operators
-run on its built-in sample, the result in the viewport.
+"""Runs inside a real Blender window (scripts/screenshots.sh starts it under Xvfb with
+``--enable-event-simulate``) and uses the CAM tab as a user does: every press is a mouse or key
+event at a place on the screen (``Window.event_simulate``, as Blender's own ui_simulate tests
+do), every export goes through the file browser, and the written file is compared with what
+batch wrote for the same sample (``KEZURI_BATCH``, the ``batch.py demo`` folder).
 
-Blender's own screenshot operator gives a black image under Xvfb with software GL, so each
-picture is taken of the X screen with ``xwd -root | convert``.
+Where the buttons are is read off the screen: a grab of the X screen (``xwd``) is scanned down the
+sidebar for button rows (the widget grey across the layout's width); the big Generate and
+Simulate buttons are the rows 1.4 times as tall.  Then the label-width check of
+tests/sidebar_fit.py runs against the real sidebar's width, in English and Japanese.
+
+Output lines (scripts/screenshots.sh keeps them): ``screenshot``, ``click``, ``export``, ``fit``,
+``modal``, ``japanese``, ``failed``.
 """
 import importlib
 import os
 import subprocess
 import sys
+import time
 
 import bpy
+import numpy as np
 
 OUT = os.environ.get("KEZURI_SCREENSHOTS", "/tmp/screenshots")
+BATCH = os.environ.get("KEZURI_BATCH", "/tmp/blender-demo")
+EXPORTS = os.environ.get("KEZURI_EXPORTS", "/tmp/kezuri-exports")
 PACKAGE = next((name for name in sys.modules if name.endswith(".kezuri") and name.startswith("bl_ext.")), None)
+FAILURES = []
 
 
 def module(name):
     return importlib.import_module(f"{PACKAGE}.{name}")
 
 
+def log(text):
+    print(text, flush=True)
+    if text.startswith("failed") or " failed" in text:
+        FAILURES.append(text)
+
+
+# ----- the screen ----------------------------------------------------------------------------
+
 def view3d():
     window = bpy.context.window_manager.windows[0]
-    screen = window.screen
-    area = max((a for a in screen.areas if a.type == "VIEW_3D"), key=lambda a: a.width * a.height)
+    area = max((a for a in window.screen.areas if a.type == "VIEW_3D"), key=lambda a: a.width * a.height)
     region = next(r for r in area.regions if r.type == "WINDOW")
     sidebar = next(r for r in area.regions if r.type == "UI")
     return window, area, region, sidebar
 
 
-def maximise_viewport():
-    window, area, region, _ = view3d()
-    with bpy.context.temp_override(window=window, area=area, region=region):
-        bpy.ops.screen.screen_full_area()
-    area = view3d()[1]
-    area.spaces.active.show_region_ui = True
-
-
-def click_cam_tab():
-    """Blender 4.3 cannot set the sidebar tab from Python: click it.  The tabs (Tool, View, CAM)
-    run down the sidebar's right edge; CAM is the third, about 115 px below the sidebar's top."""
-    window, area, region, sidebar = view3d()
-    try:
-        sidebar.active_panel_category = "CAM"
-        return
-    except AttributeError:
-        pass
-    x = sidebar.x + sidebar.width - 9
-    y = window.height - (sidebar.y + sidebar.height) + 115
-    subprocess.run(["xdotool", "mousemove", str(x), str(y), "click", "1", "mousemove", "800", "500"], check=True)
-
-
-def only_panels(*prefixes):
-    """Show only the Machine panel and the panels of one workflow (so the picture shows them
-    without scrolling): the others are unregistered for this picture and registered again after."""
-    panels = module("operators.panels")
-    for cls in reversed(panels.CLASSES):
-        if cls.is_registered:
-            bpy.utils.unregister_class(cls)
-    for cls in panels.CLASSES:
-        if cls.__name__ == "KEZURI_PT_machine" or cls.__name__.startswith(prefixes):
-            bpy.utils.register_class(cls)
-
-
-def show_cam_tab(color_type="OBJECT"):
-    """Sidebar open on CAM; Solid shading by object colour, or by the colour attribute ("VERTEX":
-    the simulated stock by depth, the turn-mill reach)."""
-    window, area, region, sidebar = view3d()
-    space = area.spaces.active
-    space.show_region_ui = True
-    space.overlay.show_overlays = True
-    space.shading.type = "SOLID"
-    space.shading.color_type = color_type
-    area.tag_redraw()
-
-
-def frame_all(view="TOP_TILTED"):
-    window, area, region, _ = view3d()
-    space = area.spaces.active
-    with bpy.context.temp_override(window=window, area=area, region=region):
-        bpy.ops.view3d.view_all(center=False)
-    r3d = space.region_3d
-    if view == "TOP_TILTED":
-        from mathutils import Euler
-        r3d.view_rotation = Euler((0.6, 0.0, 0.0)).to_quaternion()
-        with bpy.context.temp_override(window=window, area=area, region=region):
-            bpy.ops.view3d.view_all(center=False)
-    area.tag_redraw()
+def grab() -> np.ndarray:
+    """The X screen as an (height, width, 3) array, top row first."""
+    ppm = subprocess.run("xwd -root -silent | convert xwd:- ppm:-", shell=True, check=True,
+                         capture_output=True).stdout
+    header, at = [], 0
+    while len(header) < 4:                    # P6, width, height, maxval; "#" comments skipped
+        while ppm[at:at + 1].isspace():
+            at += 1
+        if ppm[at:at + 1] == b"#":
+            at = ppm.index(b"\n", at) + 1
+            continue
+        end = at
+        while not ppm[end:end + 1].isspace():
+            end += 1
+        header.append(ppm[at:end])
+        at = end
+    width, height = int(header[1]), int(header[2])
+    pixels = ppm[at + 1:at + 1 + width * height * 3]
+    return np.frombuffer(pixels, np.uint8).reshape(height, width, 3)
 
 
 def shoot(name):
     os.makedirs(OUT, exist_ok=True)
     path = os.path.join(OUT, f"{name}.png")
     subprocess.run(f"xwd -root -silent | convert xwd:- png:{path}", shell=True, check=True)
-    print(f"screenshot {path}", flush=True)
+    log(f"screenshot {path}")
 
 
-def engrave_step():
+def button_rows(image, window, sidebar):
+    """Rows of full-width buttons in the sidebar, top to bottom: (top, bottom) in window
+    coordinates from the window's top.  A row is a button row where a plain button grey (the
+    default theme's 84, 101 under the mouse) fills both ends of the layout (just after the icon,
+    just before the right edge): the centred text stays clear of them, and a name | value row
+    has the panel's background at its left end."""
+    x0 = sidebar.x + 20
+    x1 = sidebar.x + sidebar.width - 40        # leave the category tabs and the panel edge
+    top = window.height - (sidebar.y + sidebar.height)
+    strip = image[top:top + sidebar.height, x0:x1].astype(int)
+
+    def plain_grey(part):
+        return (part.max(axis=(1, 2)) - part.min(axis=(1, 2)) <= 6) & (part.mean(axis=(1, 2)) >= 75) & \
+            (part.mean(axis=(1, 2)) <= 115)
+    grey = plain_grey(strip[:, 18:26]) & plain_grey(strip[:, -14:-6])     # after the icon; before the edge
+    rows, start = [], None
+    for y, on in enumerate(list(grey) + [False]):
+        if on and start is None:
+            start = y
+        elif not on and start is not None:
+            if y - start >= 14:
+                rows.append((top + start, top + y))
+            start = None
+    return rows
+
+
+def find_buttons():
+    window, _, _, sidebar = view3d()
+    rows = button_rows(grab(), window, sidebar)
+    ui_unit = 20 * bpy.context.preferences.system.ui_scale
+    tall = [i for i, (t, b) in enumerate(rows) if b - t >= 1.2 * ui_unit]    # scale_y 1.4: 28 px, others 20
+    return rows, tall
+
+
+# ----- events --------------------------------------------------------------------------------
+
+def event(kind, value="PRESS", x=None, y=None, window=None, **modifiers):
+    window = window or view3d()[0]
+    if x is None:
+        x, y = STATE["mouse"]
+    STATE["mouse"] = (x, y)
+    window.event_simulate(type=kind, value=value, x=int(x), y=int(y), **modifiers)
+
+
+def settle(frames=6):
+    for _ in range(frames):
+        yield 0.05
+
+
+def click_at(x, y_from_top, what, window=None):
+    """Move there, press and release the left button (y counted from the window's top)."""
+    window = window or view3d()[0]
+    y = window.height - y_from_top
+    event("MOUSEMOVE", "NOTHING", x, y, window)
+    yield from settle(2)
+    event("LEFTMOUSE", "PRESS", x, y, window)
+    yield 0.05
+    event("LEFTMOUSE", "RELEASE", x, y, window)
+    log(f"click {what} at ({int(x)}, {int(y_from_top)})")
+    yield from settle()
+
+
+def key(kind, window=None, **modifiers):
+    event(kind, "PRESS", window=window, **modifiers)
+    yield 0.02
+    event(kind, "RELEASE", window=window, **modifiers)
+    yield from settle(3)
+
+
+def click_row(row, what, fraction=0.5):
+    _, _, _, sidebar = view3d()
+    x = sidebar.x + 20 + (sidebar.width - 60) * fraction
+    yield from click_at(x, (row[0] + row[1]) / 2, what)
+
+
+# ----- the CAM tab ---------------------------------------------------------------------------
+
+def open_cam_tab():
+    """Sidebar open (N in the viewport), then a click on the CAM tab: the tabs run down the
+    sidebar's right edge; CAM is the one whose click puts the job picker at the top."""
+    window, area, region, sidebar = view3d()
+    if not area.spaces.active.show_region_ui:
+        event("MOUSEMOVE", "NOTHING", region.x + region.width // 2, region.y + region.height // 2)
+        yield from key("N")
+    window, area, region, sidebar = view3d()
+    x = sidebar.x + sidebar.width - 10
+    for below_top in range(40, 400, 25):       # the tabs, from the top, until the picker shows
+        yield from click_at(x, window.height - (sidebar.y + sidebar.height) + below_top, "sidebar tab")
+        if picker_row() is not None:
+            log(f"click CAM tab ok ({below_top} px below the sidebar's top)")
+            return
+    log("failed: no CAM tab found")
+
+
+def picker_row():
+    """The job picker: the first full-width widget row at the top of the CAM tab (a menu button,
+    darker than the grey buttons), found by its text changing with the picked job."""
+    window, _, _, sidebar = view3d()
+    image = grab()
+    top = window.height - (sidebar.y + sidebar.height)
+    x0, x1 = sidebar.x + 20, sidebar.x + sidebar.width - 40
+    strip = image[top:top + 60, x0:x1].astype(int)
+    background = np.median(image[top + 2:top + 4, x0:x1].reshape(-1, 3), axis=0)
+    differs = (np.abs(strip - background).sum(axis=2) > 20).mean(axis=1) > 0.85
+    ys = np.nonzero(differs)[0]
+    if not len(ys) or bpy.context.scene.kezuri.job is None:
+        return None
+    return top + int(ys[0]), top + int(ys[-1])
+
+
+def pick_job(key_name):
+    """Open the job picker with a click, then as a user at the keyboard: the menu opens with the
+    current entry under the mouse; the arrow keys move to the wanted one, Return picks it."""
+    keys = [k for k, *_ in module("operators.workflows").job_items()]
     scene = bpy.context.scene
+    row = picker_row()
+    if row is None:
+        log("failed: job picker not found")
+        return
+    yield from click_row(row, "job picker")
+    yield from settle(6)
+    if not STATE.get("picker shot"):
+        shoot("job-picker")
+        STATE["picker shot"] = True
+    # The menu opens below the picker with the current entry highlighted (the theme's blue);
+    # entries are 23 px apart (Blender 4.3's menu rows at resolution scale 1).
+    window, _, _, sidebar = view3d()
+    image = grab().astype(int)
+    x = int(STATE["mouse"][0])
+    column = image[row[1]:row[1] + 400, x]
+    blue = np.nonzero((column[:, 2] - column[:, 0] > 60))[0]
+    if not len(blue):
+        log("failed: the job menu did not open")
+        return
+    current_y = row[1] + (blue[0] + blue[-1]) / 2 if blue[-1] - blue[0] < 30 else row[1] + blue[0] + 9
+    steps = keys.index(key_name) - keys.index(scene.kezuri.job)
+    yield from click_at(x, current_y + 23 * steps, f"job menu entry {key_name}")
+    yield from settle(6)
+    if scene.kezuri.job != key_name:
+        log(f"failed: the job picker shows {scene.kezuri.job}, not {key_name}")
+        yield from key("ESC")
+
+
+def press_big(index, what):
+    """Press the ``index``-th tall button of the tab (0: the job's Generate, 1: Simulate)."""
+    rows, tall = find_buttons()
+    if len(tall) <= index:
+        log(f"failed: no button for {what} ({len(rows)} button rows, tall {tall})")
+        return None
+    yield from click_row(rows[tall[index]], what)
+    return rows, tall[index]
+
+
+def file_browser():
+    for window in bpy.context.window_manager.windows:
+        for area in window.screen.areas:
+            if area.type == "FILE_BROWSER":
+                return window, area
+    return None
+
+
+def through_file_browser(directory, filename, what):
+    """The file browser the button opened: type the folder and the file name, press Return."""
+    for _ in range(40):
+        if file_browser():
+            break
+        yield 0.1
+    found = file_browser()
+    if not found:
+        log(f"failed: {what}: no file browser opened")
+        return False
+    window, area = found
+    params = area.spaces.active.params
+    params.directory = directory.encode()
+    params.filename = filename
+    yield from settle()
+    centre = (area.x + area.width // 2, area.y + area.height // 2)
+    event("MOUSEMOVE", "NOTHING", *centre, window=window)
+    yield from settle(2)
+    # Return: the press runs the export and may close the window; release only into a live one
+    event("RET", "PRESS", window=window)
+    yield 0.05
+    if file_browser() and file_browser()[0] == window:
+        event("RET", "RELEASE", window=window)
+    for _ in range(600):                      # the export runs the export gate: wait for it
+        if not file_browser():
+            break
+        yield 0.1
+    return True
+
+
+def press_export(what, directory, filename):
+    """Export: the first full-width button under the big Generate button that opens a file
+    browser (a row that opens something else is closed with Esc)."""
+    rows, tall = find_buttons()
+    if not tall:
+        log(f"failed: {what}: no Generate button to find Export under")
+        return
+    for row in rows[tall[0] + 1:tall[0] + 4]:
+        yield from click_row(row, f"{what} export")
+        for _ in range(50):
+            if file_browser():
+                yield from through_file_browser(directory, filename, what)
+                return
+            yield 0.1
+        yield from key("ESC")
+    log(f"failed: {what}: no export button found")
+
+
+def compare(written, batch, what):
+    if not os.path.isfile(written):
+        log(f"failed: export {what}: nothing written at {written}")
+        return
+    if not os.path.isfile(batch):
+        log(f"export {what}: written {written}; no batch file {batch} to compare")
+        return
+    a, b = open(written, "rb").read(), open(batch, "rb").read()
+    if a == b:
+        log(f"export {what}: identical to batch ({len(a)} bytes)")
+        return
+    lines_a, lines_b = a.decode(errors="replace").splitlines(), b.decode(errors="replace").splitlines()
+    first = next((i for i, (x, y) in enumerate(zip(lines_a, lines_b)) if x != y), min(len(lines_a), len(lines_b)))
+    log(f"failed: export {what} differs from batch at line {first + 1}: "
+        f"{lines_a[first] if first < len(lines_a) else '<end>'!r} vs {lines_b[first] if first < len(lines_b) else '<end>'!r}")
+
+
+# ----- the jobs ------------------------------------------------------------------------------
+
+def fresh(scene, build=None):
     samples = module("operators.samples")
     samples.clear_scene(scene)
     samples.set_millimetres(scene)
-    samples.name_plate(scene)
-    scene.kezuri.engrave.show_rapids = False     # a cleaner picture: the cuts only
+    if build is not None:
+        build(scene)
+
+
+def frame_all():
     window, area, region, _ = view3d()
     with bpy.context.temp_override(window=window, area=area, region=region):
-        bpy.ops.kezuri.engrave_generate()
-    only_panels("KEZURI_PT_engrave")
-    show_cam_tab()
+        bpy.ops.view3d.view_all(center=False)
+
+
+def generate_and_export(key_name, what, filename, batch_path, picture, colours="OBJECT"):
+    yield from pick_job(key_name)
+    yield from settle(10)
+    pressed = yield from press_big(0, f"{what} generate")
+    if pressed is None:
+        return
+    yield from settle(20)
+    view3d()[1].spaces.active.shading.color_type = colours
     frame_all()
+    yield from settle(10)
+    shoot(picture)
+    os.makedirs(EXPORTS, exist_ok=True)
+    yield from press_export(what, EXPORTS, filename)
+    compare(os.path.join(EXPORTS, filename), os.path.join(BATCH, batch_path), what)
 
 
-def sheet_step():
+def engrave():
     scene = bpy.context.scene
-    module("operators.samples").clear_scene(scene)
-    window, area, region, _ = view3d()
-    with bpy.context.temp_override(window=window, area=area, region=region):
-        bpy.ops.kezuri.unfold_quad()
-    only_panels("KEZURI_PT_sheet")
-    show_cam_tab()
-    frame_all()
+    fresh(scene, module("operators.samples").name_plate)
+    scene.kezuri.machine.post = "linuxcnc"           # the batch demo's post
+    yield from generate_and_export("ENGRAVE", "engrave", "engrave.ngc", "engrave/engrave.ngc", "engrave")
 
 
-def elbow_step():
+def rotary():
     scene = bpy.context.scene
-    module("operators.samples").clear_scene(scene)
-    window, area, region, _ = view3d()
-    with bpy.context.temp_override(window=window, area=area, region=region):
-        bpy.ops.kezuri.add_elbow()
-    only_panels("KEZURI_PT_sheet")
-    show_cam_tab()
-    frame_all()
+    fresh(scene, module("operators.samples").rotary_block)
+    yield from generate_and_export("ROTARY", "rotary", "rotary.ngc", "rotary/rotary.ngc", "rotary")
 
 
-def run_in_view(operator, *args, **kwargs):
-    window, area, region, _ = view3d()
-    with bpy.context.temp_override(window=window, area=area, region=region):
-        operator(*args, **kwargs)
-
-
-def simulate_step():
+def stepnc():
+    """Import the batch demo's sample through the Import button's file browser, then the list."""
     scene = bpy.context.scene
-    samples = module("operators.samples")
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
-    samples.name_plate(scene)
-    run_in_view(bpy.ops.kezuri.simulate, workflow="ENGRAVE")
+    fresh(scene)
+    scene.kezuri.machine.post = "fanuc"              # the batch demo's post
+    yield from pick_job("STEPNC")
+    picker = picker_row()
+    rows = [r for r in find_buttons()[0] if picker is None or r[0] > picker[1]]
+    if not rows:
+        log("failed: stepnc: no Import button")
+        return
+    yield from click_row(rows[0], "stepnc import")      # the first full-width button under the picker
+    yield from through_file_browser(os.path.join(BATCH, "stepnc"), "sample.stp", "stepnc import")
+    log(f"stepnc import: {len(scene.kezuri.stepnc.steps)} workingsteps: "
+        + "; ".join(f"{s.feature_name} {s.step} {s.tool}" for s in scene.kezuri.stepnc.steps))
+    yield from generate_and_export("STEPNC", "stepnc", "stepnc.nc", "stepnc/stepnc.nc", "stepnc")
+
+
+def turnmill():
+    scene = bpy.context.scene
+    fresh(scene, module("operators.samples").turnmill_part)
+    yield from generate_and_export("TURNMILL", "turnmill", "turnmill.nc", "turnmill/turnmill.nc", "turnmill",
+                                   "VERTEX")
+
+
+def carve():
+    """The Wave Relief sample from its button (the left half of the sample row), then Generate."""
+    scene = bpy.context.scene
+    fresh(scene)
+    scene.kezuri.machine.post = "linuxcnc"
+    yield from pick_job("CARVE")
+    picker = picker_row()
+    rows = [r for r in find_buttons()[0] if picker is None or r[0] > picker[1]]
+    sample_row = rows[0] if rows else None      # the first full-width row: Wave Relief | Domed Plate
+    if sample_row is None:
+        log("failed: carve: no sample buttons")
+        return
+    yield from click_row(sample_row, "carve Wave Relief", fraction=0.25)
+    yield from generate_and_export("CARVE", "carve", "carve.ngc", "carve/carve.ngc", "carve")
+
+
+def sheet():
+    scene = bpy.context.scene
+    fresh(scene)
+    yield from generate_and_export("SHEET", "unfold", "unfold.nc", "unfold/unfold.nc", "sheet-metal")
+
+
+def simulate():
+    """Simulate & Check on the name plate (the second tall button: Generate, then Simulate)."""
+    scene = bpy.context.scene
+    fresh(scene, module("operators.samples").name_plate)
+    yield from pick_job("ENGRAVE")
+    yield from press_big(1, "simulate")
+    for _ in range(600):
+        yield 0.1
+        if not module("operators.common").SteppedOperator.running:
+            break
     scene.kezuri.stock.plate.hide_set(True)
     scene.objects["Letters"].hide_set(True)
-    only_panels("KEZURI_PT_simulate")
-    show_cam_tab("VERTEX")
+    view3d()[1].spaces.active.shading.color_type = "VERTEX"
     frame_all()
+    yield from settle(10)
+    shoot("simulate")
 
 
-def rotary_step():
+def exact_simulation():
+    """The exact (manifold) simulation from the button: Esc cancels it (nothing left), pressed
+    again it runs to the end, exact all the way."""
     scene = bpy.context.scene
-    samples = module("operators.samples")
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
-    samples.rotary_block(scene)
-    bpy.context.view_layer.objects.active = scene.objects["bowl"]
-    run_in_view(bpy.ops.kezuri.rotary_generate)
-    only_panels("KEZURI_PT_rotary")
-    show_cam_tab()
-    frame_all()
+    fresh(scene, module("operators.samples").name_plate)
+    scene.kezuri.simulation.engine = "manifold"
+    common = module("operators.common")
+    yield from pick_job("ENGRAVE")
+    yield from press_big(1, "exact simulate")
+    yield from settle(20)
+    shoot("simulate-running")
+    window, area, _, _ = view3d()
+    event("MOUSEMOVE", "NOTHING", area.x + area.width // 2, area.y + area.height // 2)
+    yield from key("ESC")
+    yield from settle(20)
+    left = [o.name for o in scene.objects if o.name.startswith("Kezuri Simulated")]
+    log("modal simulation: cancel " + ("ok, nothing left in the scene" if not left else f"failed: {left}"))
+    started = time.monotonic()
+    yield from press_big(1, "exact simulate again")
+    while common.SteppedOperator.running and time.monotonic() - started < 900:
+        yield 0.5
+    made = [o.name for o in scene.objects if o.name.startswith("Kezuri Simulated")]
+    log(f"modal simulation: exact run to the end {'ok' if made else 'failed: no simulated stock'} "
+        f"in {time.monotonic() - started:.0f} s (engine {scene.kezuri.simulation.engine})")
 
 
-def stepnc_step():
+def label_widths():
+    """The width check of tests/sidebar_fit.py against this window's sidebar."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import sidebar_fit as fit
+    _, _, _, sidebar = view3d()
+    scale = bpy.context.preferences.system.ui_scale
+    width = fit.layout_width(sidebar.width / scale)
+    panels = module("operators.panels")
+    tables = {"en": None, "ja": module("operators.translations").TRANSLATIONS["ja_JP"]}
     scene = bpy.context.scene
-    samples = module("operators.samples")
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
-    stepnc = module("toolpath.stepnc")
-    program = module("toolpath.program")
-    pockets = [stepnc.PocketSpec("POCKET1", ((10, 10), (50, 10), (50, 40), (10, 40)), 8.0),
-               stepnc.PocketSpec("POCKET2", ((65, 15), (110, 15), (110, 35), (85, 35), (85, 70), (65, 70)), 5.0)]
-    path = os.path.join(OUT, "sample.stp")
-    os.makedirs(OUT, exist_ok=True)
-    with open(path, "w") as stream:
-        stream.write(stepnc.pockets_to_part21(((0, 0, -20), (120, 80, 0)), pockets,
-                                              program.Tool(1, "flat", 6.0, flute_length=20.0), name="SAMPLE PLATE"))
-    run_in_view(bpy.ops.kezuri.import_stepnc, filepath=path)
-    scene.kezuri.stepnc.active_step = 1
-    run_in_view(bpy.ops.kezuri.stepnc_generate)
-    only_panels("KEZURI_PT_stepnc")
-    show_cam_tab()
-    frame_all()
+    context = type("Context", (), {"scene": scene, "active_object": bpy.context.active_object})()
+    for language, table in tables.items():
+        problems = []
+        for key_name, *_ in module("operators.workflows").job_items():
+            scene.kezuri.job = key_name
+            problems += fit.too_wide(fit.all_texts(panels.CLASSES, context, table, width))
+        log(f"fit {language}: sidebar {sidebar.width} px, layout {width:.0f} px: "
+            + ("every text fits" if not problems else f"failed: {len(problems)} too wide: " + "; ".join(problems[:5])))
+    yield 0.05
 
 
-def turnmill_step():
-    scene = bpy.context.scene
-    samples = module("operators.samples")
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
-    samples.turnmill_part(scene)
-    run_in_view(bpy.ops.kezuri.turnmill_classify)
-    only_panels("KEZURI_PT_turnmill")
-    show_cam_tab("VERTEX")
-    frame_all()
-
-
-def turnmill_simulate_step():
-    """The sample bar carved by the radial and axial tools, coloured by operation."""
-    scene = bpy.context.scene
-    run_in_view(bpy.ops.kezuri.simulate, workflow="TURNMILL")
-    scene.kezuri.turnmill.part.hide_set(True)
-    for obj in scene.objects:
-        if obj.name.startswith("Kezuri Turn-Mill"):
-            obj.hide_set(True)
-    scene.kezuri.simulation.colour_by = "OPERATION"
-    only_panels("KEZURI_PT_simulate")
-    show_cam_tab("VERTEX")
-    frame_all()
-
-
-def japanese_step():
-    """The interface in Japanese: the sheet-metal panel after Unfold, and a report message built
-    with an f-string checked to come out in Japanese (the bpy wheel has no locales to check it)."""
+def japanese():
     view = bpy.context.preferences.view
     view.language = "ja_JP"
     view.use_translate_interface = view.use_translate_tooltips = view.use_translate_reports = True
-    translations = module("operators.translations")
-    message = translations.translate_message("stock radius must be > 0, got -1")
-    # ascii(): the chroot's stdout may not take Japanese
-    print("japanese reports: " + ("ok " if message == "素材の半径は0より大きくしてください（指定値 -1）" else "failed ")
-          + ascii(message), flush=True)
-    sheet_step()
-
-
-def english_step():
-    view = bpy.context.preferences.view
+    message = module("operators.translations").translate_message("stock radius must be > 0, got -1")
+    log("japanese reports: " + ("ok " if message == "素材の半径は0より大きくしてください（指定値 -1）" else "failed ")
+        + ascii(message))
+    fresh(bpy.context.scene)
+    yield from pick_job("SHEET")
+    yield from settle(20)
+    shoot("sheet-metal-ja")
     view.language = "en_US"
     view.use_translate_reports = False
 
 
-def simulated_objects():
-    return [o.name for o in bpy.context.scene.objects if o.name.startswith("Kezuri Simulated")]
+def run():
+    window, area, region, _ = view3d()
+    with bpy.context.temp_override(window=window, area=area, region=region):
+        bpy.ops.screen.screen_full_area()
+    yield from settle(10)
+    yield from open_cam_tab()
+    for job in (engrave, simulate, rotary, stepnc, turnmill, carve, sheet, label_widths, japanese, exact_simulation):
+        try:
+            yield from job()
+        except Exception as error:  # noqa: BLE001 - report and carry on with the other jobs
+            log(f"failed: step {job.__name__}: {type(error).__name__}: {error}")
 
 
-def start_long_simulation():
-    """The exact (manifold) simulation of the name plate, invoked as from the panel's button: it
-    runs in steps from a timer, with the progress in the status bar."""
-    scene = bpy.context.scene
-    samples = module("operators.samples")
-    samples.clear_scene(scene)
-    samples.set_millimetres(scene)
-    samples.name_plate(scene)
-    scene.kezuri.simulation.engine = "manifold"
-    only_panels("KEZURI_PT_simulate")
-    show_cam_tab()
-    frame_all()
-    run_in_view(bpy.ops.kezuri.simulate, "INVOKE_DEFAULT", workflow="ENGRAVE")
-
-
-def press_escape():
-    """Esc in the viewport cancels the running simulation: nothing may be left in the scene."""
-    window, area, _, _ = view3d()
-    x, y = area.x + area.width // 2, window.height - (area.y + area.height // 2)
-    subprocess.run(["xdotool", "mousemove", str(x), str(y), "key", "Escape"], check=True)
-
-
-def check_cancelled():
-    left = simulated_objects()
-    print("modal simulation: cancel " + ("ok, nothing left in the scene" if not left else f"failed: {left}"),
-          flush=True)
-    bpy.context.scene.kezuri.simulation.engine = "heightfield"
-    run_in_view(bpy.ops.kezuri.simulate, "INVOKE_DEFAULT", workflow="ENGRAVE")
-
-
-def check_finished():
-    state.setdefault("waited", 0)
-    if module("operators.common").SteppedOperator.running and state["waited"] < 40:   # still cutting
-        state["waited"] += 1
-        STEPS.insert(state["index"], ("modal finished", check_finished, None))
-        return
-    made = simulated_objects()
-    print("modal simulation: run to the end " + ("ok" if made else "failed: no simulated stock"), flush=True)
-
-
-STEPS = [("setup", maximise_viewport, None), ("cam tab", click_cam_tab, None), ("engrave", engrave_step, "engrave"),
-         ("simulate", simulate_step, "simulate"), ("rotary", rotary_step, "rotary"),
-         ("stepnc", stepnc_step, "stepnc"), ("turnmill", turnmill_step, "turnmill"),
-         ("turnmill simulate", turnmill_simulate_step, "simulate-turnmill"),
-         ("sheet", sheet_step, "sheet-metal"), ("elbow", elbow_step, "elbow"),
-         ("japanese", japanese_step, "sheet-metal-ja"), ("english", english_step, None),
-         ("modal start", start_long_simulation, "simulate-running"), ("modal cancel", press_escape, None),
-         ("modal restart", check_cancelled, None), ("modal finished", check_finished, None)]
-state = {"index": 0, "pending": None}
+STATE = {"mouse": (800, 500), "steps": None}
 
 
 def tick():
-    """One step per call; the screenshot of a step is taken on the next call, after a redraw."""
-    if state["pending"]:
-        shoot(state["pending"])
-        state["pending"] = None
-    if state["index"] >= len(STEPS):
-        only_panels("KEZURI_PT")                 # every panel back, so the extension unregisters cleanly
-        bpy.ops.wm.quit_blender()
-        return None
-    name, action, picture = STEPS[state["index"]]
-    state["index"] += 1
+    if STATE["steps"] is None:
+        STATE["steps"] = run()
     try:
-        action()
-    except Exception as error:  # noqa: BLE001 - report and carry on with the other workflows
-        print(f"step {name} failed: {error}", flush=True)
-        return 1.0
-    state["pending"] = picture
-    return 3.0
+        return next(STATE["steps"]) or 0.05
+    except StopIteration:
+        log(f"done: {len(FAILURES)} failure(s)")
+    except Exception as error:  # noqa: BLE001 - a timer that raises is dropped: Blender would stay open
+        import traceback
+        traceback.print_exc()
+        log(f"failed: the driver stopped: {type(error).__name__}: {error}")
+    bpy.ops.wm.quit_blender()
+    return None
 
 
 if PACKAGE is None:
-    print("Kezuri is not installed in this Blender", flush=True)
+    print("failed: Kezuri is not installed in this Blender", flush=True)
+    bpy.ops.wm.quit_blender()
+elif "event_simulate" not in bpy.types.Window.bl_rna.functions or not bpy.app.use_event_simulate:
+    print("failed: start Blender with --enable-event-simulate", flush=True)
     bpy.ops.wm.quit_blender()
 else:
     bpy.context.scene.unit_settings.scale_length = 0.001

@@ -47,7 +47,7 @@ class RecordingLayout:
     def row(self, **_):
         return self
 
-    column = box = row
+    column = box = split = row
 
     def menu(self, idname, **_):
         self.operators.append(idname)

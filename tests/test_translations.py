@@ -25,7 +25,7 @@ OPERATOR = bpy.app.translations.contexts.operator_default  # "Operator"
 # English that is a code, an abbreviation or a product/format name: kept as it is in Japanese.
 CODE_ONLY = {
     "G54", "G55", "G56", "G57", "G58", "G59",
-    "LinuxCNC", "GRBL", "Fanuc", "CDL", "mm/min",
+    "LinuxCNC", "GRBL", "Fanuc", "mm/min",
     "CADKEY CDL (.cdl)", "ISO 14649 STEP-NC (.stp, .p21)", "ISO 14649 STEP-NC (.stp)",
     "Blender BVH", "trimesh", "LinuxCNC X-Z-C",
 }
@@ -220,7 +220,7 @@ def test_the_collectors_find_the_known_strings():
     assert len(strings) > 150
     messages = {(c, t) for c, t, _ in source_messages()}
     assert (DEFAULT, "Pick the plate (stock) object first") in messages
-    assert (OPERATOR, "CDL") in messages
+    assert (OPERATOR, "Import CDL") in messages
 
 
 def test_every_ui_string_has_a_japanese_translation():
