@@ -168,6 +168,7 @@ class KEZURI_PT_carve(KezuriPanel, bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("kezuri.carve_sample", text="Wave Relief", icon="MESH_GRID").sample = "wave"
         row.operator("kezuri.carve_sample", text="Domed Plate", icon="MESH_UVSPHERE").sample = "dome"
+        row.operator("kezuri.carve_sample", text="Steep Ridge", icon="MESH_CONE").sample = "ridge"
         for name in ("stock_above", "scallop", "raster_angle", "finish_diameter", "rough"):
             layout.prop(props, name)
         row = layout.row(align=True)
@@ -265,7 +266,7 @@ KEZURI_PT_carve_roughing = property_subpanel(
     ("rough_diameter", "rough_tool_number", "allowance", "step_down", "rough_stepover"))
 KEZURI_PT_carve_settings = property_subpanel(
     "KEZURI_PT_carve_settings", "Finishing, Feeds & Heights", "KEZURI_PT_carve", "carve",
-    ("finish_tool_number", "max_slope", "sample_spacing", "rough_rpm", "finish_rpm", "rough_feed", "finish_feed",
+    ("finish_tool_number", "max_slope", "steep_cleanup", "sample_spacing", "rough_rpm", "finish_rpm", "rough_feed", "finish_feed",
      "plunge_feed", "clearance", "safe_z", "show_rapids"))
 
 CLASSES = (KEZURI_PT_machine, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
