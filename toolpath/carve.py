@@ -28,8 +28,10 @@ the drop cutter (:mod:`.dropcutter`), so no move of either operation goes below 
   scallop is higher than asked.  Those faces are marked on a grid (their XY footprint, grown by
   the ball's radius: a ball touching a face of slope a stands r sin a beside it), and a second
   raster at ``raster_angle + 90`` runs only over the marks, its stepover chosen like the first
-  from the steepest slope across it among the faces there; each run is dropped on the design,
-  entered by the usual retract, rapid over and feed down, and left by a retract.
+  from the steepest slope across it among the faces there.  Each run is dropped on the design;
+  the next run starting within 4 ball diameters (:data:`LINK`) is reached along the surface
+  (the ball dropped along the straight link, over ground already finished), a farther one by a
+  retract, a rapid over at the clearance height and a feed down.
 
 Output: a :class:`~.program.Program` with one operation per tool, written by every milling post.
 """
@@ -46,6 +48,7 @@ from .program import Operation, PathBuilder, Program, Tool
 
 
 MARGIN = 0.95       # the bend radius is estimated from facets: 5 % spare on the finishing stepover
+LINK = 4.0          # cleanup pieces closer than this many ball diameters are linked along the surface
 
 
 class CarveError(InputError):
@@ -463,7 +466,11 @@ def _steep_cleanup(vertices, faces, s: CarveSettings, bounds, top, bottom, flat,
                 if last - first < 2:
                     continue
                 run = _drop_collinear(points[first:last], s.tolerance / 2)
-                builder.plunge(*run[0])
+                bridge = _bridge(cutter, builder.position, run[0], LINK * s.finish_tool.diameter, s, bottom)
+                if bridge is None:
+                    builder.plunge(*run[0])
+                else:
+                    builder.polyline(bridge[1:])
                 builder.polyline(run[1:])
         report((k + 1) / len(lines))
     if builder.position is None:
@@ -474,6 +481,24 @@ def _steep_cleanup(vertices, faces, s: CarveSettings, bounds, top, bottom, flat,
                           comment=f"raster {s.raster_angle + 90.0:g} deg over faces steeper than "
                                   f"{s.max_slope_deg:g} deg, stepover {stepover:.3f} mm", **builder.arrays())
     return _Cleanup(operation, stepover, cross_slope, area)
+
+
+def _bridge(cutter, position, start, reach: float, s: CarveSettings, bottom: float):
+    """The ball dropped along the straight line from ``position`` to ``start`` (both dropped
+    points), if that is at most ``reach`` long and on the design all the way; else None."""
+    if position is None:
+        return None
+    here = np.asarray(position, float)
+    gap = float(np.linalg.norm(start[:2] - here[:2]))
+    if not 1e-9 < gap <= reach:
+        return None
+    bridge = cutter.path(np.array([here[:2], start[:2]]), s.sample_spacing, s.tolerance)
+    if not np.all(np.isfinite(bridge[:, 2])):
+        return None
+    bridge[:, 2] = np.maximum(bridge[:, 2], bottom)
+    if abs(bridge[0, 2] - here[2]) > 1e-9 or abs(bridge[-1, 2] - start[2]) > 1e-9:
+        return None
+    return _drop_collinear(bridge, s.tolerance / 2)
 
 
 def _drop_collinear(points: np.ndarray, tolerance: float) -> np.ndarray:
