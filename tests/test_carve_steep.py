@@ -196,3 +196,26 @@ def test_no_cleanup_where_nothing_is_steep():
     result = carve.plan(v, f, carve.CarveSettings(max_slope_deg=30.0, rough=False, scallop=0.05))
     assert [op.name for op in result.program.operations] == ["finishing"]
     assert result.cleanup_stepover is None and result.steep_area_mm2 == 0.0
+
+
+def distance_to_triangle(points, tri):
+    """Distance in XY from each point to the (filled) triangle, by hand: 0 inside, else the
+    nearest of its three edges."""
+    def edge(a, b):
+        t = np.clip(((points - a) @ (b - a)) / ((b - a) @ (b - a)), 0, 1)
+        return np.linalg.norm(points - (a + t[:, None] * (b - a)), axis=1)
+    d = np.minimum.reduce([edge(tri[0], tri[1]), edge(tri[1], tri[2]), edge(tri[2], tri[0])])
+    cross = [np.cross(tri[(k + 1) % 3] - tri[k], points - tri[k]) for k in range(3)]
+    inside = np.all(np.array(cross) >= 0, axis=0) | np.all(np.array(cross) <= 0, axis=0)
+    return np.where(inside, 0.0, d)
+
+
+@pytest.mark.parametrize("tri", [[[1.0, 1.0], [38.0, 4.0], [12.0, 27.0]], [[5.0, 5.0], [35.0, 5.2], [20.0, 5.1]]])
+def test_the_footprint_mask_marks_every_cell_near_a_face(tri):
+    tri = np.array(tri)
+    cell, grow = 0.5, 1.5
+    mask = carve.footprint_mask(tri[None], (0.0, 0.0), (81, 61), cell, grow)
+    gx, gy = np.meshgrid(np.arange(81) * cell, np.arange(61) * cell, indexing="ij")
+    d = distance_to_triangle(np.column_stack([gx.ravel(), gy.ravel()]), tri).reshape(81, 61)
+    assert mask[d <= grow].all()                     # nothing the ball could touch is left out
+    assert not mask[d > grow + 3 * cell].any()       # and the marks stay close to it

@@ -397,10 +397,13 @@ def footprint_mask(triangles: np.ndarray, origin, shape, cell: float, grow: floa
         i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
         keep = i + j <= n
         weights = np.column_stack([i[keep], j[keep], n - i[keep] - j[keep]]) / n
-        points = np.einsum("pk,tkd->tpd", weights, triangles[counts == n]).reshape(-1, 2)
-        ix = np.clip(np.rint((points[:, 0] - origin[0]) / cell).astype(np.int64), 0, nx - 1)
-        iy = np.clip(np.rint((points[:, 1] - origin[1]) / cell).astype(np.int64), 0, ny - 1)
-        mask[ix, iy] = True
+        chosen = triangles[counts == n]
+        batch = max(1, 1_000_000 // len(weights))          # bounded memory for large triangles
+        for start in range(0, len(chosen), batch):
+            points = np.einsum("pk,tkd->tpd", weights, chosen[start:start + batch]).reshape(-1, 2)
+            ix = np.clip(np.rint((points[:, 0] - origin[0]) / cell).astype(np.int64), 0, nx - 1)
+            iy = np.clip(np.rint((points[:, 1] - origin[1]) / cell).astype(np.int64), 0, ny - 1)
+            mask[ix, iy] = True
     return dilate(mask, math.ceil(grow / cell) + 1)
 
 
