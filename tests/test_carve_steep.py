@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import rs274
+from test_hostile import time_limit
 from kezuri import post as posts
 from kezuri.toolpath import carve, carve_samples
 from kezuri.toolpath import simulate as sim
@@ -47,7 +48,8 @@ def test_ridge_profile_is_the_one_drawn():
 def ridge():
     v, f = carve_samples.steep_ridge()
     plain = carve.plan(v, f, carve.CarveSettings(max_slope_deg=30.0, scallop=SCALLOP, steep_cleanup=False))
-    cleaned = carve.plan(v, f, carve.CarveSettings(max_slope_deg=30.0, scallop=SCALLOP))
+    with time_limit(120):          # the cleanup adds about a third to the plan (12 s here with both)
+        cleaned = carve.plan(v, f, carve.CarveSettings(max_slope_deg=30.0, scallop=SCALLOP))
     return v, f, plain, cleaned
 
 
@@ -151,8 +153,8 @@ def ball_centres(operations, step=0.01, window=(-3.0, 3.0)):
 
 def test_the_scallop_on_the_flanks_before_and_after(ridge):
     v, f, plain, cleaned = ridge
-    # design points on the +y flank's straight part, away from its joints, at x in [-2, 2]
-    gx, gy = np.meshgrid(np.arange(-2.0, 2.0001, 0.1), np.arange(Y1 + 0.5, Y2 - 0.5, 0.005), indexing="ij")
+    # design points on the +y flank's straight part, away from its joints, at x in [-1, 1]
+    gx, gy = np.meshgrid(np.arange(-1.0, 1.0001, 0.05), np.arange(Y1 + 0.5, Y2 - 0.5, 0.005), indexing="ij")
     points = np.column_stack([gx.ravel(), gy.ravel(), flank_z(gy.ravel())])
     normal = np.array([0.0, math.sin(THETA), math.cos(THETA)])
     finishing = plain.program.operations[1:]
