@@ -35,7 +35,8 @@ from .workflow import BatchCommand, SimulationSetup, Workflow
 POST_FAMILIES = ("milling",)
 
 PREFIX = "Kezuri Carve"
-COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "finishing": (0.1, 0.6, 1.0, 1.0), "rapid": (0.9, 0.1, 0.1, 1.0)}
+COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "finishing": (0.1, 0.6, 1.0, 1.0),
+           "steep cleanup": (0.2, 0.85, 0.3, 1.0), "rapid": (0.9, 0.1, 0.1, 1.0)}
 
 
 @dataclass
@@ -54,7 +55,7 @@ def settings_from(props) -> core.CarveSettings:
         finish_tool=Tool(props.finish_tool_number, "ball", props.finish_diameter, name="finishing"),
         rough=props.rough, allowance=props.allowance, step_down=props.step_down,
         rough_stepover=props.rough_stepover, scallop=props.scallop, raster_angle=props.raster_angle,
-        max_slope_deg=props.max_slope, sample_spacing=props.sample_spacing, rough_rpm=props.rough_rpm,
+        max_slope_deg=props.max_slope, steep_cleanup=props.steep_cleanup, sample_spacing=props.sample_spacing, rough_rpm=props.rough_rpm,
         finish_rpm=props.finish_rpm, rough_feed=props.rough_feed, finish_feed=props.finish_feed,
         plunge_feed=props.plunge_feed, clearance=props.clearance, safe_z=props.safe_z)
 
@@ -187,6 +188,11 @@ class KEZURI_OT_carve_generate(SteppedOperator, bpy.types.Operator):
         self.report({"INFO"}, translate_message(
             f"Carving planned: {sum(len(op) for op in program.operations)} moves, stepover "
             f"{job.result.stepover:.3f} mm, about {program.cycle_time() / 60:.1f} min"))
+        if job.result.cleanup_stepover is not None:
+            self.report({"INFO"}, translate_message(
+                f"Steep cleanup: {job.result.steep_area_mm2:.0f} mm2 of faces steeper than "
+                f"{context.scene.kezuri.carve.max_slope:g} degrees across the raster, cut again across it at a "
+                f"{job.result.cleanup_stepover:.3f} mm stepover"))
         return {"FINISHED"}
 
 
@@ -199,7 +205,8 @@ class KEZURI_OT_carve_sample(bpy.types.Operator):
 
     sample: EnumProperty(name="Sample", items=[
         ("wave", "Wave Relief", "A 120 x 80 mm plate with a wave on top"),
-        ("dome", "Domed Plate", "A 160 x 60 mm domed name plate with a raised ring")])
+        ("dome", "Domed Plate", "A 160 x 60 mm domed name plate with a raised ring"),
+        ("ridge", "Steep Ridge", "A 100 x 60 mm plate with a ridge along X, its flanks sloping 55 degrees")])
 
     def execute(self, context):
         def work():
@@ -241,6 +248,8 @@ CLASSES = (KEZURI_OT_carve_generate, KEZURI_OT_carve_sample, KEZURI_OT_carve_exp
 # ----- batch: ``batch.py carve`` -------------------------------------------------------------
 
 def batch_arguments(p):
+    import argparse
+
     source = p.add_mutually_exclusive_group()
     source.add_argument("--blend", help="a .blend whose Carve panel names the design mesh")
     source.add_argument("--mesh", help="an STL/OBJ/PLY of the design in mm (work zero: its origin)")
@@ -252,6 +261,11 @@ def batch_arguments(p):
                    help="scallop height in mm the finishing may leave")
     p.add_argument("--angle", type=number("--angle", limit=RANGES["carve"]["raster_angle"]),
                    help="finishing raster angle in degrees")
+    p.add_argument("--max-slope", type=number("--max-slope", limit=RANGES["carve"]["max_slope"]),
+                   help="the finishing stepover allows for slopes up to this across the raster (degrees)")
+    p.add_argument("--steep-cleanup", action=argparse.BooleanOptionalAction, default=None,
+                   help="cut the faces steeper than the max slope again across the raster (default: the scene's "
+                        "setting, on)")
     gate.allow_findings_argument(p)
 
 
@@ -278,6 +292,10 @@ def batch(args) -> dict:
         batchio.set_exactly(props, "scallop", args.scallop, "--scallop")
     if args.angle is not None:
         batchio.set_exactly(props, "raster_angle", args.angle, "--angle")
+    if args.max_slope is not None:
+        batchio.set_exactly(props, "max_slope", args.max_slope, "--max-slope")
+    if args.steep_cleanup is not None:
+        props.steep_cleanup = args.steep_cleanup
     machine = scene.kezuri.machine
     if args.mesh:
         vertices, faces = read_mesh_file(args.mesh)
@@ -306,6 +324,20 @@ def batch(args) -> dict:
                                  mesh=mesh)
     scallop = core.measured_scallop(simulated.result.heightfield, job.vertices, job.faces)
     result = job.result
+    cleanup = {"on": bool(props.steep_cleanup), "max_slope_deg": round(props.max_slope, 3),
+               "steep_area_mm2": round(result.steep_area_mm2, 1)}
+    if result.cleanup_stepover is not None:
+        # the same simulation without the cleanup: what the raster alone left
+        from ..toolpath import simulate as sim
+        setup = simulation(job)
+        before = sim.simulate(setup.program.operations[:-1], setup.stock, cell=gate.GATE_CELL,
+                              **setup.extra)
+        cleanup.update({
+            "stepover_mm": round(result.cleanup_stepover, 5),
+            "slope_across_cleanup_deg": round(result.cleanup_slope_deg, 2),
+            "max_scallop_before_mm": round(core.measured_scallop(before.heightfield, job.vertices,
+                                                                 job.faces)["max_scallop_mm"], 5),
+            "max_scallop_after_mm": round(scallop["max_scallop_mm"], 5)})
     return {
         "gate": gate_report,
         "workflow": "carve",
@@ -322,6 +354,7 @@ def batch(args) -> dict:
         "flat_stepover_mm": round(result.flat_stepover, 5),
         "steepest_slope_deg": round(result.steepest_slope_deg, 2),
         "roughing_levels": batchio.rounded(result.levels, 4),
+        "steep_cleanup": cleanup,
         "operations": [{**summary, "tool": op.tool.describe(), "tool_kind": op.tool.kind,
                         "tool_diameter_mm": op.tool.diameter}
                        for op, summary in zip(result.program.operations, result.program.summary())],

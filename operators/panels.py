@@ -207,6 +207,7 @@ class KEZURI_PT_carve(KezuriPanel, bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("kezuri.carve_sample", text="Wave Relief", icon="MESH_GRID").sample = "wave"
         row.operator("kezuri.carve_sample", text="Domed Plate", icon="MESH_UVSPHERE").sample = "dome"
+        row.operator("kezuri.carve_sample", text="Steep Ridge", icon="MESH_CONE").sample = "ridge"
         fields(layout, props, ("stock_above", "scallop", "raster_angle", "finish_diameter", "rough"))
         big_button(layout, "kezuri.carve_generate", "MOD_DISPLACE")
         layout.operator("kezuri.carve_export", icon="EXPORT")
@@ -297,8 +298,8 @@ KEZURI_PT_carve_roughing = property_subpanel(
     ("rough_diameter", "rough_tool_number", "allowance", "step_down", "rough_stepover"))
 KEZURI_PT_carve_settings = property_subpanel(
     "KEZURI_PT_carve_settings", "Finishing, Feeds & Heights", "KEZURI_PT_carve", "carve",
-    ("finish_tool_number", "max_slope", "sample_spacing", "rough_rpm", "finish_rpm", "rough_feed", "finish_feed",
-     "plunge_feed", "clearance", "safe_z", "show_rapids"))
+    ("finish_tool_number", "max_slope", "steep_cleanup", "sample_spacing", "rough_rpm", "finish_rpm", "rough_feed",
+     "finish_feed", "plunge_feed", "clearance", "safe_z", "show_rapids"))
 
 CLASSES = (KEZURI_PT_job, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
            KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_stepnc,

@@ -288,6 +288,10 @@ class KezuriCarve(bpy.types.PropertyGroup):
     max_slope: FloatProperty(name="Max Slope", default=60.0, min=0.0, max=89.0,
                              description="Steeper slopes across the raster do not shrink the stepover further "
                                          "(degrees)")
+    steep_cleanup: BoolProperty(name="Steep Cleanup", default=True,
+                                description="Cut the faces steeper across the raster than Max Slope again, with a "
+                                            "raster across the first, so the scallop there stays within the height "
+                                            "asked")
     sample_spacing: mm("Point Spacing", 0.25, "Distance between points along a pass (refined where the surface "
                        "bends)", minimum=0.01)
     rough_rpm: FloatProperty(name="Roughing Spindle", default=16000.0, min=1.0,

@@ -74,6 +74,7 @@ OPERATOR_TEXTS = {
     "ISO 14649 STEP-NC (.stp)": "ISO 14649 STEP-NC (.stp)",
     "Wave Relief": "波のレリーフ",
     "Domed Plate": "ドーム形の銘板",
+    "Steep Ridge": "急斜面の尾根",
 }
 
 # Operator tooltips (the operator classes' docstrings).
@@ -454,6 +455,14 @@ PROPERTY_TEXTS = {
     "A 120 x 80 mm plate with a wave on top": "上面が波形の 120 x 80 mm の板",
     "Domed Plate": "ドーム形の銘板",
     "A 160 x 60 mm domed name plate with a raised ring": "縁に盛り上がった輪のある 160 x 60 mm のドーム形銘板",
+    "Steep Ridge": "急斜面の尾根",
+    "A 100 x 60 mm plate with a ridge along X, its flanks sloping 55 degrees":
+        "X 方向に尾根が走り、その斜面が 55 度で傾く 100 x 60 mm の板",
+    "Steep Cleanup": "急斜面の追加仕上げ",
+    "Cut the faces steeper across the raster than Max Slope again, with a raster across the first, so the "
+    "scallop there stays within the height asked":
+        "走査に直交する方向で最大傾斜より急な面を、最初の走査に直交する走査でもう一度削り、そこのカスプ高さを"
+        "指定の高さ以内に収めます",
     # Preferences: tool library
     "Number": "工具番号",
     "Tool (pocket) number, T word": "工具（ポット）番号、Tワード",
@@ -1097,6 +1106,14 @@ MESSAGE_TEMPLATES = {
         '仕上げの走査に直交する方向で面の傾斜が最大 {0} 度あります。ピックフィードは {1} 度までを見込んでいるので、そこではカスプが高くなります',
     'design {} has no faces': '設計形状 {0} に面がありません',
     'Carving planned: {} moves, stepover {} mm, about {} min': '曲面加工を計画しました：{0} 移動、ピックフィード {1} mm、約 {2} 分',
+    'faces in the steep regions slope up to {} degrees across the cleanup raster too; its stepover allows for {} '
+    'degrees, so the scallop is higher there':
+        '急斜面の追加仕上げの走査に直交する方向でも面の傾斜が最大 {0} 度あります。そのピックフィードは {1} 度までを'
+        '見込んでいるので、そこではカスプが高くなります',
+    'Steep cleanup: {} mm2 of faces steeper than {} degrees across the raster, cut again across it at a {} mm '
+    'stepover':
+        '急斜面の追加仕上げ：走査に直交する方向で {1} 度より急な面 {0} mm2 を、それに直交する走査でピックフィード '
+        '{2} mm でもう一度削りました',
     '{}: not a readable mesh ({})': '{0}：読み込めるメッシュではありません（{1}）',
     '{}: the mesh has no faces': '{0}：メッシュに面がありません',
     'no workflow {}; the table has {}': 'ワークフロー {0} はありません。あるのは {1} です',

@@ -23,6 +23,15 @@ the drop cutter (:mod:`.dropcutter`), so no move of either operation goes below 
   distance between their centroids), and by 0.95 (:data:`MARGIN`: that estimate from facets
   is good to a few percent).  The raster runs out to 0.7 r beyond the stock, so the
   ball's last contacts reach the stock's edge.
+* **Steep-region cleanup** (``steep_cleanup``, the same ball, no tool change): where upward faces
+  slope across the raster more than the stepover allows for (``max_slope_deg``), the raster's
+  scallop is higher than asked.  Those faces are marked on a grid (their XY footprint, grown by
+  the ball's radius: a ball touching a face of slope a stands r sin a beside it), and a second
+  raster at ``raster_angle + 90`` runs only over the marks, its stepover chosen like the first
+  from the steepest slope across it among the faces there.  Each run is dropped on the design;
+  the next run starting within 4 ball diameters (:data:`LINK`) is reached along the surface
+  (the ball dropped along the straight link, over ground already finished), a farther one by a
+  retract, a rapid over at the clearance height and a feed down.
 
 Output: a :class:`~.program.Program` with one operation per tool, written by every milling post.
 """
@@ -39,6 +48,7 @@ from .program import Operation, PathBuilder, Program, Tool
 
 
 MARGIN = 0.95       # the bend radius is estimated from facets: 5 % spare on the finishing stepover
+LINK = 4.0          # cleanup pieces closer than this many ball diameters are linked along the surface
 
 
 class CarveError(InputError):
@@ -56,6 +66,7 @@ class CarveSettings:
     scallop: float = 0.02             # mm scallop height the finishing may leave
     raster_angle: float = 0.0         # degrees from +X, finishing (roughing runs across it)
     max_slope_deg: float = 60.0       # slopes steeper than this do not shrink the stepover further
+    steep_cleanup: bool = True        # a cross raster over the faces steeper than max_slope_deg
     sample_spacing: float = 0.25      # mm between dropped points along a raster line
     tolerance: float = 0.0003         # mm the path may stand above the dropped tool between points
     rough_rpm: float = 16000.0
@@ -101,6 +112,9 @@ class CarveResult:
     convex_radius: float              # the sharpest convex bend of the design (mm; inf: none)
     levels: list                      # roughing Z levels
     warnings: list = field(default_factory=list)
+    cleanup_stepover: float | None = None   # the steep-region cleanup's raster spacing (None: no cleanup)
+    cleanup_slope_deg: float = 0.0          # steepest slope across the cleanup raster among its faces
+    steep_area_mm2: float = 0.0             # XY area of the faces steeper than the raster allows for
 
 
 def ball_stepover(radius: float, scallop: float) -> float:
@@ -228,23 +242,44 @@ def plan(vertices, faces, settings: CarveSettings | None = None, *, name: str = 
                 operations.append(rough)
         flat = ball_stepover(settings.finish_tool.radius, settings.scallop)
         slope = steepest_slope(vertices, faces, settings.raster_angle)
-        if slope > settings.max_slope_deg:
+        if slope > settings.max_slope_deg and not settings.steep_cleanup:
             warnings.append(f"faces slope up to {slope:.0f} degrees across the finishing raster; the stepover "
                             f"allows for {settings.max_slope_deg:g} degrees, so the scallop is higher there")
         rho = sharpest_convex_radius(vertices, faces)
-        r = settings.finish_tool.radius
-        stepover = MARGIN * flat * math.cos(math.radians(min(slope, settings.max_slope_deg))) * math.sqrt(rho / (rho + r)
-                                                                                                  if rho < math.inf
-                                                                                                  else 1.0)
+        stepover = _spacing(flat, slope, settings.max_slope_deg, rho, settings.finish_tool.radius)
+        steep = settings.steep_cleanup and slope > settings.max_slope_deg
+        share = 0.35 if steep else 0.5
         report(0.5, "finishing")
         operations.append(_finishing(vertices, faces, settings, bounds, top, bottom, stepover, clearance_z, safe_z,
-                                     kernel, lambda f, text="": report(0.5 + 0.5 * f, "finishing")))
+                                     kernel, lambda f, text="": report(0.5 + share * f, "finishing")))
+        cleanup = None
+        if steep:
+            report(0.85, "steep cleanup")
+            cleanup = _steep_cleanup(vertices, faces, settings, bounds, top, bottom, flat, rho, clearance_z, safe_z,
+                                     kernel, lambda f, text="": report(0.85 + 0.15 * f, "steep cleanup"))
+            if cleanup.operation is not None:
+                operations.append(cleanup.operation)
+            if cleanup.slope > settings.max_slope_deg:
+                warnings.append(f"faces in the steep regions slope up to {cleanup.slope:.0f} degrees across the "
+                                f"cleanup raster too; its stepover allows for {settings.max_slope_deg:g} degrees, "
+                                f"so the scallop is higher there")
     except DropCutterError as error:
         raise CarveError(str(error)) from None
     report(1.0, "done")
     program = Program(name, operations, notes=list(warnings))
-    return CarveResult(program, (bounds[0], bounds[1], bottom, bounds[2], bounds[3], top), stepover, flat, slope,
-                       rho, levels, warnings)
+    result = CarveResult(program, (bounds[0], bounds[1], bottom, bounds[2], bounds[3], top), stepover, flat, slope,
+                         rho, levels, warnings)
+    if cleanup is not None:
+        result.steep_area_mm2 = cleanup.area
+        if cleanup.operation is not None:
+            result.cleanup_stepover, result.cleanup_slope_deg = cleanup.stepover, cleanup.slope
+    return result
+
+
+def _spacing(flat: float, slope_deg: float, cap_deg: float, rho: float, r: float) -> float:
+    """Raster spacing for a scallop whose level-ground stepover is ``flat``: see the module docstring."""
+    bend = math.sqrt(rho / (rho + r)) if rho < math.inf else 1.0
+    return MARGIN * flat * math.cos(math.radians(min(slope_deg, cap_deg))) * bend
 
 
 def _roughing(vertices, faces, s: CarveSettings, bounds, top, bottom, clearance_z, safe_z, kernel, report):
@@ -325,6 +360,148 @@ def _finishing(vertices, faces, s: CarveSettings, bounds, top, bottom, stepover,
     return Operation("finishing", s.finish_tool, s.finish_rpm, clearance_z=clearance_z, safe_z=safe_z,
                      comment=f"raster {s.raster_angle:g} deg, stepover {stepover:.3f} mm, scallop {s.scallop:g} mm",
                      **builder.arrays())
+
+
+@dataclass
+class _Cleanup:
+    operation: Operation | None
+    stepover: float
+    slope: float                      # steepest slope across the cleanup raster among its faces
+    area: float                       # XY area of the steep faces
+
+
+def face_slopes(vertices, faces, angle_deg: float) -> tuple:
+    """Per face: the slope in degrees across the direction ``angle_deg`` (0 for faces not facing
+    up), and whether it faces up."""
+    tri = vertices[faces]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    up = normal[:, 2] > 1e-9 * np.linalg.norm(normal, axis=1)
+    across = np.array([-math.sin(math.radians(angle_deg)), math.cos(math.radians(angle_deg))])
+    slope = np.zeros(len(faces))
+    slope[up] = np.degrees(np.arctan(np.abs((-normal[up, :2] / normal[up, 2:3]) @ across)))
+    return slope, up
+
+
+def footprint_mask(triangles: np.ndarray, origin, shape, cell: float, grow: float) -> np.ndarray:
+    """Grid (``shape``, cell centres ``origin + cell * index``): True within about ``grow`` of the
+    XY footprint of ``triangles`` (m, 3, 2).  Each triangle is sampled on a barycentric grid no
+    coarser than the cell, so no point of it is further than a cell from a marked centre; the
+    marks then grow by a disk of ``grow`` plus one cell."""
+    nx, ny = shape
+    mask = np.zeros(shape, bool)
+    if not len(triangles):
+        return mask
+    edges = np.linalg.norm(triangles - np.roll(triangles, 1, axis=1), axis=2).max(axis=1)
+    counts = np.maximum(np.ceil(edges / cell), 1).astype(np.int64)
+    for n in np.unique(counts):
+        i, j = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
+        keep = i + j <= n
+        weights = np.column_stack([i[keep], j[keep], n - i[keep] - j[keep]]) / n
+        chosen = triangles[counts == n]
+        batch = max(1, 1_000_000 // len(weights))          # bounded memory for large triangles
+        for start in range(0, len(chosen), batch):
+            points = np.einsum("pk,tkd->tpd", weights, chosen[start:start + batch]).reshape(-1, 2)
+            ix = np.clip(np.rint((points[:, 0] - origin[0]) / cell).astype(np.int64), 0, nx - 1)
+            iy = np.clip(np.rint((points[:, 1] - origin[1]) / cell).astype(np.int64), 0, ny - 1)
+            mask[ix, iy] = True
+    return dilate(mask, math.ceil(grow / cell) + 1)
+
+
+def dilate(mask: np.ndarray, k: int) -> np.ndarray:
+    """``mask`` grown by a disk of ``k`` cells (row by row: a run of half-width sqrt(k^2 - d^2)
+    along Y, d rows away along X)."""
+    if k <= 0:
+        return mask.copy()
+    nx, ny = mask.shape
+    running = np.concatenate([np.zeros((nx, 1), np.int64), np.cumsum(mask, axis=1)], axis=1)
+    j = np.arange(ny)
+    out = np.zeros_like(mask)
+    for d in range(-k, k + 1):
+        w = math.isqrt(k * k - d * d)
+        row = running[:, np.clip(j + w + 1, 0, ny)] - running[:, np.clip(j - w, 0, ny)] > 0
+        if d >= 0:
+            out[:nx - d] |= row[d:]
+        else:
+            out[-d:] |= row[:nx + d]
+    return out
+
+
+def _steep_cleanup(vertices, faces, s: CarveSettings, bounds, top, bottom, flat, rho, clearance_z, safe_z, kernel,
+                   report) -> _Cleanup:
+    r = s.finish_tool.radius
+    slope, up = face_slopes(vertices, faces, s.raster_angle)
+    steep = up & (slope > s.max_slope_deg + 1e-9)
+    tri = vertices[faces[steep]][:, :, :2]
+    area = float(0.5 * np.abs(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])).sum())
+    g = 0.7 * r
+    x0, y0, x1, y1 = bounds[0] - g, bounds[1] - g, bounds[2] + g, bounds[3] + g
+    cell = max(min(s.sample_spacing, r / 3), math.sqrt((x1 - x0) * (y1 - y0) / 4e6))
+    shape = (int(math.ceil((x1 - x0) / cell)) + 1, int(math.ceil((y1 - y0) / cell)) + 1)
+    mask = footprint_mask(tri, (x0, y0), shape, cell, r)
+
+    def inside(xy):
+        ix = np.clip(np.rint((xy[:, 0] - x0) / cell).astype(np.int64), 0, shape[0] - 1)
+        iy = np.clip(np.rint((xy[:, 1] - y0) / cell).astype(np.int64), 0, shape[1] - 1)
+        return mask[ix, iy]
+
+    # the cleanup's own stepover: the steepest slope across it among the faces it passes over
+    cross, _ = face_slopes(vertices, faces, s.raster_angle + 90.0)
+    near = up & inside(vertices[faces].mean(axis=1)[:, :2])
+    cross_slope = float(cross[near].max()) if near.any() else 0.0
+    stepover = _spacing(flat, cross_slope, s.max_slope_deg, rho, r)
+    cutter = DropCutter(vertices, faces, s.finish_tool, floor=-np.inf, kernel=kernel)
+    builder = PathBuilder(clearance_z, s.finish_feed, s.plunge_feed, surface_z=top)
+    lines = raster_lines((x0, y0, x1, y1), s.raster_angle + 90.0, stepover)
+    for k, line in enumerate(lines):
+        a, b = line if k % 2 == 0 else line[::-1]
+        length = float(np.linalg.norm(b - a))
+        count = max(2, math.ceil(length / (cell / 2)) + 1)
+        samples = a + np.outer(np.linspace(0.0, 1.0, count), b - a)
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], inside(samples).astype(np.int8), [0]])))
+        for start, end in zip(edges[::2], edges[1::2]):
+            if end - start < 2:
+                continue
+            points = cutter.path(samples[[start, end - 1]], s.sample_spacing, s.tolerance)
+            points[:, 2] = np.where(np.isfinite(points[:, 2]), np.maximum(points[:, 2], bottom), points[:, 2])
+            touching = np.isfinite(points[:, 2])
+            runs = np.flatnonzero(np.diff(np.concatenate([[0], touching.astype(np.int8), [0]])))
+            for first, last in zip(runs[::2], runs[1::2]):
+                if last - first < 2:
+                    continue
+                run = _drop_collinear(points[first:last], s.tolerance / 2)
+                bridge = _bridge(cutter, builder.position, run[0], LINK * s.finish_tool.diameter, s, bottom)
+                if bridge is None:
+                    builder.plunge(*run[0])
+                else:
+                    builder.polyline(bridge[1:])
+                builder.polyline(run[1:])
+        report((k + 1) / len(lines))
+    if builder.position is None:
+        return _Cleanup(None, stepover, cross_slope, area)
+    builder.retract()
+    builder.rapid(builder.position[0], builder.position[1], safe_z)
+    operation = Operation("steep cleanup", s.finish_tool, s.finish_rpm, clearance_z=clearance_z, safe_z=safe_z,
+                          comment=f"raster {s.raster_angle + 90.0:g} deg over faces steeper than "
+                                  f"{s.max_slope_deg:g} deg, stepover {stepover:.3f} mm", **builder.arrays())
+    return _Cleanup(operation, stepover, cross_slope, area)
+
+
+def _bridge(cutter, position, start, reach: float, s: CarveSettings, bottom: float):
+    """The ball dropped along the straight line from ``position`` to ``start`` (both dropped
+    points), if that is at most ``reach`` long and on the design all the way; else None."""
+    if position is None:
+        return None
+    here = np.asarray(position, float)
+    gap = float(np.linalg.norm(start[:2] - here[:2]))
+    if not 1e-9 < gap <= reach:
+        return None
+    bridge = cutter.path(np.array([here[:2], start[:2]]), s.sample_spacing, s.tolerance)
+    if not np.all(np.isfinite(bridge[:, 2])):
+        return None
+    bridge[:, 2] = np.maximum(bridge[:, 2], bottom)
+    if abs(bridge[0, 2] - here[2]) > 1e-9 or abs(bridge[-1, 2] - start[2]) > 1e-9:
+        return None
+    return _drop_collinear(bridge, s.tolerance / 2)
 
 
 def _drop_collinear(points: np.ndarray, tolerance: float) -> np.ndarray:

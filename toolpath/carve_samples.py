@@ -4,6 +4,8 @@
 ``domed_plate``: a 160 x 60 mm name plate whose top is a spherical cap of radius 400 mm with a
 raised, rounded ring along its edge (a frame for a name), on a 0.5 mm grid (a coarser one
 leaves facet creases in the ring's hollow that no ball reaches).
+``steep_ridge``: a 100 x 60 mm plate with a ridge along X: a crest rounded to 6 mm, flanks
+sloping 55 degrees, feet filleted to 4 mm, the floor 10 mm below the crest (:func:`ridge_profile`).
 Work zero: the top of the stock (the design's highest point is at z = 0 or just below).
 """
 from __future__ import annotations
@@ -53,4 +55,28 @@ def domed_plate(cell: float = 0.5) -> tuple:
     return heightmap_solid(x, y, dome + bump, -12.0)
 
 
-SAMPLES = {"wave": wave_relief, "dome": domed_plate}
+def ridge_profile(y: np.ndarray, slope_deg: float = 55.0, crest: float = 6.0, fillet: float = 4.0,
+                  height: float = 10.0) -> np.ndarray:
+    """Height of a ridge along X over ``y``: its crest (radius ``crest``) at z = 0 over y = 0,
+    straight flanks at ``slope_deg``, concave fillets of radius ``fillet`` down to the floor at
+    z = -``height``; symmetric in y."""
+    t = np.radians(slope_deg)
+    y1, z1 = crest * np.sin(t), -crest * (1 - np.cos(t))            # the crest's arc meets the flank
+    z2 = -height + fillet * (1 - np.cos(t))                          # the flank meets the fillet
+    y2 = y1 + (z1 - z2) / np.tan(t)
+    yf = y2 + fillet * np.sin(t)                                      # the fillet meets the floor
+    a = np.abs(np.asarray(y, float))
+    return np.where(a <= y1, np.sqrt(np.maximum(crest ** 2 - a ** 2, 0)) - crest,
+                    np.where(a <= y2, z1 - (a - y1) * np.tan(t),
+                             np.where(a <= yf, -height + fillet - np.sqrt(np.maximum(fillet ** 2 - (yf - a) ** 2, 0)),
+                                      -height)))
+
+
+def steep_ridge(cell: float = 0.25) -> tuple:
+    x = np.linspace(-50, 50, 51)                   # the ridge does not change along X
+    y = np.linspace(-30, 30, int(round(60 / cell)) + 1)
+    top = np.broadcast_to(ridge_profile(y), (len(x), len(y)))
+    return heightmap_solid(x, y, top, -15.0)
+
+
+SAMPLES = {"wave": wave_relief, "dome": domed_plate, "ridge": steep_ridge}
