@@ -204,10 +204,10 @@ class KEZURI_PT_carve(KezuriPanel, bpy.types.Panel):
         layout = self.layout
         props = context.scene.kezuri.carve
         field(layout, props, "design")
-        row = layout.row(align=True)
-        row.operator("kezuri.carve_sample", text="Wave Relief", icon="MESH_GRID").sample = "wave"
-        row.operator("kezuri.carve_sample", text="Domed Plate", icon="MESH_UVSPHERE").sample = "dome"
-        row.operator("kezuri.carve_sample", text="Steep Ridge", icon="MESH_CONE").sample = "ridge"
+        samples = layout.column(align=True)        # three sample buttons do not fit side by side
+        samples.operator("kezuri.carve_sample", text="Wave Relief", icon="MESH_GRID").sample = "wave"
+        samples.operator("kezuri.carve_sample", text="Domed Plate", icon="MESH_UVSPHERE").sample = "dome"
+        samples.operator("kezuri.carve_sample", text="Steep Ridge", icon="MESH_CONE").sample = "ridge"
         fields(layout, props, ("stock_above", "scallop", "raster_angle", "finish_diameter", "rough"))
         big_button(layout, "kezuri.carve_generate", "MOD_DISPLACE")
         layout.operator("kezuri.carve_export", icon="EXPORT")
