@@ -32,6 +32,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..toolpath.program import FEED, RAPID, Operation, Program, TurnMillOperation
+from . import words
 from .gcode import PostError, comment_text, format_duration
 from .registry import ControllerLimits, Post
 
@@ -81,19 +82,31 @@ class CLDataPost(Post):
         if op.coolant:
             lines.append("COOLNT/ON")
         lines.append("FROM/" + ",".join(_num(v, self.decimals) for v in start))
-        feed_word = None
-        for kind, point, axis, feed in zip(op.kind.tolist(), points, axes, op.feed.tolist()):
-            if kind == RAPID:
-                lines.append("RAPID")
-            elif _num(feed, 1) != feed_word:
-                feed_word = _num(feed, 1)
-                lines.append(f"FEDRAT/MMPM,{feed_word}")
-            lines.append("GOTO/" + ",".join([_num(v, self.decimals) for v in point] +
-                                            [_num(v, self.axis_decimals) for v in axis]))
+        lines += self._moves(op, points, axes)
         if op.coolant:
             lines.append("COOLNT/OFF")
         lines.append("SPINDL/OFF")
         return lines
+
+    def _moves(self, op: Operation, points, axes) -> list:
+        """One GOTO per move, RAPID before a rapid's, FEDRAT before a cutting move's whose feed
+        text differs from the previous cutting move's; vectorised (:mod:`.words`)."""
+        n = len(op)
+        if not n:
+            return []
+        goto = np.full(n, "GOTO/", dtype=object)
+        for index, (values, decimals) in enumerate([(points, self.decimals)] * 3 + [(axes, self.axis_decimals)] * 3):
+            texts, ids = words.column(np.asarray(values, float)[:, index % 3], lambda value: _num(value, decimals))
+            goto = goto + ("," if index else "") + texts[ids]
+        rapid = op.kind == RAPID
+        texts, ids = words.column(op.feed, lambda value: _num(value, 1))
+        last_cut = words.previous_where(~rapid)
+        fedrat = ~rapid & ((last_cut < 0) | (ids != ids[np.maximum(last_cut, 0)]))
+        before = words.prefixed("FEDRAT/MMPM,", texts, ids, fedrat)
+        before[rapid] = "RAPID"
+        both = np.empty(2 * n, dtype=object)
+        both[0::2], both[1::2] = before, goto
+        return [line for line in both.tolist() if line]
 
     def part_moves(self, op: Operation) -> tuple:
         """(start, tip points (n, 3), tool axes (n, 3)) in part coordinates."""

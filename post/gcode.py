@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.program import ARC_CW, FEED, RAPID, Operation, Program
+from ..toolpath.program import FEED, RAPID, Operation, Program
+from . import words
 from .registry import ControllerLimits, Post, PostError
 
 
@@ -154,27 +155,42 @@ class GcodePost(Post):
         return self.moves(op, op.start)
 
     def moves(self, op: Operation, start) -> list:
-        """Modal motion blocks for the operation's moves; zero-length moves are dropped."""
-        lines = []
-        last = {"X": self.n(start[0]), "Y": self.n(start[1]), "Z": self.n(start[2])}
-        position = np.array(start, float)
-        mode, feed_word = None, None
-        for kind, xyz, f, centre in zip(op.kind.tolist(), op.xyz.tolist(), op.feed.tolist(), op.center.tolist()):
-            arc = kind not in (RAPID, FEED)
-            code = {RAPID: "G00", FEED: "G01"}.get(kind, "G02" if kind == ARC_CW else "G03")
-            axes = [(axis, self.n(value)) for axis, value in zip("XYZ", xyz)]
-            motion = [f"{axis}{text}" for axis, text in axes if text != last[axis] or (arc and axis in "XY")]
-            if not motion:
-                continue
-            words = [code] if (code != mode or arc) else []
-            words += motion
-            if arc:
-                words += [f"I{self.n(centre[0] - position[0])}", f"J{self.n(centre[1] - position[1])}"]
-            if kind != RAPID and fmt(f, 1) != feed_word:
-                feed_word = fmt(f, 1)
-                words.append(f"F{feed_word}")
-            lines.append(" ".join(words))
-            mode = code
-            last.update(axes)
-            position = np.array(xyz)
-        return lines
+        """Modal motion blocks for the operation's moves; zero-length moves are dropped.
+
+        Vectorised (:mod:`.words`): an axis word is written when its text differs from the
+        previous move's (a dropped move reads the same as the one before it, so "previous move"
+        and "previous written block" agree), on arcs X and Y always; G00/G01/G02/G03 when the
+        mode changes and on every arc; F (one decimal) when its text differs from the last
+        written cutting block's; I/J from the last written block's end point."""
+        n = len(op)
+        if not n:
+            return []
+        kind = op.kind.astype(np.intp)
+        arc = (kind != RAPID) & (kind != FEED)
+        start = np.asarray(start, float)
+        axis_words, changed = [], []
+        for axis in range(3):
+            texts, ids = words.column(np.concatenate([[start[axis]], op.xyz[:, axis]]), self.n)
+            changed.append(ids[1:] != ids[:-1])
+            axis_words.append((texts, ids[1:]))
+        write = [changed[0] | arc, changed[1] | arc, changed[2]]
+        emitted = write[0] | write[1] | write[2]
+        previous = words.previous_where(emitted)
+        code_written = emitted & (arc | (previous < 0) | (kind != kind[np.maximum(previous, 0)]))
+        codes = np.array(["G00", "G01", "G02", "G03", ""], dtype=object)[np.where(code_written, kind, 4)]
+        columns = [codes] + [words.prefixed(letter, texts, ids, w)
+                             for letter, (texts, ids), w in zip("XYZ", axis_words, write)]
+        arcs = np.flatnonzero(arc & emitted)
+        if len(arcs):
+            position = np.where((previous[arcs] < 0)[:, None], start[None, :2], op.xyz[np.maximum(previous[arcs], 0), :2])
+            for letter, axis in (("I", 0), ("J", 1)):
+                texts, ids = words.column(op.center[arcs, axis] - position[:, axis], self.n)
+                column = np.full(n, "", dtype=object)
+                column[arcs] = words.prefixed(letter, texts, ids, np.ones(len(arcs), bool))
+                columns.append(column)
+        cutting = emitted & (kind != RAPID)
+        texts, ids = words.column(op.feed, lambda value: fmt(value, 1))
+        last_cut = words.previous_where(cutting)
+        feed_written = cutting & ((last_cut < 0) | (ids != ids[np.maximum(last_cut, 0)]))
+        columns.append(words.prefixed("F", texts, ids, feed_written))
+        return words.join_words([c[emitted] for c in columns])

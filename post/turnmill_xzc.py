@@ -54,6 +54,7 @@ import numpy as np
 
 from ..toolpath import kinematics
 from ..toolpath.program import FEED, RAPID, Operation, Program, TurnMillOperation
+from . import words
 from .gcode import GcodePost, PostError, comment_text, fmt
 from .linuxcnc import LINUXCNC_LIMITS
 from .registry import ControllerLimits
@@ -177,38 +178,51 @@ class TurnMillXZCPost(GcodePost):
         motion are dropped."""
         scale = 2.0 if self.x_diameter else 1.0
         c_values = op.rotary["c"]
-        words = {"X": self.n(op.start[0] * scale), "Z": self.n(op.start[2]), "C": self.n(c_values[0])}
-        lines = [f"G00 X{words['X']} Z{words['Z']} C{words['C']}"]
+        lines = [f"G00 X{self.n(op.start[0] * scale)} Z{self.n(op.start[2])} C{self.n(c_values[0])}"]
         if self.inverse_time:
             lines.append(self.codes.inverse_time)
-        mode, feed_word = "G00", None
         lengths = op.move_lengths()
         cutting = op.kind == FEED
         inverse_time = np.where(cutting, 1.0 / kinematics.block_minutes(lengths, np.where(cutting, op.feed, 1.0)),
                                 np.nan)
         scaled = op.replace(xyz=op.xyz * [scale, 1.0, 1.0], start=op.start * [scale, 1.0, 1.0])
         self.check_limits(scaled, inverse_time if self.inverse_time else None)
-        for kind, xyz, c, feed, f_inverse in zip(op.kind.tolist(), op.xyz.tolist(), c_values.tolist(),
-                                                 op.feed.tolist(), inverse_time.tolist()):
-            new = {"X": self.n(xyz[0] * scale), "Z": self.n(xyz[2]), "C": self.n(c)}
-            motion = [f"{axis}{text}" for axis, text in new.items() if text != words[axis]]
-            if not motion:
-                continue
-            code = "G00" if kind == RAPID else "G01"
-            block = ([code] if code != mode else []) + motion
-            if kind == FEED:
-                if self.inverse_time:
-                    block.append(f"F{fmt(f_inverse, 3)}")
-                elif fmt(feed, 1) != feed_word:
-                    feed_word = fmt(feed, 1)
-                    block.append(f"F{feed_word}")
-            lines.append(" ".join(block))
-            mode = code
-            words = new
+        lines += self._blocks(op, scale, c_values, inverse_time)
         if self.inverse_time:
             lines.append(self.codes.per_minute)
         return lines
 
+    def _blocks(self, op: Operation, scale: float, c_values, inverse_time) -> list:
+        """The moves' blocks, vectorised (:mod:`.words`): a word where its text differs from the
+        previous move's (the start for the first); a move with none is dropped; G00/G01 where the
+        mode differs from the last written block's (G00 before the first); on cutting blocks F in
+        inverse time every block, or per minute when its text differs from the last cutting block's."""
+        n = len(op)
+        if not n:
+            return []
+        kind = op.kind.astype(np.intp)
+        columns, write = [], []
+        for letter, start, values in (("X", op.start[0] * scale, op.xyz[:, 0] * scale), ("Z", op.start[2], op.xyz[:, 2]),
+                                      ("C", c_values[0], c_values)):
+            texts, ids = words.column(np.concatenate([[start], values]), self.n)
+            write.append(ids[1:] != ids[:-1])
+            columns.append((letter, texts, ids[1:]))
+        emitted = write[0] | write[1] | write[2]
+        previous = words.previous_where(emitted)
+        rapid = kind == RAPID
+        mode_before = np.where(previous < 0, True, rapid[np.maximum(previous, 0)])   # G00 before the first block
+        code_written = emitted & (rapid != mode_before)
+        out = [np.array(["G01", "G00", ""], dtype=object)[np.where(code_written, rapid.astype(np.intp), 2)]]
+        out += [words.prefixed(letter, texts, ids, w) for (letter, texts, ids), w in zip(columns, write)]
+        cutting = emitted & (kind == FEED)
+        if self.inverse_time:
+            texts, ids = words.column(np.where(cutting, inverse_time, 0.0), lambda value: fmt(value, 3))
+            out.append(words.prefixed("F", texts, ids, cutting))
+        else:
+            texts, ids = words.column(op.feed, lambda value: fmt(value, 1))
+            last_cut = words.previous_where(cutting)
+            out.append(words.prefixed("F", texts, ids, cutting & ((last_cut < 0) | (ids != ids[np.maximum(last_cut, 0)]))))
+        return words.join_words([column[emitted] for column in out])
 
 class TurnMillLinuxCNCPost(TurnMillXZCPost):
     """The checking variant: LinuxCNC words only, X as a radius, machine switches as comments."""

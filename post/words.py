@@ -1,0 +1,51 @@
+"""Word formatting for whole columns of moves at once.
+
+A post writes 10^5 moves; formatting every number with a Python call per value costs seconds.
+Coordinates repeat a lot (a raster's X values, a pass's Z), so a column is formatted once per
+distinct value with the post's own scalar formatter (the text is the same, byte for byte, as
+the scalar writer gives) and the texts are given back with an integer id per move: two moves
+have the same id exactly when their words read the same, which is what modal posts compare.
+"""
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+
+
+def column(values, text_of: Callable[[float], str]) -> tuple:
+    """(texts, ids) for a 1-d array of floats: ``texts`` an object array of the distinct words,
+    ``ids`` (n,) int indices into it, equal exactly where ``text_of`` gives the same text."""
+    values = np.ascontiguousarray(values, dtype=float).reshape(-1)
+    if not len(values):
+        return np.empty(0, dtype=object), np.empty(0, dtype=np.intp)
+    distinct, inverse = np.unique(values, return_inverse=True)   # NaN (rapids' feeds) kept, one per NaN
+    words = [text_of(value) for value in distinct.tolist()]
+    texts, word_ids = np.unique(np.array(words, dtype=object), return_inverse=True)
+    return texts, word_ids.reshape(-1)[inverse.reshape(-1)]
+
+
+def previous_where(mask: np.ndarray) -> np.ndarray:
+    """For each index i, the largest j < i with ``mask[j]``, or -1."""
+    n = len(mask)
+    marked = np.where(mask, np.arange(n), -1)
+    last = np.maximum.accumulate(marked) if n else marked
+    return np.concatenate([[-1], last[:-1]]).astype(np.intp) if n else last.astype(np.intp)
+
+
+def join_words(columns: list) -> list:
+    """Lines from word columns: each column an object array of words ("" for none), joined with
+    single spaces, empty words skipped."""
+    if not columns or not len(columns[0]):
+        return []
+    spaced = np.full(len(columns[0]), "", dtype=object)
+    for words in columns:
+        present = words != ""
+        spaced[present] = spaced[present] + (" " + words[present])
+    return [line[1:] for line in spaced.tolist()]
+
+
+def prefixed(letter: str, texts: np.ndarray, ids: np.ndarray, write: np.ndarray) -> np.ndarray:
+    """``letter + text`` where ``write``, "" elsewhere, as an object array."""
+    words = np.array([letter + text for text in texts.tolist()] + [""], dtype=object)
+    return words[np.where(write, ids, len(texts))]
