@@ -288,3 +288,40 @@ def test_fill_mesh_matches_blenders_from_pydata(empty_scene):
         assert not ours.validate()
         bpy.data.meshes.remove(reference)
         bpy.data.meshes.remove(ours)
+
+
+def test_stepnc_pocket_links_are_marked_and_drawn_as_links():
+    """Two passes at depth inside a pocket region: the planner joins them by a feed move at depth
+    (a link, not a cut).  It is marked in the IR and drawn green; the passes stay blue."""
+    from manifold3d import CrossSection
+
+    from kezuri.toolpath.stepnc.motion import _Motion
+    region = CrossSection.square((80.0, 40.0)).translate((10.0, 10.0))
+    motion = _Motion(clearance_z=10.0, feed=400.0, region=region, radius=3.0)
+    first, second = np.array([(20.0, 20.0), (80.0, 20.0)]), np.array([(80.0, 40.0), (20.0, 40.0)])
+    motion.cut([first, second], z=-2.0, cleared_z=0.0)
+    op = motion.operation("pocket", Tool(1, "flat", 6.0), 8000, True, 20.0, False, "")
+    # the link: the feed move from the first pass's end (80, 20) to the second's start (80, 40) at z -2
+    ends = op.start_points()
+    link = (op.kind == FEED) & np.all(np.isclose(ends, (80, 20, -2)), axis=1) & \
+        np.all(np.isclose(op.xyz, (80, 40, -2)), axis=1)
+    assert link.sum() == 1 and op.links.tolist() == link.tolist()
+    stock = BoxStock(0, 0, -10, 100, 60, 0)
+    assert pj.move_roles(op, stock)[link].tolist() == [pj.LINK]
+    assert pj.move_roles(op.replace(links=None), stock)[link].tolist() == [pj.CUT]   # in the material: a cut by shape
+    image = pj.toolpath_picture([op], stock, title="POCKET", tilt_deg=0.0).image()
+    colours = {name: np.array(c, np.uint8) for name, c in pj.ROLE_COLOURS.items()}
+    frame_x, frame_y = (0, 100), (0, 60)
+    assert colour_near(image, *top_view_pixel(80, 30, frame_x, frame_y), colours["link"])
+    assert not colour_near(image, *top_view_pixel(80, 30, frame_x, frame_y), colours["cut"])
+    assert colour_near(image, *top_view_pixel(50, 20, frame_x, frame_y), colours["cut"])
+    assert colour_near(image, *top_view_pixel(50, 40, frame_x, frame_y), colours["cut"])
+
+
+def test_links_must_mark_feed_moves():
+    kind, xyz, feed = [RAPID, FEED], [(0, 0, 5), (1, 0, 0)], [np.nan, 100.0]
+    with pytest.raises(ValueError, match="links must mark feed moves"):
+        Operation("o", Tool(1, "flat", 3.0), 1000, kind, xyz, feed, links=[True, False])
+    with pytest.raises(ValueError, match="links must mark feed moves"):
+        Operation("o", Tool(1, "flat", 3.0), 1000, kind, xyz, feed, links=[False])
+    assert Operation("o", Tool(1, "flat", 3.0), 1000, kind, xyz, feed, links=[False, True]).links.tolist() == [False, True]

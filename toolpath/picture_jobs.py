@@ -60,8 +60,8 @@ def stock_depth(stock, points) -> np.ndarray:
 
 def move_roles(op, stock) -> np.ndarray:
     """Per move of ``op``: RAPID_ROLE, PLUNGE (a feed move into the stock along the tool's axis),
-    LINK (a feed move with both ends and its middle outside the stock, or a feed retract along
-    the axis) or CUT."""
+    LINK (a feed move the planner marked as a link (:attr:`Operation.links`), one with both ends and
+    its middle outside the stock, or a feed retract along the axis) or CUT."""
     points = part_points(op)
     a, b = points[:-1], points[1:]
     step = b - a
@@ -77,6 +77,8 @@ def move_roles(op, stock) -> np.ndarray:
     roles = np.full(len(op), CUT)
     roles[(along < -1e-9) & (sideways <= STEEP * -along) & ~arcs] = PLUNGE
     roles[air | ((along > 1e-9) & (sideways <= STEEP * along) & ~arcs)] = LINK
+    if getattr(op, "links", None) is not None:
+        roles[op.links] = LINK
     roles[op.kind == RAPID] = RAPID_ROLE
     return roles
 

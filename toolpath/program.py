@@ -95,6 +95,9 @@ class Operation:
     ``texture_marks`` (n, 2), with a texture on a curved plate (:mod:`surface_engrave`): per move,
     1 where a new gouge depth is drawn as the move starts (else 0), and how far along the gouge's
     ramp the move ends (0..1; NaN: the move is cut as programmed); the macro adds the depth to Z.
+    ``links`` (n,) bool, or None when the planner did not say: True on a feed move the planner made
+    to go from one cut to the next at depth (a link inside a pocket), not to cut.  Posts write a
+    link as any feed move; pictures draw it as a link.
     """
 
     name: str
@@ -114,6 +117,7 @@ class Operation:
     coolant: bool = False
     comment: str = ""
     source_id: int | None = None   # what the operation was made from (a STEP-NC workingstep's instance id)
+    links: np.ndarray | None = None
 
     def __post_init__(self):
         self.kind = np.ascontiguousarray(self.kind, dtype=np.int8)
@@ -128,6 +132,8 @@ class Operation:
             first = self.xyz[0] if n else np.zeros(3)
             self.start = np.array([first[0], first[1], self.safe_z])
         self.start = np.asarray(self.start, dtype=float)
+        if self.links is not None:
+            self.links = np.ascontiguousarray(self.links, dtype=bool).reshape(-1)
         self.validate()
 
     def validate(self):
@@ -158,6 +164,8 @@ class Operation:
             if marks.shape != (n, 2) or self.texture is None:
                 raise ProgramError(f"operation {self.name!r}: texture marks need a texture and one (flag, fraction) "
                                    "pair per move")
+        if self.links is not None and (self.links.shape != (n,) or np.any(self.links & (self.kind == RAPID))):
+            raise ProgramError(f"operation {self.name!r}: links must mark feed moves, one flag per move")
         if self.texture is not None and not isinstance(self.texture, GougeTexture):
             raise ProgramError(f"operation {self.name!r}: texture must be a GougeTexture or None, "
                                f"got {type(self.texture).__name__}")
@@ -326,6 +334,7 @@ class PathBuilder:
         self._xyz: list = []
         self._feed: list = []
         self._center: list = []
+        self._links: list = []          # indices of the feed moves :meth:`line` marked as links
         self.position = None
 
     def _add(self, kind, xyz, feed, center=(np.nan, np.nan, np.nan)):
@@ -338,7 +347,10 @@ class PathBuilder:
     def rapid(self, x, y, z):
         self._add(RAPID, (x, y, z), np.nan)
 
-    def line(self, x, y, z, feed=None):
+    def line(self, x, y, z, feed=None, link: bool = False):
+        """A feed move; ``link``: it goes from one cut to the next (:attr:`Operation.links`)."""
+        if link:
+            self._links.append(len(self._kind))
         self._add(FEED, (x, y, z), self.feed if feed is None else feed)
 
     def polyline(self, points: np.ndarray, feed=None):
@@ -376,6 +388,12 @@ class PathBuilder:
         n = len(self._kind)
         return dict(kind=np.array(self._kind, dtype=np.int8), xyz=np.array(self._xyz, dtype=float).reshape(n, 3),
                     feed=np.array(self._feed, dtype=float), center=np.array(self._center, dtype=float).reshape(n, 3))
+
+    def links(self) -> np.ndarray:
+        """(n,) bool: the moves :meth:`line` marked as links."""
+        marks = np.zeros(len(self._kind), bool)
+        marks[self._links] = True
+        return marks
 
 
 def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kinematics.SHORTEST_BLOCK_MINUTES,

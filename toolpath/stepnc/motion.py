@@ -62,7 +62,7 @@ class _Motion:
             here = self.path.position
             if (link and here is not None and abs(here[2] - z) < 1e-9
                     and _segment_inside(self.region, here[:2], points[0])):
-                self.path.line(points[0][0], points[0][1], z)
+                self.path.line(points[0][0], points[0][1], z, link=True)
             else:
                 self.leave()
                 self._enter(points, z, self.entry_height(points[0], cleared_z, self.levels.get(key)))
@@ -153,7 +153,7 @@ class _Motion:
         first = arrays["xyz"][0]
         return Operation(name=name, tool=tool, spindle_rpm=rpm, spindle_cw=clockwise,
                          clearance_z=self.clearance_z, safe_z=safe_z, start=[first[0], first[1], safe_z],
-                         coolant=coolant, comment=comment, source_id=source_id, **arrays)
+                         coolant=coolant, comment=comment, source_id=source_id, links=self.path.links(), **arrays)
 
 
 def _segment_inside(region: CrossSection | None, a, b) -> bool:
