@@ -192,13 +192,12 @@ def split_runs(kinds, points) -> tuple:
     """
     from ..toolpath.program import RAPID
 
+    is_rapid = np.asarray(kinds) == RAPID
+    change = (np.flatnonzero(is_rapid[1:] != is_rapid[:-1]) + 1).tolist()   # where a run of one kind ends
     cutting, rapid = [], []
-    start = 0
-    for index in range(1, len(kinds) + 1):
-        if index == len(kinds) or (kinds[index] == RAPID) != (kinds[start] == RAPID):
-            run = points[start:index + 1]
-            (rapid if kinds[start] == RAPID else cutting).append(run)
-            start = index
+    for start, end in zip([0] + change, change + [len(is_rapid)]):
+        if end > start:
+            (rapid if is_rapid[start] else cutting).append(points[start:end + 1])
     return cutting, rapid
 
 
