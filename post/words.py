@@ -19,10 +19,13 @@ def column(values, text_of: Callable[[float], str]) -> tuple:
     values = np.ascontiguousarray(values, dtype=float).reshape(-1)
     if not len(values):
         return np.empty(0, dtype=object), np.empty(0, dtype=np.intp)
-    distinct, inverse = np.unique(values, return_inverse=True)   # NaN (rapids' feeds) kept, one per NaN
+    distinct, inverse = np.unique(values, return_inverse=True)   # sorted; NaN (rapids' feeds) last
     words = [text_of(value) for value in distinct.tolist()]
-    texts, word_ids = np.unique(np.array(words, dtype=object), return_inverse=True)
-    return texts, word_ids.reshape(-1)[inverse.reshape(-1)]
+    # rounding to a fixed number of decimals is monotonic, so values that read the same are
+    # neighbours in sorted order ("-0." and "0." are one text, and so neighbours too)
+    new = np.array([True] + [a != b for a, b in zip(words[1:], words[:-1])], bool)
+    texts = np.array(words, dtype=object)[new]
+    return texts, (np.cumsum(new) - 1)[inverse.reshape(-1)]
 
 
 def previous_where(mask: np.ndarray) -> np.ndarray:
