@@ -77,12 +77,12 @@ def self_crossing(vertices, faces, progress=None) -> Crossing | None:
             progress(0.0)
         overlap = np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
         a, b = a[overlap], b[overlap]
+        apart = ~(f[a][:, :, None] == f[b][:, None, :]).any(axis=(1, 2))      # neighbours touch, not cross
+        a, b = a[apart], b[apart]
         for _ in range(2):          # drop a face wholly on one side of the other's plane; then swap
             side = np.einsum("ikj,ij->ik", tri[b] - tri[a, :1], normal[a])
             meets = ~(np.all(side > 0, axis=1) | np.all(side < 0, axis=1))
             a, b = b[meets], a[meets]
-        apart = ~(f[a][:, :, None] == f[b][:, None, :]).any(axis=(1, 2))      # neighbours touch, not cross
-        a, b = a[apart], b[apart]
         if not len(a):
             continue
         crossed = np.zeros(len(a), bool)
