@@ -1078,6 +1078,8 @@ MESSAGE_TEMPLATES = {
     '--surface {}: neither a built-in surface ({}) nor a mesh file': '--surface {0}：組み込みの曲面（{1}）でもメッシュファイルでもありません',
     'operation {}: texture marks need a texture and one (flag, fraction) pair per move':
         '工程 {0}：テクスチャの印にはテクスチャと、移動ごとに1組の（開始印, 割合）が必要です',
+    'operation {}: links must mark feed moves, one flag per move':
+        '工程 {0}：リンクの印は送り移動にだけ、移動ごとに1つ付けてください',
     # operators/limits.py: a panel or batch number outside its range
     '{}: {} = {} is outside the allowed range {}': '{0}：{1} = {2} は指定できる範囲 {3} の外です',
     # toolpath/dropcutter.py, toolpath/carve.py, operators/carve.py

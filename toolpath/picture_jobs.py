@@ -19,7 +19,7 @@ from .program import ARC_CCW, ARC_CW, RAPID, arc_sweep
 CUT, PLUNGE, LINK, RAPID_ROLE = 0, 1, 2, 3
 ROLES = ("cut", "plunge", "link", "rapid")
 ROLE_COLOURS = {"cut": (25, 95, 225), "plunge": (220, 30, 30), "link": (10, 160, 60), "rapid": (200, 40, 200)}
-ROLE_LABELS = {"cut": "CUT", "plunge": "PLUNGE", "link": "LINK (FEED IN AIR)", "rapid": "RAPID (DASHED)"}
+ROLE_LABELS = {"cut": "CUT", "plunge": "PLUNGE", "link": "LINK (FEED BETWEEN CUTS)", "rapid": "RAPID (DASHED)"}
 STOCK_COLOUR = (222, 196, 150)
 PART_COLOUR = (178, 186, 198)
 SIDE_COLOUR = (200, 184, 150)
