@@ -80,10 +80,9 @@ def sculpted():
 
 
 PARTS = {"box": box, "hex-bar": hex_bar, "spool": spool, "sculpted": sculpted}
-# Found by this test, not fixed yet (the numpy and the compiled nearest-point paths agree): radial
-# roughing plunges from X22 to X19.97 at z -5.18 under the spool's inner flange face (z -5) and the
-# ball's side clips the flange's rim by 0.027 mm (move 2112); the export gate refuses it (exit 3).
-KNOWN = {"spool": "radial roughing clips the flange rim by 0.027 mm (gate refuses, exit 3)"}
+# The spool was a known failure here (radial roughing cut the flange rim by 0.027 mm, the gate
+# refused it) until runs got no two centres more than a stepover apart (test_turnmill_flange.py).
+KNOWN: dict = {}
 
 
 @pytest.fixture(scope="module")

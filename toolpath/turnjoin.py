@@ -1,4 +1,5 @@
-"""Turn-mill passes: joining the runs of a layer into passes, nearest first.
+"""Turn-mill passes: runs of ball centres kept a stepover apart (:func:`_short_segments`), and
+joining the runs of a layer into passes, nearest first.
 
 :func:`_join` orders the runs of one layer nearest first and joins neighbours into passes; the
 nearest run end is found on a grid (:class:`_RunEnds`), so the time follows the number of runs,
@@ -14,6 +15,63 @@ import numpy as np
 
 class TurnMillCancelled(Exception):
     """The progress callback asked to stop."""
+
+
+def _subdivide(points: np.ndarray, counts: np.ndarray, normals: np.ndarray | None = None):
+    """Split segment i of the polyline into counts[i] equal parts (normals interpolated)."""
+    idx = np.repeat(np.arange(len(counts)), counts)
+    starts = np.repeat(np.cumsum(counts) - counts, counts)
+    frac = ((np.arange(len(idx)) - starts) / np.repeat(counts, counts))[:, None]
+    out = np.vstack([points[idx] + frac * (points[idx + 1] - points[idx]), points[-1:]])
+    if normals is None:
+        return out
+    n = np.vstack([normals[idx] + frac * (normals[idx + 1] - normals[idx]), normals[-1:]])
+    return out, n / np.maximum(np.linalg.norm(n, axis=1), 1e-12)[:, None]
+
+
+def _short_segments(runs: list, spacing: float, rounds: int, push) -> list:
+    """Each run of clear ball centres with centres inserted until no two neighbours are more than
+    ``spacing`` (the stepover) apart; ``push(centres)`` -> (centres pushed clear, clear?) fits the
+    inserted ones.  For each run, the list of runs it became: it is split where an inserted centre
+    cannot be pushed clear, or where a segment is still too long after ``rounds`` rounds.
+
+    Why: two centres each clear of every surface point by r and at most s apart keep the whole
+    segment between them at least sqrt(r^2 - s^2 / 4) from the surface, whatever its shape (no
+    single surface point can come nearer); with s the stepover, that is r minus the tolerance (the
+    scallop).  Pushing centres clear and moving roughing layers outward spread neighbours apart,
+    and a pass rounding a convex edge (a spool flange's rim) cut its corner by 0.03 mm."""
+    pieces = [[run] for run in runs]
+    for _ in range(rounds):
+        flat = [(i, piece) for i, group in enumerate(pieces) for piece in group]
+        # a long segment is cut into parts 0.9 stepover long, so a small push keeps them short
+        counts = [np.where(d > spacing, np.ceil(d / (0.9 * spacing)), 1).astype(int)
+                  for d in (np.linalg.norm(np.diff(piece, axis=0), axis=1) for _, piece in flat)]
+        if not any(np.any(c > 1) for c in counts):
+            return pieces
+        dense, inserted = [], []
+        for (_, piece), c in zip(flat, counts):
+            added = np.zeros(int(c.sum()) + 1, dtype=bool)
+            if np.any(c > 1):
+                added[:] = True                    # segment k's first point is the original one
+                added[np.r_[np.cumsum(c) - c, c.sum()]] = False
+                piece = _subdivide(piece, c)
+            dense.append(piece)
+            inserted.append(added)
+        points, mask = np.vstack(dense), np.concatenate(inserted)
+        clear = np.ones(len(points), dtype=bool)
+        points[mask], clear[mask] = push(points[mask])
+        pieces = [[] for _ in runs]
+        start = 0
+        for (i, _), piece in zip(flat, dense):
+            keep = clear[start:start + len(piece)]
+            cuts = np.flatnonzero(np.diff(keep.astype(np.int8)) != 0) + 1
+            pieces[i] += [p for p, k in zip(np.split(points[start:start + len(piece)], cuts),
+                                            np.split(keep, cuts)) if k[0]]
+            start += len(piece)
+    return [[piece[run] for piece in group
+             for run in np.split(np.arange(len(piece)),
+                                 np.flatnonzero(np.linalg.norm(np.diff(piece, axis=0), axis=1) > spacing) + 1)]
+            for group in pieces]
 
 
 def _link_clear(a: np.ndarray, b: np.ndarray, surface, settings) -> bool:

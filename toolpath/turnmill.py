@@ -77,7 +77,8 @@ from .meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEng
                        face_normals, face_samples)
 from .program import (FEED, RAPID, TOOL_DIRECTIONS, Program, Tool, TurnMillError, TurnMillOperation,
                       merge_short_moves)
-from .turnjoin import TurnMillCancelled, _join, _join_layers, _link_clear  # noqa: F401  (callers of turnmill.*)
+from .turnjoin import (TurnMillCancelled, _join, _join_layers, _link_clear, _short_segments,  # noqa: F401
+                       _subdivide)
 
 NEITHER, RADIAL, AXIAL, BOTH = 0, 1, 2, 3      # face labels: bit 1 = radial, bit 2 = axial
 LABEL_NAMES = ("neither", "radial", "axial", "both")
@@ -260,18 +261,6 @@ def _dedupe(points: np.ndarray, *others: np.ndarray):
     return (points[keep],) + tuple(o[keep] for o in others) if others else points[keep]
 
 
-def _subdivide(points: np.ndarray, counts: np.ndarray, normals: np.ndarray | None = None):
-    """Split segment i of the polyline into counts[i] equal parts (normals interpolated)."""
-    idx = np.repeat(np.arange(len(counts)), counts)
-    starts = np.repeat(np.cumsum(counts) - counts, counts)
-    frac = ((np.arange(len(idx)) - starts) / np.repeat(counts, counts))[:, None]
-    out = np.vstack([points[idx] + frac * (points[idx + 1] - points[idx]), points[-1:]])
-    if normals is None:
-        return out
-    n = np.vstack([normals[idx] + frac * (normals[idx + 1] - normals[idx]), normals[-1:]])
-    return out, n / np.maximum(np.linalg.norm(n, axis=1), 1e-12)[:, None]
-
-
 def _densify(points: np.ndarray, spacing: float, normals: np.ndarray):
     """Points at most ``spacing`` apart along the polyline (normals interpolated)."""
     counts = np.maximum(1, np.ceil(np.linalg.norm(np.diff(points, axis=0), axis=1) / spacing)).astype(int)
@@ -337,7 +326,10 @@ def _fit_runs(polylines: list, closed: list, surface, stock, settings, max_z_shi
         part = slice(start, start + len(polyline))
         runs.append([_dedupe(fitted[part][run]) for run in _run_indices(keep[part], is_closed)])
         start += len(polyline)
-    return runs
+    # no two centres of a run more than a stepover apart, so no segment cuts a convex edge's corner
+    pieces = iter(_short_segments([run for group in runs for run in group], settings.pick_feed, PUSH_ITERATIONS,
+                                  lambda centres: _clear_ball(surface, centres, r, tol / 10)))
+    return [[piece for _ in group for piece in next(pieces)] for group in runs]
 
 
 # ----- radial paths ---------------------------------------------------------------------------
