@@ -21,27 +21,50 @@ def register():
     warm_kernels_in_background()
 
 
+_WARMUP = {"job": None}
+
+
+def start_warmup():
+    """Compile the simulation kernels (or check numba's on-disk cache) in a child Python process
+    (:class:`.common.ProcessJob`): the machine code lands in numba's cache, from which this
+    process loads it at the first Simulate instead of compiling.  Not on a thread of Blender's:
+    LLVM compiling beside the UI's own LLVM (Mesa's software GL) crashed Blender 4.3."""
+    from .common import CoreCall, ProcessJob
+
+    return ProcessJob(CoreCall("toolpath.warmup", "warm_kernels", {}))
+
+
 def warm_kernels_in_background():
-    """In an interactive Blender, compile (or load from numba's cache) the simulation kernels on
-    a background thread, so the first Simulate runs as fast as the later ones.  Batch runs
-    (background mode) compile on first use instead."""
+    """In an interactive Blender, warm the kernels in a child process after registering, so the
+    first Simulate runs as fast as the later ones.  Batch runs (background mode) compile on
+    first use instead."""
     if bpy.app.background:
         return None
-    import threading
+    try:
+        job = _WARMUP["job"] = start_warmup()
+    except OSError as error:                 # no child process: the kernels compile on first use
+        print(f"Kezuri: the simulation kernels were not compiled ahead ({error})")
+        return None
 
-    def warm():
-        from ..toolpath.warmup import warm_kernels
+    def poll():
+        if not job.step():
+            return 1.0
         try:
-            warm_kernels()
-        except Exception as error:      # the kernels then compile on first use: slower, not wrong
-            print(f"Kezuri: the simulation kernels were not compiled ahead ({error}); "
+            job.result()
+        except Exception as error:      # noqa: BLE001 - then they compile on first use: slower, not wrong
+            print(f"Kezuri: the simulation kernels were not compiled ahead ({str(error)[-300:]}); "
                   "the first Simulate compiles them")
-    thread = threading.Thread(target=warm, name="Kezuri kernel warm-up", daemon=True)
-    thread.start()
-    return thread
+        _WARMUP["job"] = None
+        return None
+
+    bpy.app.timers.register(poll, first_interval=1.0, persistent=True)
+    return job
 
 
 def unregister():
+    if _WARMUP["job"] is not None:
+        _WARMUP["job"].cancel()
+        _WARMUP["job"] = None
     translations.unregister()
     for menu, draw in reversed(MENUS):
         menu.remove(draw)

@@ -62,4 +62,6 @@ if [ "$UPDATE_DOCS" = 1 ]; then
   cp build/screenshots/*.png docs/screenshots/
   echo "copied into docs/screenshots"
 fi
+# The run passed only if the driver got to its end (a crashed Blender prints no "failed")
+grep -q "^done" "$LOG" || { echo "the real-window run did not finish (Blender crashed? see $LOG)"; exit 1; }
 ! grep -q "^failed" "$LOG"

@@ -7,7 +7,7 @@ default).  :func:`warm_kernels` calls every kernel once through the same public 
 makes, on tiny inputs (every tool shape; straight, arc and plunging moves; a radial turn-mill
 move; the drop-cutter; turn-mill's nearest-point query), so the types match and the first real
 Simulate (or turn-mill plan) finds them compiled or loads them from the cache.  The shell runs
-it on a background thread after registering.
+it in a child process after registering (``operators.start_warmup``).
 """
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ def _radial_operation() -> TurnMillOperation:
                              clearance_z=5.0, safe_z=5.0, start=np.array([12.0, 0.0, -2.0]))
 
 
-def warm_kernels() -> list:
+def warm_kernels(progress=None) -> list:
     """Run every compiled kernel once; returns what ran ("heightfield ball", ...).  Without
     numba (or with KEZURI_NO_NUMBA=1) the numpy paths run and nothing is compiled."""
     from .dropcutter import DropCutter
