@@ -158,3 +158,20 @@ def test_table_timing_uses_the_traced_length_and_the_table_speed():
     f = kin.inverse_time_feed(op, max_table_rpm=60.0)
     assert np.isnan(f[0]) and f[1] == pytest.approx(600.0 / (2 * math.pi * 10.0))
     assert kin.cycle_time(op, 5000.0, 60.0) == pytest.approx(seconds.sum())
+
+
+def test_traced_lengths_are_kept_only_while_the_moves_match():
+    """A full C turn at machine X = 20 is 2 pi 20 on the part; moving the tool to X = 10 in place
+    (the arrays edited, not replaced) gives 2 pi 10, and the returned array is the caller's own."""
+    op = Operation("o", Tool(1, "ball", 6.0), 1000, np.array([FEED, FEED], np.int8),
+                   np.array([[20.0, 0.0, -5.0], [20.0, 0.0, -5.0]]), np.array([100.0, 100.0]),
+                   rotary={"c": np.array([0.0, 360.0])}, start=np.array([20.0, 0.0, -5.0]))
+    first = op.move_lengths()
+    assert first == pytest.approx([0.0, 2 * math.pi * 20.0], rel=1e-9)
+    first[:] = -1.0
+    assert op.move_lengths() == pytest.approx([0.0, 2 * math.pi * 20.0], rel=1e-9)
+    op.xyz[:, 0] = 10.0
+    op.start[0] = 10.0
+    assert op.move_lengths() == pytest.approx([0.0, 2 * math.pi * 10.0], rel=1e-9)
+    op.rotary["c"][1] = 180.0
+    assert op.move_lengths() == pytest.approx([0.0, math.pi * 10.0], rel=1e-9)

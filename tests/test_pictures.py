@@ -214,11 +214,11 @@ def test_warm_kernels_leaves_nothing_to_compile_for_a_real_job():
     """After the warm-up, simulating a different job (other sizes, every tool shape, a radial
     move) adds no compiled signature to any numba kernel."""
     numba = pytest.importorskip("numba")
-    from kezuri.toolpath import dropcutter_kernel, warmup
+    from kezuri.toolpath import dropcutter_kernel, picture_kernel, warmup
     from kezuri.toolpath.simulate import kernel
 
     def signatures():
-        return {(m.__name__, name): len(f.signatures) for m in (kernel, dropcutter_kernel)
+        return {(m.__name__, name): len(f.signatures) for m in (kernel, dropcutter_kernel, picture_kernel)
                 for name, f in vars(m).items() if isinstance(f, numba.core.registry.CPUDispatcher)}
     ran = warmup.warm_kernels()
     assert "radius map" in ran and all(f"heightfield {k}" in ran for k in warmup.KINDS)
@@ -226,7 +226,8 @@ def test_warm_kernels_leaves_nothing_to_compile_for_a_real_job():
     ops = [warmup._box_operation(k, i) for i, k in enumerate(warmup.KINDS, 1)]
     simulate(ops, BoxStock(-1, -1, -4, 9, 9, 0), cell=0.2, kernel="numba")
     simulate([warmup._radial_operation()], CylinderStock(11.0, 8.0, 0.0), cell=0.3, kernel="numba")
-    assert signatures() == before
+    pj.simulation_picture(simulate(ops[:1], BoxStock(-1, -1, -4, 9, 9, 0), cell=0.2), "WARM")
+    assert "picture" in ran and signatures() == before
 
 
 def test_viewport_depth_colours_span_the_jobs_depth(empty_scene):
@@ -325,3 +326,29 @@ def test_links_must_mark_feed_moves():
     with pytest.raises(ValueError, match="links must mark feed moves"):
         Operation("o", Tool(1, "flat", 3.0), 1000, kind, xyz, feed, links=[False])
     assert Operation("o", Tool(1, "flat", 3.0), 1000, kind, xyz, feed, links=[False, True]).links.tolist() == [False, True]
+
+
+def test_compiled_rasteriser_draws_the_numpy_paths_pixels(monkeypatch):
+    """The numba scan conversion against the numpy one (KEZURI_NO_NUMBA=1): 3,000 random
+    triangles, many sharing edges and crossing each other and the picture's border, a cube in
+    front: the same pixels, depths and colours."""
+    rng = np.random.default_rng(7)
+    corners = rng.uniform(-60.0, 60.0, (3000, 3))
+    vertices = np.vstack([corners, rng.uniform(-60.0, 60.0, (1000, 3))])
+    faces = np.column_stack([rng.integers(0, 4000, 3000), rng.integers(0, 4000, 3000), rng.integers(0, 4000, 3000)])
+    cube = np.array([(x, y, z) for x in (-5, 5) for y in (-5, 5) for z in (-5, 5)], float)
+    cube_faces = np.array([(0, 1, 3), (0, 3, 2), (4, 6, 7), (4, 7, 5), (0, 4, 5), (0, 5, 1),
+                           (2, 3, 7), (2, 7, 6), (0, 2, 6), (0, 6, 4), (1, 5, 7), (1, 7, 3)]) + len(vertices)
+    vertices, faces = np.vstack([vertices, cube]), np.vstack([faces, cube_faces])
+    colours = rng.uniform(0, 255, (len(faces), 3))
+    view = View(vertices[:50] * 0.8, (0, 0, 300, 200), 35.0)
+    drawn = []
+    for no_numba in ("0", "1"):
+        monkeypatch.setenv("KEZURI_NO_NUMBA", no_numba)
+        canvas = Picture(300, 200)
+        canvas.triangles(view, vertices, faces, colours)
+        drawn.append((canvas.rgb.copy(), canvas.depth.copy()))
+    (rgb, depth), (rgb_numpy, depth_numpy) = drawn
+    assert np.isfinite(depth).mean() > 0.5
+    assert np.array_equal(depth, depth_numpy)
+    assert np.array_equal(rgb, rgb_numpy)

@@ -213,3 +213,43 @@ def test_result_travels_between_processes(sample):
     back = pickle.loads(pickle.dumps(result))
     assert np.array_equal(back.radiusmap.radii, result.radiusmap.radii)
     assert back.removed_volume_mm3 == result.removed_volume_mm3
+
+
+def test_turned_mesh_joins_the_untouched_bar_to_the_cut_end():
+    """A bar (radius 20, z -30..0) with a groove of radius 17 over z -20..-10 on half its turn, and
+    a 10 x 10 mm pocket 3 mm deep in its end face: the bar below the pocket joins the boolean's
+    result at a ring, and the mesh is closed, its volume the bar's mesh alone (no boolean) less
+    the pocket's (walls sloped between cell centres), its triangles below the pocket the bar's own."""
+    from kezuri.toolpath.simulate.meshes import _turned_mesh
+    from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
+
+    n_theta, n_z = 64, 60
+    radii = np.full((n_theta, n_z), 20.0)
+    radii[: n_theta // 2, 20:40] = 17.0                      # z cells 20..39: z -20..-10
+    rm = radiusmap.RadiusMap(20.0, -30.0, 0.5, 2 * math.pi / n_theta, radii, np.full(radii.shape, -1))
+    heights = np.zeros((80, 80), np.float32)
+    heights[35:45, 35:45] = -3.0                              # cells 1 mm: x, y in [-5, 5]
+    xy = (np.arange(80) + 0.5) - 40.0
+    inside = np.hypot(xy[:, None], xy[None, :]) < 20.0
+    hf = HeightField(-40.0, -40.0, 1.0, 1.0, heights, inside, 0.0, -30.0)
+    vertices, faces = _turned_mesh(rm, hf, CylinderStock(20.0, 30.0), None)
+    mesh = trimesh.Trimesh(vertices, faces, process=True)
+    assert mesh.is_watertight and mesh.is_winding_consistent
+    plain_bar = trimesh.Trimesh(*radiusmap.mesh(rm, -30.0, 0.0), process=True)   # no boolean
+    assert plain_bar.is_watertight
+    bar = plain_bar.volume
+    # The relief's vertices stand at the cell centres: the pocket's walls slope from its floor's
+    # outer centres (half width 4.5) to the uncut centres 1 mm above the end face (5.5), so at
+    # depth 3 - t the half width is 4.5 + t / 4: the integral of (9 + t / 2)^2 over t in [0, 3]
+    # (the corners' diagonals make it a little less).
+    pocket = 2.0 / 3.0 * (10.5 ** 3 - 9.0 ** 3)
+    assert bar - mesh.volume == pytest.approx(pocket, abs=1.0)
+    def triangles_below(v, f):      # each triangle's corners in float32, sorted; then the rows sorted
+        t = np.asarray(v, np.float32)[np.asarray(f)]
+        t = t[t[:, :, 2].max(axis=1) < -4.0]
+        t = np.array([sorted(map(tuple, tri)) for tri in t]).reshape(-1, 9)
+        return t[np.lexsort(t.T[::-1])]
+
+    ours, plain = triangles_below(vertices, faces), triangles_below(*radiusmap.mesh(rm, -30.0, 0.0))
+    assert len(ours) > 0.8 * len(radiusmap.mesh(rm, -30.0, 0.0)[1])
+    assert np.array_equal(ours, plain)

@@ -16,6 +16,7 @@ import zlib
 
 import numpy as np
 
+from . import compiled
 from . import picture_font as font
 from .errors import InputError
 
@@ -201,7 +202,8 @@ class Picture:
 
 def rasterise(x, y, z, faces, width: int, height: int) -> tuple:
     """The nearest fragment of every covered pixel: (flat pixel index, depth, face index); where
-    fragments tie for nearest (on an edge two triangles share), each is returned.
+    fragments tie for nearest (on an edge two triangles share), each is returned (the numba
+    kernel returns the last triangle's, the one drawn on top either way).
 
     Scan conversion, vectorised over all triangles at once: every (triangle, pixel row) pair
     gets the span of pixel centres between the triangle's edges on that row; depth comes from
@@ -213,6 +215,12 @@ def rasterise(x, y, z, faces, width: int, height: int) -> tuple:
     area = (fx[:, 1] - fx[:, 0]) * (fy[:, 2] - fy[:, 0]) - (fx[:, 2] - fx[:, 0]) * (fy[:, 1] - fy[:, 0])
     live = (j1 >= j0) & (fx.max(axis=1) >= 0) & (fx.min(axis=1) < width) & (np.abs(area) > 1e-12) \
         & np.isfinite(area)
+    kernel = compiled.kernel_module("auto", f"{__package__}.picture_kernel", PictureError, "picture kernel")
+    if kernel is not None:
+        nearest, owner = np.full(width * height, -np.inf), np.full(width * height, -1, np.int64)
+        kernel.scan(fx, fy, fz, live, width, height, nearest, owner)
+        pixel = np.flatnonzero(owner >= 0)
+        return pixel, nearest[pixel], owner[pixel]
     pixels, depths, owners = [], [], []
     chosen = np.flatnonzero(live)
     rows = j1 - j0 + 1

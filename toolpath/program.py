@@ -189,7 +189,15 @@ class Operation:
         a = self.start_points()
         b = self.xyz
         if "c" in self.rotary and len(self):
-            return kinematics.traced_lengths(*kinematics.operation_c_moves(self))
+            # Integrated along the curve (the costly case, asked for by every post, the cycle time
+            # and the pictures): kept with copies of the moves it came from, used while they match.
+            inputs = (self.start, self.xyz, self.rotary["c"])
+            memo = self.__dict__.get("_traced_memo")
+            if memo is not None and all(np.array_equal(x, y) for x, y in zip(memo[0], inputs)):
+                return memo[1].copy()
+            lengths = kinematics.traced_lengths(*kinematics.operation_c_moves(self))
+            self.__dict__["_traced_memo"] = (tuple(np.array(x, copy=True) for x in inputs), lengths.copy())
+            return lengths
         length = np.linalg.norm(b - a, axis=1)
         arcs = np.flatnonzero((self.kind == ARC_CW) | (self.kind == ARC_CCW))
         if len(arcs):

@@ -59,4 +59,7 @@ def warm_kernels(progress=None) -> list:
         ran.append(f"drop-cutter {op.tool.kind}")
     Triangles(vertices[faces]).nearest(np.array([(2.0, 2.0, 3.0), (6.0, 5.0, 2.5)]), 5.0)   # turn-mill's
     ran.append("nearest point")
+    from .picture import Picture, View
+    Picture(32, 32).triangles(View(vertices, (0, 0, 32, 32)), vertices, faces, (200, 200, 200))  # batch pictures'
+    ran.append("picture")
     return ran

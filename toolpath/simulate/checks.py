@@ -110,11 +110,10 @@ def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.nd
         ke = np.repeat(k, cnt)
         xe = np.repeat(x, cnt)
         ye = hf.y0 + (row + 0.5) * hf.cell_y
-        p0, p1, p2 = t[ke, 0], t[ke, 1], t[ke, 2]
-        # z on the triangle's plane
-        u1, u2 = p1 - p0, p2 - p0
-        normal = np.cross(u1, u2)
-        z = p0[:, 2] - (normal[:, 0] * (xe - p0[:, 0]) + normal[:, 1] * (ye - p0[:, 1])) / normal[:, 2]
+        # z on the triangle's plane (its normal once per triangle, then per cell centre)
+        normal = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
+        p0 = t[:, 0]
+        z = p0[ke, 2] - (normal[ke, 0] * (xe - p0[ke, 0]) + normal[ke, 1] * (ye - p0[ke, 1])) / normal[ke, 2]
         np.maximum.at(flat, np.repeat(col, cnt) * ny + row, z)
     return top
 

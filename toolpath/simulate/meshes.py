@@ -63,11 +63,14 @@ def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStoc
     """The bar of the radius map, less the air the height field's cuts opened above it.
 
     The air is a box over the cut cells minus their columns (uncut cells stand above the box),
-    so only the cut area meets the bar in the boolean, and no faces of the two coincide."""
-    bar = rmap.mesh(rm, stock.bottom, stock.top, max_cells)
+    so only the cut area meets the bar in the boolean, and no faces of the two coincide.  The
+    box starts 1 mm below the deepest cut; the bar below it never meets the air, so only the
+    bar's columns above a ring under the box go through the boolean (closed by a fan there),
+    and the rest of the bar's side joins the result at that ring."""
+    grid = rmap.mesh_grid(rm, stock.bottom, stock.top, max_cells)
     cut = None if hf is None else hf.inside & (hf.heights < hf.top - 1e-6)
     if cut is None or not cut.any():
-        return bar
+        return rmap.grid_mesh(grid)
     nx, ny = hf.shape
     i, j = np.nonzero(cut)
     i0, i1, j0, j1 = max(i.min() - 2, 0), min(i.max() + 3, nx), max(j.min() - 2, 0), min(j.max() + 3, ny)
@@ -78,6 +81,32 @@ def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStoc
     x0, y0 = hf.x0 + i0 * hf.cell_x, hf.y0 + j0 * hf.cell_y
     x1, y1 = x0 + heights.shape[0] * cx, y0 + heights.shape[1] * cy
     columns = _solid_of(*_relief_mesh(heights, x0 - cx, y0 - cy, x1 + cx, y1 + cy, cx, cy, hf.bottom - 2.0))
-    box = Manifold.cube([x1 - x0 - cx, y1 - y0 - cy, hf.top - hf.bottom + 1.5]).translate(
-        [x0 + cx / 2, y0 + cy / 2, hf.bottom - 1.0])
-    return _manifold_arrays(_solid_of(*bar) - (box - columns))
+    box_bottom = max(float(heights.min()) - 1.0, hf.bottom - 1.0)
+    box = Manifold.cube([x1 - x0 - cx, y1 - y0 - cy, hf.top + 0.5 - box_bottom]).translate(
+        [x0 + cx / 2, y0 + cy / 2, box_bottom])
+    zs = grid[0, :, 2]
+    split = int(np.searchsorted(zs, box_bottom - 0.5, side="right")) - 1   # last ring 0.5 mm under the box
+    if split < 1:
+        return _manifold_arrays(_solid_of(*rmap.grid_mesh(grid)) - (box - columns))
+    top_vertices, top_faces = _manifold_arrays(_solid_of(*rmap.grid_mesh(grid[:, split:])) - (box - columns))
+    return _joined(grid[:, :split + 1], top_vertices, top_faces)
+
+
+def _joined(lower: np.ndarray, top_vertices, top_faces):
+    """The open lower part of a bar (a ``mesh_grid`` run closed only at its bottom) joined to the
+    solid above it, which was closed by a fan on the lower part's last ring: the fan's plane is
+    dropped from the solid and its ring vertices are the lower part's (equal in float32, the
+    solid's precision)."""
+    vertices, faces = rmap.grid_mesh(lower, top_cap=False)
+    vertices = vertices.astype(np.float32).astype(float)
+    ring = lower.shape[1] - 1 + lower.shape[1] * np.arange(lower.shape[0])
+    plane = vertices[ring[0], 2]
+    on_plane = top_vertices[:, 2] == plane
+    top_faces = top_faces[~on_plane[top_faces].all(axis=1)]
+    key = {(x, y): int(k) for x, y, k in zip(vertices[ring, 0], vertices[ring, 1], ring)}
+    kept = ~on_plane
+    index = np.empty(len(top_vertices), np.int64)
+    index[kept] = len(vertices) + np.arange(int(kept.sum()))
+    for k in np.unique(top_faces[on_plane[top_faces]]):     # the ring where the side meets the plane
+        index[k] = key[(top_vertices[k, 0], top_vertices[k, 1])]
+    return np.vstack([vertices, top_vertices[kept]]), np.vstack([faces, index[top_faces]])

@@ -281,9 +281,9 @@ def lowest_stamp(rm: RadiusMap, stamps: BallStamps, ball_radius: float, i: int, 
     return best, float(max(entry[best], 0.0))
 
 
-def mesh(rm: RadiusMap, z_min: float, z_max: float, max_cells: int | None = None):
-    """The map as a closed triangle mesh: (vertices, faces), outward normals.  Pooled to at most
-    ``max_cells`` dexels first, keeping the deepest cut of each block."""
+def mesh_grid(rm: RadiusMap, z_min: float, z_max: float, max_cells: int | None = None) -> np.ndarray:
+    """The vertices of ``mesh``'s side as an (n_theta, columns, 3) grid: column 0 at ``z_min``,
+    the last at ``z_max``, the others at the (pooled) cell centres."""
     radii = np.clip(rm.radii, 1e-3, rm.radius)
     n_theta, n_z = radii.shape
     block = 1
@@ -297,16 +297,30 @@ def mesh(rm: RadiusMap, z_min: float, z_max: float, max_cells: int | None = None
     cell_z = (z_max - z_min) / n_z
     zs = np.concatenate([[z_min], np.minimum(z_min + (np.arange(n_z) + 0.5) * cell_z, z_max), [z_max]])
     r = np.pad(radii, ((0, 0), (1, 1)), mode="edge")
-    columns = len(zs)
-    vertices = np.column_stack([(r * np.cos(theta)[:, None]).ravel(), (r * np.sin(theta)[:, None]).ravel(),
-                                np.tile(zs, n_theta)])
+    return np.stack([r * np.cos(theta)[:, None], r * np.sin(theta)[:, None],
+                     np.broadcast_to(zs, r.shape)], axis=-1)
+
+
+def grid_mesh(grid: np.ndarray, bottom_cap: bool = True, top_cap: bool = True):
+    """A grid of ``mesh_grid`` (or a run of its columns) as triangles: the side, then a fan
+    closing the first column (``bottom_cap``) and one closing the last (``top_cap``), each about
+    a centre on the axis appended after the grid's vertices.  Outward normals."""
+    n_theta, columns = grid.shape[:2]
     ids = np.arange(n_theta * columns).reshape(n_theta, columns)
     nxt = np.roll(ids, -1, axis=0)
     a, b, c, d = ids[:, :-1].ravel(), nxt[:, :-1].ravel(), nxt[:, 1:].ravel(), ids[:, 1:].ravel()
-    side = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
-    bottom_centre, top_centre = len(vertices), len(vertices) + 1
-    bottom = np.column_stack([np.full(n_theta, bottom_centre), nxt[:, 0], ids[:, 0]])
-    top = np.column_stack([np.full(n_theta, top_centre), ids[:, -1], nxt[:, -1]])
-    vertices = np.vstack([vertices, [[0.0, 0.0, z_min], [0.0, 0.0, z_max]]])
-    return vertices, np.vstack([side, bottom, top])
+    faces = [np.column_stack([a, b, c]), np.column_stack([a, c, d])]
+    vertices = [grid.reshape(-1, 3)]
+    if bottom_cap:
+        faces.append(np.column_stack([np.full(n_theta, n_theta * columns), nxt[:, 0], ids[:, 0]]))
+    if top_cap:
+        faces.append(np.column_stack([np.full(n_theta, n_theta * columns + int(bottom_cap)), ids[:, -1], nxt[:, -1]]))
+    vertices += [[[0.0, 0.0, grid[0, 0, 2]]]] if bottom_cap else []
+    vertices += [[[0.0, 0.0, grid[0, -1, 2]]]] if top_cap else []
+    return np.vstack(vertices), np.vstack(faces)
 
+
+def mesh(rm: RadiusMap, z_min: float, z_max: float, max_cells: int | None = None):
+    """The map as a closed triangle mesh: (vertices, faces), outward normals.  Pooled to at most
+    ``max_cells`` dexels first, keeping the deepest cut of each block."""
+    return grid_mesh(mesh_grid(rm, z_min, z_max, max_cells))
