@@ -69,14 +69,14 @@ def demo(args) -> dict:
     """Every workflow on its built-in sample, each into its own sub-folder of --out."""
     results = {}
     for name, command in commands().items():
-        if command.demo is None:
-            continue
-        sub = parser().parse_args([name, *command.demo, "--out", os.path.join(args.out, name)])
-        os.makedirs(sub.out, exist_ok=True)
-        report = command.run(sub)
-        write_report(sub.out, report)
-        results[name] = {"files": report["files"], "preview": report.get("preview")}
-        print(f"{name}: wrote {', '.join(report['files'])}")
+        runs = ([(name, command.demo)] if command.demo is not None else []) + list(command.more_demos)
+        for folder, line in runs:
+            sub = parser().parse_args([name, *line, "--out", os.path.join(args.out, folder)])
+            os.makedirs(sub.out, exist_ok=True)
+            report = command.run(sub)
+            write_report(sub.out, report)
+            results[folder] = {"files": report["files"], "preview": report.get("preview")}
+            print(f"{folder}: wrote {', '.join(report['files'])}")
     return {"workflow": "demo", "files": [f for r in results.values() for f in r["files"]], "workflows": results}
 
 

@@ -321,12 +321,5 @@ WORKFLOW = Workflow(
     "ENGRAVE", "Engraving", "The gouge-texture name plate", classes=CLASSES, post_families=POST_FAMILIES,
     request=engrave_request, simulation=simulation,
     commands=(BatchCommand("engrave", "gouge-texture name plate (W1)", batch_arguments, batch,
-                           demo=("--post", "linuxcnc")),
-              BatchCommand("engrave-dome", "gouge-texture name plate on a domed plate (engrave --surface dome)",
-                           batch_arguments, lambda args: batch(_dome_default(args)),
-                           demo=("--post", "fanuc-macro"))))
-
-
-def _dome_default(args):
-    args.surface = args.surface or "dome"
-    return args
+                           demo=("--post", "linuxcnc"),
+                           more_demos=(("engrave-dome", ("--surface", "dome", "--post", "fanuc-macro")),)),))

@@ -32,6 +32,7 @@ class BatchCommand:
     arguments: Callable
     run: Callable
     demo: tuple | None = ()     # the command line of the demo run (None: not in the demo)
+    more_demos: tuple = ()      # further demo runs: (sub-folder, command line) pairs
 
 
 @dataclass(frozen=True)
