@@ -103,22 +103,31 @@ def test_labels_keep_faces_apart():
     assert len(planning.faces) < len(f)
 
 
+def hausdorff(a: np.ndarray, b: np.ndarray) -> float:
+    """Largest distance from a point of either set to the nearest point of the other."""
+    worst = 0.0
+    for x, y in ((a, b), (b, a)):
+        for s in range(0, len(x), 500):
+            d = np.sqrt(((x[s:s + 500, None, :] - y[None, :, :]) ** 2).sum(axis=-1)).min(axis=1)
+            worst = max(worst, float(d.max()))
+    return worst
+
+
 def test_subdivided_sample_plans_the_same_program():
     """The sample split into 64x the faces (the same surface) gives the same program: the radial
-    operations to 1e-9 mm; the axial operations point for point, all but a few points (where the
-    ball is pushed clear off a pocket wall, which depends on how the floor is triangulated) to
-    1e-6 mm.  The labels cover the same area per class."""
+    operations move for move to 1e-9 mm; the axial ones (whose few balls pushed clear off a
+    pocket wall depend on how the floor is triangulated) within 0.05 mm of each other, point set
+    to point set, with the point counts within 0.1 %.  The labels cover the same area per class."""
     v, f, stock = turnmill.sample_part()
     dv, df = subdivided(v, f, 3)
     plain, dense = turnmill.plan(v, f, stock), turnmill.plan(dv, df, stock)
     assert [op.name for op in plain.program.operations] == [op.name for op in dense.program.operations]
     for a, b in zip(plain.program.operations, dense.program.operations):
-        assert a.xyz.shape == b.xyz.shape
-        apart = np.abs(a.xyz - b.xyz).max(axis=1)
         if a.name.startswith("radial"):
-            assert apart.max() < 1e-9
+            assert a.xyz.shape == b.xyz.shape and np.abs(a.xyz - b.xyz).max() < 1e-9
         else:
-            assert np.mean(apart > 1e-6) < 0.005 and apart.max() < 0.3
+            assert abs(len(a.xyz) - len(b.xyz)) <= 0.001 * len(a.xyz)
+            assert hausdorff(a.xyz, b.xyz) < 0.05
     assert len(dense.labels) == len(df)
     areas, dense_areas = face_normals(v[f])[1], face_normals(dv[df])[1]
     for label in (turnmill.NEITHER, turnmill.RADIAL, turnmill.AXIAL, turnmill.BOTH):

@@ -17,7 +17,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .compiled import kernel_module
 from .meshrays import face_normals
+from .program import TurnMillError
 
 PLANE_TOLERANCE = 1e-9       # normals and plane offsets (relative to the part's size) this close are one plane
 
@@ -38,6 +40,10 @@ class PlanningMesh:
 def _identity(v, f) -> PlanningMesh:
     ids = np.arange(len(f))
     return PlanningMesh(v, f, ids, ids, 0)
+
+
+def _compiled():
+    return kernel_module("auto", f"{__package__}.facets_kernel", TurnMillError, "facet kernel")
 
 
 def _components(count: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -61,6 +67,10 @@ def _edges(faces: np.ndarray, vertex_count: int):
     """(directed edges (3m, 2), owning face (3m,), the reverse edge's row (3m,), has a reverse (3m,))."""
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     owner = np.repeat(np.arange(len(faces)), 3)
+    compiled = _compiled()
+    if compiled is not None:
+        reverse = compiled.edge_check(faces, vertex_count)[0]
+        return directed, owner, reverse, reverse != np.arange(len(directed))
     key = np.minimum(directed[:, 0], directed[:, 1]) * vertex_count + np.maximum(directed[:, 0], directed[:, 1])
     order = np.argsort(key)
     pair = np.flatnonzero(key[order[1:]] == key[order[:-1]])     # check_mesh: at most two per edge
@@ -77,6 +87,10 @@ def facet_ids(vertices: np.ndarray, faces: np.ndarray, labels=None, edges=None, 
     scale = max(float(np.ptp(vertices, axis=0).max()), 1e-12)
     offsets = np.einsum("ij,ij->i", normals, tri[:, 0]) / scale
     directed, owner, reverse, has_twin = _edges(faces, len(vertices)) if edges is None else edges
+    compiled = _compiled()
+    if compiled is not None:
+        marks = np.zeros(len(faces), np.int64) if labels is None else np.asarray(labels, np.int64)
+        return compiled.coplanar_components(faces, reverse, normals, offsets, areas, marks, PLANE_TOLERANCE)
     once = np.flatnonzero(has_twin & (directed[:, 0] < directed[:, 1]))
     a, b = owner[once], owner[reverse[once]]
     same = (np.abs(normals[a] - normals[b]).max(axis=1) <= PLANE_TOLERANCE) & \
@@ -86,24 +100,34 @@ def facet_ids(vertices: np.ndarray, faces: np.ndarray, labels=None, edges=None, 
     return _components(len(faces), a[same], b[same])
 
 
-def _loops(edges: np.ndarray):
-    """Closed loops of directed edges (k, 2), or None when a vertex starts two edges."""
-    nxt = {}
-    for u, w in edges.tolist():
-        if u in nxt:
-            return None
-        nxt[u] = w
-    loops = []
-    while nxt:
-        start, w = nxt.popitem()
-        loop = [start]
-        while w != start:
-            loop.append(w)
-            w = nxt.pop(w, None)
-            if w is None:
-                return None
-        loops.append(loop)
-    return loops
+def _pinned_loops(edges, splits, pinned, vertex_count):
+    """numpy path of facets_kernel.pinned_loops (same results)."""
+    flat, lengths, counts, failed = [], [], np.zeros(len(splits) - 1, np.int64), np.zeros(len(splits) - 1, bool)
+    for j in range(len(splits) - 1):
+        nxt, loops = {}, []
+        for u, w in edges[splits[j]:splits[j + 1]].tolist():
+            failed[j] |= u in nxt
+            nxt[u] = w
+        while nxt and not failed[j]:
+            start = next(iter(nxt))
+            loop, w = [], start
+            while True:
+                step = nxt.pop(w, None)
+                if step is None:
+                    failed[j] = True
+                    break
+                if pinned[w]:
+                    loop.append(w)
+                w = step
+                if w == start:
+                    break
+            failed[j] |= len(loop) < 3
+            loops.append(loop)
+        if not failed[j]:
+            flat += [w for loop in loops for w in loop]
+            lengths += [len(loop) for loop in loops]
+            counts[j] = len(loops)
+    return np.array(flat, np.int64), np.array(lengths, np.int64), counts, failed
 
 
 def planning_mesh(vertices, faces, labels=None) -> PlanningMesh:
@@ -158,20 +182,22 @@ def planning_mesh(vertices, faces, labels=None) -> PlanningMesh:
         chosen_edges = directed[chosen][edge_order]
         splits = np.searchsorted(edge_facet[edge_order], np.arange(len(roots) + 1))
         new_faces, new_source, failed = [], [], False
+        compiled = _compiled()
+        loop_of = _pinned_loops if compiled is None else compiled.pinned_loops
+        flat, lengths, counts, broken = loop_of(chosen_edges, splits, pinned, n)
+        ends = np.cumsum(lengths)
+        first_loop = np.concatenate([[0], np.cumsum(counts)])
         for k in np.flatnonzero(~rejected & (sizes > 2)):
-            loops = _loops(chosen_edges[splits[k]:splits[k + 1]])
-            if loops is None:
+            if broken[k]:
                 rejected[k] = failed = True
                 continue
-            loops = [np.array([i for i in loop if pinned[i]]) for loop in loops]
-            if any(len(loop) < 3 for loop in loops):
-                rejected[k] = failed = True
-                continue
-            index = np.concatenate(loops)
-            xy = v[index] @ basis[k]
-            tris = np.asarray(triangulate([xy[s:s + len(loop)] for s, loop in
-                                           zip(np.cumsum([0] + [len(loop) for loop in loops]), loops)],
+            loops = range(first_loop[k], first_loop[k + 1])
+            index = flat[ends[loops[0]] - lengths[loops[0]]:ends[loops[-1]]]
+            xy = index_xy = v[index] @ basis[k]
+            tris = np.asarray(triangulate([index_xy[ends[i] - lengths[i] - ends[loops[0]] + lengths[loops[0]]:
+                                                    ends[i] - ends[loops[0]] + lengths[loops[0]]] for i in loops],
                                           PLANE_TOLERANCE * scale))
+            del xy
             if len(tris) >= sizes[k] or len(tris) != len(index) + 2 * len(loops) - 4:
                 rejected[k] = failed = True
                 continue
