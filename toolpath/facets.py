@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .compiled import kernel_module
-from .meshrays import face_normals
+from .meshrays import checked_reverse, face_normals
 from .program import TurnMillError
 
 PLANE_TOLERANCE = 1e-9       # normals and plane offsets (relative to the part's size) this close are one plane
@@ -68,8 +68,10 @@ def _edges(faces: np.ndarray, vertex_count: int):
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     owner = np.repeat(np.arange(len(faces)), 3)
     compiled = _compiled()
-    if compiled is not None:
+    reverse = checked_reverse(faces)
+    if reverse is None and compiled is not None:
         reverse = compiled.edge_check(faces, vertex_count)[0]
+    if reverse is not None:
         return directed, owner, reverse, reverse != np.arange(len(directed))
     key = np.minimum(directed[:, 0], directed[:, 1]) * vertex_count + np.maximum(directed[:, 0], directed[:, 1])
     order = np.argsort(key)
