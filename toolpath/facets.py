@@ -143,7 +143,10 @@ def planning_mesh(vertices, faces, labels=None) -> PlanningMesh:
     normals = face_normals(v[f])
     edges = _edges(f, len(v))
     facet = facet_ids(v, f, labels, edges, normals)
-    roots, inverse, sizes = np.unique(facet, return_inverse=True, return_counts=True)
+    members = np.bincount(facet, minlength=len(f))     # facet ids are their smallest face: no sort needed
+    roots = np.flatnonzero(members)
+    inverse = (np.cumsum(members > 0) - 1)[facet]
+    sizes = members[roots]
     if sizes.max() <= 2:
         return _identity(v, f)
     candidate = sizes[inverse] > 2                 # faces in facets that may shrink
