@@ -51,22 +51,28 @@ def run_planning():
     cylinder (before the grid join: over 5 minutes; 8 sides took 40 s)."""
     import trimesh
 
-    from kezuri.toolpath import turnmill
+    from kezuri.toolpath import meshrays, turnmill
 
     vertices, faces, stock = turnmill.sample_part()
-    started = time.perf_counter()
-    plain = turnmill.plan(vertices, faces, stock)
-    base = time.perf_counter() - started
     dense_v, dense_f = vertices, faces
     for _ in range(3):                                    # 4 x 4 x 4 = 64 x the faces
         dense_v, dense_f = trimesh.remesh.subdivide(dense_v, dense_f)
-    started = time.perf_counter()
-    dense = turnmill.plan(dense_v, dense_f, stock)
-    seconds = time.perf_counter() - started
+    turnmill.plan(vertices, faces, stock)                 # kernels loaded, trimesh's first ray scene built
+    base = seconds = float("inf")
+    for _ in range(3):              # back to back, the fastest of three, the meshes' caches cleared each time
+        for cache in (meshrays._LAST_CHECKED, meshrays._LAST_SURFACE, meshrays._LAST_REVERSE):
+            cache.clear()
+        started = time.perf_counter()
+        plain = turnmill.plan(vertices, faces, stock)
+        base = min(base, time.perf_counter() - started)
+        for cache in (meshrays._LAST_CHECKED, meshrays._LAST_SURFACE, meshrays._LAST_REVERSE):
+            cache.clear()
+        started = time.perf_counter()
+        dense = turnmill.plan(dense_v, dense_f, stock)
+        seconds = min(seconds, time.perf_counter() - started)
     pairs = list(zip(plain.program.operations, dense.program.operations))
-    same = len(plain.program.operations) == len(dense.program.operations) and all(
-        a.xyz.shape == b.xyz.shape for a, b in pairs)
-    apart = max(float(np.abs(a.xyz - b.xyz).max()) for a, b in pairs) if same else float("nan")
+    same = len(plain.program.operations) == len(dense.program.operations)
+    apart = max(_hausdorff(a.xyz, b.xyz) for a, b in pairs) if same else float("nan")
     cylinder = trimesh.creation.cylinder(radius=20, height=40, sections=64)
     v = np.asarray(cylinder.vertices)
     bar = turnmill.Stock(float(np.hypot(v[:, 0], v[:, 1]).max()), float(v[:, 2].min()), float(v[:, 2].max()))
@@ -77,13 +83,22 @@ def run_planning():
         {"name": f"turnmill: plan the sample ({len(faces)} faces)", "seconds": base, "notes": ""},
         {"name": f"turnmill: plan the sample split to 64x faces ({len(dense_f)} faces)", "seconds": seconds,
          "target_s": 1.2 * base,
-         "notes": f"{seconds / base:.1f}x the sample's time (target 1.2x); same moves: {same}, at most "
-                  f"{apart:.2g} mm apart. "
-                  "Left (grows with the faces): classifying every face by rays, slicing the faces into "
-                  "sections, building the nearest-point tree"},
+         "notes": f"{seconds / base:.2f}x the sample's time (target 1.2x, fastest of 3 back to back); "
+                  f"same operations: {same}, every point within {apart:.2g} mm of the other program's. "
+                  "Planned on the planning mesh (coplanar faces merged back, toolpath/facets.py); left "
+                  "(grows with the faces): checking the input mesh and merging its facets"},
         {"name": "turnmill: plan a plain 64-sided cylinder", "seconds": plain_cylinder,
          "notes": "before the grid join: over 300 s"},
     ]
+
+
+def _hausdorff(a, b) -> float:
+    worst = 0.0
+    for x, y in ((a, b), (b, a)):
+        for s in range(0, len(x), 500):
+            d = np.sqrt(((x[s:s + 500, None, :] - y[None, :, :]) ** 2).sum(axis=-1)).min(axis=1)
+            worst = max(worst, float(d.max()))
+    return worst
 
 
 _run_rays = run

@@ -23,6 +23,7 @@ QUERY_CHUNK = 256        # at most this many nearby queries are culled against t
 MAX_SUBDIVISION = 16     # at most 16 x 16 samples per face (face_samples)
 _LAST_CHECKED: list = []  # the content key of the last mesh that passed check_mesh
 _LAST_SURFACE: list = []  # [content key, Triangles] of the last Triangles.shared
+_LAST_REVERSE: list = []  # [faces array check_mesh returned, each directed edge's reverse edge row]
 
 
 def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
@@ -52,6 +53,15 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
         return v, f
     if np.any((f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])):
         raise TurnMillError("a face uses the same vertex twice")
+    compiled = kernel_module("auto", f"{__package__}.facets_kernel", TurnMillError, "facet kernel")
+    if compiled is not None:                    # one pass over each vertex's edges instead of sorting
+        reverse, clean, closed = compiled.edge_check(f, len(v))
+        if clean:
+            _LAST_REVERSE[:] = [f, reverse]
+            if closed:
+                _check_outward(v, f)
+            _LAST_CHECKED[:] = [key]
+            return v, f
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     _, counts = np.unique(directed.min(axis=1) * len(v) + directed.max(axis=1), return_counts=True)
     if np.any(counts > 2):
@@ -60,12 +70,21 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
     if len(np.unique(directed[:, 0] * len(v) + directed[:, 1])) < len(directed):
         raise TurnMillError("the faces are wound inconsistently (some normals are flipped): recalculate normals")
     if np.all(counts == 2):
-        tri = v[f]
-        volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0
-        if volume < 0:
-            raise TurnMillError("the face normals point inward: flip them so they point out of the part")
+        _check_outward(v, f)
     _LAST_CHECKED[:] = [key]
     return v, f
+
+
+def _check_outward(v: np.ndarray, f: np.ndarray) -> None:
+    tri = v[f]
+    volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0
+    if volume < 0:
+        raise TurnMillError("the face normals point inward: flip them so they point out of the part")
+
+
+def checked_reverse(faces: np.ndarray):
+    """The reverse edge rows check_mesh found for this very faces array (it returned it), or None."""
+    return _LAST_REVERSE[1] if _LAST_REVERSE and _LAST_REVERSE[0] is faces else None
 
 
 def face_normals(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

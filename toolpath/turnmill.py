@@ -72,6 +72,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import kinematics
+from .facets import planning_mesh
 from .kinematics import machine_to_part  # noqa: F401  (callers of turnmill.machine_to_part)
 from .meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEngine, check_mesh,  # noqa: F401
                        face_normals, face_samples)
@@ -715,9 +716,20 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
     if outside.any():
         raise TurnMillError(f"the part does not fit in the stock: {int(outside.sum())} vertices lie outside the "
                             f"{2 * stock.radius:g} mm bar from z = {stock.z_min:g} to {stock.z_max:g}")
+    if labels is not None:
+        labels = np.asarray(labels)
+        if labels.shape != (len(f),) or not np.all(np.isin(labels, (NEITHER, RADIAL, AXIAL, BOTH))):
+            raise TurnMillError(f"labels must be {len(f)} values from NEITHER, RADIAL, AXIAL, BOTH")
+    # plan on the planning mesh: coplanar faces split into many merged back (the same surface)
+    planning = planning_mesh(v, f, labels)
+    face_count = len(f)
+    if planning.merged:
+        v, f = check_mesh(planning.vertices, planning.faces)
     if labels is None:
         labels = classify_faces(v, f, engine, settings.sample_spacing,
                                 lambda fraction, text="": report(0.5 * fraction, text))
+    else:
+        labels = labels[planning.source]
     radial_ids, axial_ids = path_faces(v, f, labels)
     report(0.5, "radial layers")
     radial = radial_layers(v, f, radial_ids, stock, settings,
@@ -742,7 +754,17 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
     notes = [f"tolerance {settings.tolerance:g} mm, stepover {settings.pick_feed:.3f} mm, "
              f"roughing step {settings.roughing_step:g} mm"]
     program = Program(name, operations, rapid_rate=settings.rapid_rate, notes=notes)
-    return TurnMillPlan(program, np.asarray(labels, dtype=np.int8), radial_ids, axial_ids, radial, axial)
+    return TurnMillPlan(program, np.asarray(labels, dtype=np.int8)[planning.group],
+                        _mapped(radial_ids, planning, face_count), _mapped(axial_ids, planning, face_count), radial, axial)
+
+
+def _mapped(ids: np.ndarray, planning, face_count: int) -> np.ndarray:
+    """Planning-mesh face ids as the input faces of the same facets."""
+    if not planning.merged:
+        return ids
+    chosen = np.zeros(face_count, bool)
+    chosen[ids] = True
+    return np.flatnonzero(chosen[planning.group])
 
 
 # ----- the built-in sample ---------------------------------------------------------------------

@@ -5,9 +5,9 @@ with ``cache=True`` keeps the machine code on disk (beside the module, or where 
 folder is read-only, in the user's cache folder: ``NUMBA_CACHE_DIR`` or numba's user-wide
 default).  :func:`warm_kernels` calls every kernel once through the same public calls a job
 makes, on tiny inputs (every tool shape; straight, arc and plunging moves; a radial turn-mill
-move; the drop-cutter; turn-mill's nearest-point query), so the types match and the first real
-Simulate (or turn-mill plan) finds them compiled or loads them from the cache.  The shell runs
-it in a child process after registering (``operators.start_warmup``).
+move; the drop-cutter; turn-mill's nearest-point query and planning mesh), so the types match
+and the first real Simulate (or turn-mill plan) finds them compiled or loads them from the
+cache.  The shell runs it in a child process after registering (``operators.start_warmup``).
 """
 from __future__ import annotations
 
@@ -62,4 +62,8 @@ def warm_kernels(progress=None) -> list:
     from .picture import Picture, View
     Picture(32, 32).triangles(View(vertices, (0, 0, 32, 32)), vertices, faces, (200, 200, 200))  # batch pictures'
     ran.append("picture")
+    from .facets import planning_mesh
+    square = np.array([(0.0, 0.0, 0.0), (8.0, 0.0, 0.0), (8.0, 8.0, 0.0), (0.0, 8.0, 0.0), (4.0, 4.0, 0.0)])
+    planning_mesh(square, np.array([(0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)], dtype=np.int64))   # turn-mill's
+    ran.append("planning mesh")
     return ran
