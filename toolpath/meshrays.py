@@ -300,8 +300,9 @@ class Triangles:
         return distance, closest
 
 
-def _ray_hits(o, d, a, b, c) -> np.ndarray:
-    """Moller-Trumbore for ray/triangle pairs; hits strictly in front of the origin."""
+def moller_trumbore(o, d, a, b, c) -> tuple:
+    """Moller-Trumbore for line/triangle pairs (k, 3) each: (det, u, v, t) with the crossing at
+    o + t d = a + u (b - a) + v (c - a); inf/nan where det is 0 (the line is in the plane)."""
     e1, e2 = b - a, c - a
     p = np.cross(d, e2)
     det = np.einsum("ij,ij->i", e1, p)
@@ -312,6 +313,13 @@ def _ray_hits(o, d, a, b, c) -> np.ndarray:
         q = np.cross(s, e1)
         v = np.einsum("ij,ij->i", d, q) * inv
         t = np.einsum("ij,ij->i", e2, q) * inv
+    return det, u, v, t
+
+
+def _ray_hits(o, d, a, b, c) -> np.ndarray:
+    """Ray/triangle pairs; hits strictly in front of the origin."""
+    det, u, v, t = moller_trumbore(o, d, a, b, c)
+    with np.errstate(invalid="ignore"):
         return (det != 0) & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 0)
 
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .meshrays import BoxGrid
+from .meshrays import BoxGrid, moller_trumbore
 
 PAIR_CHUNK = 1 << 19       # candidate pairs tested at once: bounds the memory
 STRICT = 1e-9              # barycentric and segment margins: touching is not crossing
@@ -30,17 +30,9 @@ def _pierces(p, q, a, b, c) -> tuple[np.ndarray, np.ndarray]:
     """(k,) bool: does segment p-q pass through triangle abc (its edges included, not in its plane),
     its ends strictly off the plane, and where."""
     d = q - p
-    e1, e2 = b - a, c - a
-    h = np.cross(d, e2)
-    det = np.einsum("ij,ij->i", e1, h)
-    scale = np.linalg.norm(d, axis=1) * np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        inv = 1.0 / det
-        s = p - a
-        u = np.einsum("ij,ij->i", s, h) * inv
-        r = np.cross(s, e1)
-        v = np.einsum("ij,ij->i", d, r) * inv
-        t = np.einsum("ij,ij->i", e2, r) * inv
+    det, u, v, t = moller_trumbore(p, d, a, b, c)
+    scale = np.linalg.norm(d, axis=1) * np.linalg.norm(b - a, axis=1) * np.linalg.norm(c - a, axis=1)
+    with np.errstate(invalid="ignore"):
         hit = (np.abs(det) > 1e-12 * scale) & (u >= -STRICT) & (v >= -STRICT) & (u + v <= 1 + STRICT) & \
             (t > STRICT) & (t < 1 - STRICT)
     return hit, p + d * np.where(hit, t, 0.0)[:, None]
