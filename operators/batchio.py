@@ -25,6 +25,15 @@ def open_blend(path: str | None):
     return scene
 
 
+def shown() -> bool:
+    """Whether batch's results are put in the scene as objects: only when Blender has a window to
+    show them (``blender file.blend --python batch.py -- ...``).  In background mode the scene is
+    thrown away at exit and the pictures are drawn from the arrays, so those objects would be
+    time spent for nobody."""
+    import bpy
+    return not bpy.app.background
+
+
 def rounded(array, digits: int = 6):
     import numpy as np
     return np.round(np.asarray(array, float), digits).tolist()

@@ -312,14 +312,16 @@ def batch(args) -> dict:
     simulated, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
     export_carve(job, post_name, nc_path, machine.work_offset, checked=True)
     design_path = batchio.write_stl(os.path.join(args.out, "design.stl"), job.vertices, job.faces)
-    show_carve(scene, job)
-    convert.mesh_object(scene, f"{PREFIX} design", job.vertices, job.faces, job.frame)
+    if batchio.shown():
+        show_carve(scene, job)
+        convert.mesh_object(scene, f"{PREFIX} design", job.vertices, job.faces, job.frame)
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "carve-toolpaths.png"), job.result.program.operations,
                                          simulation(job).stock,
                                          [(job.vertices, job.faces, preview.picture_jobs.PART_COLOUR)],
                                          "CARVING: TOOLPATHS OVER THE DESIGN")
     mesh = simulated.result.mesh(250_000)
-    simview.show_simulation(scene, simulated, mesh=mesh)
+    if batchio.shown():
+        simview.show_simulation(scene, simulated, mesh=mesh)
     png = preview.simulation_png(os.path.join(args.out, "carve.png"), simulated.result, "CARVING: SIMULATED STOCK",
                                  mesh=mesh)
     scallop = core.measured_scallop(simulated.result.heightfield, job.vertices, job.faces)

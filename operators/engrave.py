@@ -294,7 +294,8 @@ def batch(args) -> dict:
         design = setup.extra["design"]
         files.append(batchio.write_stl(os.path.join(args.out, "design.stl"), design.vertices, design.faces))
         solids = [(design.vertices, design.faces, preview.picture_jobs.PART_COLOUR)]
-    show_engrave(scene, job, show_rapids=False)
+    if batchio.shown():
+        show_engrave(scene, job, show_rapids=False)
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "engrave-toolpaths.png"), job.baked.operations,
                                          setup.stock, solids, "ENGRAVING: TOOLPATHS")
     simulation_report, png = simview.batch_simulation(scene, setup, args.out, "engrave", checked)

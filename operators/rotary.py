@@ -234,7 +234,8 @@ def batch(args) -> dict:
     seconds = time.perf_counter() - started
     checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
     nc_path = export_rotary(job, post_name, os.path.join(args.out, f"rotary{extension_for(post_name)}"), checked=True)
-    show_rotary(scene, job)
+    if batchio.shown():
+        show_rotary(scene, job)
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "rotary-toolpaths.png"),
                                          job.result.program.operations, simulation(job).stock, [],
                                          "ROTARY TABLE C-X-Z: TOOLPATHS (PART FRAME)")

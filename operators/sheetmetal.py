@@ -417,7 +417,8 @@ def unfold_batch(args) -> dict:
         corners = corners_mm(sheet)
     job = run_unfold(corners, sheet)
     files = unfold_files(job, os.path.join(args.out, "unfold.nc"))
-    show_unfold(scene, job)
+    if batchio.shown():
+        show_unfold(scene, job)
     pattern = job.quad.pattern
     png = preview.sheet_png(os.path.join(args.out, "unfold.png"),
                             [dict(outline=pattern.outline, bends=[(s[0], s[1]) for s in pattern.bend_lines()], contour=job.contour,
@@ -460,7 +461,8 @@ def elbow_batch(args) -> dict:
             batchio.set_exactly(sheet, name, getattr(args, option), "--" + option.replace("_", "-"))
     result = run_elbow(sheet)
     files = elbow_files(result, os.path.join(args.out, "elbow.dxf"), sheet)
-    show_elbow(scene, result)
+    if batchio.shown():
+        show_elbow(scene, result)
     png = preview.sheet_png(os.path.join(args.out, "elbow.png"),
                             [dict(outline=outline, contour=core.compensate_outline(outline, sheet.tool_diameter),
                                   name=f"PIECE {index}") for index, outline in enumerate(elbow_layout(result), 1)],

@@ -344,7 +344,8 @@ def batch(args) -> dict:
         job = run_turnmill(scene, bpy.context.evaluated_depsgraph_get())
         part = scene.kezuri.turnmill.part
         labels = polygon_labels(job.plan.labels, job.owner, len(part.data.polygons))
-        colour_faces(part, labels)
+        if batchio.shown():
+            colour_faces(part, labels)
         centres = np.empty(len(part.data.polygons) * 3)
         part.data.polygons.foreach_get("center", centres)
         matrix = np.array(part.matrix_world)
@@ -355,7 +356,8 @@ def batch(args) -> dict:
     texts = {name: posts.create(POST_FAMILIES, name).to_text(job.plan.program) for name in dict.fromkeys(names)}
     files = [write_atomic(os.path.join(args.out, f"turnmill{extension_for(name)}"), text)
              for name, text in texts.items()]
-    show_turnmill(scene, job)
+    if batchio.shown():
+        show_turnmill(scene, job)
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "turnmill-toolpaths.png"), job.plan.program.operations,
                                          job.stock, [(job.vertices, job.faces, preview.picture_jobs.PART_COLOUR)],
                                          "TURN-MILL X-Z-C: TOOLPATHS ON THE PART", tilt_deg=preview.SIDE_VIEW_DEG)

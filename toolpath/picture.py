@@ -63,7 +63,7 @@ class View:
         left, top, right, bottom = area
         if right - left < 8 or bottom - top < 8:
             raise PictureError(f"the drawing area {area} is too small")
-        sx, sy = points[:, 0], points @ self.up
+        sx, sy = points[:, 0], _along(points, self.up)
         span_x, span_y = max(np.ptp(sx), 1e-9), max(np.ptp(sy), 1e-9)
         self.scale = (1 - 2 * margin) * min((right - left) / span_x, (bottom - top) / span_y)
         self.cx, self.cy = (sx.min() + sx.max()) / 2, (sy.min() + sy.max()) / 2
@@ -74,8 +74,14 @@ class View:
         """(x pixels, y pixels (down), depth mm (larger is nearer)) of (n, 3) points."""
         points = np.asarray(points, float).reshape(-1, 3)
         x = self.px + (points[:, 0] - self.cx) * self.scale
-        y = self.py - (points @ self.up - self.cy) * self.scale
-        return x, y, points @ self.toward
+        y = self.py - (_along(points, self.up) - self.cy) * self.scale
+        return x, y, _along(points, self.toward)
+
+
+def _along(points: np.ndarray, direction) -> np.ndarray:
+    """(n,) components of (n, 3) points along ``direction``, without BLAS (whose helper threads
+    spin on a CPU after every large product)."""
+    return points[:, 0] * direction[0] + points[:, 1] * direction[1] + points[:, 2] * direction[2]
 
 
 class Picture:
@@ -104,7 +110,7 @@ class Picture:
         normal = np.cross(corner[:, 1] - corner[:, 0], corner[:, 2] - corner[:, 0])
         length = np.linalg.norm(normal, axis=1)
         light = np.asarray(light, float) / np.linalg.norm(light)
-        shade = 0.45 + 0.55 * np.abs(normal @ light) / np.where(length > 0, length, 1.0)
+        shade = 0.45 + 0.55 * np.abs(_along(normal, light)) / np.where(length > 0, length, 1.0)
         x, y, z = view.project(vertices)
         pixel, depth, face = rasterise(x, y, z, faces, self.width, self.height)
         flat_depth = self.depth.reshape(-1)

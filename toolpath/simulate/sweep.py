@@ -406,8 +406,8 @@ def _level_staircase(chain, p: np.ndarray, height: float, tolerance: float, boun
     counts, edges = np.histogram(angle, bins=180, range=(0.0, 90.0), weights=length)
     peak = edges[np.argmax(counts)]
     heading = math.radians(float(np.median(angle[np.abs((angle - peak + 45.0) % 90.0 - 45.0) <= 0.5])))
-    along = p[:, :2] @ [math.cos(heading), math.sin(heading)]
-    across = p[:, :2] @ [-math.sin(heading), math.cos(heading)]
+    along = p[:, 0] * math.cos(heading) + p[:, 1] * math.sin(heading)
+    across = p[:, 1] * math.cos(heading) - p[:, 0] * math.sin(heading)
     straightness = tolerance * ROW_STRAIGHTNESS
     gap = span(tolerance / 4 - 2 * straightness)
     shrunk = tool_points(chain.tool, tolerance / 2, height, inset=tolerance / 4)
