@@ -136,3 +136,31 @@ def test_subdivided_sample_plans_the_same_program():
     for name in ("radial_faces", "axial_faces"):
         assert dense_areas[getattr(dense, name)].sum() == pytest.approx(
             areas[getattr(plain, name)].sum(), rel=1e-9)
+
+
+def test_face_pass_gives_the_closed_form_volume_and_areas_of_a_box():
+    """The compiled one-pass normals/areas/volume against the box's closed form."""
+    from kezuri.toolpath import facets_kernel
+    a, b, c = 30.0, 20.0, 12.5
+    v, f = subdivided(*box_mesh(a, b, c), 2)
+    normals, areas, volume = facets_kernel.face_pass(v, f)
+    assert volume == pytest.approx(a * b * c, rel=1e-12)
+    assert areas.sum() == pytest.approx(2 * (a * b + b * c + c * a), rel=1e-12)
+    # each unit normal is one of the six axis directions
+    assert np.allclose(np.sort(np.abs(normals), axis=1), [0.0, 0.0, 1.0], atol=1e-12)
+    inward = f[:, ::-1]
+    assert facets_kernel.face_pass(v, inward)[2] == pytest.approx(-a * b * c, rel=1e-12)
+
+
+def test_a_mesh_changed_in_place_after_its_check_is_checked_again():
+    """check_mesh remembers the last mesh that passed (the planner checks it at each stage); the
+    caller's arrays changed in place must not ride on that: flipped faces are refused."""
+    v, f = box_mesh(30.0, 20.0, 12.5)
+    check_mesh(v, f)
+    f[:] = f[:, ::-1]                        # every face flipped: the normals now point inward
+    with pytest.raises(turnmill.TurnMillError, match="inward"):
+        check_mesh(v, f)
+    f[:] = f[:, ::-1]
+    v[0] = np.nan
+    with pytest.raises(turnmill.TurnMillError, match="NaN"):
+        check_mesh(v, f)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .compiled import kernel_module
-from .meshrays import checked_reverse, face_normals
+from .meshrays import checked_normals, checked_reverse, face_normals
 from .program import TurnMillError
 
 PLANE_TOLERANCE = 1e-9       # normals and plane offsets (relative to the part's size) this close are one plane
@@ -63,36 +63,44 @@ def _components(count: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
             comp = jumped
 
 
-def _edges(faces: np.ndarray, vertex_count: int):
-    """(directed edges (3m, 2), owning face (3m,), the reverse edge's row (3m,), has a reverse (3m,))."""
-    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    owner = np.repeat(np.arange(len(faces)), 3)
-    compiled = _compiled()
+def _reverse(faces: np.ndarray, vertex_count: int) -> np.ndarray:
+    """For directed edge 3i+k (faces[i, k] -> faces[i, k+1]): the row of the edge running back,
+    or its own row when there is none."""
     reverse = checked_reverse(faces)
-    if reverse is None and compiled is not None:
-        reverse = compiled.edge_check(faces, vertex_count)[0]
     if reverse is not None:
-        return directed, owner, reverse, reverse != np.arange(len(directed))
+        return reverse
+    compiled = _compiled()
+    if compiled is not None:
+        return compiled.edge_check(faces, vertex_count)[0]
+    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     key = np.minimum(directed[:, 0], directed[:, 1]) * vertex_count + np.maximum(directed[:, 0], directed[:, 1])
     order = np.argsort(key)
     pair = np.flatnonzero(key[order[1:]] == key[order[:-1]])     # check_mesh: at most two per edge
     reverse = np.arange(len(directed))
     reverse[order[pair]] = order[pair + 1]
     reverse[order[pair + 1]] = order[pair]
-    return directed, owner, reverse, reverse != np.arange(len(directed))
+    return reverse
 
 
-def facet_ids(vertices: np.ndarray, faces: np.ndarray, labels=None, edges=None, normals=None) -> np.ndarray:
+def _directed(faces: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """(k, 2) start and end vertex of the directed edges ``rows`` (edge 3i+k runs from faces[i, k])."""
+    flat = faces.reshape(-1)
+    return np.column_stack([flat[rows], flat[rows - rows % 3 + (rows % 3 + 1) % 3]])
+
+
+def facet_ids(vertices: np.ndarray, faces: np.ndarray, labels=None, reverse=None, normals=None) -> np.ndarray:
     """(m,) facet id of each face: edge-connected faces in one plane with the same label."""
-    tri = vertices[faces]
-    normals, areas = face_normals(tri) if normals is None else normals
+    normals, areas = face_normals(vertices[faces]) if normals is None else normals
     scale = max(float(np.ptp(vertices, axis=0).max()), 1e-12)
-    offsets = np.einsum("ij,ij->i", normals, tri[:, 0]) / scale
-    directed, owner, reverse, has_twin = _edges(faces, len(vertices)) if edges is None else edges
+    reverse = _reverse(faces, len(vertices)) if reverse is None else reverse
     compiled = _compiled()
     if compiled is not None:
         marks = np.zeros(len(faces), np.int64) if labels is None else np.asarray(labels, np.int64)
-        return compiled.coplanar_components(faces, reverse, normals, offsets, areas, marks, PLANE_TOLERANCE)
+        return compiled.coplanar_components(vertices, faces, reverse, normals, areas, marks, PLANE_TOLERANCE, scale)
+    offsets = np.einsum("ij,ij->i", normals, vertices[faces[:, 0]]) / scale
+    rows = np.arange(len(reverse))
+    directed = _directed(faces, rows)
+    owner, has_twin = rows // 3, reverse != rows
     once = np.flatnonzero(has_twin & (directed[:, 0] < directed[:, 1]))
     a, b = owner[once], owner[reverse[once]]
     same = (np.abs(normals[a] - normals[b]).max(axis=1) <= PLANE_TOLERANCE) & \
@@ -140,9 +148,9 @@ def planning_mesh(vertices, faces, labels=None) -> PlanningMesh:
 
     v, f = vertices, faces
     labels = None if labels is None else np.asarray(labels)
-    normals = face_normals(v[f])
-    edges = _edges(f, len(v))
-    facet = facet_ids(v, f, labels, edges, normals)
+    normals = checked_normals(f) or face_normals(v[f])
+    reverse = _reverse(f, len(v))
+    facet = facet_ids(v, f, labels, reverse, normals)
     members = np.bincount(facet, minlength=len(f))     # facet ids are their smallest face: no sort needed
     roots = np.flatnonzero(members)
     inverse = (np.cumsum(members > 0) - 1)[facet]
@@ -150,10 +158,16 @@ def planning_mesh(vertices, faces, labels=None) -> PlanningMesh:
     if sizes.max() <= 2:
         return _identity(v, f)
     candidate = sizes[inverse] > 2                 # faces in facets that may shrink
-    directed, owner, reverse, has_twin = edges
     n = len(v)
-    # a directed edge is on its facet's boundary unless its reverse lies in the same facet
-    boundary = ~has_twin | (inverse[owner[reverse]] != inverse[owner])
+    # a directed edge is on its facet's boundary unless its reverse lies in the same facet;
+    # only those edges are needed from here on (``rows``: their rows, in order)
+    compiled = _compiled()
+    if compiled is not None:
+        rows = compiled.boundary_rows(reverse, inverse)
+    else:
+        every = np.arange(len(reverse))
+        rows = np.flatnonzero((reverse == every) | (inverse[reverse // 3] != inverse[every // 3]))
+    directed, owner, has_twin = _directed(f, rows), rows // 3, reverse[rows] != rows
     normals = normals[0]
     # each facet's plane basis (e1, e2, normal) right-handed, so outer loops run anticlockwise
     facet_normal = normals[roots]
@@ -167,7 +181,7 @@ def planning_mesh(vertices, faces, labels=None) -> PlanningMesh:
         # pinned vertices: on a kept face, or where boundary edges do not meet two in a straight line
         pinned = np.zeros(n, bool)
         pinned[f[keep].reshape(-1)] = True
-        undirected = directed[boundary & (~has_twin | (directed[:, 0] < directed[:, 1]))]
+        undirected = directed[~has_twin | (directed[:, 0] < directed[:, 1])]
         degree = np.bincount(undirected.reshape(-1), minlength=n)
         pinned |= (degree != 2) & (degree > 0)
         ends = np.concatenate([undirected, undirected[:, ::-1]])
@@ -181,13 +195,12 @@ def planning_mesh(vertices, faces, labels=None) -> PlanningMesh:
                (np.einsum("ij,ij->i", d1, d2) >= 0)
         pinned[pairs[bent, 0, 0]] = True
         # re-triangulate each candidate facet from its boundary loops, without unpinned vertices
-        chosen = boundary & ~keep[owner]
+        chosen = ~keep[owner]
         edge_facet = inverse[owner[chosen]]
         edge_order = np.argsort(edge_facet, kind="stable")
         chosen_edges = directed[chosen][edge_order]
         splits = np.searchsorted(edge_facet[edge_order], np.arange(len(roots) + 1))
         new_faces, new_source, failed = [], [], False
-        compiled = _compiled()
         loop_of = _pinned_loops if compiled is None else compiled.pinned_loops
         flat, lengths, counts, broken = loop_of(chosen_edges, splits, pinned, n)
         ends = np.cumsum(lengths)

@@ -15,7 +15,9 @@ def edge_check(faces, vertex_count):
     """(for directed edge 3i+k, faces[i, k] -> faces[i, k+1]: the row of the edge running back, or
     its own row when none; clean; closed): clean when no directed edge
     appears twice (consistent winding) and no edge has more than one edge running back (no edge
-    shared by more than two faces); closed when every edge has one running back."""
+    shared by more than two faces); closed when every edge has one running back.
+    The edges leaving each vertex are listed together (their end vertex and row side by side),
+    so each edge's searches read a few neighbouring entries."""
     m = faces.shape[0]
     start = np.zeros(vertex_count + 1, np.int64)
     for i in range(m):
@@ -24,29 +26,28 @@ def edge_check(faces, vertex_count):
     for j in range(vertex_count):
         start[j + 1] += start[j]
     fill = start[:-1].copy()
-    slots = np.empty(3 * m, np.int64)
+    target = np.empty(3 * m, np.int64)
+    row = np.empty(3 * m, np.int64)
     for i in range(m):
         for k in range(3):
             u = faces[i, k]
-            slots[fill[u]] = 3 * i + k
+            target[fill[u]] = faces[i, (k + 1) % 3]
+            row[fill[u]] = 3 * i + k
             fill[u] += 1
     reverse = np.arange(3 * m)
     clean = True
     closed = True
-    for i in range(m):
-        for k in range(3):
-            u = faces[i, k]
-            w = faces[i, (k + 1) % 3]
+    for u in range(vertex_count):
+        for s in range(start[u], start[u + 1]):
+            w = target[s]
             same = 0
-            for s in range(start[u], start[u + 1]):
-                edge = slots[s]
-                if faces[edge // 3, (edge % 3 + 1) % 3] == w:
+            for t in range(start[u], start[u + 1]):
+                if target[t] == w:
                     same += 1
             back = 0
-            for s in range(start[w], start[w + 1]):
-                edge = slots[s]
-                if faces[edge // 3, (edge % 3 + 1) % 3] == u:
-                    reverse[3 * i + k] = edge
+            for t in range(start[w], start[w + 1]):
+                if target[t] == u:
+                    reverse[row[s]] = row[t]
                     back += 1
             if same != 1 or back > 1:
                 clean = False
@@ -56,10 +57,41 @@ def edge_check(faces, vertex_count):
 
 
 @_jit
-def coplanar_components(faces, reverse, normals, offsets, areas, labels, tolerance):
-    """Facet of each face (its smallest fellow member): faces joined across an edge when their
-    normals and plane offsets agree within ``tolerance``, both have area and labels match."""
+def face_pass(vertices, faces):
+    """(unit normals (m, 3), zero for a degenerate face; areas (m,); the enclosed volume,
+    sum of a . (b x c) / 6, whose sign tells outward from inward normals on a closed mesh).
+    The same numbers as meshrays.face_normals, in one pass."""
     m = faces.shape[0]
+    normals = np.zeros((m, 3))
+    areas = np.empty(m)
+    volume = 0.0
+    for i in range(m):
+        a, b, c = faces[i, 0], faces[i, 1], faces[i, 2]
+        ax, ay, az = vertices[a, 0], vertices[a, 1], vertices[a, 2]
+        bx, by, bz = vertices[b, 0], vertices[b, 1], vertices[b, 2]
+        cx, cy, cz = vertices[c, 0], vertices[c, 1], vertices[c, 2]
+        ux, uy, uz = bx - ax, by - ay, bz - az
+        vx, vy, vz = cx - ax, cy - ay, cz - az
+        nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+        length = np.sqrt(nx * nx + ny * ny + nz * nz)
+        if length > 0:
+            normals[i, 0], normals[i, 1], normals[i, 2] = nx / length, ny / length, nz / length
+        areas[i] = 0.5 * length
+        volume += ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx)
+    return normals, areas, volume / 6.0
+
+
+@_jit
+def coplanar_components(vertices, faces, reverse, normals, areas, labels, tolerance, scale):
+    """Facet of each face (its smallest fellow member): faces joined across an edge when their
+    normals and plane offsets (normal . first corner / ``scale``) agree within ``tolerance``,
+    both have area and labels match."""
+    m = faces.shape[0]
+    offsets = np.empty(m)
+    for i in range(m):
+        a = faces[i, 0]
+        offsets[i] = (normals[i, 0] * vertices[a, 0] + normals[i, 1] * vertices[a, 1]
+                      + normals[i, 2] * vertices[a, 2]) / scale
     parent = np.arange(m)
     for e in range(3 * m):
         g = reverse[e] // 3
@@ -142,3 +174,17 @@ def pinned_loops(edges, splits, pinned, vertex_count):
             used, loops = mark_used, mark_loops
             counts[j] = 0
     return out[:used], lengths[:loops], counts, failed
+
+
+@_jit
+def boundary_rows(reverse, facet):
+    """Rows of the directed edges on their facet's boundary (``facet``: each face's facet): no
+    edge running back, or that edge's face in another facet.  In row order."""
+    out = np.empty(reverse.shape[0], np.int64)
+    count = 0
+    for e in range(reverse.shape[0]):
+        r = reverse[e]
+        if r == e or facet[r // 3] != facet[e // 3]:
+            out[count] = e
+            count += 1
+    return out[:count].copy()

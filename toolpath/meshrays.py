@@ -21,9 +21,10 @@ from .program import TurnMillError
 PAIR_BUDGET = 1 << 20    # (query, triangle) pairs handled at once: bounds the memory
 QUERY_CHUNK = 256        # at most this many nearby queries are culled against the triangles together
 MAX_SUBDIVISION = 16     # at most 16 x 16 samples per face (face_samples)
-_LAST_CHECKED: list = []  # the content key of the last mesh that passed check_mesh
+_LAST_CHECKED: list = []  # [vertices, faces]: copies of the last mesh that passed check_mesh
 _LAST_SURFACE: list = []  # [content key, Triangles] of the last Triangles.shared
-_LAST_REVERSE: list = []  # [faces array check_mesh returned, each directed edge's reverse edge row]
+_LAST_REVERSE: list = []  # [faces array check_mesh returned, each directed edge's reverse edge row,
+                          #  (normals, areas) of its faces or None]
 
 
 def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
@@ -48,20 +49,23 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
     if f.min() < 0 or f.max() >= len(v):
         raise TurnMillError(f"face indices must lie in 0..{len(v) - 1}")
     f = f.astype(np.int64)
-    key = (v.shape, f.shape, hashlib.blake2b(v.tobytes() + f.tobytes(), digest_size=16).digest())
-    if _LAST_CHECKED and _LAST_CHECKED[0] == key:     # the planner checks the same mesh at each stage
-        return v, f
+    if _LAST_CHECKED and _same(_LAST_CHECKED[0], v) and _same(_LAST_CHECKED[1], f):
+        if _LAST_REVERSE:                            # what was found for it holds for this copy too
+            _LAST_REVERSE[0] = f
+        return v, f                                  # the planner checks the same mesh at each stage
     if np.any((f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])):
         raise TurnMillError("a face uses the same vertex twice")
     compiled = kernel_module("auto", f"{__package__}.facets_kernel", TurnMillError, "facet kernel")
     if compiled is not None:                    # one pass over each vertex's edges instead of sorting
         reverse, clean, closed = compiled.edge_check(f, len(v))
         if clean:
-            _LAST_REVERSE[:] = [f, reverse]
-            if closed:
-                _check_outward(v, f)
-            _LAST_CHECKED[:] = [key]
+            normals, areas, volume = compiled.face_pass(v, f)
+            if closed and volume < 0:
+                raise TurnMillError(INWARD)
+            _LAST_REVERSE[:] = [f, reverse, (normals, areas)]
+            _remember(v, f)
             return v, f
+    _LAST_REVERSE.clear()
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     _, counts = np.unique(directed.min(axis=1) * len(v) + directed.max(axis=1), return_counts=True)
     if np.any(counts > 2):
@@ -71,20 +75,37 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
         raise TurnMillError("the faces are wound inconsistently (some normals are flipped): recalculate normals")
     if np.all(counts == 2):
         _check_outward(v, f)
-    _LAST_CHECKED[:] = [key]
+    _remember(v, f)
     return v, f
+
+
+INWARD = "the face normals point inward: flip them so they point out of the part"
+
+
+def _same(kept: np.ndarray, given: np.ndarray) -> bool:
+    return kept is given or (kept.shape == given.shape and np.array_equal(kept, given))
+
+
+def _remember(v: np.ndarray, f: np.ndarray) -> None:
+    """Keep copies (not the caller's arrays, which it may change) of the mesh that passed."""
+    _LAST_CHECKED[:] = [v.copy(), f.copy()]
 
 
 def _check_outward(v: np.ndarray, f: np.ndarray) -> None:
     tri = v[f]
     volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0
     if volume < 0:
-        raise TurnMillError("the face normals point inward: flip them so they point out of the part")
+        raise TurnMillError(INWARD)
 
 
 def checked_reverse(faces: np.ndarray):
     """The reverse edge rows check_mesh found for this very faces array (it returned it), or None."""
     return _LAST_REVERSE[1] if _LAST_REVERSE and _LAST_REVERSE[0] is faces else None
+
+
+def checked_normals(faces: np.ndarray):
+    """(normals, areas) of this very faces array if check_mesh computed them, or None."""
+    return _LAST_REVERSE[2] if _LAST_REVERSE and _LAST_REVERSE[0] is faces else None
 
 
 def face_normals(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
