@@ -122,9 +122,9 @@ LIBRARY = {"number": TOOL_NUMBER, "diameter": DIAMETER, "corner_radius": mm(0.0,
            "flute_length": mm(0.1, 1000.0)}
 
 # What a group is called in a message (the panel it is set in).
-GROUP_NAMES = {"machine": "Machine", "engrave": "Engrave", "sheet": "Sheet Metal", "pocket": "Rotary Pocket",
-               "rotary": "Rotary", "stepnc": "STEP-NC", "turnmill": "Turn-Mill", "carve": "Carve",
-               "simulation": "Simulation"}
+GROUP_NAMES = {"machine": "Machine & Stock", "engrave": "Engrave", "sheet": "Sheet Metal", "pocket": "Rotary Pocket",
+               "rotary": "Rotary Pockets", "stepnc": "STEP-NC Workplan", "turnmill": "Turn-Mill", "carve": "Carve",
+               "simulation": "Simulate & Check"}     # as the panels are named
 
 
 def soft_limits(limit: Range) -> dict:
@@ -175,6 +175,6 @@ def check_library_tool(tool) -> None:
     """Refuse a library tool (``KezuriLibraryTool``) with a number outside :data:`LIBRARY`."""
     for name, limit in LIBRARY.items():
         prop = tool.bl_rna.properties[name]
-        message = problem("", name, prop.name, getattr(tool, name), f"Tool Library: {tool.name}", limit)
+        message = problem("", name, prop.name, getattr(tool, name), f"Tool Library '{tool.name}'", limit)
         if message:
             raise SettingError(message)

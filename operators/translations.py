@@ -657,7 +657,8 @@ def _template_pattern(template: str):
 def _compiled_templates() -> list:
     """(regex, Japanese) for every template, the most literal text first: the most specific wins."""
     ordered = sorted(MESSAGE_TEMPLATES.items(), key=lambda item: -len(item[0].replace("{}", "")))
-    return [(_template_pattern(english), japanese) for english, japanese in ordered]
+    return [(_template_pattern(english), japanese, INTERFACE_NAMES.get(english, ()))
+            for english, japanese in ordered]
 
 
 def iface(text: str) -> str:
@@ -684,11 +685,31 @@ def translate_message(text: str) -> str:
 def japanese_message(text: str) -> str | None:
     """The Japanese of a message built from an f-string (its values filled into the template),
     or None when no template matches."""
-    for pattern, japanese in _COMPILED:
+    for pattern, japanese, names in _COMPILED:
         match = pattern.match(text)
         if match:
-            return japanese.format(*match.groups())
+            values = list(match.groups())
+            for index in names:         # a panel's name or a property's label, wherever it appears
+                english = _NAMED.match(values[index]).group(1)
+                if not english:
+                    continue
+                shown = _interface_name(english)
+                values = [value.replace(english, shown) for value in values]
+            return japanese.format(*values)
     return None
+
+
+_NAMED = re.compile(r"(.*?)(?: '.*'| \[\d+\])?$")   # "Tool Library 'T1'" / "Corners [3]" -> the name
+
+
+def _interface_name(english: str) -> str:
+    """A panel name or property label as the Japanese interface shows it (else unchanged)."""
+    return TRANSLATIONS[LOCALE].get((DEFAULT, english), english)
+
+
+# Templates whose values include interface names (panel, property label): those values'
+# positions, so the message uses the words the user sees on the panel.
+INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).

@@ -48,7 +48,7 @@ def test_installed_zip_runs_on_its_bundled_wheels_and_disables_cleanly(linux_zip
     assert result["registered"] is True
     assert result["engrave_generate"] == ["FINISHED"] and result["kezuri_objects"] >= 3
     assert result["rough_from_library"] == [8.0, 7]
-    assert "Tool Library: Broken: Diameter = 0 is outside the allowed range 0.1 <= Diameter <= 100 mm" \
+    assert "Tool Library 'Broken': Diameter = 0 is outside the allowed range 0.1 <= Diameter <= 100 mm" \
         in result["bad_library_tool"]
     assert result["bad_library_diameter"] == 0.0 and result["bad_library_number"] == 1000   # not clamped
     assert result["rough_after_bad"] == [8.0, 7]                                            # nothing taken

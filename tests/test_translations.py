@@ -344,3 +344,25 @@ def test_english_stays_english():
     message = "stock radius must be > 0, got -1"
     assert translations.translate_message(message) == message
     assert translations.translate_message("no template looks like this {x}") == "no template looks like this {x}"
+
+
+def test_range_messages_name_the_panel_and_the_label_as_the_japanese_panel_shows_them():
+    """A value outside its range is refused naming the panel and the property: in Japanese with
+    the panel's and the label's Japanese words (as the user sees them), not the English ones."""
+    from kezuri.operators import limits
+    scene = bpy.context.scene
+    every_group = set(limits.GROUP_NAMES.values())
+    assert all((DEFAULT, name) in JA for name in every_group), every_group
+    label = scene.kezuri.sheet.bl_rna.properties["thickness"].name
+    message = limits.problem("sheet", "thickness", label, -1.0)
+    japanese = translations.japanese_message(message)
+    assert japanese.startswith(JA[(DEFAULT, "Sheet Metal")] + "：" + JA[(DEFAULT, label)] + " = -1 "), japanese
+    assert label not in japanese and "Sheet Metal" not in japanese
+    # an array's element and a library tool's place keep their index and name
+    corners = scene.kezuri.sheet.bl_rna.properties["corners"].name
+    message = limits.problem("sheet", "corners", corners, (0.0, 0.0, float("nan")) + (0.0,) * 9)
+    japanese = translations.japanese_message(message)
+    assert JA[(DEFAULT, corners)] + " [3] = nan" in japanese, japanese
+    message = limits.problem("", "diameter", "Diameter", -2.0, "Tool Library 'T7 ball'", limits.LIBRARY["diameter"])
+    japanese = translations.japanese_message(message)
+    assert japanese.startswith(JA[(DEFAULT, "Tool Library")] + " 'T7 ball'：" + JA[(DEFAULT, "Diameter")]), japanese
