@@ -25,7 +25,7 @@ from ..toolpath.simulate import BoxStock
 from . import convert
 from . import gate
 from .common import SteppedOperator, run_reported
-from .exporting import MillingExport
+from .exporting import NCExport
 from .limits import check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
@@ -215,7 +215,7 @@ class KEZURI_OT_carve_sample(bpy.types.Operator):
         return run_reported(self, work)
 
 
-class KEZURI_OT_carve_export(MillingExport, bpy.types.Operator):
+class KEZURI_OT_carve_export(NCExport, bpy.types.Operator):
     """Write the carving NC program for the chosen controller"""
 
     bl_idname = "kezuri.carve_export"
@@ -231,10 +231,6 @@ class KEZURI_OT_carve_export(MillingExport, bpy.types.Operator):
         return _poll_design(cls, context)
 
     file_suffix = "-carve"
-
-    @staticmethod
-    def extension_for(post_name: str) -> str:
-        return extension_for(post_name)
 
     def write(self, context) -> str:
         job = run_carve(context.scene, context.evaluated_depsgraph_get())

@@ -22,7 +22,7 @@ from ..toolpath.program import Tool
 from . import convert
 from . import gate
 from .common import SteppedOperator
-from .exporting import MillingExport
+from .exporting import NCExport
 from .limits import check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
@@ -205,7 +205,7 @@ class KEZURI_OT_engrave_generate(SteppedOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class KEZURI_OT_engrave_export(MillingExport, bpy.types.Operator):
+class KEZURI_OT_engrave_export(NCExport, bpy.types.Operator):
     """Write the engraving NC program for the chosen controller"""
 
     bl_idname = "kezuri.engrave_export"
@@ -216,13 +216,11 @@ class KEZURI_OT_engrave_export(MillingExport, bpy.types.Operator):
     filter_glob: StringProperty(default="*.nc;*.ngc;*.tap", options={"HIDDEN"})
     post: EnumProperty(name="Post", items=post_items(POST_FAMILIES), default=post_number("fanuc"))
 
+    file_suffix = "-engrave"
+
     @classmethod
     def poll(cls, context):
         return KEZURI_OT_engrave_generate.poll(context)
-
-    @staticmethod
-    def extension_for(post_name: str) -> str:
-        return extension_for(post_name)
 
     def write(self, context) -> str:
         job = run_engrave(context.scene, context.evaluated_depsgraph_get())

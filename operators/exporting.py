@@ -1,6 +1,7 @@
-"""What the milling export operators share: the post chosen in the file browser (the scene's post
-at first), the file name from the output folder and the post's extension, and the export (through
-the gate, with the panel's override) reported back."""
+"""What every NC export operator shares: the post chosen in the file browser (the job's preferred
+post at first: the scene's for milling, the panel's where the job has its own), the file name from
+the output folder, the scene and the post's extension, and the export (through the gate, with the
+panel's override) reported back."""
 from __future__ import annotations
 
 import os
@@ -8,19 +9,33 @@ import os
 import bpy
 from bpy_extras.io_utils import ExportHelper
 
+from .. import post as posts
 from .common import run_reported
 from .preferences import scene_output_dir, scene_post
 from .translations import translate_message
 
 
-class MillingExport(ExportHelper):
-    """Mixed into an ExportHelper operator with a ``post`` enum.  The operator sets
-    ``file_suffix`` and implements ``extension_for(post)`` and ``write(context) -> path``."""
+class NCExport(ExportHelper):
+    """Mixed into an ExportHelper operator with a ``post`` enum of ``post_families``.  The operator
+    sets ``file_suffix`` and implements ``write(context) -> path``; ``preferred_post`` names the
+    post the file browser starts with (None: the enum's own default)."""
 
     file_suffix = ""
+    post_families: tuple = ("milling",)
+
+    def preferred_post(self, context) -> str | None:
+        return scene_post(context.scene, context)
+
+    def extension_for(self, post_name: str) -> str:
+        return posts.extension(self.post_families, post_name)
 
     def invoke(self, context, event):
-        self.post = scene_post(context.scene, context)
+        preferred = self.preferred_post(context)
+        if preferred is not None:
+            try:
+                self.post = preferred
+            except TypeError:      # not one of this job's posts: the job's own default stays
+                pass
         self.filename_ext = self.extension_for(self.post)
         folder = scene_output_dir(context.scene, context)
         name = bpy.path.clean_name(context.scene.name) + self.file_suffix + self.filename_ext

@@ -14,7 +14,6 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 from bpy.props import EnumProperty, StringProperty
-from bpy_extras.io_utils import ExportHelper
 
 from .. import post as posts
 from ..post import write_atomic
@@ -22,7 +21,8 @@ from ..toolpath import rotary as core
 from ..toolpath.program import Tool
 from . import convert
 from . import gate
-from .common import SteppedOperator, run_reported
+from .common import SteppedOperator
+from .exporting import NCExport
 from .limits import check_group
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -155,7 +155,7 @@ class KEZURI_OT_rotary_generate(SteppedOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class KEZURI_OT_rotary_export(bpy.types.Operator, ExportHelper):
+class KEZURI_OT_rotary_export(NCExport, bpy.types.Operator):
     """Write the C-X-Z program for the wood lathe"""
 
     bl_idname = "kezuri.rotary_export"
@@ -165,22 +165,19 @@ class KEZURI_OT_rotary_export(bpy.types.Operator, ExportHelper):
     filename_ext = ".ngc"
     filter_glob: StringProperty(default="*.ngc;*.nc", options={"HIDDEN"})
     post: EnumProperty(name="Post", items=post_items(POST_FAMILIES), default=post_number("linuxcnc"))
+    post_families = POST_FAMILIES
+    file_suffix = "-rotary"
 
     @classmethod
     def poll(cls, context):
         return KEZURI_OT_rotary_generate.poll(context)
 
-    def check(self, context):
-        self.filename_ext = extension_for(self.post)
-        return ExportHelper.check(self, context)
+    def preferred_post(self, context):
+        return context.scene.kezuri.rotary.post          # the Rotary Pockets panel's post
 
-    def execute(self, context):
-        def work():
-            job = run_rotary(context.scene, context.evaluated_depsgraph_get())
-            path = export_rotary(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged)
-            self.report({"INFO"}, translate_message(f"Wrote {path}"))
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def write(self, context) -> str:
+        job = run_rotary(context.scene, context.evaluated_depsgraph_get())
+        return export_rotary(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged)
 
 
 class KEZURI_OT_mark_pocket(bpy.types.Operator):

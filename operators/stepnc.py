@@ -23,6 +23,7 @@ from ..toolpath.stepnc.solids import block_of, feature_solid, fixture_clearance,
 from . import convert
 from . import gate
 from .common import run_reported
+from .exporting import NCExport
 from .limits import check_group
 from .properties import post_items, post_number
 from .translations import iface, translate_message
@@ -232,7 +233,7 @@ class KEZURI_OT_stepnc_generate(bpy.types.Operator):
         return run_reported(self, work)
 
 
-class KEZURI_OT_stepnc_export(bpy.types.Operator, ExportHelper):
+class KEZURI_OT_stepnc_export(NCExport, bpy.types.Operator):
     """Write the G-code of the workplan, in the list's order, without the switched-off workingsteps"""
 
     bl_idname = "kezuri.stepnc_export"
@@ -242,22 +243,16 @@ class KEZURI_OT_stepnc_export(bpy.types.Operator, ExportHelper):
     filename_ext = ".nc"
     filter_glob: StringProperty(default="*.nc;*.ngc", options={"HIDDEN"})
     post: EnumProperty(name="Post", items=post_items(POST_FAMILIES, texture=False), default=post_number("fanuc"))
+    post_families = POST_FAMILIES
+    file_suffix = "-workplan"
 
     @classmethod
     def poll(cls, context):
         return KEZURI_OT_stepnc_generate.poll(context)
 
-    def check(self, context):
-        self.filename_ext = extension_for(self.post)
-        return ExportHelper.check(self, context)
-
-    def execute(self, context):
-        def work():
-            path, *_ = export_nc(context.scene, self.post, self.filepath,
-                                 allow=context.scene.kezuri.simulation.acknowledged)
-            self.report({"INFO"}, translate_message(f"Wrote {path}"))
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def write(self, context) -> str:
+        path, *_ = export_nc(context.scene, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged)
+        return path
 
 
 class KEZURI_OT_export_stepnc(bpy.types.Operator, ExportHelper):

@@ -13,7 +13,6 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 from bpy.props import EnumProperty, StringProperty
-from bpy_extras.io_utils import ExportHelper
 from mathutils import Vector
 from mathutils.bvhtree import BVHTree
 
@@ -23,7 +22,8 @@ from ..toolpath import meshdata
 from ..toolpath import turnmill as core
 from . import convert
 from . import gate
-from .common import SteppedOperator, run_reported
+from .common import SteppedOperator
+from .exporting import NCExport
 from .limits import check_group
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -261,7 +261,7 @@ class KEZURI_OT_turnmill_generate(SteppedOperator, bpy.types.Operator):
         return {"FINISHED"}
 
 
-class KEZURI_OT_turnmill_export(bpy.types.Operator, ExportHelper):
+class KEZURI_OT_turnmill_export(NCExport, bpy.types.Operator):
     """Write the X-Z-C program (or its CL data) for the turn-mill centre"""
 
     bl_idname = "kezuri.turnmill_export"
@@ -271,22 +271,19 @@ class KEZURI_OT_turnmill_export(bpy.types.Operator, ExportHelper):
     filename_ext = ".nc"
     filter_glob: StringProperty(default="*.nc;*.ngc;*.cls", options={"HIDDEN"})
     post: EnumProperty(name="Post", items=post_items(POST_FAMILIES), default=post_number("xzc"))
+    post_families = POST_FAMILIES
+    file_suffix = "-turnmill"
 
     @classmethod
     def poll(cls, context):
         return _poll_part(cls, context)
 
-    def check(self, context):
-        self.filename_ext = extension_for(self.post)
-        return ExportHelper.check(self, context)
+    def preferred_post(self, context):
+        return None                                       # the turn-mill has no post setting: X-Z-C
 
-    def execute(self, context):
-        def work():
-            job = run_turnmill(context.scene, context.evaluated_depsgraph_get())
-            path = export_turnmill(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged)
-            self.report({"INFO"}, translate_message(f"Wrote {path}"))
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def write(self, context) -> str:
+        job = run_turnmill(context.scene, context.evaluated_depsgraph_get())
+        return export_turnmill(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged)
 
 
 CLASSES = (KEZURI_OT_turnmill_classify, KEZURI_OT_turnmill_generate, KEZURI_OT_turnmill_export)

@@ -237,6 +237,10 @@ def file_browser():
     return None
 
 
+PROPOSED_SUFFIX = {"engrave": "-engrave", "rotary": "-rotary", "stepnc": "-workplan", "turnmill": "-turnmill",
+                   "carve": "-carve"}
+
+
 def through_file_browser(directory, filename, what):
     """The file browser the button opened: type the folder and the file name, press Return."""
     for _ in range(40):
@@ -249,6 +253,14 @@ def through_file_browser(directory, filename, what):
         return False
     window, area = found
     params = area.spaces.active.params
+    # what the export proposes: <scene>-<job><the post's extension> (operators/exporting.py)
+    proposed, suffix = params.filename, PROPOSED_SUFFIX.get(what)
+    if suffix is not None:
+        wanted = suffix + os.path.splitext(filename)[1]
+        if proposed.endswith(wanted):
+            log(f"export {what}: the file browser proposes {proposed}")
+        else:
+            log(f"failed: export {what}: the file browser proposes {proposed!r}, not a name ending {wanted!r}")
     params.directory = directory.encode()
     params.filename = filename
     yield from settle()
