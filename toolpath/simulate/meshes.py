@@ -80,7 +80,9 @@ def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStoc
     cx, cy = block * hf.cell_x, block * hf.cell_y
     x0, y0 = hf.x0 + i0 * hf.cell_x, hf.y0 + j0 * hf.cell_y
     x1, y1 = x0 + heights.shape[0] * cx, y0 + heights.shape[1] * cy
-    columns = _solid_of(*_relief_mesh(heights, x0 - cx, y0 - cy, x1 + cx, y1 + cy, cx, cy, hf.bottom - 2.0))
+    # one more uncut cell all round, so that the relief's vertices stay at the cells' centres
+    columns = _solid_of(*_relief_mesh(np.pad(heights, 1, constant_values=hf.top + 1.0), x0 - cx, y0 - cy,
+                                      x1 + cx, y1 + cy, cx, cy, hf.bottom - 2.0))
     box_bottom = max(float(heights.min()) - 1.0, hf.bottom - 1.0)
     box = Manifold.cube([x1 - x0 - cx, y1 - y0 - cy, hf.top + 0.5 - box_bottom]).translate(
         [x0 + cx / 2, y0 + cy / 2, box_bottom])
