@@ -253,3 +253,47 @@ def test_turned_mesh_joins_the_untouched_bar_to_the_cut_end():
     ours, plain = triangles_below(vertices, faces), triangles_below(*radiusmap.mesh(rm, -30.0, 0.0))
     assert len(ours) > 0.8 * len(radiusmap.mesh(rm, -30.0, 0.0)[1])
     assert np.array_equal(ours, plain)
+
+
+def test_turned_surface_looks_like_the_closed_mesh():
+    """The picture's surface (no boolean) of the bar of the test above looks like the closed mesh:
+    seen from above, the same pixels are covered (but for a sliver along the rim, where the mesh's
+    end face is a 64-gon and the surface's a finer polygon on the same circle), at the same
+    height but on the pocket's walls (the mesh's walls start at the end face 3/4 of the way from
+    the floor's outer cell centres to the next ones, the surface's at those: at most 0.75 mm
+    apart); seen from the side, nearly all pixels alike."""
+    from kezuri.toolpath.picture import Picture, View
+    from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
+    from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
+
+    n_theta, n_z = 64, 60
+    radii = np.full((n_theta, n_z), 20.0)
+    radii[: n_theta // 2, 20:40] = 17.0
+    rm = radiusmap.RadiusMap(20.0, -30.0, 0.5, 2 * math.pi / n_theta, radii, np.full(radii.shape, -1))
+    heights = np.zeros((80, 80), np.float32)
+    heights[35:45, 35:45] = -3.0
+    xy = (np.arange(80) + 0.5) - 40.0
+    hf = HeightField(-40.0, -40.0, 1.0, 1.0, heights, np.hypot(xy[:, None], xy[None, :]) < 20.0, 0.0, -30.0)
+    stock = CylinderStock(20.0, 30.0)
+    meshes = _turned_mesh(rm, hf, stock, None), _turned_surface(rm, hf, stock, None)
+    for tilt in (0.0, 72.0):
+        view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), tilt)
+        depths = []
+        for vertices, faces in meshes:
+            picture = Picture(400, 400)
+            picture.triangles(view, vertices, faces, (200, 200, 200))
+            depths.append(picture.depth)
+        covered = np.isfinite(depths[0])
+        both = covered & np.isfinite(depths[1])
+        apart = np.abs(np.where(both, depths[0], 0.0) - np.where(both, depths[1], 0.0))
+        if tilt == 0.0:
+            assert np.count_nonzero(covered != np.isfinite(depths[1])) < 2 * math.pi * 20.0 * view.scale * 0.25
+            x = (np.arange(400) + 0.5 - view.px) / view.scale + view.cx
+            y = -(np.arange(400) + 0.5 - view.py) / view.scale + view.cy
+            side = np.maximum(np.abs(x)[None, :], np.abs(y)[:, None])      # [row, column]
+            walls = (side > 4.5 - 1.5 / view.scale) & (side < 5.5 + 1.5 / view.scale)
+            assert apart[~walls].max() < 1e-9
+            assert apart[walls].max() <= 0.75
+        else:
+            assert np.count_nonzero(covered != np.isfinite(depths[1])) < 0.001 * covered.sum()
+            assert np.count_nonzero(apart > 0.01) < 0.03 * both.sum()

@@ -249,8 +249,8 @@ def depth_colours(depth, deepest: float) -> np.ndarray:
 def simulation_picture(result, title: str = "", size=(1200, 800), tilt_deg: float = 35.0, max_cells: int = 160_000,
                        mesh=None):
     """The simulated stock, shaded and coloured by depth over 0 .. its deepest cut; ``mesh``:
-    its (vertices, faces) when the caller has them already (else ``result.mesh(max_cells)``)."""
-    vertices, faces = result.mesh(max_cells) if mesh is None else mesh
+    its (vertices, faces) when the caller has them already (else ``result.surface(max_cells)``)."""
+    vertices, faces = result.surface(max_cells) if mesh is None else mesh
     vertices = np.asarray(vertices, float)
     faces = np.asarray(faces, np.int64)
     depth, deepest = surface_depth(result, vertices)

@@ -112,3 +112,87 @@ def _joined(lower: np.ndarray, top_vertices, top_faces):
     for k in np.unique(top_faces[on_plane[top_faces]]):     # the ring where the side meets the plane
         index[k] = key[(top_vertices[k, 0], top_vertices[k, 1])]
     return np.vstack([vertices, top_vertices[kept]]), np.vstack([faces, index[top_faces]])
+
+
+# ----- a turned bar for pictures: no boolean --------------------------------------------------------
+
+TILE = 16      # top-face tiles of at most this many cells, ...
+TILE_OF_RADIUS = 1 / 32     # ... and at most this share of the bar's radius: untouched ones are one flat
+                            # quad, and the end face's edge (pulled onto the bar) is a polygon this fine
+
+
+def _turned_surface(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStock, max_cells):
+    """A triangle surface that looks like :func:`_turned_mesh` (its side and bottom are the same
+    grid) without a boolean: for pictures, not a closed solid.
+
+    The bar's side is pressed down onto the height field where the axial cuts opened it, and the
+    end face is the height field's surface over the stock's square (vertices at the cell centres,
+    a ring on the square's edge; each tile of untouched cells one flat quad) pulled in along
+    the radius onto the bar's side where it lies outside it."""
+    grid = rmap.mesh_grid(rm, stock.bottom, stock.top, max_cells)
+    cut = None if hf is None else hf.inside & (hf.heights < hf.top - 1e-6)
+    if cut is None or not cut.any():
+        return rmap.grid_mesh(grid)
+    heights = np.where(cut, np.clip(hf.heights, hf.bottom + 1e-3, hf.top), hf.top).astype(float)
+    side_vertices, side_faces = rmap.grid_mesh(grid, top_cap=False)
+    i = np.clip(np.floor((side_vertices[:, 0] - hf.x0) / hf.cell_x).astype(np.int64), 0, hf.shape[0] - 1)
+    j = np.clip(np.floor((side_vertices[:, 1] - hf.y0) / hf.cell_y).astype(np.int64), 0, hf.shape[1] - 1)
+    side_vertices[:, 2] = np.minimum(side_vertices[:, 2], heights[i, j])
+    tile = int(np.clip(TILE_OF_RADIUS * stock.radius / max(hf.cell_x, hf.cell_y), 1, TILE))
+    top_vertices, top_faces = _tiled_top(heights, hf, tile)
+    _pull_in(top_vertices, grid)
+    return np.vstack([side_vertices, top_vertices]), np.vstack([side_faces, top_faces + len(side_vertices)])
+
+
+def _tiled_top(heights: np.ndarray, hf: HeightField, tile: int):
+    """The end face over the stock's square: (vertices, triangles) of the grid of cell centres
+    plus an edge ring (heights copied outward), tiles of ``tile`` cells that are flat at the
+    top as two triangles, the others cell by cell."""
+    (x0, y0), (x1, y1) = (hf.x0, hf.y0), (hf.x0 + hf.shape[0] * hf.cell_x, hf.y0 + hf.shape[1] * hf.cell_y)
+    xs = np.concatenate([[x0], hf.x(), [x1]])
+    ys = np.concatenate([[y0], hf.y(), [y1]])
+    z = np.pad(heights, 1, mode="edge")
+    w, h = z.shape
+    ids = np.arange(w * h).reshape(w, h)
+    # tile (a, b) spans vertices a*tile .. min((a+1)*tile, w-1)
+    ta, tb = -(-(w - 1) // tile), -(-(h - 1) // tile)
+    low = z < hf.top
+    padded = np.zeros((ta * tile + 1, tb * tile + 1), bool)
+    padded[:w, :h] = low
+    blocks = padded[:-1, :-1].reshape(ta, tile, tb, tile).any(axis=(1, 3))
+    blocks |= padded[tile::tile, :-1].reshape(ta, tb, tile).any(axis=2)      # the far edges of each tile
+    blocks |= padded[:-1, tile::tile].reshape(ta, tile, tb).any(axis=1)
+    blocks |= padded[tile::tile, tile::tile]
+    fine = np.repeat(np.repeat(blocks, tile, axis=0), tile, axis=1)[:w - 1, :h - 1]
+    qa, qb = np.nonzero(fine)
+    a, b, c, d = ids[qa, qb], ids[qa + 1, qb], ids[qa + 1, qb + 1], ids[qa, qb + 1]
+    fa, fb = np.nonzero(~blocks)
+    a0, a1 = fa * tile, np.minimum((fa + 1) * tile, w - 1)
+    b0, b1 = fb * tile, np.minimum((fb + 1) * tile, h - 1)
+    a = np.concatenate([a, ids[a0, b0]])
+    b = np.concatenate([b, ids[a1, b0]])
+    c = np.concatenate([c, ids[a1, b1]])
+    d = np.concatenate([d, ids[a0, b1]])
+    faces = np.concatenate([np.column_stack([a, b, c]), np.column_stack([a, c, d])])
+    used = np.zeros(w * h, bool)
+    used[faces] = True
+    index = np.cumsum(used) - 1
+    k = np.flatnonzero(used)
+    vertices = np.column_stack([xs[k // h], ys[k % h], z.reshape(-1)[k]])
+    return vertices, index[faces]
+
+
+def _pull_in(vertices: np.ndarray, grid: np.ndarray) -> None:
+    """Move (k, 3) vertices lying outside the bar of ``mesh_grid`` ``grid`` in along the radius
+    onto its side (the nearest of its vertices' radii), in place."""
+    n_theta = grid.shape[0]
+    radii = np.hypot(grid[..., 0], grid[..., 1])
+    zs = grid[0, :, 2]
+    theta = np.arctan2(vertices[:, 1], vertices[:, 0])
+    i = np.rint(np.mod(theta, 2 * math.pi) / (2 * math.pi / n_theta) - 0.5).astype(np.int64) % n_theta
+    k = np.clip(np.searchsorted(zs, vertices[:, 2]), 1, len(zs) - 1)
+    k -= (vertices[:, 2] - zs[k - 1]) < (zs[k] - vertices[:, 2])
+    r = np.hypot(vertices[:, 0], vertices[:, 1])
+    limit = radii[i, k]
+    outside = r > limit
+    vertices[outside, :2] *= (limit[outside] / r[outside])[:, None]
