@@ -236,33 +236,39 @@ def outer_radii(rm: RadiusMap, vertices: np.ndarray, faces: np.ndarray) -> np.nd
         tri_of = np.repeat(np.arange(len(t)), rows)
         k = np.arange(len(tri_of)) - np.repeat(np.cumsum(rows) - rows, rows) + lo[tri_of]
         z = zs[k]
-        # The two edges that cross the plane (half-open, so a vertex on the plane counts once).
+        # The two edges that cross the plane (half-open, so a vertex on the plane counts once):
+        # the first one's crossing point is a, the second one's b.
+        corner = [[np.ascontiguousarray(t[:, e, axis])[tri_of] for axis in range(3)] for e in range(3)]
         crossing = np.zeros(len(k), np.int64)
-        points = np.zeros((len(k), 2, 2))
+        ax, ay, bx, by = (np.zeros(len(k)) for _ in range(4))
         for e in range(3):
-            p, q = t[tri_of, e], t[tri_of, (e + 1) % 3]
-            hit = (p[:, 2] <= z) != (q[:, 2] <= z)
-            s = (z - p[:, 2]) / np.where(hit, q[:, 2] - p[:, 2], 1.0)
-            xy = p[:, :2] + s[:, None] * (q[:, :2] - p[:, :2])
-            slot = np.minimum(crossing, 1)
-            sel = hit & (crossing < 2)
-            points[sel, slot[sel]] = xy[sel]
+            (px, py, pz), (qx, qy, qz) = corner[e], corner[(e + 1) % 3]
+            hit = (pz <= z) != (qz <= z)
+            s = (z - pz) / np.where(hit, qz - pz, 1.0)
+            x, y = px + s * (qx - px), py + s * (qy - py)
+            first, second = hit & (crossing == 0), hit & (crossing == 1)
+            ax, ay = np.where(first, x, ax), np.where(first, y, ay)
+            bx, by = np.where(second, x, bx), np.where(second, y, by)
             crossing += hit
         ends = crossing == 2
-        k, a, b = k[ends], points[ends, 0], points[ends, 1]
-        angle_a = np.arctan2(a[:, 1], a[:, 0])
-        sweep = np.angle(np.exp(1j * (np.arctan2(b[:, 1], b[:, 0]) - angle_a)))
+        k, ax, ay, bx, by = k[ends], ax[ends], ay[ends], bx[ends], by[ends]
+        angle_a = np.arctan2(ay, ax)
+        sweep = np.angle(np.exp(1j * (np.arctan2(by, bx) - angle_a)))
         lo_angle = np.where(sweep >= 0, angle_a, angle_a + sweep)
         i0 = np.ceil(lo_angle / rm.cell_theta - 0.5).astype(np.int64)
         i1 = np.floor((lo_angle + np.abs(sweep)) / rm.cell_theta - 0.5).astype(np.int64)
         count = np.clip(i1 - i0 + 1, 0, n_theta)
+        if not count.sum():
+            continue
         seg = np.repeat(np.arange(len(k)), count)
         i = np.arange(len(seg)) - np.repeat(np.cumsum(count) - count, count) + i0[seg]
-        theta = (i + 0.5) * rm.cell_theta
-        u = np.column_stack([np.cos(theta), np.sin(theta)])
-        edge = b[seg] - a[seg]
-        denominator = u[:, 0] * edge[:, 1] - u[:, 1] * edge[:, 0]
-        numerator = a[seg, 0] * edge[:, 1] - a[seg, 1] * edge[:, 0]
+        # the rays' directions from a table over the angles met (cos and sin once per angle)
+        first = int(i.min())
+        theta = (np.arange(first, int(i.max()) + 1) + 0.5) * rm.cell_theta
+        cos_i, sin_i = np.cos(theta)[i - first], np.sin(theta)[i - first]
+        ex, ey = bx - ax, by - ay
+        denominator = cos_i * ey[seg] - sin_i * ex[seg]
+        numerator = (ax * ey - ay * ex)[seg]
         ok = np.abs(denominator) > 1e-12
         radius = np.where(ok, numerator / np.where(ok, denominator, 1.0), 0.0)
         np.maximum.at(out, np.mod(i, n_theta) * n_z + k[seg], np.maximum(radius, 0.0))
