@@ -22,11 +22,13 @@ def column(values, text_of: Callable[[float], str], many: Callable[[list], list]
     if not len(values):
         return np.empty(0, dtype=object), np.empty(0, dtype=np.intp)
     distinct, inverse = np.unique(values, return_inverse=True)   # sorted; NaN (rapids' feeds) last
-    words = many(distinct.tolist()) if many is not None else [text_of(value) for value in distinct.tolist()]
+    words = np.array(many(distinct.tolist()) if many is not None else [text_of(value) for value in distinct.tolist()],
+                     dtype=object)
     # rounding to a fixed number of decimals is monotonic, so values that read the same are
     # neighbours in sorted order ("-0." and "0." are one text, and so neighbours too)
-    new = np.array([True] + [a != b for a, b in zip(words[1:], words[:-1])], bool)
-    texts = np.array(words, dtype=object)[new]
+    new = np.ones(len(words), bool)
+    new[1:] = words[1:] != words[:-1]
+    texts = words[new]
     return texts, (np.cumsum(new) - 1)[inverse.reshape(-1)]
 
 
