@@ -101,15 +101,34 @@ def cylinder_design(radius, z_min=-30.0, z_max=0.0):
     return trimesh.Trimesh(np.asarray(mesh.vert_properties)[:, :3], np.asarray(mesh.tri_verts), process=False)
 
 
-def test_outer_radii_of_a_cylinder():
+def _kernels(kernel):
+    from kezuri.toolpath.simulate.heightfield import _compiled_kernels
+    return _compiled_kernels(kernel)
+
+
+@pytest.mark.parametrize("kernel", ["numba", "numpy"])
+def test_outer_radii_of_a_cylinder(kernel):
     design = cylinder_design(16.0, -25.0, -5.0)
     rm = radiusmap.grid(20.0, -30.0, 0.0, 0.1)
-    outer = radiusmap.outer_radii(rm, np.asarray(design.vertices), np.asarray(design.faces))
+    outer = radiusmap.outer_radii(rm, np.asarray(design.vertices), np.asarray(design.faces), _kernels(kernel))
     within = (rm.z() > -25.0) & (rm.z() < -5.0)
     sag = 16.0 * (1 - math.cos(math.pi / 256))
     assert np.all(outer[:, within] <= 16.0 + 1e-9)
     assert np.all(outer[:, within] >= 16.0 - sag - 1e-9)
     assert np.all(outer[:, ~within] == 0.0)
+
+
+def test_outer_radii_kernels_agree_bit_for_bit():
+    """A cone off the axis and a sphere holding the axis (rays met from every side, segments
+    across the angle's wrap): the compiled rays give the numpy path's radii exactly."""
+    cone = Manifold.cylinder(20.0, 6.0, 2.0, 64).translate((9.0, -3.0, -25.0)).to_mesh64()
+    ball = Manifold.sphere(4.0, 48).translate((1.0, 0.5, -12.0)).to_mesh64()
+    rm = radiusmap.grid(20.0, -30.0, 0.0, 0.1)
+    for mesh in (cone, ball):
+        vertices, faces = np.asarray(mesh.vert_properties)[:, :3], np.asarray(mesh.tri_verts, np.int64)
+        a = radiusmap.outer_radii(rm, vertices, faces, _kernels("numba"))
+        b = radiusmap.outer_radii(rm, vertices, faces, None)
+        assert (a > 0).sum() > 1000 and np.array_equal(a, b)
 
 
 def test_one_millimetre_into_the_design_is_a_one_millimetre_gouge():

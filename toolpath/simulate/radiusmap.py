@@ -219,11 +219,12 @@ def cut(rm: RadiusMap, stamps: BallStamps, ball_radius: float, operation: int, t
 
 
 
-def outer_radii(rm: RadiusMap, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+def outer_radii(rm: RadiusMap, vertices: np.ndarray, faces: np.ndarray, kernels=None) -> np.ndarray:
     """The design mesh's outer radius along every ray of the map (0 where the ray misses it).
 
     Every triangle is sliced at each row's height; each slice segment sets the radius of the
-    rays it crosses, and the largest wins."""
+    rays it crosses, and the largest wins.  ``kernels``: the compiled kernels module (kernel.py)
+    for the rays (the same radii, bit for bit), or None for numpy."""
     n_theta, n_z = rm.shape
     out = np.zeros(n_theta * n_z)
     tri = vertices[faces]
@@ -258,17 +259,22 @@ def outer_radii(rm: RadiusMap, vertices: np.ndarray, faces: np.ndarray) -> np.nd
         i0 = np.ceil(lo_angle / rm.cell_theta - 0.5).astype(np.int64)
         i1 = np.floor((lo_angle + np.abs(sweep)) / rm.cell_theta - 0.5).astype(np.int64)
         count = np.clip(i1 - i0 + 1, 0, n_theta)
-        if not count.sum():
+        met = count > 0
+        if not met.any():
+            continue
+        # the rays' directions from a table over the angles met (cos and sin once per angle)
+        first = int(i0[met].min())
+        theta = (np.arange(first, int((i0 + count - 1)[met].max()) + 1) + 0.5) * rm.cell_theta
+        cos_t, sin_t = np.cos(theta), np.sin(theta)
+        ex, ey = bx - ax, by - ay
+        numerator = ax * ey - ay * ex
+        if kernels is not None:
+            kernels.outer_rays(out, n_theta, n_z, k, i0, count, ex, ey, numerator, cos_t, sin_t, first)
             continue
         seg = np.repeat(np.arange(len(k)), count)
         i = np.arange(len(seg)) - np.repeat(np.cumsum(count) - count, count) + i0[seg]
-        # the rays' directions from a table over the angles met (cos and sin once per angle)
-        first = int(i.min())
-        theta = (np.arange(first, int(i.max()) + 1) + 0.5) * rm.cell_theta
-        cos_i, sin_i = np.cos(theta)[i - first], np.sin(theta)[i - first]
-        ex, ey = bx - ax, by - ay
-        denominator = cos_i * ey[seg] - sin_i * ex[seg]
-        numerator = (ax * ey - ay * ex)[seg]
+        denominator = cos_t[i - first] * ey[seg] - sin_t[i - first] * ex[seg]
+        numerator = numerator[seg]
         ok = np.abs(denominator) > 1e-12
         radius = np.where(ok, numerator / np.where(ok, denominator, 1.0), 0.0)
         np.maximum.at(out, np.mod(i, n_theta) * n_z + k[seg], np.maximum(radius, 0.0))
