@@ -316,3 +316,28 @@ def test_turned_surface_looks_like_the_closed_mesh():
         else:
             assert np.count_nonzero(covered != np.isfinite(depths[1])) < 0.001 * covered.sum()
             assert np.count_nonzero(apart > 0.01) < 0.03 * both.sum()
+
+
+def test_turned_surface_of_a_faced_bar_keeps_its_edge():
+    """A bar (radius 20) whose whole end face is cut 1 mm down (the cells outside the bar stay
+    uncut, as the simulation leaves them): nothing of the picture's surface stands above the new
+    face, and seen from above the face covers the bar to its edge."""
+    from kezuri.toolpath.picture import Picture, View
+    from kezuri.toolpath.simulate.meshes import _turned_surface
+    from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
+
+    rm = radiusmap.grid(20.0, -30.0, 0.0, 0.25)
+    xy = -20.0 + (np.arange(160) + 0.5) * 0.25
+    inside = np.hypot(xy[:, None], xy[None, :]) <= 20.0
+    heights = np.where(inside, -1.0, -np.inf).astype(np.float32)
+    hf = HeightField(-20.0, -20.0, 0.25, 0.25, heights, inside, 0.0, -30.0)
+    vertices, faces = _turned_surface(rm, hf, CylinderStock(20.0, 30.0), None)
+    assert vertices[:, 2].max() <= -1.0 + 1e-9
+    assert len(faces) < len(radiusmap.mesh(rm, -30.0, 0.0)[1]) * 1.2     # the flat face in few tiles
+    view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), 0.0)
+    picture = Picture(400, 400)
+    picture.triangles(view, vertices, faces, (200, 200, 200))
+    x = (np.arange(400) + 0.5 - view.px) / view.scale + view.cx
+    y = -(np.arange(400) + 0.5 - view.py) / view.scale + view.cy
+    within = np.hypot(x[None, :], y[:, None]) < 20.0 - 0.02
+    assert np.allclose(picture.depth[within], -1.0)

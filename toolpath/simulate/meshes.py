@@ -127,13 +127,23 @@ def _turned_surface(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderS
 
     The bar's side is pressed down onto the height field where the axial cuts opened it, and the
     end face is the height field's surface over the stock's square (vertices at the cell centres,
-    a ring on the square's edge; each tile of untouched cells one flat quad) pulled in along
-    the radius onto the bar's side where it lies outside it."""
+    a ring on the square's edge; each flat tile of cells one quad) pulled in along the radius
+    onto the bar's side where it lies outside it.  Cells outside the bar take the height of the
+    bar's edge next to them."""
     grid = rmap.mesh_grid(rm, stock.bottom, stock.top, max_cells)
     cut = None if hf is None else hf.inside & (hf.heights < hf.top - 1e-6)
     if cut is None or not cut.any():
         return rmap.grid_mesh(grid)
     heights = np.where(cut, np.clip(hf.heights, hf.bottom + 1e-3, hf.top), hf.top).astype(float)
+    outside = np.nonzero(~hf.inside)
+    if len(outside[0]):
+        # the cell under the point that far inward: its centre lies within the bar
+        edge = stock.radius - math.hypot(hf.cell_x, hf.cell_y) / 2 * 1.001
+        x, y = hf.x()[outside[0]], hf.y()[outside[1]]
+        scale = np.minimum(1.0, max(edge, 0.0) / np.maximum(np.hypot(x, y), 1e-12))
+        i = np.clip(np.floor((x * scale - hf.x0) / hf.cell_x).astype(np.int64), 0, hf.shape[0] - 1)
+        j = np.clip(np.floor((y * scale - hf.y0) / hf.cell_y).astype(np.int64), 0, hf.shape[1] - 1)
+        heights[outside] = heights[i, j]
     side_vertices, side_faces = rmap.grid_mesh(grid, top_cap=False)
     i = np.clip(np.floor((side_vertices[:, 0] - hf.x0) / hf.cell_x).astype(np.int64), 0, hf.shape[0] - 1)
     j = np.clip(np.floor((side_vertices[:, 1] - hf.y0) / hf.cell_y).astype(np.int64), 0, hf.shape[1] - 1)
@@ -146,8 +156,8 @@ def _turned_surface(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderS
 
 def _tiled_top(heights: np.ndarray, hf: HeightField, tile: int):
     """The end face over the stock's square: (vertices, triangles) of the grid of cell centres
-    plus an edge ring (heights copied outward), tiles of ``tile`` cells that are flat at the
-    top as two triangles, the others cell by cell."""
+    plus an edge ring (heights copied outward), tiles of ``tile`` cells that are flat as two
+    triangles, the others cell by cell."""
     (x0, y0), (x1, y1) = (hf.x0, hf.y0), (hf.x0 + hf.shape[0] * hf.cell_x, hf.y0 + hf.shape[1] * hf.cell_y)
     xs = np.concatenate([[x0], hf.x(), [x1]])
     ys = np.concatenate([[y0], hf.y(), [y1]])
@@ -156,13 +166,14 @@ def _tiled_top(heights: np.ndarray, hf: HeightField, tile: int):
     ids = np.arange(w * h).reshape(w, h)
     # tile (a, b) spans vertices a*tile .. min((a+1)*tile, w-1)
     ta, tb = -(-(w - 1) // tile), -(-(h - 1) // tile)
-    low = z < hf.top
-    padded = np.zeros((ta * tile + 1, tb * tile + 1), bool)
-    padded[:w, :h] = low
-    blocks = padded[:-1, :-1].reshape(ta, tile, tb, tile).any(axis=(1, 3))
-    blocks |= padded[tile::tile, :-1].reshape(ta, tb, tile).any(axis=2)      # the far edges of each tile
-    blocks |= padded[:-1, tile::tile].reshape(ta, tile, tb).any(axis=1)
-    blocks |= padded[tile::tile, tile::tile]
+    padded = np.pad(z, ((0, ta * tile + 1 - w), (0, tb * tile + 1 - h)), mode="edge")
+
+    def over_tiles(reduce):      # over each tile's vertices, its far edges included
+        return reduce(np.stack([reduce(padded[:-1, :-1].reshape(ta, tile, tb, tile), axis=(1, 3)),
+                                reduce(padded[tile::tile, :-1].reshape(ta, tb, tile), axis=2),
+                                reduce(padded[:-1, tile::tile].reshape(ta, tile, tb), axis=1),
+                                padded[tile::tile, tile::tile]]), axis=0)
+    blocks = over_tiles(np.max) != over_tiles(np.min)     # not flat: cell by cell
     fine = np.repeat(np.repeat(blocks, tile, axis=0), tile, axis=1)[:w - 1, :h - 1]
     qa, qb = np.nonzero(fine)
     a, b, c, d = ids[qa, qb], ids[qa + 1, qb], ids[qa + 1, qb + 1], ids[qa, qb + 1]
