@@ -321,9 +321,10 @@ def test_turned_surface_looks_like_the_closed_mesh():
 def test_turned_surface_of_a_faced_bar_keeps_its_edge():
     """A bar (radius 20) whose whole end face is cut 1 mm down (the cells outside the bar stay
     uncut, as the simulation leaves them): nothing of the picture's surface stands above the new
-    face, and seen from above the face covers the bar to its edge."""
+    face, and seen from above the face covers the bar to its edge; the closed mesh is the bar
+    1 mm shorter (its volume that of the radius map's 2513-gon prism)."""
     from kezuri.toolpath.picture import Picture, View
-    from kezuri.toolpath.simulate.meshes import _turned_surface
+    from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
     from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
 
     rm = radiusmap.grid(20.0, -30.0, 0.0, 0.25)
@@ -341,3 +342,7 @@ def test_turned_surface_of_a_faced_bar_keeps_its_edge():
     y = -(np.arange(400) + 0.5 - view.py) / view.scale + view.cy
     within = np.hypot(x[None, :], y[:, None]) < 20.0 - 0.02
     assert np.allclose(picture.depth[within], -1.0)
+    closed = trimesh.Trimesh(*_turned_mesh(rm, hf, CylinderStock(20.0, 30.0), None), process=True)
+    assert closed.is_watertight and closed.vertices[:, 2].max() <= -1.0 + 1e-5
+    n = rm.shape[0]
+    assert closed.volume == pytest.approx(n / 2 * 20.0 ** 2 * math.sin(2 * math.pi / n) * 29.0, rel=1e-5)

@@ -59,10 +59,28 @@ def _heightfield_mesh(hf: HeightField, stock, max_cells):
     return vertices, faces
 
 
+def _filled_heights(hf: HeightField, cut: np.ndarray, stock: CylinderStock) -> np.ndarray:
+    """The material's top over the height field's square: the cut cells' heights (kept 1 um
+    above the bottom), the top elsewhere, and in the cells outside the bar the height of the
+    bar's edge next to them (so a cut reaching the edge reaches it all along)."""
+    heights = np.where(cut, np.clip(hf.heights, hf.bottom + 1e-3, hf.top), hf.top).astype(float)
+    outside = np.nonzero(~hf.inside)
+    if len(outside[0]):
+        # the cell under the point that far inward: its centre lies within the bar
+        edge = stock.radius - math.hypot(hf.cell_x, hf.cell_y) / 2 * 1.001
+        x, y = hf.x()[outside[0]], hf.y()[outside[1]]
+        scale = np.minimum(1.0, max(edge, 0.0) / np.maximum(np.hypot(x, y), 1e-12))
+        i = np.clip(np.floor((x * scale - hf.x0) / hf.cell_x).astype(np.int64), 0, hf.shape[0] - 1)
+        j = np.clip(np.floor((y * scale - hf.y0) / hf.cell_y).astype(np.int64), 0, hf.shape[1] - 1)
+        heights[outside] = heights[i, j]
+    return heights
+
+
 def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStock, max_cells):
     """The bar of the radius map, less the air the height field's cuts opened above it.
 
-    The air is a box over the cut cells minus their columns (uncut cells stand above the box),
+    The air is a box over the cut cells minus their columns (uncut cells stand above the box;
+    the cells outside the bar have the height of its edge next to them),
     so only the cut area meets the bar in the boolean, and no faces of the two coincide.  The
     box starts 1 mm below the deepest cut; the bar below it never meets the air, so only the
     bar's columns above a ring under the box go through the boolean (closed by a fan there),
@@ -72,20 +90,23 @@ def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStoc
     if cut is None or not cut.any():
         return rmap.grid_mesh(grid)
     nx, ny = hf.shape
+    filled = _filled_heights(hf, cut, stock)
+    cut = filled < hf.top      # with the cells outside the bar next to a cut edge
     i, j = np.nonzero(cut)
     i0, i1, j0, j1 = max(i.min() - 2, 0), min(i.max() + 3, nx), max(j.min() - 2, 0), min(j.max() + 3, ny)
-    heights = np.clip(hf.heights[i0:i1, j0:j1], hf.bottom + 1e-3, hf.top).astype(float)
+    heights = filled[i0:i1, j0:j1]
     heights[~cut[i0:i1, j0:j1]] = hf.top + 1.0
     heights, block = _pooled(heights, max_cells)
     cx, cy = block * hf.cell_x, block * hf.cell_y
     x0, y0 = hf.x0 + i0 * hf.cell_x, hf.y0 + j0 * hf.cell_y
     x1, y1 = x0 + heights.shape[0] * cx, y0 + heights.shape[1] * cy
-    # one more uncut cell all round, so that the relief's vertices stay at the cells' centres
-    columns = _solid_of(*_relief_mesh(np.pad(heights, 1, constant_values=hf.top + 1.0), x0 - cx, y0 - cy,
+    # one more cell all round (uncut but where the cut reaches the square's edge), so that the
+    # relief's vertices stay at the cells' centres and the box reaches past the bar's edge there
+    columns = _solid_of(*_relief_mesh(np.pad(heights, 1, mode="edge"), x0 - cx, y0 - cy,
                                       x1 + cx, y1 + cy, cx, cy, hf.bottom - 2.0))
     box_bottom = max(float(heights.min()) - 1.0, hf.bottom - 1.0)
-    box = Manifold.cube([x1 - x0 - cx, y1 - y0 - cy, hf.top + 0.5 - box_bottom]).translate(
-        [x0 + cx / 2, y0 + cy / 2, box_bottom])
+    box = Manifold.cube([x1 - x0 + cx, y1 - y0 + cy, hf.top + 0.5 - box_bottom]).translate(
+        [x0 - cx / 2, y0 - cy / 2, box_bottom])
     zs = grid[0, :, 2]
     split = int(np.searchsorted(zs, box_bottom - 0.5, side="right")) - 1   # last ring 0.5 mm under the box
     if split < 1:
@@ -134,16 +155,7 @@ def _turned_surface(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderS
     cut = None if hf is None else hf.inside & (hf.heights < hf.top - 1e-6)
     if cut is None or not cut.any():
         return rmap.grid_mesh(grid)
-    heights = np.where(cut, np.clip(hf.heights, hf.bottom + 1e-3, hf.top), hf.top).astype(float)
-    outside = np.nonzero(~hf.inside)
-    if len(outside[0]):
-        # the cell under the point that far inward: its centre lies within the bar
-        edge = stock.radius - math.hypot(hf.cell_x, hf.cell_y) / 2 * 1.001
-        x, y = hf.x()[outside[0]], hf.y()[outside[1]]
-        scale = np.minimum(1.0, max(edge, 0.0) / np.maximum(np.hypot(x, y), 1e-12))
-        i = np.clip(np.floor((x * scale - hf.x0) / hf.cell_x).astype(np.int64), 0, hf.shape[0] - 1)
-        j = np.clip(np.floor((y * scale - hf.y0) / hf.cell_y).astype(np.int64), 0, hf.shape[1] - 1)
-        heights[outside] = heights[i, j]
+    heights = _filled_heights(hf, cut, stock)
     side_vertices, side_faces = rmap.grid_mesh(grid, top_cap=False)
     i = np.clip(np.floor((side_vertices[:, 0] - hf.x0) / hf.cell_x).astype(np.int64), 0, hf.shape[0] - 1)
     j = np.clip(np.floor((side_vertices[:, 1] - hf.y0) / hf.cell_y).astype(np.int64), 0, hf.shape[1] - 1)
