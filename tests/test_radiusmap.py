@@ -346,3 +346,28 @@ def test_turned_surface_of_a_faced_bar_keeps_its_edge():
     assert closed.is_watertight and closed.vertices[:, 2].max() <= -1.0 + 1e-5
     n = rm.shape[0]
     assert closed.volume == pytest.approx(n / 2 * 20.0 ** 2 * math.sin(2 * math.pi / n) * 29.0, rel=1e-5)
+
+
+def test_turned_surface_merges_the_untouched_side():
+    """A bar with a groove on part of its turn and no axial cut: the picture's surface draws the
+    same pixels at the same depths as the closed mesh from above, at 72 degrees and from the side,
+    with the untouched strips of its side one quad each (far fewer triangles)."""
+    from kezuri.toolpath.picture import Picture, View
+    from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
+    from kezuri.toolpath.simulate.stock import CylinderStock
+
+    rm = radiusmap.grid(20.0, -30.0, 0.0, 0.25)
+    rm.radii[:100, 40:60] = 17.0
+    meshes = _turned_mesh(rm, None, CylinderStock(20.0, 30.0), None), _turned_surface(rm, None, CylinderStock(20.0, 30.0),
+                                                                                       None)
+    assert len(meshes[1][1]) < len(meshes[0][1]) / 10
+    for tilt in (0.0, 72.0, 90.0):
+        view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), tilt)
+        depths = []
+        for vertices, faces in meshes:
+            picture = Picture(400, 400)
+            picture.triangles(view, vertices, faces, (200, 200, 200))
+            depths.append(picture.depth)
+        covered = np.isfinite(depths[0])
+        assert np.array_equal(covered, np.isfinite(depths[1]))
+        assert np.abs(depths[0][covered] - depths[1][covered]).max() < 1e-9

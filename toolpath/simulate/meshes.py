@@ -154,16 +154,44 @@ def _turned_surface(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderS
     grid = rmap.mesh_grid(rm, stock.bottom, stock.top, max_cells)
     cut = None if hf is None else hf.inside & (hf.heights < hf.top - 1e-6)
     if cut is None or not cut.any():
-        return rmap.grid_mesh(grid)
+        vertices, faces = rmap.grid_mesh(grid)
+        return vertices, np.vstack([_side(grid, np.zeros(grid.shape[:2], bool), rm.radius), faces[-2 * len(grid):]])
     heights = _filled_heights(hf, cut, stock)
     side_vertices, side_faces = rmap.grid_mesh(grid, top_cap=False)
     i = np.clip(np.floor((side_vertices[:, 0] - hf.x0) / hf.cell_x).astype(np.int64), 0, hf.shape[0] - 1)
     j = np.clip(np.floor((side_vertices[:, 1] - hf.y0) / hf.cell_y).astype(np.int64), 0, hf.shape[1] - 1)
-    side_vertices[:, 2] = np.minimum(side_vertices[:, 2], heights[i, j])
+    pressed = side_vertices[:, 2] > heights[i, j]
+    side_vertices[pressed, 2] = heights[i, j][pressed]
+    side_faces = np.vstack([_side(grid, pressed[:grid.shape[0] * grid.shape[1]].reshape(grid.shape[:2]), rm.radius),
+                            side_faces[-len(grid):]])
     tile = int(np.clip(TILE_OF_RADIUS * stock.radius / max(hf.cell_x, hf.cell_y), 1, TILE))
     top_vertices, top_faces = _tiled_top(heights, hf, tile)
     _pull_in(top_vertices, grid)
     return np.vstack([side_vertices, top_vertices]), np.vstack([side_faces, top_faces + len(side_vertices)])
+
+
+def _side(grid: np.ndarray, pressed: np.ndarray, radius: float) -> np.ndarray:
+    """The triangles of the side of ``mesh_grid`` ``grid`` (as :func:`.radiusmap.grid_mesh` numbers
+    its vertices, no caps), each run of uncut quads up a strip (both edges at the bar's radius,
+    no vertex ``pressed`` down, above the bottom row) as one quad: they are one rectangle."""
+    n_theta, columns = grid.shape[:2]
+    ids = np.arange(n_theta * columns).reshape(n_theta, columns)
+    nxt = np.roll(ids, -1, axis=0)
+    plain = (np.hypot(grid[..., 0], grid[..., 1]) >= radius - 1e-9) & ~pressed
+    plain &= np.roll(plain, -1, axis=0)
+    quad = plain[:, :-1] & plain[:, 1:]               # quad (i, c): strip i, rows c .. c + 1
+    quad[:, 0] = False                                # the bottom row stays (it is drawn as the side)
+    run = np.zeros((n_theta, columns + 1), bool)
+    run[:, 1:-1] = quad
+    starts = np.nonzero(run[:, 1:] & ~run[:, :-1])    # (strip, first quad) of each run ...
+    ends = np.nonzero(run[:, :-1] & ~run[:, 1:])      # ... (strip, one past its last quad), in the same order
+    i, c = np.nonzero(~quad)
+    a = np.concatenate([ids[i, c], ids[starts]])
+    b = np.concatenate([nxt[i, c], nxt[starts]])
+    top = (ends[0], ends[1])
+    c2 = np.concatenate([nxt[i, c + 1], nxt[top]])
+    d = np.concatenate([ids[i, c + 1], ids[top]])
+    return np.concatenate([np.column_stack([a, b, c2]), np.column_stack([a, c2, d])])
 
 
 def _tiled_top(heights: np.ndarray, hf: HeightField, tile: int):
