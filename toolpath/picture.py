@@ -123,7 +123,8 @@ class Picture:
         nearer = depth > flat_depth[pixel]
         pixel, depth, face = pixel[nearer], depth[nearer], face[nearer]
         flat_depth[pixel] = depth
-        self.rgb.reshape(-1, 3)[pixel] = colours[face] * shade[face, None].astype(np.float32)
+        shaded = colours * shade[:, None].astype(np.float32)     # per face, then per pixel
+        self.rgb.reshape(-1, 3)[pixel] = shaded[face]
 
     # ----- lines ---------------------------------------------------------------------------
     def segments(self, view: View, a, b, colour, width: int = 2, dash: float = 0.0, over: bool = True):
