@@ -143,9 +143,11 @@ def batch_simulation(scene, setup, out_dir: str, stem: str, job: SimulationJob |
         job = run_setup(setup, "heightfield", 0.1, Progress(None, "simulate"))
     from .batchio import shown
 
-    mesh = job.result.mesh(250_000)       # built once: the scene's object and the picture
-    if shown():
+    if shown():      # the scene's object is the closed solid; the picture needs only its look
+        mesh = job.result.mesh(250_000)
         show_simulation(scene, job, mesh=mesh)
+    else:
+        mesh = job.result.surface(250_000)
     png = preview.simulation_png(os.path.join(out_dir, f"{stem}.png"), job.result,
                                  f"{stem.upper()}: SIMULATED STOCK", preview.SIDE_VIEW_DEG if stem == "turnmill" else 35.0,
                                  mesh)

@@ -42,6 +42,12 @@ def _num(value: float, decimals: int) -> str:
     return text[1:] if text.startswith("-") and float(text) == 0 else text
 
 
+def _nums(values: list, decimals: int) -> list:
+    """:func:`_num` of every value (:func:`.words.fixed`, then no minus on a zero)."""
+    negative_zero = f"-{0.0:.{decimals}f}"
+    return [text[1:] if text == negative_zero else text for text in words.fixed(values, decimals)]
+
+
 class CLDataPost(Post):
     """Program -> APT CL data text."""
 
@@ -96,10 +102,11 @@ class CLDataPost(Post):
             return []
         goto = np.full(n, "GOTO/", dtype=object)
         for index, (values, decimals) in enumerate([(points, self.decimals)] * 3 + [(axes, self.axis_decimals)] * 3):
-            texts, ids = words.column(np.asarray(values, float)[:, index % 3], lambda value: _num(value, decimals))
+            texts, ids = words.column(np.asarray(values, float)[:, index % 3], lambda value: _num(value, decimals),
+                                      lambda many, decimals=decimals: _nums(many, decimals))
             goto = goto + ("," if index else "") + texts[ids]
         rapid = op.kind == RAPID
-        texts, ids = words.column(op.feed, lambda value: _num(value, 1))
+        texts, ids = words.column(op.feed, lambda value: _num(value, 1), lambda many: _nums(many, 1))
         last_cut = words.previous_where(~rapid)
         fedrat = ~rapid & ((last_cut < 0) | (ids != ids[np.maximum(last_cut, 0)]))
         before = words.prefixed("FEDRAT/MMPM,", texts, ids, fedrat)

@@ -204,7 +204,8 @@ class TurnMillXZCPost(GcodePost):
         columns, write = [], []
         for letter, start, values in (("X", op.start[0] * scale, op.xyz[:, 0] * scale), ("Z", op.start[2], op.xyz[:, 2]),
                                       ("C", c_values[0], c_values)):
-            texts, ids = words.column(np.concatenate([[start], values]), self.n)
+            texts, ids = words.column(np.concatenate([[start], values]), self.n,
+                                      lambda many: words.trimmed(many, self.decimals))
             write.append(ids[1:] != ids[:-1])
             columns.append((letter, texts, ids[1:]))
         emitted = write[0] | write[1] | write[2]
@@ -216,10 +217,11 @@ class TurnMillXZCPost(GcodePost):
         out += [words.prefixed(letter, texts, ids, w) for (letter, texts, ids), w in zip(columns, write)]
         cutting = emitted & (kind == FEED)
         if self.inverse_time:
-            texts, ids = words.column(np.where(cutting, inverse_time, 0.0), lambda value: fmt(value, 3))
+            texts, ids = words.column(np.where(cutting, inverse_time, 0.0), lambda value: fmt(value, 3),
+                                      lambda many: words.trimmed(many, 3))
             out.append(words.prefixed("F", texts, ids, cutting))
         else:
-            texts, ids = words.column(op.feed, lambda value: fmt(value, 1))
+            texts, ids = words.column(op.feed, lambda value: fmt(value, 1), lambda many: words.trimmed(many, 1))
             last_cut = words.previous_where(cutting)
             out.append(words.prefixed("F", texts, ids, cutting & ((last_cut < 0) | (ids != ids[np.maximum(last_cut, 0)]))))
         return words.join_words([column[emitted] for column in out])

@@ -13,19 +13,37 @@ from typing import Callable
 import numpy as np
 
 
-def column(values, text_of: Callable[[float], str]) -> tuple:
+def column(values, text_of: Callable[[float], str], many: Callable[[list], list] | None = None) -> tuple:
     """(texts, ids) for a 1-d array of floats: ``texts`` an object array of the distinct words,
-    ``ids`` (n,) int indices into it, equal exactly where ``text_of`` gives the same text."""
+    ``ids`` (n,) int indices into it, equal exactly where ``text_of`` gives the same text.
+    ``many``: ``text_of`` for a whole list of values at once (the same texts, faster), if the post
+    has one (:func:`fixed`, :func:`trimmed`)."""
     values = np.ascontiguousarray(values, dtype=float).reshape(-1)
     if not len(values):
         return np.empty(0, dtype=object), np.empty(0, dtype=np.intp)
     distinct, inverse = np.unique(values, return_inverse=True)   # sorted; NaN (rapids' feeds) last
-    words = [text_of(value) for value in distinct.tolist()]
+    words = np.array(many(distinct.tolist()) if many is not None else [text_of(value) for value in distinct.tolist()],
+                     dtype=object)
     # rounding to a fixed number of decimals is monotonic, so values that read the same are
     # neighbours in sorted order ("-0." and "0." are one text, and so neighbours too)
-    new = np.array([True] + [a != b for a, b in zip(words[1:], words[:-1])], bool)
-    texts = np.array(words, dtype=object)[new]
+    new = np.ones(len(words), bool)
+    new[1:] = words[1:] != words[:-1]
+    texts = words[new]
     return texts, (np.cumsum(new) - 1)[inverse.reshape(-1)]
+
+
+def fixed(values: list, decimals: int) -> list:
+    """``f"{value:.{decimals}f}"`` of every float of ``values``, formatted in one printf-style
+    call (``"%.4f" % value`` rounds and writes exactly as the f-string does)."""
+    if not len(values):
+        return []
+    return ((f"%.{decimals}f\n" * len(values)) % tuple(values)).split("\n")[:-1]
+
+
+def trimmed(values: list, decimals: int) -> list:
+    """:func:`.gcode.fmt` of every float of ``values``: ``106.`` / ``-2.5`` / ``0.125``."""
+    texts = [text.rstrip("0") for text in fixed(values, decimals)]
+    return [("0." if text in ("-0.", "-.") else text) for text in texts]
 
 
 def previous_where(mask: np.ndarray) -> np.ndarray:

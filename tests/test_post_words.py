@@ -24,6 +24,27 @@ def test_column_words_at_the_edges():
     texts, ids = words.column(np.array([-0.00004, 1.0, 0.00005, np.nan]), lambda v: f"{v:.4f}")
     assert texts[ids].tolist() == ["-0.0000", "1.0000", "0.0001", "nan"]
 
+    # the same texts from the formatters of whole lists
+    texts, ids = words.column(np.array(values), lambda v: fmt(v, 3), lambda many: words.trimmed(many, 3))
+    assert texts[ids].tolist() == expected
+
+
+def test_list_formatters_write_what_the_scalar_ones_do():
+    """words.fixed / words.trimmed and cldata's list formatter against the f-string, gcode.fmt and
+    cldata._num, value by value: halves, minus zeros, NaN, infinities, large and tiny values."""
+    from kezuri.post.cldata import _num, _nums
+
+    rng = np.random.default_rng(7)
+    values = np.concatenate([[0.0, -0.0, 0.5, -0.5, 1.5, 2.5, 0.0625, -0.0625, 0.00005, -0.00005, -0.00004,
+                              1e-300, -1e-300, 99999.9995, 123456789.125, np.nan, np.inf, -np.inf],
+                             rng.uniform(-1000, 1000, 2000), np.round(rng.uniform(-10, 10, 2000), 4) + 5e-5,
+                             rng.integers(-10 ** 6, 10 ** 6, 500) / 2 ** rng.integers(1, 12, 500)]).tolist()
+    for decimals in (0, 1, 3, 4, 6):
+        assert words.fixed(values, decimals) == [f"{v:.{decimals}f}" for v in values]
+        assert words.trimmed(values, decimals) == [fmt(v, decimals) for v in values]
+        assert _nums(values, decimals) == [_num(v, decimals) for v in values]
+    assert words.fixed([], 3) == [] and words.trimmed([], 3) == []
+
 
 def test_previous_where_and_join():
     assert words.previous_where(np.array([True, False, True, False])).tolist() == [-1, 0, 0, 2]

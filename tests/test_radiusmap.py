@@ -101,15 +101,34 @@ def cylinder_design(radius, z_min=-30.0, z_max=0.0):
     return trimesh.Trimesh(np.asarray(mesh.vert_properties)[:, :3], np.asarray(mesh.tri_verts), process=False)
 
 
-def test_outer_radii_of_a_cylinder():
+def _kernels(kernel):
+    from kezuri.toolpath.simulate.heightfield import _compiled_kernels
+    return _compiled_kernels(kernel)
+
+
+@pytest.mark.parametrize("kernel", ["numba", "numpy"])
+def test_outer_radii_of_a_cylinder(kernel):
     design = cylinder_design(16.0, -25.0, -5.0)
     rm = radiusmap.grid(20.0, -30.0, 0.0, 0.1)
-    outer = radiusmap.outer_radii(rm, np.asarray(design.vertices), np.asarray(design.faces))
+    outer = radiusmap.outer_radii(rm, np.asarray(design.vertices), np.asarray(design.faces), _kernels(kernel))
     within = (rm.z() > -25.0) & (rm.z() < -5.0)
     sag = 16.0 * (1 - math.cos(math.pi / 256))
     assert np.all(outer[:, within] <= 16.0 + 1e-9)
     assert np.all(outer[:, within] >= 16.0 - sag - 1e-9)
     assert np.all(outer[:, ~within] == 0.0)
+
+
+def test_outer_radii_kernels_agree_bit_for_bit():
+    """A cone off the axis and a sphere holding the axis (rays met from every side, segments
+    across the angle's wrap): the compiled rays give the numpy path's radii exactly."""
+    cone = Manifold.cylinder(20.0, 6.0, 2.0, 64).translate((9.0, -3.0, -25.0)).to_mesh64()
+    ball = Manifold.sphere(4.0, 48).translate((1.0, 0.5, -12.0)).to_mesh64()
+    rm = radiusmap.grid(20.0, -30.0, 0.0, 0.1)
+    for mesh in (cone, ball):
+        vertices, faces = np.asarray(mesh.vert_properties)[:, :3], np.asarray(mesh.tri_verts, np.int64)
+        a = radiusmap.outer_radii(rm, vertices, faces, _kernels("numba"))
+        b = radiusmap.outer_radii(rm, vertices, faces, None)
+        assert (a > 0).sum() > 1000 and np.array_equal(a, b)
 
 
 def test_one_millimetre_into_the_design_is_a_one_millimetre_gouge():
@@ -253,3 +272,102 @@ def test_turned_mesh_joins_the_untouched_bar_to_the_cut_end():
     ours, plain = triangles_below(vertices, faces), triangles_below(*radiusmap.mesh(rm, -30.0, 0.0))
     assert len(ours) > 0.8 * len(radiusmap.mesh(rm, -30.0, 0.0)[1])
     assert np.array_equal(ours, plain)
+
+
+def test_turned_surface_looks_like_the_closed_mesh():
+    """The picture's surface (no boolean) of the bar of the test above looks like the closed mesh:
+    seen from above, the same pixels are covered (but for a sliver along the rim, where the mesh's
+    end face is a 64-gon and the surface's a finer polygon on the same circle), at the same
+    height but on the pocket's walls (the mesh's walls start at the end face 3/4 of the way from
+    the floor's outer cell centres to the next ones, the surface's at those: at most 0.75 mm
+    apart); seen from the side, nearly all pixels alike."""
+    from kezuri.toolpath.picture import Picture, View
+    from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
+    from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
+
+    n_theta, n_z = 64, 60
+    radii = np.full((n_theta, n_z), 20.0)
+    radii[: n_theta // 2, 20:40] = 17.0
+    rm = radiusmap.RadiusMap(20.0, -30.0, 0.5, 2 * math.pi / n_theta, radii, np.full(radii.shape, -1))
+    heights = np.zeros((80, 80), np.float32)
+    heights[35:45, 35:45] = -3.0
+    xy = (np.arange(80) + 0.5) - 40.0
+    hf = HeightField(-40.0, -40.0, 1.0, 1.0, heights, np.hypot(xy[:, None], xy[None, :]) < 20.0, 0.0, -30.0)
+    stock = CylinderStock(20.0, 30.0)
+    meshes = _turned_mesh(rm, hf, stock, None), _turned_surface(rm, hf, stock, None)
+    for tilt in (0.0, 72.0):
+        view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), tilt)
+        depths = []
+        for vertices, faces in meshes:
+            picture = Picture(400, 400)
+            picture.triangles(view, vertices, faces, (200, 200, 200))
+            depths.append(picture.depth)
+        covered = np.isfinite(depths[0])
+        both = covered & np.isfinite(depths[1])
+        apart = np.abs(np.where(both, depths[0], 0.0) - np.where(both, depths[1], 0.0))
+        if tilt == 0.0:
+            assert np.count_nonzero(covered != np.isfinite(depths[1])) < 2 * math.pi * 20.0 * view.scale * 0.25
+            x = (np.arange(400) + 0.5 - view.px) / view.scale + view.cx
+            y = -(np.arange(400) + 0.5 - view.py) / view.scale + view.cy
+            side = np.maximum(np.abs(x)[None, :], np.abs(y)[:, None])      # [row, column]
+            walls = (side > 4.5 - 1.5 / view.scale) & (side < 5.5 + 1.5 / view.scale)
+            assert apart[~walls].max() < 1e-9
+            assert apart[walls].max() <= 0.75
+        else:
+            assert np.count_nonzero(covered != np.isfinite(depths[1])) < 0.001 * covered.sum()
+            assert np.count_nonzero(apart > 0.01) < 0.03 * both.sum()
+
+
+def test_turned_surface_of_a_faced_bar_keeps_its_edge():
+    """A bar (radius 20) whose whole end face is cut 1 mm down (the cells outside the bar stay
+    uncut, as the simulation leaves them): nothing of the picture's surface stands above the new
+    face, and seen from above the face covers the bar to its edge; the closed mesh is the bar
+    1 mm shorter (its volume that of the radius map's 2513-gon prism)."""
+    from kezuri.toolpath.picture import Picture, View
+    from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
+    from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
+
+    rm = radiusmap.grid(20.0, -30.0, 0.0, 0.25)
+    xy = -20.0 + (np.arange(160) + 0.5) * 0.25
+    inside = np.hypot(xy[:, None], xy[None, :]) <= 20.0
+    heights = np.where(inside, -1.0, -np.inf).astype(np.float32)
+    hf = HeightField(-20.0, -20.0, 0.25, 0.25, heights, inside, 0.0, -30.0)
+    vertices, faces = _turned_surface(rm, hf, CylinderStock(20.0, 30.0), None)
+    assert vertices[:, 2].max() <= -1.0 + 1e-9
+    assert len(faces) < len(radiusmap.mesh(rm, -30.0, 0.0)[1]) * 1.2     # the flat face in few tiles
+    view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), 0.0)
+    picture = Picture(400, 400)
+    picture.triangles(view, vertices, faces, (200, 200, 200))
+    x = (np.arange(400) + 0.5 - view.px) / view.scale + view.cx
+    y = -(np.arange(400) + 0.5 - view.py) / view.scale + view.cy
+    within = np.hypot(x[None, :], y[:, None]) < 20.0 - 0.02
+    assert np.allclose(picture.depth[within], -1.0)
+    closed = trimesh.Trimesh(*_turned_mesh(rm, hf, CylinderStock(20.0, 30.0), None), process=True)
+    assert closed.is_watertight and closed.vertices[:, 2].max() <= -1.0 + 1e-5
+    n = rm.shape[0]
+    assert closed.volume == pytest.approx(n / 2 * 20.0 ** 2 * math.sin(2 * math.pi / n) * 29.0, rel=1e-5)
+
+
+def test_turned_surface_merges_the_untouched_side():
+    """A bar with a groove on part of its turn and no axial cut: the picture's surface draws the
+    same pixels at the same depths as the closed mesh from above, at 72 degrees and from the side,
+    with the untouched strips of its side one quad each (far fewer triangles)."""
+    from kezuri.toolpath.picture import Picture, View
+    from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
+    from kezuri.toolpath.simulate.stock import CylinderStock
+
+    rm = radiusmap.grid(20.0, -30.0, 0.0, 0.25)
+    rm.radii[:100, 40:60] = 17.0
+    meshes = _turned_mesh(rm, None, CylinderStock(20.0, 30.0), None), _turned_surface(rm, None, CylinderStock(20.0, 30.0),
+                                                                                       None)
+    assert len(meshes[1][1]) < len(meshes[0][1]) / 10
+    for tilt in (0.0, 72.0, 90.0):
+        view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), tilt)
+        depths = []
+        for vertices, faces in meshes:
+            picture = Picture(400, 400)
+            picture.triangles(view, vertices, faces, (200, 200, 200))
+            depths.append(picture.depth)
+        covered = np.isfinite(depths[0])
+        assert np.array_equal(covered, np.isfinite(depths[1]))
+        assert np.abs(depths[0][covered] - depths[1][covered]).max() < 1e-9

@@ -106,18 +106,25 @@ class Picture:
         if not len(faces):
             return
         colours = np.broadcast_to(np.asarray(colours, np.float32), (len(faces), 3))
-        corner = vertices[faces]
-        normal = np.cross(corner[:, 1] - corner[:, 0], corner[:, 2] - corner[:, 0])
-        length = np.linalg.norm(normal, axis=1)
+        # the normals coordinate by coordinate (as np.cross and np.linalg.norm would, without
+        # their reductions over rows of three)
+        v = [np.ascontiguousarray(vertices[:, axis]) for axis in range(3)]
+        f0, f1, f2 = (np.ascontiguousarray(faces[:, corner]) for corner in range(3))
+        ax, ay, az = (w[f1] - w[f0] for w in v)
+        bx, by, bz = (w[f2] - w[f0] for w in v)
+        nx, ny, nz = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
+        length = np.sqrt(nx * nx + ny * ny + nz * nz)
         light = np.asarray(light, float) / np.linalg.norm(light)
-        shade = 0.45 + 0.55 * np.abs(_along(normal, light)) / np.where(length > 0, length, 1.0)
+        shade = 0.45 + 0.55 * np.abs(nx * light[0] + ny * light[1] + nz * light[2]) / np.where(length > 0, length,
+                                                                                                1.0)
         x, y, z = view.project(vertices)
         pixel, depth, face = rasterise(x, y, z, faces, self.width, self.height)
         flat_depth = self.depth.reshape(-1)
         nearer = depth > flat_depth[pixel]
         pixel, depth, face = pixel[nearer], depth[nearer], face[nearer]
         flat_depth[pixel] = depth
-        self.rgb.reshape(-1, 3)[pixel] = colours[face] * shade[face, None].astype(np.float32)
+        shaded = colours * shade[:, None].astype(np.float32)     # per face, then per pixel
+        self.rgb.reshape(-1, 3)[pixel] = shaded[face]
 
     # ----- lines ---------------------------------------------------------------------------
     def segments(self, view: View, a, b, colour, width: int = 2, dash: float = 0.0, over: bool = True):
@@ -206,6 +213,16 @@ class Picture:
         return png_bytes(self.image())
 
 
+def _least(corners: np.ndarray) -> np.ndarray:
+    """corners.min(axis=1) of an (f, 3) array, three columns at a time (a reduction over rows
+    of three is slow)."""
+    return np.minimum(np.minimum(corners[:, 0], corners[:, 1]), corners[:, 2])
+
+
+def _most(corners: np.ndarray) -> np.ndarray:
+    return np.maximum(np.maximum(corners[:, 0], corners[:, 1]), corners[:, 2])
+
+
 def rasterise(x, y, z, faces, width: int, height: int) -> tuple:
     """The nearest fragment of every covered pixel: (flat pixel index, depth, face index); where
     fragments tie for nearest (on an edge two triangles share), each is returned (the numba
@@ -216,11 +233,11 @@ def rasterise(x, y, z, faces, width: int, height: int) -> tuple:
     the triangle's plane.  Work is proportional to rows plus covered pixels."""
     faces = np.asarray(faces, np.int64)
     fx, fy, fz = x[faces], y[faces], z[faces]
-    j0 = np.clip(np.ceil(fy.min(axis=1) - 0.5), 0, height).astype(np.int64)
-    j1 = np.clip(np.floor(fy.max(axis=1) - 0.5), -1, height - 1).astype(np.int64)
+    lowest, highest = _least(fy), _most(fy)
+    j0 = np.clip(np.ceil(lowest - 0.5), 0, height).astype(np.int64)
+    j1 = np.clip(np.floor(highest - 0.5), -1, height - 1).astype(np.int64)
     area = (fx[:, 1] - fx[:, 0]) * (fy[:, 2] - fy[:, 0]) - (fx[:, 2] - fx[:, 0]) * (fy[:, 1] - fy[:, 0])
-    live = (j1 >= j0) & (fx.max(axis=1) >= 0) & (fx.min(axis=1) < width) & (np.abs(area) > 1e-12) \
-        & np.isfinite(area)
+    live = (j1 >= j0) & (_most(fx) >= 0) & (_least(fx) < width) & (np.abs(area) > 1e-12) & np.isfinite(area)
     kernel = compiled.kernel_module("auto", f"{__package__}.picture_kernel", PictureError, "picture kernel")
     if kernel is not None:
         nearest, owner = np.full(width * height, -np.inf), np.full(width * height, -1, np.int64)

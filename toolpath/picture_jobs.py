@@ -249,14 +249,16 @@ def depth_colours(depth, deepest: float) -> np.ndarray:
 def simulation_picture(result, title: str = "", size=(1200, 800), tilt_deg: float = 35.0, max_cells: int = 160_000,
                        mesh=None):
     """The simulated stock, shaded and coloured by depth over 0 .. its deepest cut; ``mesh``:
-    its (vertices, faces) when the caller has them already (else ``result.mesh(max_cells)``)."""
-    vertices, faces = result.mesh(max_cells) if mesh is None else mesh
+    its (vertices, faces) when the caller has them already (else ``result.surface(max_cells)``)."""
+    vertices, faces = result.surface(max_cells) if mesh is None else mesh
     vertices = np.asarray(vertices, float)
     faces = np.asarray(faces, np.int64)
     depth, deepest = surface_depth(result, vertices)
-    colours = depth_colours(depth[faces].mean(axis=1), deepest)
+    f0, f1, f2 = faces[:, 0], faces[:, 1], faces[:, 2]
+    colours = depth_colours((depth[f0] + depth[f1] + depth[f2]) / 3, deepest)      # each face's mean depth
     # The stock's sides and bottom (faces reaching its bottom face) are uncut material.
-    colours[(vertices[faces, 2] <= result.stock.bottom + 1e-6).any(axis=1)] = SIDE_COLOUR
+    low = vertices[:, 2] <= result.stock.bottom + 1e-6
+    colours[low[f0] | low[f1] | low[f2]] = SIDE_COLOUR
     picture = Picture(*size)
     view = View(np.vstack([vertices, stock_corners(result.stock)]),
                 (0, HEADER, picture.width, picture.height - LEGEND), tilt_deg)

@@ -207,13 +207,13 @@ def _radius_map_cut(ops, radial, stock: CylinderStock, cell: float, tolerance: f
         done += len(op)
     if design is not None and hasattr(design, "vertices") and hasattr(design, "faces"):
         findings += _radial_gouges(rm, stamps_of, ops, np.asarray(design.vertices, float),
-                                   np.asarray(design.faces, np.int64))
+                                   np.asarray(design.faces, np.int64), kernels)
     return rm, findings
 
 
-def _radial_gouges(rm: rmap.RadiusMap, stamps_of: dict, ops: list, vertices, faces) -> list:
+def _radial_gouges(rm: rmap.RadiusMap, stamps_of: dict, ops: list, vertices, faces, kernels=None) -> list:
     """The deepest cut inside the design's outer radius, with the move that made it."""
-    outer = rmap.outer_radii(rm, vertices, faces)
+    outer = rmap.outer_radii(rm, vertices, faces, kernels)
     depth = outer - rm.radii
     gouged = (outer > 0) & (depth > GOUGE_TOLERANCE)
     if not gouged.any():

@@ -291,6 +291,20 @@ def cut_radial_balls(flat, n_theta, n_z, z0, cell_z, cell_theta, rho, phi, zc, r
             i0 = int(np.ceil((centre - half) / cell_theta - 0.5))
             i1 = int(np.floor((centre + half) / cell_theta - 0.5))
             count = min(max(i1 - i0 + 1, 0), n_theta)
+            # No ray of the row enters the ball nearer the axis than |rho| - sqrt(w2): a row whose
+            # material lies inside that everywhere is left as it is (a margin far above rounding).
+            nearest = abs(rho[s]) - np.sqrt(w2) - 1e-9
+            i = i0 % n_theta
+            deeper = False
+            for _ in range(count):
+                if flat[i * n_z + k] > nearest:
+                    deeper = True
+                    break
+                i += 1
+                if i == n_theta:
+                    i = 0
+            if not deeper:
+                continue
             # cos and sin of the angle from the ball's plane, cell after cell by rotation
             d = (i0 + 0.5) * cell_theta - phi[s]
             cos_d, sin_d = np.cos(d), np.sin(d)
@@ -305,3 +319,20 @@ def cut_radial_balls(flat, n_theta, n_z, z0, cell_z, cell_theta, rho, phi, zc, r
                 i += 1
                 if i == n_theta:
                     i = 0
+
+
+@_jit
+def outer_rays(out, n_theta, n_z, k, i0, count, ex, ey, numerator, cos_t, sin_t, first):
+    """radiusmap.outer_radii's rays, segment by segment: segment s of row ``k[s]`` (from a, edge
+    (ex, ey), numerator a x e) meets the rays i0[s] .. i0[s] + count[s] - 1 (angles of the table
+    ``cos_t``, ``sin_t`` from ray ``first``) at radius numerator / (u x e); the largest radius
+    (at least 0) of every ray is kept in ``out``.  The numpy path's arithmetic, so the same radii."""
+    for s in range(len(k)):
+        for j in range(count[s]):
+            i = i0[s] + j
+            denominator = cos_t[i - first] * ey[s] - sin_t[i - first] * ex[s]
+            radius = numerator[s] / denominator if abs(denominator) > 1e-12 else 0.0
+            index = (i % n_theta) * n_z + k[s]
+            value = max(radius, 0.0)
+            if value > out[index]:
+                out[index] = value

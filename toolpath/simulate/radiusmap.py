@@ -219,11 +219,12 @@ def cut(rm: RadiusMap, stamps: BallStamps, ball_radius: float, operation: int, t
 
 
 
-def outer_radii(rm: RadiusMap, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+def outer_radii(rm: RadiusMap, vertices: np.ndarray, faces: np.ndarray, kernels=None) -> np.ndarray:
     """The design mesh's outer radius along every ray of the map (0 where the ray misses it).
 
     Every triangle is sliced at each row's height; each slice segment sets the radius of the
-    rays it crosses, and the largest wins."""
+    rays it crosses, and the largest wins.  ``kernels``: the compiled kernels module (kernel.py)
+    for the rays (the same radii, bit for bit), or None for numpy."""
     n_theta, n_z = rm.shape
     out = np.zeros(n_theta * n_z)
     tri = vertices[faces]
@@ -236,33 +237,44 @@ def outer_radii(rm: RadiusMap, vertices: np.ndarray, faces: np.ndarray) -> np.nd
         tri_of = np.repeat(np.arange(len(t)), rows)
         k = np.arange(len(tri_of)) - np.repeat(np.cumsum(rows) - rows, rows) + lo[tri_of]
         z = zs[k]
-        # The two edges that cross the plane (half-open, so a vertex on the plane counts once).
+        # The two edges that cross the plane (half-open, so a vertex on the plane counts once):
+        # the first one's crossing point is a, the second one's b.
+        corner = [[np.ascontiguousarray(t[:, e, axis])[tri_of] for axis in range(3)] for e in range(3)]
         crossing = np.zeros(len(k), np.int64)
-        points = np.zeros((len(k), 2, 2))
+        ax, ay, bx, by = (np.zeros(len(k)) for _ in range(4))
         for e in range(3):
-            p, q = t[tri_of, e], t[tri_of, (e + 1) % 3]
-            hit = (p[:, 2] <= z) != (q[:, 2] <= z)
-            s = (z - p[:, 2]) / np.where(hit, q[:, 2] - p[:, 2], 1.0)
-            xy = p[:, :2] + s[:, None] * (q[:, :2] - p[:, :2])
-            slot = np.minimum(crossing, 1)
-            sel = hit & (crossing < 2)
-            points[sel, slot[sel]] = xy[sel]
+            (px, py, pz), (qx, qy, qz) = corner[e], corner[(e + 1) % 3]
+            hit = (pz <= z) != (qz <= z)
+            s = (z - pz) / np.where(hit, qz - pz, 1.0)
+            x, y = px + s * (qx - px), py + s * (qy - py)
+            first, second = hit & (crossing == 0), hit & (crossing == 1)
+            ax, ay = np.where(first, x, ax), np.where(first, y, ay)
+            bx, by = np.where(second, x, bx), np.where(second, y, by)
             crossing += hit
         ends = crossing == 2
-        k, a, b = k[ends], points[ends, 0], points[ends, 1]
-        angle_a = np.arctan2(a[:, 1], a[:, 0])
-        sweep = np.angle(np.exp(1j * (np.arctan2(b[:, 1], b[:, 0]) - angle_a)))
+        k, ax, ay, bx, by = k[ends], ax[ends], ay[ends], bx[ends], by[ends]
+        angle_a = np.arctan2(ay, ax)
+        sweep = np.angle(np.exp(1j * (np.arctan2(by, bx) - angle_a)))
         lo_angle = np.where(sweep >= 0, angle_a, angle_a + sweep)
         i0 = np.ceil(lo_angle / rm.cell_theta - 0.5).astype(np.int64)
         i1 = np.floor((lo_angle + np.abs(sweep)) / rm.cell_theta - 0.5).astype(np.int64)
         count = np.clip(i1 - i0 + 1, 0, n_theta)
+        met = count > 0
+        if not met.any():
+            continue
+        # the rays' directions from a table over the angles met (cos and sin once per angle)
+        first = int(i0[met].min())
+        theta = (np.arange(first, int((i0 + count - 1)[met].max()) + 1) + 0.5) * rm.cell_theta
+        cos_t, sin_t = np.cos(theta), np.sin(theta)
+        ex, ey = bx - ax, by - ay
+        numerator = ax * ey - ay * ex
+        if kernels is not None:
+            kernels.outer_rays(out, n_theta, n_z, k, i0, count, ex, ey, numerator, cos_t, sin_t, first)
+            continue
         seg = np.repeat(np.arange(len(k)), count)
         i = np.arange(len(seg)) - np.repeat(np.cumsum(count) - count, count) + i0[seg]
-        theta = (i + 0.5) * rm.cell_theta
-        u = np.column_stack([np.cos(theta), np.sin(theta)])
-        edge = b[seg] - a[seg]
-        denominator = u[:, 0] * edge[:, 1] - u[:, 1] * edge[:, 0]
-        numerator = a[seg, 0] * edge[:, 1] - a[seg, 1] * edge[:, 0]
+        denominator = cos_t[i - first] * ey[seg] - sin_t[i - first] * ex[seg]
+        numerator = numerator[seg]
         ok = np.abs(denominator) > 1e-12
         radius = np.where(ok, numerator / np.where(ok, denominator, 1.0), 0.0)
         np.maximum.at(out, np.mod(i, n_theta) * n_z + k[seg], np.maximum(radius, 0.0))

@@ -235,6 +235,16 @@ class SimulationResult:
             return _heightfield_mesh(self.heightfield, self.stock, max_cells)
         return _turned_mesh(self.radiusmap, self.heightfield if self.axial_cut else None, self.stock, max_cells)
 
+    def surface(self, max_cells: int | None = 250_000):
+        """A triangle surface that looks like :meth:`mesh`, for pictures: a turned bar's is
+        built without a boolean and is not a closed solid (see :func:`.meshes._turned_surface`)."""
+        if self.solid is None and self.radiusmap is not None:
+            from .meshes import _turned_surface
+
+            return _turned_surface(self.radiusmap, self.heightfield if self.axial_cut else None, self.stock,
+                                   max_cells)
+        return self.mesh(max_cells)
+
     def __getstate__(self):
         """Picklable (a simulation run in another process sends its result back): the solid
         travels as its triangle mesh."""
