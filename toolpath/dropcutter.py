@@ -319,20 +319,33 @@ class DropCutter:
         fractions = [np.arange(n) / n for n in pieces]
         samples = np.vstack([xy[i] + np.outer(f, xy[i + 1] - xy[i]) for i, f in enumerate(fractions)] + [xy[-1:]])
         z = self.points(samples)
+        # per segment: its midpoint's tip Z, once dropped (a segment left whole keeps it: the
+        # next rounds drop only the halves of the segments just split)
+        zm = np.full(len(samples) - 1, -np.inf)
+        known = np.zeros(len(samples) - 1, bool)
         for _ in range(40):
             a, b = samples[:-1], samples[1:]
             long_enough = np.linalg.norm(b - a, axis=1) > 2 * min_step
             mid = 0.5 * (a + b)
-            zmid = self.points(mid[long_enough]) if long_enough.any() else np.empty(0)
-            high = np.zeros(len(a), bool)
-            high[long_enough] = zmid > 0.5 * (z[:-1] + z[1:])[long_enough] + tolerance
+            fresh = long_enough & ~known
+            if fresh.any():
+                zm[fresh] = self.points(mid[fresh])
+                known |= fresh
+            high = long_enough & (zm > 0.5 * (z[:-1] + z[1:]) + tolerance)
             if not high.any():
                 break
-            zm = np.full(len(a), np.nan)
-            zm[long_enough] = zmid
-            order = np.argsort(np.concatenate([np.arange(len(samples)), np.flatnonzero(high) + 0.5]), kind="stable")
+            split = np.flatnonzero(high)
+            order = np.argsort(np.concatenate([np.arange(len(samples)), split + 0.5]), kind="stable")
             samples = np.concatenate([samples, mid[high]])[order]
             z = np.concatenate([z, zm[high]])[order]
+            # segment i becomes segments i + (splits before it) and, when split, the next one too
+            first = np.arange(len(a)) + np.cumsum(high) - high
+            zm_next = np.full(len(samples) - 1, -np.inf)
+            known_next = np.ones(len(samples) - 1, bool)
+            zm_next[first] = zm
+            known_next[first] = known & ~high
+            known_next[first[split] + 1] = False
+            zm, known = zm_next, known_next
         return np.column_stack([samples, z])
 
     # ----- the numpy path: the same closed forms over (point, triangle) pairs --------------------
