@@ -233,14 +233,18 @@ class Buckets:
             if total <= MAX_ENTRIES and nbx * nby <= MAX_ENTRIES:
                 break
             size *= 1.5
+        # entries made triangle by triangle from the highest top down, then a stable sort by
+        # bucket: each bucket by falling top Z (ties by triangle index)
+        rank = np.argsort(-mesh.zmax, kind="stable")
+        i0, j0, ni, nj = i0[rank], j0[rank], ni[rank], nj[rank]
         count = ni * nj
         tri = np.repeat(np.arange(len(lo)), count)
         local = np.arange(total) - np.repeat(np.cumsum(count) - count, count)
         bi = i0[tri] + local // nj[tri]
         bj = j0[tri] + local % nj[tri]
         bucket = bi * nby + bj
-        order = np.lexsort((-mesh.zmax[tri], bucket))
-        self.entries = np.ascontiguousarray(tri[order].astype(np.int64))
+        order = np.argsort(bucket, kind="stable")
+        self.entries = np.ascontiguousarray(rank[tri[order]].astype(np.int64))
         self.start = np.zeros(nbx * nby + 1, np.int64)
         np.cumsum(np.bincount(bucket, minlength=nbx * nby), out=self.start[1:])
         self.grid = np.array([x0, y0, size, nbx, nby], float)
