@@ -144,9 +144,15 @@ def steepest_slope(vertices, faces, angle_deg: float) -> float:
     up = normal[:, 2] > 1e-9 * np.linalg.norm(normal, axis=1)
     if not up.any():
         return 0.0
-    across = np.array([-math.sin(math.radians(angle_deg)), math.cos(math.radians(angle_deg))])
     gradient = -normal[up, :2] / normal[up, 2:3]
-    return float(math.degrees(math.atan(np.abs(gradient @ across).max())))
+    return float(math.degrees(math.atan(np.abs(_across(gradient, angle_deg)).max())))
+
+
+def _across(gradient: np.ndarray, angle_deg: float) -> np.ndarray:
+    """Each row of ``gradient`` (k, 2) dotted with the unit vector across ``angle_deg``, written
+    out (a matrix-vector product would wake BLAS's helper thread for nothing)."""
+    sx, cy = -math.sin(math.radians(angle_deg)), math.cos(math.radians(angle_deg))
+    return gradient[:, 0] * sx + gradient[:, 1] * cy
 
 
 def sharpest_convex_radius(vertices, faces, min_up: float = 0.3) -> float:
@@ -376,9 +382,8 @@ def face_slopes(vertices, faces, angle_deg: float) -> tuple:
     tri = vertices[faces]
     normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     up = normal[:, 2] > 1e-9 * np.linalg.norm(normal, axis=1)
-    across = np.array([-math.sin(math.radians(angle_deg)), math.cos(math.radians(angle_deg))])
     slope = np.zeros(len(faces))
-    slope[up] = np.degrees(np.arctan(np.abs((-normal[up, :2] / normal[up, 2:3]) @ across)))
+    slope[up] = np.degrees(np.arctan(np.abs(_across(-normal[up, :2] / normal[up, 2:3], angle_deg))))
     return slope, up
 
 
