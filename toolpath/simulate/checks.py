@@ -69,9 +69,25 @@ def _index_range(origin, cell, n, lo, hi):
             int(np.clip(math.floor((hi - origin) / cell - 0.5) + 1, 0, n)))
 
 
+_last_top: list = []        # [(grid, vertices, faces, envelope)]: the last _mesh_top, kept for its repeat
+
+
 def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """Upper envelope of a triangle mesh over the grid (a z-buffer seen from above); cell
-    centres on a triangle's edge belong to neither side (-inf there: nothing to check)."""
+    centres on a triangle's edge belong to neither side (-inf there: nothing to check).
+    The same mesh over the same grid again (the export gate, then the scallop measured on its
+    simulation) is answered from the last call, as a copy."""
+    grid = (float(hf.x0), float(hf.y0), float(hf.cell_x), float(hf.cell_y), tuple(hf.shape))
+    if _last_top:
+        last_grid, last_vertices, last_faces, envelope = _last_top[0]
+        if last_grid == grid and np.array_equal(last_vertices, vertices) and np.array_equal(last_faces, faces):
+            return envelope.copy()
+    top = _envelope(hf, vertices, faces)
+    _last_top[:] = [(grid, np.array(vertices, float), np.array(faces, np.int64), top.copy())]
+    return top
+
+
+def _envelope(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     top = np.full(hf.shape, -np.inf)
     flat = top.reshape(-1)
     nx, ny = hf.shape
