@@ -67,6 +67,10 @@ def self_crossing(vertices, faces, progress=None) -> Crossing | None:
     for a, b in _candidates(grid):
         if progress is not None:
             progress(0.0)
+        # a pair filed in several common cells once (its first time: the same first crossing)
+        _, once = np.unique(a * len(f) + b, return_index=True)
+        once.sort()
+        a, b = a[once], b[once]
         overlap = np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
         a, b = a[overlap], b[overlap]
         apart = ~(f[a][:, :, None] == f[b][:, None, :]).any(axis=(1, 2))      # neighbours touch, not cross
