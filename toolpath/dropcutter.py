@@ -339,11 +339,17 @@ class DropCutter:
             if not high.any():
                 break
             split = np.flatnonzero(high)
-            order = np.argsort(np.concatenate([np.arange(len(samples)), split + 0.5]), kind="stable")
-            samples = np.concatenate([samples, mid[high]])[order]
-            z = np.concatenate([z, zm[high]])[order]
-            # segment i becomes segments i + (splits before it) and, when split, the next one too
-            first = np.arange(len(a)) + np.cumsum(high) - high
+            # sample i moves up by the splits before it; a midpoint goes right after its segment's start
+            moved = np.arange(len(samples))
+            moved[1:] += np.cumsum(high)
+            placed = moved[split] + 1
+            grown = np.empty((len(samples) + len(split), 2))
+            grown[moved], grown[placed] = samples, mid[split]
+            z_grown = np.empty(len(grown))
+            z_grown[moved], z_grown[placed] = z, zm[split]
+            samples, z = grown, z_grown
+            # segment i becomes segment moved[i] and, when split, the next one too
+            first = moved[:-1]
             zm_next = np.full(len(samples) - 1, -np.inf)
             known_next = np.ones(len(samples) - 1, bool)
             zm_next[first] = zm
