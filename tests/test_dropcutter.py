@@ -266,3 +266,26 @@ def test_bull_nose_edge_bound_skips_only_edges_that_cannot_lift_the_tip():
                 else:
                     assert got == u
     assert skipped > 500
+
+
+def test_compiled_tips_do_not_depend_on_the_order_of_the_points():
+    """The compiled kernel tries the previous point's contact triangle first and skips triangles
+    whose facet plane cannot lift the tool above the best tip: the tips must be exactly those of
+    each point dropped on its own, in any order."""
+    pytest.importorskip("numba")
+    trimesh = pytest.importorskip("trimesh")
+    rng = np.random.default_rng(9)
+    mesh = trimesh.creation.icosphere(subdivisions=3, radius=10.0)
+    v = np.asarray(mesh.vertices) + rng.normal(0, 0.3, size=mesh.vertices.shape)
+    f = np.asarray(mesh.faces)
+    t = np.linspace(0, 1, 300)
+    xy = np.column_stack([-12 + 24 * t, 6 * np.sin(7 * t)])          # a path: neighbours close together
+    for tool in (Tool(1, "ball", 6.0), Tool(1, "flat", 4.0), Tool(1, "bull", 6.0, corner_radius=1.0),
+                 Tool(1, "vbit", 6.0)):
+        cutter = dc.DropCutter(v, f, tool, kernel="numba", floor=-20)
+        along = cutter.points(xy)
+        alone = np.array([cutter.points(p[None])[0] for p in xy])
+        order = rng.permutation(len(xy))
+        shuffled = np.empty(len(xy))
+        shuffled[order] = cutter.points(xy[order])
+        assert np.array_equal(along, alone) and np.array_equal(along, shuffled), tool.kind
