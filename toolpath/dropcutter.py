@@ -267,13 +267,15 @@ class DropCutter:
 
     ``tool``: a program.Tool; ``allowance``: mm of stock the tool keeps from the mesh;
     ``floor``: the height where no triangle is under the tool; ``kernel``: "numba", "numpy" or
-    "auto" (numba where it can be imported); ``bucket``: bucket size in mm (default R/2)."""
+    "auto" (numba where it can be imported); ``bucket``: bucket size in mm (default R/2);
+    ``mesh``: the :class:`Mesh` of these vertices and faces when the caller has made it already
+    (several tools over one design share it)."""
 
     def __init__(self, vertices, faces, tool, *, allowance: float = 0.0, floor: float = -np.inf,
-                 kernel: str = "auto", bucket: float | None = None):
+                 kernel: str = "auto", bucket: float | None = None, mesh: Mesh | None = None):
         self.profile = tool_profile(tool, allowance)
         self.allowance = float(allowance)
-        self.mesh = Mesh(vertices, faces)
+        self.mesh = Mesh(vertices, faces) if mesh is None else mesh
         self.buckets = Buckets(self.mesh, float(self.profile[1]), bucket)
         self.floor = float(floor)
         self.compiled = _kernel_module(kernel)

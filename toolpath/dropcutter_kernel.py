@@ -6,10 +6,11 @@ soon as a triangle's highest vertex is no higher than the tool tip found so far 
 cannot lift the tool above its own top: every tool's underside is at or above its tip).  A
 triangle whose facet plane, or an edge whose highest point under the tool, cannot lift the tip
 above the best so far is skipped; only what cannot change the maximum is skipped, so the tips
-are those of the full search, bit for bit, in any order of the points.  Each triangle is tested as dropcutter.py's numpy path tests it: its three vertices,
-its facet (the support point of the tool in the facet's gradient direction, when it falls
-inside the triangle) and its three edges (the concave 1-D maximum along the edge, clamped to
-the part of the edge under the tool).  dropcutter.py imports this module only when numba is
+are those of the full search, bit for bit, in any order of the points.  Each triangle is
+tested as dropcutter.py's numpy path tests it: its three vertices, its facet (the support
+point of the tool in the facet's gradient direction, when it falls inside the triangle) and
+its three edges (the concave 1-D maximum along the edge, clamped to the part of the edge
+under the tool).  dropcutter.py imports this module only when numba is
 wanted and importable.
 
 Tool codes and parameters (``prof``): kind 0 rounded (flat radius ``fr`` + corner ``rc``:
