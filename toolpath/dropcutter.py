@@ -243,7 +243,8 @@ class Buckets:
         bi = i0[tri] + local // nj[tri]
         bj = j0[tri] + local % nj[tri]
         bucket = bi * nby + bj
-        order = np.argsort(bucket, kind="stable")
+        # (numpy sorts 16-bit keys by radix: the same stable order, several times faster)
+        order = np.argsort(bucket.astype(np.uint16) if nbx * nby <= 1 << 16 else bucket, kind="stable")
         self.entries = np.ascontiguousarray(rank[tri[order]].astype(np.int64))
         self.start = np.zeros(nbx * nby + 1, np.int64)
         np.cumsum(np.bincount(bucket, minlength=nbx * nby), out=self.start[1:])
