@@ -523,16 +523,13 @@ def _drop_collinear(points: np.ndarray, tolerance: float) -> np.ndarray:
     off = np.linalg.norm(a + ac * t[:, None] - b, axis=1)
     below = (b[:, 2] <= (a + ac * t[:, None])[:, 2] + tolerance)
     drop = (off <= tolerance) & below & (t > 0) & (t < 1)
-    # never two in a row: keep every other of a run
+    # never two in a row: of each run of neighbouring candidates, the first, third, ... go
     keep = np.ones(len(points), bool)
     candidates = np.flatnonzero(drop) + 1
-    last = -2
-    for i in candidates:
-        if i != last + 1:
-            keep[i] = False
-            last = i
-        else:
-            last = -2
+    if len(candidates):
+        starts = np.flatnonzero(np.diff(candidates, prepend=-2) != 1)      # where each run begins
+        run_start = np.repeat(starts, np.diff(np.append(starts, len(candidates))))
+        keep[candidates[(np.arange(len(candidates)) - run_start) % 2 == 0]] = False
     return points[keep]
 
 
