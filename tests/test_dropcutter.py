@@ -269,9 +269,8 @@ def test_bull_nose_edge_bound_skips_only_edges_that_cannot_lift_the_tip():
 
 
 def test_compiled_tips_do_not_depend_on_the_order_of_the_points():
-    """The compiled kernel tries the previous point's contact triangle first and skips triangles
-    whose facet plane cannot lift the tool above the best tip: the tips must be exactly those of
-    each point dropped on its own, in any order."""
+    """Each point's tip is its own: the same, bit for bit, dropped alone, along a path or in a
+    shuffled order (nothing the kernel skips may depend on its neighbours)."""
     pytest.importorskip("numba")
     trimesh = pytest.importorskip("trimesh")
     rng = np.random.default_rng(9)

@@ -1,17 +1,16 @@
 """Compiled drop-cutter kernel (numba): the closed forms of dropcutter.py, point by point.
 
-For each query point the kernel first tries the triangle that held the tool at the previous
-point, then walks the triangles of the point's bucket in order of falling top Z and stops as
-soon as a triangle's highest vertex is no higher than the tool tip found so far (a triangle
-cannot lift the tool above its own top: every tool's underside is at or above its tip).  A
-triangle whose facet plane, or an edge whose highest point under the tool, cannot lift the tip
-above the best so far is skipped; only what cannot change the maximum is skipped, so the tips
-are those of the full search, bit for bit, in any order of the points.  Each triangle is
-tested as dropcutter.py's numpy path tests it: its three vertices, its facet (the support
-point of the tool in the facet's gradient direction, when it falls inside the triangle) and
-its three edges (the concave 1-D maximum along the edge, clamped to the part of the edge
-under the tool).  dropcutter.py imports this module only when numba is
-wanted and importable.
+For each query point the kernel walks the triangles of the point's bucket in order of falling
+top Z and stops as soon as a triangle's highest vertex is no higher than the tool tip found so
+far (a triangle cannot lift the tool above its own top: every tool's underside is at or above
+its tip).  Within a triangle, an edge that cannot lift the tip above the best so far is
+skipped, and a bull nose's edge bisection stops early where a bound says so; both skip only
+what cannot raise the best, so every tip is bit for bit what the search without them gives.
+Each triangle is tested as dropcutter.py's numpy path tests it: its three vertices, its facet
+(the support point of the tool in the facet's gradient direction, when it falls inside the
+triangle) and its three edges (the concave 1-D maximum along the edge, clamped to the part of
+the edge under the tool).  dropcutter.py imports this module only when numba is wanted and
+importable.
 
 Tool codes and parameters (``prof``): kind 0 rounded (flat radius ``fr`` + corner ``rc``:
 ball, flat, bull nose), 1 cone (``k`` = 1 / tan(half angle), radius ``R``).
@@ -30,7 +29,6 @@ BISECTIONS = 64
 PROBE = 6           # bull nose edges: bisection steps before the bound that may skip the rest
 SLACK = 1e-12       # relative room for rounding in that bound
 STEEP = 1e3         # the bound is used where the corner's slope is at most this
-ROOM = 1e-12        # relative room for rounding in a facet plane's bound on its triangle
 
 
 @_jit
@@ -153,19 +151,14 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, pre, best):
     ``pre`` holds what depends on the triangle and the tool only (dropcutter.precomputed): the
     facet's contact offset from the axis and the tool's height there, and per edge its XY unit
     direction, XY length and slope.  The facet first (most often the contact on a smooth
-    surface), then the vertices (cheap, and they raise the bar for the edges), then the edges,
-    each skipped when its highest point is no higher than the best tip so far (an edge: its
-    highest point under the tool less the tool's height at the edge's distance from the axis)."""
+    surface), then the edges and vertices, each skipped when its highest point is no higher
+    than the best tip so far (an edge also when its highest point under the tool, less the
+    tool's height at the edge's distance from the axis, is no higher: that bound is rounded as
+    the edge's own tip is, so it never skips a higher one)."""
     R2 = R * R
     if plane[3] > 0.0:                  # not a vertical facet
         x = cx + pre[0]
         y = cy + pre[1]
-        z = plane[2] + plane[0] * x + plane[1] * y - pre[2]
-        # no point of the facet's whole plane under the tool lifts it above z (where the tool
-        # meets the plane first): when that is no higher than the best tip, neither is any
-        # point of the triangle (ROOM: rounding, relative to the terms of z)
-        if z + ROOM * (1.0 + abs(plane[2]) + abs(plane[0] * x) + abs(plane[1] * y) + abs(pre[2])) <= best:
-            return best
         inside = True
         sign = plane[4]
         for e in range(3):
@@ -174,16 +167,8 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, pre, best):
             if sign * ((q[0] - p[0]) * (y - p[1]) - (q[1] - p[1]) * (x - p[0])) < 0.0:
                 inside = False
                 break
-        if inside and z > best:
-            best = z
-    for v in range(3):
-        if tri[v, 2] <= best:
-            continue                    # h >= 0: a vertex lifts the tip to at most its own Z
-        dx = tri[v, 0] - cx
-        dy = tri[v, 1] - cy
-        d2 = dx * dx + dy * dy
-        if d2 <= R2:
-            z = tri[v, 2] - height(kind, R, rc, fr, k, math.sqrt(d2))
+        if inside:
+            z = plane[2] + plane[0] * x + plane[1] * y - pre[2]
             if z > best:
                 best = z
     for e in range(3):
@@ -209,7 +194,8 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, pre, best):
             continue
         m = pre[6 + 4 * e]
         # the edge under the tool rises to its end uphill, and the tool's underside is at
-        # least h(t) above the tip there: no higher than that (the same rounding as below)
+        # least h(t) above the tip there: no higher than that (each step rounds no lower than
+        # the same step of the tip's own formula below)
         top = p[2] + m * (s0 + (ub if m > 0.0 else ua))
         if top - height(kind, R, rc, fr, k, min(math.sqrt(t * t), R)) <= best:
             continue
@@ -222,21 +208,26 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, pre, best):
         z = p[2] + m * (s0 + u) - height(kind, R, rc, fr, k, min(math.sqrt(t * t + u * u), R))
         if z > best:
             best = z
+    for v in range(3):
+        if tri[v, 2] <= best:
+            continue                    # h >= 0: a vertex lifts the tip to at most its own Z
+        dx = tri[v, 0] - cx
+        dy = tri[v, 1] - cy
+        d2 = dx * dx + dy * dy
+        if d2 <= R2:
+            z = tri[v, 2] - height(kind, R, rc, fr, k, math.sqrt(d2))
+            if z > best:
+                best = z
     return best
 
 
 @_jit
 def drop_points(px, py, out, tris, planes, pre, zmax, bbox, start, entries, grid, prof):
-    """out[i] = the highest tip Z over (px[i], py[i]) (out holds the floor on entry).
-
-    Points along a path are close together: the triangle that lifted the tool highest at the
-    previous point is tried first (any triangle's contact is a true one, so the maximum is the
-    same), which most often raises the bar enough for the walk down the bucket to stop early."""
+    """out[i] = the highest tip Z over (px[i], py[i]) (out holds the floor on entry)."""
     kind = int(prof[0])
     R, rc, fr, k = prof[1], prof[2], prof[3], prof[4]
     bx0, by0, size = grid[0], grid[1], grid[2]
     nbx, nby = int(grid[3]), int(grid[4])
-    held = -1
     for i in range(len(px)):
         cx = px[i]
         cy = py[i]
@@ -246,12 +237,6 @@ def drop_points(px, py, out, tris, planes, pre, zmax, bbox, start, entries, grid
             continue
         b = int(fi) * nby + int(fj)
         best = out[i]
-        top = -1
-        if held >= 0:
-            raised = triangle_drop(kind, R, rc, fr, k, cx, cy, tris[held], planes[held], pre[held], best)
-            if raised > best:
-                best = raised
-                top = held
         for n in range(start[b], start[b + 1]):
             t = entries[n]
             if zmax[t] <= best:
@@ -265,9 +250,5 @@ def drop_points(px, py, out, tris, planes, pre, zmax, bbox, start, entries, grid
             near2 = gx * gx + gy * gy
             if near2 > R * R or zmax[t] - height(kind, R, rc, fr, k, math.sqrt(near2)) <= best:
                 continue
-            raised = triangle_drop(kind, R, rc, fr, k, cx, cy, tris[t], planes[t], pre[t], best)
-            if raised > best:
-                best = raised
-                top = t
-        held = top
+            best = triangle_drop(kind, R, rc, fr, k, cx, cy, tris[t], planes[t], pre[t], best)
         out[i] = best
