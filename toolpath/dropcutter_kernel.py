@@ -3,8 +3,8 @@
 For each query point the kernel walks the triangles of the point's bucket in order of falling
 top Z and stops as soon as a triangle's highest vertex is no higher than the tool tip found so
 far (a triangle cannot lift the tool above its own top: every tool's underside is at or above
-its tip).  Within a triangle, an edge that cannot lift the tip above the best so far is
-skipped, and a bull nose's edge bisection stops early where a bound says so; both skip only
+its tip).  Within a triangle, a bull nose's edge that cannot lift the tip above the best so
+far is skipped, and its bisection stops early where a bound says so; both skip only
 what cannot raise the best, so every tip is bit for bit what the search without them gives.
 Each triangle is tested as dropcutter.py's numpy path tests it: its three vertices, its facet
 (the support point of the tool in the facet's gradient direction, when it falls inside the
@@ -152,9 +152,9 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, pre, best):
     facet's contact offset from the axis and the tool's height there, and per edge its XY unit
     direction, XY length and slope.  The facet first (most often the contact on a smooth
     surface), then the edges and vertices, each skipped when its highest point is no higher
-    than the best tip so far (an edge also when its highest point under the tool, less the
-    tool's height at the edge's distance from the axis, is no higher: that bound is rounded as
-    the edge's own tip is, so it never skips a higher one)."""
+    than the best tip so far (a bull nose's edge also when its highest point under the tool,
+    less the tool's height at the edge's distance from the axis, is no higher: that bound is
+    rounded as the edge's own tip is, so it never skips a higher one)."""
     R2 = R * R
     if plane[3] > 0.0:                  # not a vertical facet
         x = cx + pre[0]
@@ -193,15 +193,15 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, pre, best):
         if ua > ub:
             continue
         m = pre[6 + 4 * e]
-        # the edge under the tool rises to its end uphill, and the tool's underside is at
-        # least h(t) above the tip there: no higher than that (each step rounds no lower than
-        # the same step of the tip's own formula below)
-        top = p[2] + m * (s0 + (ub if m > 0.0 else ua))
-        if top - height(kind, R, rc, fr, k, min(math.sqrt(t * t), R)) <= best:
-            continue
         if kind == CONE or rc <= 0.0 or fr <= 0.0:
             u = edge_best(kind, R, rc, fr, k, m, t, ua, ub)
         else:
+            # a bull nose bisects: first, the edge under the tool rises to its end uphill, and
+            # the tool's underside is at least h(t) above the tip there, so the tip is no higher
+            # than that (each step rounds no lower than the same step of the tip's formula below)
+            top = p[2] + m * (s0 + (ub if m > 0.0 else ua))
+            if top - height(kind, R, rc, fr, k, min(math.sqrt(t * t), R)) <= best:
+                continue
             u = _bull_edge(R, rc, fr, m, t, ua, ub, p[2], s0, best)
             if math.isnan(u):
                 continue
