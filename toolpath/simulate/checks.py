@@ -70,6 +70,7 @@ def _index_range(origin, cell, n, lo, hi):
 
 
 _last_top: list = []        # [(grid, vertices, faces, envelope)]: the last _mesh_top, kept for its repeat
+_KEEP_CELLS = 4_000_000    # ... when its grid has at most this many cells (32 MB)
 
 
 def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
@@ -83,7 +84,9 @@ def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.nd
         if last_grid == grid and np.array_equal(last_vertices, vertices) and np.array_equal(last_faces, faces):
             return envelope.copy()
     top = _envelope(hf, vertices, faces)
-    _last_top[:] = [(grid, np.array(vertices, float), np.array(faces, np.int64), top.copy())]
+    _last_top.clear()
+    if top.size <= _KEEP_CELLS:
+        _last_top.append((grid, np.array(vertices, float), np.array(faces, np.int64), top.copy()))
     return top
 
 
