@@ -111,3 +111,29 @@ def test_bad_settings_are_named():
         carve.plan(v, f, carve.CarveSettings(step_down=0.0))
     with pytest.raises(carve.CarveError, match="flat in X or Y"):
         carve.plan(np.array([[0, 0, 0], [1, 0, 0], [2, 0, 1.0]]), [[0, 1, 2]])
+
+
+def test_collinear_points_go_every_other_so_no_two_neighbours_leave():
+    """Points on one straight line: the inner ones are candidates, and of each run of
+    neighbouring candidates the first, third, ... leave; a point off the line breaks the run."""
+    line = np.column_stack([np.arange(7.0), np.zeros(7), np.zeros(7)])
+    assert carve._drop_collinear(line, 1e-6)[:, 0].tolist() == [0, 2, 4, 6]
+    bent = line.copy()
+    bent[3, 2] = 1.0                     # a bump: 2, 3 and 4 stay candidates no more (3 is above its chord)
+    kept = carve._drop_collinear(bent, 1e-6)[:, 0].tolist()
+    assert kept == [0, 2, 3, 4, 6]
+
+
+def test_the_design_envelope_repeated_is_the_same_and_a_copy():
+    """The export gate and the measured scallop ask for the design's envelope over the same grid;
+    the second answer comes from the first: equal to a fresh one, and changing it changes nothing."""
+    from kezuri.toolpath.simulate import checks
+    from kezuri.toolpath.simulate.heightfield import _grid
+
+    v, f = carve_samples.wave_relief(4.0)
+    hf = _grid(sim.BoxStock(-60, -40, -15, 60, 40, -1), 0.5)
+    first = checks._mesh_top(hf, v, f)
+    first[:] = 0.0
+    again = checks._mesh_top(hf, v.copy(), f.copy())
+    assert np.array_equal(again, checks._envelope(hf, v, f))
+    assert np.isfinite(again).sum() > 0.8 * again.size and again.max() <= v[:, 2].max()     # edge centres: -inf

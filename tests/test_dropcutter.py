@@ -238,3 +238,53 @@ def test_skipping_faces_turned_down_on_a_closed_mesh_changes_nothing():
         assert len(closed.mesh.tris) < len(f)
         loose = dc.DropCutter(loose_v, loose_f, tool, floor=-50)
         assert closed.points(xy) == pytest.approx(loose.points(xy), abs=1e-12)
+
+
+def test_bull_nose_edge_bound_skips_only_edges_that_cannot_lift_the_tip():
+    """The compiled kernel stops a bull nose's edge bisection early when a tangent bound says
+    the edge stays at or below the best tip so far; otherwise it must return exactly the full
+    bisection's point.  Random edges (including nearly grazing ones) against edge_best, with the
+    best tip just below, at and above the edge's own maximum."""
+    kernel = pytest.importorskip("kezuri.toolpath.dropcutter_kernel")
+    rng = np.random.default_rng(5)
+    skipped = 0
+    for R, rc in ((3.5, 0.5), (3.0, 1.0), (10.0, 0.01), (2.0, 1.999)):
+        fr = R - rc
+        for _ in range(400):
+            t = R * min(1.0, abs(rng.normal(0.6, 0.4)))
+            w = math.sqrt(max(R * R - t * t, 0.0))
+            ua, ub = np.sort(rng.uniform(-w, w, 2)) if rng.random() < 0.5 else (-w, w)
+            m = rng.normal(0, 2.0)
+            z0, s0 = rng.uniform(-5, 5), rng.uniform(-3, 3)
+            u = kernel.edge_best(kernel.ROUNDED, R, rc, fr, 0.0, m, t, ua, ub)
+            top = z0 + m * (s0 + u) - kernel.height(kernel.ROUNDED, R, rc, fr, 0.0, min(math.sqrt(t * t + u * u), R))
+            for best in (-np.inf, top - 1e-6, top - 1e-12, top, top + 1e-12, top + 1e-3, top + 1.0):
+                got = kernel._bull_edge(R, rc, fr, m, t, ua, ub, z0, s0, best)
+                if math.isnan(got):
+                    skipped += 1
+                    assert top <= best
+                else:
+                    assert got == u
+    assert skipped > 500
+
+
+def test_compiled_tips_do_not_depend_on_the_order_of_the_points():
+    """Each point's tip is its own: the same, bit for bit, dropped alone, along a path or in a
+    shuffled order (nothing the kernel skips may depend on its neighbours)."""
+    pytest.importorskip("numba")
+    trimesh = pytest.importorskip("trimesh")
+    rng = np.random.default_rng(9)
+    mesh = trimesh.creation.icosphere(subdivisions=3, radius=10.0)
+    v = np.asarray(mesh.vertices) + rng.normal(0, 0.3, size=mesh.vertices.shape)
+    f = np.asarray(mesh.faces)
+    t = np.linspace(0, 1, 300)
+    xy = np.column_stack([-12 + 24 * t, 6 * np.sin(7 * t)])          # a path: neighbours close together
+    for tool in (Tool(1, "ball", 6.0), Tool(1, "flat", 4.0), Tool(1, "bull", 6.0, corner_radius=1.0),
+                 Tool(1, "vbit", 6.0)):
+        cutter = dc.DropCutter(v, f, tool, kernel="numba", floor=-20)
+        along = cutter.points(xy)
+        alone = np.array([cutter.points(p[None])[0] for p in xy])
+        order = rng.permutation(len(xy))
+        shuffled = np.empty(len(xy))
+        shuffled[order] = cutter.points(xy[order])
+        assert np.array_equal(along, alone) and np.array_equal(along, shuffled), tool.kind

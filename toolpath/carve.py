@@ -42,7 +42,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .dropcutter import DropCutter, DropCutterError
+from .dropcutter import DropCutter, DropCutterError, Mesh
 from .errors import InputError
 from .program import Operation, PathBuilder, Program, Tool
 
@@ -144,9 +144,15 @@ def steepest_slope(vertices, faces, angle_deg: float) -> float:
     up = normal[:, 2] > 1e-9 * np.linalg.norm(normal, axis=1)
     if not up.any():
         return 0.0
-    across = np.array([-math.sin(math.radians(angle_deg)), math.cos(math.radians(angle_deg))])
     gradient = -normal[up, :2] / normal[up, 2:3]
-    return float(math.degrees(math.atan(np.abs(gradient @ across).max())))
+    return float(math.degrees(math.atan(np.abs(_across(gradient, angle_deg)).max())))
+
+
+def _across(gradient: np.ndarray, angle_deg: float) -> np.ndarray:
+    """Each row of ``gradient`` (k, 2) dotted with the unit vector across ``angle_deg``, written
+    out (a matrix-vector product would wake BLAS's helper thread for nothing)."""
+    sx, cy = -math.sin(math.radians(angle_deg)), math.cos(math.radians(angle_deg))
+    return gradient[:, 0] * sx + gradient[:, 1] * cy
 
 
 def sharpest_convex_radius(vertices, faces, min_up: float = 0.3) -> float:
@@ -234,10 +240,11 @@ def plan(vertices, faces, settings: CarveSettings | None = None, *, name: str = 
     levels = []
     clearance_z, safe_z = top + settings.clearance, top + settings.safe_z
     try:
+        mesh = Mesh(vertices, faces)          # one for every tool
         if settings.rough:
             report(0.0, "roughing")
-            rough, levels = _roughing(vertices, faces, settings, bounds, top, bottom, clearance_z, safe_z, kernel,
-                                      lambda f, text="": report(0.5 * f, "roughing"))
+            rough, levels = _roughing(vertices, faces, mesh, settings, bounds, top, bottom, clearance_z, safe_z,
+                                      kernel, lambda f, text="": report(0.5 * f, "roughing"))
             if rough is not None:
                 operations.append(rough)
         flat = ball_stepover(settings.finish_tool.radius, settings.scallop)
@@ -250,13 +257,13 @@ def plan(vertices, faces, settings: CarveSettings | None = None, *, name: str = 
         steep = settings.steep_cleanup and slope > settings.max_slope_deg
         share = 0.35 if steep else 0.5
         report(0.5, "finishing")
-        operations.append(_finishing(vertices, faces, settings, bounds, top, bottom, stepover, clearance_z, safe_z,
-                                     kernel, lambda f, text="": report(0.5 + share * f, "finishing")))
+        operations.append(_finishing(vertices, faces, mesh, settings, bounds, top, bottom, stepover, clearance_z,
+                                     safe_z, kernel, lambda f, text="": report(0.5 + share * f, "finishing")))
         cleanup = None
         if steep:
             report(0.85, "steep cleanup")
-            cleanup = _steep_cleanup(vertices, faces, settings, bounds, top, bottom, flat, rho, clearance_z, safe_z,
-                                     kernel, lambda f, text="": report(0.85 + 0.15 * f, "steep cleanup"))
+            cleanup = _steep_cleanup(vertices, faces, mesh, settings, bounds, top, bottom, flat, rho, clearance_z,
+                                     safe_z, kernel, lambda f, text="": report(0.85 + 0.15 * f, "steep cleanup"))
             if cleanup.operation is not None:
                 operations.append(cleanup.operation)
             if cleanup.slope > settings.max_slope_deg:
@@ -282,8 +289,9 @@ def _spacing(flat: float, slope_deg: float, cap_deg: float, rho: float, r: float
     return MARGIN * flat * math.cos(math.radians(min(slope_deg, cap_deg))) * bend
 
 
-def _roughing(vertices, faces, s: CarveSettings, bounds, top, bottom, clearance_z, safe_z, kernel, report):
-    cutter = DropCutter(vertices, faces, s.rough_tool, allowance=s.allowance, floor=bottom, kernel=kernel)
+def _roughing(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom, clearance_z, safe_z, kernel, report):
+    cutter = DropCutter(vertices, faces, s.rough_tool, allowance=s.allowance, floor=bottom, kernel=kernel,
+                        mesh=mesh)
     lines = raster_lines(bounds, s.raster_angle + 90.0, s.rough_stepover)
     spacing = min(s.sample_spacing * 2, s.rough_tool.radius / 2)
     dropped = []
@@ -326,9 +334,9 @@ def _roughing(vertices, faces, s: CarveSettings, bounds, top, bottom, clearance_
                      **builder.arrays()), levels
 
 
-def _finishing(vertices, faces, s: CarveSettings, bounds, top, bottom, stepover, clearance_z, safe_z, kernel,
+def _finishing(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom, stepover, clearance_z, safe_z, kernel,
                report):
-    cutter = DropCutter(vertices, faces, s.finish_tool, floor=-np.inf, kernel=kernel)
+    cutter = DropCutter(vertices, faces, s.finish_tool, floor=-np.inf, kernel=kernel, mesh=mesh)
     # out to 0.7 r beyond the stock: the ball's last contacts reach the stock's edge, and no
     # point of the grown box is further than r from a box-shaped design (0.7 * sqrt(2) < 1)
     g = 0.7 * s.finish_tool.radius
@@ -376,9 +384,8 @@ def face_slopes(vertices, faces, angle_deg: float) -> tuple:
     tri = vertices[faces]
     normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     up = normal[:, 2] > 1e-9 * np.linalg.norm(normal, axis=1)
-    across = np.array([-math.sin(math.radians(angle_deg)), math.cos(math.radians(angle_deg))])
     slope = np.zeros(len(faces))
-    slope[up] = np.degrees(np.arctan(np.abs((-normal[up, :2] / normal[up, 2:3]) @ across)))
+    slope[up] = np.degrees(np.arctan(np.abs(_across(-normal[up, :2] / normal[up, 2:3], angle_deg))))
     return slope, up
 
 
@@ -426,8 +433,8 @@ def dilate(mask: np.ndarray, k: int) -> np.ndarray:
     return out
 
 
-def _steep_cleanup(vertices, faces, s: CarveSettings, bounds, top, bottom, flat, rho, clearance_z, safe_z, kernel,
-                   report) -> _Cleanup:
+def _steep_cleanup(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom, flat, rho, clearance_z, safe_z,
+                   kernel, report) -> _Cleanup:
     r = s.finish_tool.radius
     slope, up = face_slopes(vertices, faces, s.raster_angle)
     steep = up & (slope > s.max_slope_deg + 1e-9)
@@ -449,7 +456,7 @@ def _steep_cleanup(vertices, faces, s: CarveSettings, bounds, top, bottom, flat,
     near = up & inside(vertices[faces].mean(axis=1)[:, :2])
     cross_slope = float(cross[near].max()) if near.any() else 0.0
     stepover = _spacing(flat, cross_slope, s.max_slope_deg, rho, r)
-    cutter = DropCutter(vertices, faces, s.finish_tool, floor=-np.inf, kernel=kernel)
+    cutter = DropCutter(vertices, faces, s.finish_tool, floor=-np.inf, kernel=kernel, mesh=mesh)
     builder = PathBuilder(clearance_z, s.finish_feed, s.plunge_feed, surface_z=top)
     lines = raster_lines((x0, y0, x1, y1), s.raster_angle + 90.0, stepover)
     for k, line in enumerate(lines):
@@ -516,16 +523,13 @@ def _drop_collinear(points: np.ndarray, tolerance: float) -> np.ndarray:
     off = np.linalg.norm(a + ac * t[:, None] - b, axis=1)
     below = (b[:, 2] <= (a + ac * t[:, None])[:, 2] + tolerance)
     drop = (off <= tolerance) & below & (t > 0) & (t < 1)
-    # never two in a row: keep every other of a run
+    # never two in a row: of each run of neighbouring candidates, the first, third, ... go
     keep = np.ones(len(points), bool)
     candidates = np.flatnonzero(drop) + 1
-    last = -2
-    for i in candidates:
-        if i != last + 1:
-            keep[i] = False
-            last = i
-        else:
-            last = -2
+    if len(candidates):
+        starts = np.flatnonzero(np.diff(candidates, prepend=-2) != 1)      # where each run begins
+        run_start = np.repeat(starts, np.diff(np.append(starts, len(candidates))))
+        keep[candidates[(np.arange(len(candidates)) - run_start) % 2 == 0]] = False
     return points[keep]
 
 

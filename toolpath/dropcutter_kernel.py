@@ -3,11 +3,14 @@
 For each query point the kernel walks the triangles of the point's bucket in order of falling
 top Z and stops as soon as a triangle's highest vertex is no higher than the tool tip found so
 far (a triangle cannot lift the tool above its own top: every tool's underside is at or above
-its tip).  Each triangle is tested as dropcutter.py's numpy path tests it: its three vertices,
-its facet (the support point of the tool in the facet's gradient direction, when it falls
-inside the triangle) and its three edges (the concave 1-D maximum along the edge, clamped to
-the part of the edge under the tool).  dropcutter.py imports this module only when numba is
-wanted and importable.
+its tip).  Within a triangle, a bull nose's edge that cannot lift the tip above the best so
+far is skipped, and its bisection stops early where a bound says so; both skip only
+what cannot raise the best, so every tip is bit for bit what the search without them gives.
+Each triangle is tested as dropcutter.py's numpy path tests it: its three vertices, its facet
+(the support point of the tool in the facet's gradient direction, when it falls inside the
+triangle) and its three edges (the concave 1-D maximum along the edge, clamped to the part of
+the edge under the tool).  dropcutter.py imports this module only when numba is wanted and
+importable.
 
 Tool codes and parameters (``prof``): kind 0 rounded (flat radius ``fr`` + corner ``rc``:
 ball, flat, bull nose), 1 cone (``k`` = 1 / tan(half angle), radius ``R``).
@@ -23,6 +26,9 @@ _jit = njit(cache=True, nogil=True)
 
 ROUNDED, CONE = 0, 1
 BISECTIONS = 64
+PROBE = 6           # bull nose edges: bisection steps before the bound that may skip the rest
+SLACK = 1e-12       # relative room for rounding in that bound
+STEEP = 1e3         # the bound is used where the corner's slope is at most this
 
 
 @_jit
@@ -76,19 +82,59 @@ def edge_best(kind, R, rc, fr, k, m, t, ua, ub):
     elif fr <= 0.0:                      # ball
         u = m * math.sqrt(max(rc * rc - t * t, 0.0) / (1.0 + m * m))
     else:                                # bull nose: bisection on the falling derivative
-        lo, hi = ua, ub
-        if _edge_derivative(kind, R, rc, fr, k, m, t, lo) <= 0.0:
-            return lo
-        if _edge_derivative(kind, R, rc, fr, k, m, t, hi) >= 0.0:
-            return hi
-        for _ in range(BISECTIONS):
-            mid = 0.5 * (lo + hi)
-            if _edge_derivative(kind, R, rc, fr, k, m, t, mid) > 0.0:
-                lo = mid
-            else:
-                hi = mid
+        if _edge_derivative(kind, R, rc, fr, k, m, t, ua) <= 0.0:
+            return ua
+        if _edge_derivative(kind, R, rc, fr, k, m, t, ub) >= 0.0:
+            return ub
+        lo, hi = bisect(kind, R, rc, fr, k, m, t, ua, ub, BISECTIONS)
         u = 0.5 * (lo + hi)
     return min(max(u, ua), ub)
+
+
+@_jit
+def bisect(kind, R, rc, fr, k, m, t, lo, hi, steps):
+    """``steps`` halvings of [lo, hi] towards the root of the falling edge derivative.  Once
+    the midpoint rounds to an end of the interval, the interval after that step is the one every
+    further step leaves as it is, so it stops there: the same (lo, hi) as all the steps."""
+    for _ in range(steps):
+        mid = 0.5 * (lo + hi)
+        stuck = mid == lo or mid == hi
+        if _edge_derivative(kind, R, rc, fr, k, m, t, mid) > 0.0:
+            lo = mid
+        else:
+            hi = mid
+        if stuck:
+            break
+    return lo, hi
+
+
+@_jit
+def _bull_edge(R, rc, fr, m, t, ua, ub, z0, s0, best):
+    """edge_best for a bull nose (kind 0, rc > 0, fr > 0), or NaN when the edge cannot lift
+    the tip above ``best``.  After PROBE of the bisection's steps the top is in [lo, hi], and
+    over a concave function it is below both tangents there: f(lo) + f'(lo) (hi - lo) and
+    f(hi) - f'(hi) (hi - lo).  Where that bound, with room for rounding (SLACK, and a share of
+    the tangents' rise: the derivative is less exact where the corner turns steep, so only below
+    STEEP), stays at or below ``best``, the other steps are skipped; else they run from there,
+    which is the same bisection as edge_best's."""
+    if _edge_derivative(ROUNDED, R, rc, fr, 0.0, m, t, ua) <= 0.0:
+        return ua
+    if _edge_derivative(ROUNDED, R, rc, fr, 0.0, m, t, ub) >= 0.0:
+        return ub
+    lo, hi = bisect(ROUNDED, R, rc, fr, 0.0, m, t, ua, ub, PROBE)
+    dlo = math.sqrt(t * t + lo * lo)
+    dhi = math.sqrt(t * t + hi * hi)
+    if slope(ROUNDED, R, rc, fr, 0.0, dlo) <= STEEP and slope(ROUNDED, R, rc, fr, 0.0, dhi) <= STEEP:
+        width = hi - lo
+        rise_lo = _edge_derivative(ROUNDED, R, rc, fr, 0.0, m, t, lo) * width
+        rise_hi = -_edge_derivative(ROUNDED, R, rc, fr, 0.0, m, t, hi) * width
+        f_lo = z0 + m * (s0 + lo) - height(ROUNDED, R, rc, fr, 0.0, min(dlo, R))
+        f_hi = z0 + m * (s0 + hi) - height(ROUNDED, R, rc, fr, 0.0, min(dhi, R))
+        bound = min(f_lo + rise_lo, f_hi + rise_hi)
+        if bound + SLACK * (1.0 + abs(f_lo) + abs(f_hi)) + 1e-5 * (abs(rise_lo) + abs(rise_hi)) <= best:
+            return np.nan
+    lo, hi = bisect(ROUNDED, R, rc, fr, 0.0, m, t, lo, hi, BISECTIONS - PROBE)
+    return min(max(0.5 * (lo + hi), ua), ub)
 
 
 @_jit
@@ -106,7 +152,9 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, pre, best):
     facet's contact offset from the axis and the tool's height there, and per edge its XY unit
     direction, XY length and slope.  The facet first (most often the contact on a smooth
     surface), then the edges and vertices, each skipped when its highest point is no higher
-    than the best tip so far."""
+    than the best tip so far (a bull nose's edge also when its highest point under the tool,
+    less the tool's height at the edge's distance from the axis, is no higher: that bound is
+    rounded as the edge's own tip is, so it never skips a higher one)."""
     R2 = R * R
     if plane[3] > 0.0:                  # not a vertical facet
         x = cx + pre[0]
@@ -145,7 +193,18 @@ def triangle_drop(kind, R, rc, fr, k, cx, cy, tri, plane, pre, best):
         if ua > ub:
             continue
         m = pre[6 + 4 * e]
-        u = edge_best(kind, R, rc, fr, k, m, t, ua, ub)
+        if kind == CONE or rc <= 0.0 or fr <= 0.0:
+            u = edge_best(kind, R, rc, fr, k, m, t, ua, ub)
+        else:
+            # a bull nose bisects: first, the edge under the tool rises to its end uphill, and
+            # the tool's underside is at least h(t) above the tip there, so the tip is no higher
+            # than that (each step rounds no lower than the same step of the tip's formula below)
+            top = p[2] + m * (s0 + (ub if m > 0.0 else ua))
+            if top - height(kind, R, rc, fr, k, min(math.sqrt(t * t), R)) <= best:
+                continue
+            u = _bull_edge(R, rc, fr, m, t, ua, ub, p[2], s0, best)
+            if math.isnan(u):
+                continue
         z = p[2] + m * (s0 + u) - height(kind, R, rc, fr, k, min(math.sqrt(t * t + u * u), R))
         if z > best:
             best = z

@@ -26,12 +26,15 @@ class Crossing:
     point: tuple                 # where one of its edges pierces the other face (mesh units)
 
 
-def _pierces(p, q, a, b, c) -> tuple[np.ndarray, np.ndarray]:
+def _pierces(p, q, a, b, c, ab=None, ac=None) -> tuple[np.ndarray, np.ndarray]:
     """(k,) bool: does segment p-q pass through triangle abc (its edges included, not in its plane),
-    its ends strictly off the plane, and where."""
+    its ends strictly off the plane, and where.  ``ab``, ``ac``: the lengths |b - a| and |c - a|
+    when the caller has them."""
     d = q - p
     det, u, v, t = moller_trumbore(p, d, a, b, c)
-    scale = np.linalg.norm(d, axis=1) * np.linalg.norm(b - a, axis=1) * np.linalg.norm(c - a, axis=1)
+    ab = np.linalg.norm(b - a, axis=1) if ab is None else ab
+    ac = np.linalg.norm(c - a, axis=1) if ac is None else ac
+    scale = np.linalg.norm(d, axis=1) * ab * ac
     with np.errstate(invalid="ignore"):
         hit = (np.abs(det) > 1e-12 * scale) & (u >= -STRICT) & (v >= -STRICT) & (u + v <= 1 + STRICT) & \
             (t > STRICT) & (t < 1 - STRICT)
@@ -61,16 +64,28 @@ def self_crossing(vertices, faces, progress=None) -> Crossing | None:
     if len(f) < 2:
         return None
     normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    columns = [np.ascontiguousarray(f[:, k]) for k in range(3)]
+    side_ab = np.linalg.norm(tri[:, 1] - tri[:, 0], axis=1)
+    side_ac = np.linalg.norm(tri[:, 2] - tri[:, 0], axis=1)
     grid = BoxGrid(lo, hi)
     seen = set()
     count, first = 0, None
     for a, b in _candidates(grid):
         if progress is not None:
             progress(0.0)
+        # neighbours (a shared corner) touch, not cross
+        corners_a, corners_b = [column[a] for column in columns], [column[b] for column in columns]
+        shared = np.zeros(len(a), bool)
+        for ca in corners_a:
+            for cb in corners_b:
+                shared |= ca == cb
+        a, b = a[~shared], b[~shared]
         overlap = np.all((lo[a] <= hi[b]) & (lo[b] <= hi[a]), axis=1)
         a, b = a[overlap], b[overlap]
-        apart = ~(f[a][:, :, None] == f[b][:, None, :]).any(axis=(1, 2))      # neighbours touch, not cross
-        a, b = a[apart], b[apart]
+        # a pair filed in several common cells once (its first time: the same first crossing)
+        _, once = np.unique(a * len(f) + b, return_index=True)
+        once.sort()
+        a, b = a[once], b[once]
         for _ in range(2):          # drop a face wholly on one side of the other's plane; then swap
             side = np.einsum("ikj,ij->ik", tri[b] - tri[a, :1], normal[a])
             meets = ~(np.all(side > 0, axis=1) | np.all(side < 0, axis=1))
@@ -80,9 +95,10 @@ def self_crossing(vertices, faces, progress=None) -> Crossing | None:
         crossed = np.zeros(len(a), bool)
         where = np.zeros((len(a), 3))
         for one, other in ((a, b), (b, a)):
+            corners = [tri[one, k] for k in range(3)]
+            face = [tri[other, k] for k in range(3)] + [side_ab[other], side_ac[other]]
             for k in range(3):
-                hit, point = _pierces(tri[one, k], tri[one, (k + 1) % 3], tri[other, 0], tri[other, 1],
-                                      tri[other, 2])
+                hit, point = _pierces(corners[k], corners[(k + 1) % 3], *face)
                 where[hit & ~crossed] = point[hit & ~crossed]
                 crossed |= hit
         if not crossed.any():

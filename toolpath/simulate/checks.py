@@ -69,9 +69,28 @@ def _index_range(origin, cell, n, lo, hi):
             int(np.clip(math.floor((hi - origin) / cell - 0.5) + 1, 0, n)))
 
 
+_last_top: list = []        # [(grid, vertices, faces, envelope)]: the last _mesh_top, kept for its repeat
+_KEEP_CELLS = 4_000_000    # ... when its grid has at most this many cells (32 MB)
+
+
 def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     """Upper envelope of a triangle mesh over the grid (a z-buffer seen from above); cell
-    centres on a triangle's edge belong to neither side (-inf there: nothing to check)."""
+    centres on a triangle's edge belong to neither side (-inf there: nothing to check).
+    The same mesh over the same grid again (the export gate, then the scallop measured on its
+    simulation) is answered from the last call, as a copy."""
+    grid = (float(hf.x0), float(hf.y0), float(hf.cell_x), float(hf.cell_y), tuple(hf.shape))
+    if _last_top:
+        last_grid, last_vertices, last_faces, envelope = _last_top[0]
+        if last_grid == grid and np.array_equal(last_vertices, vertices) and np.array_equal(last_faces, faces):
+            return envelope.copy()
+    top = _envelope(hf, vertices, faces)
+    _last_top.clear()
+    if top.size <= _KEEP_CELLS:
+        _last_top.append((grid, np.array(vertices, float), np.array(faces, np.int64), top.copy()))
+    return top
+
+
+def _envelope(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
     top = np.full(hf.shape, -np.inf)
     flat = top.reshape(-1)
     nx, ny = hf.shape
@@ -92,12 +111,13 @@ def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.nd
         lo = np.full(len(k), -np.inf)
         hi = np.full(len(k), np.inf)
         for e in range(3):
-            p, q = t[k, e], t[k, (e + 1) % 3]
+            # per triangle, then per column (the same numbers as gathering the corners per column)
+            px, py = t[:, e, 0], t[:, e, 1]
+            ex, ey = t[:, (e + 1) % 3, 0] - px, t[:, (e + 1) % 3, 1] - py
             # inside: sign * cross(q - p, X - p) >= 0, linear in y
-            ex, ey = q[:, 0] - p[:, 0], q[:, 1] - p[:, 1]
             # Shrunk by a hair: a cell centre on a vertical wall's top edge is not held to the
             # top of the wall (it may as well be the floor's), and is left unchecked.
-            e_lo, e_hi = _halfline(sign[k] * (ex * (-p[:, 1]) - ey * (x - p[:, 0])) - 1e-7, sign[k] * ex)
+            e_lo, e_hi = _halfline(sign[k] * (ex[k] * (-py[k]) - ey[k] * (x - px[k])) - 1e-7, (sign * ex)[k])
             lo, hi = np.maximum(lo, e_lo), np.minimum(hi, e_hi)
         r0 = np.clip(np.ceil((lo - hf.y0) / hf.cell_y - 0.5), 0, ny).astype(np.int64)
         r1 = np.clip(np.floor((hi - hf.y0) / hf.cell_y - 0.5), -1, ny - 1).astype(np.int64)
@@ -113,7 +133,9 @@ def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.nd
         # z on the triangle's plane (its normal once per triangle, then per cell centre)
         normal = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
         p0 = t[:, 0]
-        z = p0[ke, 2] - (normal[ke, 0] * (xe - p0[ke, 0]) + normal[ke, 1] * (ye - p0[ke, 1])) / normal[ke, 2]
+        n0, n1, n2 = (np.ascontiguousarray(normal[:, axis]) for axis in range(3))
+        x0, y0, z0 = (np.ascontiguousarray(p0[:, axis]) for axis in range(3))
+        z = z0[ke] - (n0[ke] * (xe - x0[ke]) + n1[ke] * (ye - y0[ke])) / n2[ke]
         np.maximum.at(flat, np.repeat(col, cnt) * ny + row, z)
     return top
 
