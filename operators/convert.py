@@ -42,6 +42,14 @@ class WorkFrame:
         return (np.asarray(work_points, float) + np.asarray(self.origin_mm)) / self.mm_per_unit
 
 
+def placed(co: np.ndarray, matrix) -> np.ndarray:
+    """(n, 3) local points moved by a 4 x 4 object matrix, by explicit sums: a BLAS product
+    would wake OpenBLAS's helper thread, which then spins on a core after every call."""
+    m = np.asarray(matrix, float)
+    co = np.asarray(co, float).reshape(-1, 3)
+    return np.einsum("ij,kj->ik", co, m[:3, :3]) + m[:3, 3]
+
+
 def evaluated_mesh_arrays(obj, depsgraph):
     """World-space vertices (Blender units), polygons and edges of the evaluated object."""
     evaluated = obj.evaluated_get(depsgraph)
@@ -57,7 +65,7 @@ def evaluated_mesh_arrays(obj, depsgraph):
         mesh.vertices.foreach_get("co", co)
         co = co.reshape(count, 3)
         matrix = np.array(obj.matrix_world)
-        world = co @ matrix[:3, :3].T + matrix[:3, 3]
+        world = placed(co, matrix)
         edges = np.empty(len(mesh.edges) * 2, dtype=np.int64)
         mesh.edges.foreach_get("vertices", edges)
         loop_starts = np.empty(len(mesh.polygons), dtype=np.int64)

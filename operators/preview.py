@@ -10,6 +10,7 @@ import numpy as np
 
 from ..post.output import write_atomic
 from ..toolpath import picture_jobs
+from . import convert
 
 SIZE = (1200, 800)
 SIDE_VIEW_DEG = 72.0     # a turned bar (axis Z) seen from the side, a little from above
@@ -34,7 +35,7 @@ def object_solid(obj, frame, depsgraph=None, colour=picture_jobs.PART_COLOUR) ->
     finally:
         evaluated.to_mesh_clear()
     matrix = np.array(obj.matrix_world)
-    world = co.reshape(-1, 3) @ matrix[:3, :3].T + matrix[:3, 3]
+    world = convert.placed(co, matrix)
     return frame.to_work(world), triangles.reshape(-1, 3).astype(np.int64), colour
 
 

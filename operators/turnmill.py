@@ -346,7 +346,7 @@ def batch(args) -> dict:
         centres = np.empty(len(part.data.polygons) * 3)
         part.data.polygons.foreach_get("center", centres)
         matrix = np.array(part.matrix_world)
-        face_centroids = job.frame.to_work(centres.reshape(-1, 3) @ matrix[:3, :3].T + matrix[:3, 3])
+        face_centroids = job.frame.to_work(convert.placed(centres, matrix))
     from .common import Progress
     checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
     names = args.post or posts.choices(POST_FAMILIES)
