@@ -76,6 +76,12 @@ class GcodePost(Post):
     def n(self, value: float) -> str:
         return fmt(value, self.decimals)
 
+    def many(self, values: list) -> list:
+        """:meth:`n` of every value of the list, in one formatting call where :meth:`n` is ours."""
+        if type(self).n is not GcodePost.n:
+            return [self.n(value) for value in values]
+        return words.trimmed(values, self.decimals)
+
     # Lines the header adds after the units: a dialect's conventions worth stating in the file.
     conventions: tuple = ()
 
@@ -170,7 +176,7 @@ class GcodePost(Post):
         start = np.asarray(start, float)
         axis_words, changed = [], []
         for axis in range(3):
-            texts, ids = words.column(np.concatenate([[start[axis]], op.xyz[:, axis]]), self.n)
+            texts, ids = words.column(np.concatenate([[start[axis]], op.xyz[:, axis]]), self.n, self.many)
             changed.append(ids[1:] != ids[:-1])
             axis_words.append((texts, ids[1:]))
         write = [changed[0] | arc, changed[1] | arc, changed[2]]
@@ -184,12 +190,12 @@ class GcodePost(Post):
         if len(arcs):
             position = np.where((previous[arcs] < 0)[:, None], start[None, :2], op.xyz[np.maximum(previous[arcs], 0), :2])
             for letter, axis in (("I", 0), ("J", 1)):
-                texts, ids = words.column(op.center[arcs, axis] - position[:, axis], self.n)
+                texts, ids = words.column(op.center[arcs, axis] - position[:, axis], self.n, self.many)
                 column = np.full(n, "", dtype=object)
                 column[arcs] = words.prefixed(letter, texts, ids, np.ones(len(arcs), bool))
                 columns.append(column)
         cutting = emitted & (kind != RAPID)
-        texts, ids = words.column(op.feed, lambda value: fmt(value, 1))
+        texts, ids = words.column(op.feed, lambda value: fmt(value, 1), lambda values: words.trimmed(values, 1))
         last_cut = words.previous_where(cutting)
         feed_written = cutting & ((last_cut < 0) | (ids != ids[np.maximum(last_cut, 0)]))
         columns.append(words.prefixed("F", texts, ids, feed_written))

@@ -338,10 +338,12 @@ class PathBuilder:
         self.feed = feed
         self.plunge_feed = plunge_feed
         self.approach_z = surface_z + approach_gap
-        self._kind: list = []
+        self._blocks: list = []         # frozen (kind, xyz, feed, center) arrays, in order
+        self._kind: list = []           # single moves since the last block
         self._xyz: list = []
         self._feed: list = []
         self._center: list = []
+        self._count = 0                 # moves so far, in blocks and singles
         self._links: list = []          # indices of the feed moves :meth:`line` marked as links
         self.position = None
 
@@ -350,6 +352,7 @@ class PathBuilder:
         self._xyz.append(tuple(float(v) for v in xyz))
         self._feed.append(feed)
         self._center.append(center)
+        self._count += 1
         self.position = self._xyz[-1]
 
     def rapid(self, x, y, z):
@@ -358,21 +361,29 @@ class PathBuilder:
     def line(self, x, y, z, feed=None, link: bool = False):
         """A feed move; ``link``: it goes from one cut to the next (:attr:`Operation.links`)."""
         if link:
-            self._links.append(len(self._kind))
+            self._links.append(self._count)
         self._add(FEED, (x, y, z), self.feed if feed is None else feed)
 
     def polyline(self, points: np.ndarray, feed=None):
-        """Feed moves through every point (k, 3), appended in one go."""
-        points = np.asarray(points, dtype=float).reshape(-1, 3)
+        """Feed moves through every point (k, 3), appended in one go (kept as arrays)."""
+        points = np.array(points, dtype=float).reshape(-1, 3)      # a copy: the caller's may change
         if not len(points):
             return
-        f = self.feed if feed is None else feed
         count = len(points)
-        self._kind.extend([FEED] * count)
-        self._xyz.extend(map(tuple, points.tolist()))
-        self._feed.extend([f] * count)
-        self._center.extend([(np.nan, np.nan, np.nan)] * count)
-        self.position = self._xyz[-1]
+        self._freeze()
+        self._blocks.append((np.full(count, FEED, np.int8), points,
+                             np.full(count, self.feed if feed is None else feed, dtype=float),
+                             np.full((count, 3), np.nan)))
+        self._count += count
+        self.position = tuple(points[-1].tolist())
+
+    def _freeze(self):
+        """The single moves so far as one block of arrays."""
+        if self._kind:
+            n = len(self._kind)
+            self._blocks.append((np.array(self._kind, dtype=np.int8), np.array(self._xyz, dtype=float).reshape(n, 3),
+                                 np.array(self._feed, dtype=float), np.array(self._center, dtype=float).reshape(n, 3)))
+            self._kind, self._xyz, self._feed, self._center = [], [], [], []
 
     def arc(self, x, y, z, cx, cy, clockwise: bool, feed=None):
         self._add(ARC_CW if clockwise else ARC_CCW, (x, y, z), self.feed if feed is None else feed,
@@ -393,13 +404,16 @@ class PathBuilder:
         self.line(x, y, z, self.plunge_feed)
 
     def arrays(self):
-        n = len(self._kind)
-        return dict(kind=np.array(self._kind, dtype=np.int8), xyz=np.array(self._xyz, dtype=float).reshape(n, 3),
-                    feed=np.array(self._feed, dtype=float), center=np.array(self._center, dtype=float).reshape(n, 3))
+        self._freeze()
+        if not self._blocks:
+            return dict(kind=np.zeros(0, np.int8), xyz=np.zeros((0, 3)), feed=np.zeros(0), center=np.zeros((0, 3)))
+        kind, xyz, feed, center = (np.concatenate(column) for column in zip(*self._blocks))
+        self._blocks = [(kind, xyz, feed, center)]
+        return dict(kind=kind.copy(), xyz=xyz.copy(), feed=feed.copy(), center=center.copy())
 
     def links(self) -> np.ndarray:
         """(n,) bool: the moves :meth:`line` marked as links."""
-        marks = np.zeros(len(self._kind), bool)
+        marks = np.zeros(self._count, bool)
         marks[self._links] = True
         return marks
 
