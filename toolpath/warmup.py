@@ -37,6 +37,25 @@ def _radial_operation() -> TurnMillOperation:
                              clearance_z=5.0, safe_z=5.0, start=np.array([12.0, 0.0, -2.0]))
 
 
+class _Mesh:
+    def __init__(self, vertices, faces):
+        self.vertices, self.faces = vertices, faces
+
+
+def _prism(radius: float, z0: float, z1: float, sides: int = 8) -> _Mesh:
+    """A closed ``sides``-gon prism round the Z axis, faces wound outward."""
+    angle = np.linspace(0.0, 2 * np.pi, sides, endpoint=False)
+    ring = np.column_stack([radius * np.cos(angle), radius * np.sin(angle)])
+    vertices = np.vstack([np.column_stack([ring, np.full(sides, z0)]), np.column_stack([ring, np.full(sides, z1)]),
+                          [(0.0, 0.0, z0), (0.0, 0.0, z1)]])
+    faces = []
+    for i in range(sides):
+        j = (i + 1) % sides
+        faces += [(i, j, sides + j), (i, sides + j, sides + i),            # the side, outward
+                  (2 * sides + 1, sides + i, sides + j), (2 * sides, j, i)]  # the top and bottom caps
+    return _Mesh(vertices, np.array(faces, dtype=np.int64))
+
+
 def warm_kernels(progress=None) -> list:
     """Run every compiled kernel once; returns what ran ("heightfield ball", ...).  Without
     numba (or with KEZURI_NO_NUMBA=1) the numpy paths run and nothing is compiled."""
@@ -49,7 +68,8 @@ def warm_kernels(progress=None) -> list:
     for op in operations:
         simulate([op], BoxStock(0.0, 0.0, -3.0, 8.0, 8.0, 0.0), cell=0.5)
         ran.append(f"heightfield {op.tool.kind}")
-    simulate([_radial_operation()], CylinderStock(10.0, 10.0, 0.0), cell=0.5)
+    bar = _prism(8.0, -10.0, 0.0)          # a design inside the cut: the radial gouge check's rays
+    simulate([_radial_operation()], CylinderStock(10.0, 10.0, 0.0), cell=0.5, design=bar)
     ran.append("radius map")
     vertices = np.array([(0.0, 0.0, 0.0), (8.0, 0.0, 0.0), (8.0, 8.0, 1.0), (0.0, 8.0, 1.0)])
     faces = np.array([(0, 1, 2), (0, 2, 3)])
@@ -63,6 +83,8 @@ def warm_kernels(progress=None) -> list:
     Picture(32, 32).triangles(View(vertices, (0, 0, 32, 32)), vertices, faces, (200, 200, 200))  # batch pictures'
     ran.append("picture")
     from .facets import planning_mesh
+    from .meshrays import check_mesh
+    planning_mesh(*check_mesh(bar.vertices, bar.faces))        # the mesh check's one pass over the faces
     square = np.array([(0.0, 0.0, 0.0), (8.0, 0.0, 0.0), (8.0, 8.0, 0.0), (0.0, 8.0, 0.0), (4.0, 4.0, 0.0)])
     planning_mesh(square, np.array([(0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)], dtype=np.int64))   # turn-mill's
     ran.append("planning mesh")
