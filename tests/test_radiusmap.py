@@ -274,6 +274,19 @@ def test_turned_mesh_joins_the_untouched_bar_to_the_cut_end():
     assert np.array_equal(ours, plain)
 
 
+
+def _depth_pictures(meshes, tilt: float):
+    """(view, [depth buffer of each (vertices, faces)]): the bar r 20, z -30..0 framed at ``tilt``."""
+    from kezuri.toolpath.picture import Picture, View
+    view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), tilt)
+    depths = []
+    for vertices, faces in meshes:
+        picture = Picture(400, 400)
+        picture.triangles(view, vertices, faces, (200, 200, 200))
+        depths.append(picture.depth)
+    return view, depths
+
+
 def test_turned_surface_looks_like_the_closed_mesh():
     """The picture's surface (no boolean) of the bar of the test above looks like the closed mesh:
     seen from above, the same pixels are covered (but for a sliver along the rim, where the mesh's
@@ -281,7 +294,6 @@ def test_turned_surface_looks_like_the_closed_mesh():
     height but on the pocket's walls (the mesh's walls start at the end face 3/4 of the way from
     the floor's outer cell centres to the next ones, the surface's at those: at most 0.75 mm
     apart); seen from the side, nearly all pixels alike."""
-    from kezuri.toolpath.picture import Picture, View
     from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
     from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
 
@@ -296,12 +308,7 @@ def test_turned_surface_looks_like_the_closed_mesh():
     stock = CylinderStock(20.0, 30.0)
     meshes = _turned_mesh(rm, hf, stock, None), _turned_surface(rm, hf, stock, None)
     for tilt in (0.0, 72.0):
-        view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), tilt)
-        depths = []
-        for vertices, faces in meshes:
-            picture = Picture(400, 400)
-            picture.triangles(view, vertices, faces, (200, 200, 200))
-            depths.append(picture.depth)
+        view, depths = _depth_pictures(meshes, tilt)
         covered = np.isfinite(depths[0])
         both = covered & np.isfinite(depths[1])
         apart = np.abs(np.where(both, depths[0], 0.0) - np.where(both, depths[1], 0.0))
@@ -352,7 +359,6 @@ def test_turned_surface_merges_the_untouched_side():
     """A bar with a groove on part of its turn and no axial cut: the picture's surface draws the
     same pixels at the same depths as the closed mesh from above, at 72 degrees and from the side,
     with the untouched strips of its side one quad each (far fewer triangles)."""
-    from kezuri.toolpath.picture import Picture, View
     from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
     from kezuri.toolpath.simulate.stock import CylinderStock
 
@@ -362,12 +368,7 @@ def test_turned_surface_merges_the_untouched_side():
                                                                                        None)
     assert len(meshes[1][1]) < len(meshes[0][1]) / 10
     for tilt in (0.0, 72.0, 90.0):
-        view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), tilt)
-        depths = []
-        for vertices, faces in meshes:
-            picture = Picture(400, 400)
-            picture.triangles(view, vertices, faces, (200, 200, 200))
-            depths.append(picture.depth)
+        _, depths = _depth_pictures(meshes, tilt)
         covered = np.isfinite(depths[0])
         assert np.array_equal(covered, np.isfinite(depths[1]))
         assert np.abs(depths[0][covered] - depths[1][covered]).max() < 1e-9
