@@ -14,7 +14,7 @@ reached through SHAPE_ASPECTs described '... occurrence'; the project, workpiece
 product data (MACHINING_PROJECT, PRODUCT_DEFINITION, MACHINING_SETUP).
 
 :func:`to_arm` walks those paths and writes the ARM instances the ISO 14649 reader
-(:func:`model.read_project`) knows, so both renditions of a part give the same model.  The main
+(:func:`reader.read_project`) knows, so both renditions of a part give the same model.  The main
 objects keep their AP238 instance numbers (a workingstep #10 stays #10, a feature, operation or
 tool keeps its number), so every warning names an instance of the file; helper instances get
 numbers above the file's largest.  The geometry (CARTESIAN_POINT, DIRECTION, AXIS2_PLACEMENT_3D,

@@ -35,8 +35,9 @@ from .inprocess import InProcessStock
 from .model import (
     DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourBidirectional, ContourParallel,
     CuttingTool, DrillingOperation, FreeformOperation, PlanarFace, PlaneMilling, Project, RoundHole, Slot,
-    StepNcError, Unidirectional, Workingstep, read_project,
+    StepNcError, Unidirectional, Workingstep,
 )
+from .reader import read_project
 from .motion import (  # noqa: F401 (APPROACH_GAP ... re-exported: workplan.py was one module)
     APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, _empty, _levels, _Motion,
     _offset, _ratio, _split_outside, _stepover,
