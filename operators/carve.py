@@ -25,7 +25,7 @@ from ..toolpath.simulate import BoxStock
 from . import convert
 from . import gate
 from .common import SteppedOperator, run_reported
-from .exporting import NCExport
+from .exporting import NCExport, batch_orient_spindle, orient_spindle_argument, spindle_options
 from .limits import check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
@@ -119,10 +119,11 @@ def show_carve(scene, job: CarveJob, show_rapids: bool = False) -> list:
 
 
 def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | None = None,
-                 allow: bool | str = False, checked: bool = False) -> str:
-    """Write the program; the export gate simulates it first unless the caller has (``checked``)."""
-
-    post = posts.create(POST_FAMILIES, post_name, work_offset=work_offset)
+                 allow: bool | str = False, checked: bool = False, orient_spindle: bool = False) -> str:
+    """Write the program; the export gate simulates it first unless the caller has (``checked``);
+    ``orient_spindle``: M19 before each tool change (Fanuc posts only)."""
+    post = posts.create(POST_FAMILIES, post_name, work_offset=work_offset,
+                        **spindle_options(POST_FAMILIES, post_name, orient_spindle))
     text = post.to_text(job.result.program)
     if not checked:
         gate.check(simulation(job), allow)
@@ -237,8 +238,9 @@ class KEZURI_OT_carve_export(NCExport, bpy.types.Operator):
 
     def write(self, context) -> str:
         job = run_carve(context.scene, context.evaluated_depsgraph_get())
-        return export_carve(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset,
-                            allow=context.scene.kezuri.simulation.acknowledged)
+        machine = context.scene.kezuri.machine
+        return export_carve(job, self.post, self.filepath, machine.work_offset,
+                            allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle)
 
 
 CLASSES = (KEZURI_OT_carve_generate, KEZURI_OT_carve_sample, KEZURI_OT_carve_export)
@@ -254,6 +256,7 @@ def batch_arguments(p):
     source.add_argument("--mesh", help="an STL/OBJ/PLY of the design in mm (work zero: its origin)")
     source.add_argument("--sample", choices=sorted(carve_samples.SAMPLES), help="a built-in design (default: wave)")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
+    orient_spindle_argument(p)
     from .batchio import number
     from .limits import RANGES
     p.add_argument("--scallop", type=number("--scallop", limit=RANGES["carve"]["scallop"]),
@@ -296,6 +299,8 @@ def batch(args) -> dict:
     if args.steep_cleanup is not None:
         props.steep_cleanup = args.steep_cleanup
     machine = scene.kezuri.machine
+    post_name = args.post or scene_post(scene)
+    batch_orient_spindle(args, scene, POST_FAMILIES, post_name)
     if args.mesh:
         vertices, faces = read_mesh_file(args.mesh)
         frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
@@ -306,10 +311,9 @@ def batch(args) -> dict:
         if not args.blend:
             add_sample(scene, args.sample or "wave")
         job = run_carve(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "carve"))
-    post_name = args.post or scene_post(scene)
     nc_path = os.path.join(args.out, f"carve{extension_for(post_name)}")
     simulated, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
-    export_carve(job, post_name, nc_path, machine.work_offset, checked=True)
+    export_carve(job, post_name, nc_path, machine.work_offset, checked=True, orient_spindle=machine.orient_spindle)
     design_path = batchio.write_stl(os.path.join(args.out, "design.stl"), job.vertices, job.faces)
     if batchio.shown():
         show_carve(scene, job)

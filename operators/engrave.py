@@ -22,7 +22,7 @@ from ..toolpath.program import Tool
 from . import convert
 from . import gate
 from .common import SteppedOperator
-from .exporting import NCExport
+from .exporting import NCExport, batch_orient_spindle, orient_spindle_argument, spindle_options
 from .limits import check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
@@ -144,10 +144,12 @@ def program_for_post(job: EngraveJob, post_name: str):
 
 
 def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str | None = None,
-                   allow: bool | str = False, checked: bool = False) -> str:
+                   allow: bool | str = False, checked: bool = False, orient_spindle: bool = False) -> str:
     """Write the program for ``post_name``; the export gate simulates it first unless the caller
-    has (``checked``); ``allow``: the gate's override (see :func:`gate.check`)."""
-    post = posts.create(POST_FAMILIES, post_name, work_offset=work_offset)
+    has (``checked``); ``allow``: the gate's override (see :func:`gate.check`); ``orient_spindle``:
+    M19 before each tool change (Fanuc posts only)."""
+    post = posts.create(POST_FAMILIES, post_name, work_offset=work_offset,
+                        **spindle_options(POST_FAMILIES, post_name, orient_spindle))
     text = post.to_text(program_for_post(job, post_name))
     if not checked:
         gate.check(simulation(job), allow)
@@ -224,8 +226,9 @@ class KEZURI_OT_engrave_export(NCExport, bpy.types.Operator):
 
     def write(self, context) -> str:
         job = run_engrave(context.scene, context.evaluated_depsgraph_get())
-        return export_engrave(job, self.post, self.filepath, context.scene.kezuri.machine.work_offset,
-                              allow=context.scene.kezuri.simulation.acknowledged)
+        machine = context.scene.kezuri.machine
+        return export_engrave(job, self.post, self.filepath, machine.work_offset,
+                              allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle)
 
 
 CLASSES = (KEZURI_OT_engrave_generate, KEZURI_OT_engrave_export)
@@ -236,6 +239,7 @@ CLASSES = (KEZURI_OT_engrave_generate, KEZURI_OT_engrave_export)
 def batch_arguments(p):
     p.add_argument("--blend", help="a .blend whose scene has the Kezuri plate and letters set")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
+    orient_spindle_argument(p)
     from .batchio import number
     from .limits import RANGES
     p.add_argument("--seed", type=number("--seed", limit=RANGES["engrave"]["seed"]))
@@ -279,13 +283,15 @@ def batch(args) -> dict:
     if args.surface:
         add_surface(scene, args.surface)
     post_name = args.post or scene_post(scene)
+    batch_orient_spindle(args, scene, POST_FAMILIES, post_name)
     started = time.perf_counter()
     job = run_engrave(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "engrave"))
     seconds = time.perf_counter() - started
     nc_path = os.path.join(args.out, f"engrave{extension_for(post_name)}")
     setup = simulation(job)
     checked, gate_report = gate.check(setup, args.allow_findings, Progress(None, "check"))
-    export_engrave(job, post_name, nc_path, props.machine.work_offset, checked=True)
+    export_engrave(job, post_name, nc_path, props.machine.work_offset, checked=True,
+                   orient_spindle=props.machine.orient_spindle)
     files = [nc_path]
     solids = []
     if job.surface is not None:

@@ -15,6 +15,34 @@ from .preferences import scene_output_dir, scene_post
 from .translations import translate_message
 
 
+def spindle_options(families, post_name: str, orient: bool, given_as: str = "Orient Spindle (M19)") -> dict:
+    """The post's keyword for Machine & Stock's Orient Spindle (M19): only the posts that write
+    M19 before a tool change (the Fanuc ones) take it; any other refuses it, naming where it
+    was given (the check box, or batch's --orient-spindle), rather than write a program without it."""
+    if not orient:
+        return {}
+    import inspect
+    if "orient_spindle" not in inspect.signature(posts.find(families, post_name).__init__).parameters:
+        raise posts.PostError(f"{given_as}: the {post_name} post does not write M19 before a tool change; "
+                              f"pick a Fanuc post or switch it off")
+    return {"orient_spindle": True}
+
+
+def orient_spindle_argument(parser) -> None:
+    """Batch's ``--orient-spindle`` (Machine & Stock's check box)."""
+    parser.add_argument("--orient-spindle", action="store_true",
+                        help="Fanuc posts: M19 before each tool change (other posts refuse it)")
+
+
+def batch_orient_spindle(args, scene, families, post_name: str) -> None:
+    """Batch, before any work: ``--orient-spindle`` (or the .blend's check box) against the post."""
+    machine = scene.kezuri.machine
+    if args.orient_spindle:
+        machine.orient_spindle = True
+    spindle_options(families, post_name, machine.orient_spindle,
+                    "--orient-spindle" if args.orient_spindle else "Orient Spindle (M19) of the .blend")
+
+
 class NCExport(ExportHelper):
     """Mixed into an ExportHelper operator with a ``post`` enum of ``post_families``.  The operator
     sets ``file_suffix`` and implements ``write(context) -> path``; ``preferred_post`` names the

@@ -90,7 +90,7 @@ class KEZURI_PT_machine(KezuriPanel, bpy.types.Panel):
         layout = self.layout
         settings = context.scene.kezuri
         field(layout, settings.machine, "post", wide=True)
-        fields(layout, settings.machine, ("work_offset", "rapid_rate", "output_dir"))
+        fields(layout, settings.machine, ("work_offset", "rapid_rate", "output_dir", "orient_spindle"))
         layout.separator()
         field(layout, settings.stock, "plate")
         field(layout, settings.stock, "origin", wide=True)

@@ -89,6 +89,9 @@ class KezuriMachine(bpy.types.PropertyGroup):
                               description="Rapid traverse speed used for cycle-time estimates (mm/min)")
     output_dir: StringProperty(name="Output Folder", subtype="DIR_PATH", default="",
                                description="Folder for exported NC programs (empty: the preferences' folder)")
+    orient_spindle: BoolProperty(name="Orient Spindle (M19)", default=False,
+                                 description="Fanuc posts: M19 before each tool change, for a changer that needs "
+                                             "the spindle keys aligned (a post without it refuses the export)")
 
 
 class KezuriStock(bpy.types.PropertyGroup):

@@ -23,7 +23,7 @@ from ..toolpath.stepnc.solids import block_of, feature_solid, fixture_clearance,
 from . import convert
 from . import gate
 from .common import run_reported
-from .exporting import NCExport
+from .exporting import NCExport, batch_orient_spindle, orient_spindle_argument, spindle_options
 from .limits import check_group
 from .properties import post_items, post_number
 from .translations import iface, translate_message
@@ -131,7 +131,9 @@ def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progr
     simulation job, gate report)."""
     loaded = load_scene_workplan(scene)
     program = scene_program(scene, loaded)
-    post = posts.create(POST_FAMILIES, post_name, work_offset=scene.kezuri.machine.work_offset)
+    machine = scene.kezuri.machine
+    post = posts.create(POST_FAMILIES, post_name, work_offset=machine.work_offset,
+                        **spindle_options(POST_FAMILIES, post_name, machine.orient_spindle))
     if post.needs_texture:
         raise posts.PostError(f"the {post.name} post writes textured engravings only; pick another post")
     text = post.to_text(program)
@@ -324,6 +326,7 @@ MENUS = ((bpy.types.TOPBAR_MT_file_import, menu_import), (bpy.types.TOPBAR_MT_fi
 def batch_arguments(p):
     p.add_argument("--input", help="ISO 14649 Part 21 file (.stp, .p21); default: a built-in two-pocket plate")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES, texture=False))
+    orient_spindle_argument(p)
     p.add_argument("--order", help="workingstep instance ids in the order to cut, e.g. 13,14,10 (default: "
                                    "the workplan's order); workingsteps left out are not cut")
     gate.allow_findings_argument(p)
@@ -371,6 +374,7 @@ def batch(args) -> dict:
         path = sample_file(staging)
     from .common import Progress
     post_name = args.post or "fanuc"
+    batch_orient_spindle(args, scene, POST_FAMILIES, post_name)
     try:
         if not os.path.isfile(path):
             raise FileNotFoundError(f"no such ISO 14649 file: {path}")

@@ -222,6 +222,11 @@ PROPERTY_TEXTS = {
     "Output Folder": "出力フォルダー",
     "Folder for exported NC programs (empty: the preferences' folder)":
         "NCプログラムの書き出し先フォルダー（空欄：プリファレンスのフォルダー）",
+    "Orient Spindle (M19)": "主軸オリエント (M19)",
+    "Fanuc posts: M19 before each tool change, for a changer that needs the spindle keys aligned (a post "
+    "without it refuses the export)":
+        "Fanucポスト：工具交換の前ごとに M19 を書きます（主軸キーの位置合わせが要る交換装置向け。"
+        "M19 のないポストでは書き出しを中止します）",
     # Stock
     "Plate": "板材",
     "The stock: a mesh whose top face is machined": "素材：上面を加工するメッシュ",
@@ -714,6 +719,8 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "{}: the {} post does not write M19 before a tool change; pick a Fanuc post or switch it off":
+        "{0}：{1} ポストは工具交換の前に M19 を書きません。Fanucポストを選ぶか、オフにしてください",
     "a {} mm cell gives {} dexels round the bar (more than {}); use a coarser cell":
         "{0} mm のセルでは丸棒の周りが {1} 個のデクセル（上限 {2} 超）になります。セルを粗くしてください",
     'Kezuri internal error ({}): {}; details in the system console': 'Kezuriの内部エラー（{0}）：{1}。詳細はシステムコンソールを見てください',

@@ -131,6 +131,10 @@ CONCRETE = [
     # unknown choices
     (("engrave", "--post", "heidenhain"), "--post"), (("rotary", "--post", "grbl"), "--post"),
     (("stepnc", "--post", "fanuc-macro"), "--post"), (("turnmill", "--engine", "embree"), "--engine"),
+    # M19 asked of a post that does not write it (refused before any work, never left out)
+    (("engrave", "--post", "linuxcnc", "--orient-spindle"), "--orient-spindle"),
+    (("carve", "--post", "grbl", "--orient-spindle"), "--orient-spindle"),
+    (("stepnc", "--post", "linuxcnc", "--orient-spindle"), "--orient-spindle"),
     # files that are not what they claim
     (("stepnc", "--input", "missing.stp"), "missing.stp"),
     (("unfold", "--cdl", "missing.cdl"), "missing.cdl"),
