@@ -69,10 +69,7 @@ def design_mesh(scene, depsgraph) -> tuple:
     if not polygons:
         raise convert.SceneInputError(f"design {obj.name!r} has no faces")
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
-    if all(len(polygon) == 3 for polygon in polygons):      # triangles already: as they are
-        faces = np.concatenate(polygons).astype(np.int64).reshape(-1, 3)
-    else:
-        faces, _ = meshdata.triangulated(polygons)
+    faces, _ = meshdata.triangulated(polygons)
     return frame.to_work(world), faces, frame
 
 
