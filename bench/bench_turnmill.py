@@ -1,9 +1,14 @@
 """W4: classification rays per second on a 100k-face mesh, 4 samples per face, each engine."""
 from __future__ import annotations
 
+import os
+import sys
 import time
 
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests"))
+from pointsets import hausdorff  # noqa: E402  (the tests' point-set distance, numpy only)
 
 
 def run():
@@ -72,7 +77,7 @@ def run_planning():
         seconds = min(seconds, time.perf_counter() - started)
     pairs = list(zip(plain.program.operations, dense.program.operations))
     same = len(plain.program.operations) == len(dense.program.operations)
-    apart = max(_hausdorff(a.xyz, b.xyz) for a, b in pairs) if same else float("nan")
+    apart = max(hausdorff(a.xyz, b.xyz) for a, b in pairs) if same else float("nan")
     cylinder = trimesh.creation.cylinder(radius=20, height=40, sections=64)
     v = np.asarray(cylinder.vertices)
     bar = turnmill.Stock(float(np.hypot(v[:, 0], v[:, 1]).max()), float(v[:, 2].min()), float(v[:, 2].max()))
@@ -90,15 +95,6 @@ def run_planning():
         {"name": "turnmill: plan a plain 64-sided cylinder", "seconds": plain_cylinder,
          "notes": "before the grid join: over 300 s"},
     ]
-
-
-def _hausdorff(a, b) -> float:
-    worst = 0.0
-    for x, y in ((a, b), (b, a)):
-        for s in range(0, len(x), 500):
-            d = np.sqrt(((x[s:s + 500, None, :] - y[None, :, :]) ** 2).sum(axis=-1)).min(axis=1)
-            worst = max(worst, float(d.max()))
-    return worst
 
 
 _run_rays = run

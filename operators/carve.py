@@ -25,7 +25,7 @@ from ..toolpath.simulate import BoxStock
 from . import convert
 from . import gate
 from .common import SteppedOperator, run_reported
-from .exporting import NCExport, batch_orient_spindle, orient_spindle_argument, spindle_options
+from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument
 from .limits import check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
@@ -119,8 +119,7 @@ def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | No
                  allow: bool | str = False, checked: bool = False, orient_spindle: bool = False) -> str:
     """Write the program; the export gate simulates it first unless the caller has (``checked``);
     ``orient_spindle``: M19 before each tool change (Fanuc posts only)."""
-    post = posts.create(POST_FAMILIES, post_name, work_offset=work_offset,
-                        **spindle_options(POST_FAMILIES, post_name, orient_spindle))
+    post = machine_post(POST_FAMILIES, post_name, work_offset, orient_spindle)
     text = post.to_text(job.result.program)
     if not checked:
         gate.check(simulation(job), allow)

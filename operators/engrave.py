@@ -22,7 +22,7 @@ from ..toolpath.program import Tool
 from . import convert
 from . import gate
 from .common import SteppedOperator
-from .exporting import NCExport, batch_orient_spindle, orient_spindle_argument, spindle_options
+from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument
 from .limits import check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
@@ -148,8 +148,7 @@ def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str 
     """Write the program for ``post_name``; the export gate simulates it first unless the caller
     has (``checked``); ``allow``: the gate's override (see :func:`gate.check`); ``orient_spindle``:
     M19 before each tool change (Fanuc posts only)."""
-    post = posts.create(POST_FAMILIES, post_name, work_offset=work_offset,
-                        **spindle_options(POST_FAMILIES, post_name, orient_spindle))
+    post = machine_post(POST_FAMILIES, post_name, work_offset, orient_spindle)
     text = post.to_text(program_for_post(job, post_name))
     if not checked:
         gate.check(simulation(job), allow)

@@ -4,6 +4,7 @@ the output folder, the scene and the post's extension, and the export (through t
 panel's override) reported back."""
 from __future__ import annotations
 
+import inspect
 import os
 
 import bpy
@@ -21,11 +22,16 @@ def spindle_options(families, post_name: str, orient: bool, given_as: str = "Ori
     was given (the check box, or batch's --orient-spindle), rather than write a program without it."""
     if not orient:
         return {}
-    import inspect
     if "orient_spindle" not in inspect.signature(posts.find(families, post_name).__init__).parameters:
         raise posts.PostError(f"{given_as}: the {post_name} post does not write M19 before a tool change; "
                               f"pick a Fanuc post or switch it off")
     return {"orient_spindle": True}
+
+
+def machine_post(families, post_name: str, work_offset: str | None, orient_spindle: bool = False):
+    """The post ``post_name`` set up for the machine: its work offset, and M19 where asked."""
+    return posts.create(families, post_name, work_offset=work_offset,
+                        **spindle_options(families, post_name, orient_spindle))
 
 
 def orient_spindle_argument(parser) -> None:

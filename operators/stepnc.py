@@ -23,7 +23,7 @@ from ..toolpath.stepnc.solids import block_of, feature_solid, fixture_clearance,
 from . import convert
 from . import gate
 from .common import run_reported
-from .exporting import NCExport, batch_orient_spindle, orient_spindle_argument, spindle_options
+from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument
 from .limits import check_group
 from .properties import post_items, post_number
 from .translations import iface, translate_message
@@ -132,8 +132,7 @@ def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progr
     loaded = load_scene_workplan(scene)
     program = scene_program(scene, loaded)
     machine = scene.kezuri.machine
-    post = posts.create(POST_FAMILIES, post_name, work_offset=machine.work_offset,
-                        **spindle_options(POST_FAMILIES, post_name, machine.orient_spindle))
+    post = machine_post(POST_FAMILIES, post_name, machine.work_offset, machine.orient_spindle)
     if post.needs_texture:
         raise posts.PostError(f"the {post.name} post writes textured engravings only; pick another post")
     text = post.to_text(program)

@@ -204,8 +204,7 @@ class TurnMillXZCPost(GcodePost):
         columns, write = [], []
         for letter, start, values in (("X", op.start[0] * scale, op.xyz[:, 0] * scale), ("Z", op.start[2], op.xyz[:, 2]),
                                       ("C", c_values[0], c_values)):
-            texts, ids = words.column(np.concatenate([[start], values]), self.n,
-                                      lambda many: words.trimmed(many, self.decimals))
+            texts, ids = words.column(np.concatenate([[start], values]), self.n, self.many)
             write.append(ids[1:] != ids[:-1])
             columns.append((letter, texts, ids[1:]))
         emitted = write[0] | write[1] | write[2]

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 import trimesh
 from manifold3d import Manifold
+from pointsets import hausdorff
 
 from kezuri.toolpath import facets, turnmill
 from kezuri.toolpath.meshrays import check_mesh, face_normals
@@ -101,16 +102,6 @@ def test_labels_keep_faces_apart():
     top = tri[:, :, 2].min(axis=1) > c / 2 - 1e-9
     assert np.all((tri[top, :, 0].min(axis=1) >= -1e-9) | (tri[top, :, 0].max(axis=1) <= 1e-9))
     assert len(planning.faces) < len(f)
-
-
-def hausdorff(a: np.ndarray, b: np.ndarray) -> float:
-    """Largest distance from a point of either set to the nearest point of the other."""
-    worst = 0.0
-    for x, y in ((a, b), (b, a)):
-        for s in range(0, len(x), 500):
-            d = np.sqrt(((x[s:s + 500, None, :] - y[None, :, :]) ** 2).sum(axis=-1)).min(axis=1)
-            worst = max(worst, float(d.max()))
-    return worst
 
 
 def test_subdivided_sample_plans_the_same_program():

@@ -11,8 +11,11 @@ cache.  The shell runs it in a child process after registering (``operators.star
 """
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 
+from .meshdata import prism, triangulated
 from .program import ARC_CCW, FEED, RAPID, Operation, Tool, TurnMillOperation
 from .tools import KINDS
 
@@ -37,23 +40,12 @@ def _radial_operation() -> TurnMillOperation:
                              clearance_z=5.0, safe_z=5.0, start=np.array([12.0, 0.0, -2.0]))
 
 
-class _Mesh:
-    def __init__(self, vertices, faces):
-        self.vertices, self.faces = vertices, faces
-
-
-def _prism(radius: float, z0: float, z1: float, sides: int = 8) -> _Mesh:
-    """A closed ``sides``-gon prism round the Z axis, faces wound outward."""
-    angle = np.linspace(0.0, 2 * np.pi, sides, endpoint=False)
-    ring = np.column_stack([radius * np.cos(angle), radius * np.sin(angle)])
-    vertices = np.vstack([np.column_stack([ring, np.full(sides, z0)]), np.column_stack([ring, np.full(sides, z1)]),
-                          [(0.0, 0.0, z0), (0.0, 0.0, z1)]])
-    faces = []
-    for i in range(sides):
-        j = (i + 1) % sides
-        faces += [(i, j, sides + j), (i, sides + j, sides + i),            # the side, outward
-                  (2 * sides + 1, sides + i, sides + j), (2 * sides, j, i)]  # the top and bottom caps
-    return _Mesh(vertices, np.array(faces, dtype=np.int64))
+def _prism(radius: float, z0: float, z1: float, sides: int = 8) -> SimpleNamespace:
+    """A closed ``sides``-gon prism round the Z axis (vertices, triangles), faces wound outward
+    (:func:`.meshdata.prism` over a clockwise outline)."""
+    angle = np.linspace(0.0, -2 * np.pi, sides, endpoint=False)
+    vertices, polygons = prism(np.column_stack([radius * np.cos(angle), radius * np.sin(angle)]), z1, z0)
+    return SimpleNamespace(vertices=vertices, faces=triangulated(polygons)[0])
 
 
 def warm_kernels(progress=None) -> list:

@@ -14,7 +14,7 @@ sits at the feature's zero point), so it is never composed twice.
 from __future__ import annotations
 
 from .ap238 import HOLE_BOTTOMS, POCKET_BOTTOMS, SLOT_ENDS, _at, _item_name, _kind, _measure, _placeholder_name
-from .model import StepNcError
+from .model import CURVE_TYPES, StepNcError
 from .part21 import UNSET, Ref
 
 KINDS = ("ROUND_HOLE", "POCKET", "FLAT_FACE", "PLANAR_FACE", "SLOT")
@@ -177,9 +177,7 @@ def _linear_path(aim, path, feature_placement) -> Ref:
             raise StepNcError(f"#{path.id} PATH_FEATURE_COMPONENT: a partial circular path needs a 'sweep angle'")
         return aim.put(path.id, "PARTIAL_CIRCULAR_PATH", [own, values["radius"], sweep])
     if kind == "complex":
-        curves = [item for rep, item, _ in aim.shape_items(path)
-                  if item.type_names[0] in ("POLYLINE", "TRIMMED_CURVE", "COMPOSITE_CURVE", "CIRCLE",
-                                            "B_SPLINE_CURVE_WITH_KNOTS")]
+        curves = _curves(aim, path)
         if not curves:
             raise StepNcError(f"#{path.id} PATH_FEATURE_COMPONENT: a complex path needs a curve ('sweep path')")
         return aim.put(path.id, "GENERAL_PATH", [own, Ref(curves[0].id)])
@@ -190,6 +188,12 @@ def _linear_path(aim, path, feature_placement) -> Ref:
     if direction is None or values.get("distance") is None:
         raise StepNcError(f"#{path.id} PATH_FEATURE_COMPONENT: a linear path needs a DIRECTION and a 'distance'")
     return aim.put(path.id, "LINEAR_PATH", [own, values["distance"], direction])
+
+
+def _curves(aim, owner) -> list:
+    """The curves the reader knows (:data:`.model.CURVE_TYPES`) among the items of ``owner``'s
+    shape representations."""
+    return [item for _, item, _ in aim.shape_items(owner) if item.type_names[0] in CURVE_TYPES]
 
 
 def _angle(aim, item) -> float | None:
@@ -220,9 +224,7 @@ def _closed_profile(aim, profile, feature_placement) -> Ref:
             raise StepNcError(f"#{profile.id} RECTANGULAR_CLOSED_PROFILE: needs 'width' and 'length' items")
         return aim.put(profile.id, "RECTANGULAR_CLOSED_PROFILE", [own, values["width"], values["length"]])
     if kind == "CLOSED_PATH_PROFILE":
-        curves = [item for rep, item, _ in aim.shape_items(profile)
-                  if item.type_names[0] in ("POLYLINE", "TRIMMED_CURVE", "COMPOSITE_CURVE", "CIRCLE",
-                                            "B_SPLINE_CURVE_WITH_KNOTS")]
+        curves = _curves(aim, profile)
         if not curves:
             raise StepNcError(f"#{profile.id} CLOSED_PATH_PROFILE: no curve in its PATH_SHAPE_REPRESENTATION")
         return aim.put(profile.id, "GENERAL_CLOSED_PROFILE", [own, Ref(curves[0].id)])

@@ -12,7 +12,7 @@ import numpy as np
 from .. import region as rg
 from .model import (
     ApproachRetract, BSplineCurve, Bidirectional, Block, BottomAndSideMilling, Circle, CircularPath,
-    ClosedPocket, ClosedProfile, CompositeCurve, CompositeCurveSegment, ContourBidirectional,
+    ClosedPocket, ClosedProfile, CompositeCurve, CompositeCurveSegment, CURVE_TYPES, ContourBidirectional,
     ContourParallel, CuttingTool, DIMENSION_TYPES, DRILLING_TOOL_BODIES, DrillingOperation,
     DrillingTypeStrategy, Feature, FreeformOperation, GeneralClosedProfile, GeneralPath, Helix,
     LENGTH_TYPES, Line, LinearPath, LinearProfile, MAX_LENGTH, MILLING_TOOL_BODIES, MachineFunctions,
@@ -204,8 +204,7 @@ class _Reader:
         return self.memoised(target, convert)
 
     def curve(self, inst, index, name):
-        target = self.entity(inst, index, name, ("POLYLINE", "TRIMMED_CURVE", "COMPOSITE_CURVE", "CIRCLE",
-                                                 "B_SPLINE_CURVE_WITH_KNOTS"), unsupported=True)
+        target = self.entity(inst, index, name, CURVE_TYPES, unsupported=True)
         return self.memoised(target, self._curve)
 
     def _curve(self, t):
