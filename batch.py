@@ -72,7 +72,6 @@ def demo(args) -> dict:
         runs = ([(name, command.demo)] if command.demo is not None else []) + list(command.more_demos)
         for folder, line in runs:
             sub = parser().parse_args([name, *line, "--out", os.path.join(args.out, folder)])
-            os.makedirs(sub.out, exist_ok=True)
             report = command.run(sub)
             write_report(sub.out, report)
             results[folder] = {"files": report["files"], "preview": report.get("preview")}
@@ -109,12 +108,12 @@ def parse(argv: list) -> argparse.Namespace:
 
 def main(argv: list) -> int:
     args = parse(script_arguments(argv))
-    args.out = os.path.abspath(args.out)
     load_extension()
     from kezuri.operators.common import user_errors
     from kezuri.operators.gate import REFUSED_STATUS, GateRefused
+    from kezuri.post.output import check_folder
     try:
-        os.makedirs(args.out, exist_ok=True)
+        args.out = check_folder(args.out, "--out")     # made by the first file written, not before
         report = demo(args) if args.command == "demo" else commands()[args.command].run(args)
     except GateRefused as error:
         print(f"kezuri: {error}", file=sys.stderr)

@@ -13,11 +13,12 @@ def open_blend(path: str | None):
     from . import samples
     if path:
         if not os.path.isfile(path):
-            raise FileNotFoundError(f"no such .blend file: {path}")
+            raise FileNotFoundError(f"--blend {path}: no such .blend file")
         try:
             bpy.ops.wm.open_mainfile(filepath=os.path.abspath(path))
         except RuntimeError as error:
-            raise SceneInputError(f"--blend {path}: not a .blend file Blender can open ({error})") from None
+            reason = str(error).strip().removeprefix("Error:").strip()
+            raise SceneInputError(f"--blend {path}: not a .blend file Blender can open ({reason})") from None
         return bpy.context.scene
     scene = bpy.context.scene
     samples.clear_scene(scene)

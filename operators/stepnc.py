@@ -380,7 +380,7 @@ def batch(args) -> dict:
         loaded = stepnc.load_workplan(path)
         fill_workplan_list(scene, os.path.abspath(path), loaded)
         if args.order:
-            apply_order(scene, args.order, path)
+            apply_order(scene, args.order, path if staging is None else "the built-in sample")
         nc_path, program, checked, gate_report = export_nc(
             scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"), args.allow_findings,
             Progress(None, "check"))

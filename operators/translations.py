@@ -1069,7 +1069,7 @@ MESSAGE_TEMPLATES = {
     '{} {}: the setting would hold {} instead; give a value the setting allows':
         '{0} {1}：設定には代わりに {2} が入ってしまいます。設定が受け付ける値を指定してください',
     '--corners: every coordinate must be a finite number of mm, got {}': '--corners：座標はすべて有限の数 (mm) にしてください（指定：{0}）',
-    'no such .blend file: {}': '.blend ファイルがありません：{0}',
+    '--blend {}: no such .blend file': '--blend {0}：.blend ファイルがありません',
     '--blend {}: not a .blend file Blender can open ({})': '--blend {0}：Blender で開ける .blend ファイルではありません（{1}）',
     '--stock {}: not numbers': '--stock {0}：数値ではありません',
     '--stock {}: give box:x0,y0,z0,x1,y1,z1 or cylinder:R,H': '--stock {0}：box:x0,y0,z0,x1,y1,z1 か cylinder:R,H で指定してください',
@@ -1370,6 +1370,14 @@ MESSAGE_TEMPLATES = {
         '{0}行目：この行までにヒット数が {1} を超えています（シミュレーションできるのは {2} まで）：ピッチ Q を確認してください',
     '{} must be from {} to {}, got {}':
         '{0} は {1}～{2} にしてください（指定値 {3}）',
+    '{} {} is a file, not a folder':
+        '{0} {1} はファイルです（フォルダーを指定してください）',
+    '{} {} cannot be made: {} is a file':
+        '{0} {1} を作れません：{2} はファイルです',
+    '{} {} cannot be written':
+        '{0} {1} に書き込めません',
+    '{} {} cannot be made: {} cannot be written':
+        '{0} {1} を作れません：{2} に書き込めません',
     'cannot write {}: nothing was written':
         '{0} を書き込めません：何も書き込まれませんでした',
     'cannot write {}: cannot make the folder {} ({})':

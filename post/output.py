@@ -58,6 +58,29 @@ def clean_stale_temporaries(folder: str, older_than: float = STALE_SECONDS) -> l
     return removed
 
 
+def check_folder(folder: str, given_as: str = "output folder") -> str:
+    """The absolute ``folder`` if files can be written there, made or not; nothing is created.
+
+    Raises :class:`OutputError` naming ``given_as`` and the path when it is a file, lies under a
+    file, or would have to be made in a folder this process cannot write."""
+    folder = os.path.abspath(folder)
+    existing = folder
+    while not os.path.exists(existing):
+        parent = os.path.dirname(existing)
+        if parent == existing:
+            break
+        existing = parent
+    if existing == folder and not os.path.isdir(folder):
+        raise OutputError(f"{given_as} {folder} is a file, not a folder")
+    if not os.path.isdir(existing):
+        raise OutputError(f"{given_as} {folder} cannot be made: {existing} is a file")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        if existing == folder:
+            raise OutputError(f"{given_as} {folder} cannot be written")
+        raise OutputError(f"{given_as} {folder} cannot be made: {existing} cannot be written")
+    return folder
+
+
 def _folder_of(path: str) -> str:
     folder = os.path.dirname(path)
     try:

@@ -480,6 +480,13 @@ def japanese():
         + ascii(message))
     fresh(bpy.context.scene)
     yield from pick_job("SHEET")
+    yield from settle(10)
+    if (yield from press_big(0, "unfold generate (ja)")) is None:
+        return
+    yield from settle(20)
+    frame_all()
+    window, area, _, _ = view3d()                   # the mouse over the viewport: no tooltip on the panel
+    event("MOUSEMOVE", "NOTHING", area.x + area.width // 3, area.y + area.height // 3)
     yield from settle(20)
     shoot("sheet-metal-ja")
     view.language = "en_US"

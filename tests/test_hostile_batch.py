@@ -46,7 +46,10 @@ def run(*argv) -> tuple:
             status = BATCH.main(["batch.py", *argv, "--out", target])
         except SystemExit as exit_:
             status = exit_.code
+    # every file written, and the --out folder itself when a refused run made it (even empty)
     written = [os.path.join(base, f) for base, _, files in os.walk(out) for f in files]
+    if status and os.path.exists(target):
+        written.append(target)
     return status, stderr.getvalue(), written
 
 
@@ -163,6 +166,32 @@ def test_an_output_folder_that_is_a_file(tmp_path):
         status = BATCH.main(["batch.py", "elbow", "--out", str(blocker / "sub")])
     assert status == 2 and "Traceback" not in stderr.getvalue() and "afile" in stderr.getvalue()
     assert blocker.read_text() == "x"
+
+
+@pytest.mark.parametrize("shape", ["file", "under a file", "read-only parent"])
+def test_an_unusable_output_folder_is_named_before_any_work(tmp_path, shape):
+    """--out is checked before the job: a file, a folder under a file, or a folder that would
+    have to be made in a read-only one is refused naming --out and the path; nothing is made."""
+    blocker = tmp_path / "afile"
+    blocker.write_text("x")
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    out = {"file": blocker, "under a file": blocker / "sub", "read-only parent": locked / "job"}[shape]
+    if shape == "read-only parent":
+        locked.chmod(0o555)
+        if os.access(locked, os.W_OK):
+            pytest.skip("running as a user who may write anywhere (root)")
+    stderr = io.StringIO()
+    try:
+        with time_limit(CASE_SECONDS), contextlib.redirect_stderr(stderr), contextlib.redirect_stdout(io.StringIO()):
+            status = BATCH.main(["batch.py", "unfold", "--out", str(out)])
+    finally:
+        locked.chmod(0o755)
+    message = stderr.getvalue()
+    assert status == 2 and "Traceback" not in message, message
+    assert "--out" in message and str(out) in message, message
+    assert blocker.read_text() == "x" and sorted(p.name for p in tmp_path.iterdir()) == ["afile", "locked"]
+    assert not list(locked.iterdir())
 
 
 def test_the_suite_is_as_large_as_the_readme_says():
