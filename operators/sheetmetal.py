@@ -168,16 +168,19 @@ def elbow_punching(elbow: core.Elbow, props) -> list:
     return jobs
 
 
-def elbow_files(elbow: core.Elbow, base_path: str, props) -> list:
-    """DXF and SVG of all the pieces, and one turret-punch program per piece (<stem>-1.nc ...)."""
+def elbow_files(elbow: core.Elbow, base_path: str, props, punching: list | None = None) -> list:
+    """DXF and SVG of all the pieces, and one turret-punch program per piece (<stem>-1.nc ...).
+    Every text is made (and every piece's program punched, unless ``punching`` from
+    :func:`elbow_punching` is given) before the first file is written."""
     stem = os.path.splitext(base_path)[0]
     outlines = elbow_layout(elbow)
     punch_paths = [core.compensate_outline(outline, props.tool_diameter) for outline in outlines]
-    files = [write_atomic(stem + ".dxf", flat_export.to_dxf(outlines, punch_paths=punch_paths)),
-             write_atomic(stem + ".svg", flat_export.to_svg(outlines, punch_paths=punch_paths))]
-    for index, (nc, _) in enumerate(elbow_punching(elbow, props), start=1):
-        files.append(write_atomic(f"{stem}-{index}{posts.extension(POST_FAMILIES, PUNCH_POST)}", nc))
-    return files
+    punching = elbow_punching(elbow, props) if punching is None else punching
+    extension = posts.extension(POST_FAMILIES, PUNCH_POST)
+    texts = [(stem + ".dxf", flat_export.to_dxf(outlines, punch_paths=punch_paths)),
+             (stem + ".svg", flat_export.to_svg(outlines, punch_paths=punch_paths))]
+    texts += [(f"{stem}-{index}{extension}", nc) for index, (nc, _) in enumerate(punching, start=1)]
+    return [write_atomic(path, text) for path, text in texts]
 
 
 def show_elbow(scene, elbow: core.Elbow) -> list:
@@ -460,7 +463,8 @@ def elbow_batch(args) -> dict:
         if getattr(args, option) is not None:
             batchio.set_exactly(sheet, name, getattr(args, option), "--" + option.replace("_", "-"))
     result = run_elbow(sheet)
-    files = elbow_files(result, os.path.join(args.out, "elbow.dxf"), sheet)
+    punching = elbow_punching(result, sheet)
+    files = elbow_files(result, os.path.join(args.out, "elbow.dxf"), sheet, punching)
     if batchio.shown():
         show_elbow(scene, result)
     png = preview.sheet_png(os.path.join(args.out, "elbow.png"),
@@ -473,7 +477,7 @@ def elbow_batch(args) -> dict:
         "files": files,
         "preview": png,
         "diameter": result.diameter, "bend_radius": result.bend_radius, "angle": result.bend_angle,
-        "simulation": punch_report([punched for _, punched in elbow_punching(result, sheet)], sheet.thickness),
+        "simulation": punch_report([punched for _, punched in punching], sheet.thickness),
         "pieces": [{"index": piece.index + 1, "angle_deg": round(piece.angle, 6),
                     "outline": rounded(piece.outline),
                     "shortest_mm": round(float(piece.generatrix_lengths.min()), 6),

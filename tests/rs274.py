@@ -28,8 +28,10 @@ def run(text: str) -> list:
         output = os.path.join(folder, "out.txt")
         with open(source, "w") as stream:
             stream.write(text)
+        # rs274 keeps its tool table in $HOME/.tool.mmap (created and truncated at every start):
+        # a home of its own, so two runs at once (tests side by side) cannot share it
         done = subprocess.run([RS274, "-g", source, output], stdin=subprocess.DEVNULL, capture_output=True,
-                              text=True, timeout=120)
+                              text=True, timeout=120, env=dict(os.environ, HOME=folder))
         printed = done.stdout + done.stderr
         canon = open(output).read() if os.path.exists(output) else ""
     if done.returncode != 0 or re.search(r"error", printed + canon, re.IGNORECASE):
