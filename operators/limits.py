@@ -67,6 +67,9 @@ def degrees(lo, hi) -> Range:
 
 
 TOOL_NUMBER = Range(0, 999, integer=True)
+# A round turret punch: from the smallest made for a turret to the largest station of a thick
+# turret (E station, 4-1/2 in = 114.3 mm); sheets up to 1/2 in (a thick turret punches 1/4 in).
+PUNCH_DIAMETER = mm(0.5, 114.3)
 DIAMETER = mm(0.1, 100.0)
 HEIGHT = mm(0.0, 1000.0)
 
@@ -85,7 +88,7 @@ RANGES: dict = {
     },
     "sheet": {
         "corners": mm(-100000.0, 100000.0),
-        "divisions": Range(1, 500, integer=True), "tool_diameter": mm(0.0), "thickness": mm(0.01),
+        "divisions": Range(1, 500, integer=True), "tool_diameter": PUNCH_DIAMETER, "thickness": mm(0.01, 12.7),
         "pitch": mm(0.1), "station": Range(1, 999, integer=True),
         "elbow_diameter": mm(0.1), "elbow_radius": mm(0.1), "elbow_angle": degrees(1.0, 180.0),
         "elbow_pieces": Range(2, 60, integer=True),

@@ -156,7 +156,7 @@ UNFOLD_SETTINGS = ranged({
         ("horizontal", "Horizontal (YR)", "Strips joining edges L1 and L3"),
         ("vertical", "Vertical (TR)", "Strips joining edges L2 and L4")]),
     "tool_diameter": mm("Tool Diameter", 10.0, "Punch diameter: the cut contour is offset by its radius",
-                        minimum=0.0),
+                        minimum=0.5),
     "thickness": mm("Sheet Thickness", 1.6, "Sheet thickness; above 3.2 mm the punching line G79 is used",
                     minimum=0.01),
     "pitch": mm("Nibbling Pitch", 2.0, "Distance between punch hits (Q word)", minimum=0.1),

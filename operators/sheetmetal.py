@@ -7,20 +7,21 @@ job functions the operators, batch.py and the tests share.
 from __future__ import annotations
 
 import os
+import time
 from dataclasses import dataclass
 
 import bpy
 import numpy as np
-from bpy.props import StringProperty
+from bpy.props import BoolProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
 from .. import post as posts
 from ..post import flat_export, write_atomic
 from ..toolpath import punch
 from ..toolpath import unfold as core
-from . import convert
+from . import convert, gate
 from .common import run_reported
-from .limits import check_group
+from .limits import SettingError, check_group
 from .properties import ELBOW_SETTINGS, UNFOLD_SETTINGS, copies
 from .translations import translate_message
 from .workflow import BatchCommand, Workflow
@@ -30,6 +31,8 @@ ELBOW_PREFIX = "Kezuri Elbow"
 GAP_MM = 20.0   # flat patterns are laid out this far beside the part
 POST_FAMILIES = ("punch",)
 PUNCH_POST = "amada-04p"
+ALLOW_DESCRIPTION = ("Write the programs even if the punching simulation finds a part that stays in the sheet "
+                     "or a hit biting into the part")
 
 
 def punch_program(contour, props) -> str:
@@ -52,10 +55,80 @@ def corners_mm(props) -> np.ndarray:
     return np.array(props.corners, float).reshape(4, 3)
 
 
-def run_unfold(corners, props) -> UnfoldJob:
+# How messages name the settings: the panel and its labels, or batch's command and options.
+PANEL_NAMES = {"where": "Sheet Metal", "pitch": "Nibbling Pitch", "tool_diameter": "Tool Diameter",
+               "corners": "Quad corners (mm)", "diameter": "Pipe Diameter"}
+UNFOLD_NAMES = {"where": "unfold", "pitch": "--pitch", "tool_diameter": "--tool-diameter",
+                "corners": "--corners, --cdl or --blend"}
+ELBOW_NAMES = {"where": "elbow", "pitch": "Nibbling Pitch", "tool_diameter": "Tool Diameter", "diameter": "--diameter"}
+
+
+def check_pitch(props, names: dict = PANEL_NAMES) -> None:
+    """The nibbling pitch against the punch: hits a diameter or more apart leave webs between
+    them, and the part never falls out of the sheet."""
+    if props.pitch >= props.tool_diameter:
+        raise SettingError(f"{names['where']}: {names['pitch']} = {props.pitch:g} mm must be less than "
+                           f"{names['tool_diameter']} = {props.tool_diameter:g} mm: hits a diameter or more apart "
+                           f"leave webs, and the part stays in the sheet")
+
+
+def check_contour(contour: np.ndarray, props, what: str, names: dict = PANEL_NAMES) -> None:
+    """A cut contour the turret punch can run, before its program is written: within the
+    coordinates the control addresses, and within the hits one program may have.  ``what``:
+    the setting that made the contour, as the user gave it."""
+    reach = posts.find(POST_FAMILIES, PUNCH_POST).limits.coordinate
+    extent = float(np.abs(contour).max())
+    if extent > reach:
+        size = np.ptp(contour, axis=0)
+        raise SettingError(f"{names['where']}: {what}: the cut contour is {size[0]:.1f} x {size[1]:.1f} mm and "
+                           f"reaches {extent:.1f} mm from the program's origin, beyond the {reach:.2f} mm the "
+                           f"turret punch control addresses")
+    hits = punch.hit_count(contour, props.pitch)
+    if hits > punch.MAX_HITS:
+        raise SettingError(f"{names['where']}: {names['pitch']} = {props.pitch:g} mm: {what} takes {hits} hits, "
+                           f"more than the {punch.MAX_HITS} one program may have; raise the pitch")
+
+
+def word_error(resolution: float, line_mm: float) -> float:
+    """How far the NC words alone can put a hit of a line ``line_mm`` long off its exact place:
+    its start (X, Y) rounded to ``resolution`` mm and its direction (J) to ``resolution`` degrees."""
+    return resolution / 2 * 2 ** 0.5 + line_mm * np.sin(np.radians(resolution / 2))
+
+
+def punch_gate(results: list, allow: bool) -> dict:
+    """The export gate of a punching job: a part that stays in the sheet, or a hit biting into
+    the part deeper than the simulation's tolerance and what the NC words' two decimals can put
+    it off by (:func:`word_error`), is not written unless ``allow``.  Returns the report's
+    ``gate`` entry; raises :class:`gate.GateRefused`."""
+    started = time.perf_counter()
+    resolution = posts.find(POST_FAMILIES, PUNCH_POST).limits.resolution
+    findings = []
+    for index, result in enumerate(results, start=1):
+        which = f"piece {index}: " if len(results) > 1 else ""
+        if not result.part_separated:
+            findings.append({"kind": "part in sheet", "piece": index, "line": None, "depth_mm": None,
+                             "message": f"{which}the part stays in the sheet (webs between the hits)"})
+        findings += [{"kind": "gouge", "piece": index, "line": g.line, "depth_mm": round(g.depth_mm, 4),
+                      "message": which + g.message}
+                     for g in result.gouges if g.depth_mm > result.tolerance + word_error(resolution, g.line_mm)]
+    report = {"findings": findings, "overridden": False, "seconds": round(time.perf_counter() - started, 3)}
+    if findings:
+        if not allow:
+            listed = "; ".join(f["message"] for f in findings[:5])
+            more = f" (and {len(findings) - 5} more)" if len(findings) > 5 else ""
+            raise gate.GateRefused(f"not written: the punching simulation found {len(findings)} fault(s): "
+                                   f"{listed}{more}. Fix the job, or override knowingly (batch: --allow-findings; "
+                                   f"panel: Write Despite Findings in the export's file browser)", findings)
+        report["overridden"] = True
+    return report
+
+
+def run_unfold(corners, props, names: dict = PANEL_NAMES) -> UnfoldJob:
     check_group(props, "sheet", list(UNFOLD_SETTINGS))
+    check_pitch(props, names)
     quad = core.unfold_twisted_quad(corners, props.divisions, props.direction)
     contour = core.compensate_outline(quad.pattern.outline, props.tool_diameter)
+    check_contour(contour, props, f"the flat pattern of {names['corners']}", names)
     nc = punch_program(contour, props)
     punched = punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=quad.pattern.outline)
     return UnfoldJob(quad, contour, nc, punched)
@@ -142,8 +215,9 @@ def show_unfold(scene, job: UnfoldJob) -> list:
     return [part, flat_obj, cut_obj, *pieces]
 
 
-def run_elbow(props) -> core.Elbow:
+def run_elbow(props, names: dict = PANEL_NAMES) -> core.Elbow:
     check_group(props, "sheet", [*ELBOW_SETTINGS, "tool_diameter", "thickness", "pitch", "station"])
+    check_pitch(props, names)
     return core.unfold_elbow(props.elbow_angle, props.elbow_radius, props.elbow_diameter, props.elbow_pieces)
 
 
@@ -158,11 +232,19 @@ def elbow_layout(elbow: core.Elbow) -> list:
     return placed
 
 
-def elbow_punching(elbow: core.Elbow, props) -> list:
-    """Per piece: (turret-punch program, its punching simulation), with the sheet panel's punch."""
-    jobs = []
-    for outline in elbow_layout(elbow):
+def elbow_punching(elbow: core.Elbow, props, names: dict = PANEL_NAMES) -> list:
+    """Per piece: (turret-punch program, its punching simulation), with the sheet panel's punch.
+    Each piece is punched from a sheet of its own, its pattern's lower left corner at the
+    program's origin (as the first piece of the layout)."""
+    contours = []
+    for index, piece in enumerate(elbow.pieces, start=1):
+        outline = np.asarray(piece.outline, float)
+        outline = outline - outline.min(axis=0)
         contour = core.compensate_outline(outline, props.tool_diameter)
+        check_contour(contour, props, f"piece {index} of {names['diameter']} = {elbow.diameter:g} mm", names)
+        contours.append((outline, contour))
+    jobs = []
+    for outline, contour in contours:
         nc = punch_program(contour, props)
         jobs.append((nc, punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=outline)))
     return jobs
@@ -307,10 +389,12 @@ class KEZURI_OT_sheet_export(bpy.types.Operator, ExportHelper):
 
     filename_ext = ".nc"
     filter_glob: StringProperty(default="*.nc", options={"HIDDEN"})
+    allow_findings: BoolProperty(name="Write Despite Findings", default=False, description=ALLOW_DESCRIPTION)
 
     def execute(self, context):
         def work():
             job = run_unfold(corners_mm(context.scene.kezuri.sheet), context.scene.kezuri.sheet)
+            punch_gate([job.punched], self.allow_findings)
             files = unfold_files(job, self.filepath)
             self.report({"INFO"}, translate_message("Wrote " + ", ".join(os.path.basename(f) for f in files)))
             return {"FINISHED"}
@@ -354,10 +438,15 @@ class KEZURI_OT_elbow_export(bpy.types.Operator, ExportHelper):
 
     filename_ext = ".dxf"
     filter_glob: StringProperty(default="*.dxf;*.svg", options={"HIDDEN"})
+    allow_findings: BoolProperty(name="Write Despite Findings", default=False, description=ALLOW_DESCRIPTION)
 
     def execute(self, context):
         def work():
-            files = elbow_files(run_elbow(context.scene.kezuri.sheet), self.filepath, context.scene.kezuri.sheet)
+            sheet = context.scene.kezuri.sheet
+            elbow = run_elbow(sheet)
+            punching = elbow_punching(elbow, sheet)
+            punch_gate([punched for _, punched in punching], self.allow_findings)
+            files = elbow_files(elbow, self.filepath, sheet, punching)
             self.report({"INFO"}, translate_message("Wrote " + ", ".join(os.path.basename(f) for f in files)))
             return {"FINISHED"}
         return run_reported(self, work)
@@ -387,6 +476,7 @@ def unfold_arguments(p):
     p.add_argument("--thickness", type=number("--thickness", limit=RANGES["sheet"]["thickness"]))
     p.add_argument("--pitch", type=number("--pitch", limit=RANGES["sheet"]["pitch"]))
     p.add_argument("--station", type=number("--station", limit=RANGES["sheet"]["station"]))
+    gate.allow_findings_argument(p)
 
 
 def parse_corners(text: str):
@@ -418,7 +508,8 @@ def unfold_batch(args) -> dict:
         corners = parse_corners(args.corners)
     else:
         corners = corners_mm(sheet)
-    job = run_unfold(corners, sheet)
+    job = run_unfold(corners, sheet, UNFOLD_NAMES)
+    gate_report = punch_gate([job.punched], args.allow_findings)
     files = unfold_files(job, os.path.join(args.out, "unfold.nc"))
     if batchio.shown():
         show_unfold(scene, job)
@@ -441,6 +532,7 @@ def unfold_batch(args) -> dict:
         "outline": rounded(pattern.outline),
         "cut_contour": rounded(job.contour),
         "simulation": punch_report([job.punched], sheet.thickness),
+        "gate": gate_report,
     }
 
 
@@ -451,6 +543,7 @@ def elbow_arguments(p):
     p.add_argument("--bend-radius", type=number("--bend-radius", limit=RANGES["sheet"]["elbow_radius"]))
     p.add_argument("--angle", type=number("--angle", limit=RANGES["sheet"]["elbow_angle"]))
     p.add_argument("--pieces", type=number("--pieces", limit=RANGES["sheet"]["elbow_pieces"]))
+    gate.allow_findings_argument(p)
 
 
 def elbow_batch(args) -> dict:
@@ -462,8 +555,9 @@ def elbow_batch(args) -> dict:
                          ("angle", "elbow_angle"), ("pieces", "elbow_pieces")):
         if getattr(args, option) is not None:
             batchio.set_exactly(sheet, name, getattr(args, option), "--" + option.replace("_", "-"))
-    result = run_elbow(sheet)
-    punching = elbow_punching(result, sheet)
+    result = run_elbow(sheet, ELBOW_NAMES)
+    punching = elbow_punching(result, sheet, ELBOW_NAMES)
+    gate_report = punch_gate([punched for _, punched in punching], args.allow_findings)
     files = elbow_files(result, os.path.join(args.out, "elbow.dxf"), sheet, punching)
     if batchio.shown():
         show_elbow(scene, result)
@@ -478,6 +572,7 @@ def elbow_batch(args) -> dict:
         "preview": png,
         "diameter": result.diameter, "bend_radius": result.bend_radius, "angle": result.bend_angle,
         "simulation": punch_report([punched for _, punched in punching], sheet.thickness),
+        "gate": gate_report,
         "pieces": [{"index": piece.index + 1, "angle_deg": round(piece.angle, 6),
                     "outline": rounded(piece.outline),
                     "shortest_mm": round(float(piece.generatrix_lengths.min()), 6),

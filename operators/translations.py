@@ -180,6 +180,9 @@ PROPERTY_TEXTS = {
     "Colour": "色分け",
     "Blocks Export": "書き出しを止める",
     "Write Despite Findings": "指摘があっても書き出す",
+    "Write the programs even if the punching simulation finds a part that stays in the sheet or a hit biting "
+    "into the part":
+        "パンチングのシミュレーションで、製品が板から外れない、または製品に食い込むヒットが見つかっても、プログラムを書き出します",
     "Export the program although the simulation found the faults listed above (only these: a different finding "
     "stops the export again)":
         "シミュレーションが上の不具合を見つけても、プログラムを書き出します（対象はこの指摘だけです。別の指摘があれば再び書き出しを止めます）",
@@ -662,7 +665,7 @@ def _template_pattern(template: str):
 def _compiled_templates() -> list:
     """(regex, Japanese) for every template, the most literal text first: the most specific wins."""
     ordered = sorted(MESSAGE_TEMPLATES.items(), key=lambda item: -len(item[0].replace("{}", "")))
-    return [(_template_pattern(english), japanese, INTERFACE_NAMES.get(english, ()))
+    return [(_template_pattern(english), japanese, INTERFACE_NAMES.get(english, ()), NESTED.get(english, ()))
             for english, japanese in ordered]
 
 
@@ -690,10 +693,12 @@ def translate_message(text: str) -> str:
 def japanese_message(text: str) -> str | None:
     """The Japanese of a message built from an f-string (its values filled into the template),
     or None when no template matches."""
-    for pattern, japanese, names in _COMPILED:
+    for pattern, japanese, names, nested in _COMPILED:
         match = pattern.match(text)
         if match:
             values = list(match.groups())
+            for index in nested:
+                values[index] = japanese_message(values[index]) or values[index]
             for index in names:         # a panel's name or a property's label, wherever it appears
                 english = _NAMED.match(values[index]).group(1)
                 if not english:
@@ -714,7 +719,17 @@ def _interface_name(english: str) -> str:
 
 # Templates whose values include interface names (panel, property label): those values'
 # positions, so the message uses the words the user sees on the panel.
-INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
+INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1),
+                   "{}: {} = {} mm must be less than {} = {} mm: hits a diameter or more apart leave webs, and the part "
+                   "stays in the sheet": (0, 1, 3),
+                   "{}: {} = {} mm: {} takes {} hits, more than the {} one program may have; raise the pitch": (0, 1),
+                   "{}: {}: the cut contour is {} x {} mm and reaches {} mm from the program's origin, beyond the {} "
+                   "mm the turret punch control addresses": (0,),
+                   "the flat pattern of {}": (0,), "piece {} of {} = {} mm": (1,)}
+# Templates one of whose values is itself a message with a template of its own (its position).
+NESTED = {"{}: {} = {} mm: {} takes {} hits, more than the {} one program may have; raise the pitch": (3,),
+          "{}: {}: the cut contour is {} x {} mm and reaches {} mm from the program's origin, beyond the {} "
+          "mm the turret punch control addresses": (1,)}
 
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
@@ -1041,6 +1056,27 @@ MESSAGE_TEMPLATES = {
     "{}: move {} goes {} mm below the stock's bottom (Z {}) at ({}, {}): into the fixture or the table":
         '{0}：移動 {1} が ({4}, {5}) で素材の底面（Z {3}）より {2} mm 下まで入り、治具かテーブルを削ります',
     '{}: move {} cuts with the spindle at {} rpm': '{0}：移動 {1} は主軸 {2} rpm のまま切削します',
+    '{}: {} = {} mm must be less than {} = {} mm: hits a diameter or more apart leave webs, and the part stays '
+    'in the sheet':
+        '{0}：{1} = {2} mm は {3} = {4} mm より小さくしてください：直径以上離れたヒットの間には桟が残り、製品が板から外れません',
+    "{}: {}: the cut contour is {} x {} mm and reaches {} mm from the program's origin, beyond the {} mm the "
+    "turret punch control addresses":
+        '{0}：{1}：切断輪郭は {2} x {3} mm で、プログラム原点から {4} mm に達し、タレットパンチの制御装置が扱える {5} mm を超えています',
+    '{}: {} = {} mm: {} takes {} hits, more than the {} one program may have; raise the pitch':
+        '{0}：{1} = {2} mm：{3} には {4} ヒットが必要で、1 プログラムの上限 {5} を超えます。ピッチを大きくしてください',
+    'the flat pattern of {}': '{0} の展開図',
+    'piece {} of {} = {} mm': '{1} = {2} mm の {0} 番目のピース',
+    '{}the part stays in the sheet (webs between the hits)':
+        '{0}製品が板から外れません（ヒットの間に桟が残ります）',
+    'not written: the punching simulation found {} fault(s): {}{}. Fix the job, or override knowingly '
+    "(batch: --allow-findings; panel: Write Despite Findings in the export's file browser)":
+        '書き出していません：パンチングのシミュレーションが {0} 件の不具合を見つけました：{1}{2}。'
+        'ジョブを直すか、承知のうえで上書きしてください（バッチ：--allow-findings、パネル：書き出しのファイルブラウザーで「指摘があっても書き出す」）',
+    '{}{}: beyond the {} mm the control addresses':
+        '{0}{1}：制御装置が扱える {2} mm を超えています',
+    'corner {} of the contour, G72 X{} Y{} (the line from it {} mm long), is beyond the {} mm the control '
+    'addresses: the part does not fit the machine':
+        '輪郭の頂点 {0}（G72 X{1} Y{2}、そこからの線の長さ {3} mm）が制御装置の扱える {4} mm を超えています：製品が機械に収まりません',
     'not written: the simulation found {} fault(s) in the {} program: {}{}. Fix the job, or override knowingly '
     '(batch: --allow-findings; panel: Simulate & Check > Write despite these findings)':
         '書き出していません：シミュレーションが {1} プログラムに {0} 件の不具合を見つけました：{2}{3}。'

@@ -131,6 +131,16 @@ def to_text(contour, *, station: int, pitch: float, thickness: float, tool_diame
     if len(short):
         raise PostError(f"segment {int(short[0]) + 1} is {length[short[0]]:.4f} mm long, "
                              f"shorter than the {MIN_SEGMENT} mm output resolution")
+    reach = AMADA_04P_LIMITS.coordinate
+    for word, value in (("G92 X", ox), ("G92 Y", oy)):
+        if abs(value) > reach:
+            raise PostError(f"{word}{_num(value)}: beyond the {reach:.2f} mm the control addresses")
+    far = np.flatnonzero((np.abs(pts) > reach).any(axis=1) | (length > reach))
+    if len(far):
+        (x, y), i = pts[far[0]], int(far[0])
+        raise PostError(f"corner {i + 1} of the contour, G72 X{_num(x)} Y{_num(y)} (the line from it "
+                        f"{length[i]:.2f} mm long), is beyond the {reach:.2f} mm the control addresses: "
+                        f"the part does not fit the machine")
     thick = t > THICK_SHEET
     if thick and q < t:
         raise PostError(f"G79 punching line: pitch Q {q} must be at least the thickness {t} mm")

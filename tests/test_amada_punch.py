@@ -304,3 +304,16 @@ def test_exports_reject_bad_input():
     # a single (k, 2) array is one contour
     assert to_svg(np.array([[0, 0], [10, 0], [10, 10]])).count("<path") == 1
     assert signed_area(np.array([[0, 0], [10, 0], [10, 10]])) > 0
+
+
+def test_a_contour_beyond_the_controls_reach_is_refused():
+    """04P words address 9999.99 mm: a corner or a line beyond that is refused naming the corner."""
+    square = np.array([[0.0, 0.0], [9000.0, 0.0], [9000.0, 9000.0], [0.0, 9000.0]])
+    assert to_text(square, station=302, pitch=50.0, thickness=1.0).count("G69") == 4
+    wide = np.array([[5000.0, 0.0], [10500.0, 0.0], [10500.0, 5000.0], [5000.0, 5000.0]])
+    with pytest.raises(PostError, match=r"corner 2 of the contour, G72 X10500\.00 Y0\.00 .* is beyond the 9999\.99 mm"):
+        to_text(wide, station=302, pitch=50.0, thickness=1.0)
+    with pytest.raises(PostError, match=r"corner 1 .* \(the line from it 10000\.00 mm long\), is beyond"):
+        to_text(square + [[0, 0], [1000, 0], [1000, 0], [0, 0]], station=302, pitch=50.0, thickness=1.0)
+    with pytest.raises(PostError, match=r"G92 X12000\.00: beyond the 9999\.99 mm"):
+        to_text(square, station=302, pitch=50.0, thickness=1.0, origin=(12000.0, 0.0))

@@ -165,3 +165,71 @@ def test_batch_elbow_reports_piece_outlines(tmp_path):
     assert all(p.read_text().rstrip().endswith("G50") for p in programs)
     simulation = report["simulation"]
     assert simulation["parts_separated"] == [True] * 4 and simulation["gouges"] == []
+
+
+# ----- the punching job checked before anything is written ---------------------------------------
+
+def test_batch_elbow_punches_each_piece_from_its_own_sheet(tmp_path):
+    """Each piece's program has the piece's pattern at the program's origin (the first piece as
+    in the layout, the others no longer stacked above it), and its hits read back are the
+    pattern compensated by the punch radius: within 0.01 mm of r from the pattern."""
+    done = run_batch("elbow", "--diameter", "100", "--bend-radius", "150", "--angle", "90", "--pieces", "5",
+                     "--out", str(tmp_path))
+    assert done.returncode == 0, done.stderr[-2000:]
+    report = json.loads((tmp_path / "report.json").read_text())
+    assert report["gate"] == {"findings": [], "overridden": False, "seconds": report["gate"]["seconds"]}
+    from kezuri.toolpath import punch
+    for index, piece in enumerate(report["pieces"], start=1):
+        outline = np.array(piece["outline"]) - np.array(piece["outline"]).min(axis=0)
+        program = punch.read_amada((tmp_path / f"elbow-{index}.nc").read_text())
+        assert program.hits.min(axis=0) == pytest.approx([-5.0, -5.0], abs=0.011)     # 10 mm punch, radius 5
+        assert program.hits.max(axis=0) == pytest.approx(outline.max(axis=0) + 5.0, abs=0.011)
+
+
+def test_the_punch_gate_refuses_a_bite_and_a_part_left_in_the_sheet():
+    """The gate on real punching results: a hit biting 1 mm into the part, and hits a diameter
+    apart (the part stays in the sheet), are refused naming the line; allowed, they are recorded
+    as overridden.  Bites within what the NC words' two decimals explain pass."""
+    from test_punch import RECT, rectangle_program
+
+    from kezuri.operators import gate, sheetmetal
+    from kezuri.toolpath import punch
+    text = rectangle_program(2.0, 1.0)
+    bigger = RECT + np.array([[-1.0, 0], [0, 0], [0, 0], [-1.0, 0]])
+    bitten = punch.simulate_punching(text, punch_diameter=2.0, pattern=bigger)
+    webbed = punch.simulate_punching(rectangle_program(2.0, 2.0), punch_diameter=2.0, pattern=RECT)
+    clean = punch.simulate_punching(text, punch_diameter=2.0, pattern=RECT)
+    with pytest.raises(gate.GateRefused, match=r"not written: the punching simulation found 1 fault\(s\): line 9: "
+                                               r"a hit bites 1\.000 mm"):
+        sheetmetal.punch_gate([bitten], False)
+    with pytest.raises(gate.GateRefused, match="piece 2: the part stays in the sheet"):
+        sheetmetal.punch_gate([clean, webbed], False)
+    report = sheetmetal.punch_gate([bitten, webbed], True)
+    assert report["overridden"] and [f["kind"] for f in report["findings"]] == ["gouge", "part in sheet"]
+    assert sheetmetal.punch_gate([clean], False)["findings"] == []
+    # the allowance: the simulation's tolerance, half the 0.01 mm increment both ways, and a line's
+    # direction off by half of 0.01 degree along its length
+    assert sheetmetal.word_error(0.01, 0.0) == pytest.approx(0.005 * np.sqrt(2))
+    assert sheetmetal.word_error(0.01, 1000.0) == pytest.approx(0.005 * np.sqrt(2) + 1000 * np.sin(np.radians(0.005)))
+
+
+def test_the_export_operators_refuse_what_the_machine_cannot_run(scene, tmp_path):
+    """A pitch of a punch diameter or more, and a pipe too wide for the control, are refused
+    naming the panel's settings; nothing is written."""
+    sheet = scene.kezuri.sheet
+    sheet.pitch, sheet.tool_diameter = 12.0, 10.0
+    with pytest.raises(RuntimeError, match="Sheet Metal: Nibbling Pitch = 12 mm must be less than Tool Diameter = 10 mm"):
+        bpy.ops.kezuri.sheet_export(filepath=str(tmp_path / "quad.nc"))
+    with pytest.raises(RuntimeError, match="Nibbling Pitch = 12 mm must be less than"):
+        bpy.ops.kezuri.elbow_export(filepath=str(tmp_path / "elbow.dxf"))
+    sheet.pitch = 2.0
+    sheet.elbow_diameter, sheet.elbow_radius = 4000.0, 5000.0
+    with pytest.raises(RuntimeError, match=r"Sheet Metal: piece 1 of Pipe Diameter = 4000 mm: the cut contour is "
+                                           r"12\d{3}\.\d x"):
+        bpy.ops.kezuri.elbow_export(filepath=str(tmp_path / "elbow.dxf"))
+    assert list(tmp_path.iterdir()) == []
+    sheet.elbow_diameter, sheet.elbow_radius = 100.0, 150.0
+    assert bpy.ops.kezuri.elbow_export(filepath=str(tmp_path / "elbow.dxf")) == {"FINISHED"}
+    assert bpy.ops.kezuri.sheet_export(filepath=str(tmp_path / "quad.nc")) == {"FINISHED"}
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        ["elbow.dxf", "elbow.svg", *[f"elbow-{i}.nc" for i in range(1, 6)], "quad.nc", "quad.dxf", "quad.svg"])

@@ -36,6 +36,15 @@ _CHUNK = 1 << 20            # point x segment pairs per numpy block in the dista
 DISC_BATCH = 500            # hits united at once between progress reports (and cancel points)
 
 
+def hit_count(contour, pitch: float) -> int:
+    """The hits a controller makes nibbling round the closed ``contour`` (k, 2) at ``pitch``: on
+    every line as few as keep them at most ``pitch`` apart, both ends included (as
+    :func:`read_amada` spaces them)."""
+    pts = np.asarray(contour, float)
+    length = np.hypot(*(np.roll(pts, -1, axis=0) - pts).T)
+    return int((np.ceil(length / pitch - 1e-9) + 1).sum())
+
+
 class PunchError(InputError):
     """A punch program or setting the simulation cannot use; the message names the line."""
 
@@ -182,6 +191,7 @@ class Gouge:
     depth_mm: float
     xy: tuple
     message: str
+    line_mm: float = 0.0        # the length of that NC line, first hit to last
 
 
 @dataclass
@@ -370,8 +380,10 @@ def _gouges(boundary: np.ndarray, bite: np.ndarray, program: PunchProgram, toler
         worst = mine[np.argmax(bite[mine])]
         x, y = boundary[worst]
         depth = float(bite[worst])
+        ends = program.hits[program.lines == number]
         findings.append(Gouge(int(number), depth, (float(x), float(y)),
-                              f"line {number}: a hit bites {depth:.3f} mm into the part at ({x:.2f}, {y:.2f})"))
+                              f"line {number}: a hit bites {depth:.3f} mm into the part at ({x:.2f}, {y:.2f})",
+                              float(np.hypot(*(ends[-1] - ends[0])))))
     return sorted(findings, key=lambda g: (-g.depth_mm, g.line))
 
 
