@@ -53,7 +53,11 @@ def check(setup, allow: bool | str = False, progress=None):
     ``(simulation job, gate report)``; raises :class:`GateRefused` (nothing written) otherwise.
     """
     started = time.perf_counter()
-    job = simview.run_setup(setup, "heightfield", GATE_CELL, progress)
+    try:
+        job = simview.run_setup(setup, "heightfield", GATE_CELL, progress)
+    except core.CellError as error:     # the cell is the gate's, not one the user gave: say whose
+        raise core.SimulationError(f"{setup.name}: the export gate simulates every program on a {GATE_CELL:g} mm "
+                                   f"grid before writing it, and cannot on this job's stock: {error}") from None
     faults = core.blocking(job.result.findings)
     report = {"findings": [{"kind": f.kind, "operation": f.operation, "move": f.move, "message": f.message,
                             "depth_mm": None if f.depth_mm is None else round(float(f.depth_mm), 4)}

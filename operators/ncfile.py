@@ -54,8 +54,17 @@ def batch(args) -> dict:
 
     if not os.path.isfile(args.nc):
         raise FileNotFoundError(f"no such NC file: {args.nc}")
-    with open(args.nc, encoding="latin-1") as stream:
-        read = ncread.read_nc(stream.read(), ncread.parse_tool(args.tool), os.path.basename(args.nc))
+    tool = ncread.parse_tool(args.tool)
+    with open(args.nc, "rb") as stream:
+        data = stream.read()
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:      # Shift-JIS or latin-1 comments: only their line breaks matter
+        text = data.decode("latin-1")
+    try:
+        read = ncread.read_nc(text, tool, os.path.basename(args.nc))
+    except ncread.NCReadError as error:     # which file the line is of
+        raise ncread.NCReadError(f"--nc {args.nc}: {error}") from None
     op, lines = read
     if not args.rotary:
         op.rotary = {}

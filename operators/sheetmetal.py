@@ -18,6 +18,7 @@ from .. import post as posts
 from ..post import flat_export, write_atomic
 from ..toolpath import punch
 from ..toolpath import unfold as core
+from ..toolpath.errors import InputError
 from . import convert
 from .common import run_reported
 from .limits import check_group
@@ -161,10 +162,13 @@ def elbow_layout(elbow: core.Elbow) -> list:
 def elbow_punching(elbow: core.Elbow, props) -> list:
     """Per piece: (turret-punch program, its punching simulation), with the sheet panel's punch."""
     jobs = []
-    for outline in elbow_layout(elbow):
-        contour = core.compensate_outline(outline, props.tool_diameter)
-        nc = punch_program(contour, props)
-        jobs.append((nc, punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=outline)))
+    for index, outline in enumerate(elbow_layout(elbow), start=1):
+        try:
+            contour = core.compensate_outline(outline, props.tool_diameter)
+            nc = punch_program(contour, props)
+            jobs.append((nc, punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=outline)))
+        except InputError as error:     # which piece's program: the message's line is that program's
+            raise core.UnfoldError(f"elbow piece {index} of {len(elbow.pieces)}: {error}") from None
     return jobs
 
 
@@ -173,11 +177,12 @@ def elbow_files(elbow: core.Elbow, base_path: str, props) -> list:
     stem = os.path.splitext(base_path)[0]
     outlines = elbow_layout(elbow)
     punch_paths = [core.compensate_outline(outline, props.tool_diameter) for outline in outlines]
-    files = [write_atomic(stem + ".dxf", flat_export.to_dxf(outlines, punch_paths=punch_paths)),
-             write_atomic(stem + ".svg", flat_export.to_svg(outlines, punch_paths=punch_paths))]
-    for index, (nc, _) in enumerate(elbow_punching(elbow, props), start=1):
-        files.append(write_atomic(f"{stem}-{index}{posts.extension(POST_FAMILIES, PUNCH_POST)}", nc))
-    return files
+    # every text first: a punch program refused for one piece must leave no DXF or SVG behind
+    texts = [(stem + ".dxf", flat_export.to_dxf(outlines, punch_paths=punch_paths)),
+             (stem + ".svg", flat_export.to_svg(outlines, punch_paths=punch_paths))]
+    texts += [(f"{stem}-{index}{posts.extension(POST_FAMILIES, PUNCH_POST)}", nc)
+              for index, (nc, _) in enumerate(elbow_punching(elbow, props), start=1)]
+    return [write_atomic(path, text) for path, text in texts]
 
 
 def show_elbow(scene, elbow: core.Elbow) -> list:

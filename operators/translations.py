@@ -719,6 +719,33 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "the part reaches {} mm from the origin (more than {} mm): is it in other units?":
+        "部品が原点から {0} mm まで達しています（{1} mm 超）。単位が違っていませんか",
+    "--mesh {}: {}": "メッシュファイル --mesh {0}：{1}",
+    "--surface {}: {}": "板面のメッシュファイル --surface {0}：{1}",
+    "the design mesh reaches {} mm from the work zero (more than {} mm): is it in other units?":
+        "デザインメッシュがワーク原点から {0} mm まで達しています（{1} mm 超）。単位が違っていませんか",
+    "the design mesh has a face with a vertex index outside 0..{}": "デザインメッシュに頂点番号が 0..{0} の範囲外の面があります",
+    "the design mesh has {} vertices, fewer than one triangle needs (an empty or unreadable mesh file?)":
+        "デザインメッシュの頂点が {0} 個で、三角形1つにも足りません（空のファイルか読めないファイルではありませんか）",
+    "{}: the export gate simulates every program on a {} mm grid before writing it, and cannot on this job's stock: {}":
+        "{0}：書き出しゲートはすべてのプログラムを {1} mm の格子でシミュレーションしてから書き出しますが、このジョブの素材ではできません：{2}",
+    "#{} SI_UNIT: a length unit in {}, not in metres": "#{0} SI_UNIT：長さの単位が {1} です（メートルではありません）",
+    "#{} SI_UNIT: {} is not an SI prefix": "#{0} SI_UNIT：{1} はSI接頭辞ではありません",
+    "#{} CONVERSION_BASED_UNIT '{}': its conversion factor is given in itself":
+        "#{0} CONVERSION_BASED_UNIT '{1}'：換算係数がそれ自身の単位で与えられています",
+    "#{} CONVERSION_BASED_UNIT '{}': a length unit of {} mm": "#{0} CONVERSION_BASED_UNIT '{1}'：長さの単位が {2} mm です",
+    "#{} CONVERSION_BASED_UNIT '{}': no conversion factor, and not a unit Kezuri knows by name ({})":
+        "#{0} CONVERSION_BASED_UNIT '{1}'：換算係数がなく、Kezuriが名前で分かる単位（{2}）でもありません",
+    "#{} RECTANGULAR_CLOSED_PROFILE: {} {} mm is negative": "#{0} RECTANGULAR_CLOSED_PROFILE：{1} {2} mm が負です",
+    "--order: #{} is given more than once in {}; each workingstep is cut once, in the order given":
+        "--order：#{0} が {1} に2回以上あります。各ワーキングステップは指定した順に1回ずつ削ります",
+    "{}: workingstep #{}: an instance number above {} cannot be listed in the workplan; renumber the file":
+        "{0}：ワーキングステップ #{1}：{2} を超えるインスタンス番号は作業計画の一覧に載せられません。ファイルの番号を振り直してください",
+    "#{} {}: {} {} is not a coordinate (at most {} mm from the origin)":
+        "#{0} {1}：{2} {3} は座標として使えません（原点から {4} mm 以内にしてください）",
+    "--nc {}: {}": "NCファイル --nc {0}：{1}",
+    "elbow piece {} of {}: {}": "エルボのピース {0}/{1}：{2}",
     "{}: the {} post does not write M19 before a tool change; pick a Fanuc post or switch it off":
         "{0}：{1} ポストは工具交換の前に M19 を書きません。Fanucポストを選ぶか、オフにしてください",
     "a {} mm cell gives {} dexels round the bar (more than {}); use a coarser cell":
@@ -1316,6 +1343,10 @@ MESSAGE_TEMPLATES = {
         '{0}行目：{1} が2回指定されています：{2}',
     'line {}: {} are both motions in {}':
         '{0}行目：{1}：どちらも移動指令です：{2}',
+    'line {}: {} and {} are in one modal group, so one block cannot have both: {}':
+        '{0}行目：{1} と {2} は同じモーダルグループなので、1つのブロックに両方は書けません：{3}',
+    "line {}: a block delete '/' is not followed (whether the control skips the line depends on its Block Delete switch): {}":
+        '{0}行目：ブロックデリート「/」には対応していません（その行を飛ばすかは制御装置のブロックデリートスイッチ次第です）：{1}',
     'line {}: {} {}: {}':
         '{0}行目：{1} {2}：{3}',
     'line {}: {} is not a code this reader knows: {}':

@@ -21,6 +21,8 @@ from kezuri.toolpath.errors import InputError
 from kezuri.toolpath.program import Tool
 from kezuri.toolpath.stepnc import part21
 
+import rs274  # noqa: E402  (tests/rs274.py)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 FLAT6 = Tool(1, "flat", 6.0)
@@ -84,12 +86,42 @@ START = "G21 G90\nG0 X0 Y0 Z5\n"
     ("G2 X10 Y0", "an arc needs I and J"),
     ("G2 X0 Y0 I0 J0", "the arc has no radius"),
     ("G90 G28 Z0", "G28 is followed only as G91 G28"),
-    ("/G1 X1", "'/G1 X1' is not a word"),
+    ("/G1 X1", "a block delete '/' is not followed"),
+    ("G90 G91 X1", "G90 and G91 are in one modal group"),     # before: read as G91, LinuxCNC refuses it
+    ("G21 G20 X1", "G20 and G21 are in one modal group"),
 ])
 def test_the_reader_stops_at_what_it_cannot_follow_naming_the_line(line, reason):
     with pytest.raises(ncread.NCReadError, match=f"line 3: {reason}") as error:
         read(START + line + "\nG1 X20\n")
     assert repr(line) in str(error.value)          # the line itself
+
+
+@pytest.mark.parametrize("name, text, xyz", [
+    # a UTF-8 kanji comment read as latin-1 holds U+0085 (工 of 工具 is E5 B7 A5, 具 is E5 85 B7), at
+    # which str.splitlines broke the line: refused as an unbalanced parenthesis, line numbers shifted
+    ("kanji comment", "G1 Z-1 F100 (工具 T1)\nX10\n".encode().decode("latin-1"), [[0, 0, -1], [10, 0, -1]]),
+    ("form feed", "G1 Z-1 F100\n\x0c\nX10\n", [[0, 0, -1], [10, 0, -1]]),
+    # the closing % ends the program (LinuxCNC; the end of the tape on a Fanuc): before, read on
+    ("closing percent", "G1 Z-1 F100\nX10\n%\nG1 Z-30\n", [[0, 0, -1], [10, 0, -1]]),
+    # a ; inside parentheses is comment text, not the start of a comment
+    ("semicolon in parentheses", "G1 Z-1 F100 (rough; 2 passes)\nX10\n", [[0, 0, -1], [10, 0, -1]]),
+    # spaces are nothing to a control: X 1 0 . 5 is X10.5 (before: refused)
+    ("spaces in words", "G1 Z - 1 F100\nX 1 0 . 5\n", [[0, 0, -1], [10.5, 0, -1]]),
+    ("CR LF", "G1 Z-1 F100\r\nX10\r\n", [[0, 0, -1], [10, 0, -1]]),
+])
+def test_legal_syntax_is_read_as_linuxcnc_reads_it(name, text, xyz):
+    op, lines = read("%\nG21 G90\nG0 X0 Y0 Z5\n" + text)
+    assert np.allclose(op.xyz, [[0, 0, 5], *xyz]), op.xyz
+    assert lines == [3, 4, 5 + (name == "form feed")][:len(lines)], lines
+    if rs274.available():
+        calls = rs274.run("%\nG21 G90\nG0 X0 Y0 Z5\n" + text.encode("latin-1").decode("utf-8") + "\n%\n")
+        _, points, _ = rs274.motion_endpoints(calls)
+        assert np.allclose(points, [[0, 0, 5], *xyz]), points
+
+
+def test_a_line_number_counts_only_real_line_breaks():
+    with pytest.raises(ncread.NCReadError, match="line 6: the Q word"):
+        read("G21 G90\nG0 X0 Y0 Z5\n(caf\x85 \x0c \x1c)\nG1 Z-1 F100\r\nX10\rG1 X11 Q1\n")
 
 
 def test_a_canned_cycle_is_refused_not_run_as_a_straight_feed():

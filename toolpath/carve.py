@@ -122,15 +122,27 @@ def ball_stepover(radius: float, scallop: float) -> float:
     return 2.0 * math.sqrt(2.0 * radius * scallop - scallop * scallop)
 
 
+MAX_COORDINATE = 1.0e5   # mm: 100 m from the work zero, larger than any machine
+
+
 def check_mesh(vertices, faces) -> tuple:
     vertices = np.asarray(vertices, float)
     faces = np.asarray(faces)
-    if vertices.ndim != 2 or vertices.shape[-1] != 3 or len(vertices) < 3:
+    if vertices.ndim != 2 or vertices.shape[-1] != 3:
         raise CarveError(f"the design mesh needs (n, 3) vertices, got shape {vertices.shape}")
+    if len(vertices) < 3:
+        raise CarveError(f"the design mesh has {len(vertices)} vertices, fewer than one triangle needs (an empty or "
+                         f"unreadable mesh file?)")
     if faces.ndim != 2 or faces.shape[-1] != 3 or not len(faces):
         raise CarveError("the design mesh has no triangles")
     if not np.all(np.isfinite(vertices)):
         raise CarveError("the design mesh has a non-finite vertex")
+    reach = float(np.abs(vertices).max())
+    if reach > MAX_COORDINATE:      # 1e300 mm made the raster lines endless (a hang, not a refusal)
+        raise CarveError(f"the design mesh reaches {reach:g} mm from the work zero (more than {MAX_COORDINATE:g} mm): "
+                         f"is it in other units?")
+    if faces.size and (faces.min() < 0 or faces.max() >= len(vertices)):
+        raise CarveError(f"the design mesh has a face with a vertex index outside 0..{len(vertices) - 1}")
     size = vertices.max(axis=0) - vertices.min(axis=0)
     if size[0] <= 0 or size[1] <= 0:
         raise CarveError(f"the design mesh is flat in X or Y ({size[0]:g} x {size[1]:g} mm): nothing to carve")

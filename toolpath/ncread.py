@@ -4,7 +4,11 @@ Strict like a control: a line it cannot follow stops the reading with the line n
 line and the reason, never a guess.
 
 What it follows: G0 G1 G2 G3 with X Y Z C I J (R is refused), G90/G91, G20/G21, G17,
-N numbers, ``%`` and ``O`` lines.  Arcs are checked as LinuxCNC checks them (its interpreter's
+N numbers, ``%`` and ``O`` lines (a ``%`` after the program's first block ends it, as on
+LinuxCNC and a Fanuc tape), comments in parentheses (a ``;`` inside is comment text) or after
+``;``, spaces anywhere in a block (``X 1 0 . 5`` is ``X10.5``, as controls read it), lines
+ended by LF, CR LF or CR (nothing else: a form feed, or U+0085 in a UTF-8 comment read as
+latin-1, is no line break).  Arcs are checked as LinuxCNC checks them (its interpreter's
 tolerances, interp_internal.hh): the end may lie off the start's circle by at most
 0.02*sqrt(2) mm (0.002*sqrt(2) inch under G20) unless that is also within 0.1 % of the radius,
 and never by more than 100 times that; a radius under 0.00127 mm (I0 J0) is refused.
@@ -13,7 +17,8 @@ What it deliberately ignores, because it does not change where the tool goes (fe
 coolant, pauses, tool length offsets, work offsets, path blending, comments ...), is listed in
 the result's ``ignored`` (:class:`NCRead`), so a report can say so.  Everything else (G92
 offsets, G68 rotation, G38 probing, G81..G89 canned cycles, G41/G42 cutter compensation,
-other planes, macros, unknown M codes, words it does not know, malformed numbers such as
+other planes, macros, block delete ``/`` (whether the line runs depends on the control's switch),
+two codes of one modal group in a block (G90 G91), unknown M codes, words it does not know, malformed numbers such as
 ``XNAN``, ``X-``, ``X1.2.3``, ``X2E1``) is refused.
 """
 from __future__ import annotations
@@ -30,6 +35,7 @@ from .tools import SHAPES
 NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)")
 _VALUE = re.compile(r"\s*([-+]?[0-9.]*)")
 _END_CODES = ("M2", "M30")
+_LINE_BREAK = re.compile(r"\r\n|\r|\n")
 
 # LinuxCNC's arc tolerances (interp_internal.hh), program units
 ARC_TOLERANCE_MM = 2 * 0.01 * math.sqrt(2)       # CENTER_ARC_RADIUS_TOLERANCE_MM
@@ -152,17 +158,30 @@ def _words(line: str, number: int, raw: str) -> list:
 
 
 def _strip_comments(raw: str, number: int, comments: list) -> str:
-    """The line without its comments (parentheses, or from ``;``), upper case."""
-    body = raw.split(";")[0]
-    if ";" in raw:
+    """The line without its comments, upper case: a comment runs from ``(`` to the next ``)``
+    (a ``;`` inside it is comment text), or from a ``;`` outside parentheses to the end of the
+    line.  Spaces and tabs are taken out, as LinuxCNC and Fanuc controls do (``X 1 0 . 5`` is
+    ``X10.5``)."""
+    kept, i, commented = [], 0, False
+    while i < len(raw):
+        char = raw[i]
+        if char == "(":
+            close = raw.find(")", i + 1)
+            if close < 0 or "(" in raw[i + 1:close]:
+                raise NCReadError(f"line {number}: unbalanced or nested parenthesis in {raw.strip()!r}")
+            commented, i = True, close + 1
+            continue
+        if char == ")":
+            raise NCReadError(f"line {number}: unbalanced or nested parenthesis in {raw.strip()!r}")
+        if char == ";":
+            commented = True
+            break
+        if char not in " \t":
+            kept.append(char)
+        i += 1
+    if commented:
         comments.append(number)
-    found = re.findall(r"\([^()]*\)", body)
-    if found:
-        comments.append(number)
-    line = re.sub(r"\([^()]*\)", " ", body)
-    if "(" in line or ")" in line:
-        raise NCReadError(f"line {number}: unbalanced or nested parenthesis in {raw.strip()!r}")
-    return line.strip().upper()
+    return "".join(kept).strip().upper()
 
 
 def _check_arc(number: int, raw: str, start, end, centre, inch: bool) -> None:
@@ -198,10 +217,23 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
         entry = ignored.setdefault(code, {"code": code, "meaning": meaning, "count": 0, "first_line": number})
         entry["count"] += 1
 
-    for number, raw in enumerate(text.splitlines(), start=1):
+    started = False
+    # lines end at LF, CR LF or CR only: str.splitlines would also break at form feeds and at
+    # U+0085, a byte of many UTF-8 kanji read as latin-1 (工 of 工具 in a comment), and shift the numbers
+    for number, raw in enumerate(_LINE_BREAK.split(text), start=1):
         line = _strip_comments(raw, number, comments)
-        if not line or line.startswith("%") or re.fullmatch(r"O\d+", line.replace(" ", "")):
+        if line.startswith("%"):
+            if started:     # the closing %: the end of the program (LinuxCNC, and the end of the tape on a Fanuc)
+                break
             continue
+        if not line:
+            continue
+        started = True
+        if re.fullmatch(r"O\d+", line):
+            continue
+        if line.startswith("/"):
+            raise NCReadError(f"line {number}: a block delete '/' is not followed (whether the control skips the "
+                              f"line depends on its Block Delete switch): {raw.strip()!r}")
         words = _words(line, number, raw)
         if words and words[0][0] == "N":
             if not words[0][1].isdigit():
@@ -218,6 +250,10 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
         motions = [c for c in codes if c in MOTION]
         if len(motions) > 1:
             raise NCReadError(f"line {number}: {' and '.join(motions)} are both motions in {raw.strip()!r}")
+        for group in (("G90", "G91"), ("G20", "G21")):
+            if all(code in codes for code in group):
+                raise NCReadError(f"line {number}: {group[0]} and {group[1]} are in one modal group, so one block "
+                                  f"cannot have both: {raw.strip()!r}")
         home = False
         for code in codes:
             if code in REFUSED:

@@ -23,6 +23,10 @@ class SimulationError(InputError):
     """A stock, design or setting the simulation cannot use."""
 
 
+class CellError(SimulationError):
+    """The cell does not suit the stock (too fine for the memory, too coarse to mean anything)."""
+
+
 class SimulationCancelled(Exception):
     """The progress callback asked to stop."""
 
