@@ -55,6 +55,14 @@ def batch(args) -> dict:
     if not os.path.isfile(args.nc):
         raise FileNotFoundError(f"no such NC file: {args.nc}")
     tool = ncread.parse_tool(args.tool)
+    from .limits import DIAMETER, LIBRARY
+    # the one table of ranges: before, flat:1e6 (a 1 km end mill) and flat:1e-9 were simulated
+    for label, value, limit in (("diameter", tool.diameter, DIAMETER),
+                                ("corner radius", tool.corner_radius if tool.kind == "bull" else 0.0,
+                                 LIBRARY["corner_radius"])):
+        if not limit.allows(value):
+            raise core.SimulationError(f"--tool {args.tool!r}: {label} {value:g} mm is outside the allowed range "
+                                       f"{limit.text(label)}")
     with open(args.nc, "rb") as stream:
         data = stream.read()
     try:

@@ -719,6 +719,7 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "--tool {}: {} {} mm is outside the allowed range {}": "--tool {0}：{1} {2} mm が許容範囲 {3} の外です",
     "the part reaches {} mm from the origin (more than {} mm): is it in other units?":
         "部品が原点から {0} mm まで達しています（{1} mm 超）。単位が違っていませんか",
     "--mesh {}: {}": "メッシュファイル --mesh {0}：{1}",

@@ -334,3 +334,15 @@ def test_a_cell_of_1e_300_is_refused_in_a_message_a_person_can_read(tmp_path):
     status, message, written = run("simulate", "--nc", str(nc), *SIMULATE_BOX, "--cell", "1e-300")
     refused(status, message, written, "a 1e-300 mm cell gives 4e+301 x 4e+301 cells")
     assert len(message) < 300, message
+
+
+@pytest.mark.parametrize("tool, named", [
+    ("flat:1e6", "diameter 1e+06 mm is outside the allowed range 0.1 <= diameter <= 100 mm"),   # ran before
+    ("ball:1e-9", "diameter 1e-09 mm is outside"),                                               # ran before
+    ("bull:200,60", "diameter 200 mm is outside"),
+])
+def test_simulate_tool_sizes_keep_to_the_one_table_of_ranges(tmp_path, tool, named):
+    nc = tmp_path / "slot.ngc"
+    nc.write_text("G21 G90\nG0 X5 Y5 Z5\nG1 Z-1 F100\nX30\nG0 Z5\nM2\n")
+    status, message, written = run("simulate", "--nc", str(nc), "--tool", tool, "--stock", "box:0,0,-10,40,40,0")
+    refused(status, message, written, f"--tool '{tool}'", named)
