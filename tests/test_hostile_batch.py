@@ -346,3 +346,19 @@ def test_simulate_tool_sizes_keep_to_the_one_table_of_ranges(tmp_path, tool, nam
     nc.write_text("G21 G90\nG0 X5 Y5 Z5\nG1 Z-1 F100\nX30\nG0 Z5\nM2\n")
     status, message, written = run("simulate", "--nc", str(nc), "--tool", tool, "--stock", "box:0,0,-10,40,40,0")
     refused(status, message, written, f"--tool '{tool}'", named)
+
+
+@pytest.mark.parametrize("command", ["engrave", "rotary"])
+def test_a_blend_whose_unit_scale_puts_the_plate_past_100_m_is_refused_by_name(tmp_path, command):
+    """Blender allows a unit scale up to 1e9 m per unit: the sample plate then lies 1e14 mm out,
+    and Clipper raised "RuntimeError: Values exceed permitted range" (a traceback)."""
+    BATCH.load_extension()
+    from kezuri.operators import batchio, samples
+    scene = batchio.open_blend(None)
+    (samples.name_plate if command == "engrave" else samples.rotary_block)(scene)
+    scene.unit_settings.scale_length = 1e9
+    path = tmp_path / f"{command}-huge-units.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    status, message, written = run(command, "--blend", str(path))
+    refused(status, message, written, "reaches 1e+14 mm" if command == "engrave" else "reaches 5.25e+13 mm",
+            "unit scale of 1e+09 m per unit")

@@ -273,3 +273,18 @@ def test_the_suite_counts_its_cases():
         pytest.skip("run with the whole module to count")
     print(f"\n{COUNT['cases']} hostile operator calls")
     assert COUNT["cases"] >= 150, COUNT
+
+
+@pytest.mark.parametrize("idname", ["kezuri.engrave_generate", "kezuri.engrave_export", "kezuri.rotary_generate",
+                                    "kezuri.simulate"])
+def test_a_unit_scale_that_puts_the_plate_past_100_m_is_refused_by_name(idname, tmp_path):
+    """Blender lets Unit Scale go to 1e9 m per unit; the sample plate then lies 1e14 mm out and
+    Clipper raised "RuntimeError: Values exceed permitted range" (an internal error)."""
+    scene = workflow_scene(idname, tmp_path)
+    scene.unit_settings.scale_length = 1e9
+    objects = set(bpy.data.objects.keys())
+    message, result, stderr = call(idname, scene, tmp_path, {})
+    assert result == {"CANCELLED"} and message is not None, (idname, result)
+    assert "Traceback" not in stderr and "internal error" not in message, message
+    assert "unit scale of 1e+09 m per unit" in message and "reaches" in message, message
+    assert list(tmp_path.iterdir()) == [] and set(bpy.data.objects.keys()) == objects
