@@ -719,6 +719,7 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "{} is empty: give the folder to write into": "{0} が空です。書き出すフォルダーを指定してください",
     "plate {} reaches {} mm from the world origin (more than {} mm) at the scene's unit scale of {} m per unit: is the unit scale right?":
         "板材 {0} がワールド原点から {1} mm まで達しています（{2} mm 超、シーンの単位スケールは1単位 {3} m）。単位スケールは正しいですか",
     "--tool {}: {} {} mm is outside the allowed range {}": "--tool {0}：{1} {2} mm が許容範囲 {3} の外です",

@@ -171,6 +171,17 @@ def test_an_output_folder_that_is_a_file(tmp_path):
     assert blocker.read_text() == "x"
 
 
+@pytest.mark.parametrize("out", ["", "  "])
+def test_an_empty_output_folder_is_refused_not_taken_as_the_working_folder(tmp_path, out, monkeypatch):
+    """--out "$OUT" with OUT unset: the elbow's files were written into the working folder."""
+    monkeypatch.chdir(tmp_path)
+    stderr = io.StringIO()
+    with time_limit(CASE_SECONDS), contextlib.redirect_stderr(stderr), contextlib.redirect_stdout(io.StringIO()):
+        status = BATCH.main(["batch.py", "elbow", "--out", out])
+    assert status == 2 and "--out is empty" in stderr.getvalue(), stderr.getvalue()
+    assert list(tmp_path.iterdir()) == []
+
+
 @pytest.mark.parametrize("shape", ["file", "under a file", "read-only parent"])
 def test_an_unusable_output_folder_is_named_before_any_work(tmp_path, shape):
     """--out is checked before the job: a file, a folder under a file, or a folder that would
