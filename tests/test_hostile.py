@@ -124,6 +124,12 @@ def test_a_line_number_counts_only_real_line_breaks():
         read("G21 G90\nG0 X0 Y0 Z5\n(caf\x85 \x0c \x1c)\nG1 Z-1 F100\r\nX10\rG1 X11 Q1\n")
 
 
+def test_a_refused_megabyte_line_is_quoted_short():
+    with pytest.raises(ncread.NCReadError) as error:
+        read(START + "G1 " + " ".join(["F100"] * 200000) + "\n")
+    assert "line 3: F is given twice in 'G1 F100" in str(error.value) and len(str(error.value)) < 200
+
+
 def test_a_canned_cycle_is_refused_not_run_as_a_straight_feed():
     # Before: G81 was ignored and its X, Y, Z cut as a G1 (1,651 mm^3 instead of a 132 mm^3 hole).
     with pytest.raises(ncread.NCReadError, match="line 4: G81 canned cycles"):

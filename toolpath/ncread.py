@@ -126,6 +126,12 @@ def _code(letter: str, value: str) -> str:
     return f"{letter}{int(number)}" if number.is_integer() else f"{letter}{f'{number:.4f}'.rstrip('0')}"
 
 
+def _shown(raw: str) -> str:
+    """The line as a message quotes it: at most 120 characters (a 1 MB block stayed one line of 1 MB)."""
+    text = raw.strip()
+    return repr(text if len(text) <= 120 else text[:117] + "...")
+
+
 def _words(line: str, number: int, raw: str) -> list:
     """[(letter, text of the number)] of one block; malformed words raise NCReadError."""
     words, i = [], 0
@@ -136,22 +142,22 @@ def _words(line: str, number: int, raw: str) -> list:
         letter = line[i]
         if not ("A" <= letter <= "Z"):
             raise NCReadError(f"line {number}: {line[i:i + 12]!r} is not a word (a letter and a number) in "
-                              f"{raw.strip()!r}")
+                              f"{_shown(raw)}")
         match = _VALUE.match(line, i + 1)
         text, end = match.group(1), match.end()
         if not text:
             after = line[end:end + 8].strip()
             if after:
                 raise NCReadError(f"line {number}: {letter} is not followed by a number (found {after!r}) in "
-                                  f"{raw.strip()!r}")
-            raise NCReadError(f"line {number}: {letter} is not followed by a number in {raw.strip()!r}")
+                                  f"{_shown(raw)}")
+            raise NCReadError(f"line {number}: {letter} is not followed by a number in {_shown(raw)}")
         if not NUMBER.fullmatch(text):
-            raise NCReadError(f"line {number}: {letter}{text} is not a number G-code can have in {raw.strip()!r}")
+            raise NCReadError(f"line {number}: {letter}{text} is not a number G-code can have in {_shown(raw)}")
         if end < len(line) and line[end] == "E" and end + 1 < len(line) and line[end + 1] in "0123456789+-":
             raise NCReadError(f"line {number}: {letter}{text}E...: exponents are not allowed in G-code numbers, "
-                              f"in {raw.strip()!r}")
+                              f"in {_shown(raw)}")
         if not math.isfinite(float(text)):
-            raise NCReadError(f"line {number}: {letter}{text} is out of range in {raw.strip()!r}")
+            raise NCReadError(f"line {number}: {letter}{text} is out of range in {_shown(raw)}")
         words.append((letter, text))
         i = end
     return words
@@ -168,11 +174,11 @@ def _strip_comments(raw: str, number: int, comments: list) -> str:
         if char == "(":
             close = raw.find(")", i + 1)
             if close < 0 or "(" in raw[i + 1:close]:
-                raise NCReadError(f"line {number}: unbalanced or nested parenthesis in {raw.strip()!r}")
+                raise NCReadError(f"line {number}: unbalanced or nested parenthesis in {_shown(raw)}")
             commented, i = True, close + 1
             continue
         if char == ")":
-            raise NCReadError(f"line {number}: unbalanced or nested parenthesis in {raw.strip()!r}")
+            raise NCReadError(f"line {number}: unbalanced or nested parenthesis in {_shown(raw)}")
         if char == ";":
             commented = True
             break
@@ -191,13 +197,13 @@ def _check_arc(number: int, raw: str, start, end, centre, inch: bool) -> None:
     scale = 25.4 if inch else 1.0
     if r1 < MIN_ARC_RADIUS_INCH * 25.4 or r2 < MIN_ARC_RADIUS_INCH * 25.4:
         raise NCReadError(f"line {number}: the arc has no radius (its centre is its start or end point) in "
-                          f"{raw.strip()!r}")
+                          f"{_shown(raw)}")
     tolerance = (ARC_TOLERANCE_INCH if inch else ARC_TOLERANCE_MM) * scale
     error = abs(r1 - r2)
     if error > 100 * tolerance or (error > tolerance and error / max(r1, r2) > ARC_RELATIVE_TOLERANCE):
         raise NCReadError(f"line {number}: the arc's end lies {error:.4f} mm off its circle (radius {r1:.4f} mm "
                           f"at the start, {r2:.4f} mm at the end; LinuxCNC allows {tolerance:.4f} mm) in "
-                          f"{raw.strip()!r}")
+                          f"{_shown(raw)}")
 
 
 def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
@@ -233,31 +239,31 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             continue
         if line.startswith("/"):
             raise NCReadError(f"line {number}: a block delete '/' is not followed (whether the control skips the "
-                              f"line depends on its Block Delete switch): {raw.strip()!r}")
+                              f"line depends on its Block Delete switch): {_shown(raw)}")
         words = _words(line, number, raw)
         if words and words[0][0] == "N":
             if not words[0][1].isdigit():
-                raise NCReadError(f"line {number}: N{words[0][1]} is not a sequence number in {raw.strip()!r}")
+                raise NCReadError(f"line {number}: N{words[0][1]} is not a sequence number in {_shown(raw)}")
             words = words[1:]
         values, codes = {}, []
         for letter, value in words:
             if letter in "GM":
                 codes.append(_code(letter, value))
             elif letter in values:
-                raise NCReadError(f"line {number}: {letter} is given twice in {raw.strip()!r}")
+                raise NCReadError(f"line {number}: {letter} is given twice in {_shown(raw)}")
             else:
                 values[letter] = float(value)
         motions = [c for c in codes if c in MOTION]
         if len(motions) > 1:
-            raise NCReadError(f"line {number}: {' and '.join(motions)} are both motions in {raw.strip()!r}")
+            raise NCReadError(f"line {number}: {' and '.join(motions)} are both motions in {_shown(raw)}")
         for group in (("G90", "G91"), ("G20", "G21")):
             if all(code in codes for code in group):
                 raise NCReadError(f"line {number}: {group[0]} and {group[1]} are in one modal group, so one block "
-                                  f"cannot have both: {raw.strip()!r}")
+                                  f"cannot have both: {_shown(raw)}")
         home = False
         for code in codes:
             if code in REFUSED:
-                raise NCReadError(f"line {number}: {code} {REFUSED[code]}: {raw.strip()!r}")
+                raise NCReadError(f"line {number}: {code} {REFUSED[code]}: {_shown(raw)}")
             if code in MOTION:
                 mode = MOTION[code]
             elif code == "G90":
@@ -275,7 +281,7 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             elif code in IGNORED_CODES:
                 ignore(code, IGNORED_CODES[code], number)
             else:
-                raise NCReadError(f"line {number}: {code} is not a code this reader knows: {raw.strip()!r}")
+                raise NCReadError(f"line {number}: {code} is not a code this reader knows: {_shown(raw)}")
         for letter in values:
             if letter in AXES or letter in "IJ":
                 continue
@@ -284,9 +290,9 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             elif letter == "P" and any(c in ("G4", "G64") for c in codes):
                 continue
             elif letter == "R" and mode in (2, 3) and not home:
-                raise NCReadError(f"line {number}: R-format arcs are not supported; use I and J: {raw.strip()!r}")
+                raise NCReadError(f"line {number}: R-format arcs are not supported; use I and J: {_shown(raw)}")
             else:
-                raise NCReadError(f"line {number}: the {letter} word is not supported here: {raw.strip()!r}")
+                raise NCReadError(f"line {number}: the {letter} word is not supported here: {_shown(raw)}")
         ends = [c for c in codes if c in _END_CODES]
         axes = [a for a in AXES if a in values]
         if home:
@@ -294,21 +300,21 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             # followed (G91 G28 Z0), and home itself is not known: the tool stays put.
             if absolute or any(values[a] != 0 for a in axes):
                 raise NCReadError(f"line {number}: G28 is followed only as G91 G28 with zero words (home is not "
-                                  f"known to the reader): {raw.strip()!r}")
+                                  f"known to the reader): {_shown(raw)}")
             ignore("G28", "return to the reference point (not simulated: the tool is taken to stay put)", number)
             if ends:
                 break
             continue
         if ("I" in values or "J" in values) and (mode not in (2, 3) or not axes):
-            raise NCReadError(f"line {number}: I or J without an arc move in {raw.strip()!r}")
+            raise NCReadError(f"line {number}: I or J without an arc move in {_shown(raw)}")
         if axes:
             if mode is None:
-                raise NCReadError(f"line {number}: a move before any G0/G1/G2/G3: {raw.strip()!r}")
+                raise NCReadError(f"line {number}: a move before any G0/G1/G2/G3: {_shown(raw)}")
             if not absolute and not kinds:
                 unknown = [a for a in axes if a not in known]
                 if unknown:
                     raise NCReadError(f"line {number}: an incremental (G91) move before any absolute position of "
-                                      f"{', '.join(unknown)}: {raw.strip()!r}")
+                                      f"{', '.join(unknown)}: {_shown(raw)}")
             before = dict(position)
             for axis in axes:
                 value = values[axis] * (scale if axis != "C" else 1.0)
@@ -317,10 +323,10 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             centre = (np.nan, np.nan, np.nan)
             if kind in (ARC_CW, ARC_CCW):
                 if "I" not in values and "J" not in values:
-                    raise NCReadError(f"line {number}: an arc needs I and J: {raw.strip()!r}")
+                    raise NCReadError(f"line {number}: an arc needs I and J: {_shown(raw)}")
                 if not kinds:
                     raise NCReadError(f"line {number}: an arc before the tool's XY position is known: "
-                                      f"{raw.strip()!r}")
+                                      f"{_shown(raw)}")
                 centre = (before["X"] + values.get("I", 0.0) * scale, before["Y"] + values.get("J", 0.0) * scale,
                           position["Z"])
                 _check_arc(number, raw, (before["X"], before["Y"]), (position["X"], position["Y"]), centre,
