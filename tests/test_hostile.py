@@ -93,7 +93,7 @@ START = "G21 G90\nG0 X0 Y0 Z5\n"
 def test_the_reader_stops_at_what_it_cannot_follow_naming_the_line(line, reason):
     with pytest.raises(ncread.NCReadError, match=f"line 3: {reason}") as error:
         read(START + line + "\nG1 X20\n")
-    assert repr(line) in str(error.value)          # the line itself
+    assert repr(line if len(line) <= 120 else line[:117] + "...") in str(error.value)   # the line (its start)
 
 
 @pytest.mark.parametrize("name, text, xyz", [
