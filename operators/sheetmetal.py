@@ -287,8 +287,7 @@ class KEZURI_OT_import_cdl(bpy.types.Operator, ImportHelper):
 
     def execute(self, context):
         def work():
-            with open(self.filepath, encoding="latin-1") as stream:
-                corners = core.read_cdl(stream.read())
+            corners = read_cdl_file(self.filepath)
             scene = context.scene
             scene.kezuri.sheet.corners = corners.ravel()
             convert.remove_objects(f"{PREFIX} imported quad")
@@ -391,6 +390,30 @@ def unfold_arguments(p):
     p.add_argument("--station", type=number("--station", limit=RANGES["sheet"]["station"]))
 
 
+def read_cdl_file(path: str):
+    """The quad's corners of a CDL file: UTF-8 (its byte-order mark dropped: it hid the first LINE
+    word, so 'found 3 LINE records') or, failing that, latin-1."""
+    with open(path, "rb") as stream:
+        data = stream.read()
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = data.decode("latin-1")
+    return core.read_cdl(text)
+
+
+def check_corners(corners, where: str):
+    """Corners given to batch (--corners, --cdl) within the range the panel's Corners have: a CDL
+    1e12 mm across reached the punch simulation and was refused there for its number of hits."""
+    from .limits import RANGES
+    limit = RANGES["sheet"]["corners"]
+    for index, corner in enumerate(np.asarray(corners, float), start=1):
+        if not all(limit.allows(v) for v in corner):
+            raise convert.SceneInputError(f"{where}: corner P{index} ({corner[0]:g}, {corner[1]:g}, {corner[2]:g}) "
+                                          f"is outside the allowed range {limit.text('Corners')}")
+    return corners
+
+
 def parse_corners(text: str):
     try:
         corners = np.array([[float(v) for v in corner.split(",")] for corner in text.split(";")])
@@ -414,10 +437,9 @@ def unfold_batch(args) -> dict:
     if args.cdl:
         if not os.path.isfile(args.cdl):
             raise FileNotFoundError(f"no such CDL file: {args.cdl}")
-        with open(args.cdl, encoding="latin-1") as stream:
-            corners = core.read_cdl(stream.read())
+        corners = check_corners(read_cdl_file(args.cdl), f"--cdl {args.cdl}")
     elif args.corners:
-        corners = parse_corners(args.corners)
+        corners = check_corners(parse_corners(args.corners), "--corners")
     else:
         corners = corners_mm(sheet)
     job = run_unfold(corners, sheet)

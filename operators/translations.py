@@ -719,6 +719,7 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "{}: corner P{} ({}, {}, {}) is outside the allowed range {}": "{0}：角 P{1}（{2}, {3}, {4}）が許容範囲 {5} の外です",
     "{} is empty: give the folder to write into": "{0} が空です。書き出すフォルダーを指定してください",
     "plate {} reaches {} mm from the world origin (more than {} mm) at the scene's unit scale of {} m per unit: is the unit scale right?":
         "板材 {0} がワールド原点から {1} mm まで達しています（{2} mm 超、シーンの単位スケールは1単位 {3} m）。単位スケールは正しいですか",

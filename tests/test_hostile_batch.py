@@ -373,3 +373,36 @@ def test_a_blend_whose_unit_scale_puts_the_plate_past_100_m_is_refused_by_name(t
     status, message, written = run(command, "--blend", str(path))
     refused(status, message, written, "reaches 1e+14 mm" if command == "engrave" else "reaches 5.25e+13 mm",
             "unit scale of 1e+09 m per unit")
+
+
+PAPER_CDL = ("LINE 0, 0, 0,\n0, 30, 100, 1, 1, 1,\n0, 0, 1, 1\nLINE 0, 30, 100,\n100, 50, 100, 1, 1,\n1, 0, 0, 1, 1\n"
+             "LINE 100, 50, 100,\n100, 40, 0, 1, 1, 1,\n0, 0, 1, 1\nLINE 100, 40, 0,\n0, 0, 0, 1, 1, 1, 0,\n0, 1, 1\n")
+
+
+@pytest.mark.parametrize("name, data, named", [
+    # a CDL 1e12 mm across passed unchecked to the punch simulation ("more than 20000 hits ... pitches Q")
+    ("huge.cdl", PAPER_CDL.replace("100,", "1e12,").encode(), "corner P2 (0, 30, 1e+12) is outside the allowed range"),
+    # str.splitlines broke at the form feed: the bad record (line 10) was reported on line 11
+    ("formfeed.cdl", PAPER_CDL.replace("1, 1, 1, 0,\n0, 1, 1", "1, 1, 1, 0,\n0, 1").replace("LINE 100, 50", "\x0cLINE 100, 50")
+     .encode(), "CDL line 10: LINE record has 12 numbers"),
+])
+def test_cdl_files_are_read_by_their_own_lines_and_ranges(tmp_path, name, data, named):
+    path = tmp_path / name
+    path.write_bytes(data)
+    status, message, written = run("unfold", "--cdl", str(path))
+    refused(status, message, written, named)
+
+
+def test_a_cdl_file_with_a_utf8_byte_order_mark_is_read(tmp_path):
+    """The BOM, read as latin-1, glued itself to the first LINE word: 'found 3 LINE records'."""
+    path = tmp_path / "bom.cdl"
+    path.write_bytes(b"\xef\xbb\xbf" + PAPER_CDL.encode())
+    out = tmp_path / "out"
+    with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
+        status = BATCH.main(["batch.py", "unfold", "--cdl", str(path), "--out", str(out)])
+    assert status == 0 and (out / "unfold.nc").exists()
+
+
+def test_corners_out_of_the_panels_range_are_refused_naming_the_option():
+    status, message, written = run("unfold", "--corners", "0,0,0;0,30,100;100,50,100;1e6,40,0")
+    refused(status, message, written, "--corners: corner P4 (1e+06, 40, 0) is outside the allowed range")
