@@ -380,6 +380,14 @@ def test_deeply_nested_part21_lists_are_refused_not_a_recursion_error():
     assert nested == [1]
 
 
+@pytest.mark.parametrize("newline", ["\n", "\r\n", "\r"])
+def test_part21_errors_count_lines_whatever_ends_them(newline):
+    """A file with CR line ends was all one line: 'line 1, column 3929'."""
+    text = part21_text("#1=A(1.,2.E);").replace("\n", newline)
+    with time_limit(20), pytest.raises(part21.Part21Error, match=r"line 8, column 11 \(#1\)"):
+        part21.parse_part21(text)
+
+
 def test_stale_temporary_files_of_ours_are_cleaned_at_the_next_write(tmp_path):
     old = time.time() - 2 * 3600
     stale = tmp_path / ".kezuri-abc123_x.part"
