@@ -719,6 +719,10 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "the {} roughing would need more than {} tool positions ({} layers of {} mm so far): {}; give a stock closer to the part":
+        "{0}荒削りには {1} を超える工具位置が必要です（ここまで {3} mm の層が {2} 層）：{4}。部品に近い素材にしてください",
+    "the stock's radius {} mm stands up to {} mm outside the part": "素材の半径 {0} mm は部品の外側に最大 {1} mm はみ出しています",
+    "the stock's end face Z {} stands {} mm above the part": "素材の端面 Z {0} は部品より {1} mm 上にあります",
     "{}: corner P{} ({}, {}, {}) is outside the allowed range {}": "{0}：角 P{1}（{2}, {3}, {4}）が許容範囲 {5} の外です",
     "{} is empty: give the folder to write into": "{0} が空です。書き出すフォルダーを指定してください",
     "plate {} reaches {} mm from the world origin (more than {} mm) at the scene's unit scale of {} m per unit: is the unit scale right?":

@@ -343,6 +343,33 @@ def test_turn_mill_on_a_plain_64_sided_cylinder_finishes():
     assert closed > 1000 and tube > 1000
 
 
+@pytest.mark.parametrize("stock, named", [
+    ("tm.Stock(1000.0, -60.0, 0.0)", "the radial roughing would need more than"),     # Stock Radius's top: > 60 s
+    ("tm.Stock(42.5, -60.0, 10000.0)", "the axial roughing would need more than"),   # Stock Z Max's top: 24 GB, OOM
+])
+def test_a_stock_far_larger_than_the_part_is_refused_not_out_of_memory(stock, named):
+    """Values inside the panel's ranges: the roughing copied the passes out to the stock, layer by
+    layer, until the process ran out of memory (killed by the kernel at 24 GB) or of patience.
+    Run in a child process with its address space capped at 6 GB, so a regression fails here."""
+    done = run_python(
+        "import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
+        "import numpy as np, trimesh\n"
+        "from kezuri.toolpath import turnmill as tm\n"
+        "from kezuri.toolpath.errors import InputError\n"
+        "m = trimesh.creation.cylinder(radius=12, height=60, sections=48)\n"
+        "m.apply_translation((0, 0, -30))\n"
+        "top = trimesh.creation.box(extents=(8, 8, 10)); top.apply_translation((0, 0, -5))\n"
+        "m = m.difference(top)\n"
+        f"stock = {stock}\n"
+        "try:\n"
+        "    tm.plan(np.asarray(m.vertices), np.asarray(m.faces), stock)\n"
+        "    print('PLANNED')\n"
+        "except InputError as error:\n"
+        "    print('REFUSED', error)\n", timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "REFUSED" in done.stdout and named in done.stdout, done.stdout[-1000:]
+
+
 def test_nan_vertices_are_refused_up_front():
     v, f, stock = tm.sample_part(48)
     v = v.copy()
