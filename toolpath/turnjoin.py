@@ -12,6 +12,25 @@ import math
 
 import numpy as np
 
+from .program import TurnMillError
+
+MAX_BALL_POSITIONS = 5_000_000     # roughing copies of the passes: past this the memory runs out first
+
+
+def _counted(total: int, direction: str, layers: int, step: float, stock, vertices) -> int:
+    """``total`` tool positions of roughing so far, refused past :data:`MAX_BALL_POSITIONS` naming
+    the stock's excess over the part (a bar 10 m above the part: 24 GB, then killed)."""
+    if total <= MAX_BALL_POSITIONS:
+        return total
+    if direction == "radial":
+        why = (f"the stock's radius {stock.radius:g} mm stands up to "
+               f"{stock.radius - float(np.hypot(vertices[:, 0], vertices[:, 1]).min()):g} mm outside the part")
+    else:
+        above = stock.z_max - float(vertices[:, 2].max())
+        why = f"the stock's end face Z {stock.z_max:g} stands {above:g} mm above the part"
+    raise TurnMillError(f"the {direction} roughing would need more than {MAX_BALL_POSITIONS} tool positions "
+                        f"({layers} layers of {step:g} mm so far): {why}; give a stock closer to the part")
+
 
 class TurnMillCancelled(Exception):
     """The progress callback asked to stop."""
