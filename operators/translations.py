@@ -719,6 +719,8 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "the {} finishing alone would need more than {} tool positions: give a coarser tolerance or sample spacing":
+        "{0}仕上げだけで {1} を超える工具位置が必要です。許容差かサンプル間隔を粗くしてください",
     "the {} roughing would need more than {} tool positions ({} layers of {} mm so far): {}; give a stock closer to the part":
         "{0}荒削りには {1} を超える工具位置が必要です（ここまで {3} mm の層が {2} 層）：{4}。部品に近い素材にしてください",
     "the stock's radius {} mm stands up to {} mm outside the part": "素材の半径 {0} mm は部品の外側に最大 {1} mm はみ出しています",

@@ -370,6 +370,19 @@ def test_a_stock_far_larger_than_the_part_is_refused_not_out_of_memory(stock, na
     assert "REFUSED" in done.stdout and named in done.stdout, done.stdout[-1000:]
 
 
+def test_a_finishing_layer_too_fine_to_hold_is_blamed_on_the_fineness_not_the_stock():
+    # Tolerance 0.0001 mm on the turn-mill sample: over the limit before any roughing layer
+    from kezuri.toolpath import turnjoin
+    v = np.array([[0.0, 0.0, -10.0], [10.0, 0.0, 0.0], [0.0, 10.0, 0.0]])
+    with pytest.raises(InputError, match="the radial finishing alone would need more than 5000000 tool positions"):
+        turnjoin._counted([4_000_000, 0], 1_500_000, "radial", 0, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
+    total = [0, 4_000_000]
+    turnjoin._counted(total, 900_000, "axial", 3, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
+    assert total == [0, 4_900_000]
+    with pytest.raises(InputError, match=r"axial roughing .* \(4 layers of 1 mm so far\): the stock's end face Z 0"):
+        turnjoin._counted(total, 200_000, "axial", 4, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
+
+
 def test_nan_vertices_are_refused_up_front():
     v, f, stock = tm.sample_part(48)
     v = v.copy()

@@ -441,7 +441,7 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
     levels = zlo.min() + (np.arange(count) + 0.5) * spacing
     every = max(1, round(step / spacing))
     max_layers = math.ceil(2 * (stock.radius + r) / step) + 1
-    layer_of, polylines, closed_flags, shifts, total = [], [], [], [], 0
+    layer_of, polylines, closed_flags, shifts, total = [], [], [], [], [0, 0]
     for number, z in enumerate(levels[::-1]):
         for points, seg_normals, closed in _sections(v, sub, normals, zlo, zhi, z):
             centres, centre_normals = _offset_section(points, seg_normals, closed, r, settings.max_turn)
@@ -455,7 +455,7 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
                 layer = centres + k * step * outward
                 if not np.any(stock.distance(layer) < r - tol):
                     break
-                total = _counted(total + len(layer), "radial", k, step, stock, v)
+                _counted(total, len(layer), "radial", k, step, stock, v)
                 layer_of.append(k)
                 polylines.append(layer)
                 closed_flags.append(closed)
@@ -615,13 +615,13 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
     finishing = [p for group in _components(f, ids) for p in _grid_passes(v, f[group], surface, stock, settings)]
     if not finishing:
         return []
-    layer_of, copies, total = [], [], 0
+    layer_of, copies, total = [], [], [0, 0]
     for k in itertools.count(1):
         lifted = [p + np.array([0.0, 0.0, k * settings.roughing_step]) for p in finishing]
         touching = [c for c in lifted if np.any(stock.distance(c) < r - tol)]
         if not touching:
             break
-        total = _counted(total + sum(len(c) for c in touching), "axial", k, settings.roughing_step, stock, v)
+        _counted(total, sum(len(c) for c in touching), "axial", k, settings.roughing_step, stock, v)
         layer_of += [k] * len(touching)
         copies += touching
     layers: dict = {0: finishing}
