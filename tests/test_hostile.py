@@ -383,6 +383,23 @@ def test_a_finishing_layer_too_fine_to_hold_is_blamed_on_the_fineness_not_the_st
         turnjoin._counted(total, 200_000, "axial", 4, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
 
 
+def test_carving_through_a_metre_of_stock_at_the_finest_step_down_is_refused_not_out_of_memory():
+    """Stock Above Design 1000 mm and Step Down 0.01 mm, both inside their ranges: 100,000 roughing
+    levels ended in a MemoryError ("Kezuri internal error") after 25 s under a 6 GB cap."""
+    done = run_python(
+        "import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
+        "from kezuri.toolpath import carve, carve_samples\n"
+        "from kezuri.toolpath.errors import InputError\n"
+        "v, f = carve_samples.wave_relief()\n"
+        "try:\n"
+        "    carve.plan(v, f, carve.CarveSettings(step_down=0.01), stock_top=float(v[:, 2].max()) + 1000)\n"
+        "    print('PLANNED')\n"
+        "except InputError as error:\n"
+        "    print('REFUSED', error)\n", timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "REFUSED the roughing would need more than 10000000 moves" in done.stdout, done.stdout[-1000:]
+
+
 def test_nan_vertices_are_refused_up_front():
     v, f, stock = tm.sample_part(48)
     v = v.copy()

@@ -301,6 +301,9 @@ def _spacing(flat: float, slope_deg: float, cap_deg: float, rho: float, r: float
     return MARGIN * flat * math.cos(math.radians(min(slope_deg, cap_deg))) * bend
 
 
+MAX_ROUGHING_MOVES = 10_000_000   # a program past this is hundreds of MB; the memory runs out first
+
+
 def _roughing(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom, clearance_z, safe_z, kernel, report):
     cutter = DropCutter(vertices, faces, s.rough_tool, allowance=s.allowance, floor=bottom, kernel=kernel,
                         mesh=mesh)
@@ -321,7 +324,7 @@ def _roughing(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom, clea
     if not levels:
         return None, []
     builder = PathBuilder(clearance_z, s.rough_feed, s.plunge_feed, surface_z=top)
-    above = top
+    above, written = top, 0
     for n, level in enumerate(levels):
         for points in dropped:
             material = points[:, 2] < above - 1e-9
@@ -331,6 +334,11 @@ def _roughing(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom, clea
             grown[1:] |= material[:-1]
             grown[:-1] |= material[1:]
             edges = np.flatnonzero(np.diff(np.concatenate([[0], grown.astype(np.int8), [0]])))
+            written += int((edges[1::2] - edges[::2]).sum())
+            if written > MAX_ROUGHING_MOVES:    # 1000 mm of stock at a 0.01 mm step down: a MemoryError
+                raise CarveError(f"the roughing would need more than {MAX_ROUGHING_MOVES} moves ({len(levels)} levels "
+                                 f"{s.step_down:g} mm apart through {top - lowest:g} mm of stock): give a larger "
+                                 f"step down or roughing stepover, or less stock above the design")
             for start, end in zip(edges[::2], edges[1::2]):
                 run = points[start:end].copy()
                 run[:, 2] = np.maximum(run[:, 2], level)
