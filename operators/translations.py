@@ -719,6 +719,8 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "pocket {}: the toolpath would have {} points (more than {}) at a spacing of {} mm and a step down of {} mm: give a coarser spacing or step down":
+        "ポケット {0}：ツールパスが {1} 点になります（上限 {2} 超、間隔 {3} mm、切込み深さ {4} mm）。間隔か切込み深さを粗くしてください",
     "the roughing would need more than {} moves ({} levels {} mm apart through {} mm of stock): give a larger step down or roughing stepover, or less stock above the design":
         "荒削りには {0} を超える移動が必要です（{3} mm の素材を {2} mm 間隔で {1} 層）。切込み深さか荒削りのステップオーバーを大きくするか、デザイン上の素材を減らしてください",
     "the {} finishing alone would need more than {} tool positions: give a coarser tolerance or sample spacing":

@@ -400,6 +400,23 @@ def test_carving_through_a_metre_of_stock_at_the_finest_step_down_is_refused_not
     assert "REFUSED the roughing would need more than 10000000 moves" in done.stdout, done.stdout[-1000:]
 
 
+def test_a_rotary_pocket_at_the_finest_spacing_and_step_down_is_refused_not_out_of_memory():
+    """Spacing and Step Down both 0.01 mm (in range): 16.7 million points, a MemoryError in the C
+    unwrapping ("Kezuri internal error")."""
+    done = run_python(
+        "import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
+        "from kezuri.toolpath import rotary\n"
+        "from kezuri.toolpath.errors import InputError\n"
+        "block, pockets = rotary.sample_job()\n"
+        "try:\n"
+        "    rotary.plan(block, [pockets[2]], rotary.RotarySettings(spacing=0.01, step_down=0.01))\n"
+        "    print('PLANNED')\n"
+        "except InputError as error:\n"
+        "    print('REFUSED', error)\n", timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "REFUSED pocket 'bowl': the toolpath would have" in done.stdout, done.stdout[-1000:]
+
+
 def test_nan_vertices_are_refused_up_front():
     v, f, stock = tm.sample_part(48)
     v = v.copy()
