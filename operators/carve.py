@@ -340,7 +340,7 @@ def batch(args) -> dict:
         # the same simulation without the cleanup: what the raster alone left
         from ..toolpath import simulate as sim
         setup = simulation(job)
-        before = sim.simulate(setup.program.operations[:-1], setup.stock, cell=gate.GATE_CELL,
+        before = sim.simulate(setup.program.operations[:-1], setup.stock, cell=gate_report["cell_mm"],
                               **setup.extra)
         cleanup.update({
             "stepover_mm": round(result.cleanup_stepover, 5),

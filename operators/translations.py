@@ -719,6 +719,8 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "{}: the export gate simulates every program before writing it, and cannot on this job's stock even at {} mm: {}":
+        "{0}：書き出しゲートはすべてのプログラムをシミュレーションしてから書き出しますが、このジョブの素材では {1} mm でもできません：{2}",
     "pocket {}: the toolpath would have {} points (more than {}) at a spacing of {} mm and a step down of {} mm: give a coarser spacing or step down":
         "ポケット {0}：ツールパスが {1} 点になります（上限 {2} 超、間隔 {3} mm、切込み深さ {4} mm）。間隔か切込み深さを粗くしてください",
     "the roughing would need more than {} moves ({} levels {} mm apart through {} mm of stock): give a larger step down or roughing stepover, or less stock above the design":

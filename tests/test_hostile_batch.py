@@ -330,13 +330,27 @@ def test_part21_values_that_used_to_crash_or_pass_silently(tmp_path, source, old
     refused(status, message, written, named)
 
 
-def test_an_inch_ap238_part_too_large_for_the_gate_says_it_is_the_gate(tmp_path):
-    """ex1 read in inches is 3.2 x 4.6 m: more cells than the gate's 0.1 mm grid may have; the
-    message said "use a coarser cell", a setting stepnc does not have."""
+def test_an_inch_ap238_part_is_checked_by_the_gate_on_a_coarser_grid(tmp_path):
+    """ex1 read in inches is 3.2 x 4.6 m: more cells than the gate's 0.1 mm grid may have.  It was
+    refused, saying "use a coarser cell" (a setting stepnc does not have); so was a 1200 x 600 mm
+    sign for engraving.  The gate now doubles its cell until the stock fits (0.8 mm here), and the
+    report says which."""
     path = tmp_path / "inch.stp"
     path.write_text(open(EX1_AP238).read().replace(MM, conversion_unit("INCH", "25.4")))
+    out = tmp_path / "out"
+    with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
+        status = BATCH.main(["batch.py", "stepnc", "--input", str(path), "--out", str(out)])
+    assert status == 0
+    import json
+    assert json.loads((out / "report.json").read_text())["gate"]["cell_mm"] == 0.8
+
+
+def test_a_stock_too_large_even_for_the_gates_coarsest_grid_says_it_is_the_gate(tmp_path):
+    path = tmp_path / "far.stp"
+    path.write_text(open(EX1).read().replace("(70.000, 70.000, 0.000)", "(90000.0, 90000.0, 0.000)"))
     status, message, written = run("stepnc", "--input", str(path))
-    refused(status, message, written, "the export gate simulates every program on a 0.1 mm grid")
+    refused(status, message, written, "the export gate simulates every program before writing it, and cannot on "
+                                      "this job's stock even at 1.6 mm")
 
 
 def test_a_cell_of_1e_300_is_refused_in_a_message_a_person_can_read(tmp_path):
@@ -406,3 +420,23 @@ def test_a_cdl_file_with_a_utf8_byte_order_mark_is_read(tmp_path):
 def test_corners_out_of_the_panels_range_are_refused_naming_the_option():
     status, message, written = run("unfold", "--corners", "0,0,0;0,30,100;100,50,100;1e6,40,0")
     refused(status, message, written, "--corners: corner P4 (1e+06, 40, 0) is outside the allowed range")
+
+
+def test_a_1200_by_600_mm_sign_is_engraved_and_checked(tmp_path):
+    """A sign board of 1200 x 600 mm (the sample at 6 mm per unit): the gate's 0.1 mm grid has more
+    cells than it may hold, so nothing could be exported, from batch or the panel; now checked on
+    0.2 mm cells."""
+    BATCH.load_extension()
+    from kezuri.operators import batchio, samples
+    scene = batchio.open_blend(None)
+    samples.name_plate(scene)
+    scene.unit_settings.scale_length = 0.006
+    blend = tmp_path / "sign.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+    out = tmp_path / "out"
+    with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
+        status = BATCH.main(["batch.py", "engrave", "--blend", str(blend), "--post", "linuxcnc", "--out", str(out)])
+    assert status == 0
+    import json
+    report = json.loads((out / "report.json").read_text())
+    assert report["gate"]["cell_mm"] == 0.2 and report["gate"]["findings"] == []

@@ -27,6 +27,10 @@ class CellError(SimulationError):
     """The cell does not suit the stock (too fine for the memory, too coarse to mean anything)."""
 
 
+class CellTooFine(CellError):
+    """More cells than the memory allows (:data:`MAX_CELLS`): a coarser cell would do."""
+
+
 class SimulationCancelled(Exception):
     """The progress callback asked to stop."""
 
