@@ -75,6 +75,12 @@ def batch(args) -> dict:
         raise ncread.NCReadError(f"--nc {args.nc}: {error}") from None
     op, lines = read
     if not args.rotary:
+        import numpy as np
+        c = op.rotary.get("c")
+        turns = np.flatnonzero(np.abs(c - c[0]) > 1e-9) if c is not None else []
+        if len(turns):      # before: the C words were dropped without a word, the part never turned
+            raise core.SimulationError(f"--nc {args.nc}: line {lines[turns[0]]} turns the C axis; give --rotary c "
+                                       f"to simulate the part turning with it")
         op.rotary = {}
     design = None
     if args.design:

@@ -719,6 +719,8 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "--nc {}: line {} turns the C axis; give --rotary c to simulate the part turning with it":
+        "--nc {0}：{1}行目でC軸が回ります。部品の回転ごとシミュレーションするには --rotary c を指定してください",
     "{}: the export gate simulates every program before writing it, and cannot on this job's stock even at {} mm: {}":
         "{0}：書き出しゲートはすべてのプログラムをシミュレーションしてから書き出しますが、このジョブの素材では {1} mm でもできません：{2}",
     "pocket {}: the toolpath would have {} points (more than {}) at a spacing of {} mm and a step down of {} mm: give a coarser spacing or step down":

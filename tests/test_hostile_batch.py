@@ -440,3 +440,12 @@ def test_a_1200_by_600_mm_sign_is_engraved_and_checked(tmp_path):
     import json
     report = json.loads((out / "report.json").read_text())
     assert report["gate"]["cell_mm"] == 0.2 and report["gate"]["findings"] == []
+
+
+def test_c_words_without_rotary_are_refused_not_dropped(tmp_path):
+    """A program turning C, simulated without --rotary c: the C words were dropped silently and the
+    report showed only the plunge (28 mm^3 instead of a half-turn groove)."""
+    nc = tmp_path / "turns.ngc"
+    nc.write_text("G21 G90\nG0 X-10 Y0 Z5 C0\nG1 Z-1 F100\nG1 C90\nG1 C180\nG0 Z5\nM2\n")
+    status, message, written = run("simulate", "--nc", str(nc), "--tool", "flat:6", "--stock", "cylinder:20,10")
+    refused(status, message, written, f"--nc {nc}: line 4 turns the C axis; give --rotary c")
