@@ -531,6 +531,7 @@ MESSAGES = {
     "Corners taken from the selected face": "選択した面から頂点を取得しました",
     "Kezuri preferences are not available": "Kezuriのプリファレンスを利用できません",
     "No such tool in the library": "その工具は工具ライブラリにありません",
+    "no file given: the file path is empty": "ファイルが指定されていません：ファイルパスが空です",
     "no plate: pick the stock object (a mesh) in the CAM panel":
         "板材がありません：CAMパネルで素材のオブジェクト（メッシュ）を選んでください",
     "no letters: pick a Text, curve or mesh object as Letters in the Engrave panel":
@@ -719,6 +720,8 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "{}: a path relative to the .blend file ('//') needs the .blend saved first":
+        "{0}：.blend ファイルからの相対パス（//）を使うには、先に .blend を保存してください",
     "--nc {}: line {} turns the C axis; give --rotary c to simulate the part turning with it":
         "--nc {0}：{1}行目でC軸が回ります。部品の回転ごとシミュレーションするには --rotary c を指定してください",
     "{}: the export gate simulates every program before writing it, and cannot on this job's stock even at {} mm: {}":
