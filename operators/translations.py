@@ -720,6 +720,8 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1)}
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "the design is flat (Z {} mm everywhere) and no stock stands above it: nothing to carve (Stock Above in the Carve panel gives the stock)":
+        "デザインが平ら（どこも Z {0} mm）で、その上に素材がありません。削るものがありません（素材は曲面加工パネルの「上面の余肉」で与えます）",
     "{}: a path relative to the .blend file ('//') needs the .blend saved first":
         "{0}：.blend ファイルからの相対パス（//）を使うには、先に .blend を保存してください",
     "--nc {}: line {} turns the C axis; give --rotary c to simulate the part turning with it":

@@ -449,3 +449,12 @@ def test_c_words_without_rotary_are_refused_not_dropped(tmp_path):
     nc.write_text("G21 G90\nG0 X-10 Y0 Z5 C0\nG1 Z-1 F100\nG1 C90\nG1 C180\nG0 Z5\nM2\n")
     status, message, written = run("simulate", "--nc", str(nc), "--tool", "flat:6", "--stock", "cylinder:20,10")
     refused(status, message, written, f"--nc {nc}: line 4 turns the C axis; give --rotary c")
+
+
+def test_a_flat_design_with_no_stock_above_it_is_refused_naming_the_design(tmp_path):
+    """A single flat square as the design: the gate said "stock box (0, 0, 0)..(40, 30, 0) encloses
+    no volume", naming neither the design nor what to change."""
+    path = tmp_path / "plane.obj"
+    path.write_text("v 0 0 0\nv 40 0 0\nv 40 30 0\nv 0 30 0\nf 1 2 3\nf 1 3 4\n")
+    status, message, written = run("carve", "--mesh", str(path))
+    refused(status, message, written, "the design is flat (Z 0 mm everywhere)", "Stock Above in the Carve panel")

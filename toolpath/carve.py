@@ -247,6 +247,9 @@ def plan(vertices, faces, settings: CarveSettings | None = None, *, name: str = 
         raise CarveError(f"stock top {stock_top!r} mm is below the design's highest point {hi[2]:.3f} mm")
     bounds = (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
     bottom = float(lo[2])
+    if top <= bottom:   # a flat design with nothing above it: "stock box ... encloses no volume" from the gate
+        raise CarveError(f"the design is flat (Z {bottom:g} mm everywhere) and no stock stands above it: nothing to "
+                         f"carve (Stock Above in the Carve panel gives the stock)")
     warnings = []
     operations = []
     levels = []
