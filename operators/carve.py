@@ -267,17 +267,26 @@ def batch_arguments(p):
     gate.allow_findings_argument(p)
 
 
-def read_mesh_file(path: str) -> tuple:
-    """Vertices (mm) and triangles of an STL/OBJ/PLY design."""
+def read_mesh_file(path: str, option: str = "--mesh") -> tuple:
+    """Vertices (mm) and triangles of an STL/OBJ/PLY design; what is wrong with it is said naming
+    ``option`` and the file."""
     import trimesh
 
     if not os.path.isfile(path):
         raise FileNotFoundError(f"no such mesh file: {path}")
     try:
-        loaded = trimesh.load(path, force="mesh")
+        loaded = trimesh.load(path, force="mesh", process=False)   # as the file says: trimesh drops NaN faces
     except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file
         raise core.CarveError(f"{path}: not a readable mesh ({error})") from None
-    return core.check_mesh(np.asarray(loaded.vertices, float), np.asarray(loaded.faces))
+    vertices, faces = np.asarray(loaded.vertices, float), np.asarray(loaded.faces)
+    try:
+        vertices, faces = core.check_mesh(vertices, faces)      # NaN, 1e300 ... before trimesh merges them away
+        merged = trimesh.Trimesh(vertices, faces, process=True)  # then the STL's repeated corners merged
+        return core.check_mesh(np.asarray(merged.vertices, float), np.asarray(merged.faces))
+    except core.CarveError as error:
+        if option == "--surface":
+            raise core.CarveError(f"--surface {path}: {error}") from None
+        raise core.CarveError(f"--mesh {path}: {error}") from None
 
 
 def batch(args) -> dict:
@@ -331,7 +340,7 @@ def batch(args) -> dict:
         # the same simulation without the cleanup: what the raster alone left
         from ..toolpath import simulate as sim
         setup = simulation(job)
-        before = sim.simulate(setup.program.operations[:-1], setup.stock, cell=gate.GATE_CELL,
+        before = sim.simulate(setup.program.operations[:-1], setup.stock, cell=gate_report["cell_mm"],
                               **setup.extra)
         cleanup.update({
             "stepover_mm": round(result.cleanup_stepover, 5),

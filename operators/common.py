@@ -14,6 +14,22 @@ def user_errors():
     return (InputError, OSError)
 
 
+def blender_path(path: str) -> str:
+    """An operator's file path as the file system knows it: Blender's ``//`` (relative to the saved
+    .blend) resolved; before, ``//job.nc`` was taken as ``/job.nc`` in the file-system root.  An
+    empty path, or ``//`` in a .blend never saved, is refused."""
+    import bpy
+
+    from .convert import SceneInputError
+    if not path.strip():
+        raise SceneInputError("no file given: the file path is empty")
+    if path.startswith("//"):
+        if not bpy.data.filepath:
+            raise SceneInputError(f"{path}: a path relative to the .blend file ('//') needs the .blend saved first")
+        return bpy.path.abspath(path)
+    return path
+
+
 def run_reported(operator, work):
     """Run ``work()`` for an operator; turn any failure into a report and CANCELLED.
 
@@ -21,6 +37,8 @@ def run_reported(operator, work):
     status bar and the traceback in the system console, never an exception out of execute().
     """
     try:
+        if isinstance(getattr(operator, "filepath", None), str):    # import and export operators
+            operator.filepath = blender_path(operator.filepath)
         return work()
     except user_errors() as error:
         operator.report({"ERROR"}, translate_message(str(error)))

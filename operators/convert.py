@@ -20,6 +20,9 @@ class SceneInputError(InputError):
     """The scene does not hold what the job needs; the message names the object."""
 
 
+MAX_REACH_MM = 1.0e5   # 100 m: no machine reaches further; past it, a unit scale is wrong
+
+
 def mm_per_unit(scene) -> float:
     """Millimetres per Blender unit: ``scale_length`` says how many metres one unit is."""
     scale = scene.unit_settings.scale_length
@@ -123,6 +126,11 @@ def plate_from_object(obj, depsgraph, scene, origin: str = "CENTER") -> Plate:
         raise SceneInputError(f"plate {obj.name!r} has a vertex with a non-finite coordinate")
     scale = mm_per_unit(scene)
     lo, hi = vertices.min(axis=0) * scale, vertices.max(axis=0) * scale
+    reach = float(np.abs(np.concatenate([lo, hi])).max())
+    if reach > MAX_REACH_MM:    # a unit scale of 1e9 m: Clipper's "Values exceed permitted range" traceback
+        raise SceneInputError(f"plate {obj.name!r} reaches {reach:g} mm from the world origin (more than "
+                              f"{MAX_REACH_MM:g} mm) at the scene's unit scale of {scene.unit_settings.scale_length:g} "
+                              f"m per unit: is the unit scale right?")
     if origin == "CENTER":
         origin_mm = ((lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, hi[2])
     elif origin == "CORNER":

@@ -263,7 +263,7 @@ def add_surface(scene, which: str):
                                       f"({', '.join(surface_engrave.SURFACES)}) nor a mesh file")
     else:
         from .carve import read_mesh_file
-        vertices, faces = read_mesh_file(which)
+        vertices, faces = read_mesh_file(which, "--surface")
     obj = convert.mesh_object(scene, "Plate Surface", vertices, faces, plate.frame)
     settings.engrave.surface = obj
     return obj

@@ -18,6 +18,7 @@ from ..toolpath.errors import InputError
 from . import simview
 
 GATE_CELL = 0.1        # mm: the height field the gate cuts (the batch preview's cell)
+GATE_COARSEST = 1.6    # mm: the coarsest the gate goes to on a stock too large for GATE_CELL
 REFUSED_STATUS = 3     # batch's exit status when the gate refuses a program
 
 
@@ -53,12 +54,24 @@ def check(setup, allow: bool | str = False, progress=None):
     ``(simulation job, gate report)``; raises :class:`GateRefused` (nothing written) otherwise.
     """
     started = time.perf_counter()
-    job = simview.run_setup(setup, "heightfield", GATE_CELL, progress)
+    cell = GATE_CELL
+    while True:     # a stock too large for 0.1 mm cells (a 1200 x 600 mm sign) is checked on coarser ones
+        try:
+            job = simview.run_setup(setup, "heightfield", cell, progress)
+            break
+        except core.CellTooFine as error:
+            if cell * 2 > GATE_COARSEST:
+                raise core.SimulationError(f"{setup.name}: the export gate simulates every program before writing "
+                                           f"it, and cannot on this job's stock even at {cell:g} mm: {error}") from None
+            cell *= 2
+        except core.CellError as error:     # the cell is the gate's, not one the user gave: say whose
+            raise core.SimulationError(f"{setup.name}: the export gate simulates every program on a {cell:g} mm "
+                                       f"grid before writing it, and cannot on this job's stock: {error}") from None
     faults = core.blocking(job.result.findings)
     report = {"findings": [{"kind": f.kind, "operation": f.operation, "move": f.move, "message": f.message,
                             "depth_mm": None if f.depth_mm is None else round(float(f.depth_mm), 4)}
                            for f in faults],
-              "overridden": False, "seconds": round(time.perf_counter() - started, 3)}
+              "overridden": False, "seconds": round(time.perf_counter() - started, 3), "cell_mm": cell}
     if faults:
         acknowledged = allow is True or (isinstance(allow, str) and allow and allow == signature(faults))
         if not acknowledged:

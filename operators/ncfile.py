@@ -54,10 +54,33 @@ def batch(args) -> dict:
 
     if not os.path.isfile(args.nc):
         raise FileNotFoundError(f"no such NC file: {args.nc}")
-    with open(args.nc, encoding="latin-1") as stream:
-        read = ncread.read_nc(stream.read(), ncread.parse_tool(args.tool), os.path.basename(args.nc))
+    tool = ncread.parse_tool(args.tool)
+    from .limits import DIAMETER, LIBRARY
+    # the one table of ranges: before, flat:1e6 (a 1 km end mill) and flat:1e-9 were simulated
+    for label, value, limit in (("diameter", tool.diameter, DIAMETER),
+                                ("corner radius", tool.corner_radius if tool.kind == "bull" else 0.0,
+                                 LIBRARY["corner_radius"])):
+        if not limit.allows(value):
+            raise core.SimulationError(f"--tool {args.tool!r}: {label} {value:g} mm is outside the allowed range "
+                                       f"{limit.text(label)}")
+    with open(args.nc, "rb") as stream:
+        data = stream.read()
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:      # Shift-JIS or latin-1 comments: only their line breaks matter
+        text = data.decode("latin-1")
+    try:
+        read = ncread.read_nc(text, tool, os.path.basename(args.nc))
+    except ncread.NCReadError as error:     # which file the line is of
+        raise ncread.NCReadError(f"--nc {args.nc}: {error}") from None
     op, lines = read
     if not args.rotary:
+        import numpy as np
+        c = op.rotary.get("c")
+        turns = np.flatnonzero(np.abs(c - c[0]) > 1e-9) if c is not None else []
+        if len(turns):      # before: the C words were dropped without a word, the part never turned
+            raise core.SimulationError(f"--nc {args.nc}: line {lines[turns[0]]} turns the C axis; give --rotary c "
+                                       f"to simulate the part turning with it")
         op.rotary = {}
     design = None
     if args.design:

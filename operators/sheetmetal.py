@@ -19,6 +19,7 @@ from .. import post as posts
 from ..post import flat_export, write_atomic
 from ..toolpath import punch
 from ..toolpath import unfold as core
+from ..toolpath.errors import InputError
 from . import convert, gate
 from .common import run_reported
 from .limits import SettingError, check_group
@@ -244,9 +245,12 @@ def elbow_punching(elbow: core.Elbow, props, names: dict = PANEL_NAMES) -> list:
         check_contour(contour, props, f"piece {index} of {names['diameter']} = {elbow.diameter:g} mm", names)
         contours.append((outline, contour))
     jobs = []
-    for outline, contour in contours:
-        nc = punch_program(contour, props)
-        jobs.append((nc, punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=outline)))
+    for index, (outline, contour) in enumerate(contours, start=1):
+        try:
+            nc = punch_program(contour, props)
+            jobs.append((nc, punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=outline)))
+        except InputError as error:     # which piece's program: the message's line is that program's
+            raise core.UnfoldError(f"elbow piece {index} of {len(elbow.pieces)}: {error}") from None
     return jobs
 
 
@@ -367,8 +371,7 @@ class KEZURI_OT_import_cdl(bpy.types.Operator, ImportHelper):
 
     def execute(self, context):
         def work():
-            with open(self.filepath, encoding="latin-1") as stream:
-                corners = core.read_cdl(stream.read())
+            corners = read_cdl_file(self.filepath)
             scene = context.scene
             scene.kezuri.sheet.corners = corners.ravel()
             convert.remove_objects(f"{PREFIX} imported quad")
@@ -479,6 +482,30 @@ def unfold_arguments(p):
     gate.allow_findings_argument(p)
 
 
+def read_cdl_file(path: str):
+    """The quad's corners of a CDL file: UTF-8 (its byte-order mark dropped: it hid the first LINE
+    word, so 'found 3 LINE records') or, failing that, latin-1."""
+    with open(path, "rb") as stream:
+        data = stream.read()
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        text = data.decode("latin-1")
+    return core.read_cdl(text)
+
+
+def check_corners(corners, where: str):
+    """Corners given to batch (--corners, --cdl) within the range the panel's Corners have: a CDL
+    1e12 mm across reached the punch simulation and was refused there for its number of hits."""
+    from .limits import RANGES
+    limit = RANGES["sheet"]["corners"]
+    for index, corner in enumerate(np.asarray(corners, float), start=1):
+        if not all(limit.allows(v) for v in corner):
+            raise convert.SceneInputError(f"{where}: corner P{index} ({corner[0]:g}, {corner[1]:g}, {corner[2]:g}) "
+                                          f"is outside the allowed range {limit.text('Corners')}")
+    return corners
+
+
 def parse_corners(text: str):
     try:
         corners = np.array([[float(v) for v in corner.split(",")] for corner in text.split(";")])
@@ -502,10 +529,9 @@ def unfold_batch(args) -> dict:
     if args.cdl:
         if not os.path.isfile(args.cdl):
             raise FileNotFoundError(f"no such CDL file: {args.cdl}")
-        with open(args.cdl, encoding="latin-1") as stream:
-            corners = core.read_cdl(stream.read())
+        corners = check_corners(read_cdl_file(args.cdl), f"--cdl {args.cdl}")
     elif args.corners:
-        corners = parse_corners(args.corners)
+        corners = check_corners(parse_corners(args.corners), "--corners")
     else:
         corners = corners_mm(sheet)
     job = run_unfold(corners, sheet, UNFOLD_NAMES)

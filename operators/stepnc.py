@@ -59,7 +59,14 @@ def step_row(step, numbers: dict) -> tuple:
             f"T{numbers[tool.id]} Ø{diameter:g}")
 
 
+INT_MAX = 2**31 - 1     # Blender's IntProperty
+
+
 def fill_workplan_list(scene, path: str, loaded) -> None:
+    for step in loaded.workingsteps:    # the list keeps ids as Blender ints (a Part 21 id has no bound)
+        if not 0 < step.id <= INT_MAX:
+            raise convert.SceneInputError(f"{path}: workingstep #{step.id}: an instance number above {INT_MAX} "
+                                          f"cannot be listed in the workplan; renumber the file")
     props = scene.kezuri.stepnc
     props.filepath = path
     props.steps.clear()
@@ -344,9 +351,13 @@ def sample_file(out_dir: str) -> str:
 def apply_order(scene, text: str, path: str) -> None:
     """``--order 13,14,10``: cut these workingsteps, in this order, and no others."""
     try:
-        wanted = [int(v.strip().lstrip("#")) for v in text.split(",") if v.strip()]
+        wanted = [int(v.strip().lstrip("#")) for v in text.split(",")]     # an empty item is a typo too
     except ValueError:
         raise convert.SceneInputError(f"--order: instance ids separated by commas, got {text!r}") from None
+    twice = sorted({ident for ident in wanted if wanted.count(ident) > 1})
+    if twice:   # before: the later mention silently moved it, so 13,14,10,13 cut 14, 10, 13
+        raise convert.SceneInputError(f"--order: #{twice[0]} is given more than once in {text!r}; each workingstep "
+                                      f"is cut once, in the order given")
     steps = scene.kezuri.stepnc.steps
     known = [item.ident for item in steps]
     for ident in wanted:

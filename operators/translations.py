@@ -534,6 +534,7 @@ MESSAGES = {
     "Corners taken from the selected face": "選択した面から頂点を取得しました",
     "Kezuri preferences are not available": "Kezuriのプリファレンスを利用できません",
     "No such tool in the library": "その工具は工具ライブラリにありません",
+    "no file given: the file path is empty": "ファイルが指定されていません：ファイルパスが空です",
     "no plate: pick the stock object (a mesh) in the CAM panel":
         "板材がありません：CAMパネルで素材のオブジェクト（メッシュ）を選んでください",
     "no letters: pick a Text, curve or mesh object as Letters in the Engrave panel":
@@ -734,6 +735,56 @@ NESTED = {"{}: {} = {} mm: {} takes {} hits, more than the {} one program may ha
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    "the design is flat (Z {} mm everywhere) and no stock stands above it: nothing to carve (Stock Above in the Carve panel gives the stock)":
+        "デザインが平ら（どこも Z {0} mm）で、その上に素材がありません。削るものがありません（素材は曲面加工パネルの「上面の余肉」で与えます）",
+    "{}: a path relative to the .blend file ('//') needs the .blend saved first":
+        "{0}：.blend ファイルからの相対パス（//）を使うには、先に .blend を保存してください",
+    "--nc {}: line {} turns the C axis; give --rotary c to simulate the part turning with it":
+        "--nc {0}：{1}行目でC軸が回ります。部品の回転ごとシミュレーションするには --rotary c を指定してください",
+    "{}: the export gate simulates every program before writing it, and cannot on this job's stock even at {} mm: {}":
+        "{0}：書き出しゲートはすべてのプログラムをシミュレーションしてから書き出しますが、このジョブの素材では {1} mm でもできません：{2}",
+    "pocket {}: the toolpath would have {} points (more than {}) at a spacing of {} mm and a step down of {} mm: give a coarser spacing or step down":
+        "ポケット {0}：ツールパスが {1} 点になります（上限 {2} 超、間隔 {3} mm、切込み深さ {4} mm）。間隔か切込み深さを粗くしてください",
+    "the roughing would need more than {} moves ({} levels {} mm apart through {} mm of stock): give a larger step down or roughing stepover, or less stock above the design":
+        "荒削りには {0} を超える移動が必要です（{3} mm の素材を {2} mm 間隔で {1} 層）。切込み深さか荒削りのステップオーバーを大きくするか、デザイン上の素材を減らしてください",
+    "the {} finishing alone would need more than {} tool positions: give a coarser tolerance or sample spacing":
+        "{0}仕上げだけで {1} を超える工具位置が必要です。許容差かサンプル間隔を粗くしてください",
+    "the {} roughing would need more than {} tool positions ({} layers of {} mm so far): {}; give a stock closer to the part":
+        "{0}荒削りには {1} を超える工具位置が必要です（ここまで {3} mm の層が {2} 層）：{4}。部品に近い素材にしてください",
+    "the stock's radius {} mm stands up to {} mm outside the part": "素材の半径 {0} mm は部品の外側に最大 {1} mm はみ出しています",
+    "the stock's end face Z {} stands {} mm above the part": "素材の端面 Z {0} は部品より {1} mm 上にあります",
+    "{}: corner P{} ({}, {}, {}) is outside the allowed range {}": "{0}：角 P{1}（{2}, {3}, {4}）が許容範囲 {5} の外です",
+    "{} is empty: give the folder to write into": "{0} が空です。書き出すフォルダーを指定してください",
+    "plate {} reaches {} mm from the world origin (more than {} mm) at the scene's unit scale of {} m per unit: is the unit scale right?":
+        "板材 {0} がワールド原点から {1} mm まで達しています（{2} mm 超、シーンの単位スケールは1単位 {3} m）。単位スケールは正しいですか",
+    "--tool {}: {} {} mm is outside the allowed range {}": "--tool {0}：{1} {2} mm が許容範囲 {3} の外です",
+    "the part reaches {} mm from the origin (more than {} mm): is it in other units?":
+        "部品が原点から {0} mm まで達しています（{1} mm 超）。単位が違っていませんか",
+    "--mesh {}: {}": "メッシュファイル --mesh {0}：{1}",
+    "--surface {}: {}": "板面のメッシュファイル --surface {0}：{1}",
+    "the design mesh reaches {} mm from the work zero (more than {} mm): is it in other units?":
+        "デザインメッシュがワーク原点から {0} mm まで達しています（{1} mm 超）。単位が違っていませんか",
+    "the design mesh has a face with a vertex index outside 0..{}": "デザインメッシュに頂点番号が 0..{0} の範囲外の面があります",
+    "the design mesh has {} vertices, fewer than one triangle needs (an empty or unreadable mesh file?)":
+        "デザインメッシュの頂点が {0} 個で、三角形1つにも足りません（空のファイルか読めないファイルではありませんか）",
+    "{}: the export gate simulates every program on a {} mm grid before writing it, and cannot on this job's stock: {}":
+        "{0}：書き出しゲートはすべてのプログラムを {1} mm の格子でシミュレーションしてから書き出しますが、このジョブの素材ではできません：{2}",
+    "#{} SI_UNIT: a length unit in {}, not in metres": "#{0} SI_UNIT：長さの単位が {1} です（メートルではありません）",
+    "#{} SI_UNIT: {} is not an SI prefix": "#{0} SI_UNIT：{1} はSI接頭辞ではありません",
+    "#{} CONVERSION_BASED_UNIT '{}': its conversion factor is given in itself":
+        "#{0} CONVERSION_BASED_UNIT '{1}'：換算係数がそれ自身の単位で与えられています",
+    "#{} CONVERSION_BASED_UNIT '{}': a length unit of {} mm": "#{0} CONVERSION_BASED_UNIT '{1}'：長さの単位が {2} mm です",
+    "#{} CONVERSION_BASED_UNIT '{}': no conversion factor, and not a unit Kezuri knows by name ({})":
+        "#{0} CONVERSION_BASED_UNIT '{1}'：換算係数がなく、Kezuriが名前で分かる単位（{2}）でもありません",
+    "#{} RECTANGULAR_CLOSED_PROFILE: {} {} mm is negative": "#{0} RECTANGULAR_CLOSED_PROFILE：{1} {2} mm が負です",
+    "--order: #{} is given more than once in {}; each workingstep is cut once, in the order given":
+        "--order：#{0} が {1} に2回以上あります。各ワーキングステップは指定した順に1回ずつ削ります",
+    "{}: workingstep #{}: an instance number above {} cannot be listed in the workplan; renumber the file":
+        "{0}：ワーキングステップ #{1}：{2} を超えるインスタンス番号は作業計画の一覧に載せられません。ファイルの番号を振り直してください",
+    "#{} {}: {} {} is not a coordinate (at most {} mm from the origin)":
+        "#{0} {1}：{2} {3} は座標として使えません（原点から {4} mm 以内にしてください）",
+    "--nc {}: {}": "NCファイル --nc {0}：{1}",
+    "elbow piece {} of {}: {}": "エルボのピース {0}/{1}：{2}",
     "{}: the {} post does not write M19 before a tool change; pick a Fanuc post or switch it off":
         "{0}：{1} ポストは工具交換の前に M19 を書きません。Fanucポストを選ぶか、オフにしてください",
     "a {} mm cell gives {} dexels round the bar (more than {}); use a coarser cell":
@@ -1352,6 +1403,10 @@ MESSAGE_TEMPLATES = {
         '{0}行目：{1} が2回指定されています：{2}',
     'line {}: {} are both motions in {}':
         '{0}行目：{1}：どちらも移動指令です：{2}',
+    'line {}: {} and {} are in one modal group, so one block cannot have both: {}':
+        '{0}行目：{1} と {2} は同じモーダルグループなので、1つのブロックに両方は書けません：{3}',
+    "line {}: a block delete '/' is not followed (whether the control skips the line depends on its Block Delete switch): {}":
+        '{0}行目：ブロックデリート「/」には対応していません（その行を飛ばすかは制御装置のブロックデリートスイッチ次第です）：{1}',
     'line {}: {} {}: {}':
         '{0}行目：{1} {2}：{3}',
     'line {}: {} is not a code this reader knows: {}':

@@ -301,6 +301,9 @@ def batch_arguments(p):
     gate.allow_findings_argument(p)
 
 
+MAX_COORDINATE = 1.0e5   # mm: a part 100 m from the axis is a part in other units
+
+
 def read_mesh_file(path: str) -> tuple:
     """Vertices (mm) and triangles of an STL/OBJ/PLY part, and the round bar around it."""
     import trimesh
@@ -312,14 +315,22 @@ def read_mesh_file(path: str) -> tuple:
     except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file
         raise core.TurnMillError(f"{path}: not a readable mesh ({error})") from None
     vertices, faces = np.asarray(loaded.vertices, float), np.asarray(loaded.faces)
-    if len(vertices) and np.all(np.isfinite(vertices)):     # then merge the STL's repeated corners
-        merged = trimesh.Trimesh(vertices, faces, process=True)
-        vertices, faces = np.asarray(merged.vertices, float), np.asarray(merged.faces)
     if not len(vertices) or not len(faces):
         raise core.TurnMillError(f"{path}: the mesh has no faces")
-    vertices, faces = core.check_mesh(vertices, faces)     # NaN vertices, bad indices: named before the stock
-    radius = float(np.hypot(vertices[:, 0], vertices[:, 1]).max())
-    return vertices, faces, core.Stock(radius, float(vertices[:, 2].min()), float(vertices[:, 2].max()))
+    try:
+        if np.all(np.isfinite(vertices)):
+            reach = float(np.abs(vertices).max())
+            if reach > MAX_COORDINATE:      # trimesh's merging rounds such coordinates together
+                raise core.TurnMillError(f"the part reaches {reach:g} mm from the origin (more than "
+                                         f"{MAX_COORDINATE:g} mm): is it in other units?")
+            merged = trimesh.Trimesh(vertices, faces, process=True)   # then merge the STL's repeated corners
+            vertices, faces = np.asarray(merged.vertices, float), np.asarray(merged.faces)
+        vertices, faces = core.check_mesh(vertices, faces)     # NaN vertices, bad indices: named before the stock
+        radius = float(np.hypot(vertices[:, 0], vertices[:, 1]).max())
+        stock = core.Stock(radius, float(vertices[:, 2].min()), float(vertices[:, 2].max()))
+    except core.TurnMillError as error:
+        raise core.TurnMillError(f"--mesh {path}: {error}") from None
+    return vertices, faces, stock
 
 
 def batch(args) -> dict:

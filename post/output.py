@@ -63,6 +63,8 @@ def check_folder(folder: str, given_as: str = "output folder") -> str:
 
     Raises :class:`OutputError` naming ``given_as`` and the path when it is a file, lies under a
     file, or would have to be made in a folder this process cannot write."""
+    if not folder.strip():      # an unset shell variable ("$OUT"): it wrote into the working folder
+        raise OutputError(f"{given_as} is empty: give the folder to write into")
     folder = os.path.abspath(folder)
     existing = folder
     while not os.path.exists(existing):

@@ -21,6 +21,8 @@ from kezuri.toolpath.errors import InputError
 from kezuri.toolpath.program import Tool
 from kezuri.toolpath.stepnc import part21
 
+import rs274  # noqa: E402  (tests/rs274.py)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 FLAT6 = Tool(1, "flat", 6.0)
@@ -84,12 +86,48 @@ START = "G21 G90\nG0 X0 Y0 Z5\n"
     ("G2 X10 Y0", "an arc needs I and J"),
     ("G2 X0 Y0 I0 J0", "the arc has no radius"),
     ("G90 G28 Z0", "G28 is followed only as G91 G28"),
-    ("/G1 X1", "'/G1 X1' is not a word"),
+    ("/G1 X1", "a block delete '/' is not followed"),
+    ("G90 G91 X1", "G90 and G91 are in one modal group"),     # before: read as G91, LinuxCNC refuses it
+    ("G21 G20 X1", "G20 and G21 are in one modal group"),
 ])
 def test_the_reader_stops_at_what_it_cannot_follow_naming_the_line(line, reason):
     with pytest.raises(ncread.NCReadError, match=f"line 3: {reason}") as error:
         read(START + line + "\nG1 X20\n")
-    assert repr(line) in str(error.value)          # the line itself
+    assert repr(line if len(line) <= 120 else line[:117] + "...") in str(error.value)   # the line (its start)
+
+
+@pytest.mark.parametrize("name, text, xyz", [
+    # a UTF-8 kanji comment read as latin-1 holds U+0085 (工 of 工具 is E5 B7 A5, 具 is E5 85 B7), at
+    # which str.splitlines broke the line: refused as an unbalanced parenthesis, line numbers shifted
+    ("kanji comment", "G1 Z-1 F100 (工具 T1)\nX10\n".encode().decode("latin-1"), [[0, 0, -1], [10, 0, -1]]),
+    ("form feed", "G1 Z-1 F100\n\x0c\nX10\n", [[0, 0, -1], [10, 0, -1]]),
+    # the closing % ends the program (LinuxCNC; the end of the tape on a Fanuc): before, read on
+    ("closing percent", "G1 Z-1 F100\nX10\n%\nG1 Z-30\n", [[0, 0, -1], [10, 0, -1]]),
+    # a ; inside parentheses is comment text, not the start of a comment
+    ("semicolon in parentheses", "G1 Z-1 F100 (rough; 2 passes)\nX10\n", [[0, 0, -1], [10, 0, -1]]),
+    # spaces are nothing to a control: X 1 0 . 5 is X10.5 (before: refused)
+    ("spaces in words", "G1 Z - 1 F100\nX 1 0 . 5\n", [[0, 0, -1], [10.5, 0, -1]]),
+    ("CR LF", "G1 Z-1 F100\r\nX10\r\n", [[0, 0, -1], [10, 0, -1]]),
+])
+def test_legal_syntax_is_read_as_linuxcnc_reads_it(name, text, xyz):
+    op, lines = read("%\nG21 G90\nG0 X0 Y0 Z5\n" + text)
+    assert np.allclose(op.xyz, [[0, 0, 5], *xyz]), op.xyz
+    assert lines == [3, 4, 5 + (name == "form feed")][:len(lines)], lines
+    if rs274.available():
+        calls = rs274.run("%\nG21 G90\nG0 X0 Y0 Z5\n" + text.encode("latin-1").decode("utf-8") + "\n%\n")
+        _, points, _ = rs274.motion_endpoints(calls)
+        assert np.allclose(points, [[0, 0, 5], *xyz]), points
+
+
+def test_a_line_number_counts_only_real_line_breaks():
+    with pytest.raises(ncread.NCReadError, match="line 6: the Q word"):
+        read("G21 G90\nG0 X0 Y0 Z5\n(caf\x85 \x0c \x1c)\nG1 Z-1 F100\r\nX10\rG1 X11 Q1\n")
+
+
+def test_a_refused_megabyte_line_is_quoted_short():
+    with pytest.raises(ncread.NCReadError) as error:
+        read(START + "G1 " + " ".join(["F100"] * 200000) + "\n")
+    assert "line 3: F is given twice in 'G1 F100" in str(error.value) and len(str(error.value)) < 200
 
 
 def test_a_canned_cycle_is_refused_not_run_as_a_straight_feed():
@@ -305,6 +343,80 @@ def test_turn_mill_on_a_plain_64_sided_cylinder_finishes():
     assert closed > 1000 and tube > 1000
 
 
+@pytest.mark.parametrize("stock, named", [
+    ("tm.Stock(1000.0, -60.0, 0.0)", "the radial roughing would need more than"),     # Stock Radius's top: > 60 s
+    ("tm.Stock(42.5, -60.0, 10000.0)", "the axial roughing would need more than"),   # Stock Z Max's top: 24 GB, OOM
+])
+def test_a_stock_far_larger_than_the_part_is_refused_not_out_of_memory(stock, named):
+    """Values inside the panel's ranges: the roughing copied the passes out to the stock, layer by
+    layer, until the process ran out of memory (killed by the kernel at 24 GB) or of patience.
+    Run in a child process with its address space capped at 6 GB, so a regression fails here."""
+    done = run_python(
+        "import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
+        "import numpy as np, trimesh\n"
+        "from kezuri.toolpath import turnmill as tm\n"
+        "from kezuri.toolpath.errors import InputError\n"
+        "m = trimesh.creation.cylinder(radius=12, height=60, sections=48)\n"
+        "m.apply_translation((0, 0, -30))\n"
+        "top = trimesh.creation.box(extents=(8, 8, 10)); top.apply_translation((0, 0, -5))\n"
+        "m = m.difference(top)\n"
+        f"stock = {stock}\n"
+        "try:\n"
+        "    tm.plan(np.asarray(m.vertices), np.asarray(m.faces), stock)\n"
+        "    print('PLANNED')\n"
+        "except InputError as error:\n"
+        "    print('REFUSED', error)\n", timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "REFUSED" in done.stdout and named in done.stdout, done.stdout[-1000:]
+
+
+def test_a_finishing_layer_too_fine_to_hold_is_blamed_on_the_fineness_not_the_stock():
+    # Tolerance 0.0001 mm on the turn-mill sample: over the limit before any roughing layer
+    from kezuri.toolpath import turnjoin
+    v = np.array([[0.0, 0.0, -10.0], [10.0, 0.0, 0.0], [0.0, 10.0, 0.0]])
+    with pytest.raises(InputError, match="the radial finishing alone would need more than 5000000 tool positions"):
+        turnjoin._counted([4_000_000, 0], 1_500_000, "radial", 0, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
+    total = [0, 4_000_000]
+    turnjoin._counted(total, 900_000, "axial", 3, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
+    assert total == [0, 4_900_000]
+    with pytest.raises(InputError, match=r"axial roughing .* \(4 layers of 1 mm so far\): the stock's end face Z 0"):
+        turnjoin._counted(total, 200_000, "axial", 4, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
+
+
+def test_carving_through_a_metre_of_stock_at_the_finest_step_down_is_refused_not_out_of_memory():
+    """Stock Above Design 1000 mm and Step Down 0.01 mm, both inside their ranges: 100,000 roughing
+    levels ended in a MemoryError ("Kezuri internal error") after 25 s under a 6 GB cap."""
+    done = run_python(
+        "import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
+        "from kezuri.toolpath import carve, carve_samples\n"
+        "from kezuri.toolpath.errors import InputError\n"
+        "v, f = carve_samples.wave_relief()\n"
+        "try:\n"
+        "    carve.plan(v, f, carve.CarveSettings(step_down=0.01), stock_top=float(v[:, 2].max()) + 1000)\n"
+        "    print('PLANNED')\n"
+        "except InputError as error:\n"
+        "    print('REFUSED', error)\n", timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "REFUSED the roughing would need more than 10000000 moves" in done.stdout, done.stdout[-1000:]
+
+
+def test_a_rotary_pocket_at_the_finest_spacing_and_step_down_is_refused_not_out_of_memory():
+    """Spacing and Step Down both 0.01 mm (in range): 16.7 million points, a MemoryError in the C
+    unwrapping ("Kezuri internal error")."""
+    done = run_python(
+        "import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
+        "from kezuri.toolpath import rotary\n"
+        "from kezuri.toolpath.errors import InputError\n"
+        "block, pockets = rotary.sample_job()\n"
+        "try:\n"
+        "    rotary.plan(block, [pockets[2]], rotary.RotarySettings(spacing=0.01, step_down=0.01))\n"
+        "    print('PLANNED')\n"
+        "except InputError as error:\n"
+        "    print('REFUSED', error)\n", timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert "REFUSED pocket 'bowl': the toolpath would have" in done.stdout, done.stdout[-1000:]
+
+
 def test_nan_vertices_are_refused_up_front():
     v, f, stock = tm.sample_part(48)
     v = v.copy()
@@ -340,6 +452,14 @@ def test_deeply_nested_part21_lists_are_refused_not_a_recursion_error():
     for _ in range(99):
         nested = nested[0]
     assert nested == [1]
+
+
+@pytest.mark.parametrize("newline", ["\n", "\r\n", "\r"])
+def test_part21_errors_count_lines_whatever_ends_them(newline):
+    """A file with CR line ends was all one line: 'line 1, column 3929'."""
+    text = part21_text("#1=A(1.,2.E);").replace("\n", newline)
+    with time_limit(20), pytest.raises(part21.Part21Error, match=r"line 8, column 11 \(#1\)"):
+        part21.parse_part21(text)
 
 
 def test_stale_temporary_files_of_ours_are_cleaned_at_the_next_write(tmp_path):

@@ -149,6 +149,9 @@ CONCRETE = [
     (("stepnc", "--input", "missing.stp"), "missing.stp"),
     (("unfold", "--cdl", "missing.cdl"), "missing.cdl"),
     (("turnmill", "--mesh", "missing.stl"), "missing.stl"),
+    # the elbow's DXF and SVG were written before a piece's punch program was refused: left behind
+    (("elbow", "--diameter=1e6", "--bend-radius=1e6"), "elbow piece 1 of 5: line 3"),
+    (("elbow", "--diameter=0.1", "--bend-radius=0.1", "--angle=1", "--pieces=2"), "elbow piece 1 of 2: segment"),
 ]
 
 
@@ -173,6 +176,17 @@ def test_an_output_folder_that_is_a_file(tmp_path):
         status = BATCH.main(["batch.py", "elbow", "--out", str(blocker / "sub")])
     assert status == 2 and "Traceback" not in stderr.getvalue() and "afile" in stderr.getvalue()
     assert blocker.read_text() == "x"
+
+
+@pytest.mark.parametrize("out", ["", "  "])
+def test_an_empty_output_folder_is_refused_not_taken_as_the_working_folder(tmp_path, out, monkeypatch):
+    """--out "$OUT" with OUT unset: the elbow's files were written into the working folder."""
+    monkeypatch.chdir(tmp_path)
+    stderr = io.StringIO()
+    with time_limit(CASE_SECONDS), contextlib.redirect_stderr(stderr), contextlib.redirect_stdout(io.StringIO()):
+        status = BATCH.main(["batch.py", "elbow", "--out", out])
+    assert status == 2 and "--out is empty" in stderr.getvalue(), stderr.getvalue()
+    assert list(tmp_path.iterdir()) == []
 
 
 @pytest.mark.parametrize("shape", ["file", "under a file", "read-only parent"])
@@ -214,3 +228,240 @@ def test_a_part_mesh_with_a_nan_vertex_is_named(tmp_path):
                    "endloop\nendfacet\nendsolid p\n")
     status, message, written = run("turnmill", "--mesh", str(stl))
     refused(status, message, written, "finite")
+
+
+SIMULATE_BOX = ("--tool", "flat:6", "--stock", "box:0,0,-10,40,40,0")
+
+
+def test_an_empty_nc_file_is_refused_naming_it(tmp_path):
+    empty = tmp_path / "empty.ngc"
+    empty.write_text("")
+    status, message, written = run("simulate", "--nc", str(empty), *SIMULATE_BOX)
+    refused(status, message, written, f"--nc {empty}: the NC file has no moves")
+
+
+def test_an_nc_file_in_utf8_with_kanji_comments_and_a_closing_percent_is_read(tmp_path):
+    """UTF-8 工具 holds the byte 0x85 (U+0085 read as latin-1, a line break to str.splitlines):
+    refused before as an unbalanced parenthesis; the moves after the closing % were cut too."""
+    nc = tmp_path / "kanji.ngc"
+    nc.write_bytes("%\r\n(荒削り 工具 T1)\r\nG21 G90\r\nG0 X5 Y5 Z5\r\nG1 Z-1 F100 (工具)\r\nX30\r\nG0 Z5\r\n"
+                   "%\r\nG1 Z-9\r\n".encode("utf-8"))
+    out = tmp_path / "out"
+    with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
+        status = BATCH.main(["batch.py", "simulate", "--nc", str(nc), *SIMULATE_BOX, "--out", str(out)])
+    assert status == 0
+    import json
+    report = json.loads((out / "report.json").read_text())
+    assert report["moves"] == 4 and report["simulation"]["removed_volume_mm3"] < 30 * 6 * 1.2, report
+
+
+def stl(path, vertices):
+    """An ASCII STL of the triangles (vertices as text, so 'nan' and 1e300 stay as written)."""
+    facets = "".join("facet normal 0 0 1\nouter loop\n" + "".join(f"vertex {x} {y} {z}\n" for x, y, z in tri) +
+                     "endloop\nendfacet\n" for tri in vertices)
+    path.write_text(f"solid t\n{facets}endsolid t\n")
+    return str(path)
+
+
+TETRA = [[(0, 0, 0), (40, 0, 0), (0, 30, 0)], [(0, 0, 0), (0, 30, 0), (0, 0, -10)],
+         [(0, 0, 0), (0, 0, -10), (40, 0, 0)], [(40, 0, 0), (0, 0, -10), (0, 30, 0)]]
+
+
+@pytest.mark.parametrize("command, scale, named", [
+    # 1e300 mm: carve's raster over the design's box never ended (a hang); turnmill read it as "a face
+    # uses the same vertex twice" (trimesh's merging rounded the corners together)
+    ("carve", 1e300, "reaches 4e+301 mm"), ("turnmill", 1e300, "reaches 4e+301 mm"),
+    ("engrave", 1e300, "reaches 4e+301 mm"), ("carve", 1e12, "reaches 4e+13 mm"), ("turnmill", 1e12, "reaches 4e+13 mm"),
+    # a NaN corner: carve's loader dropped the face and said "needs (n, 3) vertices, got shape (2, 3)", naming no file
+    ("carve", math.nan, "non-finite"), ("engrave", math.nan, "non-finite"), ("turnmill", math.nan, "NaN"),
+])
+def test_mesh_files_with_absurd_coordinates_are_refused_naming_the_file(tmp_path, command, scale, named):
+    if math.isnan(scale):
+        tris = [list(tri) for tri in TETRA]
+        tris[0][1] = (math.nan, 0, 0)
+    else:
+        tris = [[(x * scale, y * scale, z * scale) for x, y, z in tri] for tri in TETRA]
+    path = stl(tmp_path / "odd part.stl", tris)
+    option = {"carve": "--mesh", "turnmill": "--mesh", "engrave": "--surface"}[command]
+    status, message, written = run(command, option, path)
+    refused(status, message, written, f"{option} {path}: ", named)
+
+
+ORDER_CASES = [("13,13", "#13 is given more than once"), ("13,14,10,13", "#13 is given more than once"),
+               ("13,,14", "instance ids separated by commas")]
+
+
+@pytest.mark.parametrize("order, named", ORDER_CASES)
+def test_an_order_naming_a_workingstep_twice_is_refused_not_rearranged(order, named):
+    # before: the later mention moved it, so 13,14,10,13 cut 14, 10, 13; an empty item was dropped
+    status, message, written = run("stepnc", "--input", EX1, "--order", order)
+    refused(status, message, written, "--order", named)
+
+
+EX1 = os.path.join(ROOT, "tests", "fixtures", "iso14649", "ex1.stp")
+EX1_AP238 = os.path.join(ROOT, "tests", "fixtures", "iso14649", "ex1_ap238.stp")
+MM = "#900=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));"
+
+
+def conversion_unit(name, factor, base="#9002"):
+    return (f"#900=(CONVERSION_BASED_UNIT('{name}',#9001)LENGTH_UNIT()NAMED_UNIT(#905));\n"
+            f"#9001=LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE({factor}),{base});\n"
+            "#9002=(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.));")
+
+
+@pytest.mark.parametrize("source, old, new, named", [
+    # a pocket 1.0E300 mm or 1.0E999 (inf) from the origin: a numpy traceback before
+    (EX1, "(70.000, 70.000, 0.000)", "(70.000, 1.0E300, 0.000)", "#115 CARTESIAN_POINT: coordinates 1e+300"),
+    (EX1, "(70.000, 70.000, 0.000)", "(70.000, 1.0E999, 0.000)", "#115 CARTESIAN_POINT: coordinates inf"),
+    # a workingstep numbered past Blender's int: "bpy_struct ... not in 'int' range" traceback before
+    (EX1, "(#10,#11,", "(#99999999999999999999999,#11,", "workingstep #99999999999999999999999"),
+    # a negative pocket length was taken as its size without a word
+    (EX1, "#121= TOLERANCED_LENGTH_MEASURE(80.000,#123);", "#121= TOLERANCED_LENGTH_MEASURE(-80.0,#123);",
+     "#28 RECTANGULAR_CLOSED_PROFILE: profile_length -80 mm is negative"),
+    # AP238 length units it could not convert were read as millimetres (a yard, a nanometre, kelvin ...)
+    (EX1_AP238, MM, conversion_unit("FURLONG", "201168."), "is larger than 100000 mm"),
+    (EX1_AP238, MM, conversion_unit("ZERO", "0."), "#900 CONVERSION_BASED_UNIT 'ZERO': a length unit of 0 mm"),
+    (EX1_AP238, MM, conversion_unit("INCH", "25.4", base="#900"), "its conversion factor is given in itself"),
+    (EX1_AP238, MM, MM.replace(".MILLI.", ".BOGUS."), "#900 SI_UNIT: BOGUS is not an SI prefix"),
+    (EX1_AP238, MM, MM.replace(".MILLI.,.METRE.", "$,.KELVIN."), "#900 SI_UNIT: a length unit in KELVIN"),
+    (EX1_AP238, MM, MM.replace(".MILLI.", ".NANO."), "stepover 1.71e-05 mm"),    # honoured: a part 0.1 um across
+])
+def test_part21_values_that_used_to_crash_or_pass_silently(tmp_path, source, old, new, named):
+    text = open(source).read()
+    assert old in text
+    if new.startswith("(#9999"):
+        text = text.replace("#10= MACHINING_WORKINGSTEP(", "#99999999999999999999999= MACHINING_WORKINGSTEP(")
+    path = tmp_path / "changed.stp"
+    path.write_text(text.replace(old, new, 1))
+    status, message, written = run("stepnc", "--input", str(path))
+    refused(status, message, written, named)
+
+
+def test_an_inch_ap238_part_is_checked_by_the_gate_on_a_coarser_grid(tmp_path):
+    """ex1 read in inches is 3.2 x 4.6 m: more cells than the gate's 0.1 mm grid may have.  It was
+    refused, saying "use a coarser cell" (a setting stepnc does not have); so was a 1200 x 600 mm
+    sign for engraving.  The gate now doubles its cell until the stock fits (0.8 mm here), and the
+    report says which."""
+    path = tmp_path / "inch.stp"
+    path.write_text(open(EX1_AP238).read().replace(MM, conversion_unit("INCH", "25.4")))
+    out = tmp_path / "out"
+    with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
+        status = BATCH.main(["batch.py", "stepnc", "--input", str(path), "--out", str(out)])
+    assert status == 0
+    import json
+    assert json.loads((out / "report.json").read_text())["gate"]["cell_mm"] == 0.8
+
+
+def test_a_stock_too_large_even_for_the_gates_coarsest_grid_says_it_is_the_gate(tmp_path):
+    path = tmp_path / "far.stp"
+    path.write_text(open(EX1).read().replace("(70.000, 70.000, 0.000)", "(90000.0, 90000.0, 0.000)"))
+    status, message, written = run("stepnc", "--input", str(path))
+    refused(status, message, written, "the export gate simulates every program before writing it, and cannot on "
+                                      "this job's stock even at 1.6 mm")
+
+
+def test_a_cell_of_1e_300_is_refused_in_a_message_a_person_can_read(tmp_path):
+    nc = tmp_path / "slot.ngc"
+    nc.write_text("G21 G90\nG0 X5 Y5 Z5\nG1 Z-1 F100\nX30\nG0 Z5\nM2\n")
+    status, message, written = run("simulate", "--nc", str(nc), *SIMULATE_BOX, "--cell", "1e-300")
+    refused(status, message, written, "a 1e-300 mm cell gives 4e+301 x 4e+301 cells")
+    assert len(message) < 300, message
+
+
+@pytest.mark.parametrize("tool, named", [
+    ("flat:1e6", "diameter 1e+06 mm is outside the allowed range 0.1 <= diameter <= 100 mm"),   # ran before
+    ("ball:1e-9", "diameter 1e-09 mm is outside"),                                               # ran before
+    ("bull:200,60", "diameter 200 mm is outside"),
+])
+def test_simulate_tool_sizes_keep_to_the_one_table_of_ranges(tmp_path, tool, named):
+    nc = tmp_path / "slot.ngc"
+    nc.write_text("G21 G90\nG0 X5 Y5 Z5\nG1 Z-1 F100\nX30\nG0 Z5\nM2\n")
+    status, message, written = run("simulate", "--nc", str(nc), "--tool", tool, "--stock", "box:0,0,-10,40,40,0")
+    refused(status, message, written, f"--tool '{tool}'", named)
+
+
+@pytest.mark.parametrize("command", ["engrave", "rotary"])
+def test_a_blend_whose_unit_scale_puts_the_plate_past_100_m_is_refused_by_name(tmp_path, command):
+    """Blender allows a unit scale up to 1e9 m per unit: the sample plate then lies 1e14 mm out,
+    and Clipper raised "RuntimeError: Values exceed permitted range" (a traceback)."""
+    BATCH.load_extension()
+    from kezuri.operators import batchio, samples
+    scene = batchio.open_blend(None)
+    (samples.name_plate if command == "engrave" else samples.rotary_block)(scene)
+    scene.unit_settings.scale_length = 1e9
+    path = tmp_path / f"{command}-huge-units.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    status, message, written = run(command, "--blend", str(path))
+    refused(status, message, written, "reaches 1e+14 mm" if command == "engrave" else "reaches 5.25e+13 mm",
+            "unit scale of 1e+09 m per unit")
+
+
+PAPER_CDL = ("LINE 0, 0, 0,\n0, 30, 100, 1, 1, 1,\n0, 0, 1, 1\nLINE 0, 30, 100,\n100, 50, 100, 1, 1,\n1, 0, 0, 1, 1\n"
+             "LINE 100, 50, 100,\n100, 40, 0, 1, 1, 1,\n0, 0, 1, 1\nLINE 100, 40, 0,\n0, 0, 0, 1, 1, 1, 0,\n0, 1, 1\n")
+
+
+@pytest.mark.parametrize("name, data, named", [
+    # a CDL 1e12 mm across passed unchecked to the punch simulation ("more than 20000 hits ... pitches Q")
+    ("huge.cdl", PAPER_CDL.replace("100,", "1e12,").encode(), "corner P2 (0, 30, 1e+12) is outside the allowed range"),
+    # str.splitlines broke at the form feed: the bad record (line 10) was reported on line 11
+    ("formfeed.cdl", PAPER_CDL.replace("1, 1, 1, 0,\n0, 1, 1", "1, 1, 1, 0,\n0, 1").replace("LINE 100, 50", "\x0cLINE 100, 50")
+     .encode(), "CDL line 10: LINE record has 12 numbers"),
+])
+def test_cdl_files_are_read_by_their_own_lines_and_ranges(tmp_path, name, data, named):
+    path = tmp_path / name
+    path.write_bytes(data)
+    status, message, written = run("unfold", "--cdl", str(path))
+    refused(status, message, written, named)
+
+
+def test_a_cdl_file_with_a_utf8_byte_order_mark_is_read(tmp_path):
+    """The BOM, read as latin-1, glued itself to the first LINE word: 'found 3 LINE records'."""
+    path = tmp_path / "bom.cdl"
+    path.write_bytes(b"\xef\xbb\xbf" + PAPER_CDL.encode())
+    out = tmp_path / "out"
+    with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
+        status = BATCH.main(["batch.py", "unfold", "--cdl", str(path), "--out", str(out)])
+    assert status == 0 and (out / "unfold.nc").exists()
+
+
+def test_corners_out_of_the_panels_range_are_refused_naming_the_option():
+    status, message, written = run("unfold", "--corners", "0,0,0;0,30,100;100,50,100;1e6,40,0")
+    refused(status, message, written, "--corners: corner P4 (1e+06, 40, 0) is outside the allowed range")
+
+
+def test_a_1200_by_600_mm_sign_is_engraved_and_checked(tmp_path):
+    """A sign board of 1200 x 600 mm (the sample at 6 mm per unit): the gate's 0.1 mm grid has more
+    cells than it may hold, so nothing could be exported, from batch or the panel; now checked on
+    0.2 mm cells."""
+    BATCH.load_extension()
+    from kezuri.operators import batchio, samples
+    scene = batchio.open_blend(None)
+    samples.name_plate(scene)
+    scene.unit_settings.scale_length = 0.006
+    blend = tmp_path / "sign.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+    out = tmp_path / "out"
+    with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
+        status = BATCH.main(["batch.py", "engrave", "--blend", str(blend), "--post", "linuxcnc", "--out", str(out)])
+    assert status == 0
+    import json
+    report = json.loads((out / "report.json").read_text())
+    assert report["gate"]["cell_mm"] == 0.2 and report["gate"]["findings"] == []
+
+
+def test_c_words_without_rotary_are_refused_not_dropped(tmp_path):
+    """A program turning C, simulated without --rotary c: the C words were dropped silently and the
+    report showed only the plunge (28 mm^3 instead of a half-turn groove)."""
+    nc = tmp_path / "turns.ngc"
+    nc.write_text("G21 G90\nG0 X-10 Y0 Z5 C0\nG1 Z-1 F100\nG1 C90\nG1 C180\nG0 Z5\nM2\n")
+    status, message, written = run("simulate", "--nc", str(nc), "--tool", "flat:6", "--stock", "cylinder:20,10")
+    refused(status, message, written, f"--nc {nc}: line 4 turns the C axis; give --rotary c")
+
+
+def test_a_flat_design_with_no_stock_above_it_is_refused_naming_the_design(tmp_path):
+    """A single flat square as the design: the gate said "stock box (0, 0, 0)..(40, 30, 0) encloses
+    no volume", naming neither the design nor what to change."""
+    path = tmp_path / "plane.obj"
+    path.write_text("v 0 0 0\nv 40 0 0\nv 40 30 0\nv 0 30 0\nf 1 2 3\nf 1 3 4\n")
+    status, message, written = run("carve", "--mesh", str(path))
+    refused(status, message, written, "the design is flat (Z 0 mm everywhere)", "Stock Above in the Carve panel")

@@ -273,3 +273,53 @@ def test_the_suite_counts_its_cases():
         pytest.skip("run with the whole module to count")
     print(f"\n{COUNT['cases']} hostile operator calls")
     assert COUNT["cases"] >= 150, COUNT
+
+
+@pytest.mark.parametrize("idname", ["kezuri.engrave_generate", "kezuri.engrave_export", "kezuri.rotary_generate",
+                                    "kezuri.simulate"])
+def test_a_unit_scale_that_puts_the_plate_past_100_m_is_refused_by_name(idname, tmp_path):
+    """Blender lets Unit Scale go to 1e9 m per unit; the sample plate then lies 1e14 mm out and
+    Clipper raised "RuntimeError: Values exceed permitted range" (an internal error)."""
+    scene = workflow_scene(idname, tmp_path)
+    scene.unit_settings.scale_length = 1e9
+    objects = set(bpy.data.objects.keys())
+    message, result, stderr = call(idname, scene, tmp_path, {})
+    assert result == {"CANCELLED"} and message is not None, (idname, result)
+    assert "Traceback" not in stderr and "internal error" not in message, message
+    assert "unit scale of 1e+09 m per unit" in message and "reaches" in message, message
+    assert list(tmp_path.iterdir()) == [] and set(bpy.data.objects.keys()) == objects
+
+
+@pytest.mark.parametrize("idname", ["kezuri.engrave_export", "kezuri.sheet_export", "kezuri.elbow_export"])
+def test_blender_relative_and_empty_export_paths(idname, tmp_path):
+    """'//name' is relative to the .blend in Blender: it was taken as '/name', so an export went to
+    the file-system root (or failed there for a user without the right); an empty path wrote
+    '.nc', '.dxf', '.svg' (or '-1.nc' ...) into the working folder."""
+    name = "kezuri-hostile-relative"
+    with contextlib.redirect_stdout(io.StringIO()):
+        bpy.ops.wm.read_homefile(use_empty=True)        # a .blend never saved (an earlier test may have saved one)
+    assert bpy.data.filepath == ""
+    scene = workflow_scene(idname, tmp_path)
+    suffix = EXPORTS[idname]
+    module, op_name = idname.split(".")
+    operator = getattr(getattr(bpy.ops, module), op_name)
+    stray = [f"/{name}{end}" for end in (".nc", ".dxf", ".svg", *(f"-{k}.nc" for k in range(1, 61)))]
+    try:
+        for path, said in ((f"//{name}{suffix}", "needs the .blend saved first"), ("", "the file path is empty")):
+            with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()):
+                with pytest.raises(RuntimeError, match=said):
+                    operator(filepath=path)
+            assert not any(os.path.exists(p) for p in stray)
+        blend = tmp_path / "saved" / "job.blend"
+        blend.parent.mkdir()
+        bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+        scene = bpy.context.scene
+        with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()):
+            assert operator(filepath=f"//out/{name}{suffix}") == {"FINISHED"}
+        assert (blend.parent / "out" / f"{name}{suffix}").exists() or \
+            (blend.parent / "out" / f"{name}-1.nc").exists()
+        assert not any(os.path.exists(p) for p in stray)
+    finally:
+        for p in stray:
+            if os.path.exists(p):
+                os.remove(p)

@@ -122,15 +122,27 @@ def ball_stepover(radius: float, scallop: float) -> float:
     return 2.0 * math.sqrt(2.0 * radius * scallop - scallop * scallop)
 
 
+MAX_COORDINATE = 1.0e5   # mm: 100 m from the work zero, larger than any machine
+
+
 def check_mesh(vertices, faces) -> tuple:
     vertices = np.asarray(vertices, float)
     faces = np.asarray(faces)
-    if vertices.ndim != 2 or vertices.shape[-1] != 3 or len(vertices) < 3:
+    if vertices.ndim != 2 or vertices.shape[-1] != 3:
         raise CarveError(f"the design mesh needs (n, 3) vertices, got shape {vertices.shape}")
+    if len(vertices) < 3:
+        raise CarveError(f"the design mesh has {len(vertices)} vertices, fewer than one triangle needs (an empty or "
+                         f"unreadable mesh file?)")
     if faces.ndim != 2 or faces.shape[-1] != 3 or not len(faces):
         raise CarveError("the design mesh has no triangles")
     if not np.all(np.isfinite(vertices)):
         raise CarveError("the design mesh has a non-finite vertex")
+    reach = float(np.abs(vertices).max())
+    if reach > MAX_COORDINATE:      # 1e300 mm made the raster lines endless (a hang, not a refusal)
+        raise CarveError(f"the design mesh reaches {reach:g} mm from the work zero (more than {MAX_COORDINATE:g} mm): "
+                         f"is it in other units?")
+    if faces.size and (faces.min() < 0 or faces.max() >= len(vertices)):
+        raise CarveError(f"the design mesh has a face with a vertex index outside 0..{len(vertices) - 1}")
     size = vertices.max(axis=0) - vertices.min(axis=0)
     if size[0] <= 0 or size[1] <= 0:
         raise CarveError(f"the design mesh is flat in X or Y ({size[0]:g} x {size[1]:g} mm): nothing to carve")
@@ -235,6 +247,9 @@ def plan(vertices, faces, settings: CarveSettings | None = None, *, name: str = 
         raise CarveError(f"stock top {stock_top!r} mm is below the design's highest point {hi[2]:.3f} mm")
     bounds = (float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1]))
     bottom = float(lo[2])
+    if top <= bottom:   # a flat design with nothing above it: "stock box ... encloses no volume" from the gate
+        raise CarveError(f"the design is flat (Z {bottom:g} mm everywhere) and no stock stands above it: nothing to "
+                         f"carve (Stock Above in the Carve panel gives the stock)")
     warnings = []
     operations = []
     levels = []
@@ -289,6 +304,9 @@ def _spacing(flat: float, slope_deg: float, cap_deg: float, rho: float, r: float
     return MARGIN * flat * math.cos(math.radians(min(slope_deg, cap_deg))) * bend
 
 
+MAX_ROUGHING_MOVES = 10_000_000   # a program past this is hundreds of MB; the memory runs out first
+
+
 def _roughing(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom, clearance_z, safe_z, kernel, report):
     cutter = DropCutter(vertices, faces, s.rough_tool, allowance=s.allowance, floor=bottom, kernel=kernel,
                         mesh=mesh)
@@ -309,7 +327,7 @@ def _roughing(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom, clea
     if not levels:
         return None, []
     builder = PathBuilder(clearance_z, s.rough_feed, s.plunge_feed, surface_z=top)
-    above = top
+    above, written = top, 0
     for n, level in enumerate(levels):
         for points in dropped:
             material = points[:, 2] < above - 1e-9
@@ -319,6 +337,11 @@ def _roughing(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom, clea
             grown[1:] |= material[:-1]
             grown[:-1] |= material[1:]
             edges = np.flatnonzero(np.diff(np.concatenate([[0], grown.astype(np.int8), [0]])))
+            written += int((edges[1::2] - edges[::2]).sum())
+            if written > MAX_ROUGHING_MOVES:    # 1000 mm of stock at a 0.01 mm step down: a MemoryError
+                raise CarveError(f"the roughing would need more than {MAX_ROUGHING_MOVES} moves ({len(levels)} levels "
+                                 f"{s.step_down:g} mm apart through {top - lowest:g} mm of stock): give a larger "
+                                 f"step down or roughing stepover, or less stock above the design")
             for start, end in zip(edges[::2], edges[1::2]):
                 run = points[start:end].copy()
                 run[:, 2] = np.maximum(run[:, 2], level)

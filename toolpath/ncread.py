@@ -4,7 +4,11 @@ Strict like a control: a line it cannot follow stops the reading with the line n
 line and the reason, never a guess.
 
 What it follows: G0 G1 G2 G3 with X Y Z C I J (R is refused), G90/G91, G20/G21, G17,
-N numbers, ``%`` and ``O`` lines.  Arcs are checked as LinuxCNC checks them (its interpreter's
+N numbers, ``%`` and ``O`` lines (a ``%`` after the program's first block ends it, as on
+LinuxCNC and a Fanuc tape), comments in parentheses (a ``;`` inside is comment text) or after
+``;``, spaces anywhere in a block (``X 1 0 . 5`` is ``X10.5``, as controls read it), lines
+ended by LF, CR LF or CR (nothing else: a form feed, or U+0085 in a UTF-8 comment read as
+latin-1, is no line break).  Arcs are checked as LinuxCNC checks them (its interpreter's
 tolerances, interp_internal.hh): the end may lie off the start's circle by at most
 0.02*sqrt(2) mm (0.002*sqrt(2) inch under G20) unless that is also within 0.1 % of the radius,
 and never by more than 100 times that; a radius under 0.00127 mm (I0 J0) is refused.
@@ -13,7 +17,8 @@ What it deliberately ignores, because it does not change where the tool goes (fe
 coolant, pauses, tool length offsets, work offsets, path blending, comments ...), is listed in
 the result's ``ignored`` (:class:`NCRead`), so a report can say so.  Everything else (G92
 offsets, G68 rotation, G38 probing, G81..G89 canned cycles, G41/G42 cutter compensation,
-other planes, macros, unknown M codes, words it does not know, malformed numbers such as
+other planes, macros, block delete ``/`` (whether the line runs depends on the control's switch),
+two codes of one modal group in a block (G90 G91), unknown M codes, words it does not know, malformed numbers such as
 ``XNAN``, ``X-``, ``X1.2.3``, ``X2E1``) is refused.
 """
 from __future__ import annotations
@@ -30,6 +35,7 @@ from .tools import SHAPES
 NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)")
 _VALUE = re.compile(r"\s*([-+]?[0-9.]*)")
 _END_CODES = ("M2", "M30")
+_LINE_BREAK = re.compile(r"\r\n|\r|\n")
 
 # LinuxCNC's arc tolerances (interp_internal.hh), program units
 ARC_TOLERANCE_MM = 2 * 0.01 * math.sqrt(2)       # CENTER_ARC_RADIUS_TOLERANCE_MM
@@ -120,6 +126,12 @@ def _code(letter: str, value: str) -> str:
     return f"{letter}{int(number)}" if number.is_integer() else f"{letter}{f'{number:.4f}'.rstrip('0')}"
 
 
+def _shown(raw: str) -> str:
+    """The line as a message quotes it: at most 120 characters (a 1 MB block stayed one line of 1 MB)."""
+    text = raw.strip()
+    return repr(text if len(text) <= 120 else text[:117] + "...")
+
+
 def _words(line: str, number: int, raw: str) -> list:
     """[(letter, text of the number)] of one block; malformed words raise NCReadError."""
     words, i = [], 0
@@ -130,39 +142,52 @@ def _words(line: str, number: int, raw: str) -> list:
         letter = line[i]
         if not ("A" <= letter <= "Z"):
             raise NCReadError(f"line {number}: {line[i:i + 12]!r} is not a word (a letter and a number) in "
-                              f"{raw.strip()!r}")
+                              f"{_shown(raw)}")
         match = _VALUE.match(line, i + 1)
         text, end = match.group(1), match.end()
         if not text:
             after = line[end:end + 8].strip()
             if after:
                 raise NCReadError(f"line {number}: {letter} is not followed by a number (found {after!r}) in "
-                                  f"{raw.strip()!r}")
-            raise NCReadError(f"line {number}: {letter} is not followed by a number in {raw.strip()!r}")
+                                  f"{_shown(raw)}")
+            raise NCReadError(f"line {number}: {letter} is not followed by a number in {_shown(raw)}")
         if not NUMBER.fullmatch(text):
-            raise NCReadError(f"line {number}: {letter}{text} is not a number G-code can have in {raw.strip()!r}")
+            raise NCReadError(f"line {number}: {letter}{text} is not a number G-code can have in {_shown(raw)}")
         if end < len(line) and line[end] == "E" and end + 1 < len(line) and line[end + 1] in "0123456789+-":
             raise NCReadError(f"line {number}: {letter}{text}E...: exponents are not allowed in G-code numbers, "
-                              f"in {raw.strip()!r}")
+                              f"in {_shown(raw)}")
         if not math.isfinite(float(text)):
-            raise NCReadError(f"line {number}: {letter}{text} is out of range in {raw.strip()!r}")
+            raise NCReadError(f"line {number}: {letter}{text} is out of range in {_shown(raw)}")
         words.append((letter, text))
         i = end
     return words
 
 
 def _strip_comments(raw: str, number: int, comments: list) -> str:
-    """The line without its comments (parentheses, or from ``;``), upper case."""
-    body = raw.split(";")[0]
-    if ";" in raw:
+    """The line without its comments, upper case: a comment runs from ``(`` to the next ``)``
+    (a ``;`` inside it is comment text), or from a ``;`` outside parentheses to the end of the
+    line.  Spaces and tabs are taken out, as LinuxCNC and Fanuc controls do (``X 1 0 . 5`` is
+    ``X10.5``)."""
+    kept, i, commented = [], 0, False
+    while i < len(raw):
+        char = raw[i]
+        if char == "(":
+            close = raw.find(")", i + 1)
+            if close < 0 or "(" in raw[i + 1:close]:
+                raise NCReadError(f"line {number}: unbalanced or nested parenthesis in {_shown(raw)}")
+            commented, i = True, close + 1
+            continue
+        if char == ")":
+            raise NCReadError(f"line {number}: unbalanced or nested parenthesis in {_shown(raw)}")
+        if char == ";":
+            commented = True
+            break
+        if char not in " \t":
+            kept.append(char)
+        i += 1
+    if commented:
         comments.append(number)
-    found = re.findall(r"\([^()]*\)", body)
-    if found:
-        comments.append(number)
-    line = re.sub(r"\([^()]*\)", " ", body)
-    if "(" in line or ")" in line:
-        raise NCReadError(f"line {number}: unbalanced or nested parenthesis in {raw.strip()!r}")
-    return line.strip().upper()
+    return "".join(kept).strip().upper()
 
 
 def _check_arc(number: int, raw: str, start, end, centre, inch: bool) -> None:
@@ -172,13 +197,13 @@ def _check_arc(number: int, raw: str, start, end, centre, inch: bool) -> None:
     scale = 25.4 if inch else 1.0
     if r1 < MIN_ARC_RADIUS_INCH * 25.4 or r2 < MIN_ARC_RADIUS_INCH * 25.4:
         raise NCReadError(f"line {number}: the arc has no radius (its centre is its start or end point) in "
-                          f"{raw.strip()!r}")
+                          f"{_shown(raw)}")
     tolerance = (ARC_TOLERANCE_INCH if inch else ARC_TOLERANCE_MM) * scale
     error = abs(r1 - r2)
     if error > 100 * tolerance or (error > tolerance and error / max(r1, r2) > ARC_RELATIVE_TOLERANCE):
         raise NCReadError(f"line {number}: the arc's end lies {error:.4f} mm off its circle (radius {r1:.4f} mm "
                           f"at the start, {r2:.4f} mm at the end; LinuxCNC allows {tolerance:.4f} mm) in "
-                          f"{raw.strip()!r}")
+                          f"{_shown(raw)}")
 
 
 def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
@@ -198,30 +223,47 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
         entry = ignored.setdefault(code, {"code": code, "meaning": meaning, "count": 0, "first_line": number})
         entry["count"] += 1
 
-    for number, raw in enumerate(text.splitlines(), start=1):
+    started = False
+    # lines end at LF, CR LF or CR only: str.splitlines would also break at form feeds and at
+    # U+0085, a byte of many UTF-8 kanji read as latin-1 (工 of 工具 in a comment), and shift the numbers
+    for number, raw in enumerate(_LINE_BREAK.split(text), start=1):
         line = _strip_comments(raw, number, comments)
-        if not line or line.startswith("%") or re.fullmatch(r"O\d+", line.replace(" ", "")):
+        if line.startswith("%"):
+            if started:     # the closing %: the end of the program (LinuxCNC, and the end of the tape on a Fanuc)
+                break
             continue
+        if not line:
+            continue
+        started = True
+        if re.fullmatch(r"O\d+", line):
+            continue
+        if line.startswith("/"):
+            raise NCReadError(f"line {number}: a block delete '/' is not followed (whether the control skips the "
+                              f"line depends on its Block Delete switch): {_shown(raw)}")
         words = _words(line, number, raw)
         if words and words[0][0] == "N":
             if not words[0][1].isdigit():
-                raise NCReadError(f"line {number}: N{words[0][1]} is not a sequence number in {raw.strip()!r}")
+                raise NCReadError(f"line {number}: N{words[0][1]} is not a sequence number in {_shown(raw)}")
             words = words[1:]
         values, codes = {}, []
         for letter, value in words:
             if letter in "GM":
                 codes.append(_code(letter, value))
             elif letter in values:
-                raise NCReadError(f"line {number}: {letter} is given twice in {raw.strip()!r}")
+                raise NCReadError(f"line {number}: {letter} is given twice in {_shown(raw)}")
             else:
                 values[letter] = float(value)
         motions = [c for c in codes if c in MOTION]
         if len(motions) > 1:
-            raise NCReadError(f"line {number}: {' and '.join(motions)} are both motions in {raw.strip()!r}")
+            raise NCReadError(f"line {number}: {' and '.join(motions)} are both motions in {_shown(raw)}")
+        for group in (("G90", "G91"), ("G20", "G21")):
+            if all(code in codes for code in group):
+                raise NCReadError(f"line {number}: {group[0]} and {group[1]} are in one modal group, so one block "
+                                  f"cannot have both: {_shown(raw)}")
         home = False
         for code in codes:
             if code in REFUSED:
-                raise NCReadError(f"line {number}: {code} {REFUSED[code]}: {raw.strip()!r}")
+                raise NCReadError(f"line {number}: {code} {REFUSED[code]}: {_shown(raw)}")
             if code in MOTION:
                 mode = MOTION[code]
             elif code == "G90":
@@ -239,7 +281,7 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             elif code in IGNORED_CODES:
                 ignore(code, IGNORED_CODES[code], number)
             else:
-                raise NCReadError(f"line {number}: {code} is not a code this reader knows: {raw.strip()!r}")
+                raise NCReadError(f"line {number}: {code} is not a code this reader knows: {_shown(raw)}")
         for letter in values:
             if letter in AXES or letter in "IJ":
                 continue
@@ -248,9 +290,9 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             elif letter == "P" and any(c in ("G4", "G64") for c in codes):
                 continue
             elif letter == "R" and mode in (2, 3) and not home:
-                raise NCReadError(f"line {number}: R-format arcs are not supported; use I and J: {raw.strip()!r}")
+                raise NCReadError(f"line {number}: R-format arcs are not supported; use I and J: {_shown(raw)}")
             else:
-                raise NCReadError(f"line {number}: the {letter} word is not supported here: {raw.strip()!r}")
+                raise NCReadError(f"line {number}: the {letter} word is not supported here: {_shown(raw)}")
         ends = [c for c in codes if c in _END_CODES]
         axes = [a for a in AXES if a in values]
         if home:
@@ -258,21 +300,21 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             # followed (G91 G28 Z0), and home itself is not known: the tool stays put.
             if absolute or any(values[a] != 0 for a in axes):
                 raise NCReadError(f"line {number}: G28 is followed only as G91 G28 with zero words (home is not "
-                                  f"known to the reader): {raw.strip()!r}")
+                                  f"known to the reader): {_shown(raw)}")
             ignore("G28", "return to the reference point (not simulated: the tool is taken to stay put)", number)
             if ends:
                 break
             continue
         if ("I" in values or "J" in values) and (mode not in (2, 3) or not axes):
-            raise NCReadError(f"line {number}: I or J without an arc move in {raw.strip()!r}")
+            raise NCReadError(f"line {number}: I or J without an arc move in {_shown(raw)}")
         if axes:
             if mode is None:
-                raise NCReadError(f"line {number}: a move before any G0/G1/G2/G3: {raw.strip()!r}")
+                raise NCReadError(f"line {number}: a move before any G0/G1/G2/G3: {_shown(raw)}")
             if not absolute and not kinds:
                 unknown = [a for a in axes if a not in known]
                 if unknown:
                     raise NCReadError(f"line {number}: an incremental (G91) move before any absolute position of "
-                                      f"{', '.join(unknown)}: {raw.strip()!r}")
+                                      f"{', '.join(unknown)}: {_shown(raw)}")
             before = dict(position)
             for axis in axes:
                 value = values[axis] * (scale if axis != "C" else 1.0)
@@ -281,10 +323,10 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             centre = (np.nan, np.nan, np.nan)
             if kind in (ARC_CW, ARC_CCW):
                 if "I" not in values and "J" not in values:
-                    raise NCReadError(f"line {number}: an arc needs I and J: {raw.strip()!r}")
+                    raise NCReadError(f"line {number}: an arc needs I and J: {_shown(raw)}")
                 if not kinds:
                     raise NCReadError(f"line {number}: an arc before the tool's XY position is known: "
-                                      f"{raw.strip()!r}")
+                                      f"{_shown(raw)}")
                 centre = (before["X"] + values.get("I", 0.0) * scale, before["Y"] + values.get("J", 0.0) * scale,
                           position["Z"])
                 _check_arc(number, raw, (before["X"], before["Y"]), (position["X"], position["Y"]), centre,

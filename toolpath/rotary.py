@@ -270,6 +270,9 @@ def _safe_links(geo: _Geometry, a: np.ndarray, b: np.ndarray, margin: float) -> 
     return top <= -margin
 
 
+MAX_PATH_POINTS = 5_000_000   # a pocket's path past this runs out of memory in the C unwrapping
+
+
 def _pocket_operation(geo: _Geometry, settings: RotarySettings, start_c):
     """Build one pocket's moves in the part frame, then convert them to C-X-Z."""
     rough = _roughing(geo, settings)
@@ -279,6 +282,11 @@ def _pocket_operation(geo: _Geometry, settings: RotarySettings, start_c):
                           settings.approach_gap)
     offset = np.array([geo.centre[0], geo.centre[1], -geo.r])
     chains = [c for _, c in rough] + [c for _, c in wall] + bottom
+    points = sum(len(c) for c in chains)
+    if points > MAX_PATH_POINTS:    # Spacing and Step Down both 0.01 (in range): a MemoryError in unwrapping C
+        raise RotaryError(f"pocket {geo.name!r}: the toolpath would have {points} points (more than "
+                          f"{MAX_PATH_POINTS}) at a spacing of {settings.spacing:g} mm and a step down of "
+                          f"{settings.step_down:g} mm: give a coarser spacing or step down")
     for k in range(1, len(chains)):
         chains[k] = _start_nearest(chains[k], chains[k - 1][-1])
     ends = np.array([c[-1] for c in chains[:-1]]).reshape(-1, 3)

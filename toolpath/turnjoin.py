@@ -12,6 +12,30 @@ import math
 
 import numpy as np
 
+from .program import TurnMillError
+
+MAX_BALL_POSITIONS = 5_000_000     # roughing copies of the passes: past this the memory runs out first
+
+
+def _counted(total: list, more: int, direction: str, layers: int, step: float, stock, vertices) -> None:
+    """Count ``more`` tool positions into ``total`` ([finishing, roughing]: layer 0 is finishing),
+    refused past :data:`MAX_BALL_POSITIONS` naming the cause: the stock's excess over the part for
+    roughing (a bar 10 m above the part: 24 GB, then killed), the fineness for finishing."""
+    total[layers > 0] += more
+    if total[layers > 0] <= MAX_BALL_POSITIONS:
+        return
+    if layers == 0:     # the finishing layer alone: the tolerance and spacing, not the stock
+        raise TurnMillError(f"the {direction} finishing alone would need more than {MAX_BALL_POSITIONS} tool "
+                            f"positions: give a coarser tolerance or sample spacing")
+    if direction == "radial":
+        why = (f"the stock's radius {stock.radius:g} mm stands up to "
+               f"{stock.radius - float(np.hypot(vertices[:, 0], vertices[:, 1]).min()):g} mm outside the part")
+    else:
+        above = stock.z_max - float(vertices[:, 2].max())
+        why = f"the stock's end face Z {stock.z_max:g} stands {above:g} mm above the part"
+    raise TurnMillError(f"the {direction} roughing would need more than {MAX_BALL_POSITIONS} tool positions "
+                        f"({layers} layers of {step:g} mm so far): {why}; give a stock closer to the part")
+
 
 class TurnMillCancelled(Exception):
     """The progress callback asked to stop."""

@@ -78,8 +78,8 @@ from .meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEng
                        face_normals, face_samples)
 from .program import (FEED, RAPID, TOOL_DIRECTIONS, Program, Tool, TurnMillError, TurnMillOperation,
                       merge_short_moves)
-from .turnjoin import (TurnMillCancelled, _join, _join_layers, _link_clear, _short_segments,  # noqa: F401
-                       _subdivide)
+from .turnjoin import (MAX_BALL_POSITIONS, TurnMillCancelled, _counted, _join, _join_layers,  # noqa: F401
+                       _link_clear, _short_segments, _subdivide)
 
 NEITHER, RADIAL, AXIAL, BOTH = 0, 1, 2, 3      # face labels: bit 1 = radial, bit 2 = axial
 LABEL_NAMES = ("neither", "radial", "axial", "both")
@@ -441,7 +441,7 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
     levels = zlo.min() + (np.arange(count) + 0.5) * spacing
     every = max(1, round(step / spacing))
     max_layers = math.ceil(2 * (stock.radius + r) / step) + 1
-    layer_of, polylines, closed_flags, shifts = [], [], [], []
+    layer_of, polylines, closed_flags, shifts, total = [], [], [], [], [0, 0]
     for number, z in enumerate(levels[::-1]):
         for points, seg_normals, closed in _sections(v, sub, normals, zlo, zhi, z):
             centres, centre_normals = _offset_section(points, seg_normals, closed, r, settings.max_turn)
@@ -455,6 +455,7 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
                 layer = centres + k * step * outward
                 if not np.any(stock.distance(layer) < r - tol):
                     break
+                _counted(total, len(layer), "radial", k, step, stock, v)
                 layer_of.append(k)
                 polylines.append(layer)
                 closed_flags.append(closed)
@@ -614,12 +615,13 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
     finishing = [p for group in _components(f, ids) for p in _grid_passes(v, f[group], surface, stock, settings)]
     if not finishing:
         return []
-    layer_of, copies = [], []
+    layer_of, copies, total = [], [], [0, 0]
     for k in itertools.count(1):
         lifted = [p + np.array([0.0, 0.0, k * settings.roughing_step]) for p in finishing]
         touching = [c for c in lifted if np.any(stock.distance(c) < r - tol)]
         if not touching:
             break
+        _counted(total, sum(len(c) for c in touching), "axial", k, settings.roughing_step, stock, v)
         layer_of += [k] * len(touching)
         copies += touching
     layers: dict = {0: finishing}

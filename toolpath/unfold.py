@@ -127,7 +127,9 @@ def read_cdl(text: str, tol: float = 1e-6) -> np.ndarray:
     """
     tol = _check_positive(tol, "CDL joint tolerance")
     records = []  # [word, line number, numbers]
-    for line_no, line in enumerate(text.splitlines(), start=1):
+    # lines end at LF, CR LF or CR: str.splitlines also broke at form feeds and U+0085 (a byte of
+    # latin-1 text), so the line numbers of the messages ran ahead of the file's
+    for line_no, line in enumerate(re.split(r"\r\n|\r|\n", text), start=1):
         for token in _CDL_TOKEN.findall(line):
             try:
                 value = float(token)

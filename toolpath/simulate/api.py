@@ -17,7 +17,7 @@ from .checks import (_design_heights, _findings, _floor_findings, _spindle_findi
 from .heightfield import _compiled_kernels, _grid, _Simulation
 from .paths import _chains, _operations, can_plunge
 from .stock import (ENGINES, GOUGE_TOLERANCE, MAX_CELLS, TOUCH_TOLERANCE, CylinderStock, Finding, HeightField,
-                    SimulationCancelled, SimulationError, SimulationResult, _solid_of, _stock_box, _stock_solid,
+                    CellError, CellTooFine, SimulationCancelled, SimulationError, SimulationResult, _solid_of, _stock_box, _stock_solid,
                     as_stock)
 
 MIN_CELLS_ACROSS = 4       # a cell coarser than a quarter of the stock's smaller side means nothing
@@ -117,7 +117,7 @@ def _check_cell(stock, cell: float) -> None:
     coarsest = side / MIN_CELLS_ACROSS
     if cell > coarsest:
         finest = math.sqrt((x1 - x0) * (y1 - y0) / MAX_CELLS)
-        raise SimulationError(f"cell {cell:g} mm is too coarse for a stock {side:g} mm across (fewer than "
+        raise CellError(f"cell {cell:g} mm is too coarse for a stock {side:g} mm across (fewer than "
                               f"{MIN_CELLS_ACROSS} cells): give a cell from {finest:.3g} to {coarsest:.3g} mm")
 
 
@@ -165,7 +165,7 @@ def _radius_map_cut(ops, radial, stock: CylinderStock, cell: float, tolerance: f
     """The radial turn-mill operations on a radius map: (map, findings)."""
     dexels = math.ceil(2 * math.pi * stock.radius / cell) * math.ceil(stock.height / cell)
     if dexels > MAX_CELLS:
-        raise SimulationError(f"a {cell} mm cell gives {dexels} dexels round the bar (more than {MAX_CELLS}); "
+        raise CellTooFine(f"a {cell} mm cell gives {dexels} dexels round the bar (more than {MAX_CELLS}); "
                               "use a coarser cell")
     rm = rmap.grid(stock.radius, stock.bottom, stock.top, cell)
     total = sum(len(op) for op, r in zip(ops, radial) if r)

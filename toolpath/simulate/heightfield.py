@@ -11,7 +11,7 @@ from ..compiled import kernel_module
 from .families import _columns, _Family, _families
 from .paths import _Chain
 from .stock import (MAX_CELLS, TOUCH_TOLERANCE, BoxStock, CylinderStock, HeightField,
-                    SimulationCancelled, SimulationError)
+                    CellTooFine, SimulationCancelled, SimulationError)
 
 _PAIR_BATCH = 32768        # (item, grid column) pairs per numpy batch
 _CELL_CHUNK = 1 << 17      # cells per evaluation chunk, in reused buffers
@@ -26,9 +26,9 @@ def _grid(stock, cell: float) -> HeightField:
         x1 = y1 = stock.radius
     nx = max(1, math.ceil((x1 - x0) / cell - 1e-9))
     ny = max(1, math.ceil((y1 - y0) / cell - 1e-9))
-    if nx * ny > MAX_CELLS:
-        raise SimulationError(f"a {cell} mm cell gives {nx} x {ny} cells over the stock (more than {MAX_CELLS}); "
-                         "use a coarser cell")
+    if nx * ny > MAX_CELLS:     # counts as :.4g: a 1e-300 mm cell gave a message of 600 digits
+        raise CellTooFine(f"a {cell:g} mm cell gives {nx:.4g} x {ny:.4g} cells over the stock (more than "
+                              f"{MAX_CELLS}); use a coarser cell")
     hf = HeightField(x0, y0, (x1 - x0) / nx, (y1 - y0) / ny, np.full((nx, ny), stock.top, np.float32),
                      np.ones((nx, ny), bool), stock.top, stock.bottom)
     if getattr(stock, "surface", None):

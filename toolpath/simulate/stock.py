@@ -23,6 +23,14 @@ class SimulationError(InputError):
     """A stock, design or setting the simulation cannot use."""
 
 
+class CellError(SimulationError):
+    """The cell does not suit the stock (too fine for the memory, too coarse to mean anything)."""
+
+
+class CellTooFine(CellError):
+    """More cells than the memory allows (:data:`MAX_CELLS`): a coarser cell would do."""
+
+
 class SimulationCancelled(Exception):
     """The progress callback asked to stop."""
 

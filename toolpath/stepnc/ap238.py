@@ -28,6 +28,7 @@ in m/s and spindle speeds in rev/s as ISO 14649 has them (a unit per minute is c
 """
 from __future__ import annotations
 
+import math
 from collections import defaultdict
 
 from .model import StepNcError
@@ -69,8 +70,11 @@ WORDS = {"left": "LEFT", "right": "RIGHT", "clockwise": "CW", "counterclockwise"
          "degouge": "DEGOUGE", "loop back": "LOOP_BACK"}
 GEOMETRY = ("AXIS2_PLACEMENT_3D", "CARTESIAN_POINT", "DIRECTION", "PLANE", "POLYLINE", "CIRCLE", "TRIMMED_CURVE",
             "COMPOSITE_CURVE", "LINE", "B_SPLINE_CURVE_WITH_KNOTS")
-# length units: SI prefix -> mm per unit
-PREFIX_MM = {None: 1000.0, "MILLI": 1.0, "CENTI": 10.0, "DECI": 100.0, "KILO": 1.0e6, "MICRO": 1.0e-3}
+# length units: SI prefix -> power of ten; conversion-based units known by name -> mm
+SI_PREFIX_EXPONENT = {"EXA": 18, "PETA": 15, "TERA": 12, "GIGA": 9, "MEGA": 6, "KILO": 3, "HECTO": 2, "DECA": 1,
+                      "DECI": -1, "CENTI": -2, "MILLI": -3, "MICRO": -6, "NANO": -9, "PICO": -12, "FEMTO": -15,
+                      "ATTO": -18}     # ISO 10303-41 si_prefix
+NAMED_LENGTH_MM = {"inch": 25.4, "foot": 304.8, "millimetre": 1.0, "metre": 1000.0}
 
 
 def is_ap238(part21: Part21File) -> bool:
@@ -195,17 +199,42 @@ class _Aim:
             return None
         return value * self.length_factor(unit)
 
-    def length_factor(self, unit) -> float:
+    def length_factor(self, unit, seen: tuple = ()) -> float:
+        """Millimetres per unit of a length measure's unit: an SI_UNIT of metres with any SI prefix,
+        or a CONVERSION_BASED_UNIT by its conversion factor (or, without one, its name: inch,
+        foot, millimetre, metre).  A length unit it cannot convert is refused naming the instance:
+        before, a yard, a nanometre or a prefix it did not know was read as a millimetre."""
         if not isinstance(unit, Ref) or unit.id not in self.part21.instances:
             return 1.0
         target = self.part21.instances[unit.id]
         if "SI_UNIT" in target.type_names:
             prefix, name = _params(target, "SI_UNIT")[:2]
-            if isinstance(name, Enum) and name.name == "METRE":
-                return PREFIX_MM.get(prefix.name if isinstance(prefix, Enum) else None, 1.0)
+            name = name.name if isinstance(name, Enum) else str(name)
+            if name != "METRE":
+                if "LENGTH_UNIT" in target.type_names:
+                    raise StepNcError(f"#{target.id} SI_UNIT: a length unit in {name}, not in metres")
+                return 1.0
+            if not isinstance(prefix, Enum):
+                return 1000.0
+            if prefix.name not in SI_PREFIX_EXPONENT:
+                raise StepNcError(f"#{target.id} SI_UNIT: {prefix.name} is not an SI prefix")
+            return 1000.0 * 10.0 ** SI_PREFIX_EXPONENT[prefix.name]
         if "CONVERSION_BASED_UNIT" in target.type_names:
-            name = str(_params(target, "CONVERSION_BASED_UNIT")[0]).lower()
-            return {"inch": 25.4, "foot": 304.8, "millimetre": 1.0, "metre": 1000.0}.get(name, 1.0)
+            name, factor = (_params(target, "CONVERSION_BASED_UNIT") + [UNSET, UNSET])[:2]
+            if target.id in seen:
+                raise StepNcError(f"#{target.id} CONVERSION_BASED_UNIT '{name}': its conversion factor is given in "
+                                  f"itself")
+            measure = self.part21.instances.get(getattr(factor, "id", None))
+            value = _measure(measure) if measure is not None else (None, None)
+            if value[0] is not None:
+                mm = value[0] * self.length_factor(value[1], seen + (target.id,))
+                if not (math.isfinite(mm) and mm > 0):
+                    raise StepNcError(f"#{target.id} CONVERSION_BASED_UNIT '{name}': a length unit of {mm:g} mm")
+                return mm
+            if str(name).lower() in NAMED_LENGTH_MM:
+                return NAMED_LENGTH_MM[str(name).lower()]
+            raise StepNcError(f"#{target.id} CONVERSION_BASED_UNIT '{name}': no conversion factor, and not a unit "
+                              f"Kezuri knows by name ({', '.join(NAMED_LENGTH_MM)})")
         return 1.0
 
     def per_second(self, unit) -> float:

@@ -384,7 +384,9 @@ class _Parser:
         if text.startswith("\ufeff"):
             text = text[1:]
         self.text = text
-        self.newlines = [m.start() for m in re.finditer("\n", text)]
+        # the last character of each line break: LF, CR LF, or a CR alone (a file with CR line
+        # ends was all "line 1, column 3929")
+        self.newlines = [m.end() - 1 for m in re.finditer("\r\n|\r|\n", text)]
         pairs = _SCAN_RE.findall(text)
         while pairs and pairs[-1][1] == "":
             pairs.pop()

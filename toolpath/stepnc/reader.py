@@ -176,6 +176,10 @@ class _Reader:
                 or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values)):
             raise StepNcError(f"#{inst.id} {inst.type_name}: attribute {name} must be 1 to 3 numbers, "
                               f"found {values!r}")
+        for value in values:    # 1.0E999 reads as inf; 1.0E300 mm is a mistyped exponent, not a part
+            if not math.isfinite(value) or (name == "coordinates" and abs(value) > MAX_LENGTH):
+                raise StepNcError(f"#{inst.id} {inst.type_name}: {name} {value:g} is not a coordinate (at most "
+                                  f"{MAX_LENGTH:g} mm from the origin)")
         return tuple(float(v) for v in values) + (0.0,) * (3 - len(values))
 
     def placement(self, inst, index, name, optional=False) -> Placement | None:
@@ -300,8 +304,11 @@ class _Reader:
         def convert(t):
             placement = self.placement(t, 0, "placement", optional=True)
             if t.type_name == "RECTANGULAR_CLOSED_PROFILE":
-                return RectangularClosedProfile(t.id, placement, self.length(t, 1, "profile_width"),
-                                                self.length(t, 2, "profile_length"))
+                width, length = self.length(t, 1, "profile_width"), self.length(t, 2, "profile_length")
+                for name, size in (("profile_width", width), ("profile_length", length)):
+                    if size < 0:    # before: taken as its size without a word
+                        raise StepNcError(f"#{t.id} RECTANGULAR_CLOSED_PROFILE: {name} {size:g} mm is negative")
+                return RectangularClosedProfile(t.id, placement, width, length)
             return GeneralClosedProfile(t.id, placement, self.curve(t, 1, "closed_profile_shape"))
         return self.memoised(target, convert)
 
