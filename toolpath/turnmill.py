@@ -78,7 +78,7 @@ from .meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEng
                        face_normals, face_samples)
 from .program import (FEED, RAPID, TOOL_DIRECTIONS, Program, Tool, TurnMillError, TurnMillOperation,
                       merge_short_moves)
-from .turnjoin import (MAX_BALL_POSITIONS, TurnMillCancelled, _counted, _join, _join_layers,  # noqa: F401
+from .turnjoin import (CHORD_DIP, MAX_BALL_POSITIONS, TurnMillCancelled, _counted, _join, _join_layers,  # noqa: F401
                        _link_clear, _short_segments, _subdivide)
 
 NEITHER, RADIAL, AXIAL, BOTH = 0, 1, 2, 3      # face labels: bit 1 = radial, bit 2 = axial
@@ -594,7 +594,11 @@ def _grid_passes(v, faces, surface, stock, settings) -> list:
         centres[touching], clear = _clear_ball(surface, centres[touching], r, tol / 10)
         occupied[touching] = clear & (stock.distance(centres[touching]) < r - tol)
     grid = centres.reshape(ns, nw, 3)
-    return [_dedupe(np.array([grid[c] for c in path])) for path in chain_cells(occupied.reshape(ns, nw))]
+    paths = [_dedupe(np.array([grid[c] for c in path])) for path in chain_cells(occupied.reshape(ns, nw))]
+    # cells a stepover apart across lie further apart along a slope: chords cut convex edges (a sphere's)
+    pieces = _short_segments(paths, settings.pick_feed, PUSH_ITERATIONS,
+                             lambda points: _clear_ball(surface, points, r, tol / 10))
+    return [piece for group in pieces for piece in group]
 
 
 def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings, progress=None) -> list:
@@ -684,7 +688,7 @@ def _operation(name, direction, layers, stock, settings) -> TurnMillOperation | 
     op = TurnMillOperation(name, settings.tool(direction), settings.spindle_rpm, np.concatenate(kind), xyz,
                            np.concatenate(feed), rotary={"c": c}, clearance_z=z_clear, safe_z=z_clear,
                            start=np.array([x_clear, 0.0, z_clear]), direction=direction)
-    return merge_short_moves(op, settings.tolerance)   # no block shorter than a control can time
+    return merge_short_moves(op, min(settings.tolerance, CHORD_DIP))    # no dip deeper than a chord's
 
 
 @dataclass
