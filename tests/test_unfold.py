@@ -446,3 +446,31 @@ def test_elbow_rejects_bad_input():
 def test_three_collinear_corners_are_refused():
     with pytest.raises(UnfoldError, match="P1, P2 and P3 are collinear"):
         unfold_twisted_quad([[0, 0, 0], [10, 0, 0], [20, 0, 0], [0, 10, 5]], 5)
+
+
+@pytest.mark.parametrize("corners, edges", [
+    ([[0, 0, 0], [100, 50, 0], [100, 0, 0], [0, 50, 0]], "P1-P2 and P3-P4"),      # a planar bow tie
+    ([[0, 0, 0], [0, 50, 0], [100, 0, 0], [100, 50, 0]], "P2-P3 and P4-P1"),
+    ([[0, 0, 0], [100, 50, 1], [100, 0, 0], [0, 50, 1]], "P1-P2 and P3-P4"),      # crossing at (50, 25, 0.5)
+])
+def test_a_quad_whose_edges_cross_is_refused(corners, edges):
+    """Corners not in order round the quad make opposite edges meet: a bow tie, whose strips fold
+    over each other, is no sheet (it used to unfold into a plausible pattern, exit 0)."""
+    with pytest.raises(UnfoldError, match=f"edges {edges} cross: give the corners in order round the quad"):
+        unfold_twisted_quad(corners, 5)
+
+
+def test_the_segment_gap_is_the_closest_approach():
+    """_segment_gap against dense sampling of both segments, on random pairs (parallel ones too)."""
+    from kezuri.toolpath.unfold import _segment_gap
+    rng = np.random.default_rng(5)
+    t = np.linspace(0, 1, 401)
+    for k in range(60):
+        p0, p1, q0 = rng.normal(size=(3, 3)) * 10
+        q1 = q0 + (p1 - p0) * rng.uniform(-2, 2) if k % 10 == 0 else rng.normal(size=3) * 10
+        a = p0 + t[:, None] * (p1 - p0)
+        b = q0 + t[:, None] * (q1 - q0)
+        sampled = np.linalg.norm(a[:, None] - b[None], axis=2).min()
+        gap = _segment_gap(p0, p1, q0, q1)
+        step = (np.linalg.norm(p1 - p0) + np.linalg.norm(q1 - q0)) / 400     # the samples' spacing, both
+        assert gap <= sampled + 1e-9 and sampled - gap < step

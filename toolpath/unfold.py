@@ -85,7 +85,28 @@ def _check_corners(corners) -> np.ndarray:
             before, here, after = (i - 1) % 4 + 1, i + 1, (i + 1) % 4 + 1
             raise UnfoldError(f"corners P{before}, P{here} and P{after} are collinear: the edges meeting at "
                               f"P{here} lie on one straight line")
+    # Opposite edges that meet make a bow tie, not a sheet: the corners are not in order round it.
+    for i, j in ((0, 2), (1, 3)):
+        gap = _segment_gap(pts[i], pts[(i + 1) % 4], pts[j], pts[(j + 1) % 4])
+        if gap <= 1e-6 * scale:
+            raise UnfoldError(f"edges P{i + 1}-P{i + 2} and P{j + 1}-P{(j + 1) % 4 + 1} cross: give the corners "
+                              f"in order round the quad")
     return pts
+
+
+def _segment_gap(p0, p1, q0, q1) -> float:
+    """The shortest distance between the segments p0-p1 and q0-q1 in space (the closest points
+    of the two lines, each clamped to its segment, the other then re-projected)."""
+    d1, d2, r = p1 - p0, q1 - q0, p0 - q0
+    a, e, f = float(d1 @ d1), float(d2 @ d2), float(d2 @ r)
+    c, b = float(d1 @ r), float(d1 @ d2)
+    denom = a * e - b * b
+    s = min(max((b * f - c * e) / denom, 0.0), 1.0) if denom > 1e-12 * a * e else 0.0
+    t = (b * s + f) / e
+    if t < 0.0 or t > 1.0:
+        t = min(max(t, 0.0), 1.0)
+        s = min(max((b * t - c) / a, 0.0), 1.0)
+    return float(np.linalg.norm(p0 + d1 * s - (q0 + d2 * t)))
 
 
 def _check_rail(rail, what: str) -> np.ndarray:
