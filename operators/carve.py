@@ -50,6 +50,7 @@ class CarveJob:
 
 def settings_from(props) -> core.CarveSettings:
     check_group(props, "carve")
+    props = convert.Typed(props)
     return core.CarveSettings(
         rough_tool=Tool(props.rough_tool_number, "flat", props.rough_diameter, name="roughing"),
         finish_tool=Tool(props.finish_tool_number, "ball", props.finish_diameter, name="finishing"),

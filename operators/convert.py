@@ -23,6 +23,23 @@ class SceneInputError(InputError):
 MAX_REACH_MM = 1.0e5   # 100 m: no machine reaches further; past it, a unit scale is wrong
 
 
+def typed(value):
+    """A float setting as the user typed it.  Blender keeps floats in single precision (0.1 reads
+    back as 0.10000000149011612); the shortest decimal that single precision rounds to the same
+    number is the one typed, and the one messages should name.  Other values pass unchanged."""
+    return float(str(np.float32(value))) if isinstance(value, float) else value
+
+
+class Typed:
+    """A property group's values read through :func:`typed` (for the settings a job reads)."""
+
+    def __init__(self, props):
+        self._props = props
+
+    def __getattr__(self, name):
+        return typed(getattr(self._props, name))
+
+
 def mm_per_unit(scene) -> float:
     """Millimetres per Blender unit: ``scale_length`` says how many metres one unit is."""
     scale = scene.unit_settings.scale_length

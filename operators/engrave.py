@@ -48,6 +48,7 @@ class EngraveJob:
 
 
 def settings_from(props) -> core.EngraveSettings:
+    props = convert.Typed(props)
     texture = core.GougeTexture(base_depth=props.base_depth, quantum=props.quantum, amplitude=props.amplitude,
                                 spacing=props.spacing, motion=props.motion, spacing_jitter=props.spacing_jitter,
                                 seed=props.seed)

@@ -43,6 +43,7 @@ class RotaryJob:
 
 def settings_from(props) -> core.RotarySettings:
     check_group(props, "rotary")
+    props = convert.Typed(props)
     return core.RotarySettings(
         tool=Tool(props.tool_number, "ball", props.tool_diameter, flute_length=props.flute_length,
                   name="pencil bit"),

@@ -1116,6 +1116,8 @@ MESSAGE_TEMPLATES = {
     '{}: {} = {} mm: {} takes {} hits, more than the {} one program may have; raise the pitch':
         '{0}：{1} = {2} mm：{3} には {4} ヒットが必要で、1 プログラムの上限 {5} を超えます。ピッチを大きくしてください',
     'the flat pattern of {}': '{0} の展開図',
+    'edges P{}-P{} and P{}-P{} cross: give the corners in order round the quad':
+        '辺 P{0}-P{1} と P{2}-P{3} が交差しています：頂点を四辺形の周に沿った順に指定してください',
     'piece {} of {} = {} mm': '{1} = {2} mm の {0} 番目のピース',
     '{}the part stays in the sheet (webs between the hits)':
         '{0}製品が板から外れません（ヒットの間に桟が残ります）',

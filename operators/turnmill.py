@@ -73,6 +73,7 @@ class TurnMillJob:
 
 def settings_from(props) -> core.TurnMillSettings:
     check_group(props, "turnmill")
+    props = convert.Typed(props)
     return core.TurnMillSettings(tool_diameter=props.tool_diameter, tolerance=props.tolerance, feed=props.feed,
                                  spindle_rpm=props.spindle_rpm, sample_spacing=props.sample_spacing)
 
