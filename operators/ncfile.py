@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 
 from ..toolpath import simulate as core
+from ..toolpath.textfile import read_text
 from .workflow import BatchCommand, Workflow
 
 
@@ -63,12 +64,7 @@ def batch(args) -> dict:
         if not limit.allows(value):
             raise core.SimulationError(f"--tool {args.tool!r}: {label} {value:g} mm is outside the allowed range "
                                        f"{limit.text(label)}")
-    with open(args.nc, "rb") as stream:
-        data = stream.read()
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError:      # Shift-JIS or latin-1 comments: only their line breaks matter
-        text = data.decode("latin-1")
+    text = read_text(args.nc)
     try:
         read = ncread.read_nc(text, tool, os.path.basename(args.nc))
     except ncread.NCReadError as error:     # which file the line is of

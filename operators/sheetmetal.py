@@ -20,6 +20,7 @@ from ..post import flat_export, write_atomic
 from ..toolpath import punch
 from ..toolpath import unfold as core
 from ..toolpath.errors import InputError
+from ..toolpath.textfile import read_text
 from . import convert, gate
 from .common import run_reported
 from .limits import SettingError, check_group
@@ -483,15 +484,8 @@ def unfold_arguments(p):
 
 
 def read_cdl_file(path: str):
-    """The quad's corners of a CDL file: UTF-8 (its byte-order mark dropped: it hid the first LINE
-    word, so 'found 3 LINE records') or, failing that, latin-1."""
-    with open(path, "rb") as stream:
-        data = stream.read()
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        text = data.decode("latin-1")
-    return core.read_cdl(text)
+    """The quad's corners of a CDL file (:func:`textfile.read_text`: UTF-8 or latin-1)."""
+    return core.read_cdl(read_text(path))
 
 
 def check_corners(corners, where: str):

@@ -50,6 +50,17 @@ def run_python(code: str, timeout: float) -> subprocess.CompletedProcess:
                           cwd=ROOT)
 
 
+def refused_in_capped_memory(setup: str, call: str) -> str:
+    """What a fresh interpreter prints running ``setup`` then ``call`` with its address space capped
+    at 6 GB: 'REFUSED <message>' for an input error, 'PLANNED' when the call returned."""
+    done = run_python("import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
+                      "from kezuri.toolpath.errors import InputError\n" + setup +
+                      f"try:\n    {call}\n    print('PLANNED')\n"
+                      "except InputError as error:\n    print('REFUSED', error)\n", timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    return done.stdout
+
+
 def read(text):
     with time_limit(20):
         return ncread.read_nc(text, FLAT6)
@@ -351,23 +362,15 @@ def test_a_stock_far_larger_than_the_part_is_refused_not_out_of_memory(stock, na
     """Values inside the panel's ranges: the roughing copied the passes out to the stock, layer by
     layer, until the process ran out of memory (killed by the kernel at 24 GB) or of patience.
     Run in a child process with its address space capped at 6 GB, so a regression fails here."""
-    done = run_python(
-        "import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
+    printed = refused_in_capped_memory(
         "import numpy as np, trimesh\n"
         "from kezuri.toolpath import turnmill as tm\n"
-        "from kezuri.toolpath.errors import InputError\n"
         "m = trimesh.creation.cylinder(radius=12, height=60, sections=48)\n"
         "m.apply_translation((0, 0, -30))\n"
         "top = trimesh.creation.box(extents=(8, 8, 10)); top.apply_translation((0, 0, -5))\n"
         "m = m.difference(top)\n"
-        f"stock = {stock}\n"
-        "try:\n"
-        "    tm.plan(np.asarray(m.vertices), np.asarray(m.faces), stock)\n"
-        "    print('PLANNED')\n"
-        "except InputError as error:\n"
-        "    print('REFUSED', error)\n", timeout=120)
-    assert done.returncode == 0, done.stderr[-2000:]
-    assert "REFUSED" in done.stdout and named in done.stdout, done.stdout[-1000:]
+        f"stock = {stock}\n", "tm.plan(np.asarray(m.vertices), np.asarray(m.faces), stock)")
+    assert "REFUSED" in printed and named in printed, printed[-1000:]
 
 
 def test_a_finishing_layer_too_fine_to_hold_is_blamed_on_the_fineness_not_the_stock():
@@ -386,35 +389,19 @@ def test_a_finishing_layer_too_fine_to_hold_is_blamed_on_the_fineness_not_the_st
 def test_carving_through_a_metre_of_stock_at_the_finest_step_down_is_refused_not_out_of_memory():
     """Stock Above Design 1000 mm and Step Down 0.01 mm, both inside their ranges: 100,000 roughing
     levels ended in a MemoryError ("Kezuri internal error") after 25 s under a 6 GB cap."""
-    done = run_python(
-        "import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
-        "from kezuri.toolpath import carve, carve_samples\n"
-        "from kezuri.toolpath.errors import InputError\n"
-        "v, f = carve_samples.wave_relief()\n"
-        "try:\n"
-        "    carve.plan(v, f, carve.CarveSettings(step_down=0.01), stock_top=float(v[:, 2].max()) + 1000)\n"
-        "    print('PLANNED')\n"
-        "except InputError as error:\n"
-        "    print('REFUSED', error)\n", timeout=120)
-    assert done.returncode == 0, done.stderr[-2000:]
-    assert "REFUSED the roughing would need more than 10000000 moves" in done.stdout, done.stdout[-1000:]
+    printed = refused_in_capped_memory(
+        "from kezuri.toolpath import carve, carve_samples\nv, f = carve_samples.wave_relief()\n",
+        "carve.plan(v, f, carve.CarveSettings(step_down=0.01), stock_top=float(v[:, 2].max()) + 1000)")
+    assert "REFUSED the roughing would need more than 10000000 moves" in printed, printed[-1000:]
 
 
 def test_a_rotary_pocket_at_the_finest_spacing_and_step_down_is_refused_not_out_of_memory():
     """Spacing and Step Down both 0.01 mm (in range): 16.7 million points, a MemoryError in the C
     unwrapping ("Kezuri internal error")."""
-    done = run_python(
-        "import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
-        "from kezuri.toolpath import rotary\n"
-        "from kezuri.toolpath.errors import InputError\n"
-        "block, pockets = rotary.sample_job()\n"
-        "try:\n"
-        "    rotary.plan(block, [pockets[2]], rotary.RotarySettings(spacing=0.01, step_down=0.01))\n"
-        "    print('PLANNED')\n"
-        "except InputError as error:\n"
-        "    print('REFUSED', error)\n", timeout=120)
-    assert done.returncode == 0, done.stderr[-2000:]
-    assert "REFUSED pocket 'bowl': the toolpath would have" in done.stdout, done.stdout[-1000:]
+    printed = refused_in_capped_memory(
+        "from kezuri.toolpath import rotary\nblock, pockets = rotary.sample_job()\n",
+        "rotary.plan(block, [pockets[2]], rotary.RotarySettings(spacing=0.01, step_down=0.01))")
+    assert "REFUSED pocket 'bowl': the toolpath would have" in printed, printed[-1000:]
 
 
 def test_nan_vertices_are_refused_up_front():

@@ -44,6 +44,7 @@ from dataclasses import dataclass, field
 from typing import Any, Iterator, NoReturn, Union
 
 from ..errors import InputError
+from ..textfile import read_text
 
 __all__ = [
     "Part21Error", "Ref", "Enum", "Typed", "Unset", "Derived", "UNSET", "DERIVED", "UNKNOWN",
@@ -658,10 +659,4 @@ def parse_part21(text: str) -> Part21File:
 
 def read_part21(path) -> Part21File:
     """Read and parse a file (UTF-8, falling back to ISO 8859-1 for old 8-bit files)."""
-    with open(path, "rb") as handle:
-        data = handle.read()
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError:
-        text = data.decode("latin-1")
-    return parse_part21(text)
+    return parse_part21(read_text(path))
