@@ -11,16 +11,13 @@ import bpy
 import numpy as np
 
 from ..toolpath import meshdata, region
-from ..toolpath.errors import InputError
+from ..toolpath.errors import MAX_REACH_MM, InputError
 
 COLLECTION = "Kezuri"
 
 
 class SceneInputError(InputError):
     """The scene does not hold what the job needs; the message names the object."""
-
-
-MAX_REACH_MM = 1.0e5   # 100 m: no machine reaches further; past it, a unit scale is wrong
 
 
 def typed(value):

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..toolpath.errors import InputError
+from ..toolpath.errors import MAX_REACH_MM, InputError
 
 FLOAT_MAX = 3.4028234663852886e+38     # what Blender stores for inf: not a number anyone gave
 
@@ -87,7 +87,7 @@ RANGES: dict = {
         "plunge_feed": feed(), "clearance_z": HEIGHT, "safe_z": HEIGHT,
     },
     "sheet": {
-        "corners": mm(-100000.0, 100000.0),
+        "corners": mm(-MAX_REACH_MM, MAX_REACH_MM),
         "divisions": Range(1, 500, integer=True), "tool_diameter": PUNCH_DIAMETER, "thickness": mm(0.01, 12.7),
         "pitch": mm(0.1), "station": Range(1, 999, integer=True),
         "elbow_diameter": mm(0.1), "elbow_radius": mm(0.1), "elbow_angle": degrees(1.0, 180.0),

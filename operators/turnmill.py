@@ -20,6 +20,7 @@ from .. import post as posts
 from ..post import write_atomic
 from ..toolpath import meshdata
 from ..toolpath import turnmill as core
+from ..toolpath.errors import MAX_REACH_MM
 from . import convert
 from . import gate
 from .common import SteppedOperator
@@ -302,9 +303,6 @@ def batch_arguments(p):
     gate.allow_findings_argument(p)
 
 
-MAX_COORDINATE = 1.0e5   # mm: a part 100 m from the axis is a part in other units
-
-
 def read_mesh_file(path: str) -> tuple:
     """Vertices (mm) and triangles of an STL/OBJ/PLY part, and the round bar around it."""
     import trimesh
@@ -321,9 +319,9 @@ def read_mesh_file(path: str) -> tuple:
     try:
         if np.all(np.isfinite(vertices)):
             reach = float(np.abs(vertices).max())
-            if reach > MAX_COORDINATE:      # trimesh's merging rounds such coordinates together
+            if reach > MAX_REACH_MM:      # trimesh's merging rounds such coordinates together
                 raise core.TurnMillError(f"the part reaches {reach:g} mm from the origin (more than "
-                                         f"{MAX_COORDINATE:g} mm): is it in other units?")
+                                         f"{MAX_REACH_MM:g} mm): is it in other units?")
             merged = trimesh.Trimesh(vertices, faces, process=True)   # then merge the STL's repeated corners
             vertices, faces = np.asarray(merged.vertices, float), np.asarray(merged.faces)
         vertices, faces = core.check_mesh(vertices, faces)     # NaN vertices, bad indices: named before the stock

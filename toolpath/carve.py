@@ -43,7 +43,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .dropcutter import DropCutter, DropCutterError, Mesh
-from .errors import InputError
+from .errors import MAX_REACH_MM, InputError
 from .program import Operation, PathBuilder, Program, Tool
 
 
@@ -122,9 +122,6 @@ def ball_stepover(radius: float, scallop: float) -> float:
     return 2.0 * math.sqrt(2.0 * radius * scallop - scallop * scallop)
 
 
-MAX_COORDINATE = 1.0e5   # mm: 100 m from the work zero, larger than any machine
-
-
 def check_mesh(vertices, faces) -> tuple:
     vertices = np.asarray(vertices, float)
     faces = np.asarray(faces)
@@ -138,8 +135,8 @@ def check_mesh(vertices, faces) -> tuple:
     if not np.all(np.isfinite(vertices)):
         raise CarveError("the design mesh has a non-finite vertex")
     reach = float(np.abs(vertices).max())
-    if reach > MAX_COORDINATE:      # 1e300 mm made the raster lines endless (a hang, not a refusal)
-        raise CarveError(f"the design mesh reaches {reach:g} mm from the work zero (more than {MAX_COORDINATE:g} mm): "
+    if reach > MAX_REACH_MM:      # 1e300 mm made the raster lines endless (a hang, not a refusal)
+        raise CarveError(f"the design mesh reaches {reach:g} mm from the work zero (more than {MAX_REACH_MM:g} mm): "
                          f"is it in other units?")
     if faces.size and (faces.min() < 0 or faces.max() >= len(vertices)):
         raise CarveError(f"the design mesh has a face with a vertex index outside 0..{len(vertices) - 1}")

@@ -8,3 +8,8 @@ as a bug (with its traceback).  A ValueError, so plain Python callers can catch 
 
 class InputError(ValueError):
     """Bad input: the message says what is wrong and where."""
+
+
+# mm: 100 m, further than any machine reaches.  A part, plate, design or coordinate beyond it is
+# a slip (other units, a mistyped exponent, a wrong unit scale) and is refused, never worked on.
+MAX_REACH_MM = 1.0e5

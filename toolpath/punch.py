@@ -36,13 +36,18 @@ _CHUNK = 1 << 20            # point x segment pairs per numpy block in the dista
 DISC_BATCH = 500            # hits united at once between progress reports (and cancel points)
 
 
+def line_steps(length, pitch: float):
+    """Steps between the hits of a line ``length`` long at ``pitch``: as few as keep them at most
+    ``pitch`` apart (the hits are both ends and the points between).  The 1e-9: 0.7 / 0.1 is 7,
+    not 8."""
+    return np.maximum(0, np.ceil(np.asarray(length, float) / pitch - 1e-9)).astype(int)
+
+
 def hit_count(contour, pitch: float) -> int:
-    """The hits a controller makes nibbling round the closed ``contour`` (k, 2) at ``pitch``: on
-    every line as few as keep them at most ``pitch`` apart, both ends included (as
-    :func:`read_amada` spaces them)."""
+    """The hits a controller makes nibbling round the closed ``contour`` (k, 2) at ``pitch``
+    (:func:`line_steps` on every line, both ends included, as :func:`read_amada` spaces them)."""
     pts = np.asarray(contour, float)
-    length = np.hypot(*(np.roll(pts, -1, axis=0) - pts).T)
-    return int((np.ceil(length / pitch - 1e-9) + 1).sum())
+    return int((line_steps(np.hypot(*(np.roll(pts, -1, axis=0) - pts).T), pitch) + 1).sum())
 
 
 class PunchError(InputError):
@@ -145,7 +150,7 @@ def read_amada(text: str) -> PunchProgram:
             thickness = words["D"]
             if thickness <= 0:
                 raise PunchError(f"line {number}: D (thickness) must be > 0, got {raw.strip()!r}")
-        steps = max(0, math.ceil(length / pitch - 1e-9))       # the 1e-9: 0.7 / 0.1 is 7, not 8
+        steps = int(line_steps(length, pitch))
         count += steps + 1
         if count > MAX_HITS:
             raise PunchError(f"line {number}: the program has more than {MAX_HITS} hits by this line (at most "

@@ -30,7 +30,7 @@ from typing import Union
 import numpy as np
 
 from .. import region as rg
-from ..errors import InputError
+from ..errors import MAX_REACH_MM, InputError
 
 # Chord error (mm) when arcs and circles of an outline are turned into polygons.
 CHORD_TOLERANCE = 0.001
@@ -884,7 +884,7 @@ class Project:
 
 PLANE_TYPES = ("PLANE", "ELEMENTARY_SURFACE")
 CURVE_TYPES = ("POLYLINE", "TRIMMED_CURVE", "COMPOSITE_CURVE", "CIRCLE", "B_SPLINE_CURVE_WITH_KNOTS")
-MAX_LENGTH = 1.0e5   # mm: 100 m, larger than any machine
+MAX_LENGTH = MAX_REACH_MM    # mm: 100 m, larger than any machine (errors.MAX_REACH_MM)
 DIMENSION_TYPES = ("MILLING_TOOL_DIMENSION", "TOOL_DIMENSION")
 MILLING_TOOL_BODIES = ("ENDMILL", "TAPERED_ENDMILL", "BALL_ENDMILL", "BULLNOSE_ENDMILL", "FACEMILL")
 DRILLING_TOOL_BODIES = ("TWIST_DRILL", "TAPERED_DRILL", "CENTER_DRILL", "REAMER", "TAPERED_REAMER")
