@@ -5,8 +5,8 @@ import os
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-# What a post may take from toolpath/: the IR, the rotary-axis kinematics, the error base class.
-POST_MAY_IMPORT = {"program", "kinematics", "errors"}
+# What a post may take from toolpath/: the IR, the rotary-axis kinematics, the machine profile, the error base class.
+POST_MAY_IMPORT = {"program", "kinematics", "errors", "machine"}
 BLENDER = {"bpy", "bmesh", "mathutils", "gpu", "blf"}
 
 
