@@ -16,14 +16,18 @@ Commands (``python batch.py <command> --help`` for the options):
 Each command writes its output files, ``report.json`` and a preview PNG into --out.
 Exit status: 0 on success, 2 on bad input (the message says what to fix), 3 when the export gate
 refuses a program the simulation finds fault with (``--allow-findings`` writes it anyway, and
-``report.json`` records the override).
+``report.json`` records the override), 130 / 143 when stopped by SIGINT (Ctrl-C) / SIGTERM.
+A run writes all its files or none: everything goes into a hidden staging folder beside --out and
+is moved in only when every file is written; a failure, a refusal or a stop leaves --out as it was.
 """
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib.util
 import json
 import os
+import signal
 import sys
 
 ROOT = os.path.dirname(os.path.abspath(__file__))
@@ -65,14 +69,15 @@ def commands() -> dict:
     return table_commands()
 
 
-def demo(args) -> dict:
-    """Every workflow on its built-in sample, each into its own sub-folder of --out."""
+def demo(args, final=lambda value: value) -> dict:
+    """Every workflow on its built-in sample, each into its own sub-folder of --out; ``final`` maps
+    the staged paths to where the files will be."""
     results = {}
     for name, command in commands().items():
         runs = ([(name, command.demo)] if command.demo is not None else []) + list(command.more_demos)
         for folder, line in runs:
             sub = parser().parse_args([name, *line, "--out", os.path.join(args.out, folder)])
-            report = command.run(sub)
+            report = final(command.run(sub))
             write_report(sub.out, report)
             results[folder] = {"files": report["files"], "preview": report.get("preview")}
             print(f"{folder}: wrote {', '.join(report['files'])}")
@@ -106,27 +111,77 @@ def parse(argv: list) -> argparse.Namespace:
     return args
 
 
+class Stopped(BaseException):
+    """SIGINT or SIGTERM arrived: the run stops where it is (not an ``Exception``, so no
+    ``except Exception`` on the way swallows it)."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+STOP_STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143}     # 128 + the signal's number, as shells do
+
+
+@contextlib.contextmanager
+def stoppable():
+    """SIGINT and SIGTERM raise :class:`Stopped` in the main thread for the block's duration; a
+    second signal while the run cleans up is ignored.  The previous handlers come back after."""
+    def stop(signum, frame):
+        for number in STOP_STATUS:
+            signal.signal(number, signal.SIG_IGN)
+        raise Stopped(signum)
+
+    try:
+        previous = {number: signal.signal(number, stop) for number in STOP_STATUS}
+    except ValueError:          # not the main thread: signals cannot be caught here
+        previous = {}
+    try:
+        yield
+    finally:
+        for number, handler in previous.items():
+            signal.signal(number, handler)
+
+
 def main(argv: list) -> int:
     args = parse(script_arguments(argv))
-    load_extension()
+    with stoppable():
+        try:
+            load_extension()
+            return run(args)
+        except Stopped as stopped:
+            name = signal.Signals(stopped.signum).name
+            print(f"kezuri: stopped by {name}: nothing was written", file=sys.stderr)
+            return STOP_STATUS[stopped.signum]
+
+
+def run(args) -> int:
+    """The command into a staging folder, then every file moved into --out, or none."""
     from kezuri.operators.common import user_errors
     from kezuri.operators.gate import REFUSED_STATUS, GateRefused
-    from kezuri.post.output import check_folder
+    from kezuri.post.output import Staging
     try:
-        args.out = check_folder(args.out, "--out")     # made by the first file written, not before
-        report = demo(args) if args.command == "demo" else commands()[args.command].run(args)
-    except GateRefused as error:
+        staging = Staging(args.out, "--out")
+    except user_errors() as error:
         print(f"kezuri: {error}", file=sys.stderr)
+        return 2
+    args.out = staging.folder
+    try:
+        if args.command == "demo":
+            report = demo(args, staging.final)
+        else:
+            report = staging.final(commands()[args.command].run(args))
+        write_report(staging.folder, report)
+        staging.commit()
+    except GateRefused as error:
+        print(f"kezuri: {staging.final(str(error))}", file=sys.stderr)
         return REFUSED_STATUS
     except user_errors() as error:
-        print(f"kezuri: {error}", file=sys.stderr)
+        print(f"kezuri: {staging.final(str(error))}", file=sys.stderr)
         return 2
-    try:
-        write_report(args.out, report)
-    except user_errors() as error:
-        print(f"kezuri: {error}", file=sys.stderr)
-        return 2
-    print(f"wrote {os.path.join(args.out, 'report.json')}")
+    finally:
+        staging.discard()
+    print(f"wrote {os.path.join(staging.out, 'report.json')}")
     return 0
 
 

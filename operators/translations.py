@@ -1479,6 +1479,17 @@ MESSAGE_TEMPLATES = {
         '{0} を書き込めません：テキストが ASCII ではありません（{2} 文字目の {1}）',
     'cannot write {}: {}':
         '{0} を書き込めません：{1}',
+    '{} {} cannot be written: {}':
+        '{0} {1} に書き込めません：{2}',
+    'cannot write {}: a folder of that name is in the way':
+        '{0} を書き込めません：同じ名前のフォルダーがあります',
+    'cannot move the files into {}: {}':
+        'ファイルを {0} に移せません：{1}',
+    # toolpath/machine.py
+    'unknown machine {}: the presets are {}':
+        '機械 {0} はありません。プリセットは {1} です',
+    'machine profile {}: {} = {} {}':
+        '機械プロファイル {0}：{1} = {2} {3}',
     # toolpath/ncread.py: the refused codes (REFUSED), each its own template so the reason is Japanese too
     'line {}: {} NURBS are not simulated: {}':
         '{0}行目：{1}：NURBS はシミュレーションしません：{2}',

@@ -169,3 +169,63 @@ def atomic_path(path: str):
         yield temp
         if not os.path.isfile(temp):
             raise OutputError(f"cannot write {path}: nothing was written")
+
+
+class Staging:
+    """All of a run's files or none: the run writes into a hidden folder beside ``out`` (on the same
+    file system), and :meth:`commit` moves every file in once all are written; :meth:`discard`
+    (a failure, a refusal, a stop) removes the folder and leaves ``out`` as it was.
+
+    ``out`` itself is made only by the commit, so a refused run leaves no empty folder behind.
+    Paths the run reports point into :attr:`folder`; :meth:`final` maps them to where the files
+    end up (report values and messages alike).
+    """
+
+    def __init__(self, out: str, given_as: str = "--out"):
+        self.out = check_folder(out, given_as)
+        anchor = self.out
+        while not os.path.isdir(anchor):
+            anchor = os.path.dirname(anchor)
+        try:
+            self.folder = tempfile.mkdtemp(prefix=".kezuri-staging-", dir=anchor)
+        except OSError as error:
+            raise OutputError(f"{given_as} {self.out} cannot be written: {_why(error)}") from None
+
+    def final(self, value):
+        """``value`` (a path, a message, or a report of dicts and lists) with the staging folder
+        replaced by the output folder."""
+        if isinstance(value, str):
+            return value.replace(self.folder, self.out)
+        if isinstance(value, dict):
+            return {key: self.final(item) for key, item in value.items()}
+        if isinstance(value, (list, tuple)):
+            return type(value)(self.final(item) for item in value)
+        return value
+
+    def files(self) -> list:
+        """The staged files, relative to the staging folder."""
+        found = []
+        for directory, _, names in os.walk(self.folder):
+            found += [os.path.relpath(os.path.join(directory, name), self.folder) for name in names]
+        return sorted(found)
+
+    def commit(self) -> list:
+        """Move every staged file into ``out`` (replacing files of the same name); returns the
+        final paths.  Everything is checked before the first file moves."""
+        moves = [(os.path.join(self.folder, rel), os.path.join(self.out, rel)) for rel in self.files()]
+        for _, target in moves:
+            if os.path.isdir(target):
+                raise OutputError(f"cannot write {target}: a folder of that name is in the way")
+        try:
+            for source, target in moves:
+                os.makedirs(os.path.dirname(target), exist_ok=True)
+                os.replace(source, target)
+        except OSError as error:
+            raise OutputError(f"cannot move the files into {self.out}: {_why(error)}") from None
+        finally:
+            self.discard()
+        return [target for _, target in moves]
+
+    def discard(self) -> None:
+        import shutil
+        shutil.rmtree(self.folder, ignore_errors=True)
