@@ -298,3 +298,21 @@ def test_the_old_surface_arguments_are_axis_addresses_on_a_b_axis_machine():
             run_program(old, start=(0, 0, 100), axes=axes)
     new = old.replace("B1 C0.05", "E1 Q1 R0.05")
     assert run_program(new, start=(0, 0, 100), axes="XYZABCUVW").ended_by == "M30"
+
+
+@pytest.mark.parametrize("call, number", [
+    ("G65 P7023 X50. Z-1.", 1),          # a Z word: an approach, retract or ramp is no raster block
+    ("G65 P7023 F1200.", 1),             # no X, no Y
+    ("G65 P7024 X50. Y0. Z-1.", 2),      # no ramp position R
+    ("G65 P7024 X50. Y0. R0.5", 2),      # no Z (the surface)
+    ("G65 P7024 X50. Y0. Z-1. R0.5", 2),  # no E1 ever: no depth to start from
+])
+def test_a_call_that_is_no_cutting_block_stops_the_control(call, number):
+    from kezuri.post.fanuc import surface_macro_program
+    from macrob import MacroAlarm
+    texture = engrave.GougeTexture()
+    text = (f"%\nO0001\nG90 G00 X0. Y0. Z5.\nG01 Z-2. F300.\n{call}\nM30\n"
+            + macro_program(texture, 3) + surface_macro_program(texture, 3) + "%\n")
+    with pytest.raises(MacroAlarm) as err:
+        run_program(text, clock=iter([4096]))
+    assert err.value.number == number and err.value.alarm_message.strip() in ("NOT A RASTER BLOCK", "NOT A ROW BLOCK")
