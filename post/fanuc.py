@@ -161,20 +161,20 @@ class FanucMacroPost(FanucPost):
         raster = (op.kind == FEED) & (np.abs(op.xyz[:, 2] - starts[:, 2]) <= 1e-9)
         lines, mode, after_run = [], None, False
         for lo, hi, is_run in _segments(raster):
+            part = op.replace(kind=op.kind[lo:hi], xyz=op.xyz[lo:hi], feed=op.feed[lo:hi],
+                              center=op.center[lo:hi], rotary={}, start=starts[lo], texture=None,
+                              texture_marks=None, links=None)
             start = starts[lo].copy()
             if after_run:
                 start[2] = np.nan            # the Z word of the next block is written whatever it reads
-            part = op.replace(kind=op.kind[lo:hi], xyz=op.xyz[lo:hi], feed=op.feed[lo:hi],
-                              center=op.center[lo:hi], rotary={}, start=start, texture=None,
-                              texture_marks=None, links=None)
             block = self.moves(part, start)
             if not block:
                 continue
             if is_run:
-                assert block[0].startswith("G01 "), block[0]
+                first = block[0].removeprefix("G01 ")      # G66.1 is the only G code of its block
                 if mode != "G01":
                     lines.append("G01")      # the modal call is made in G01 only
-                lines += [f"G66.1 P{MACRO_PROGRAM} {block[0][4:]}", *block[1:], "G67"]
+                lines += [f"G66.1 P{MACRO_PROGRAM} {first}", *block[1:], "G67"]
                 mode, after_run = "G01", True
             else:
                 lines += block

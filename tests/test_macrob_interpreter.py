@@ -311,8 +311,9 @@ def test_an_argument_that_is_an_axis_of_the_machine_is_refused():
 
 
 def test_g66_1_refuses_program_end_while_active():
-    with pytest.raises(MacroError, match="G67"):
-        run_program(prog("G66.1P9001", "M30") + "O9001\nM99\n")
+    with pytest.raises(MacroError, match=r"M30 while the G66\.1 modal call is active") as err:
+        run_program(prog("G01X0F100.", "G66.1P9001X1.", "M30") + "O9001\nM99\n")
+    assert err.value.line == 5
 
 
 # ----------------------------------------------------------------------------------------------
