@@ -5,9 +5,20 @@ Two modes for a textured engraving:
 * baked (``FanucPost``): the texture depths were drawn by the add-on and are written
   literally, so the program cuts exactly what the preview shows;
 * controller macro (``FanucMacroPost``): the paper's method.  The roughing path is written
-  untextured, called block by block through ``G66.1 P7023``; program O7023 draws a digit
-  0..9 for every gouge and applies the depth rule on the controller, so each run of the
-  program cuts a different texture.
+  untextured; ``G66.1 P7023`` is in force only over the cutting (each run of raster blocks:
+  G01 at constant Z), ``G67`` comes before every retract, plunge and repositioning rapid, which
+  are ordinary blocks.  Program O7023 draws a digit 0..9 for every gouge and applies the depth
+  rule on the controller, so each run of the program cuts a different texture.
+
+Macro arguments.  Fanuc Custom Macro B passes a call's address words as local variables by
+argument specification I (A B C I J K D E F H M Q R S T U V W X Y Z -> #1..#26 with
+A #1, B #2, C #3, I #4, J #5, K #6, D #7, E #8, F #9, H #11, M #13, Q #17, R #18, ...; G, L, N,
+O and P cannot be arguments) or II (A B C once, I J K up to ten times); the control tells them
+apart by the letters used and a later one wins where both name one variable (FANUC Series
+16i/18i operator's manual, 16. Custom macro, "Argument specification", B-63684EN/01 p. 278;
+the 0i/16i/18i-M manuals have the same tables).  The macros here take X Y Z (the move's own end
+point, by design), F, and for O7024 E, Q and R, letters that are not axis addresses on any usual
+machine, each once (so both specifications read them alike).
 
 Where the digits come from.  The paper took the last decimal digit of the millisecond clock
 ``#3001``.  On the paper's control that clock counts in 16 ms steps, so its last digit is always
@@ -29,13 +40,16 @@ give the base depth, so the base occurs 2/10 of the time and each other depth 1/
 O7023 follows the published macro with its two defects fixed: ``IF[#28GT5]`` sent d = 5 to
 the shallow branch (depth -1.0, outside the stated range), here ``GE``; and
 ``IF[#24+#25]EQ#0]`` had unbalanced brackets and tested a sum (0, never vacant), here each
-word is tested for vacancy on its own.  Beyond the paper, one loop with a signed step
-serves both X directions, a move with a Z word (approach, retract, ramp) passes through
-untouched, and a move with both X and Y is split with Y interpolated along it.
+word is tested for vacancy on its own.  Beyond the paper, one loop with a signed step serves
+both X directions, a move with both X and Y is split with Y interpolated along it, and the
+macro no longer tells rapids and arcs from cuts by ``#4001``: the main program calls it on
+cutting blocks only, and a call that is not one (a Z word, no X or Y) raises a macro alarm.
 """
 from __future__ import annotations
 
-from ..toolpath.program import RAPID, GougeTexture
+import numpy as np
+
+from ..toolpath.program import FEED, RAPID, GougeTexture
 
 from .gcode import GcodePost, PostError, fmt
 from .registry import ControllerLimits
@@ -130,37 +144,90 @@ class FanucMacroPost(FanucPost):
         if op.texture is None:
             return super().operation_moves(op)
         if op.texture_marks is not None:
-            return [f"G66.1 P{SURFACE_MACRO_PROGRAM}"] + self.marked_moves(op) + ["G67"]
-        return [f"G66.1 P{MACRO_PROGRAM}"] + self.moves(op, op.start) + ["G67"]
+            return self.marked_moves(op)
+        return self.confined_moves(op)
+
+    def confined_moves(self, op) -> list:
+        """The flat roughing with the macro confined to cutting.
+
+        A raster block is a feed move at constant Z (the moves :func:`..toolpath.engrave.apply_texture`
+        textures or cuts at the current depth: rows, stepovers, short moves).  Each run of raster
+        blocks is written between ``G66.1 P7023`` (on the run's first block, so the call that
+        block makes carries its move) and ``G67``; every other move (rapid, retract, plunge,
+        approach, arc) is an ordinary block outside the modal call, so O7023 never sees a rapid
+        and needs no ``#4001``.  The macro leaves Z at the last gouge's depth, so the block after
+        a run states its Z (and its G code and F) again."""
+        starts = op.start_points()
+        raster = (op.kind == FEED) & (np.abs(op.xyz[:, 2] - starts[:, 2]) <= 1e-9)
+        lines, mode, after_run = [], None, False
+        for lo, hi, is_run in _segments(raster):
+            part = op.replace(kind=op.kind[lo:hi], xyz=op.xyz[lo:hi], feed=op.feed[lo:hi],
+                              center=op.center[lo:hi], rotary={}, start=starts[lo], texture=None,
+                              texture_marks=None, links=None)
+            start = starts[lo].copy()
+            if after_run:
+                start[2] = np.nan            # the Z word of the next block is written whatever it reads
+            block = self.moves(part, start)
+            if not block:
+                continue
+            if is_run:
+                first = block[0].removeprefix("G01 ")      # G66.1 is the only G code of its block
+                if mode != "G01":
+                    lines.append("G01")      # the modal call is made in G01 only
+                lines += [f"G66.1 P{MACRO_PROGRAM} {first}", *block[1:], "G67"]
+                mode, after_run = "G01", True
+            else:
+                lines += block
+                codes = [line[:3] for line in block if line[:3] in ("G00", "G01", "G02", "G03")]
+                mode, after_run = (codes[-1] if codes else mode), False
+        return lines
 
     def marked_moves(self, op) -> list:
-        """The surface-following roughing for O7024: a row block gives X, Y and Z (the surface)
-        in full, B1 where a new gouge starts and C its ramp position; other blocks as usual."""
-        lines, last, mode, feed_word = [], {}, None, None
+        """The surface-following roughing for O7024.  A marked block (one of a row, ``texture_marks``
+        not NaN) gives X, Y and Z (the surface) in full, R its ramp position (0..1), Q1 where a new
+        gouge starts and E1 on the first block of a run; each run of marked blocks is written
+        between ``G66.1 P7024`` (on its first block) and ``G67``.  Other blocks (rapids, retracts,
+        plunges) are ordinary blocks outside the modal call; the one after a run states its G code,
+        Z and F again (the macro left Z below the programmed surface)."""
+        lines, mode, feed_word, in_run = [], None, None, False
         last = {axis: self.n(value) for axis, value in zip("XYZ", op.start)}
         for kind, xyz, f, (new, fraction) in zip(op.kind.tolist(), op.xyz.tolist(), op.feed.tolist(),
                                                    op.texture_marks.tolist()):
             code = "G00" if kind == RAPID else "G01"
             axes = [(axis, self.n(value)) for axis, value in zip("XYZ", xyz)]
             marked = fraction == fraction      # not NaN
+            if in_run and not marked:
+                lines.append("G67")
+                in_run, mode, feed_word, last["Z"] = False, None, None, None
             motion = [f"{axis}{text}" for axis, text in axes if marked or text != last[axis]]
             if not motion:
                 continue
-            words = ([code] if code != mode else []) + motion
             if marked:
-                words += (["B1"] if new else []) + [f"C{fmt(fraction, 4)}"]
-            if kind != RAPID and fmt(f, 1) != feed_word:
+                words = motion + (["E1"] if not in_run else []) + (["Q1"] if new else []) + [f"R{fmt(fraction, 4)}"]
+            else:
+                words = ([code] if code != mode else []) + motion
+            if kind != RAPID and (fmt(f, 1) != feed_word or (marked and not in_run)):
                 feed_word = fmt(f, 1)
                 words.append(f"F{feed_word}")
+            if marked and not in_run:
+                if mode != "G01":
+                    lines.append("G01")          # the modal call is made in G01 only
+                words = [f"G66.1 P{SURFACE_MACRO_PROGRAM}"] + words
+                in_run = True
             lines.append(" ".join(words))
             mode = code
             last.update(axes)
+        if in_run:
+            lines.append("G67")
         return lines
 
     def header(self, program):
+        surface = any(op.texture_marks is not None for op in program.operations)
+        number = SURFACE_MACRO_PROGRAM if surface else MACRO_PROGRAM
         return super().header(program) + [
-            f"(GOUGE TEXTURE: RANDOM DEPTHS DRAWN ON THE CONTROLLER BY O{MACRO_PROGRAM}: LEHMER GENERATOR "
-            f"X = {LCG_MULTIPLIER} X MOD {LCG_MODULUS} IN #{LCG_STATE_VAR}, SEEDED ONCE FROM CLOCK #3001)"]
+            f"(GOUGE TEXTURE: RANDOM DEPTHS DRAWN ON THE CONTROLLER BY O{number}: LEHMER GENERATOR "
+            f"X = {LCG_MULTIPLIER} X MOD {LCG_MODULUS} IN #{LCG_STATE_VAR}, SEEDED ONCE FROM CLOCK #3001)",
+            "(G66.1 ONLY ON THE G01 RASTER BLOCKS; G67 BEFORE EVERY RAPID, RETRACT AND PLUNGE)"]
 
     def to_text(self, program):
         main = super().to_text(program)
@@ -168,6 +235,16 @@ class FanucMacroPost(FanucPost):
         if any(op.texture_marks is not None for op in program.operations):
             return main[:-2] + surface_macro_program(texture, self.decimals) + "%\n"
         return main[:-2] + macro_program(texture, self.decimals) + "%\n"
+
+
+def _segments(mask: np.ndarray):
+    """(start, end, value) of the runs of equal values of a boolean array."""
+    if not len(mask):
+        return
+    edges = np.flatnonzero(mask[1:] != mask[:-1]) + 1
+    bounds = [0, *edges.tolist(), len(mask)]
+    for lo, hi in zip(bounds[:-1], bounds[1:]):
+        yield lo, hi, bool(mask[lo])
 
 
 def _texture_lines(texture, n) -> list:
@@ -209,31 +286,36 @@ def _draw_lines() -> list:
 def surface_macro_program(texture: GougeTexture, decimals: int = 3) -> str:
     """Program O7024: the gouge texture on a curved plate (``Operation.texture_marks``).
 
+    Called by ``G66.1 P7024`` on the blocks of a row only (:meth:`FanucMacroPost.marked_moves`).
     The roughing path follows the surface (Z: the tool touching it) and is split where a new
-    gouge begins; each block of a row carries B1 when a new depth is drawn as it starts and C,
-    how far along the gouge's ramp (0..1) it ends.  The block is cut to
-    Z + #117 + (#114 - #117) * C: the depth ramps from the last gouge's (#117) to the new one
-    (#114) below the surface.  A block without C (approach, retract, plunge) is cut as
-    programmed and the depth returns to the base.
+    gouge begins.  Arguments (specification I): X Y Z the block's end point on the surface
+    (#24 #25 #26), F (#9), R (#18) how far along the gouge's ramp (0..1) the block ends, Q1
+    (#17) a new depth is drawn as the block starts, E1 (#8) the block begins a run (the depth
+    starts from the base).  R, Q and E are not axis addresses on any usual machine (the old B
+    and C were, on a machine with a B or C axis).  The block is cut to
+    Z + #117 + (#114 - #117) * R: the depth ramps from the last gouge's (#117) to the new one
+    (#114) below the surface.  A call without Z or R is not a row block: macro alarm 3002.
     """
     n = lambda value: fmt(value, decimals)  # noqa: E731
     lines = [
         f"O{SURFACE_MACRO_PROGRAM} (KEZURI GOUGE TEXTURE ON A SURFACE)",
-        "#1=#4001",
-        "IF[#3EQ#0]GOTO10 (NO RAMP POSITION: AS PROGRAMMED)",
-        "IF[#1NE1]GOTO10",
+        "IF[#26EQ#0]GOTO90 (NO Z: NOT A ROW BLOCK)",
+        "IF[#18EQ#0]GOTO90 (NO RAMP POSITION R)",
         *_texture_lines(texture, n),
-        "IF[#2EQ#0]GOTO5 (THE SAME GOUGE)",
+        "IF[#8NE1]GOTO1",
+        "#114=#110 (E1: A RUN STARTS AT THE BASE DEPTH)",
+        "#117=#114",
+        "N1",
+        "IF[#114EQ#0]GOTO90 (NO DEPTH YET: THE RUN LACKS ITS E1)",
+        "IF[#17NE1]GOTO5 (NO Q1: THE SAME GOUGE)",
         "#117=#114 (THE DEPTH WHERE THIS GOUGE STARTS)",
         *_seed_lines(),
         *_draw_lines(),
         "N5",
-        "G01X#24Y#25Z[#26+#117+[#114-#117]*#3]F#9",
+        "G01X#24Y#25Z[#26+#117+[#114-#117]*#18]F#9",
         "GOTO30",
-        "N10",
-        f"#114={n(texture.base_depth)} (BACK TO THE BASE DEPTH)",
-        "#117=#114",
-        "G#1X#24Y#25Z#26I#4J#5F#9",
+        "N90",
+        "#3000=2 (NOT A ROW BLOCK)",
         "N30",
         "M99",
     ]
@@ -241,29 +323,34 @@ def surface_macro_program(texture: GougeTexture, decimals: int = 3) -> str:
 
 
 def macro_program(texture: GougeTexture, decimals: int = 3) -> str:
-    """Program O7023, called modally by G66.1 for every block of the roughing path.
+    """Program O7023, called by ``G66.1 P7023`` on the raster blocks only (G01 at constant Z:
+    :meth:`FanucMacroPost.confined_moves`).
 
-    Arguments: #24/#25/#26 = X/Y/Z of the calling block, #4/#5 = I/J, #9 = F; #4001 its
-    motion G-code.  Commons #110..#114 hold the texture settings and the drawn depth, #115 the
-    state of the digit generator (kept between calls and runs; seeded from #3001 when vacant).
+    Arguments: #24/#25 = X/Y of the calling block, #9 = F.  A Y-only block is a stepover, cut at
+    the current depth; an X move of the gouge spacing or less is cut at the current depth; a
+    longer one is cut in pieces, a new depth at every spacing.  Every block it writes is G01: it
+    is never called on a rapid, an arc or a move with Z (those are ordinary blocks after G67), so
+    it reads no ``#4001`` (which modal state a macro called by G66.1 sees there is not what the
+    manual's "modal information up to the preceding block" settles).  A call with Z, or with
+    neither X nor Y, is not a raster block: macro alarm 3001 rather than a guess.  Commons
+    #110..#114 hold the texture settings and the drawn depth, #115 the state of the digit
+    generator (kept between calls and runs; seeded from #3001 when vacant).
     """
     n = lambda value: fmt(value, decimals)  # noqa: E731
     assert LCG_MULTIPLIER * (LCG_MODULUS - 1) < 10**8, "the generator's product must stay exact in 8 digits"
     lines = [
         f"O{MACRO_PROGRAM} (KEZURI GOUGE TEXTURE)",
-        "#1=#4001",
-        "IF[#1EQ0]GOTO10 (RAPID: AS PROGRAMMED)",
-        "IF[#1GT1]GOTO10 (ARC: AS PROGRAMMED)",
-        "IF[#26NE#0]GOTO10 (Z GIVEN: APPROACH, RETRACT OR RAMP)",
+        "IF[#26NE#0]GOTO90 (A Z WORD: NOT A RASTER BLOCK)",
         "IF[#24NE#0]GOTO1",
-        "IF[#25NE#0]GOTO20 (Y ONLY: STEPOVER AT THE CURRENT DEPTH)",
-        "GOTO10",
+        "IF[#25EQ#0]GOTO90 (NEITHER X NOR Y)",
+        "G01Y#25F#9 (Y ONLY: STEPOVER AT THE CURRENT DEPTH)",
+        "GOTO30",
         "N1",
         *_texture_lines(texture, n),
         "#15=#5001 (X BEFORE THE BLOCK)",
         "#17=#5002 (Y BEFORE THE BLOCK)",
         "#6=#24-#15",
-        "IF[ABS[#6]LE#113]GOTO10 (SHORT MOVE: AS PROGRAMMED)",
+        "IF[ABS[#6]LE#113]GOTO10 (SHORT MOVE: AT THE CURRENT DEPTH)",
         "#8=1",
         "IF[#6GT0]GOTO2",
         "#8=-1",
@@ -274,22 +361,19 @@ def macro_program(texture: GougeTexture, decimals: int = 3) -> str:
         *_draw_lines(),
         "IF[#25EQ#0]GOTO5",
         "#33=#17+[#25-#17]*[#16-#15]/#6",
-        "G#1X#16Y#33Z#114F#9",
+        "G01X#16Y#33Z#114F#9",
         "GOTO6",
         "N5",
-        "G#1X#16Z#114F#9",
+        "G01X#16Z#114F#9",
         "N6",
         "#16=#16+#8*#113",
         "END1",
-        "G#1X#24Y#25F#9 (REST OF THE MOVE AT THE LAST DEPTH)",
-        "GOTO30",
         "N10",
-        "G#1X#24Y#25Z#26I#4J#5F#9",
+        "G01X#24Y#25F#9 (THE REST OF THE MOVE AT THE LAST DEPTH)",
         "GOTO30",
-        "N20",
-        "G#1Y#25F#9",
+        "N90",
+        "#3000=1 (NOT A RASTER BLOCK)",
         "N30",
         "M99",
     ]
     return "\n".join(lines) + "\n"
-

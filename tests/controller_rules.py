@@ -23,6 +23,11 @@ Controls and where their rules come from:
 * ``amada-04p``: the Amada 04P turret punch: N000..N999 (3 digits), every value with exactly two
   decimals, T three digits, the program opens with ``N000 G92`` and ends with ``G50`` (or M30).
 
+Fanuc macro modal call (Custom Macro B, G66.1 ... G67): the pairs balanced, never nested; the call
+made in G01 only, and cancelled (G67) before any rapid or retract (G00), reference return (G28,
+G53), spindle stop, tool change, stop or program end (M00 M01 M02 M05 M06 M30): every block
+under G66.1 is handed to the macro, which should then have to tell a rapid from a cut.
+
 Tool changes (milling controls with a changer): the spindle stopped (M05), for Fanuc Z sent to the
 change position (``G91 G28 Z0.``) and back to G90, the length offset cancelled (G49), never a change
 to the tool already in the spindle, and the offset re-applied (G43 H) before the first cut.  Every
@@ -89,6 +94,7 @@ def check(text: str, control: str) -> list:
 
     feed_mode, motion, spindle, tool, offset, at_change, ended = 94, None, False, None, False, False, False
     need_offset, in_sub = False, False
+    modal_call = None                       # line of the G66.1 in force (Fanuc)
     for number, raw, bare, words in _blocks(text):
         if not bare or bare == "%":
             continue
@@ -134,6 +140,24 @@ def check(text: str, control: str) -> list:
             bad("range", number, f"T{letters['T']} outside 0..{rules['t']}")
         if "H" in letters and not 0 <= float(letters["H"]) <= (rules["h"] if rules["h"] is not None else 1e99):
             bad("range", number, f"H{letters['H']} outside 0..{rules['h']}")
+        # --- macro modal call (Fanuc G66.1 ... G67) -------------------------------------------
+        if frame == "fanuc":
+            if 66.1 in gnum:
+                if modal_call is not None:
+                    bad("modalcall", number, f"G66.1 while the G66.1 of line {modal_call} is in force")
+                if motion != 1 or any(g in (0, 2, 3) for g in gnum):
+                    bad("modalcall", number, "G66.1 made outside G01: the macro would be handed a rapid or an arc")
+                modal_call = number
+            elif 67 in gnum:
+                if modal_call is None:
+                    bad("modalcall", number, "G67 without a G66.1 in force")
+                modal_call = None
+            elif modal_call is not None:
+                stops = [f"M{m:02d}" for m in ms if m in (0, 1, 2, 5, 6, 30)]
+                moves_g = [f"G{g:g}" for g in gnum if g in (0, 28, 53)]
+                if stops or moves_g or motion == 0:
+                    what = " ".join(moves_g + stops) or "a G00 move"
+                    bad("modalcall", number, f"{what} with the G66.1 of line {modal_call} in force (G67 first)")
         # --- modes ---------------------------------------------------------------------------
         for g in gnum:
             if g in (93, 94, 95):
@@ -213,6 +237,8 @@ def check(text: str, control: str) -> list:
             ended = True
     if not ended:
         bad("frame", len(lines), "no program end (M30 or M02)")
+    if modal_call is not None:
+        bad("modalcall", len(lines), f"the G66.1 of line {modal_call} is never cancelled (G67)")
     return found
 
 

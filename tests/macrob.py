@@ -27,8 +27,8 @@ Supported (see the module tests for worked examples):
   common ``#100..#199`` and ``#500..#999``, ``#3000`` (writing raises :class:`MacroAlarm`),
   ``#3001`` (millisecond clock: every *read* takes the next value from the caller's
   ``clock`` iterable; writes are only recorded in ``MacroRun.clock_writes``), ``#4001``
-  (modal group 1: 0..3), ``#4003`` (90/91), ``#4006`` (20/21), ``#4014`` (54..59),
-  ``#4109`` (F), ``#4111`` (H), ``#4119`` (S), ``#4120`` (T), ``#5001..#5003`` (end point
+  (modal group 1: 0..3; refused under G66.1, see below), ``#4003`` (90/91), ``#4006``
+  (20/21), ``#4014`` (54..59), ``#4109`` (F), ``#4111`` (H), ``#4119`` (S), ``#4120`` (T), ``#5001..#5003`` (end point
   of the previous block, absolute work coordinates).  Indirect ``#[expr]`` works.
 * Vacancy as on Fanuc: a vacant value in an address word omits the word; ``#i=#j`` copies
   vacancy; any arithmetic treats vacant as 0 (so ``#24+#25`` of two vacant variables is
@@ -51,15 +51,29 @@ Supported (see the module tests for worked examples):
 * Numbers are taken at face value: ``X106`` is 106.0 mm (the "no decimal point means
   least input increment" rule is NOT implemented; our post always writes a point).
 * ``G65 P.. <args>`` and ``G66.1 P.. <args>`` use argument specification I
-  (A B C I J K D E F H M Q R S T U V W X Y Z -> #1.. #26).  Under G66.1 every later block
-  of the calling level that has any word (not macro statements, not ``N``-only or
-  comment-only lines) is not executed itself but calls the macro with its words as
-  arguments; its G codes only set modal state (so ``#4001`` inside the macro is the
-  group-1 code of that block, or the modal one).  The G66.1 block itself also calls the
-  macro with its own arguments (those arguments are not remembered for later calls).
-  ``G67`` cancels.  Blocks inside the called macro are never modal-called.
+  (A B C I J K D E F H M Q R S T U V W X Y Z -> #1.. #26; G L N O P are not arguments).  Under
+  G66.1 every later block of the calling level that has any word (not macro statements, not
+  ``N``-only or comment-only lines) is not executed itself but calls the macro with its words
+  as arguments.  The G66.1 block itself also calls the macro with its own arguments (those
+  arguments are not remembered for later calls).  ``G67`` cancels.  Blocks inside the called
+  macro are never modal-called.
 * Modal state is global across call levels, as on the control: a ``G00`` executed in the
   macro is still active when the caller continues.
+
+Refused, because the manual leaves the behaviour to the machine (strict on purpose: a program
+that depends on one of these cuts differently on different controls):
+
+* a G66.1 call (the G66.1 block or a block under it) without an X, Y or Z word: whether a block
+  with no move calls the macro is not settled;
+* a G66.1 call while the modal motion is G00, G02 or G03, and any G code in a block under
+  G66.1: the block's G codes are not arguments, and whether the control executes them before
+  the call is not stated, so the macro would have to guess a rapid from a cut;
+* reading ``#4001..#4130`` (modal information "up to the preceding block") in a macro called by
+  G66.1 or in a program that macro calls: which block precedes a block turned into a call is
+  not stated;
+* an argument letter that is an axis address of the simulated machine (``axes=``, e.g. "XYZB"),
+  other than X, Y, Z (the move's own end point): whether the control passes it to the macro or
+  moves the axis is a machine matter.
 
 Not supported (raise MacroError): G18/G19, cutter compensation G41/G42, canned cycles,
 G66 (move-triggered modal call), argument specification II, G65 with L other than 1,
@@ -623,10 +637,11 @@ def parse_programs(text: str) -> dict:
 class _Frame:
     """One level of execution: a program, its program counter and its local variables."""
 
-    __slots__ = ("program", "pc", "locals", "kind", "repeat")
+    __slots__ = ("program", "pc", "locals", "kind", "repeat", "modal_called")
 
-    def __init__(self, program, locals_, kind, repeat=1):
+    def __init__(self, program, locals_, kind, repeat=1, modal_called=False):
         self.program, self.pc, self.locals, self.kind, self.repeat = program, 0, locals_, kind, repeat
+        self.modal_called = modal_called        # a macro called by G66.1 (or a program it called)
 
 
 class _Interpreter:
@@ -634,7 +649,7 @@ class _Interpreter:
 
     def __init__(self, programs: dict, main: int | None, clock, start, max_blocks: int,
                  variables: Mapping | None, home: Mapping | None, max_call_depth: int,
-                 significant_digits: int | None = None):
+                 significant_digits: int | None = None, axes: str = "XYZ"):
         if not programs:
             raise MacroError("no program in the text")
         self.programs = programs
@@ -649,6 +664,11 @@ class _Interpreter:
         if significant_digits is not None and not (isinstance(significant_digits, int) and significant_digits >= 1):
             raise MacroError(f"significant_digits must be a positive integer, got {significant_digits!r}")
         self.significant_digits = significant_digits
+        if not (isinstance(axes, str) and set("XYZ") <= set(axes) and set(axes) <= set("XYZABCUVW")
+                and len(set(axes)) == len(axes)):
+            raise MacroError(f"axes must name the machine's axis addresses, X Y Z and any of A B C U V W, "
+                             f"each once; got {axes!r}")
+        self.axes = axes
         self.common: dict = {}
         main_locals: dict = {}
         for n, v in (variables or {}).items():
@@ -691,6 +711,10 @@ class _Interpreter:
             return float(value)
         if 5001 <= n <= 5003:
             return self.pos[n - 5001]
+        if 4001 <= n <= 4130 and any(f.modal_called for f in self.stack):
+            raise MacroError(f"#{n} read in a macro called by G66.1: the manual gives #4001..#4130 as the "
+                             "modal information up to the preceding block, and which block that is for a "
+                             "block turned into a call (its G codes not executed) is left to the control")
         system = {4001: self.motion, 4003: 90 if self.absolute else 91, 4006: 21 if self.metric else 20,
                   4014: self.wcs, 4109: self.feed, 4111: self.h, 4119: self.spindle, 4120: self.tool}
         if n in system:
@@ -839,18 +863,32 @@ class _Interpreter:
                 continue
             if letter not in ARG_VARS:
                 raise MacroError(f"address {letter} cannot be a macro argument")
+            if letter in self.axes and letter not in "XYZ":
+                raise MacroError(f"address {letter} is an axis of this machine (axes {self.axes}): whether a "
+                                 "call passes it as an argument or moves the axis is left to the control")
             n = ARG_VARS[letter]
             if n in args:
                 raise MacroError(f"address {letter} given twice (argument specification II is not supported)")
             args[n] = v
         return args
 
-    def _call_macro(self, number: int, args: dict):
+    def _call_macro(self, number: int, args: dict, modal: bool = False):
         prog = self._program(number)
         depth = sum(1 for f in self.stack if f.kind == "macro")
         if depth >= self.max_call_depth:
             raise MacroError(f"macro calls nested deeper than {self.max_call_depth} levels")
-        self.stack.append(_Frame(prog, dict(args), "macro"))
+        inherited = any(f.modal_called for f in self.stack)
+        self.stack.append(_Frame(prog, dict(args), "macro", modal_called=modal or inherited))
+
+    def _check_modal_call(self, args: dict, what: str):
+        """What a G66.1 call may be here: a G01 block with a move (an X, Y or Z word)."""
+        if not any(ARG_VARS[a] in args for a in "XYZ"):
+            raise MacroError(f"{what} without an X, Y or Z word: whether a block with no move calls the "
+                             "macro is left to the control (give the call a move, or cancel with G67)")
+        if self.motion != 1:
+            name = {0: "G00 (a rapid)", 2: "G02 (an arc)", 3: "G03 (an arc)"}[self.motion]
+            raise MacroError(f"{what} in {name}: the macro would have to tell a rapid or an arc from a cut; "
+                             "only G01 blocks may be called (G67 before a rapid or an arc)")
 
     def _call_block(self, words, gcodes, frame):
         """A G65 or G66.1 block: P program, optional L, the rest are arguments."""
@@ -868,19 +906,21 @@ class _Interpreter:
             if self.modal_call is not None:
                 raise MacroError("G66.1 while a modal call is already active")
             self._program(number)
+            self._check_modal_call(args, "a G66.1 block")
             self.modal_call = (number, frame)
-        self._call_macro(number, args)
+        self._call_macro(number, args, modal=g == "66.1")
 
     def _modal_called_block(self, words):
         """Under G66.1: the block is not executed; its words become the macro's arguments."""
         for letter, v in words:
             if letter == "G":
-                g = _gcode(v)
-                if not self._apply_modal_g(g):
-                    raise MacroError(f"G{g} in a block under G66.1 is not supported (cancel with G67 first)")
+                raise MacroError(f"G{_gcode(v)} in a block under G66.1: whether the control executes it or "
+                                 "only hands the block to the macro is left to the control (G67 first)")
             elif letter == "M" and v in (2.0, 30.0, 98.0, 99.0):
                 raise MacroError(f"M{v:02.0f} while the G66.1 modal call is active (cancel with G67 first)")
-        self._call_macro(self.modal_call[0], self._arguments(words, "G"))
+        args = self._arguments(words, "G")
+        self._check_modal_call(args, "a block under G66.1")
+        self._call_macro(self.modal_call[0], args, modal=True)
 
     def _ordinary_block(self, blk: _Block, words, gcodes):
         w, mcodes = {}, []
@@ -1050,7 +1090,7 @@ class _Interpreter:
 def run_program(text: str, clock: Iterable | None = None, start=(0.0, 0.0, 0.0),
                 max_blocks: int = 10_000_000, *, variables: Mapping | None = None,
                 home: Mapping | None = None, main: int | None = None,
-                max_call_depth: int = 4, significant_digits: int | None = None) -> MacroRun:
+                max_call_depth: int = 4, significant_digits: int | None = None, axes: str = "XYZ") -> MacroRun:
     """Execute a Fanuc program text and return what it did.
 
     clock       values returned by successive reads of #3001 (milliseconds); None: reading it is an error
@@ -1062,10 +1102,12 @@ def run_program(text: str, clock: Iterable | None = None, start=(0.0, 0.0, 0.0),
     main        program number to start with (default: the first program in the text)
     max_call_depth  G65/G66.1 nesting limit (4 on a Series 16i/18i, 5 on later controls)
     significant_digits  round every stored value to this many significant digits (None: exact)
+    axes        the simulated machine's axis addresses, e.g. "XYZB" for a machine with a B axis: a
+                macro argument that is one of them (other than X, Y, Z) is refused
     """
     programs = parse_programs(text)
     return _Interpreter(programs, main, clock, start, max_blocks, variables, home, max_call_depth,
-                        significant_digits).run()
+                        significant_digits, axes).run()
 
 
 def eval_expression(expr: str, variables: Mapping | None = None, clock: Iterable | None = None):

@@ -72,6 +72,19 @@ def test_fanuc_macro_program(runs):
     text = (runs["macro"] / "engrave.nc").read_text()
     assert "G66.1 P7023" in text and "#3001" in text and "O7023" in text
     assert "GT5" not in text
+    # The program as a control reads it: G66.1/G67 balanced and cancelled before every retract
+    # (controller_rules), and on a strict Custom Macro B interpreter of a machine with every usual
+    # axis the macro cuts G01 moves only, the rapids are the main program's, above the plate.
+    import controller_rules
+    from macrob import run_program
+    assert controller_rules.check(text, "fanuc-mill") == []
+    run = run_program(text, clock=iter(range(4096, 10**7, 16)), start=(0, 0, 100), axes="XYZABCUVW")
+    assert run.ended_by == "M30" and run.clock_reads == 1
+    assert all(m.kind == "feed" for m in run.moves if m.line != m.main_line)
+    rapids = [m for m in run.moves if m.kind == "rapid"]
+    assert rapids and all(m.line == m.main_line and m.z >= 2.0 - 1e-9 for m in rapids)
+    feed_z = [m.z for m in run.moves if m.line != m.main_line]
+    assert min(feed_z) >= -2.8 - 1e-9 and max(feed_z) <= -1.2 + 1e-9
 
 
 def test_bad_input_exits_2_with_a_message_and_no_program(tmp_path):

@@ -42,7 +42,7 @@ def test_export_macro_program_on_the_cylinder(scene, tmp_path):
     path = tmp_path / "plate.nc"
     assert bpy.ops.kezuri.engrave_export(filepath=str(path), post="fanuc-macro") == {"FINISHED"}
     text = path.read_text()
-    assert "G66.1 P7024" in text and "O7024" in text and " B1 C" in text
+    assert "G66.1 P7024" in text and "O7024" in text and " E1 Q1 R" in text and " B1 C" not in text
 
 
 def test_a_surface_that_does_not_cover_the_plate_names_the_object(scene, tmp_path):

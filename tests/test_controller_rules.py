@@ -96,6 +96,16 @@ M30
 """
 
 
+# The macro confined to cutting: G66.1 on the first raster block, G67 before the retract.
+MACRO_GOOD = FANUC_GOOD.replace("G01 Z-1. F100.\nG00 Z50.\n", """G01 Z-1. F100.
+G66.1 P7023 X100. F1200.
+Y3.
+X0.
+G67
+G00 Z50.
+""")
+
+
 def bad(text, old, new):
     assert old in text
     return text.replace(old, new, 1)
@@ -121,6 +131,14 @@ def bad(text, old, new):
     ("fanuc-mill", bad(FANUC_GOOD, "G43 Z50. H01\n", "Z50.\n"), "toolchange"),
     ("fanuc-mill", bad(FANUC_GOOD, "G00 Z50.\nM05\n", "G00 Z50.\nM05\nG91 G28 Z0.\nG90\nG49\nT01 M06\n"),
      "toolchange"),
+    ("fanuc-mill", bad(MACRO_GOOD, "G67\nG00 Z50.\n", "G00 Z50.\nG67\n"), "modalcall"),   # retract under G66.1
+    ("fanuc-mill", bad(MACRO_GOOD, "X0.\nG67\n", "G00 X0.\nG67\n"), "modalcall"),      # reposition under it
+    ("fanuc-mill", bad(MACRO_GOOD, "G67\nG00 Z50.\n", "G00 Z50.\n"), "modalcall"),      # never cancelled, M30
+    ("fanuc-mill", bad(MACRO_GOOD, "G67\n", ""), "modalcall"),
+    ("fanuc-mill", bad(MACRO_GOOD, "G67\n", "G67\nG67\n"), "modalcall"),              # G67 without G66.1
+    ("fanuc-mill", bad(MACRO_GOOD, "Y3.\n", "G66.1 P7023 Y3.\n"), "modalcall"),        # nested
+    ("fanuc-mill", bad(MACRO_GOOD, "G01 Z-1. F100.\n", "G01 Z-1. F100.\nG00 Z1.\n"), "modalcall"),  # made in G00
+    ("fanuc-mill", bad(MACRO_GOOD, "Y3.\n", "Y3. M05\n"), "modalcall"),
     ("linuxcnc", "G21 G90\nT1 M06\nG43 H1\nS1000 M03\nG01 X1 F100\nM05\nG49\nT1 M06\nG43 H1\nM30\n", "toolchange"),
     ("linuxcnc", "G21 G90\nT1 M06\nG43 H1\nS1000 M03\nG93\nG01 X1 F10\nX2\nM30\n", "g93"),
     ("linuxcnc", "G21 G90\nT1 M06\nG43 H1\nS1000 M03\nG01 X1 F0\nM30\n", "feed"),
@@ -150,6 +168,7 @@ def test_the_checker_catches_each_rule(control, text, rule):
 
 def test_the_good_hand_written_program_passes():
     assert rules.check(FANUC_GOOD, "fanuc-mill") == []
+    assert rules.check(MACRO_GOOD, "fanuc-mill") == []
     assert rules.check("G21 G90\nT1 M06\nG43 H1\nS1000 M03\nG93\nG01 X1 F10\nG94\nM05\nG49\nM30\n",
                        "linuxcnc") == []
 

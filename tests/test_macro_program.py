@@ -6,7 +6,7 @@ import pytest
 from kezuri import post
 from kezuri.post.fanuc import macro_program
 from kezuri.toolpath import engrave
-from macrob import run_program
+from macrob import MacroError, run_program
 from test_engrave import LETTERS, PLATE
 
 
@@ -106,17 +106,18 @@ CHI2_8_999 = 26.12
 
 def long_raster(rows: int, length: float = 2000.0) -> str:
     """A main program that sends `rows` X strokes of `length` mm through O7023 (one gouge per 20 mm)."""
-    lines = ["%", "O0001", "G90 G21 G54", "G00 X0. Y0. Z5.", "G01 Z-2. F300.", "G66.1 P7023"]
+    lines = ["%", "O0001", "G90 G21 G54", "G00 X0. Y0. Z5.", "G01 Z-2. F300."]
     for row in range(rows):
-        lines.append(f"X{length if row % 2 == 0 else 0.0:.1f} F1200.")
+        stroke = f"X{length if row % 2 == 0 else 0.0:.1f} F1200."
+        lines.append(f"G66.1 P7023 {stroke}" if row == 0 else stroke)
         lines.append(f"Y{row + 1:.1f}")
     lines += ["G67", "G00 Z5.", "M30"]
     return "\n".join(lines) + "\n" + macro_program(engrave.GougeTexture(), 3) + "%\n"
 
 
 def gouge_depths(run, text):
-    """Z of the gouge moves, in order: the moves made by O7023's block G#1X#16Z#114F#9."""
-    gouge_line = text.splitlines().index("G#1X#16Z#114F#9") + 1
+    """Z of the gouge moves, in order: the moves made by O7023's block G01X#16Z#114F#9."""
+    gouge_line = text.splitlines().index("G01X#16Z#114F#9") + 1
     return np.round([m.z for m in run.moves if m.line == gouge_line], 3)
 
 
@@ -171,3 +172,147 @@ def test_clock_digit_extraction_matches_the_paper_example():
     run = run_program(program, clock=iter([64172]))
     assert run.var(28) == 2
     assert engrave.GougeTexture().depth(2) == pytest.approx(-1.6)
+
+
+# ---------------------------------------------------------------- the macro confined to cutting
+
+def runs_of_the_modal_call(text):
+    """[(first line, last line)] of the G66.1 ... G67 runs of the main program (1-based)."""
+    lines = text.split("O7023 (")[0].splitlines()
+    runs, opened = [], None
+    for number, line in enumerate(lines, 1):
+        if line.startswith("G66.1"):
+            assert opened is None, f"line {number}: G66.1 while one is in force"
+            opened = number
+        elif line == "G67":
+            assert opened is not None, f"line {number}: G67 without G66.1"
+            runs.append((opened, number - 1))
+            opened = None
+    assert opened is None, "G66.1 left modal at the program end"
+    return runs, lines
+
+
+def test_the_modal_call_spans_only_g01_raster_blocks(job):
+    text = post.milling_post("fanuc-macro").to_text(job.program)
+    runs, lines = runs_of_the_modal_call(text)
+    assert len(runs) >= 3
+    for first, last in runs:
+        assert lines[first - 1].startswith("G66.1 P7023 X") and " F" in lines[first - 1]
+        for line in lines[first - 1:last]:
+            words = line.split()[2:] if line.startswith("G66.1") else line.split()
+            # X and Y only (and F): no G code, no Z, no other address
+            assert words and all(w[0] in "XYF" for w in words), line
+        # the block before the call leaves G01 in force (the plunge)
+        assert lines[first - 2].startswith("G01 Z")
+        # after G67 the retract states its G code and Z
+        assert lines[last + 1].startswith("G00 Z")
+
+
+def test_the_new_program_on_a_strict_control(job):
+    """Run on a machine with every usual axis (so no argument may be an axis address), the
+    rapids and retracts are executed as programmed by the main program, above the plate, and
+    the macro cuts only G01 moves, its gouges at the drawn depths in order."""
+    power_on = 64172
+    text = post.milling_post("fanuc-macro").to_text(job.program)
+    run = run_program(text, clock=clock_16ms(power_on), start=(0, 0, 100), axes="XYZABCUVW")
+    by_macro = [m for m in run.moves if m.line != m.main_line]
+    by_main = [m for m in run.moves if m.line == m.main_line]
+    assert by_macro and all(m.kind == "feed" for m in by_macro)
+    assert all(m.kind != "rapid" for m in by_macro)
+    rapids = [m for m in run.moves if m.kind == "rapid"]
+    assert rapids and all(m.line == m.main_line for m in rapids)
+    lines = text.splitlines()
+    for m in rapids:
+        block = lines[m.line - 1]
+        for axis, value in zip("XYZ", m.end):        # the rapid ends where its block says
+            word = next((w for w in block.split() if w[0] == axis), None)
+            if word is not None:
+                assert float(word[1:]) == pytest.approx(value, abs=1e-9), block
+        moved_xy = abs(m.end[0] - m.start[0]) > 1e-9 or abs(m.end[1] - m.start[1]) > 1e-9
+        # across the plate at the clearance height (20) or above; down only to 2 mm over the top
+        assert m.z >= (20.0 if moved_xy else 2.0) - 1e-9, block
+    # the retracts and plunges of the roughing are main-program blocks, never textured
+    z_moves = [m for m in by_main if abs(m.end[2] - m.start[2]) > 1e-9 and m.kind == "feed"]
+    assert z_moves and all(m.z == pytest.approx(-2.0) for m in z_moves if m.z < 0)
+    # the gouges: made by O7023's two gouge blocks, at the drawn depths, in order
+    digits = model_digits(seed_state(int(power_on // 16) * 16))
+    _, depths = engrave.bake(job.program, digits=digits)
+    gouge_lines = {n for n, line in enumerate(lines, 1) if line in ("G01X#16Y#33Z#114F#9", "G01X#16Z#114F#9")}
+    assert len(gouge_lines) == 2
+    cut = [m.z for m in run.moves if m.line in gouge_lines]
+    np.testing.assert_allclose(cut, depths, atol=1e-9)
+    # nothing the macro cut lies outside the nine depths' range
+    assert min(m.z for m in by_macro) >= -2.8 - 1e-9 and max(m.z for m in by_macro) <= -1.2 + 1e-9
+
+
+OLD_FORM = """%
+O0001
+G90 G21 G54
+G00 X-100. Y-49.99 Z20.
+Z2.
+G01 Z-2. F300.
+G66.1 P7023 X100. F1200.
+Y-47.049
+X-100.
+G00 Z20.
+X-100. Y-17.644
+Z2.
+G01 Z-2. F300.
+X-62.738 F1200.
+G67
+G00 Z100.
+M30
+"""
+
+
+def test_the_old_form_is_refused_and_would_cut_a_reposition_as_texture():
+    # The old post's form: G66.1 left in force over the retract and the 32 mm reposition.
+    text = OLD_FORM + macro_program(engrave.GougeTexture(), 3) + "%\n"
+    with pytest.raises(MacroError, match="G0 in a block under G66.1") as err:
+        run_program(text, clock=clock_16ms(64172), start=(0, 0, 100))
+    assert err.value.text == "G00 Z20." and err.value.line == 10
+    # Written as the old post wrote it, `G66.1 P7023` alone on its line: refused at once.
+    alone = text.replace("G66.1 P7023 X100. F1200.", "G66.1 P7023\nX100. F1200.")
+    with pytest.raises(MacroError, match="a G66.1 block without an X, Y or Z word"):
+        run_program(alone, clock=clock_16ms(64172), start=(0, 0, 100))
+    # What a control that hands the reposition to the macro would cut (the issue's failure):
+    # the same block given to O7023 by a G65 call, from the retract height, is cut as texture,
+    # a G01 diving from Z 20 to the gouge depths along the 200 mm move.
+    called = ("%\nO0001\nG90 G00 X100. Y-47.049 Z20.\nG01 F1200.\nG65 P7023 X-100. Y-17.644\nM30\n"
+              + macro_program(engrave.GougeTexture(), 3) + "%\n")
+    run = run_program(called, clock=clock_16ms(64172), start=(0, 0, 100))
+    dive = run.moves[1:]
+    assert all(m.kind == "feed" for m in dive) and len(dive) == 11        # 10 gouges + the rest
+    assert dive[0].start[2] == 20.0 and -2.8 - 1e-9 <= dive[0].z <= -1.2 + 1e-9
+    assert dive[-1].end[:2] == pytest.approx((-100.0, -17.644))
+
+
+def test_the_old_surface_arguments_are_axis_addresses_on_a_b_axis_machine():
+    # The old O7024 call passed B1 (new gouge) and C (ramp position): on a machine with a B or C
+    # axis those are axis words.  The new call passes E, Q and R.
+    old = ("%\nO0001\nG90 G00 X-100. Y-49.99 Z20.\nG01 Z-9.821 F300.\n"
+           "G66.1 P7024 X-99. Y-49.99 Z-7.696 B1 C0.05 F1200.\nG67\nM30\nO7024\nM99\n%\n")
+    assert run_program(old, start=(0, 0, 100)).ended_by == "M30"        # a 3-axis machine
+    for axes, letter in (("XYZB", "B"), ("XYZC", "C"), ("XYZAC", "C")):
+        with pytest.raises(MacroError, match=f"address {letter} is an axis of this machine"):
+            run_program(old, start=(0, 0, 100), axes=axes)
+    new = old.replace("B1 C0.05", "E1 Q1 R0.05")
+    assert run_program(new, start=(0, 0, 100), axes="XYZABCUVW").ended_by == "M30"
+
+
+@pytest.mark.parametrize("call, number", [
+    ("G65 P7023 X50. Z-1.", 1),          # a Z word: an approach, retract or ramp is no raster block
+    ("G65 P7023 F1200.", 1),             # no X, no Y
+    ("G65 P7024 X50. Y0. Z-1.", 2),      # no ramp position R
+    ("G65 P7024 X50. Y0. R0.5", 2),      # no Z (the surface)
+    ("G65 P7024 X50. Y0. Z-1. R0.5", 2),  # no E1 ever: no depth to start from
+])
+def test_a_call_that_is_no_cutting_block_stops_the_control(call, number):
+    from kezuri.post.fanuc import surface_macro_program
+    from macrob import MacroAlarm
+    texture = engrave.GougeTexture()
+    text = (f"%\nO0001\nG90 G00 X0. Y0. Z5.\nG01 Z-2. F300.\n{call}\nM30\n"
+            + macro_program(texture, 3) + surface_macro_program(texture, 3) + "%\n")
+    with pytest.raises(MacroAlarm) as err:
+        run_program(text, clock=iter([4096]))
+    assert err.value.number == number and err.value.alarm_message.strip() in ("NOT A RASTER BLOCK", "NOT A ROW BLOCK")

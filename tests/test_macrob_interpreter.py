@@ -230,24 +230,23 @@ O0001
 #101=0
 F100.
 G90G00X1.Y2.Z3.
+G01Z2.
 G66.1P9001X5.
-G01Y7.
-X9.
+Y7.
+X9.F50.
 (A COMMENT LINE DOES NOT CALL)
 N50
-F50.
-G00Z10.
 G67
+G00Z10.
 X0
 M30
 %
 O9001
 #101=#101+1
-#[110+#101]=#4001
 #[130+#101]=#5001
 #[150+#101]=#5002
 #[170+#101]=#9
-G#4001X#24Y#25Z#26
+G01X#24Y#25Z#26
 M99
 %
 """
@@ -255,25 +254,66 @@ M99
 
 def test_g66_1_calls_the_macro_on_every_block_until_g67():
     run = run_program(MODAL)
-    # calls: the G66.1 block (X5.), G01Y7., X9., F50., G00Z10.  -- not the comment, not N50
-    assert run.var(101) == 5.0
-    assert [run.var(110 + k) for k in range(1, 6)] == [0.0, 1.0, 1.0, 1.0, 0.0]   # #4001
-    assert [run.var(130 + k) for k in range(1, 6)] == [1.0, 5.0, 5.0, 9.0, 9.0]   # #5001
-    assert [run.var(150 + k) for k in range(1, 6)] == [2.0, 2.0, 7.0, 7.0, 7.0]   # #5002
-    assert [run.var(170 + k) for k in range(1, 6)] == [None, None, None, 50.0, None]  # F -> #9
-    assert [m.kind for m in run.moves] == ["rapid", "rapid", "feed", "feed", "rapid", "rapid"]
-    assert approx_xyz(run.moves) == [(1, 2, 3), (5, 2, 3), (5, 7, 3), (9, 7, 3), (9, 7, 10), (0, 7, 10)]
-    # the F50. block was an argument only: the modal feed stays 100
-    assert [m.feed for m in run.moves] == [None, None, 100.0, 100.0, None, None]
-    macro_move_line = MODAL.splitlines().index("G#4001X#24Y#25Z#26") + 1
-    assert [m.line for m in run.moves[1:5]] == [macro_move_line] * 4
-    assert [m.main_line for m in run.moves] == [5, 6, 7, 8, 12, 14]   # the calling blocks
+    # calls: the G66.1 block (X5.), Y7., X9.F50.  -- not the comment, not N50, not G67
+    assert run.var(101) == 3.0
+    assert [run.var(130 + k) for k in range(1, 4)] == [1.0, 5.0, 5.0]   # #5001: X before the block
+    assert [run.var(150 + k) for k in range(1, 4)] == [2.0, 2.0, 7.0]   # #5002
+    assert [run.var(170 + k) for k in range(1, 4)] == [None, None, 50.0]  # F -> #9
+    assert [m.kind for m in run.moves] == ["rapid", "feed", "feed", "feed", "feed", "rapid", "rapid"]
+    assert approx_xyz(run.moves) == [(1, 2, 3), (1, 2, 2), (5, 2, 2), (5, 7, 2), (9, 7, 2), (9, 7, 10), (0, 7, 10)]
+    # the F50. of a called block is an argument only: the modal feed stays 100
+    assert [m.feed for m in run.moves] == [None, 100.0, 100.0, 100.0, 100.0, None, None]
+    macro_move_line = MODAL.splitlines().index("G01X#24Y#25Z#26") + 1
+    assert [m.line for m in run.moves[2:5]] == [macro_move_line] * 3
+    assert [m.main_line for m in run.moves] == [5, 6, 7, 8, 9, 13, 14]   # the calling blocks
     assert run.modal["modal_call"] is None
 
 
+# Where the manual leaves the behaviour to the machine, the interpreter refuses instead of guessing.
+@pytest.mark.parametrize("old, new, line, message", [
+    ("G66.1P9001X5.", "G66.1P9001", 7, "a G66.1 block without an X, Y or Z word"),
+    ("Y7.", "F50.", 8, "a block under G66.1 without an X, Y or Z word"),
+    ("Y7.", "M08", 8, "a block under G66.1 without an X, Y or Z word"),
+    ("Y7.", "G01Y7.", 8, "G1 in a block under G66.1"),
+    ("Y7.", "G00Y7.", 8, "G0 in a block under G66.1"),                    # a rapid under the call
+    ("G01Z2.", "G00Z2.", 7, r"a G66\.1 block in G00 \(a rapid\)"),         # the call made in G00
+    ("#[130+#101]=#5001", "#[130+#101]=#4001", 19, "#4001 read in a macro called by G66.1"),
+    ("G01X#24Y#25Z#26", "G00X#24Y#25Z#26", 8, r"a block under G66\.1 in G00"),  # the macro left G00 modal
+])
+def test_g66_1_refuses_what_the_manual_leaves_to_the_machine(old, new, line, message):
+    assert MODAL.count(old) == 1
+    with pytest.raises(MacroError, match=message) as err:
+        run_program(MODAL.replace(old, new))
+    assert err.value.line == line
+
+
+def test_modal_information_is_read_in_a_g65_call():
+    # #4001 after a G01 block, in a macro called by G65 (not G66.1): the preceding block's G01
+    text = prog("G90G01X1.F100.", "G65P9001", "M30") + "O9001\n#100=#4001\nM99\n%\n"
+    assert run_program(text).var(100) == 1.0
+
+
+def test_an_argument_that_is_an_axis_of_the_machine_is_refused():
+    text = prog("G90G01X1.F100.", "G65P9001X2.B1.C0.5", "M30") + "O9001\n#100=#2+#3\nM99\n%\n"
+    assert run_program(text).var(100) == 1.5                        # a 3-axis machine: B and C are letters
+    with pytest.raises(MacroError, match="address B is an axis of this machine") as err:
+        run_program(text, axes="XYZB")
+    assert err.value.line == 4
+    with pytest.raises(MacroError, match="address C is an axis"):
+        run_program(text, axes="XYZC")
+    modal = MODAL.replace("X9.F50.", "X9.F50.C1.")
+    assert run_program(modal, axes="XYZB").var(101) == 3.0          # C is no axis of an X Y Z B machine
+    with pytest.raises(MacroError, match="address C is an axis") as err:
+        run_program(modal, axes="XYZAC")
+    assert err.value.line == 9
+    with pytest.raises(MacroError, match="axes must name"):
+        run_program(text, axes="XY")
+
+
 def test_g66_1_refuses_program_end_while_active():
-    with pytest.raises(MacroError, match="G67"):
-        run_program(prog("G66.1P9001", "M30") + "O9001\nM99\n")
+    with pytest.raises(MacroError, match=r"M30 while the G66\.1 modal call is active") as err:
+        run_program(prog("G01X0F100.", "G66.1P9001X1.", "M30") + "O9001\nM99\n")
+    assert err.value.line == 5
 
 
 # ----------------------------------------------------------------------------------------------
@@ -419,8 +459,7 @@ O0001(SPLIT TEST)
 G90G17G21G54
 G00X0Y0Z2.
 G01Z-0.5F300.
-G66.1P7023
-G01X50.F600.
+G66.1P7023X50.F600.
 Y10.
 X-5.
 G67
@@ -428,12 +467,11 @@ G00Z5.
 M30
 %
 O7023
-#10=#4001
 IF[#9EQ#0]GOTO5
 F#9
 N5
 IF[#24NE#0]GOTO20
-G#10Y#25Z#26
+G01Y#25Z#26
 M99
 N20
 #11=#5001
@@ -447,7 +485,7 @@ WHILE[ABS[#24-#15]GT0.0001]DO1
 IF[[#14*[#24-#16]]LT0]THEN#16=#24
 #17=[#15+#16]/2
 #18=-[0.5+0.01*ABS[#17]]
-G#10X#16Y#25Z#18
+G01X#16Y#25Z#18
 #15=#16
 END1
 M99
@@ -470,7 +508,7 @@ def test_split_x_moves_into_20mm_pieces_with_computed_depth():
     for move, (_, xyz) in zip(run.moves, expected):
         assert move.end == pytest.approx(xyz, abs=1e-9)
     assert [m.feed for m in run.moves] == [None, 300.0] + [600.0] * 7 + [None]
-    assert [m.main_line for m in run.moves[2:9]] == [7, 7, 7, 8, 9, 9, 9]
+    assert [m.main_line for m in run.moves[2:9]] == [6, 6, 6, 7, 8, 8, 8]
     assert run.clock_reads == 0 and run.ended_by == "M30"
 
 
@@ -558,11 +596,37 @@ M99
 """
 
 
-def test_corrected_paper_macro_on_the_paper_frame():
+def test_the_papers_frame_is_refused():
+    # The paper keeps G66.1 modal over an arc and rapids and has O7023 tell them apart by #4001:
+    # refused at the first call, where the macro reads #4001.
+    with pytest.raises(MacroError, match="#4001 read in a macro called by G66.1") as err:
+        run_program(GOUGE, clock=itertools.count(12340, 11))
+    assert err.value.text == "#1=#4001"
+    # Without the #4001 read, at the arc kept under the modal call.
+    without_4001 = GOUGE.replace("#1=#4001", "#1=1")
+    with pytest.raises(MacroError, match="G2 in a block under G66.1") as err:
+        run_program(without_4001, clock=itertools.count(12340, 11))
+    assert err.value.text == "G02X-40.Y-64.I5.J0"
+
+
+def _confined(text):
+    """The paper's program with the macro confined to cutting: G67 before the arc and the
+    rapids, which become ordinary blocks; O7023 writes G01 and reads no #4001."""
+    for old, new in (("X-50.\nG02", "X-50.\nG67\nG02"), ("G01Z0.\nG67\n", "G01Z0.F10\n"),
+                     ("#1=#4001\n", ""), ("IF[#1EQ0]GOTO10\n", ""), ("IF[#1GT1]GOTO10\n", "")):
+        assert text.count(old) == 1, old
+        text = text.replace(old, new)
+    return text.replace("G#1", "G01")
+
+
+GOUGE_CONFINED = _confined(GOUGE)
+
+
+def test_corrected_paper_macro_confined_to_cutting():
     # last clock digits 0..9, then 5, 4 -> depths -2.0 + 0.2 d (d <= 4) or -2.0 - 0.2 (d - 5) (d >= 5)
     clock = [12340, 12351, 12362, 12373, 12384, 12395, 12406, 12417, 12428, 12439, 12445, 12454]
     depth = [-2.0, -1.8, -1.6, -1.4, -1.2, -2.0, -2.2, -2.4, -2.6, -2.8, -2.0, -1.2]
-    run = run_program(GOUGE, clock=clock)
+    run = run_program(GOUGE_CONFINED, clock=clock)
     assert run.clock_reads == 12 and run.ended_by == "M30"
     y0 = -58.024
     expected = [
@@ -577,7 +641,7 @@ def test_corrected_paper_macro_on_the_paper_frame():
     # X-106 -> X-50: pieces end at -86, -66, then the rest to -50
     expected += [("feed", (-86, -64, depth[10])), ("feed", (-66, -64, depth[11])),
                  ("feed", (-50, -64, depth[11]))]
-    expected += [("cw", (-40, -64, depth[11])),      # arcs pass through
+    expected += [("cw", (-40, -64, depth[11])),      # the arc and the rapids after G67: as programmed
                  ("rapid", (-40, -64, 2.54)), ("rapid", (-85.207, -25.293, 2.54)),
                  ("feed", (-85.207, -25.293, 0)),    # Z-only move: G01 Z F10
                  ("rapid", (-85.207, -25.293, 100))]

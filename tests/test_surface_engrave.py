@@ -171,7 +171,26 @@ def test_flat_surface_gives_the_flat_program():
 def test_macro_program_on_the_dome_cuts_what_the_baked_program_cuts(dome_job):
     text = post.milling_post("fanuc-macro").to_text(dome_job.macro)
     assert "G66.1 P7024" in text and "O7024" in text
-    run = run_program(text, clock=tm.clock_16ms(64172), start=(0, 0, 100))
+    # on a machine with every usual axis: no argument may be an axis address (the old B1 C0.05 were)
+    run = run_program(text, clock=tm.clock_16ms(64172), start=(0, 0, 100), axes="XYZABCUVW")
+    # the macro cuts G01 moves only; every rapid is a main-program block, across the plate at the
+    # clearance height, down only to above the surface under the ball
+    by_macro = [m for m in run.moves if m.line != m.main_line]
+    assert by_macro and all(m.kind == "feed" for m in by_macro)
+    rapids = [m for m in run.moves if m.kind == "rapid"]
+    assert rapids and all(m.line == m.main_line for m in rapids)
+    for m in rapids:
+        moved_xy = abs(m.end[0] - m.start[0]) > 1e-9 or abs(m.end[1] - m.start[1]) > 1e-9
+        floor = 20.0 if moved_xy else float(ball_tip_on_sphere(m.x, m.y, 3.0)) + 1.0
+        assert m.z >= floor - 1e-9, m
+    main_lines = text.split("O7024 (")[0].splitlines()
+    opened = [n for n, line in enumerate(main_lines) if line.startswith("G66.1 P7024 ")]
+    closed = [n for n, line in enumerate(main_lines) if line == "G67"]
+    assert len(opened) == len(closed) >= 3 and all(a < b for a, b in zip(opened, closed))
+    assert all(b < a for a, b in zip(opened[1:], closed[:-1]))          # balanced, never nested
+    for a, b in zip(opened, closed):
+        assert " E1 " in main_lines[a]
+        assert all(" R" in line and "G" not in line for line in main_lines[a + 1:b])
     digits = tm.model_digits(tm.seed_state(int(64172 // 16) * 16))
     baked_flat, depths = engrave.bake(dome_job.result.program, digits=digits)
     ops = [se.follow(op, dome_job.surface, None)[0] for op in baked_flat.operations]
