@@ -155,6 +155,41 @@ def contains_points(region: CrossSection, points: np.ndarray) -> np.ndarray:
     return crossings.astype(np.int64) % 2 == 1
 
 
+def grid_inside(region: CrossSection, xs: np.ndarray, ys: np.ndarray, rows_per_block: int = 256) -> np.ndarray:
+    """:func:`contains_points` of every grid point (xs[i], ys[j]) as a (len(xs), len(ys)) bool
+    array, by scan lines: each edge meets only the rows in its span, and a crossing at x turns
+    the parity of every point left of it; so the work is the crossings plus one pass over the
+    grid, and no array of points is made.  ``xs`` and ``ys`` must be ascending.  The same rule
+    and the same arithmetic as :func:`contains_points` (a point exactly on an edge falls the
+    same way), which the tests check point for point."""
+    xs = np.asarray(xs, float).reshape(-1)
+    ys = np.asarray(ys, float).reshape(-1)
+    inside = np.zeros((len(xs), len(ys)), bool)
+    edges = _edges(region)
+    edges = edges[edges[:, 1] != edges[:, 3]]
+    if not len(edges) or not len(xs) or not len(ys):
+        return inside
+    x0, y0, x1, y1 = edges.T
+    first = np.searchsorted(ys, np.minimum(y0, y1), "left")
+    last = np.searchsorted(ys, np.maximum(y0, y1), "left")
+    for start in range(0, len(ys), rows_per_block):
+        stop = min(start + rows_per_block, len(ys))
+        lo, hi = np.maximum(first, start), np.minimum(last, stop)
+        count = np.maximum(hi - lo, 0)
+        if not count.any():
+            continue
+        edge = np.repeat(np.arange(len(edges)), count)
+        row = np.repeat(lo, count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)
+        xi = x0[edge] + (ys[row] - y0[edge]) * (x1[edge] - x0[edge]) / (y1[edge] - y0[edge])
+        # points 0..k-1 of the row lie left of the crossing (xs < xi): their parity turns
+        k = np.searchsorted(xs, xi, "left")
+        toggles = np.zeros((stop - start, len(xs) + 1), np.uint8)
+        np.add.at(toggles, (row - start, k), 1)
+        parity = np.bitwise_xor.accumulate(toggles[:, ::-1] & 1, axis=1)[:, ::-1]
+        inside[:, start:stop] = parity[:, 1:].T.astype(bool)
+    return inside
+
+
 def _rotation(angle_deg: float) -> np.ndarray:
     a = math.radians(angle_deg)
     return np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])

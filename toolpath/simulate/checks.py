@@ -46,8 +46,7 @@ def _design_heights(hf: HeightField, design, keep_regions) -> np.ndarray | None:
         j0, j1 = _index_range(hf.y0, hf.cell_y, hf.shape[1], y0, y1)
         if i0 >= i1 or j0 >= j1:
             continue
-        gx, gy = np.meshgrid(hf.x()[i0:i1], hf.y()[j0:j1], indexing="ij")
-        inside = rg.contains_points(area, np.column_stack([gx.ravel(), gy.ravel()])).reshape(gx.shape)
+        inside = rg.grid_inside(area, hf.x()[i0:i1], hf.y()[j0:j1])
         block = allowed[i0:i1, j0:j1]
         block[inside] = np.maximum(block[inside], float(z_min))
     return allowed
