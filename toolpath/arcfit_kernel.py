@@ -1,0 +1,113 @@
+"""The arc-fitting search over one run of points (compiled by numba where it can be, else the same
+code interpreted: the answers are the same, only slower).
+
+:func:`fit_run` walks a polyline P0..Pm and replaces stretches of it by circular arcs: from the
+current point it looks for the farthest point that an arc can reach (galloping, then halving the
+step), where an arc through the stretch's first, middle and last points keeps every point of the
+stretch within ``tolerance`` of its circle, turns one way only (every chord's angle has the arc's
+sign, less than a full turn in all) and bulges beyond no chord by more than ``tolerance`` (the
+sagitta of the chord).  The arc's centre lies on the bisector of its end points, so both ends
+are at one radius, as G2/G3 need.  Where no arc of at least ``min_segments`` chords fits, one
+chord is kept as a line.
+"""
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+
+try:
+    if os.environ.get("KEZURI_NO_NUMBA") == "1":
+        raise ImportError("KEZURI_NO_NUMBA=1")
+    from numba import njit
+    _jit = njit(cache=True, nogil=True)
+    COMPILED = True
+except (ImportError, OSError, RuntimeError):
+    def _jit(function):
+        return function
+    COMPILED = False
+
+
+@_jit
+def circle(px, py, s, e):
+    """(cx, cy, r, turn) of the circle through points s, (s+e)//2 and e; r = inf when they are
+    in a line; turn = +1 counter-clockwise, -1 clockwise."""
+    m = (s + e) // 2
+    ax, ay, bx, by, cx, cy = px[s], py[s], px[m], py[m], px[e], py[e]
+    d = 2.0 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by))
+    scale = max(abs(bx - ax), abs(by - ay), abs(cx - ax), abs(cy - ay))
+    if scale == 0.0 or abs(d) <= 1e-12 * scale * scale:
+        return 0.0, 0.0, math.inf, 0
+    a2, b2, c2 = ax * ax + ay * ay, bx * bx + by * by, cx * cx + cy * cy
+    ox = (a2 * (by - cy) + b2 * (cy - ay) + c2 * (ay - by)) / d
+    oy = (a2 * (cx - bx) + b2 * (ax - cx) + c2 * (bx - ax)) / d
+    turn = 1 if (bx - ax) * (cy - by) - (by - ay) * (cx - bx) > 0 else -1
+    return ox, oy, math.hypot(ax - ox, ay - oy), turn
+
+
+@_jit
+def arc_fits(px, py, s, e, tolerance, max_radius):
+    """Whether one arc replaces the chords s..e (see the module's rules); (fits, cx, cy, turn)."""
+    ox, oy, r, turn = circle(px, py, s, e)
+    if not r <= max_radius or r <= tolerance:
+        return False, 0.0, 0.0, 0
+    swept = 0.0
+    for i in range(s, e + 1):
+        if abs(math.hypot(px[i] - ox, py[i] - oy) - r) > tolerance:
+            return False, 0.0, 0.0, 0
+    for i in range(s, e):
+        ux, uy = px[i] - ox, py[i] - oy
+        vx, vy = px[i + 1] - ox, py[i + 1] - oy
+        step = math.atan2(ux * vy - uy * vx, ux * vx + uy * vy)
+        half = 0.5 * math.hypot(vx - ux, vy - uy)
+        if step * turn < 0.0 or (step == 0.0 and half > 0.0):   # a chord of no length turns neither way
+            return False, 0.0, 0.0, 0
+        swept += abs(step)
+        if half >= r or r - math.sqrt(r * r - half * half) > tolerance:
+            return False, 0.0, 0.0, 0
+    if swept >= 2.0 * math.pi - 1e-6:
+        return False, 0.0, 0.0, 0
+    return True, ox, oy, turn
+
+
+@_jit
+def fit_run(px, py, tolerance, min_segments, max_radius):
+    """Pieces of the polyline: (end index, cx, cy, turn) rows, turn 0 for a line."""
+    m = px.shape[0] - 1
+    out = np.empty((max(m, 1), 4))
+    count = 0
+    s = 0
+    while s < m:
+        best = -1
+        cx = cy = 0.0
+        turn = 0
+        first = s + min_segments
+        if first <= m:
+            ok, ox, oy, t = arc_fits(px, py, s, first, tolerance, max_radius)
+            if ok:
+                best, cx, cy, turn = first, ox, oy, t
+                step = 1
+                bad = m + 1
+                while best + step <= m:              # gallop until an arc no longer fits
+                    ok, ox, oy, t = arc_fits(px, py, s, best + step, tolerance, max_radius)
+                    if not ok:
+                        bad = best + step
+                        break
+                    best, cx, cy, turn = best + step, ox, oy, t
+                    step *= 2
+                while bad - best > 1:                # then halve between the last fit and the first miss
+                    mid = (best + bad) // 2
+                    ok, ox, oy, t = arc_fits(px, py, s, mid, tolerance, max_radius)
+                    if ok:
+                        best, cx, cy, turn = mid, ox, oy, t
+                    else:
+                        bad = mid
+        if best < 0:
+            out[count, 0], out[count, 1], out[count, 2], out[count, 3] = s + 1, 0.0, 0.0, 0.0
+            s += 1
+        else:
+            out[count, 0], out[count, 1], out[count, 2], out[count, 3] = best, cx, cy, turn
+            s = best
+        count += 1
+    return out[:count]
