@@ -1240,6 +1240,10 @@ MESSAGE_TEMPLATES = {
     'post {} ({}, {}) is already registered by {}.{}': 'ポストプロセッサ {0}（{1}、{2}）は {3}.{4} が登録済みです',
     # toolpath/stepnc: warnings and notes on files written by other tools
     "workingstep #{} '{}' skipped: {}": "ワーキングステップ #{0} '{1}' を飛ばしました：{2}",
+    "the {} post would write a line of {} characters, more than the {} the control reads: {}...":
+        "{0} ポストプロセッサは {1} 文字の行を書くことになり、制御装置が読める {2} 文字を超えます：{3}...",
+    "a helix of pitch {} mm down {} mm makes more than {} turns":
+        "ピッチ {0} mm のヘリカルで {1} mm 下りると {2} 回転を超えます",
     "tools without a usable number in their identifier, numbered in order of first use: {}":
         "識別子に使える番号のない工具は、最初に使う順に番号を付けました：{0}",
     "{} names T{}, not a tool number every control takes (1..{})":

@@ -161,3 +161,20 @@ def test_a_flat_end_mill_finishing_the_hole_makes_it_flat():
     program = to_program(load_workplan(text))
     assert "WS MILL HOLE1 BOTTOM" in [op.name for op in program.operations]
     assert not any("FLAT_HOLE_BOTTOM" in n for n in program.notes)
+
+
+def test_the_toolpath_picture_captions_what_was_not_cut():
+    from kezuri.toolpath import picture_jobs
+    from kezuri.toolpath.simulate import BoxStock
+
+    loaded = load_workplan(named_tools())
+    program = to_program(loaded)
+    skipped = skipped_workingsteps(program.notes)
+    caption = "NOT CUT: " + ", ".join(f"#{s['id']} {s['name']}" for s in skipped)
+    picture = picture_jobs.toolpath_picture(program.operations, BoxStock(0, 0, -30, 100, 120, 5), caption=caption,
+                                            size=(600, 400))
+    assert "NOT CUT: #10 WS FINISH PLANAR FACE1" in picture.texts
+    long = picture_jobs.toolpath_picture(program.operations, BoxStock(0, 0, -30, 100, 120, 5),
+                                         caption="NOT CUT: " + "#10 X, " * 200, size=(600, 400))
+    shown = [t for t in long.texts if t.startswith("NOT CUT")][0]
+    assert shown.endswith("...") and picture_jobs.text_width(shown) <= 600 - 24

@@ -22,7 +22,7 @@ import numpy as np
 from ..program import ARC_CCW, ARC_CW, FEED, RAPID
 from .model import BSplineCurve, CompositeCurve, Helix, Line, Polyline, StepNcError, TrimmedCurve, UnsupportedEntity
 from .motion import _Motion
-from .technology import feed_and_speed
+from .technology import MissingTechnology, feed_and_speed
 
 # A helix or circle is cut in arcs of at most this sweep (degrees); every post writes them as G2/G3.
 MAX_ARC_SWEEP = 180.0
@@ -209,7 +209,7 @@ def _feed(trajectory, operation, tool, rpm, note, why=None) -> float:
         f"its_technology #{own.id} MILLING_TECHNOLOGY gives no feedrate (attribute 1) nor feedrate_per_tooth "
         "(attribute 5) with the tool's number_of_teeth" if own is not None else "its_technology (attribute 4) is unset")
     op_tech = operation.its_technology
-    raise StepNcError(f"{first}, and #{operation.id} FREEFORM_OPERATION's its_technology #{op_tech.id} "
+    raise MissingTechnology(f"{first}, and #{operation.id} FREEFORM_OPERATION's its_technology #{op_tech.id} "
                       f"MILLING_TECHNOLOGY gives no feedrate (attribute 1) nor feedrate_per_tooth (attribute 5) with "
                       f"#{operation.its_tool.its_tool_body.id} {operation.its_tool.its_tool_body.type_name}'s "
                       "number_of_teeth: no feed for its cutting moves")

@@ -285,7 +285,11 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
     notes += [f"workingstep #{step.id} '{step.its_id}': {note}" for note in checks]
 
     if isinstance(operation, FreeformOperation):
-        motion = plan_freeform(step, tool, clearance_z, stock)
+        try:
+            motion = plan_freeform(step, tool, clearance_z, stock)
+        except MissingTechnology as error:      # no feed where NIST's files state it: the step, not the file
+            skip(str(error))
+            return None
     elif isinstance(operation, DrillingOperation) and isinstance(feature, RoundHole):
         motion = _hole(operation, feature, tool, clearance_z, feed, skip, stock)
     elif isinstance(operation, PlaneMilling) and isinstance(feature, PlanarFace):
@@ -625,6 +629,8 @@ def _stretched(line, before: float, after: float):
 # Hole bottoms an end mill cuts; a milled through hole goes this far (mm) below the hole bottom unless the
 # operation gives an overcut_length.
 MILLED_HOLE_BOTTOMS = ("FLAT_HOLE_BOTTOM", "") + THROUGH_CONDITIONS
+# A helical entry of more turns than this a layer is on a circle too small for its angle to mean anything.
+MAX_HELIX_TURNS = 100
 MILLED_BREAKTHROUGH = 1.0
 
 
@@ -686,7 +692,11 @@ def _hole_milling(operation: BottomAndSideMilling, hole: RoundHole, tool: Tool, 
             if abs(path.position[0] - start[0]) > 1e-9:
                 path.line(*start, path.position[2])      # back in to the first circle, inside the cut
             top = path.position[2]
-        if angle is not None:                             # down at the file's ramp angle
+        steep = angle is not None and (top - z) / helix_pitch(rings[0], angle) > MAX_HELIX_TURNS
+        if steep and not any("too small for" in note for note in motion.notes):
+            motion.notes.append(f"hole #{hole.id}: the {2 * rings[0]:.3g} mm circle is too small for a {angle:g} degree "
+                                f"helix (more than {MAX_HELIX_TURNS} turns a layer): one turn per layer there")
+        if angle is not None and not steep:               # down at the file's ramp angle
             for kind, end, _ in helix_moves((cx, cy), start, top, z, helix_pitch(rings[0], angle), ccw):
                 path.arc(*end, cx, cy, clockwise=kind == ARC_CW)
         else:                                             # a turn per axial step down to the layer
