@@ -18,7 +18,8 @@ from ..post import write_atomic
 from ..toolpath import stepnc
 from ..toolpath.meshdata import prism
 from ..toolpath.program import Tool
-from ..toolpath.stepnc.workplan import tool_numbers
+from ..toolpath.stepnc.tools import tool_numbers
+from ..toolpath.stepnc.workplan import skipped_workingsteps
 from ..toolpath.stepnc.solids import block_of, feature_solid, fixture_clearance, stock_box
 from . import convert
 from . import gate
@@ -405,9 +406,11 @@ def batch(args) -> dict:
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
     depsgraph = bpy.context.evaluated_depsgraph_get()
     solids = [preview.object_solid(o, frame, depsgraph) for o in objects if o.type == "MESH" and o.display_type != "WIRE"]
+    skipped = skipped_workingsteps(program.notes)
+    caption = ("NOT CUT: " + ", ".join(f"#{s['id']} {s['name']}" for s in skipped)) if skipped else ""
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "stepnc-toolpaths.png"), program.operations,
                                          simulation((loaded, program, frame)).stock, solids,
-                                         "STEP-NC: FEATURES AND TOOLPATHS")
+                                         "STEP-NC: FEATURES AND TOOLPATHS", caption=caption)
     simulation_report, png = simview.batch_simulation(scene, simulation((loaded, program, frame)), args.out,
                                                       "stepnc", checked)
     steps = {step.id: step for step in loaded.workingsteps}
@@ -426,6 +429,7 @@ def batch(args) -> dict:
         "files": [nc_path],
         "preview": png,
         "workingsteps": workingsteps,
+        "skipped_workingsteps": skipped,
         "operations": program.summary(),
         "warnings": list(program.notes),
         "cycle_time_s": round(program.cycle_time(), 1),

@@ -1240,6 +1240,23 @@ MESSAGE_TEMPLATES = {
     'post {} ({}, {}) is already registered by {}.{}': 'ポストプロセッサ {0}（{1}、{2}）は {3}.{4} が登録済みです',
     # toolpath/stepnc: warnings and notes on files written by other tools
     "workingstep #{} '{}' skipped: {}": "ワーキングステップ #{0} '{1}' を飛ばしました：{2}",
+    "the {} post would write a line of {} characters, more than the {} the control reads: {}...":
+        "{0} ポストプロセッサは {1} 文字の行を書くことになり、制御装置が読める {2} 文字を超えます：{3}...",
+    "a helix of pitch {} mm down {} mm makes more than {} turns":
+        "ピッチ {0} mm のヘリカルで {1} mm 下りると {2} 回転を超えます",
+    "tools without a usable number in their identifier, numbered in order of first use: {}":
+        "識別子に使える番号のない工具は、最初に使う順に番号を付けました：{0}",
+    "{} names T{}, not a tool number every control takes (1..{})":
+        "{0} は T{1} を指定していますが、どの制御装置でも使える工具番号（1〜{2}）ではありません",
+    "{} and #{} '{}' both claim T{} but are different tools (identifier, body or dimensions): #{} keeps T{}":
+        "{0} と #{1} '{2}' はどちらも T{3} を名乗っていますが、別の工具です（識別子、本体または寸法が違います）："
+        "T{5} は #{4} のものです",
+    "ROUND_HOLE #{} '{}' has a {} but workingstep #{} '{}' drills it with a {} degree point: the tip stops at the "
+    "depth (Z {}) and leaves a cone {} mm high (the full diameter reaches Z {}); no workingstep cuts the bottom "
+    "flat: add a flat end mill or counterbore workingstep, or finish it by hand":
+        "ROUND_HOLE #{0} '{1}' は {2} ですが、ワーキングステップ #{3} '{4}' は先端角 {5} 度のドリルで加工します："
+        "先端は深さ（Z {6}）で止まり、高さ {7} mm の円すいが残ります（全径が届くのは Z {8} まで）。底を平らに削る"
+        "ワーキングステップがありません：フラットエンドミルかカウンタボアのワーキングステップを加えるか、手で仕上げてください",
     'no workingstep can be machined: {}': '加工できるワーキングステップがありません：{0}',
     "{}: its profile #{} repeats the pocket's placement #{} ({}); read as one placement (the pocket at {}), not "
     "composed (which would put it at {}); the file gives no stock BLOCK to check against":

@@ -68,7 +68,10 @@ FANUC_MILL_LIMITS = ControllerLimits(
     coordinate=99999.999, resolution=0.001, decimal_point=True, inverse_time_every_block=True, tool_changer=True,
     tool_change=("M05", "G91 G28 Z0.", "G90", "G49", "[M19]", "T.. M06", "S.. M03", "G43 Z.. H.."),
     program_start=("%", "O....", "G21 G17 G40 G49 G80 G90"), program_end=("M05", "G91 G28 Z0.", "M30", "%"),
-    source=FANUC_MILL_SOURCE)
+    source=FANUC_MILL_SOURCE, max_line_length=252,
+    line_length_source=("B-62764EN and the 16i/18i manual B-63684EN (13. Program configuration) state no longest block; "
+                        "they count a comment's characters in its block (TV check).  252 characters, the longest line "
+                        "LinuxCNC reads, is our choice for Fanuc, not a limit from its manuals"))
 
 MACRO_PROGRAM = 7023
 SURFACE_MACRO_PROGRAM = 7024     # the same texture on a curved plate (surface_macro_program)

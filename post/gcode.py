@@ -34,6 +34,53 @@ def comment_text(text: str) -> str:
     return clean.replace("(", "[").replace(")", "]").upper()
 
 
+def comment_lines(text: str, limit: int | None, prefix: str = "") -> list:
+    """``(PREFIX: TEXT)`` as comment lines of at most ``limit`` characters (None: one line): the
+    text wrapped at spaces (a word longer than a line is cut), continuation lines indented."""
+    body = comment_text(text)
+    first = f"({comment_text(prefix)}: " if prefix else "("
+    if limit is None or len(first) + len(body) + 1 <= limit:
+        return [f"{first}{body})"]
+    lines, head = [], first
+    words = body.split(" ")
+    current = ""
+    for word in words:
+        room = limit - len(head) - 1
+        candidate = f"{current} {word}" if current else word
+        if len(candidate) <= room:
+            current = candidate
+            continue
+        if current:
+            lines.append(f"{head}{current})")
+            head, current = "(  ", ""
+            room = limit - len(head) - 1
+        while len(word) > room:
+            lines.append(f"{head}{word[:room]})")
+            head, word = "(  ", word[room:]
+            room = limit - len(head) - 1
+        current = word
+    if current or not lines:
+        lines.append(f"{head}{current})")
+    return lines
+
+
+def fitted(lines: list, limit: int | None, post_name: str) -> list:
+    """Every line within the control's ``limit``: a comment line too long is wrapped
+    (:func:`comment_lines`); a block too long is refused, never cut."""
+    if limit is None:
+        return lines
+    out = []
+    for line in lines:
+        if len(line) <= limit:
+            out.append(line)
+        elif line.startswith("(") and line.endswith(")") and line.count("(") == 1:
+            out += comment_lines(line[1:-1], limit)
+        else:
+            raise PostError(f"the {post_name} post would write a line of {len(line)} characters, more than the "
+                            f"{limit} the control reads: {line[:60]}...")
+    return out
+
+
 class GcodePost(Post):
     """Program -> text for one controller family.  Subclasses set the class attributes and
     override the hooks (preamble, tool change, ending)."""
@@ -90,18 +137,20 @@ class GcodePost(Post):
         return op.cycle_time(rapid_rate)
 
     def header(self, program: Program) -> list:
-        lines = [f"(KEZURI CAM - {comment_text(program.name)})", f"(POST: {comment_text(self.name)})",
+        """Comment lines, each within the control's line length (``limits.max_line_length``)."""
+        limit = self.limits.max_line_length
+        lines = [*comment_lines(f"KEZURI CAM - {program.name}", limit), f"(POST: {comment_text(self.name)})",
                  "(UNITS: MM)", *self.conventions]
         for tool in program.tools():
-            lines.append(f"(TOOL: {comment_text(tool.describe())})")
+            lines += comment_lines(tool.describe(), limit, "TOOL")
         total = 0.0
         for op in program.operations:
             seconds = self.operation_seconds(op, program.rapid_rate)
             total += seconds
-            lines.append(f"(OPERATION: {comment_text(op.name)} - T{op.tool.number} - {format_duration(seconds)})")
+            lines += comment_lines(f"{op.name} - T{op.tool.number} - {format_duration(seconds)}", limit, "OPERATION")
         lines.append(f"(ESTIMATED CYCLE TIME: {format_duration(total)})")
         for note in program.notes:
-            lines.append(f"(NOTE: {comment_text(note)})")
+            lines += comment_lines(note, limit, "NOTE")
         return lines
 
     def opening(self, program: Program) -> list:
@@ -154,7 +203,7 @@ class GcodePost(Post):
             lines += self.operation_moves(op)
             lines.append(f"G00 Z{self.n(op.safe_z)}")
         lines += self.ending(program)
-        body = "\n".join(lines) + "\n"
+        body = "\n".join(fitted(lines, self.limits.max_line_length, self.name)) + "\n"
         return f"%\n{body}%\n" if self.percent_wrapped else body
 
     def operation_moves(self, op: Operation) -> list:

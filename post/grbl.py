@@ -17,7 +17,12 @@ GRBL_LIMITS = ControllerLimits(
     source=("Grbl v1.1 wiki, 'Grbl v1.1 Commands' (G-code supported: G0-G3, G17-G19, G20/G21, G28/G30, "
             "G43.1/G49 dynamic length offset only, G54-G59, G90/G91, G93/G94, M0/M2/M30, M3-M5, M7-M9; "
             "N line numbers up to 9999999; no M6 tool change, no G43 H) and grbl/protocol.h "
-            "(80-character line buffer)"))
+            "(80-character line buffer)"),
+    max_line_length=79,
+    line_length_source=("grbl/protocol.h LINE_BUFFER_SIZE 80 and protocol.c: a line keeps at most LINE_BUFFER_SIZE - 1 "
+                        "= 79 characters once spaces and comments are dropped, else 'error:11 Max characters per line "
+                        "exceeded'; comments are kept to 79 characters too, so every line also fits the 128-byte serial "
+                        "buffer (serial.h RX_BUFFER_SIZE) that character-counting senders fill"))
 
 
 class GrblPost(GcodePost):

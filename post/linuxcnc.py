@@ -16,7 +16,11 @@ LINUXCNC_LIMITS = ControllerLimits(
     decimal_point=False, inverse_time_every_block=True, tool_changer=True,
     tool_change=("M05", "G49", "T.. M06", "S.. M03", "G43 H.."),
     program_start=("%", "G21 G17 G40 G49 G80 G90 G94"), program_end=("M05", "G49", "M30", "%"),
-    source=LINUXCNC_SOURCE)
+    source=LINUXCNC_SOURCE, max_line_length=252,
+    line_length_source=("rs274ngc reads a line into a buffer of LINELEN = 255 bytes (the G-code overview: 'a maximum "
+                        "(currently 256) to the number of characters allowed on a line'); a line that fills it with "
+                        "its newline and end mark is 'Command too long': 252 characters is the longest LinuxCNC's own "
+                        "rs274 accepts (tests/test_line_length.py)"))
 
 
 class LinuxCNCPost(GcodePost):

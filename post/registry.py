@@ -73,6 +73,8 @@ class ControllerLimits:
     program_start: tuple = ()
     program_end: tuple = ()
     source: str = ""
+    max_line_length: int | None = None          # characters a line may hold (None: no limit we know of)
+    line_length_source: str = ""                # where that number comes from
 
     def check_word(self, word: str, value: float, where: str) -> None:
         """Raise :class:`PostError` when ``value`` of ``word`` (a field name above) is outside the

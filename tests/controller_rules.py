@@ -16,8 +16,17 @@ Controls and where their rules come from:
   word on every G1/G2/G3 block, F > 0, T >= 0, H >= 0, S >= 0, N 0..99999; the program ends with
   M2/M30; ``%`` lines come as a pair or not at all.
 * ``grbl``: Grbl v1.1 commands: no M6 and no G43 H (only G43.1), N up to 9999999, G93 supported,
-  F > 0, a line of at most 80 characters once spaces and comments are dropped (protocol.h),
+  F > 0, a line of at most 79 characters once spaces and comments are dropped (protocol.h
+  LINE_BUFFER_SIZE 80; protocol.c stores at most LINE_BUFFER_SIZE - 1 characters, error:11 beyond),
   no ``%``; ends with M2/M30.
+
+Line length (the raw line, comments and all): LinuxCNC reads a line into LINELEN = 255 bytes
+(rs274ngc; its G-code overview: "a maximum (currently 256) to the number of characters allowed on a
+line"), and a line that fills the buffer with its newline and end mark is "Command too long", so 252
+characters; the Fanuc manuals read (B-62764EN, B-63684EN 13.) give no longest block, and the Fanuc
+controls are held to the same 252 (a choice, said so, not a manual's figure).  Grbl's serial buffer
+holds 128 bytes (serial.h RX_BUFFER_SIZE), so a sender counting characters can stream a line of at
+most 127 characters and its newline.
 * ``turnmill-xzc``: Fanuc 0i-T style: the same word formats as the Fanuc mill, T = 2-digit station +
   2-digit offset, the turret homed (``G28 U0. W0.``) with the driven tool stopped before indexing.
 * ``amada-04p``: the Amada 04P turret punch: N000..N999 (3 digits), every value with exactly two
@@ -44,17 +53,18 @@ FANUC_AXES = "XYZCUWIJKR"
 CONTROLS = {
     # feed_min, feed_max (G94), g93 max, s max, t max, h max, n max, coordinate max, decimals, decimal point
     "fanuc-mill": dict(f94=(0.001, 240000.0), f93=(0.001, 9999.999), s=99999, t=9999, h=99, n=(1, 99999),
-                       coord=99999.999, decimals=3, point=True, frame="fanuc", changer="fanuc"),
+                       coord=99999.999, decimals=3, point=True, frame="fanuc", changer="fanuc", line=252),
     "fanuc-cxz": dict(f94=(0.001, 240000.0), f93=(0.001, 9999.999), s=99999, t=9999, h=99, n=(1, 99999),
-                      coord=99999.999, decimals=3, point=True, frame="fanuc", changer="fanuc"),
+                      coord=99999.999, decimals=3, point=True, frame="fanuc", changer="fanuc", line=252),
     "linuxcnc": dict(f94=(0.0, None), f93=(0.0, None), s=None, t=None, h=None, n=(0, 99999), coord=None,
-                     decimals=None, point=False, frame="linuxcnc", changer="linuxcnc"),
+                     decimals=None, point=False, frame="linuxcnc", changer="linuxcnc", line=252),
     "linuxcnc-cxz": dict(f94=(0.0, None), f93=(0.0, None), s=None, t=None, h=None, n=(0, 99999), coord=None,
-                         decimals=None, point=False, frame="linuxcnc", changer="linuxcnc"),
+                         decimals=None, point=False, frame="linuxcnc", changer="linuxcnc", line=252),
     "turnmill-linuxcnc": dict(f94=(0.0, None), f93=(0.0, None), s=None, t=None, h=None, n=(0, 99999), coord=None,
-                              decimals=None, point=False, frame="linuxcnc", changer="linuxcnc"),
+                              decimals=None, point=False, frame="linuxcnc", changer="linuxcnc", line=252),
     "grbl": dict(f94=(0.0, None), f93=(0.0, None), s=None, t=None, h=None, n=(0, 9999999), coord=None,
-                 decimals=None, point=False, frame="grbl", changer="none"),
+                 decimals=None, point=False, frame="grbl", changer="none", stripped_line=79,
+                 line=127),
     "turnmill-xzc": dict(f94=(0.001, 240000.0), f93=(0.001, 9999.999), s=99999, t=9999, h=None, n=(1, 99999),
                          coord=99999.999, decimals=3, point=True, frame="fanuc", changer="turret"),
 }
@@ -96,6 +106,8 @@ def check(text: str, control: str) -> list:
     need_offset, in_sub = False, False
     modal_call = None                       # line of the G66.1 in force (Fanuc)
     for number, raw, bare, words in _blocks(text):
+        if rules.get("line") is not None and len(raw) > rules["line"]:
+            bad("length", number, f"a line of {len(raw)} characters, more than the {rules['line']} the control reads")
         if not bare or bare == "%":
             continue
         if ended:
@@ -111,8 +123,9 @@ def check(text: str, control: str) -> list:
         if "#" in bare or "[" in bare:
             bad("word", number, f"macro expression in the main program: {bare!r}")
             continue
-        if control == "grbl" and len(re.sub(r"\s", "", bare)) > 80:
-            bad("word", number, "a Grbl line holds at most 80 characters")
+        if rules.get("stripped_line") is not None and len(re.sub(r"\s", "", bare)) > rules["stripped_line"]:
+            bad("length", number, f"a Grbl line holds at most {rules['stripped_line']} characters without spaces "
+                                  "and comments")
         letters = {}
         for letter, value in words:
             if letter in letters and letter not in "GM":

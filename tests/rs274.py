@@ -21,16 +21,22 @@ def available() -> bool:
     return RS274 is not None
 
 
-def run(text: str) -> list:
-    """Canonical calls as (name, [numbers or words]) in program order."""
+def run(text: str, tools=()) -> list:
+    """Canonical calls as (name, [numbers or words]) in program order.  ``tools``: tool numbers for a
+    tool table of our own (rs274 -t; its built-in table knows T1..T3 only), as a machine would have."""
     with tempfile.TemporaryDirectory() as folder:
         source = os.path.join(folder, "in.ngc")
         output = os.path.join(folder, "out.txt")
         with open(source, "w") as stream:
             stream.write(text)
+        table = []
+        if tools:
+            table = ["-t", os.path.join(folder, "tool.tbl")]
+            with open(table[1], "w") as stream:
+                stream.write("".join(f"T{int(t)} P{int(t)} Z0 D10 ;\n" for t in sorted(set(tools))))
         # rs274 keeps its tool table in $HOME/.tool.mmap (created and truncated at every start):
         # a home of its own, so two runs at once (tests side by side) cannot share it
-        done = subprocess.run([RS274, "-g", source, output], stdin=subprocess.DEVNULL, capture_output=True,
+        done = subprocess.run([RS274, *table, "-g", source, output], stdin=subprocess.DEVNULL, capture_output=True,
                               text=True, timeout=120, env=dict(os.environ, HOME=folder))
         printed = done.stdout + done.stderr
         canon = open(output).read() if os.path.exists(output) else ""

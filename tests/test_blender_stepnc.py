@@ -134,6 +134,13 @@ def test_batch_stepnc_order_option(tmp_path):
     assert done.returncode == 0, done.stderr[-3000:]
     report = json.loads((tmp_path / "report.json").read_text())
     assert [s["id"] for s in report["workingsteps"]] == [13, 14, 10]
+    # the workingsteps left out are named, with why, in the report and the NC header
+    assert [(s["id"], s["name"], s["reason"]) for s in report["skipped_workingsteps"]] == [
+        (11, "WS DRILL HOLE1", "switched off (left out of the order to cut)"),
+        (12, "WS REAM HOLE1", "switched off (left out of the order to cut)")]
+    nc = (tmp_path / "stepnc.nc").read_text()
+    assert "(NOTE: WORKINGSTEP #11 'WS DRILL HOLE1' SKIPPED: SWITCHED OFF [LEFT OUT OF THE ORDER TO CUT])" in nc
+    assert "(NOTE: WORKINGSTEP #12 'WS REAM HOLE1' SKIPPED: SWITCHED OFF [LEFT OUT OF THE ORDER TO CUT])" in nc
 
 
 def test_batch_stepnc_bad_file_names_the_line_and_writes_no_nc(tmp_path):

@@ -579,9 +579,14 @@ def test_helix_and_ramp_approaches(ex1):
     centres = rough.center[arcs]
     assert rounded_rect_wall_distance(centres).min() >= MILL_RADIUS + 1.0 + 4.0 - 1e-6  # the helix fits the region
     climb = np.diff(np.concatenate([[rough.start[2]], rough.xyz[:, 2]]))[arcs]
-    assert np.all(climb < 0)
-    pitch = 2 * math.pi * 4.0 * math.tan(math.radians(10.0))
-    assert np.all(-climb <= pitch + 1e-9)
+    assert np.all(climb <= 0) and (climb < 0).sum() >= 5
+    # down at exactly the file's 10 degrees (pitch = pi D tan 10), then round at the layer to the start
+    a, b, c = rough.start_points()[arcs], rough.xyz[arcs], rough.center[arcs]
+    sweep = (np.arctan2(b[:, 1] - c[:, 1], b[:, 0] - c[:, 0]) - np.arctan2(a[:, 1] - c[:, 1], a[:, 0] - c[:, 0])) \
+        % (2 * math.pi)
+    sweep[sweep < 1e-9] = 2 * math.pi
+    slope = np.degrees(np.arctan2(-climb, 4.0 * sweep))
+    assert np.allclose(slope[climb < 0], 10.0, atol=1e-6)
     # retract along the ramp: the same strategy backwards, ending where the approach started
     a, b = finish.start_points(), finish.xyz
     run, drop = np.linalg.norm(b[:, :2] - a[:, :2], axis=1), np.abs(b[:, 2] - a[:, 2])
@@ -672,7 +677,7 @@ def test_two_pockets_round_trip(two_pockets):
         assert (op.axial_cutting_depth, op.allowance_side, op.allowance_bottom) == (2.0, 0.5, 0.2)
         assert isinstance(op.its_machining_strategy, Bidirectional) and op.its_machining_strategy.overlap == 0.5
         assert isinstance(finish.its_operation.its_machining_strategy, ContourParallel)
-        assert op.its_tool.its_id == "FLAT 4MM" and op.its_tool.its_tool_body.dimension.diameter == 4.0
+        assert op.its_tool.its_id == "T1 FLAT 4MM" and op.its_tool.its_tool_body.dimension.diameter == 4.0  # T number first
         assert op.its_technology.feed_mm_min == pytest.approx(600.0)
         assert op.its_technology.spindle_rpm == pytest.approx(12000.0)
     assert isinstance(loaded.workingsteps[0].its_feature.feature_boundary, RectangularClosedProfile)

@@ -222,3 +222,41 @@ def test_an_arc_whose_points_are_off_its_circle_is_refused_by_name():
     with pytest.raises(StepNcError, match=r"#423 TRIMMED_CURVE: its points lie 5 and 5 mm from the axis of #426, "
                                           r"whose radius is 4 mm"):
         to_program(load_workplan(text))
+
+
+# --------------------------------------------------------------------------- feeds where NIST's files state them
+
+# A second toolpath list for the pocket that starts at the ring's first point, 4 mm below the top (as NIST's
+# ex1E 'ROUGH POCKET1 B' starts on the material): the tool rapids to 2 mm above the material and is fed in.
+FED_IN = "#1401= TOOLPATH_LIST((#412,#422,#432));"
+
+
+def test_a_path_starting_in_the_material_is_fed_in_at_its_feed():
+    from test_stepnc import add_instances
+    program = to_program(load_workplan(add_instances(freeform_file(pocket_list="#1401"), FED_IN)))
+    op = program.operations[1]
+    first_feed = int(np.flatnonzero(op.kind == FEED)[0])
+    assert op.xyz[first_feed - 1][2] == pytest.approx(2.0)            # the rapid stops 2 mm above the top (Z 0)
+    assert op.xyz[first_feed][2] == pytest.approx(-4.0)               # fed down to the path's first point
+    assert op.feed[first_feed] == pytest.approx(0.020 * 60000)        # at #412's feed: the operation's #24
+    if rs274.available():
+        calls = rs274.run(post.milling_post("linuxcnc").to_text(program))
+        rates = [float(args[0]) for name, args in calls if name == "SET_FEED_RATE"]
+        assert 1200.0 in rates
+
+
+def test_no_feed_anywhere_names_what_is_missing_where():
+    from test_stepnc import add_instances
+    text = add_instances(freeform_file(pocket_list="#1401"), FED_IN,
+                         "#1402= MILLING_TECHNOLOGY($,.TCP.,$,-100.000,$,.F.,.F.,.F.,$);")
+    text = text.replace("#24= MILLING_TECHNOLOGY(0.020,", "#24= MILLING_TECHNOLOGY($,")
+    text = text.replace("#412= CUTTER_LOCATION_TRAJECTORY(.T.,.TRAJECTORY_PATH.,$,$,", "#412= CUTTER_LOCATION_TRAJECTORY("
+                        ".T.,.TRAJECTORY_PATH.,$,#1402,")
+    program = to_program(load_workplan(text))
+    assert [op.name for op in program.operations] == ["WS PLUNGE HOLE1"]          # the pocket is left out, said why
+    note = [n for n in program.notes if n.startswith("workingstep #61 'WS MILL POCKET1' skipped: ")]
+    assert note == ["workingstep #61 'WS MILL POCKET1' skipped: #412 CUTTER_LOCATION_TRAJECTORY: its_technology #1402 "
+                    "MILLING_TECHNOLOGY gives no feedrate (attribute 1) nor feedrate_per_tooth (attribute 5) with the "
+                    "tool's number_of_teeth, and #51 FREEFORM_OPERATION's its_technology #24 MILLING_TECHNOLOGY gives no "
+                    "feedrate (attribute 1) nor feedrate_per_tooth (attribute 5) with #20 ENDMILL's number_of_teeth: no "
+                    "feed for its cutting moves"]

@@ -19,6 +19,7 @@ from .program import ARC_CCW, ARC_CW, RAPID, arc_sweep
 CUT, PLUNGE, LINK, RAPID_ROLE = 0, 1, 2, 3
 ROLES = ("cut", "plunge", "link", "rapid")
 ROLE_COLOURS = {"cut": (25, 95, 225), "plunge": (220, 30, 30), "link": (10, 160, 60), "rapid": (200, 40, 200)}
+CAPTION_INK = (170, 30, 20)        # what was not cut, in red under the header
 ROLE_LABELS = {"cut": "CUT", "plunge": "PLUNGE", "link": "LINK (FEED BETWEEN CUTS)", "rapid": "RAPID (DASHED)"}
 STOCK_COLOUR = (222, 196, 150)
 PART_COLOUR = (178, 186, 198)
@@ -182,6 +183,14 @@ def _header(picture: Picture, title: str, lines: list):
         left += picture.text(left, 40, line, INK, SCALE) + 36
 
 
+def _caption(picture: Picture, text: str):
+    """One line of text under the header, shortened with '...' to the picture's width."""
+    text = "".join(ch if ch.upper() in font.GLYPHS else " " for ch in text.upper())
+    while len(text) > 3 and text_width(text) > picture.width - 24:
+        text = text[:-4].rstrip() + "..."
+    picture.text(12, HEADER + 4, text, CAPTION_INK, SCALE)
+
+
 def _legend(picture: Picture, entries: list):
     """Swatches and labels along the bottom: (label, colour, dashed)."""
     top = picture.height - LEGEND + 10
@@ -195,9 +204,11 @@ def _legend(picture: Picture, entries: list):
 
 
 # ----- pictures ---------------------------------------------------------------------------
-def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 800), tilt_deg: float = 35.0):
+def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 800), tilt_deg: float = 35.0,
+                     caption: str = ""):
     """The toolpaths over the part: ``solids`` = [(vertices (k, 3), faces (f, 3), rgb), ...] in
-    the same work mm as the moves."""
+    the same work mm as the moves; ``caption``: a line of text drawn over the picture's top edge
+    below the header (e.g. what was not cut), cut short with '...' where the picture ends."""
     from .simulate.stock import as_stock
 
     stock = as_stock(stock)
@@ -222,6 +233,8 @@ def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 
                          dash=6.0 if role == RAPID_ROLE else 0.0)
     deepest = deepest_cut(operations, stock)
     _header(picture, title, [stock_label(stock), f"DEEPEST CUT {mm(deepest)} MM"])
+    if caption:
+        _caption(picture, caption)
     _legend(picture, [(ROLE_LABELS[name], ROLE_COLOURS[name], name == "rapid") for name in ROLES])
     picture.deepest = deepest
     picture.view = view

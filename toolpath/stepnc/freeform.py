@@ -22,7 +22,7 @@ import numpy as np
 from ..program import ARC_CCW, ARC_CW, FEED, RAPID
 from .model import BSplineCurve, CompositeCurve, Helix, Line, Polyline, StepNcError, TrimmedCurve, UnsupportedEntity
 from .motion import _Motion
-from .technology import feed_and_speed
+from .technology import MissingTechnology, feed_and_speed
 
 # A helix or circle is cut in arcs of at most this sweep (degrees); every post writes them as G2/G3.
 MAX_ARC_SWEEP = 180.0
@@ -130,17 +130,21 @@ def plan_freeform(step, tool, clearance_z, stock=None):
     motion = _Motion(clearance_z, None, stock=stock, radius=tool.radius)
     notes_of_step = motion.notes.append
     path = motion.path
-    rpm = feed_and_speed(operation, tool, [])[1]
+    rpm = feed_and_speed(operation, tool, [], need_feed=False)[1]
     for index, trajectory in enumerate(operation.its_toolpath):
         start, moves = trajectory_moves(trajectory)
         start = frame.to_parent([start])[0]
         feed = math.nan if trajectory.rapid else _feed(trajectory, operation, tool, rpm, notes_of_step)
-        if index == 0:
-            _enter(motion, start, step.its_feature.top_z)
+        if index == 0:      # fed in (when the start is below the material) at the first cutting trajectory's feed
+            cutting = next((t for t in operation.its_toolpath if not t.rapid), None)
+            _enter(motion, start, step.its_feature.top_z,
+                   lambda: _feed(cutting, operation, tool, rpm, None) if cutting is not None else
+                   _feed(None, operation, tool, rpm, None))
         elif np.linalg.norm(np.asarray(path.position) - start) > JOIN_TOLERANCE:
             notes_of_step(f"trajectory #{trajectory.id} starts {np.linalg.norm(np.asarray(path.position) - start):.4g}"
                           " mm from the end of the one before it: joined by a straight feed move")
-            path.line(*start, feed=feed if not trajectory.rapid else _feed(None, operation, tool, rpm, None))
+            path.line(*start, feed=feed if not trajectory.rapid else _feed(None, operation, tool, rpm, None,
+                                                                               trajectory))
         _add(path, moves, frame, feed)
     for rapid in step.rapids_after:
         for trajectory in rapid.its_toolpath:
@@ -154,7 +158,9 @@ def plan_freeform(step, tool, clearance_z, stock=None):
     return motion
 
 
-def _enter(motion, start, feature_top):
+def _enter(motion, start, feature_top, entry_feed):
+    """Rapid above the first point; when it lies below the material, rapid to APPROACH_GAP above the
+    material and feed the rest at ``entry_feed()`` (mm/min)."""
     path = motion.path
     path.rapid(start[0], start[1], motion.clearance_z)
     top = motion.entry_height(start[:2], feature_top)
@@ -164,7 +170,7 @@ def _enter(motion, start, feature_top):
         return
     if top < motion.clearance_z - 1e-9:
         path.rapid(start[0], start[1], top)
-    path.line(*start)
+    path.line(*start, feed=entry_feed())
 
 
 def _add(path, moves, frame, feed):
@@ -181,20 +187,32 @@ def _add(path, moves, frame, feed):
             path.arc(*end, centre[0], centre[1], clockwise=kind == ARC_CW, feed=feed)
 
 
-def _feed(trajectory, operation, tool, rpm, note) -> float:
-    """The feed (mm/min) of a trajectory: its own technology's, else the operation's."""
+def _feed(trajectory, operation, tool, rpm, note, why=None) -> float:
+    """The feed (mm/min) of a trajectory, where NIST's files state it (ex1E): its own its_technology's
+    (MILLING_TECHNOLOGY feedrate, or feedrate_per_tooth x teeth x rpm), else the FREEFORM_OPERATION's
+    its_technology's.  Neither: StepNcError naming the instances and attributes that are missing.
+    ``why``: the trajectory a feed move is made for when ``trajectory`` is not it (a join)."""
     own = None if trajectory is None else trajectory.its_technology
-    if own is None:
-        return feed_and_speed(operation, tool, [])[0]
-    if note is not None and own.spindle_rpm is not None and abs(own.spindle_rpm - rpm) > 1e-6:
+    if own is not None and note is not None and own.spindle_rpm is not None and abs(own.spindle_rpm - rpm) > 1e-6:
         note(f"trajectory #{trajectory.id} asks for S{own.spindle_rpm:g}; the operation's S{rpm:g} is written (one "
              "spindle speed per operation)")
     teeth = operation.its_tool.its_tool_body.number_of_teeth
-    if own.feed_mm_min:
-        return own.feed_mm_min
-    if own.feedrate_per_tooth and teeth:
-        return own.feedrate_per_tooth * teeth * rpm
-    return feed_and_speed(operation, tool, [])[0]
+    for technology in (own, operation.its_technology):
+        if technology is None:
+            continue
+        if technology.feed_mm_min and technology.feed_mm_min > 0:
+            return technology.feed_mm_min
+        if technology.feedrate_per_tooth and teeth:
+            return technology.feedrate_per_tooth * teeth * rpm
+    where = trajectory or why
+    first = (f"#{where.id} CUTTER_LOCATION_TRAJECTORY: " if where is not None else "") + (
+        f"its_technology #{own.id} MILLING_TECHNOLOGY gives no feedrate (attribute 1) nor feedrate_per_tooth "
+        "(attribute 5) with the tool's number_of_teeth" if own is not None else "its_technology (attribute 4) is unset")
+    op_tech = operation.its_technology
+    raise MissingTechnology(f"{first}, and #{operation.id} FREEFORM_OPERATION's its_technology #{op_tech.id} "
+                      f"MILLING_TECHNOLOGY gives no feedrate (attribute 1) nor feedrate_per_tooth (attribute 5) with "
+                      f"#{operation.its_tool.its_tool_body.id} {operation.its_tool.its_tool_body.type_name}'s "
+                      "number_of_teeth: no feed for its cutting moves")
 
 
 __all__ = ["plan_freeform", "curve_moves", "trajectory_moves", "RAPID"]

@@ -132,17 +132,16 @@ class _Motion:
         return [(FEED, (start[0], start[1], z), None)]
 
     def _helix(self, start, top, z, radius, angle) -> list:
-        """Full counter-clockwise turns through ``start``, centred where the circle fits the region."""
+        """Counter-clockwise turns through ``start`` at exactly ``angle`` (:func:`helix_moves`), centred
+        where the circle fits the region."""
         if radius <= 0:
             return []
-        turns = max(1, math.ceil((top - z) / (2 * math.pi * radius * math.tan(math.radians(angle))) - 1e-9))
         circle = np.linspace(0, 2 * math.pi, 64, endpoint=False)
         for direction in ((1, 0), (0, 1), (-1, 0), (0, -1)):
             centre = start + radius * np.array(direction, float)
             ring = centre + radius * np.column_stack([np.cos(circle), np.sin(circle)])
             if self.region is None or rg.contains_points(self.region, ring).all():
-                return [(ARC_CCW, (start[0], start[1], top - (top - z) * k / turns), centre)
-                        for k in range(1, turns + 1)]
+                return helix_moves(centre, start, top, z, helix_pitch(radius, angle), True)
         return []
 
     def operation(self, name, tool, rpm, clockwise, safe_z, coolant, comment, source_id=None) -> Operation:
@@ -154,6 +153,47 @@ class _Motion:
         return Operation(name=name, tool=tool, spindle_rpm=rpm, spindle_cw=clockwise,
                          clearance_z=self.clearance_z, safe_z=safe_z, start=[first[0], first[1], safe_z],
                          coolant=coolant, comment=comment, source_id=source_id, links=self.path.links(), **arrays)
+
+
+def helix_pitch(radius: float, angle: float) -> float:
+    """The drop per turn (mm) of a helix of ``radius`` (the tool centre's) rising at ``angle`` degrees
+    from the horizontal: pi * D * tan(angle)."""
+    return 2 * math.pi * radius * math.tan(math.radians(angle))
+
+
+def helix_moves(centre, start, top: float, z: float, pitch: float, ccw: bool) -> list:
+    """Moves down a helix about ``centre`` from (start, top) to depth z at ``pitch`` mm a turn (so at
+    the angle the pitch says, the last turn a part of one), in arcs of at most 180 degrees; then
+    along the circle at z back to ``start``.  [(kind, (x, y, z), centre)]."""
+    centre = np.asarray(centre, float)
+    offset = np.asarray(start, float) - centre
+    radius = float(np.hypot(*offset))
+    first = math.atan2(offset[1], offset[0])
+    sign = 1.0 if ccw else -1.0
+    kind = ARC_CCW if ccw else ARC_CW
+    height = top - z
+    sweep = 2 * math.pi * height / pitch if height > 0 else 0.0
+    if sweep / (2 * math.pi) > MAX_PASSES:
+        raise StepNcError(f"a helix of pitch {pitch:.4g} mm down {height:g} mm makes more than {MAX_PASSES} turns")
+    moves = []
+    pieces = max(1, math.ceil(sweep / math.pi - 1e-9))
+    for k in range(1, pieces + 1):
+        angle = first + sign * sweep * k / pieces
+        moves.append((kind, (centre[0] + radius * math.cos(angle), centre[1] + radius * math.sin(angle),
+                             top - height * k / pieces), centre))
+    rest = (-sweep) % (2 * math.pi)            # on round the circle at z to the start
+    if rest > 1e-9 and 2 * math.pi - rest > 1e-9:
+        pieces = max(1, math.ceil(rest / math.pi - 1e-9))
+        end = first + sign * sweep
+        for k in range(1, pieces + 1):
+            angle = end + sign * rest * k / pieces
+            point = (centre[0] + radius * math.cos(angle), centre[1] + radius * math.sin(angle), z)
+            if k == pieces:
+                point = (float(start[0]), float(start[1]), z)
+            moves.append((kind, point, centre))
+    else:
+        moves[-1] = (kind, (float(start[0]), float(start[1]), z), centre)
+    return moves
 
 
 def _segment_inside(region: CrossSection | None, a, b) -> bool:

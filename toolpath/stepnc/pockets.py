@@ -11,6 +11,7 @@ from .. import region as rg
 from ..program import Tool
 from .model import StepNcError
 from .part21 import UNSET, Enum
+from .tools import number_in
 from .part21_writer import Part21Writer
 
 
@@ -95,8 +96,11 @@ def pockets_to_part21(stock_box, pockets, tool: Tool, *, feed: float = 600.0, sp
     body = {"flat": "ENDMILL", "ball": "BALL_ENDMILL", "bull": "BULLNOSE_ENDMILL"}[tool.kind]
     dimension = w.add("MILLING_TOOL_DIMENSION", float(tool.diameter), UNSET, UNSET, float(tool.flute_length),
                       float(tool.corner_radius), UNSET, UNSET)
-    # The IR tool has no gauge length: the cutting component records the flute length.
-    cutting_tool = w.add("MILLING_CUTTING_TOOL", tool.name or tool.describe(),
+    # The IR tool has no gauge length: the cutting component records the flute length.  Its identifier
+    # starts with its T number, so reading the file back gives the same number (tools.tool_numbering).
+    identifier = tool.describe() if not tool.name else tool.name if number_in(tool.name) == tool.number \
+        else f"T{tool.number} {tool.name}"
+    cutting_tool = w.add("MILLING_CUTTING_TOOL", identifier,
                          w.add(body, dimension, UNSET, UNSET, UNSET, UNSET),
                          [w.add("CUTTING_COMPONENT", float(tool.flute_length), UNSET, UNSET, UNSET, UNSET)],
                          UNSET, UNSET, UNSET)

@@ -66,9 +66,10 @@ def fixture_clearance(loaded) -> float:
         if getattr(step.its_feature, "bottom_condition", None) not in THROUGH_CONDITIONS:
             continue
         operation = step.its_operation
-        if getattr(operation, "type_name", None) == "DRILLING":
-            if operation.its_tool.its_tool_body.type_name in POINTED_DRILL_BODIES:
-                depths.append(drill_breakthrough(operation.its_tool))
-        else:                # a through hole milled to size goes MILLED_BREAKTHROUGH below its bottom
+        pointed = operation.its_tool.its_tool_body.type_name in POINTED_DRILL_BODIES
+        if getattr(operation, "type_name", None) in ("DRILLING", "FREEFORM_OPERATION") and pointed:
+            depths.append(drill_breakthrough(operation.its_tool))    # a drill's own path (NIST's ex1E) too
+        elif getattr(operation, "type_name", None) != "DRILLING":
+            # a through hole milled to size goes MILLED_BREAKTHROUGH below its bottom
             depths.append(MILLED_BREAKTHROUGH)
     return max(depths, default=0.0) + 0.01

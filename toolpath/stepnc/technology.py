@@ -22,7 +22,7 @@ MIN_CHIP = 0.001                # mm per tooth: below this the tool rubs instead
 DRILL_FEED_RATIO = 0.1          # a drill's feed per revolution at most this times its diameter
 
 
-def feed_and_speed(operation, tool: Tool, notes: list | None = None) -> tuple:
+def feed_and_speed(operation, tool: Tool, notes: list | None = None, need_feed: bool = True) -> tuple:
     """(feed mm/min, spindle rpm, clockwise) from MILLING_TECHNOLOGY; the spindle may come from
     the cutting speed and the feed from the feed per tooth.  A spindle in rev/s that would exceed
     MAX_SPINDLE_RPM while the number itself is a plausible rpm is read as rpm (with a note);
@@ -49,6 +49,8 @@ def feed_and_speed(operation, tool: Tool, notes: list | None = None) -> tuple:
     teeth = operation.its_tool.its_tool_body.number_of_teeth
     if feed is None and technology.feedrate_per_tooth and teeth:
         feed = technology.feedrate_per_tooth * teeth * rpm
+    if (not feed or feed <= 0) and not need_feed:      # explicit toolpaths may give their own (freeform)
+        return None, rpm, technology.spindle_clockwise
     if not feed or feed <= 0:
         raise MissingTechnology(f"#{technology.id} MILLING_TECHNOLOGY: no positive feedrate (nor "
                                 "feedrate_per_tooth with a known number of teeth)")

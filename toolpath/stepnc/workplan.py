@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,37 +30,32 @@ from manifold3d import CrossSection
 
 from .. import region as rg
 from ..errors import InputError
-from ..program import Operation, Program, Tool
+from ..program import ARC_CW, Operation, Program, Tool
 from .freeform import plan_freeform
+from .hole_bottoms import DEFAULT_TOOL_TOP_ANGLE, flat_bottom_notes  # noqa: F401 (re-exported)
 from .inprocess import InProcessStock
 from .model import (
-    DRILLING_TOOL_BODIES, Bidirectional, BottomAndSideMilling, ClosedPocket, ContourBidirectional, ContourParallel,
-    CuttingTool, DrillingOperation, FreeformOperation, PlanarFace, PlaneMilling, Project, RoundHole, Slot,
-    StepNcError, Unidirectional, Workingstep,
+    Bidirectional, BottomAndSideMilling, ClosedPocket, ContourBidirectional, ContourParallel,
+    CuttingTool, DrillingOperation, FreeformOperation, PlanarFace, PlaneMilling, PlungeHelix, PlungeRamp, Project,
+    RoundHole, Slot, StepNcError, Unidirectional, Workingstep,
 )
 from .reader import read_project
 from .motion import (  # noqa: F401 (APPROACH_GAP ... re-exported: workplan.py was one module)
     APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, _empty, _levels, _Motion,
-    _offset, _ratio, _split_outside, _stepover,
+    _offset, _ratio, _split_outside, _stepover, helix_moves, helix_pitch,
 )
 from .part21 import parse_part21, read_part21
 from .pockets import PocketSpec, pockets_to_part21  # noqa: F401 (re-exported)
 from .technology import MissingTechnology, feed_and_speed  # noqa: F401 (re-exported)
+from .tools import BODY_LABELS, tool_for, tool_numbering, tool_numbers  # noqa: F401 (re-exported)
 
 # A facing stroke starts and ends this far (mm) beyond the tool radius outside the face.
 FACING_RUNOUT = 2.0
 # A through hole is drilled through: the drill's full diameter passes the stock bottom by this much (mm)
 # beyond the point's length.
 BREAKTHROUGH_CLEARANCE = 2.0
-# Drill point when the file gives no tool_top_angle: the usual 118 degrees included angle.  ISO 14649's
-# tool_top_angle is measured from the plane square to the axis (ex1's drill: 31 = (180 - 118) / 2).
-DEFAULT_TOOL_TOP_ANGLE = 31.0
 POINTED_DRILL_BODIES = ("TWIST_DRILL", "TAPERED_DRILL")
 THROUGH_CONDITIONS = ("THROUGH_BOTTOM_CONDITION", "THROUGH_POCKET_BOTTOM_CONDITION")
-# What a tool body is called in the NC comments (Tool.describe); bodies not listed use the IR kind's name.
-BODY_LABELS = {"TWIST_DRILL": "twist drill", "TAPERED_DRILL": "drill", "CENTER_DRILL": "centre drill",
-               "REAMER": "reamer", "TAPERED_REAMER": "reamer", "TAP": "tap", "COUNTERSINK": "countersink",
-               "COUNTERBORE": "counterbore", "FACEMILL": "face mill"}
 # A feature may reach this far (mm) below the stock bottom before it is refused (rounding in the file).
 DEPTH_TOLERANCE = 1e-6
 
@@ -103,8 +99,9 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
     order:   workingstep instance ids in the order to machine them (every workingstep once);
              default the workplan's order.
     enabled: the ids to machine; default all.
-    Tool numbers follow the first use in the workplan's own order, so reordering does not
-    renumber tools.  Warnings (skipped entities, finishing before its roughing) go into
+    Tool numbers are the file's where its tool identifiers are numbers, else follow the first use
+    in the workplan's own order (:func:`.tools.tool_numbering`), so reordering does not renumber
+    tools.  Warnings (skipped entities, finishing before its roughing) go into
     ``Program.notes``.
     """
     steps = {step.id: step for step in model.workingsteps}
@@ -119,9 +116,10 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
                              f"given {order}")
         sequence = [steps[ident] for ident in order]
     enabled = set(steps) if enabled is None else set(enabled)
-    numbers = tool_numbers(model.workingsteps)
+    numbering = tool_numbering(model.workingsteps)
+    numbers = numbering.numbers
     position = {step.id: index for index, step in enumerate(sequence)}
-    notes = list(model.warnings)
+    notes = list(model.warnings) + list(numbering.notes)
     bottom, source = stock_bottom(model)
     if bottom is None:
         notes.append("the stock bottom is unknown (no workpiece BLOCK and no through feature): feature depths "
@@ -130,6 +128,7 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
     stock = in_process_stock(model)
     for step in sequence:
         if step.id not in enabled:
+            notes.append(f"workingstep #{step.id} '{step.its_id}' skipped: switched off (left out of the order to cut)")
             continue
         roughings = _roughings_of(step, model.workingsteps)
         for rough in roughings:
@@ -146,6 +145,7 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
         if operation is not None:
             operations.append(operation)
             stock.cut(operation)
+    notes += flat_bottom_notes(model.workingsteps, {op.source_id for op in operations})
     return Program(name or model.project.its_id or "STEP-NC", operations, notes=notes)
 
 
@@ -191,18 +191,18 @@ def nothing_to_machine(notes) -> str:
     return "no workingstep can be machined: " + "; ".join(reasons)
 
 
-def tool_numbers(workingsteps) -> dict:
-    """{MILLING_CUTTING_TOOL instance id: T number}: one number per distinct tool, in order of first
-    use.  Generators often write a new tool instance for every operation; instances with the same
-    name, body and dimensions are one tool."""
-    numbers, by_tool = {}, {}
-    for step in workingsteps:
-        tool = step.its_operation.its_tool
-        body = tool.its_tool_body
-        key = (tool.its_id, body.type_name, body.dimension, body.number_of_teeth, body.taper_angle,
-               tool.overall_assembly_length)
-        numbers[tool.id] = by_tool.setdefault(key, len(by_tool) + 1)
-    return numbers
+SKIPPED = re.compile(r"^workingstep #(\d+) '(.*)' skipped: (.*)$", re.DOTALL)
+
+
+def skipped_workingsteps(notes) -> list:
+    """[{"id", "name", "reason"}] of every workingstep the notes say was not cut (unsupported in the
+    file, not plannable, or switched off), in the notes' order."""
+    found = []
+    for note in notes:
+        match = SKIPPED.match(note)
+        if match:
+            found.append({"id": int(match.group(1)), "name": match.group(2), "reason": match.group(3)})
+    return found
 
 
 def stock_bottom(model: LoadedWorkplan) -> tuple:
@@ -249,22 +249,6 @@ def _roughings_of(step: Workingstep, workingsteps) -> list:
             and not other.its_operation.finishing]
 
 
-def tool_for(tool: CuttingTool, number: int) -> Tool:
-    """The IR tool of an ISO 14649 cutting tool."""
-    body = tool.its_tool_body
-    dimension = body.dimension
-    corner = dimension.edge_radius or 0.0
-    if body.type_name == "BALL_ENDMILL":
-        kind, corner = "ball", dimension.diameter / 2
-    elif body.type_name in DRILLING_TOOL_BODIES:
-        kind = "drill"
-    else:
-        kind = "bull" if corner > 0 else "flat"
-    extra = {"flute_length": dimension.cutting_edge_length} if dimension.cutting_edge_length else {}
-    return Tool(number, kind, dimension.diameter, min(corner, dimension.diameter / 2), name=tool.its_id,
-                label=BODY_LABELS.get(body.type_name, ""), **extra)
-
-
 def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list,
                      stock: InProcessStock | None = None) -> Operation | None:
     """The Operation of one workingstep; None (with a note) when it cannot be machined.
@@ -293,14 +277,19 @@ def plan_workingstep(step: Workingstep, tool: Tool, roughings: list, notes: list
 
     checks: list = []
     try:
-        feed, rpm, clockwise = feed_and_speed(operation, tool, checks)
+        feed, rpm, clockwise = feed_and_speed(operation, tool, checks,
+                                              need_feed=not isinstance(operation, FreeformOperation))
     except MissingTechnology as error:
         skip(str(error))
         return None
     notes += [f"workingstep #{step.id} '{step.its_id}': {note}" for note in checks]
 
     if isinstance(operation, FreeformOperation):
-        motion = plan_freeform(step, tool, clearance_z, stock)
+        try:
+            motion = plan_freeform(step, tool, clearance_z, stock)
+        except MissingTechnology as error:      # no feed where NIST's files state it: the step, not the file
+            skip(str(error))
+            return None
     elif isinstance(operation, DrillingOperation) and isinstance(feature, RoundHole):
         motion = _hole(operation, feature, tool, clearance_z, feed, skip, stock)
     elif isinstance(operation, PlaneMilling) and isinstance(feature, PlanarFace):
@@ -640,6 +629,8 @@ def _stretched(line, before: float, after: float):
 # Hole bottoms an end mill cuts; a milled through hole goes this far (mm) below the hole bottom unless the
 # operation gives an overcut_length.
 MILLED_HOLE_BOTTOMS = ("FLAT_HOLE_BOTTOM", "") + THROUGH_CONDITIONS
+# A helical entry of more turns than this a layer is on a circle too small for its angle to mean anything.
+MAX_HELIX_TURNS = 100
 MILLED_BREAKTHROUGH = 1.0
 
 
@@ -678,7 +669,13 @@ def _hole_milling(operation: BottomAndSideMilling, hole: RoundHole, tool: Tool, 
     if roughings:
         rough_floor = min(hole.bottom_z + (rough.allowance_bottom or 0.0) for rough in roughings)
     cx, cy = hole.centre
+    approach = operation.approach
+    angle = approach.angle if isinstance(approach, (PlungeHelix, PlungeRamp)) and 0 < approach.angle < 90 else None
     motion = _Motion(clearance_z, feed, stock=stock, radius=tool.radius)
+    if angle is not None:
+        motion.notes.append(f"hole #{hole.id}: helical entry at the file's {angle:g} degrees (pitch = pi x circle "
+                            f"diameter x tan {angle:g}: {helix_pitch(radii[0], angle):.3f} mm a turn on the "
+                            f"{2 * radii[0]:g} mm circle)")
     path = motion.path
     step = operation.axial_cutting_depth or tool.radius
     levels = _levels(hole.top_z, floor, step)
@@ -695,9 +692,17 @@ def _hole_milling(operation: BottomAndSideMilling, hole: RoundHole, tool: Tool, 
             if abs(path.position[0] - start[0]) > 1e-9:
                 path.line(*start, path.position[2])      # back in to the first circle, inside the cut
             top = path.position[2]
-        turns = max(1, math.ceil((top - z) / step - 1e-9))
-        for k in range(1, turns + 1):                     # helical turns down to the layer
-            path.arc(*start, top - (top - z) * k / turns, cx, cy, clockwise=not ccw)
+        steep = angle is not None and (top - z) / helix_pitch(rings[0], angle) > MAX_HELIX_TURNS
+        if steep and not any("too small for" in note for note in motion.notes):
+            motion.notes.append(f"hole #{hole.id}: the {2 * rings[0]:.3g} mm circle is too small for a {angle:g} degree "
+                                f"helix (more than {MAX_HELIX_TURNS} turns a layer): one turn per layer there")
+        if angle is not None and not steep:               # down at the file's ramp angle
+            for kind, end, _ in helix_moves((cx, cy), start, top, z, helix_pitch(rings[0], angle), ccw):
+                path.arc(*end, cx, cy, clockwise=kind == ARC_CW)
+        else:                                             # a turn per axial step down to the layer
+            turns = max(1, math.ceil((top - z) / step - 1e-9))
+            for k in range(1, turns + 1):
+                path.arc(*start, top - (top - z) * k / turns, cx, cy, clockwise=not ccw)
         path.arc(*start, z, cx, cy, clockwise=not ccw)    # the layer's full circle
         for radius in rings[1:]:
             path.line(cx + radius, cy, z)
