@@ -555,7 +555,53 @@ def unfold_arguments(p):
     p.add_argument("--thickness", type=number("--thickness", limit=RANGES["sheet"]["thickness"]))
     p.add_argument("--pitch", type=number("--pitch", limit=RANGES["sheet"]["pitch"]))
     p.add_argument("--station", type=number("--station", limit=RANGES["sheet"]["station"]))
+    sheet_arguments(p)
     gate.allow_findings_argument(p)
+
+
+def sheet_arguments(p):
+    """Where the part goes on the turret punch's sheet and its micro-joints (unfold and elbow)."""
+    from .batchio import number
+    from .limits import RANGES
+    limits = RANGES["sheet"]
+    p.add_argument("--sheet-origin", help='the G92 program origin "X,Y" in mm (default: the Amada 04P preset\'s)')
+    p.add_argument("--sheet-size", help='the sheet "X,Y" in mm, X along the clamped edge')
+    p.add_argument("--clamps", help='clamp centres along the clamped edge, "200,700" in mm ("" for none)')
+    p.add_argument("--clamp-width", type=number("--clamp-width", limit=limits["clamp_width"]))
+    p.add_argument("--clamp-depth", type=number("--clamp-depth", limit=limits["clamp_depth"]))
+    p.add_argument("--joints", type=number("--joints", limit=limits["joints"]),
+                   help="micro-joints left on the part's outline (0: the part falls free)")
+    p.add_argument("--joint-width", type=number("--joint-width", limit=limits["joint_width"]))
+
+
+def _pair(text: str, option: str):
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise convert.SceneInputError(f'{option}: give two numbers "X,Y" in mm, got {text!r}') from None
+    if len(values) != 2 or not all(np.isfinite(values)):
+        raise convert.SceneInputError(f'{option}: give two finite numbers "X,Y" in mm, got {text!r}')
+    return values
+
+
+def apply_sheet_arguments(args, sheet) -> None:
+    from . import batchio
+    from .limits import problem
+    for option, name in (("sheet_origin", "sheet_origin"), ("sheet_size", "sheet_size")):
+        text = getattr(args, option)
+        if text is not None:
+            flag = "--" + option.replace("_", "-")
+            values = _pair(text, flag)
+            message = problem("sheet", name, flag, tuple(values), "")
+            if message:
+                raise convert.SceneInputError(message)
+            setattr(sheet, name, values)
+    if args.clamps is not None:
+        parse_clamps(args.clamps, 1.0, 1.0, "--clamps")
+        sheet.clamps = args.clamps
+    for option in ("clamp_width", "clamp_depth", "joints", "joint_width"):
+        if getattr(args, option) is not None:
+            batchio.set_exactly(sheet, option, getattr(args, option), "--" + option.replace("_", "-"))
 
 
 def read_cdl_file(path: str):
@@ -595,6 +641,7 @@ def unfold_batch(args) -> dict:
     for option in ("divisions", "direction", "tool_diameter", "thickness", "pitch", "station"):
         if getattr(args, option) is not None:
             batchio.set_exactly(sheet, option, getattr(args, option), "--" + option.replace("_", "-"))
+    apply_sheet_arguments(args, sheet)
     if args.cdl:
         if not os.path.isfile(args.cdl):
             raise FileNotFoundError(f"no such CDL file: {args.cdl}")
@@ -639,6 +686,7 @@ def elbow_arguments(p):
     p.add_argument("--bend-radius", type=number("--bend-radius", limit=RANGES["sheet"]["elbow_radius"]))
     p.add_argument("--angle", type=number("--angle", limit=RANGES["sheet"]["elbow_angle"]))
     p.add_argument("--pieces", type=number("--pieces", limit=RANGES["sheet"]["elbow_pieces"]))
+    sheet_arguments(p)
     gate.allow_findings_argument(p)
 
 
@@ -651,6 +699,7 @@ def elbow_batch(args) -> dict:
                          ("angle", "elbow_angle"), ("pieces", "elbow_pieces")):
         if getattr(args, option) is not None:
             batchio.set_exactly(sheet, name, getattr(args, option), "--" + option.replace("_", "-"))
+    apply_sheet_arguments(args, sheet)
     result = run_elbow(sheet, ELBOW_NAMES)
     punching = elbow_punching(result, sheet, ELBOW_NAMES)
     gate_report = punch_gate([punched for _, punched, _ in punching], args.allow_findings)

@@ -33,6 +33,7 @@ from .errors import InputError
 from .punch import line_steps
 
 COLLINEAR_TOL = 0.005      # mm: half the 0.01 mm the NC words resolve
+MIN_LINE = 0.01            # mm: a shorter line cannot be written (two decimals)
 MAX_JOINTS = 8
 # A web a punch leaves standing at a micro-joint: 0.2..0.5 mm on thin sheet is the common shop
 # range; 0.4 mm is used as the default (issue 26 asks for 0.3..0.5 mm).
@@ -186,6 +187,11 @@ def nibble(contour, pitch: float, punch_diameter: float, joints: int = DEFAULT_J
     pts = corners(raw, tol)
     k = len(pts)
     ends = np.roll(pts, -1, axis=0)
+    lengths = np.hypot(*(ends - pts).T)
+    short = np.flatnonzero(lengths < MIN_LINE)
+    if len(short):
+        raise NibblingError(f"segment {int(short[0]) + 1} of the cut contour is {lengths[short[0]]:.4f} mm long, "
+                            f"shorter than the {MIN_LINE} mm the NC words resolve")
     if joints == 0:
         lines = _assign([(pts[i], ends[i]) for i in range(k)], pitch, closed=True)
         return Nibbling(np.array(lines), np.zeros((0, 2, 2)), float(joint_width), pts, len(raw) - k)
