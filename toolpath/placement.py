@@ -88,10 +88,12 @@ def place(contour, punch_diameter: float, profile: MachineProfile) -> Placement:
         z = zones[first_clamp - 1]
         why.append(f"along the clamped edge it meets clamp {first_clamp} (dead zone X {z[0]:g}..{z[2]:g}, "
                    f"Y 0..{z[3]:g} mm)")
-    why.append(f"above the clamps it would reach Y {above + size[1] + margin:.1f} mm (with the {margin:g} mm "
-               f"margin), past the sheet's {sheet[1]:g}")
+    if above + size[1] + margin > sheet[1]:
+        why.append(f"above the clamps it would reach Y {above + size[1] + margin:.1f} mm (with the {margin:g} mm "
+                   f"margin), past the sheet's {sheet[1]:g}")
     if size[0] + 2 * margin > sheet[0]:
-        why.append(f"it is wider than the sheet's {sheet[0]:g} mm")
+        why.append(f"with the {margin:g} mm margins it needs {size[0] + 2 * margin:.1f} mm along X, more than the "
+                   f"sheet's {sheet[0]:g}")
     raise PlacementError(f"the part and its punch hits take {size[0]:.1f} x {size[1]:.1f} mm and cannot be "
                          f"placed on the {sheet[0]:g} x {sheet[1]:g} mm sheet clear of the clamps: "
                          + "; ".join(why))

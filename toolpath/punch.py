@@ -474,20 +474,25 @@ def simulate_punching(program_or_text, *, punch_diameter: float | None = None, p
 
     pieces = rg.components(sheet)
     shape = None if outline is None else CrossSection([outline])
-    if outline is None:
-        loose = [p for p in pieces if not is_frame(p)]
-        part = loose[0] if loose else CrossSection()
-    else:
-        part = _pattern_piece(pieces, shape)
-    fell = part.area() > 0 and not is_frame(part)
     widths = []
     if len(pairs):
         near = _nearest_hits(pairs.reshape(-1, 2), program)
         ends = program.hits[near].reshape(-1, 2, 2)
         widths = [round(float(np.hypot(*(b - a))) - d, 4) for a, b in ends]
         released = rg.components(sheet - _joint_cuts(pairs, r))
-        pieces = released
         part = _pattern_piece(released, shape)
+        # the cuts take nothing of the part but the cusps between hits (it lies a radius from the
+        # hits' line): fallen free, it is a loose piece of the sheet as punched as well
+        area = part.area()
+        fell = any(not is_frame(p) and p.area() >= 0.9 * area for p in pieces)
+        pieces = released
+    elif outline is None:
+        loose = [p for p in pieces if not is_frame(p)]
+        part = loose[0] if loose else CrossSection()
+        fell = part.area() > 0
+    else:
+        part = _pattern_piece(pieces, shape)
+        fell = part.area() > 0 and not is_frame(part)
     separated = part.area() > 0 and not is_frame(part)
     held = bool(len(pairs) and separated and not fell)
     loops = rg.loops(part)
