@@ -277,9 +277,11 @@ def show_unfold(scene, job: UnfoldJob) -> list:
     cut_obj = convert.polyline_object(scene, f"{PREFIX} cut contour", [np.vstack([cut, cut[:1]])], flat_frame,
                                       color=(1.0, 0.3, 0.1, 1.0))
     # The punched sheet beside the flat pattern: the part that falls out, and the skeleton.
+    # back from the sheet's coordinates to the pattern's along Y, so the part lines up with the flat pattern
     (x0, _, x1, _) = job.punched.sheet.bounds()
+    shift_y = 0.0 if job.punching is None else -float(job.punching.offset[1])
     punched_frame = convert.WorkFrame(scale, (flat_frame.origin_mm[0] + float(job.contour[:, 0].max()) + GAP_MM - x0,
-                                              0.0, 0.0))
+                                              shift_y, 0.0))
     thickness = float(scene.kezuri.sheet.thickness)
     pieces = []
     for name, region, colour in (("punched part", job.punched.part, (0.55, 0.75, 0.95, 1.0)),

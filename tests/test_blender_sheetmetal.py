@@ -42,11 +42,18 @@ def test_unfold_operator_lays_out_an_isometric_flat_pattern(scene):
     # Beside the part, not on top of it.
     assert min(v.co.x for v in flat.data.vertices) > max(v.co.x for v in part.data.vertices)
     assert scene.kezuri.sheet.direction == "vertical"      # the redo settings are kept in the scene
-    # The punched sheet beside the flat pattern: the part fell out of the skeleton.
+    # The punched sheet beside the flat pattern: the part (as it comes out at its joints) and the skeleton.
     punched = bpy.data.objects["Kezuri Sheet punched part"]
     skeleton = bpy.data.objects["Kezuri Sheet skeleton"]
     assert min(v.co.x for v in punched.data.vertices) > max(v.co.x for v in flat.data.vertices)
     assert max(v.co.x for v in punched.data.vertices) < max(v.co.x for v in skeleton.data.vertices)
+    # the punched part is the flat pattern, moved along X only (its outline at the pattern's place;
+    # within the nibbling's scallops, 0.12 mm)
+    flat_xy = np.array([v.co[:2] for v in flat.data.vertices])
+    part_xy = np.array([v.co[:2] for v in punched.data.vertices])
+    assert part_xy[:, 1].min() == pytest.approx(flat_xy[:, 1].min(), abs=0.15)
+    assert part_xy[:, 1].max() == pytest.approx(flat_xy[:, 1].max(), abs=0.15)
+    assert np.ptp(part_xy[:, 0]) == pytest.approx(np.ptp(flat_xy[:, 0]), abs=0.3)
 
 
 def test_unfold_in_a_metre_scene_has_the_same_physical_size(scene):

@@ -244,3 +244,21 @@ def test_joints_that_do_not_fit_are_refused():
             nibbling.nibble(tiny, 2.0, 10.0, joints=bad)
     with pytest.raises(nibbling.NibblingError, match="width"):
         nibbling.nibble(tiny, 2.0, 10.0, joints=1, joint_width=math.nan)
+
+
+def test_the_gate_takes_a_part_held_by_its_joints_and_refuses_joints_that_do_not_hold():
+    from kezuri.operators import gate, sheetmetal
+    outline, contour = quad_contour()
+    text, lines, where = program(contour, joints=2)
+    pattern = outline + where.offset
+    held = punch.simulate_punching(text, punch_diameter=10.0, pattern=pattern, joints=lines.joints)
+    assert sheetmetal.punch_gate([held], False)["findings"] == []
+    free_text = program(contour, joints=0)[0]
+    free = punch.simulate_punching(free_text, punch_diameter=10.0, pattern=pattern)
+    assert sheetmetal.punch_gate([free], False)["findings"] == []            # as today: falls free, fine
+    fake = punch.simulate_punching(free_text, punch_diameter=10.0, pattern=pattern, joints=lines.joints)
+    with pytest.raises(gate.GateRefused, match="the part falls free: its 2 micro-joint"):
+        sheetmetal.punch_gate([fake], False)
+    unknown = punch.simulate_punching(text, punch_diameter=10.0, pattern=pattern)   # joints not said
+    with pytest.raises(gate.GateRefused, match="the part stays in the sheet"):
+        sheetmetal.punch_gate([unknown], False)
