@@ -19,6 +19,12 @@ suppressed leading zero in the paper, "X .93", are N88-BASIC PRINT artefacts, no
 sequence numbers N000..N999.  The angle comes from atan2, so all four quadrants and vertical segments
 are right (the seed's ATN(dy/dx) loses the quadrant and divides by zero on vertical segments).
 
+The sheet-metal workflows write :func:`lines_to_text`: the lines as nibbled by
+``toolpath/nibbling.py`` (collinear pieces merged, each hit once, gaps at the micro-joints), with
+comment lines after the G92 block saying where the part's hits lie on the sheet, the clamps' dead
+zones and the joints.  Comments are in parentheses, as Fanuc-built controls take them (control
+out / control in); a control that does not would need them left out.
+
 Program end: G50 by default, the Amada turret-punch program end (home return: the carriage goes back
 to the position set by G92 so the sheet can be unloaded), which is what these punching programs end
 with rather than the milling M30; ``end_code="M30"`` is offered for controllers set up otherwise.

@@ -22,6 +22,10 @@ Controls and where their rules come from:
   2-digit offset, the turret homed (``G28 U0. W0.``) with the driven tool stopped before indexing.
 * ``amada-04p``: the Amada 04P turret punch: N000..N999 (3 digits), every value with exactly two
   decimals, T three digits, the program opens with ``N000 G92`` and ends with ``G50`` (or M30).
+  Where the hits fall (worked out from the G72 / G69 / G79 words here, as the Amada ARIES 245
+  (04PA) programming manual defines sheet coordinates: from the sheet's lower-left corner, first
+  quadrant): at X, Y >= 0, within the sheet and outside the clamps' dead zones when the caller
+  gives them (as numbers), and no hit punched twice.
 
 Tool changes (milling controls with a changer): the spindle stopped (M05), for Fanuc Z sent to the
 change position (``G91 G28 Z0.``) and back to G90, the length offset cancelled (G49), never a change

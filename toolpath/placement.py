@@ -73,11 +73,8 @@ def place(contour, punch_diameter: float, profile: MachineProfile) -> Placement:
     blocked = []
     for (x0, y0), where in candidates:
         box = (x0, y0, x0 + size[0], y0 + size[1])
-        if box[2] > sheet[0] - margin or box[3] > sheet[1] - margin:
-            blocked.append((where, None, box))
-            continue
         hit = next((i for i, z in enumerate(zones, start=1) if _overlaps(box, z, margin)), None)
-        if hit is not None:
+        if hit is not None or box[2] > sheet[0] - margin or box[3] > sheet[1] - margin:
             blocked.append((where, hit, box))
             continue
         offset = (x0 - float(low[0]), y0 - float(low[1]))
