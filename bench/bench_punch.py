@@ -3,7 +3,8 @@ piece's program punched out of its blank, and one program at the 20,000-hit limi
 
 Before the hits of a line were united in closed form (toolpath/punch.py ``_chain``) every hit was a
 polygon of its own in the union: on 2026-11-27 the elbow took 48 s
-(and batch punched every piece twice)."""
+(and batch punched every piece twice).  Since issue 26 each piece is placed on the sheet with two
+micro-joints, and the simulation also releases the part at its joints (one more boolean a piece)."""
 from __future__ import annotations
 
 from timing import best_of
@@ -11,13 +12,25 @@ from timing import best_of
 
 def elbow_programs(diameter: float = 400.0, pieces: int = 60, punch_diameter: float = 10.0,
                    pitch: float = 2.0) -> list:
-    """(NC text, flat pattern) of every piece, as the elbow export writes them."""
+    """(NC text, flat pattern, micro-joints) of every piece, as the elbow export writes them: each
+    placed on the Amada 04P preset's sheet clear of the clamps, nibbled with merged lines, each hit
+    once, and two micro-joints."""
     from kezuri.post import amada_punch
-    from kezuri.toolpath import unfold
+    from kezuri.toolpath import machine, nibbling, placement, unfold
 
+    # the 400 mm pipe's pattern is 1257 mm round: a 2500 x 1250 sheet (the 1270 mm preset's is too narrow)
+    profile = machine.preset("amada-04p").replace(sheet_max=(2500.0, 1250.0))
     elbow = unfold.unfold_elbow(90.0, 3000.0, diameter, pieces)
-    return [(amada_punch.to_text(unfold.compensate_outline(piece.outline, punch_diameter), station=302,
-                                 pitch=pitch, thickness=1.6), piece.outline) for piece in elbow.pieces]
+    out = []
+    for piece in elbow.pieces:
+        outline = piece.outline - piece.outline.min(axis=0)
+        contour = unfold.compensate_outline(outline, punch_diameter)
+        where = placement.place(contour, punch_diameter, profile)
+        lines = nibbling.nibble(contour, pitch, punch_diameter).moved(where.offset)
+        text = amada_punch.lines_to_text(lines.lines, station=302, pitch=pitch, thickness=1.6,
+                                         origin=profile.sheet_origin, notes=placement.describe(where))
+        out.append((text, outline + where.offset, lines.joints))
+    return out
 
 
 def square_program(side: float = 499.0, pitch: float = 0.1) -> str:
@@ -35,11 +48,12 @@ def run():
     from kezuri.toolpath import punch
 
     programs = elbow_programs()
-    hits = sum(len(punch.read_amada(text).hits) for text, _ in programs)
+    hits = sum(len(punch.read_amada(text).hits) for text, _, _ in programs)
 
     def elbow():
-        for text, outline in programs:
-            punch.simulate_punching(text, punch_diameter=10.0, pattern=outline)
+        for text, outline, joints in programs:
+            result = punch.simulate_punching(text, punch_diameter=10.0, pattern=outline, joints=joints)
+            assert result.held_by_joints
 
     square = square_program()
     square_hits = len(punch.read_amada(square).hits)

@@ -92,6 +92,8 @@ RANGES: dict = {
         "pitch": mm(0.1), "station": Range(1, 999, integer=True),
         "elbow_diameter": mm(0.1), "elbow_radius": mm(0.1), "elbow_angle": degrees(1.0, 180.0),
         "elbow_pieces": Range(2, 60, integer=True),
+        "sheet_origin": mm(-9999.99, 9999.99), "sheet_size": mm(10.0, 9999.99), "clamp_width": mm(1.0, 1000.0),
+        "clamp_depth": mm(1.0, 1000.0), "joints": Range(0, 8, integer=True), "joint_width": mm(0.05, 5.0),
     },
     "pocket": {"depth": mm(0.01, 1000.0), "wall_angle": degrees(0.0, 75.0), "sphere_radius": mm(0.1, 10000.0)},
     "rotary": {

@@ -250,6 +250,26 @@ class KEZURI_PT_sheet_elbow(KezuriPanel, bpy.types.Panel):
         layout.operator("kezuri.elbow_export", icon="EXPORT")
 
 
+class KEZURI_PT_sheet_setup(KezuriPanel, bpy.types.Panel):
+    # where the part goes on the turret punch's sheet, the clamps, the micro-joints
+    bl_idname = "KEZURI_PT_sheet_setup"
+    bl_label = "Sheet, Clamps & Joints"
+    bl_parent_id = "KEZURI_PT_sheet"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        sheet = context.scene.kezuri.sheet
+        for name in ("sheet_size", "sheet_origin"):          # X and Y side by side under the name
+            column = layout.column(align=True)
+            column.label(text=sheet.bl_rna.properties[name].name)
+            row = column.row(align=True)
+            for index in range(2):
+                row.prop(sheet, name, index=index, text="")
+        field(layout, sheet, "clamps", wide=True)
+        fields(layout, sheet, ("clamp_width", "clamp_depth", "joints", "joint_width"))
+
+
 class KEZURI_PT_simulate(KezuriPanel, bpy.types.Panel):
     bl_idname = "KEZURI_PT_simulate"
     bl_label = "Simulate & Check"
@@ -305,4 +325,4 @@ CLASSES = (KEZURI_PT_job, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_P
            KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_stepnc,
            KEZURI_PT_stepnc_write, KEZURI_PT_turnmill, KEZURI_PT_turnmill_settings, KEZURI_PT_carve,
            KEZURI_PT_carve_roughing, KEZURI_PT_carve_settings, KEZURI_PT_sheet,
-           KEZURI_PT_sheet_elbow, KEZURI_PT_simulate, KEZURI_PT_machine)
+           KEZURI_PT_sheet_setup, KEZURI_PT_sheet_elbow, KEZURI_PT_simulate, KEZURI_PT_machine)

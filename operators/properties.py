@@ -13,6 +13,8 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
                        IntProperty, PointerProperty, StringProperty)
 
 from .. import post as posts
+from ..toolpath import machine as _machine
+from ..toolpath import nibbling as _nibbling
 from . import limits
 
 _ENUM_ITEMS: dict = {}   # Blender reads dynamic enum strings after the callback returns: keep them alive
@@ -178,6 +180,26 @@ def copies(settings: dict) -> dict:
     return {name: prop.function(**prop.keywords) for name, prop in settings.items()}
 
 
+_PUNCH = _machine.preset("amada-04p")
+# Where the part goes on the turret punch's sheet, and the micro-joints that keep it there
+# (defaults: the Amada 04P preset of toolpath/machine.py).
+SHEET_SETUP = ranged({
+    "sheet_origin": FloatVectorProperty(name="G92 Origin", size=2, default=_PUNCH.sheet_origin, precision=2,
+                                        description="The program origin the control is told (G92 X Y, mm)"),
+    "sheet_size": FloatVectorProperty(name="Sheet", size=2, default=_PUNCH.sheet_max, precision=1,
+                                      description="The sheet the part is placed on, X along the clamped edge (mm)"),
+    "clamps": StringProperty(name="Clamps", default=", ".join(f"{c.x:g}" for c in _PUNCH.clamps),
+                             description="Clamp centres along the sheet's clamped edge, X from the sheet's corner "
+                                         "(mm, separated by commas)"),
+    "clamp_width": mm("Clamp Width", _PUNCH.clamps[0].width, "Width of each clamp's dead zone along X"),
+    "clamp_depth": mm("Clamp Depth", _PUNCH.clamps[0].depth, "Depth of each clamp's dead zone into the sheet"),
+    "joints": IntProperty(name="Micro-Joints", default=_nibbling.DEFAULT_JOINTS, min=0, max=_nibbling.MAX_JOINTS,
+                          description="Webs left uncut on the part's outline so it stays in the sheet (0: the part "
+                                      "falls free at the last hits)"),
+    "joint_width": mm("Joint Width", _nibbling.DEFAULT_JOINT_WIDTH, "Width of the web each micro-joint leaves"),
+}, "sheet")
+
+
 # The paper's test quad: P1 (0,0,0), P2 (0,30,100), P3 (100,50,100), P4 (100,40,0).
 PAPER_CORNERS = (0.0, 0.0, 0.0, 0.0, 30.0, 100.0, 100.0, 50.0, 100.0, 100.0, 40.0, 0.0)
 
@@ -186,7 +208,7 @@ class KezuriSheet(bpy.types.PropertyGroup):
     __annotations__ = ranged({
         "corners": FloatVectorProperty(name="Corners", size=12, default=PAPER_CORNERS,
                                        description="P1..P4 of the twisted quad, x y z each (mm)"),
-        **UNFOLD_SETTINGS, **ELBOW_SETTINGS,
+        **UNFOLD_SETTINGS, **ELBOW_SETTINGS, **SHEET_SETUP,
     }, "sheet")
 
 

@@ -17,7 +17,7 @@ from bpy_extras.io_utils import ExportHelper, ImportHelper
 
 from .. import post as posts
 from ..post import flat_export, write_atomic
-from ..toolpath import punch
+from ..toolpath import machine, nibbling, placement, punch
 from ..toolpath import unfold as core
 from ..toolpath.errors import InputError
 from ..toolpath.textfile import read_text
@@ -37,11 +37,77 @@ ALLOW_DESCRIPTION = ("Write the programs even if the punching simulation finds a
                      "or a hit biting into the part")
 
 
-def punch_program(contour, props) -> str:
-    """The turret-punch program nibbling round ``contour`` with the sheet panel's punch."""
+SETUP_NAMES = {"sheet_origin": "G92 Origin", "sheet_size": "Sheet", "clamps": "Clamps", "joints": "Micro-Joints",
+               "joint_width": "Joint Width"}
+
+
+def parse_clamps(text: str, width: float, depth: float, name: str = "Clamps") -> tuple:
+    """Clamps from their centres along the clamped edge, "200, 700" (mm); none from an empty text."""
+    found = []
+    for item in str(text).replace(";", ",").split(","):
+        if not item.strip():
+            continue
+        try:
+            x = float(item)
+        except ValueError:
+            raise SettingError(f"{name}: {item.strip()!r} is not a number of mm (give clamp centres like "
+                               f"\"200, 700\")") from None
+        if not (abs(x) < 1e5):
+            raise SettingError(f"{name}: {item.strip()!r} is not a position on the sheet")
+        found.append(machine.Clamp(x, width, depth))
+    return tuple(found)
+
+
+def punch_profile(props, names: dict = SETUP_NAMES) -> machine.MachineProfile:
+    """The Amada 04P preset with the sheet, G92 origin and clamps the panel (or batch) gives."""
+    check_group(props, "sheet", ["sheet_origin", "sheet_size", "clamp_width", "clamp_depth", "joints", "joint_width"])
+    clamps = parse_clamps(props.clamps, props.clamp_width, props.clamp_depth, names["clamps"])
+    return machine.preset(PUNCH_POST).replace(sheet_origin=tuple(props.sheet_origin), clamps=clamps,
+                                              sheet_max=tuple(props.sheet_size))
+
+
+@dataclass
+class PunchJob:
+    """One part's program on the sheet: where it sits, its nibbling lines and their simulation."""
+
+    nc: str
+    punched: punch.PunchResult
+    placement: placement.Placement
+    nibbling: nibbling.Nibbling
+    offset: np.ndarray          # added to the pattern's coordinates to put it on the sheet
+
+
+def punch_job(contour, pattern, props, profile=None) -> PunchJob:
+    """Place the tool-centre ``contour`` on the sheet clear of the clamps, nibble round it (merged
+    lines, micro-joints, each hit once), write the program and punch it out of the sheet."""
+    profile = punch_profile(props) if profile is None else profile
+    where = placement.place(contour, props.tool_diameter, profile)
+    lines = nibbling.nibble(contour, props.pitch, props.tool_diameter, joints=props.joints,
+                            joint_width=props.joint_width).moved(where.offset)
+    notes = placement.describe(where)
+    notes.append(f"micro-joints: {len(lines.joints)} of {lines.joint_width:g} mm" if len(lines.joints)
+                 else "micro-joints: none, the part falls free at the last hits")
     post = posts.create(POST_FAMILIES, PUNCH_POST, station=props.station, pitch=props.pitch,
-                        thickness=props.thickness)
-    return post.to_text(contour)
+                        thickness=props.thickness, origin=profile.sheet_origin)
+    nc = post.lines_to_text(lines.lines, notes=notes)
+    offset = np.asarray(where.offset, float)
+    punched = punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=np.asarray(pattern) + offset,
+                                      joints=lines.joints)
+    return PunchJob(nc, punched, where, lines, offset)
+
+
+def placement_report(jobs: list) -> dict:
+    """The report's ``sheet`` entry: where each part sits, the clamps, the joints."""
+    first = jobs[0].placement
+    return {
+        "sheet_mm": list(first.sheet),
+        "clamp_zones": [[round(v, 3) for v in z] for z in first.zones],
+        "parts": [{"where": j.placement.where, "offset": [round(v, 3) for v in j.placement.offset],
+                   "hits_within": [round(v, 3) for v in j.placement.envelope],
+                   "lines": len(j.nibbling.lines), "merged_points": j.nibbling.merged,
+                   "joints": len(j.nibbling.joints), "joint_width_mm": round(j.nibbling.joint_width, 4),
+                   "joint_webs_mm": j.punched.joint_widths_mm} for j in jobs],
+    }
 
 
 @dataclass
@@ -50,6 +116,7 @@ class UnfoldJob:
     contour: np.ndarray        # tool-centre contour around the flat pattern (mm)
     nc: str                    # the turret-punch program
     punched: punch.PunchResult  # that program read back and punched out of the sheet
+    punching: PunchJob = None  # where it sits on the sheet, its lines and joints
 
 
 def corners_mm(props) -> np.ndarray:
@@ -98,7 +165,9 @@ def word_error(resolution: float, line_mm: float) -> float:
 
 
 def punch_gate(results: list, allow: bool) -> dict:
-    """The export gate of a punching job: a part that stays in the sheet, or a hit biting into
+    """The export gate of a punching job: a part that stays in the sheet other than by the
+    micro-joints the job left (held by them is the intended result), a part that falls free
+    though joints were asked for, or a hit biting into
     the part deeper than the simulation's tolerance and what the NC words' two decimals can put
     it off by (:func:`word_error`), is not written unless ``allow``.  Returns the report's
     ``gate`` entry; raises :class:`gate.GateRefused`."""
@@ -107,7 +176,10 @@ def punch_gate(results: list, allow: bool) -> dict:
     findings = []
     for index, result in enumerate(results, start=1):
         which = f"piece {index}: " if len(results) > 1 else ""
-        if not result.part_separated:
+        if result.joints and result.part_separated:
+            findings.append({"kind": "joints do not hold", "piece": index, "line": None, "depth_mm": None,
+                             "message": f"{which}the part falls free: its {result.joints} micro-joint(s) leave no web"})
+        elif not result.part_separated and not result.held_by_joints:
             findings.append({"kind": "part in sheet", "piece": index, "line": None, "depth_mm": None,
                              "message": f"{which}the part stays in the sheet (webs between the hits)"})
         findings += [{"kind": "gouge", "piece": index, "line": g.line, "depth_mm": round(g.depth_mm, 4),
@@ -131,9 +203,8 @@ def run_unfold(corners, props, names: dict = PANEL_NAMES) -> UnfoldJob:
     quad = core.unfold_twisted_quad(corners, props.divisions, props.direction)
     contour = core.compensate_outline(quad.pattern.outline, props.tool_diameter)
     check_contour(contour, props, f"the flat pattern of {names['corners']}", names)
-    nc = punch_program(contour, props)
-    punched = punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=quad.pattern.outline)
-    return UnfoldJob(quad, contour, nc, punched)
+    job = punch_job(contour, quad.pattern.outline, props)
+    return UnfoldJob(quad, contour, job.nc, job.punched, job)
 
 
 def punch_report(results: list, thickness: float) -> dict:
@@ -148,6 +219,7 @@ def punch_report(results: list, thickness: float) -> dict:
         "seconds": round(sum(r.seconds for r in results), 3),
         "hits": sum(r.hits for r in results),
         "parts_separated": [r.part_separated for r in results],
+        "held_by_joints": [r.held_by_joints for r in results],
         "part_area_mm2": [round(r.part_area_mm2, 2) for r in results],
         "pattern_area_mm2": [round(r.pattern_area_mm2, 2) for r in results],
         "removed_area_mm2": round(removed, 2),
@@ -164,7 +236,9 @@ def punch_warnings(results: list) -> list:
     warnings = []
     for index, result in enumerate(results):
         which = f"part {index + 1}: " if len(results) > 1 else ""
-        if not result.part_separated:
+        if result.joints and result.part_separated:
+            warnings.append(f"{which}the part falls free: its micro-joints leave no web")
+        elif not result.part_separated and not result.held_by_joints:
             warnings.append(f"{which}the part stays in the sheet: hits further apart than the punch leave webs "
                             f"(lower the pitch below the {result.punch_diameter:g} mm punch)")
         warnings += [f"{which}{g.message}" for g in result.gouges]
@@ -203,9 +277,11 @@ def show_unfold(scene, job: UnfoldJob) -> list:
     cut_obj = convert.polyline_object(scene, f"{PREFIX} cut contour", [np.vstack([cut, cut[:1]])], flat_frame,
                                       color=(1.0, 0.3, 0.1, 1.0))
     # The punched sheet beside the flat pattern: the part that falls out, and the skeleton.
+    # back from the sheet's coordinates to the pattern's along Y, so the part lines up with the flat pattern
     (x0, _, x1, _) = job.punched.sheet.bounds()
+    shift_y = 0.0 if job.punching is None else -float(job.punching.offset[1])
     punched_frame = convert.WorkFrame(scale, (flat_frame.origin_mm[0] + float(job.contour[:, 0].max()) + GAP_MM - x0,
-                                              0.0, 0.0))
+                                              shift_y, 0.0))
     thickness = float(scene.kezuri.sheet.thickness)
     pieces = []
     for name, region, colour in (("punched part", job.punched.part, (0.55, 0.75, 0.95, 1.0)),
@@ -246,12 +322,13 @@ def elbow_punching(elbow: core.Elbow, props, names: dict = PANEL_NAMES) -> list:
         check_contour(contour, props, f"piece {index} of {names['diameter']} = {elbow.diameter:g} mm", names)
         contours.append((outline, contour))
     jobs = []
+    profile = punch_profile(props)
     for index, (outline, contour) in enumerate(contours, start=1):
         try:
-            nc = punch_program(contour, props)
-            jobs.append((nc, punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=outline)))
+            job = punch_job(contour, outline, props, profile)
         except InputError as error:     # which piece's program: the message's line is that program's
             raise core.UnfoldError(f"elbow piece {index} of {len(elbow.pieces)}: {error}") from None
+        jobs.append((job.nc, job.punched, job))
     return jobs
 
 
@@ -266,7 +343,7 @@ def elbow_files(elbow: core.Elbow, base_path: str, props, punching: list | None 
     extension = posts.extension(POST_FAMILIES, PUNCH_POST)
     texts = [(stem + ".dxf", flat_export.to_dxf(outlines, punch_paths=punch_paths)),
              (stem + ".svg", flat_export.to_svg(outlines, punch_paths=punch_paths))]
-    texts += [(f"{stem}-{index}{extension}", nc) for index, (nc, _) in enumerate(punching, start=1)]
+    texts += [(f"{stem}-{index}{extension}", nc) for index, (nc, *_) in enumerate(punching, start=1)]
     return [write_atomic(path, text) for path, text in texts]
 
 
@@ -449,7 +526,7 @@ class KEZURI_OT_elbow_export(bpy.types.Operator, ExportHelper):
             sheet = context.scene.kezuri.sheet
             elbow = run_elbow(sheet)
             punching = elbow_punching(elbow, sheet)
-            punch_gate([punched for _, punched in punching], self.allow_findings)
+            punch_gate([punched for _, punched, _ in punching], self.allow_findings)
             files = elbow_files(elbow, self.filepath, sheet, punching)
             self.report({"INFO"}, translate_message("Wrote " + ", ".join(os.path.basename(f) for f in files)))
             return {"FINISHED"}
@@ -480,7 +557,53 @@ def unfold_arguments(p):
     p.add_argument("--thickness", type=number("--thickness", limit=RANGES["sheet"]["thickness"]))
     p.add_argument("--pitch", type=number("--pitch", limit=RANGES["sheet"]["pitch"]))
     p.add_argument("--station", type=number("--station", limit=RANGES["sheet"]["station"]))
+    sheet_arguments(p)
     gate.allow_findings_argument(p)
+
+
+def sheet_arguments(p):
+    """Where the part goes on the turret punch's sheet and its micro-joints (unfold and elbow)."""
+    from .batchio import number
+    from .limits import RANGES
+    limits = RANGES["sheet"]
+    p.add_argument("--sheet-origin", help='the G92 program origin "X,Y" in mm (default: the Amada 04P preset\'s)')
+    p.add_argument("--sheet-size", help='the sheet "X,Y" in mm, X along the clamped edge')
+    p.add_argument("--clamps", help='clamp centres along the clamped edge, "200,700" in mm ("" for none)')
+    p.add_argument("--clamp-width", type=number("--clamp-width", limit=limits["clamp_width"]))
+    p.add_argument("--clamp-depth", type=number("--clamp-depth", limit=limits["clamp_depth"]))
+    p.add_argument("--joints", type=number("--joints", limit=limits["joints"]),
+                   help="micro-joints left on the part's outline (0: the part falls free)")
+    p.add_argument("--joint-width", type=number("--joint-width", limit=limits["joint_width"]))
+
+
+def _pair(text: str, option: str):
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise convert.SceneInputError(f'{option}: give two numbers "X,Y" in mm, got {text!r}') from None
+    if len(values) != 2 or not all(np.isfinite(values)):
+        raise convert.SceneInputError(f'{option}: give two finite numbers "X,Y" in mm, got {text!r}')
+    return values
+
+
+def apply_sheet_arguments(args, sheet) -> None:
+    from . import batchio
+    from .limits import problem
+    for option, name in (("sheet_origin", "sheet_origin"), ("sheet_size", "sheet_size")):
+        text = getattr(args, option)
+        if text is not None:
+            flag = "--" + option.replace("_", "-")
+            values = _pair(text, flag)
+            message = problem("sheet", name, flag, tuple(values), "")
+            if message:
+                raise convert.SceneInputError(message)
+            setattr(sheet, name, values)
+    if args.clamps is not None:
+        parse_clamps(args.clamps, 1.0, 1.0, "--clamps")
+        sheet.clamps = args.clamps
+    for option in ("clamp_width", "clamp_depth", "joints", "joint_width"):
+        if getattr(args, option) is not None:
+            batchio.set_exactly(sheet, option, getattr(args, option), "--" + option.replace("_", "-"))
 
 
 def read_cdl_file(path: str):
@@ -520,6 +643,7 @@ def unfold_batch(args) -> dict:
     for option in ("divisions", "direction", "tool_diameter", "thickness", "pitch", "station"):
         if getattr(args, option) is not None:
             batchio.set_exactly(sheet, option, getattr(args, option), "--" + option.replace("_", "-"))
+    apply_sheet_arguments(args, sheet)
     if args.cdl:
         if not os.path.isfile(args.cdl):
             raise FileNotFoundError(f"no such CDL file: {args.cdl}")
@@ -552,6 +676,7 @@ def unfold_batch(args) -> dict:
         "outline": rounded(pattern.outline),
         "cut_contour": rounded(job.contour),
         "simulation": punch_report([job.punched], sheet.thickness),
+        "sheet": placement_report([job.punching]),
         "gate": gate_report,
     }
 
@@ -563,6 +688,7 @@ def elbow_arguments(p):
     p.add_argument("--bend-radius", type=number("--bend-radius", limit=RANGES["sheet"]["elbow_radius"]))
     p.add_argument("--angle", type=number("--angle", limit=RANGES["sheet"]["elbow_angle"]))
     p.add_argument("--pieces", type=number("--pieces", limit=RANGES["sheet"]["elbow_pieces"]))
+    sheet_arguments(p)
     gate.allow_findings_argument(p)
 
 
@@ -575,9 +701,10 @@ def elbow_batch(args) -> dict:
                          ("angle", "elbow_angle"), ("pieces", "elbow_pieces")):
         if getattr(args, option) is not None:
             batchio.set_exactly(sheet, name, getattr(args, option), "--" + option.replace("_", "-"))
+    apply_sheet_arguments(args, sheet)
     result = run_elbow(sheet, ELBOW_NAMES)
     punching = elbow_punching(result, sheet, ELBOW_NAMES)
-    gate_report = punch_gate([punched for _, punched in punching], args.allow_findings)
+    gate_report = punch_gate([punched for _, punched, _ in punching], args.allow_findings)
     files = elbow_files(result, os.path.join(args.out, "elbow.dxf"), sheet, punching)
     if batchio.shown():
         show_elbow(scene, result)
@@ -591,7 +718,8 @@ def elbow_batch(args) -> dict:
         "files": files,
         "preview": png,
         "diameter": result.diameter, "bend_radius": result.bend_radius, "angle": result.bend_angle,
-        "simulation": punch_report([punched for _, punched in punching], sheet.thickness),
+        "simulation": punch_report([punched for _, punched, _ in punching], sheet.thickness),
+        "sheet": placement_report([job for *_, job in punching]),
         "gate": gate_report,
         "pieces": [{"index": piece.index + 1, "angle_deg": round(piece.angle, 6),
                     "outline": rounded(piece.outline),

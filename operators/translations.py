@@ -324,6 +324,24 @@ PROPERTY_TEXTS = {
     "Distance between punch hits (Q word) (mm)": "パンチの打ち抜き間隔（Qワード） (mm)",
     "Station": "ステーション",
     "Turret station (T word)": "タレットのステーション（Tワード）",
+    # Sheet metal: the sheet, its clamps and the micro-joints (issue 26)
+    "Sheet, Clamps & Joints": "板材・クランプ・ミクロジョイント",
+    "G92 Origin": "G92 原点",
+    "The program origin the control is told (G92 X Y, mm)": "NC装置に指令するプログラム原点（G92 X Y、mm）",
+    "Sheet": "板材",
+    "The sheet the part is placed on, X along the clamped edge (mm)": "部品を配置する板材。X はクランプ側の辺に沿う (mm)",
+    "Clamps": "クランプ",
+    "Clamp centres along the sheet's clamped edge, X from the sheet's corner (mm, separated by commas)":
+        "板材のクランプ側の辺に沿ったクランプ中心の X 位置（板材の角から、mm、カンマ区切り）",
+    "Clamp Width": "クランプ幅",
+    "Width of each clamp's dead zone along X (mm)": "各クランプの加工禁止域の X 方向の幅 (mm)",
+    "Clamp Depth": "クランプ奥行き",
+    "Depth of each clamp's dead zone into the sheet (mm)": "各クランプの加工禁止域の板材内への奥行き (mm)",
+    "Micro-Joints": "ミクロジョイント",
+    "Webs left uncut on the part's outline so it stays in the sheet (0: the part falls free at the last hits)":
+        "部品が板材に残るよう輪郭に切り残す継ぎ（0：最後の打ち抜きで部品が落ちます）",
+    "Joint Width": "ジョイント幅",
+    "Width of the web each micro-joint leaves (mm)": "各ミクロジョイントが残す継ぎの幅 (mm)",
     # Sheet metal: pipe elbow
     "Pipe Diameter": "管径",
     "Neutral diameter of the pipe (mm)": "管の中立径（板厚中心の径） (mm)",
@@ -515,6 +533,15 @@ PROPERTY_TEXTS = {
 
 # Fixed messages: poll messages, reports and the errors the operators show (run_reported).
 MESSAGES = {
+    # turret punch on the sheet (issue 26)
+    "a line has a non-finite coordinate (NaN or infinity)": "線に有限でない座標（NaN または無限大）があります",
+    "the contour has fewer than 3 corners once collinear points are merged":
+        "一直線上の点をまとめると、輪郭の角が3つ未満になります",
+    "a contour must be finite (x, y) points": "輪郭は有限の (x, y) 点で与えてください",
+    "placing a part needs its contour as finite (x, y) points": "部品の配置には有限の (x, y) 点の輪郭が必要です",
+    "joints: every joint is two finite hit centres": "ジョイント：各ジョイントは有限な2つの打ち抜き中心で与えてください",
+    "joints need the pattern: the part held by them is the piece holding the pattern":
+        "ジョイントには展開図が必要です（ジョイントで保持される部品は展開図を含む部分です）",
     "This job is already running: wait for it or press Esc to cancel it": "この処理は実行中です。終わるまで待つか、Escで中止してください",
     "Cancelled: the scene is as it was": "中止しました。シーンは元のままです",
     "Esc to cancel": "Escで中止",
@@ -735,6 +762,33 @@ NESTED = {"{}: {} = {} mm: {} takes {} hits, more than the {} one program may ha
 
 # English template (the f-string with {} for each value) -> Japanese ({0}, {1} ... in any order).
 MESSAGE_TEMPLATES = {
+    # turret punch on the sheet (issue 26)
+    '{}: {} is not a number of mm (give clamp centres like "200, 700")':
+        '{0}：{1} は mm の数値ではありません（クランプ中心を "200, 700" のように指定してください）',
+    "{}: {} is not a position on the sheet": "{0}：{1} は板材上の位置ではありません",
+    '{}: give two numbers "X,Y" in mm, got {}': '{0}：2つの数値 "X,Y"（mm）を指定してください（指定値 {1}）',
+    '{}: give two finite numbers "X,Y" in mm, got {}': '{0}：有限な2つの数値 "X,Y"（mm）を指定してください（指定値 {1}）',
+    "lines must be (first hit, last hit) pairs of (x, y), got shape {}":
+        "線は (x, y) の（最初の打ち抜き、最後の打ち抜き）の組で与えてください（形状 {0}）",
+    "line {} is {} mm long, shorter than the {} mm output resolution": "線 {0} の長さは {1} mm で、出力分解能 {2} mm より短いです",
+    "{} lines do not fit sequence numbers N001..N999": "{0} 本の線はシーケンス番号 N001〜N999 に収まりません",
+    # (main has these two as well, the same words: one of each goes on merging)
+    "unknown machine {}: the presets are {}": "機械 {0} はありません。プリセットは {1} です",
+    "machine profile {}: {} = {} {}": "機械プロファイル {0}：{1} = {2} {3}",
+    "micro-joints: {} joint(s) do not fit: line {} of the cut contour, among the longest, is {} mm, and {} joint(s) on "
+    "it need {} mm (each the {} mm web, a punch diameter of {} mm either side and to the corners); give fewer joints":
+        "ミクロジョイント：{0} 個のジョイントが収まりません。切断輪郭の最長の線の一つ、線 {1} は {2} mm で、その上の {3} 個の"
+        "ジョイントには {4} mm が必要です（各 {5} mm の継ぎ、その両側と角までパンチ径 {6} mm）。ジョイントを減らしてください",
+    "lines {} and {} of the cut contour ({} and {} mm) meet at a corner and are no longer than the nibbling pitch {} mm: "
+    "their shared corner would be punched twice; give a pitch below {} mm or fewer divisions":
+        "切断輪郭の線 {0} と {1}（{2} mm と {3} mm）は角で接し、どちらもニブリングピッチ {4} mm 以下です。共有する角が"
+        "2回打ち抜かれます。ピッチを {5} mm 未満にするか、分割数を減らしてください",
+    "micro-joints: the count must be a whole number 0..{}, got {}": "ミクロジョイント：数は 0〜{0} の整数にしてください（指定値 {1}）",
+    "micro-joint width must be a number > 0 (mm), got {}": "ミクロジョイントの幅は0より大きい数（mm）にしてください（指定値 {0}）",
+    "segment {} of the cut contour is {} mm long, shorter than the {} mm the NC words resolve":
+        "切断輪郭の線分 {0} の長さは {1} mm で、NCワードの分解能 {2} mm より短いです",
+    "machine profile {} says no sheet size (sheet max): the part cannot be placed":
+        "機械プロファイル {0} に板材の大きさ（最大板材）がありません。部品を配置できません",
     "the design is flat (Z {} mm everywhere) and no stock stands above it: nothing to carve (Stock Above in the Carve panel gives the stock)":
         "デザインが平ら（どこも Z {0} mm）で、その上に素材がありません。削るものがありません（素材は曲面加工パネルの「上面の余肉」で与えます）",
     "{}: a path relative to the .blend file ('//') needs the .blend saved first":

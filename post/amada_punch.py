@@ -19,6 +19,12 @@ suppressed leading zero in the paper, "X .93", are N88-BASIC PRINT artefacts, no
 sequence numbers N000..N999.  The angle comes from atan2, so all four quadrants and vertical segments
 are right (the seed's ATN(dy/dx) loses the quadrant and divides by zero on vertical segments).
 
+The sheet-metal workflows write :func:`lines_to_text`: the lines as nibbled by
+``toolpath/nibbling.py`` (collinear pieces merged, each hit once, gaps at the micro-joints), with
+comment lines after the G92 block saying where the part's hits lie on the sheet, the clamps' dead
+zones and the joints.  Comments are in parentheses, as Fanuc-built controls take them (control
+out / control in); a control that does not would need them left out.
+
 Program end: G50 by default, the Amada turret-punch program end (home return: the carriage goes back
 to the position set by G92 so the sheet can be unloaded), which is what these punching programs end
 with rather than the milling M30; ``end_code="M30"`` is offered for controllers set up otherwise.
@@ -106,7 +112,7 @@ def _offset_word(tool_diameter: float, tool_side: str, pts: np.ndarray) -> float
 
 
 def to_text(contour, *, station: int, pitch: float, thickness: float, tool_diameter: float = 0.0,
-            tool_side: str = "outside", origin=(1000.0, 1040.0), end_code: str = "G50") -> str:
+            tool_side: str = "outside", origin=(1000.0, 1040.0), end_code: str = "G50", notes=()) -> str:
     """The NC program that nibbles (or punches) round ``contour``, one G72 + G69/G79 per segment.
 
     ``contour``: closed 2-D polygon in sheet coordinates (mm).  With ``tool_diameter`` 0 it is taken
@@ -114,40 +120,83 @@ def to_text(contour, *, station: int, pitch: float, thickness: float, tool_diame
     its radius to ``tool_side``: "left" / "right" of travel, or "outside" / "inside" of the contour.
     """
     pts, length, angle = segments(contour)
+    q, t, ox, oy = _frame(station, pitch, thickness, end_code, origin, len(pts))
+    tool_diameter = _positive(tool_diameter, "tool diameter", allow_zero=True)
+    short = np.flatnonzero(length < MIN_SEGMENT)
+    if len(short):
+        raise PostError(f"segment {int(short[0]) + 1} is {length[short[0]]:.4f} mm long, "
+                             f"shorter than the {MIN_SEGMENT} mm output resolution")
+    _check_reach(pts, length)
+    return _write(pts, length, angle, q=q, t=t, p=_offset_word(tool_diameter, tool_side, pts), station=station,
+                  origin=(ox, oy), end_code=end_code, notes=notes)
+
+
+def lines_to_text(lines, *, station: int, pitch: float, thickness: float, origin=(1000.0, 1040.0),
+                  end_code: str = "G50", notes=()) -> str:
+    """The NC program punching ``lines`` (k, 2, 2): each the first and the last hit of one G69/G79
+    line, tool-centre coordinates (P0).  The lines need not join (a micro-joint leaves a gap, and a
+    line stops one hit short of a corner the next line punches).  ``notes``: comment lines written
+    after the G92 block (where the part sits on the sheet, the clamps, the joints)."""
+    arr = np.asarray(lines, dtype=float)
+    if arr.ndim != 3 or arr.shape[1:] != (2, 2) or len(arr) == 0:
+        raise PostError(f"lines must be (first hit, last hit) pairs of (x, y), got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise PostError("a line has a non-finite coordinate (NaN or infinity)")
+    q, t, ox, oy = _frame(station, pitch, thickness, end_code, origin, len(arr))
+    delta = arr[:, 1] - arr[:, 0]
+    length = np.hypot(delta[:, 0], delta[:, 1])
+    angle = np.degrees(np.arctan2(delta[:, 1], delta[:, 0]))
+    _check_reach(arr[:, 0], length)
+    short = np.flatnonzero(length < MIN_SEGMENT)
+    if len(short):
+        raise PostError(f"line {int(short[0]) + 1} is {length[short[0]]:.4f} mm long, shorter than the "
+                        f"{MIN_SEGMENT} mm output resolution")
+    return _write(arr[:, 0], length, angle, q=q, t=t, p=0.0, station=station, origin=(ox, oy),
+                  end_code=end_code, notes=notes)
+
+
+def _frame(station, pitch, thickness, end_code, origin, count):
     station_ok = isinstance(station, (int, np.integer)) and not isinstance(station, bool)
     if not station_ok or not 1 <= station <= 999:
         raise PostError(f"turret station must be an integer 1..999, got {station!r}")
     q = _positive(pitch, "nibbling pitch Q")
     t = _positive(thickness, "sheet thickness")
-    tool_diameter = _positive(tool_diameter, "tool diameter", allow_zero=True)
     if end_code not in END_CODES:
         raise PostError(f"end code must be one of {END_CODES}, got {end_code!r}")
     ox, oy = (float(v) for v in origin)
     if not (math.isfinite(ox) and math.isfinite(oy)):
         raise PostError("G92 origin must be finite")
-    if len(pts) > 999:
-        raise PostError(f"{len(pts)} segments do not fit sequence numbers N001..N999")
-    short = np.flatnonzero(length < MIN_SEGMENT)
-    if len(short):
-        raise PostError(f"segment {int(short[0]) + 1} is {length[short[0]]:.4f} mm long, "
-                             f"shorter than the {MIN_SEGMENT} mm output resolution")
+    if count > 999:
+        raise PostError(f"{count} lines do not fit sequence numbers N001..N999")
     reach = AMADA_04P_LIMITS.coordinate
     for word, value in (("G92 X", ox), ("G92 Y", oy)):
         if abs(value) > reach:
             raise PostError(f"{word}{_num(value)}: beyond the {reach:.2f} mm the control addresses")
+    if t > THICK_SHEET and q < t:
+        raise PostError(f"G79 punching line: pitch Q {q} must be at least the thickness {t} mm")
+    return q, t, ox, oy
+
+
+def _check_reach(pts, length):
+    reach = AMADA_04P_LIMITS.coordinate
     far = np.flatnonzero((np.abs(pts) > reach).any(axis=1) | (length > reach))
     if len(far):
         (x, y), i = pts[far[0]], int(far[0])
         raise PostError(f"corner {i + 1} of the contour, G72 X{_num(x)} Y{_num(y)} (the line from it "
                         f"{length[i]:.2f} mm long), is beyond the {reach:.2f} mm the control addresses: "
                         f"the part does not fit the machine")
-    thick = t > THICK_SHEET
-    if thick and q < t:
-        raise PostError(f"G79 punching line: pitch Q {q} must be at least the thickness {t} mm")
-    p = _offset_word(tool_diameter, tool_side, pts)
 
-    lines = [f"N000 G92 X{_num(ox)} Y{_num(oy)}"]
-    for i, ((x, y), m, theta) in enumerate(zip(pts, length, angle), start=1):
+
+def _comment(text: str) -> str:
+    """A comment block: upper case, no parentheses inside (they would end it)."""
+    return "(" + str(text).upper().replace("(", "[").replace(")", "]") + ")"
+
+
+def _write(starts, length, angle, *, q, t, p, station, origin, end_code, notes) -> str:
+    thick = t > THICK_SHEET
+    lines = [f"N000 G92 X{_num(origin[0])} Y{_num(origin[1])}"]
+    lines += [_comment(note) for note in notes]
+    for i, ((x, y), m, theta) in enumerate(zip(starts, length, angle), start=1):
         j = _num(theta)
         if j == "-180.00":
             j = "180.00"
@@ -177,3 +226,6 @@ class AmadaPunchPost(Post):
 
     def to_text(self, contour) -> str:
         return to_text(contour, **self.options)
+
+    def lines_to_text(self, lines, notes=()) -> str:
+        return lines_to_text(lines, notes=notes, **self.options)

@@ -31,6 +31,10 @@ most 127 characters and its newline.
   2-digit offset, the turret homed (``G28 U0. W0.``) with the driven tool stopped before indexing.
 * ``amada-04p``: the Amada 04P turret punch: N000..N999 (3 digits), every value with exactly two
   decimals, T three digits, the program opens with ``N000 G92`` and ends with ``G50`` (or M30).
+  Where the hits fall (worked out from the G72 / G69 / G79 words here, as the Amada ARIES 245
+  (04PA) programming manual defines sheet coordinates: from the sheet's lower-left corner, first
+  quadrant): at X, Y >= 0, within the sheet and outside the clamps' dead zones when the caller
+  gives them (as numbers), and no hit punched twice.
 
 Fanuc macro modal call (Custom Macro B, G66.1 ... G67): the pairs balanced, never nested; the call
 made in G01 only, and cancelled (G67) before any rapid or retract (G00), reference return (G28,
@@ -255,9 +259,37 @@ def check(text: str, control: str) -> list:
     return found
 
 
-def check_punch(text: str) -> list:
+def _punch_hits(text: str) -> list:
+    """(line number, x, y) of every hit of an 04P program, worked out here from the words: a G69 /
+    G79 line from the last G72 point, I long at J degrees from +X, its hits evenly spaced from
+    its start to its end (both included), as few as keep them at most Q apart, offset P/2 to the
+    left of travel (P > 0 left, < 0 right, 0 the line is the punch centre)."""
+    import math
+    hits, point = [], None
+    for number, line in enumerate(text.splitlines(), start=1):
+        bare = COMMENT.sub("", line).strip().upper()
+        words = dict(WORD.findall(re.sub(r"^N\d+\s*", "", bare)))
+        if re.search(r"\bG72\b", bare) and "X" in words and "Y" in words:
+            point = (float(words["X"]), float(words["Y"]))
+        elif re.search(r"\bG(69|79)\b", bare) and point is not None and all(w in words for w in "IJQ"):
+            length, angle, pitch = float(words["I"]), math.radians(float(words["J"])), float(words["Q"])
+            offset = float(words.get("P", "0")) / 2
+            steps = max(0, math.ceil(length / pitch - 1e-9)) if pitch > 0 else 0
+            ux, uy = math.cos(angle), math.sin(angle)
+            for k in range(steps + 1):
+                t = length * k / steps if steps else 0.0
+                hits.append((number, point[0] + ux * t - uy * offset, point[1] + uy * t + ux * offset))
+    return hits
+
+
+def check_punch(text: str, sheet=None, clamp_zones=(), punch_radius: float = 0.0, same_hit: float = 0.05) -> list:
+    """The 04P's word and frame rules, and what an operator checks of where the hits fall: every
+    hit at X, Y >= 0 (the sheet's corner is the origin), within ``sheet`` (X, Y) when given, its
+    disc (``punch_radius``) clear of every clamp's dead zone (x0, y0, x1, y1) in ``clamp_zones``,
+    and no hit punched twice (two hit centres closer than ``same_hit`` mm)."""
     found = []
-    lines = [line.strip() for line in text.splitlines() if line.strip()]
+    lines = [COMMENT.sub("", line).strip() for line in text.splitlines()]
+    lines = [line for line in lines if line]
     if not lines or not re.match(r"^N000 G92 X\S+ Y\S+$", lines[0]):
         found.append(("frame", 1, "an 04P program opens with N000 G92 X.. Y.."))
     if not lines or lines[-1] not in ("G50", "M30"):
@@ -281,4 +313,21 @@ def check_punch(text: str) -> list:
             found.append(("word", number, "a G69/G79 line needs I J P Q T"))
         if re.search(r"\bG79\b", line) and "D" not in line:
             found.append(("word", number, "a G79 punching line needs D (thickness)"))
+    hits = _punch_hits(text)
+    for number, x, y in hits:
+        if x < 0 or y < 0:
+            found.append(("sheet", number, f"a hit at X{x:.2f} Y{y:.2f}: off the sheet (its corner is X0 Y0)"))
+        elif sheet is not None and (x > sheet[0] or y > sheet[1]):
+            found.append(("sheet", number, f"a hit at X{x:.2f} Y{y:.2f}: beyond the {sheet[0]:g} x {sheet[1]:g} sheet"))
+        for index, (x0, y0, x1, y1) in enumerate(clamp_zones, start=1):
+            if x0 - punch_radius < x < x1 + punch_radius and y0 - punch_radius < y < y1 + punch_radius:
+                found.append(("clamp", number, f"a hit at X{x:.2f} Y{y:.2f} strikes clamp {index}'s dead zone"))
+    ordered = sorted(hits, key=lambda h: (h[1], h[2]))
+    for i, (number, x, y) in enumerate(ordered):
+        for other, x2, y2 in ordered[i + 1:]:
+            if x2 - x >= same_hit:
+                break
+            if abs(y2 - y) < same_hit and (x2 - x) ** 2 + (y2 - y) ** 2 < same_hit ** 2:
+                found.append(("double hit", max(number, other), f"X{x:.2f} Y{y:.2f} is punched twice "
+                                                                 f"(lines {min(number, other)} and {max(number, other)})"))
     return found

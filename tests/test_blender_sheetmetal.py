@@ -42,11 +42,18 @@ def test_unfold_operator_lays_out_an_isometric_flat_pattern(scene):
     # Beside the part, not on top of it.
     assert min(v.co.x for v in flat.data.vertices) > max(v.co.x for v in part.data.vertices)
     assert scene.kezuri.sheet.direction == "vertical"      # the redo settings are kept in the scene
-    # The punched sheet beside the flat pattern: the part fell out of the skeleton.
+    # The punched sheet beside the flat pattern: the part (as it comes out at its joints) and the skeleton.
     punched = bpy.data.objects["Kezuri Sheet punched part"]
     skeleton = bpy.data.objects["Kezuri Sheet skeleton"]
     assert min(v.co.x for v in punched.data.vertices) > max(v.co.x for v in flat.data.vertices)
     assert max(v.co.x for v in punched.data.vertices) < max(v.co.x for v in skeleton.data.vertices)
+    # the punched part is the flat pattern, moved along X only (its outline at the pattern's place;
+    # within the nibbling's scallops, 0.12 mm)
+    flat_xy = np.array([v.co[:2] for v in flat.data.vertices])
+    part_xy = np.array([v.co[:2] for v in punched.data.vertices])
+    assert part_xy[:, 1].min() == pytest.approx(flat_xy[:, 1].min(), abs=0.15)
+    assert part_xy[:, 1].max() == pytest.approx(flat_xy[:, 1].max(), abs=0.15)
+    assert np.ptp(part_xy[:, 0]) == pytest.approx(np.ptp(flat_xy[:, 0]), abs=0.3)
 
 
 def test_unfold_in_a_metre_scene_has_the_same_physical_size(scene):
@@ -120,12 +127,14 @@ def test_batch_unfold_reports_the_papers_numbers(tmp_path, direction):
             assert np.linalg.norm(a2[i] - a2[j]) == pytest.approx(np.linalg.norm(a3[i] - a3[j]), abs=2e-6)
     nc = (out / "unfold.nc").read_text()
     assert nc.splitlines()[0].startswith("N000 G92 X1000.00 Y1040.00")
-    assert nc.count("G72") == nc.count("G69") == len(report["cut_contour"])
+    # one line per corner of the contour, and the two micro-joints split two of them
+    assert nc.count("G72") == nc.count("G69") == len(report["cut_contour"]) + 2
     ET.fromstring((out / "unfold.svg").read_text())
     assert (out / "unfold.dxf").read_text().rstrip().endswith("EOF")
     assert (out / "unfold.png").stat().st_size > 10_000
     simulation = report["simulation"]
-    assert simulation["engine"] == "crosssection" and simulation["parts_separated"] == [True]
+    assert simulation["engine"] == "crosssection" and simulation["parts_separated"] == [False]
+    assert simulation["held_by_joints"] == [True]          # by its two micro-joints, as meant
     assert simulation["gouges"] == [] and simulation["max_gouge_mm"] == 0
     # the default 2 mm pitch with the 10 mm punch: cusps of 5 - sqrt(24) = 0.10 mm, corners a little more
     assert 0.09 < simulation["max_scallop_mm"] < 0.14
@@ -164,14 +173,15 @@ def test_batch_elbow_reports_piece_outlines(tmp_path):
     assert [p.name for p in programs] == [f"elbow-{i}.nc" for i in (1, 2, 3, 4)]
     assert all(p.read_text().rstrip().endswith("G50") for p in programs)
     simulation = report["simulation"]
-    assert simulation["parts_separated"] == [True] * 4 and simulation["gouges"] == []
+    assert simulation["parts_separated"] == [False] * 4 and simulation["gouges"] == []
+    assert simulation["held_by_joints"] == [True] * 4
 
 
 # ----- the punching job checked before anything is written ---------------------------------------
 
 def test_batch_elbow_punches_each_piece_from_its_own_sheet(tmp_path):
-    """Each piece's program has the piece's pattern at the program's origin (the first piece as
-    in the layout, the others no longer stacked above it), and its hits read back are the
+    """Each piece's program has the piece's pattern on a sheet of its own, where the report says
+    it sits (the others no longer stacked above the first), and its hits read back are the
     pattern compensated by the punch radius: within 0.01 mm of r from the pattern."""
     done = run_batch("elbow", "--diameter", "100", "--bend-radius", "150", "--angle", "90", "--pieces", "5",
                      "--out", str(tmp_path))
@@ -182,8 +192,10 @@ def test_batch_elbow_punches_each_piece_from_its_own_sheet(tmp_path):
     for index, piece in enumerate(report["pieces"], start=1):
         outline = np.array(piece["outline"]) - np.array(piece["outline"]).min(axis=0)
         program = punch.read_amada((tmp_path / f"elbow-{index}.nc").read_text())
-        assert program.hits.min(axis=0) == pytest.approx([-5.0, -5.0], abs=0.011)     # 10 mm punch, radius 5
-        assert program.hits.max(axis=0) == pytest.approx(outline.max(axis=0) + 5.0, abs=0.011)
+        offset = np.array(report["sheet"]["parts"][index - 1]["offset"])
+        assert offset[0] > 0 and offset[1] > 0
+        assert program.hits.min(axis=0) == pytest.approx(offset - 5.0, abs=0.011)     # 10 mm punch, radius 5
+        assert program.hits.max(axis=0) == pytest.approx(outline.max(axis=0) + 5.0 + offset, abs=0.011)
 
 
 def test_the_punch_gate_refuses_a_bite_and_a_part_left_in_the_sheet():

@@ -9,7 +9,7 @@ import pytest
 import controller_rules as rules
 from kezuri import post
 from kezuri.post import amada_punch, turnmill_xzc
-from kezuri.toolpath import engrave, rotary, turnmill, unfold
+from kezuri.toolpath import engrave, machine, nibbling, placement, rotary, turnmill, unfold
 from kezuri.toolpath.program import Program
 from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
 from test_engrave import LETTERS, PLATE
@@ -42,14 +42,22 @@ def programs():
     plan = turnmill.plan(v, f, stock, name="sample").program
     out.append(("turnmill xzc", "turnmill-xzc", turnmill_xzc.TurnMillXZCPost().to_text(plan)))
     out.append(("turnmill linuxcnc", "turnmill-linuxcnc", turnmill_xzc.TurnMillLinuxCNCPost().to_text(plan)))
-    punch = dict(station=302, pitch=2.0, thickness=1.6)
     quad = unfold.unfold_twisted_quad(PAPER_CORNERS, 5, "horizontal")
-    out.append(("unfold punch", "amada-04p",
-                amada_punch.to_text(unfold.compensate_outline(quad.pattern.outline, 10.0), **punch)))
+    out.append(("unfold punch", "amada-04p", punch_program(unfold.compensate_outline(quad.pattern.outline, 10.0))))
     for index, piece in enumerate(unfold.unfold_elbow(90.0, 150.0, 100.0, 5).pieces, start=1):
         out.append((f"elbow punch {index}", "amada-04p",
-                    amada_punch.to_text(unfold.compensate_outline(piece.outline, 10.0), **punch)))
+                    punch_program(unfold.compensate_outline(piece.outline, 10.0))))
     return out
+
+
+def punch_program(contour, joints=2):
+    """A turret-punch program as the sheet-metal workflows write it: placed on the Amada 04P
+    preset's sheet, nibbled with merged lines and micro-joints."""
+    profile = machine.preset("amada-04p")
+    where = placement.place(contour, 10.0, profile)
+    lines = nibbling.nibble(contour, 2.0, 10.0, joints=joints).moved(where.offset)
+    return amada_punch.lines_to_text(lines.lines, station=302, pitch=2.0, thickness=1.6,
+                                     origin=profile.sheet_origin, notes=placement.describe(where))
 
 
 def test_every_program_passes_the_controller_rules(programs):

@@ -72,6 +72,9 @@ NUMERIC = [
     ("unfold", "--thickness", 0.01, 12.7, False, False),
     ("unfold", "--pitch", 0.1, None, False, False),
     ("unfold", "--station", 1, 999, True, False),
+    ("unfold", "--joints", 0, 8, True, False),
+    ("elbow", "--joint-width", 0.05, 5.0, False, False),
+    ("unfold", "--clamp-depth", 1.0, 1000.0, False, False),
     ("engrave", "--seed", 0, 2**31 - 1, True, False),
     ("simulate", "--cell", 0.0, None, False, True),
     ("carve", "--angle", -180.0, 180.0, False, False),
@@ -145,13 +148,19 @@ CONCRETE = [
     (("unfold", "--corners", "0,0,0;0,30000,100;50000,50000,100;50000,40,0"), "--corners"),
     (("unfold", "--corners", "0,0,0;0,3000,100;5000,5000,100;5000,40,0", "--pitch", "0.1"), "--pitch = 0.1 mm"),
     (("elbow", "--diameter", "20000", "--bend-radius", "30000"), "--diameter = 20000 mm"),
+    # the sheet, its clamps and the micro-joints (issue 26): malformed, or a part that fits nowhere
+    (("unfold", "--clamps", "200,x"), "--clamps"), (("unfold", "--sheet-origin", "1,2,3"), "--sheet-origin"),
+    (("unfold", "--sheet-size", "nan,100"), "--sheet-size"), (("elbow", "--sheet-size", "5,1e6"), "--sheet-size"),
+    (("unfold", "--sheet-size", "300,150", "--clamps", "60,150,250"), "meets clamp 1 (dead zone X 20..100"),
+    (("elbow", "--joints", "8"), "micro-joints: 8 joint(s) do not fit"),
     # files that are not what they claim
     (("stepnc", "--input", "missing.stp"), "missing.stp"),
     (("unfold", "--cdl", "missing.cdl"), "missing.cdl"),
     (("turnmill", "--mesh", "missing.stl"), "missing.stl"),
     # the elbow's DXF and SVG were written before a piece's punch program was refused: left behind
     (("elbow", "--diameter=1e6", "--bend-radius=1e6"), "piece 1 of --diameter = 1e+06 mm"),
-    (("elbow", "--diameter=0.1", "--bend-radius=0.1", "--angle=1", "--pieces=2"), "elbow piece 1 of 2: segment"),
+    # (its curves merge into straight lines now: the 10 mm punch leaves no room for the micro-joints)
+    (("elbow", "--diameter=0.1", "--bend-radius=0.1", "--angle=1", "--pieces=2"), "elbow piece 1 of 2: micro-joints"),
 ]
 
 

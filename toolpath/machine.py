@@ -75,6 +75,8 @@ class MachineProfile:
     sheet_origin: tuple | None = None
     clamps: tuple = ()
     sheet_max: tuple | None = None             # largest sheet (X, Y) the table holds (mm)
+    sheet_margin: float = 10.0                 # skeleton kept between the part's hits and the sheet's
+                                               # edges and the clamps' dead zones (mm)
     source: str = ""                           # where the preset's numbers come from
 
     def __post_init__(self):
@@ -116,6 +118,8 @@ class MachineProfile:
         if self.sheet_max is not None and (len(self.sheet_max) != 2
                                            or not all(_finite(v) and v > 0 for v in self.sheet_max)):
             bad("sheet max", self.sheet_max, "must be two positive lengths (X, Y)")
+        if not (_finite(self.sheet_margin) and self.sheet_margin >= 0):
+            bad("sheet margin", self.sheet_margin, "must be a length >= 0")
         for clamp in self.clamps:
             if not (isinstance(clamp, Clamp) and _finite(clamp.x) and _finite(clamp.width) and clamp.width > 0
                     and _finite(clamp.depth) and clamp.depth > 0):
@@ -137,6 +141,13 @@ class MachineProfile:
                   "tool change: changer, M06" + (" lifts Z" if self.m6_retracts else ""))]
         if self.memory_kb is not None:
             lines.append(f"program memory {self.memory_kb:g} kB")
+        if self.family == "punch":
+            if self.sheet_origin is not None:
+                lines.append("sheet origin G92 X{:g} Y{:g}".format(*self.sheet_origin))
+            if self.sheet_max is not None:
+                lines.append("sheet up to {:g} x {:g} mm".format(*self.sheet_max))
+            lines += [f"clamp {i} at X {c.x:g}: dead zone X {c.x - c.width / 2:g}..{c.x + c.width / 2:g}, "
+                      f"Y 0..{c.depth:g}" for i, c in enumerate(self.clamps, start=1)]
         return lines
 
 
@@ -203,7 +214,14 @@ PRESETS = {p.name: p for p in (
         travel=(1270.0, 1270.0, 0.0), clearance_max=1.0, clearance_z=1.0, retract="reference",
         tool_change="atc", max_spindle_rpm=1.0, max_feed=1.0, rapid_rate=60000.0,
         sheet_origin=(1000.0, 1040.0), clamps=(Clamp(200.0), Clamp(700.0)), sheet_max=(1270.0, 1270.0),
-        source="seed 004 (G92 X1000. Y1040. program origin, Table 2); clamp positions typical of the class"),
+        sheet_margin=10.0,
+        source="seed 004 (G92 X1000. Y1040. program origin, Table 2); Amada ARIES 245 (04PA control) "
+               "programming manual, 1988: sheet coordinates from the sheet's lower-left corner (first "
+               "quadrant, the clamped edge along X), G92 establishing the coordinate system, G27/G25 auto "
+               "repositioning of the clamps, G50 home return; PTC Creo NC Sheetmetal, CL output: the tool "
+               "centre keeps the clearance plus half the tool width from a clamp's boundary. Clamp centres "
+               "(X 200, 700), their 80 x 50 mm dead zones, the 1270 x 1270 mm (50 x 50 in) sheet and the "
+               "10 mm skeleton margin are typical of the class, not one model's: set the machine's own"),
 )}
 DEFAULT_FOR_FAMILY = {"milling": "fanuc-vmc", "cxz": "wood-lathe-cxz", "xzc": "fanuc-0it-turnmill",
                       "punch": "amada-04p"}

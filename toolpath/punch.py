@@ -225,6 +225,9 @@ class PunchResult:
     punch_diameter: float
     tolerance: float
     seconds: float
+    joints: int = 0                 # micro-joints the job left (0: the part is meant to fall free)
+    held_by_joints: bool = False    # the part stays in the sheet by its joints alone (the intended result)
+    joint_widths_mm: list = None    # the web each joint leaves, from the program's hits
 
 
 def _number(value) -> float:
@@ -392,8 +395,31 @@ def _gouges(boundary: np.ndarray, bite: np.ndarray, program: PunchProgram, toler
     return sorted(findings, key=lambda g: (-g.depth_mm, g.line))
 
 
+def _joint_cuts(joints: np.ndarray, r: float) -> CrossSection:
+    """The webs of the micro-joints, each as the strip between its two hits (centre to centre,
+    and half a radius into each hit) one radius either side of their line: cut, the part is
+    released exactly where its joints would break."""
+    strips = []
+    for c1, c2 in joints:
+        u = (c2 - c1) / max(float(np.hypot(*(c2 - c1))), 1e-12)
+        v = np.array([-u[1], u[0]])
+        a, b = c1 - u * (r / 2), c2 + u * (r / 2)
+        strips.append(CrossSection([np.array([a - v * r, b - v * r, b + v * r, a + v * r])]))
+    return strips[0] if len(strips) == 1 else CrossSection.batch_boolean(strips, OpType.Add)
+
+
+def _pattern_piece(pieces, shape):
+    px0, py0, px1, py1 = shape.bounds()
+    overlap = [(p ^ shape).area() if _boxes_meet(p.bounds(), (px0, py0, px1, py1)) else 0.0 for p in pieces]
+    if max(overlap) <= 0:
+        raise PunchError("the pattern does not overlap what is left of the sheet: "
+                         "are the pattern and the program in the same coordinates?")
+    return pieces[int(np.argmax(overlap))]
+
+
 def simulate_punching(program_or_text, *, punch_diameter: float | None = None, pattern=None,
-                      margin: float | None = None, tolerance: float = 0.01, progress=None) -> PunchResult:
+                      margin: float | None = None, tolerance: float = 0.01, progress=None,
+                      joints=None) -> PunchResult:
     """Punch every hit of the program out of a blank and measure what is left.  The part is the
     piece holding most of the pattern; it is separated when it is not the frame round the blank.
 
@@ -405,7 +431,9 @@ def simulate_punching(program_or_text, *, punch_diameter: float | None = None, p
     the hits beyond the punch radius (default the diameter).  ``tolerance``: the discs' chord
     error and the depth below which a bite is not a gouge (mm).  ``progress``: optional
     callable(fraction, text) called while the hits are punched; returning False cancels
-    (:class:`PunchCancelled`)."""
+    (:class:`PunchCancelled`).  ``joints`` (j, 2, 2): the two hits either side of each micro-joint
+    the job left; the part held by them alone is ``held_by_joints`` (measured on the part as it
+    comes out when they break), ``part_separated`` says whether it fell free with them."""
     started = time.perf_counter()
     program = read_amada(program_or_text) if isinstance(program_or_text, str) else program_or_text
     if not isinstance(program, PunchProgram):
@@ -434,22 +462,39 @@ def simulate_punching(program_or_text, *, punch_diameter: float | None = None, p
     x0, y0 = hits.min(axis=0) - r - margin
     x1, y1 = hits.max(axis=0) + r + margin
     blank = rg.rectangle(x0, y0, x1, y1)
+    pairs = np.zeros((0, 2, 2)) if joints is None else np.asarray(joints, dtype=float).reshape(-1, 2, 2)
+    if not np.all(np.isfinite(pairs)):
+        raise PunchError("joints: every joint is two finite hit centres")
+    if len(pairs) and outline is None:
+        raise PunchError("joints need the pattern: the part held by them is the piece holding the pattern")
     sheet = blank - _discs(program, r, tol, progress)
+
+    def is_frame(piece):      # the margin keeps the frame whole round the blank: the only piece at its edges
+        return np.allclose(piece.bounds(), (x0, y0, x1, y1), atol=1e-6)
+
     pieces = rg.components(sheet)
-    # the margin keeps the frame whole round the blank: the only piece reaching its edges
-    frame = next((p for p in pieces if np.allclose(p.bounds(), (x0, y0, x1, y1), atol=1e-6)), None)
-    if outline is None:
-        loose = [p for p in pieces if p is not frame]
+    shape = None if outline is None else CrossSection([outline])
+    widths = []
+    if len(pairs):
+        near = _nearest_hits(pairs.reshape(-1, 2), program)
+        ends = program.hits[near].reshape(-1, 2, 2)
+        widths = [round(float(np.hypot(*(b - a))) - d, 4) for a, b in ends]
+        released = rg.components(sheet - _joint_cuts(pairs, r))
+        part = _pattern_piece(released, shape)
+        # the cuts take nothing of the part but the cusps between hits (it lies a radius from the
+        # hits' line): fallen free, it is a loose piece of the sheet as punched as well
+        area = part.area()
+        fell = any(not is_frame(p) and p.area() >= 0.9 * area for p in pieces)
+        pieces = released
+    elif outline is None:
+        loose = [p for p in pieces if not is_frame(p)]
         part = loose[0] if loose else CrossSection()
+        fell = part.area() > 0
     else:
-        shape = CrossSection([outline])
-        px0, py0, px1, py1 = shape.bounds()
-        overlap = [(p ^ shape).area() if _boxes_meet(p.bounds(), (px0, py0, px1, py1)) else 0.0 for p in pieces]
-        if max(overlap) <= 0:
-            raise PunchError("the pattern does not overlap what is left of the sheet: "
-                             "are the pattern and the program in the same coordinates?")
-        part = pieces[int(np.argmax(overlap))]
-    separated = part.area() > 0 and part is not frame
+        part = _pattern_piece(pieces, shape)
+        fell = part.area() > 0 and not is_frame(part)
+    separated = part.area() > 0 and not is_frame(part)
+    held = bool(len(pairs) and separated and not fell)
     loops = rg.loops(part)
 
     scallop, gouge, findings = None, 0.0, []
@@ -464,10 +509,11 @@ def simulate_punching(program_or_text, *, punch_diameter: float | None = None, p
         gouge = findings[0].depth_mm if findings else 0.0
 
     return PunchResult(
-        hits=len(hits), pieces=len(pieces), part_separated=bool(separated), part_area_mm2=rg.area(part),
+        hits=len(hits), pieces=len(pieces), part_separated=bool(fell), part_area_mm2=rg.area(part),
         pattern_area_mm2=None if outline is None else abs(rg.signed_area(outline)),
         removed_area_mm2=rg.area(blank) - rg.area(sheet), max_scallop_mm=scallop, max_gouge_mm=gouge,
         gouges=findings, part_outline=loops, part=part, sheet=sheet,
         skeleton=CrossSection.compose([p for p in pieces if p is not part]),
-        punch_diameter=d, tolerance=tol, seconds=time.perf_counter() - started)
+        punch_diameter=d, tolerance=tol, seconds=time.perf_counter() - started,
+        joints=len(pairs), held_by_joints=held, joint_widths_mm=widths)
 
