@@ -772,9 +772,6 @@ MESSAGE_TEMPLATES = {
         "線は (x, y) の（最初の打ち抜き、最後の打ち抜き）の組で与えてください（形状 {0}）",
     "line {} is {} mm long, shorter than the {} mm output resolution": "線 {0} の長さは {1} mm で、出力分解能 {2} mm より短いです",
     "{} lines do not fit sequence numbers N001..N999": "{0} 本の線はシーケンス番号 N001〜N999 に収まりません",
-    # (main has these two as well, the same words: one of each goes on merging)
-    "unknown machine {}: the presets are {}": "機械 {0} はありません。プリセットは {1} です",
-    "machine profile {}: {} = {} {}": "機械プロファイル {0}：{1} = {2} {3}",
     "micro-joints: {} joint(s) do not fit: line {} of the cut contour, among the longest, is {} mm, and {} joint(s) on "
     "it need {} mm (each the {} mm web, a punch diameter of {} mm either side and to the corners); give fewer joints":
         "ミクロジョイント：{0} 個のジョイントが収まりません。切断輪郭の最長の線の一つ、線 {1} は {2} mm で、その上の {3} 個の"
