@@ -1553,6 +1553,11 @@ MESSAGE_TEMPLATES = {
         '{0} を書き込めません：同じ名前のフォルダーがあります',
     'cannot move the files into {}: {}':
         'ファイルを {0} に移せません：{1}',
+    # toolpath/arcfit.py
+    'arc tolerance must lie in 0..1 mm, got {}':
+        '円弧の許容差は 0～1 mm にしてください（指定値 {0}）',
+    'an arc must replace at least 2 chords, got {}':
+        '円弧は少なくとも 2 本の弦を置き換えます（指定値 {0}）',
     # toolpath/machine.py
     'unknown machine {}: the presets are {}':
         '機械 {0} はありません。プリセットは {1} です',

@@ -17,16 +17,17 @@ import os
 
 import numpy as np
 
-try:
-    if os.environ.get("KEZURI_NO_NUMBA") == "1":
-        raise ImportError("KEZURI_NO_NUMBA=1")
-    from numba import njit
-    _jit = njit(cache=True, nogil=True)
-    COMPILED = True
-except (ImportError, OSError, RuntimeError):
-    def _jit(function):
-        return function
-    COMPILED = False
+def _interpreted(function):
+    return function
+
+
+_jit, COMPILED = _interpreted, False
+if os.environ.get("KEZURI_NO_NUMBA") != "1":
+    try:
+        from numba import njit
+        _jit, COMPILED = njit(cache=True, nogil=True), True
+    except (ImportError, OSError, RuntimeError):     # as compiled.kernel_module: numba is optional
+        pass
 
 
 @_jit
