@@ -295,6 +295,9 @@ class KezuriCarve(bpy.types.PropertyGroup):
                                 description="Cut the faces steeper across the raster than Max Slope again, with a "
                                             "raster across the first, so the scallop there stays within the height "
                                             "asked")
+    wall_pass: BoolProperty(name="Wall Pass", default=True,
+                            description="Finish the walls no raster finishes (vertical, or steeper than Max Slope "
+                                        "across both rasters) by waterlines, Z steps chosen from the scallop height")
     sample_spacing: mm("Point Spacing", 0.25, "Distance between points along a pass (refined where the surface "
                        "bends)", minimum=0.01)
     rough_rpm: FloatProperty(name="Roughing Spindle", default=16000.0, min=1.0,

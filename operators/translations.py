@@ -75,6 +75,8 @@ OPERATOR_TEXTS = {
     "Wave Relief": "波のレリーフ",
     "Domed Plate": "ドーム形の銘板",
     "Steep Ridge": "急斜面の尾根",
+    "Walled Block": "壁のあるブロック",
+    "Vertical Block": "垂直壁のブロック",
 }
 
 # Operator tooltips (the operator classes' docstrings).
@@ -466,6 +468,16 @@ PROPERTY_TEXTS = {
     "Steep Ridge": "急斜面の尾根",
     "A 100 x 60 mm plate with a ridge along X, its flanks sloping 55 degrees":
         "X 方向に尾根が走り、その斜面が 55 度で傾く 100 x 60 mm の板",
+    "Walled Block": "壁のあるブロック",
+    "An 80 x 60 mm plate with a raised block and a pocket, their walls one 0.5 mm grid cell wide (a height-image "
+    "relief)": "盛り上がったブロックとポケットのある 80 x 60 mm の板。壁は 0.5 mm の格子 1 目の幅（高さ画像のレリーフ）",
+    "Vertical Block": "垂直壁のブロック",
+    "The same block and pocket with vertical walls": "同じブロックとポケットで、壁が垂直なもの",
+    "Wall Pass": "壁の等高線仕上げ",
+    "Finish the walls no raster finishes (vertical, or steeper than Max Slope across both rasters) by waterlines, Z "
+    "steps chosen from the scallop height":
+        "走査では仕上がらない壁（垂直、または両方の走査に直交する方向で最大傾斜より急な壁）を等高線で仕上げます。"
+        "Z のステップはカスプ高さから決めます",
     "Steep Cleanup": "急斜面の追加仕上げ",
     "Cut the faces steeper across the raster than Max Slope again, with a raster across the first, so the "
     "scallop there stays within the height asked":
@@ -1229,6 +1241,12 @@ MESSAGE_TEMPLATES = {
     'degrees, so the scallop is higher there':
         '急斜面の追加仕上げの走査に直交する方向でも面の傾斜が最大 {0} 度あります。そのピックフィードは {1} 度までを'
         '見込んでいるので、そこではカスプが高くなります',
+    '{} mm2 of walls are steeper than {} degrees across both rasters (or vertical) and Wall Pass is off: no raster '
+    'finishes them':
+        '{0} mm2 の壁が両方の走査に直交する方向で {1} 度より急（または垂直）で、壁の等高線仕上げがオフです。'
+        'どの走査でも仕上がりません',
+    'Wall pass: waterlines {} mm apart in Z on {} mm2 of walls, {} levels, scallop {} mm on the least steep wall':
+        '壁の等高線仕上げ：{1} mm2 の壁を Z {0} mm ごとの等高線 {2} 段で削りました。最も緩い壁のカスプ {3} mm',
     'Steep cleanup: {} mm2 of faces steeper than {} degrees across the raster, cut again across it at a {} mm '
     'stepover':
         '急斜面の追加仕上げ：走査に直交する方向で {1} 度より急な面 {0} mm2 を、それに直交する走査でピックフィード '
