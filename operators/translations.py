@@ -443,8 +443,10 @@ PROPERTY_TEXTS = {
         "パスの間にボールが残してよい山の高さ。ピックフィードはこれから決まります (mm)",
     "Direction of the finishing passes, degrees from +X": "仕上げパスの向き（+X からの角度、度）",
     "Max Slope": "最大傾斜",
-    "Steeper slopes across the raster do not shrink the stepover further (degrees)":
-        "走査に直交する方向でこれより急な傾斜では、ピックフィードをそれ以上狭めません（度）",
+    "Faces steeper than this across the raster do not shrink its stepover: the Steep Cleanup and the Wall Pass "
+    "finish them (degrees)":
+        "走査に直交する方向でこれより急な面は走査のピックフィードを狭めません。急斜面の追加仕上げと壁の等高線仕上げが"
+        "仕上げます（度）",
     "Point Spacing": "点の間隔",
     "Distance between points along a pass (refined where the surface bends) (mm)":
         "パスに沿った点の間隔（曲面が曲がるところでは細かくします） (mm)",

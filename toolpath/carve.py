@@ -15,13 +15,19 @@ the drop cutter (:mod:`.dropcutter`), so no move of either operation goes below 
   dropped tool everywhere.  The stepover comes from the scallop height h asked for: on a
   level surface a ball of radius r leaves h between passes s = 2 sqrt(2 r h - h^2) apart;
   across a slope of angle a the passes are s / cos(a) apart on the surface, so the raster
-  spacing is s * cos(a_max), a_max the steepest slope of the design across the raster
-  direction (capped at ``max_slope_deg``: steeper faces are reported, their scallop is higher).
+  spacing is s * cos(a_max), a_max the steepest slope across the raster direction among the
+  faces the raster finishes: those no steeper than ``max_slope_deg`` across it (steeper ones
+  are the cleanup's or the wall pass's, or reported when those are off).
   On a convex bend of radius rho the passes' contacts stand further apart than on a plane
   (h ~ s^2 (1/r + 1/rho) / 8), so the spacing is also multiplied by sqrt(rho / (rho + r)), rho
   the sharpest convex bend between upward faces (the angle between their normals over the
-  distance between their centroids), and by 0.95 (:data:`MARGIN`: that estimate from facets
-  is good to a few percent).  The raster runs out to 0.7 r beyond the stock, so the
+  distance between their centroids) but no less than r, and by 0.95 (:data:`MARGIN`: that
+  estimate from facets is good to a few percent).  The floor: the spacing is never below
+  0.95 s cos(max_slope_deg) sqrt(1/2).  Why rho >= r: for passes whose ball centres stand c
+  apart over a bend of radius rho, the cusp is sqrt((rho + r)^2 - c^2/4) - sqrt(r^2 - c^2/4) - rho,
+  below a plane's r - sqrt(r^2 - c^2/4) for every rho (it falls to 0 as rho -> 0: the ball rolls
+  over a crease), so a tighter bend, which facets make of a wall's top edge or a crease, needs
+  no smaller spacing; the factor is kept for wider bends, where it was before.  The raster runs out to 0.7 r beyond the stock, so the
   ball's last contacts reach the stock's edge.
 * **Steep-region cleanup** (``steep_cleanup``, the same ball, no tool change): where upward faces
   slope across the raster more than the stepover allows for (``max_slope_deg``), the raster's
@@ -32,6 +38,15 @@ the drop cutter (:mod:`.dropcutter`), so no move of either operation goes below 
   the next run starting within 4 ball diameters (:data:`LINK`) is reached along the surface
   (the ball dropped along the straight link, over ground already finished), a farther one by a
   retract, a rapid over at the clearance height and a feed down.
+
+* **Wall pass** (``wall_pass``, the same ball): the walls no raster finishes (:func:`wall_faces`:
+  vertical, or steeper than ``max_slope_deg`` across both rasters; not the stock's own sides)
+  get waterlines (:mod:`.waterline`: iso-lines of the ball's drop-cutter height field, so each
+  lies on the ball's envelope) from where the ball's equator meets the walls' top down to their
+  foot, dz = 0.95 * 2 sqrt(2 r h - h^2) * sin(a_min) apart (a_min the least steep wall face:
+  the contacts stand dz / sin(a) apart along a wall of slope a, and two contacts c apart on a
+  plane leave r - sqrt(r^2 - c^2/4)), climb (the wall on the right of travel, spindle M03),
+  each wall top-down, the next level reached by a straight feed where it stays on the envelope.
 
 Output: a :class:`~.program.Program` with one operation per tool, written by every milling post.
 """
