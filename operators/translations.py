@@ -1247,6 +1247,10 @@ MESSAGE_TEMPLATES = {
     'finishes them':
         '{0} mm2 の壁が両方の走査に直交する方向で {1} 度より急（または垂直）で、壁の等高線仕上げがオフです。'
         'どの走査でも仕上がりません',
+    'the wall pass would need {} waterline levels {} mm apart (walls as shallow as {} degrees, steeper than Max '
+    'Slope {}): raise Max Slope or turn Wall Pass off':
+        '壁の等高線仕上げに {1} mm 間隔で {0} 段の等高線が必要です（最も緩い壁は {2} 度で、最大傾斜 {3} より急です）。'
+        '最大傾斜を上げるか、壁の等高線仕上げをオフにしてください',
     'Wall pass: waterlines {} mm apart in Z on {} mm2 of walls, {} levels, scallop {} mm on the least steep wall':
         '壁の等高線仕上げ：{1} mm2 の壁を Z {0} mm ごとの等高線 {2} 段で削りました。最も緩い壁のカスプ {3} mm',
     'Steep cleanup: {} mm2 of faces steeper than {} degrees across the raster, cut again across it at a {} mm '

@@ -65,6 +65,7 @@ from . import waterline
 
 MARGIN = 0.95       # the bend radius is estimated from facets: 5 % spare on the finishing stepover
 LINK = 4.0          # cleanup pieces closer than this many ball diameters are linked along the surface
+MAX_WALL_LEVELS = 2000   # waterline levels of the wall pass at most (20 mm of wall at 0.01 mm)
 
 
 class CarveError(InputError):
@@ -400,6 +401,10 @@ def _wall_pass(vertices, faces, mesh, s: CarveSettings, walls, flat, top, bottom
     # tip levels: from where the ball's equator meets the walls' top edge down to their foot
     z_top, z_foot = float(tri[:, :, 2].max()) - r, max(float(tri[:, :, 2].min()), bottom)
     count = max(1, math.ceil((z_top - z_foot) / z_step - 1e-9)) if z_top > z_foot else 0
+    if count > MAX_WALL_LEVELS:     # Max Slope near 0 makes every sloped face a wall, at a Z step near 0
+        raise CarveError(f"the wall pass would need {count} waterline levels {z_step:.4g} mm apart (walls as shallow "
+                         f"as {shallowest:.1f} degrees, steeper than Max Slope {s.max_slope_deg:g}): raise Max Slope "
+                         f"or turn Wall Pass off")
     levels = list(np.linspace(z_top, z_foot, count + 1)) if count else [z_foot]
     # the drop cutter's heights once, on a grid over the walls' footprint grown by the ball
     cell = min(s.sample_spacing, r / 4)

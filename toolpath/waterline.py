@@ -106,8 +106,7 @@ def contours(cutter, z: float, x: np.ndarray, y: np.ndarray, heights: np.ndarray
     b = np.column_stack([np.where(vertical, x[i], x[np.minimum(i + 1, nx - 1)]),
                          np.where(vertical, y[np.minimum(j + 1, ny - 1)], y[j])])
     a_in = inside[i, j]
-    b_in = np.where(vertical, inside[i, np.minimum(j + 1, ny - 1)], inside[np.minimum(i + 1, nx - 1), j])
-    assert np.all(a_in != b_in)
+    # (each crossed edge has one end inside and one outside: the segments join only such edges)
     points = crossing(cutter, z, np.where(a_in[:, None], b, a), np.where(a_in[:, None], a, b), tolerance)
     where = {int(e): k for k, e in enumerate(ids)}
     chains = _chains(following)
