@@ -162,3 +162,30 @@ def test_wall_pass_off_leaves_the_walls_with_a_warning(block):
     result = carve.plan(v, f, carve.CarveSettings(rough=False, wall_pass=False))
     assert [op.name for op in result.program.operations] == ["finishing"]
     assert any("Wall Pass is off" in w for w in result.warnings)
+
+
+def test_batch_reports_the_wall_pass(tmp_path):
+    import json
+    import os
+    import subprocess
+    import sys
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    done = subprocess.run([sys.executable, os.path.join(root, "batch.py"), "carve", "--sample", "block", "--post",
+                           "linuxcnc", "--out", str(tmp_path)], capture_output=True, text=True, timeout=600, cwd=root)
+    assert done.returncode == 0, done.stderr[-3000:]
+    report = json.loads((tmp_path / "report.json").read_text())
+    walls = report["wall_pass"]
+    summary = next(op for op in report["operations"] if op["name"] == "wall pass")
+    assert walls["on"] and walls["moves"] == summary["moves"] > 1000
+    assert walls["cycle_time_s"] == summary["cycle_time_s"] > 0
+    assert walls["z_step_mm"] == pytest.approx(0.95 * FLAT, abs=1e-5) and walls["levels"] == 20
+    step = walls["z_step_mm"]
+    assert walls["scallop_closed_form_mm"] == pytest.approx(R - math.sqrt(R * R - step * step / 4), abs=1e-5)
+    assert walls["scallop_closed_form_mm"] <= report["scallop"]["asked_mm"]
+    assert report["gate"]["findings"] == []
+    assert report["stepover_mm"] == pytest.approx(0.95 * FLAT * math.cos(TILT), rel=1e-4)
+    if rs274.available():
+        text = (tmp_path / "carve.ngc").read_text()
+        kinds, points, _ = rs274.motion_endpoints(rs274.run(text))
+        # the last wall level's tip height is reached by the interpreter
+        assert np.any(np.abs(points[:, 2] - walls["tip_z_range_mm"][1]) < 1e-3)
