@@ -36,7 +36,7 @@ POST_FAMILIES = ("milling",)
 
 PREFIX = "Kezuri Carve"
 COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "finishing": (0.1, 0.6, 1.0, 1.0),
-           "steep cleanup": (0.2, 0.85, 0.3, 1.0), "rapid": (0.9, 0.1, 0.1, 1.0)}
+           "steep cleanup": (0.2, 0.85, 0.3, 1.0), "wall pass": (0.75, 0.3, 0.95, 1.0), "rapid": (0.9, 0.1, 0.1, 1.0)}
 
 
 @dataclass
