@@ -223,7 +223,7 @@ def cut(builder, cutter, pieces: list, reach: float, spacing: float, tolerance: 
                     break
         if chosen is None:
             top = min(pieces[k][0] for k in remaining)
-            options = sorted(remaining & {k for k in remaining if pieces[k][0] == top})
+            options = sorted(k for k in remaining if pieces[k][0] == top)
             if here is not None:
                 options.sort(key=lambda k: float(np.linalg.norm(pieces[k][2][start_of(k, here)] - np.asarray(here[:2]))))
             k = options[0]
