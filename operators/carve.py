@@ -36,7 +36,7 @@ POST_FAMILIES = ("milling",)
 
 PREFIX = "Kezuri Carve"
 COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "finishing": (0.1, 0.6, 1.0, 1.0),
-           "steep cleanup": (0.2, 0.85, 0.3, 1.0), "rapid": (0.9, 0.1, 0.1, 1.0)}
+           "steep cleanup": (0.2, 0.85, 0.3, 1.0), "wall pass": (0.75, 0.3, 0.95, 1.0), "rapid": (0.9, 0.1, 0.1, 1.0)}
 
 
 @dataclass
@@ -56,7 +56,8 @@ def settings_from(props) -> core.CarveSettings:
         finish_tool=Tool(props.finish_tool_number, "ball", props.finish_diameter, name="finishing"),
         rough=props.rough, allowance=props.allowance, step_down=props.step_down,
         rough_stepover=props.rough_stepover, scallop=props.scallop, raster_angle=props.raster_angle,
-        max_slope_deg=props.max_slope, steep_cleanup=props.steep_cleanup, sample_spacing=props.sample_spacing, rough_rpm=props.rough_rpm,
+        max_slope_deg=props.max_slope, steep_cleanup=props.steep_cleanup, wall_pass=props.wall_pass,
+        sample_spacing=props.sample_spacing, rough_rpm=props.rough_rpm,
         finish_rpm=props.finish_rpm, rough_feed=props.rough_feed, finish_feed=props.finish_feed,
         plunge_feed=props.plunge_feed, clearance=props.clearance, safe_z=props.safe_z)
 
@@ -194,6 +195,11 @@ class KEZURI_OT_carve_generate(SteppedOperator, bpy.types.Operator):
                 f"Steep cleanup: {job.result.steep_area_mm2:.0f} mm2 of faces steeper than "
                 f"{context.scene.kezuri.carve.max_slope:g} degrees across the raster, cut again across it at a "
                 f"{job.result.cleanup_stepover:.3f} mm stepover"))
+        walls = job.result.walls
+        if walls is not None and walls.operation is not None:
+            self.report({"INFO"}, translate_message(
+                f"Wall pass: waterlines {walls.z_step:.3f} mm apart in Z on {job.result.wall_area_mm2:.0f} mm2 of "
+                f"walls, {len(walls.levels)} levels, scallop {walls.scallop:.4f} mm on the least steep wall"))
         return {"FINISHED"}
 
 
@@ -207,7 +213,10 @@ class KEZURI_OT_carve_sample(bpy.types.Operator):
     sample: EnumProperty(name="Sample", items=[
         ("wave", "Wave Relief", "A 120 x 80 mm plate with a wave on top"),
         ("dome", "Domed Plate", "A 160 x 60 mm domed name plate with a raised ring"),
-        ("ridge", "Steep Ridge", "A 100 x 60 mm plate with a ridge along X, its flanks sloping 55 degrees")])
+        ("ridge", "Steep Ridge", "A 100 x 60 mm plate with a ridge along X, its flanks sloping 55 degrees"),
+        ("walls", "Walled Block", "An 80 x 60 mm plate with a raised block and a pocket, their walls one 0.5 mm grid "
+                                  "cell wide (a height-image relief)"),
+        ("block", "Vertical Block", "The same block and pocket with vertical walls")])
 
     def execute(self, context):
         def work():
@@ -265,6 +274,9 @@ def batch_arguments(p):
     p.add_argument("--steep-cleanup", action=argparse.BooleanOptionalAction, default=None,
                    help="cut the faces steeper than the max slope again across the raster (default: the scene's "
                         "setting, on)")
+    p.add_argument("--wall-pass", action=argparse.BooleanOptionalAction, default=None,
+                   help="finish the walls no raster finishes (vertical, or steeper than the max slope across both "
+                        "rasters) by waterlines (default: the scene's setting, on)")
     gate.allow_findings_argument(p)
 
 
@@ -290,6 +302,23 @@ def read_mesh_file(path: str, option: str = "--mesh") -> tuple:
         raise core.CarveError(f"--mesh {path}: {error}") from None
 
 
+def wall_report(result: core.CarveResult, props) -> dict:
+    """report.json's ``wall_pass``: what the walls are and what their pass does."""
+    from . import batchio
+
+    walls = result.walls
+    out = {"on": bool(props.wall_pass), "wall_area_mm2": round(result.wall_area_mm2, 1),
+           "raster_slope_deg": round(result.raster_slope_deg, 3)}
+    if walls is None or walls.operation is None:
+        return out
+    summary = result.program.summary()[result.program.operations.index(walls.operation)]
+    return {**out, "moves": summary["moves"], "cycle_time_s": summary["cycle_time_s"],
+            "feed_length_mm": summary["feed_length_mm"], "z_step_mm": round(walls.z_step, 5),
+            "levels": len(walls.levels), "tip_z_range_mm": batchio.rounded([walls.levels[0], walls.levels[-1]], 4),
+            "shallowest_wall_deg": round(walls.shallowest_deg, 3), "links_along_wall": walls.links,
+            "scallop_closed_form_mm": round(walls.scallop, 5)}
+
+
 def batch(args) -> dict:
     from . import batchio, preview, simview
     from .common import Progress
@@ -304,6 +333,8 @@ def batch(args) -> dict:
         batchio.set_exactly(props, "max_slope", args.max_slope, "--max-slope")
     if args.steep_cleanup is not None:
         props.steep_cleanup = args.steep_cleanup
+    if args.wall_pass is not None:
+        props.wall_pass = args.wall_pass
     machine = scene.kezuri.machine
     post_name = args.post or scene_post(scene)
     batch_orient_spindle(args, scene, POST_FAMILIES, post_name)
@@ -341,7 +372,8 @@ def batch(args) -> dict:
         # the same simulation without the cleanup: what the raster alone left
         from ..toolpath import simulate as sim
         setup = simulation(job)
-        before = sim.simulate(setup.program.operations[:-1], setup.stock, cell=gate_report["cell_mm"],
+        before = sim.simulate([op for op in setup.program.operations if op.name != "steep cleanup"], setup.stock,
+                              cell=gate_report["cell_mm"],
                               **setup.extra)
         cleanup.update({
             "stepover_mm": round(result.cleanup_stepover, 5),
@@ -366,6 +398,7 @@ def batch(args) -> dict:
         "steepest_slope_deg": round(result.steepest_slope_deg, 2),
         "roughing_levels": batchio.rounded(result.levels, 4),
         "steep_cleanup": cleanup,
+        "wall_pass": wall_report(result, props),
         "operations": [{**summary, "tool": op.tool.describe(), "tool_kind": op.tool.kind,
                         "tool_diameter_mm": op.tool.diameter}
                        for op, summary in zip(result.program.operations, result.program.summary())],

@@ -318,7 +318,7 @@ KEZURI_PT_carve_roughing = property_subpanel(
     ("rough_diameter", "rough_tool_number", "allowance", "step_down", "rough_stepover"))
 KEZURI_PT_carve_settings = property_subpanel(
     "KEZURI_PT_carve_settings", "Finishing, Feeds & Heights", "KEZURI_PT_carve", "carve",
-    ("finish_tool_number", "max_slope", "steep_cleanup", "sample_spacing", "rough_rpm", "finish_rpm", "rough_feed",
+    ("finish_tool_number", "max_slope", "steep_cleanup", "wall_pass", "sample_spacing", "rough_rpm", "finish_rpm", "rough_feed",
      "finish_feed", "plunge_feed", "clearance", "safe_z", "show_rapids"))
 
 CLASSES = (KEZURI_PT_job, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,

@@ -311,12 +311,15 @@ class KezuriCarve(bpy.types.PropertyGroup):
     raster_angle: FloatProperty(name="Raster Angle", default=0.0, min=-180.0, max=180.0,
                                 description="Direction of the finishing passes, degrees from +X")
     max_slope: FloatProperty(name="Max Slope", default=60.0, min=0.0, max=89.0,
-                             description="Steeper slopes across the raster do not shrink the stepover further "
-                                         "(degrees)")
+                             description="Faces steeper than this across the raster do not shrink its stepover: "
+                                         "the Steep Cleanup and the Wall Pass finish them (degrees)")
     steep_cleanup: BoolProperty(name="Steep Cleanup", default=True,
                                 description="Cut the faces steeper across the raster than Max Slope again, with a "
                                             "raster across the first, so the scallop there stays within the height "
                                             "asked")
+    wall_pass: BoolProperty(name="Wall Pass", default=True,
+                            description="Finish the walls no raster finishes (vertical, or steeper than Max Slope "
+                                        "across both rasters) by waterlines, Z steps chosen from the scallop height")
     sample_spacing: mm("Point Spacing", 0.25, "Distance between points along a pass (refined where the surface "
                        "bends)", minimum=0.01)
     rough_rpm: FloatProperty(name="Roughing Spindle", default=16000.0, min=1.0,

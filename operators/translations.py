@@ -75,6 +75,8 @@ OPERATOR_TEXTS = {
     "Wave Relief": "波のレリーフ",
     "Domed Plate": "ドーム形の銘板",
     "Steep Ridge": "急斜面の尾根",
+    "Walled Block": "壁のあるブロック",
+    "Vertical Block": "垂直壁のブロック",
 }
 
 # Operator tooltips (the operator classes' docstrings).
@@ -459,8 +461,10 @@ PROPERTY_TEXTS = {
         "パスの間にボールが残してよい山の高さ。ピックフィードはこれから決まります (mm)",
     "Direction of the finishing passes, degrees from +X": "仕上げパスの向き（+X からの角度、度）",
     "Max Slope": "最大傾斜",
-    "Steeper slopes across the raster do not shrink the stepover further (degrees)":
-        "走査に直交する方向でこれより急な傾斜では、ピックフィードをそれ以上狭めません（度）",
+    "Faces steeper than this across the raster do not shrink its stepover: the Steep Cleanup and the Wall Pass "
+    "finish them (degrees)":
+        "走査に直交する方向でこれより急な面は走査のピックフィードを狭めません。急斜面の追加仕上げと壁の等高線仕上げが"
+        "仕上げます（度）",
     "Point Spacing": "点の間隔",
     "Distance between points along a pass (refined where the surface bends) (mm)":
         "パスに沿った点の間隔（曲面が曲がるところでは細かくします） (mm)",
@@ -484,6 +488,16 @@ PROPERTY_TEXTS = {
     "Steep Ridge": "急斜面の尾根",
     "A 100 x 60 mm plate with a ridge along X, its flanks sloping 55 degrees":
         "X 方向に尾根が走り、その斜面が 55 度で傾く 100 x 60 mm の板",
+    "Walled Block": "壁のあるブロック",
+    "An 80 x 60 mm plate with a raised block and a pocket, their walls one 0.5 mm grid cell wide (a height-image "
+    "relief)": "盛り上がったブロックとポケットのある 80 x 60 mm の板。壁は 0.5 mm の格子 1 目の幅（高さ画像のレリーフ）",
+    "Vertical Block": "垂直壁のブロック",
+    "The same block and pocket with vertical walls": "同じブロックとポケットで、壁が垂直なもの",
+    "Wall Pass": "壁の等高線仕上げ",
+    "Finish the walls no raster finishes (vertical, or steeper than Max Slope across both rasters) by waterlines, Z "
+    "steps chosen from the scallop height":
+        "走査では仕上がらない壁（垂直、または両方の走査に直交する方向で最大傾斜より急な壁）を等高線で仕上げます。"
+        "Z のステップはカスプ高さから決めます",
     "Steep Cleanup": "急斜面の追加仕上げ",
     "Cut the faces steeper across the raster than Max Slope again, with a raster across the first, so the "
     "scallop there stays within the height asked":
@@ -1280,6 +1294,16 @@ MESSAGE_TEMPLATES = {
     'degrees, so the scallop is higher there':
         '急斜面の追加仕上げの走査に直交する方向でも面の傾斜が最大 {0} 度あります。そのピックフィードは {1} 度までを'
         '見込んでいるので、そこではカスプが高くなります',
+    '{} mm2 of walls are steeper than {} degrees across both rasters (or vertical) and Wall Pass is off: no raster '
+    'finishes them':
+        '{0} mm2 の壁が両方の走査に直交する方向で {1} 度より急（または垂直）で、壁の等高線仕上げがオフです。'
+        'どの走査でも仕上がりません',
+    'the wall pass would need {} waterline levels {} mm apart (walls as shallow as {} degrees, steeper than Max '
+    'Slope {}): raise Max Slope or turn Wall Pass off':
+        '壁の等高線仕上げに {1} mm 間隔で {0} 段の等高線が必要です（最も緩い壁は {2} 度で、最大傾斜 {3} より急です）。'
+        '最大傾斜を上げるか、壁の等高線仕上げをオフにしてください',
+    'Wall pass: waterlines {} mm apart in Z on {} mm2 of walls, {} levels, scallop {} mm on the least steep wall':
+        '壁の等高線仕上げ：{1} mm2 の壁を Z {0} mm ごとの等高線 {2} 段で削りました。最も緩い壁のカスプ {3} mm',
     'Steep cleanup: {} mm2 of faces steeper than {} degrees across the raster, cut again across it at a {} mm '
     'stepover':
         '急斜面の追加仕上げ：走査に直交する方向で {1} 度より急な面 {0} mm2 を、それに直交する走査でピックフィード '

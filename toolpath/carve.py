@@ -15,13 +15,19 @@ the drop cutter (:mod:`.dropcutter`), so no move of either operation goes below 
   dropped tool everywhere.  The stepover comes from the scallop height h asked for: on a
   level surface a ball of radius r leaves h between passes s = 2 sqrt(2 r h - h^2) apart;
   across a slope of angle a the passes are s / cos(a) apart on the surface, so the raster
-  spacing is s * cos(a_max), a_max the steepest slope of the design across the raster
-  direction (capped at ``max_slope_deg``: steeper faces are reported, their scallop is higher).
+  spacing is s * cos(a_max), a_max the steepest slope across the raster direction among the
+  faces the raster finishes: those no steeper than ``max_slope_deg`` across it (steeper ones
+  are the cleanup's or the wall pass's, or reported when those are off).
   On a convex bend of radius rho the passes' contacts stand further apart than on a plane
   (h ~ s^2 (1/r + 1/rho) / 8), so the spacing is also multiplied by sqrt(rho / (rho + r)), rho
   the sharpest convex bend between upward faces (the angle between their normals over the
-  distance between their centroids), and by 0.95 (:data:`MARGIN`: that estimate from facets
-  is good to a few percent).  The raster runs out to 0.7 r beyond the stock, so the
+  distance between their centroids) but no less than r, and by 0.95 (:data:`MARGIN`: that
+  estimate from facets is good to a few percent).  The floor: the spacing is never below
+  0.95 s cos(max_slope_deg) sqrt(1/2).  Why rho >= r: for passes whose ball centres stand c
+  apart over a bend of radius rho, the cusp is sqrt((rho + r)^2 - c^2/4) - sqrt(r^2 - c^2/4) - rho,
+  below a plane's r - sqrt(r^2 - c^2/4) for every rho (it falls to 0 as rho -> 0: the ball rolls
+  over a crease), so a tighter bend, which facets make of a wall's top edge or a crease, needs
+  no smaller spacing; the factor is kept for wider bends, where it was before.  The raster runs out to 0.7 r beyond the stock, so the
   ball's last contacts reach the stock's edge.
 * **Steep-region cleanup** (``steep_cleanup``, the same ball, no tool change): where upward faces
   slope across the raster more than the stepover allows for (``max_slope_deg``), the raster's
@@ -33,6 +39,15 @@ the drop cutter (:mod:`.dropcutter`), so no move of either operation goes below 
   (the ball dropped along the straight link, over ground already finished), a farther one by a
   retract, a rapid over at the clearance height and a feed down.
 
+* **Wall pass** (``wall_pass``, the same ball): the walls no raster finishes (:func:`wall_faces`:
+  vertical, or steeper than ``max_slope_deg`` across both rasters; not the stock's own sides)
+  get waterlines (:mod:`.waterline`: iso-lines of the ball's drop-cutter height field, so each
+  lies on the ball's envelope) from where the ball's equator meets the walls' top down to their
+  foot, dz = 0.95 * 2 sqrt(2 r h - h^2) * sin(a_min) apart (a_min the least steep wall face:
+  the contacts stand dz / sin(a) apart along a wall of slope a, and two contacts c apart on a
+  plane leave r - sqrt(r^2 - c^2/4)), climb (the wall on the right of travel, spindle M03),
+  each wall top-down, the next level reached by a straight feed where it stays on the envelope.
+
 Output: a :class:`~.program.Program` with one operation per tool, written by every milling post.
 """
 from __future__ import annotations
@@ -42,13 +57,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .dropcutter import DropCutter, DropCutterError, Mesh
+from .dropcutter import STEEP, DropCutter, DropCutterError, Mesh
 from .errors import MAX_REACH_MM, InputError
 from .program import Operation, PathBuilder, Program, Tool
+from . import waterline
 
 
 MARGIN = 0.95       # the bend radius is estimated from facets: 5 % spare on the finishing stepover
 LINK = 4.0          # cleanup pieces closer than this many ball diameters are linked along the surface
+MAX_WALL_LEVELS = 2000   # waterline levels of the wall pass at most (20 mm of wall at 0.01 mm)
 
 
 class CarveError(InputError):
@@ -67,6 +84,7 @@ class CarveSettings:
     raster_angle: float = 0.0         # degrees from +X, finishing (roughing runs across it)
     max_slope_deg: float = 60.0       # slopes steeper than this do not shrink the stepover further
     steep_cleanup: bool = True        # a cross raster over the faces steeper than max_slope_deg
+    wall_pass: bool = True            # waterlines along the walls no raster finishes (see wall_faces)
     sample_spacing: float = 0.25      # mm between dropped points along a raster line
     tolerance: float = 0.0003         # mm the path may stand above the dropped tool between points
     rough_rpm: float = 16000.0
@@ -115,6 +133,19 @@ class CarveResult:
     cleanup_stepover: float | None = None   # the steep-region cleanup's raster spacing (None: no cleanup)
     cleanup_slope_deg: float = 0.0          # steepest slope across the cleanup raster among its faces
     steep_area_mm2: float = 0.0             # XY area of the faces steeper than the raster allows for
+    raster_slope_deg: float = 0.0           # steepest slope across the raster among the faces it finishes
+    walls: "WallPass | None" = None         # the wall pass (None: no walls, or the pass is off)
+    wall_area_mm2: float = 0.0              # area of the wall faces (not their XY footprint)
+
+
+@dataclass
+class WallPass:
+    operation: Operation | None
+    z_step: float                     # mm between waterline levels
+    levels: list                      # tip Z of each level
+    shallowest_deg: float             # the least steep wall face
+    scallop: float                    # closed form: the cusp between two levels on the least steep wall
+    links: int                        # feeds from one level to the next along the wall
 
 
 def ball_stepover(radius: float, scallop: float) -> float:
@@ -260,34 +291,51 @@ def plan(vertices, faces, settings: CarveSettings | None = None, *, name: str = 
             if rough is not None:
                 operations.append(rough)
         flat = ball_stepover(settings.finish_tool.radius, settings.scallop)
-        slope = steepest_slope(vertices, faces, settings.raster_angle)
+        walls = wall_faces(vertices, faces, settings.raster_angle, settings.max_slope_deg, bounds)
+        wall_area = float(_areas(vertices, faces[walls]).sum())
+        if not settings.wall_pass:
+            if walls.any():
+                warnings.append(f"{wall_area:.0f} mm2 of walls are steeper than {settings.max_slope_deg:g} degrees "
+                                f"across both rasters (or vertical) and Wall Pass is off: no raster finishes them")
+            walls = np.zeros(len(faces), bool)
+        slope = steepest_slope(vertices, faces[~walls], settings.raster_angle)
         if slope > settings.max_slope_deg and not settings.steep_cleanup:
             warnings.append(f"faces slope up to {slope:.0f} degrees across the finishing raster; the stepover "
                             f"allows for {settings.max_slope_deg:g} degrees, so the scallop is higher there")
         rho = sharpest_convex_radius(vertices, faces)
-        stepover = _spacing(flat, slope, settings.max_slope_deg, rho, settings.finish_tool.radius)
+        raster_slope = raster_slope_deg(vertices, faces[~walls], settings.raster_angle, settings.max_slope_deg)
+        stepover = _spacing(flat, raster_slope, settings.max_slope_deg, rho, settings.finish_tool.radius)
         steep = settings.steep_cleanup and slope > settings.max_slope_deg
-        share = 0.35 if steep else 0.5
+        share = (0.3 if steep else 0.4) if walls.any() else (0.35 if steep else 0.5)
         report(0.5, "finishing")
         operations.append(_finishing(vertices, faces, mesh, settings, bounds, top, bottom, stepover, clearance_z,
                                      safe_z, kernel, lambda f, text="": report(0.5 + share * f, "finishing")))
         cleanup = None
         if steep:
-            report(0.85, "steep cleanup")
+            report(0.5 + share, "steep cleanup")
             cleanup = _steep_cleanup(vertices, faces, mesh, settings, bounds, top, bottom, flat, rho, clearance_z,
-                                     safe_z, kernel, lambda f, text="": report(0.85 + 0.15 * f, "steep cleanup"))
+                                     safe_z, kernel, lambda f, text="": report(0.5 + share + 0.15 * f,
+                                                                               "steep cleanup"), ~walls)
             if cleanup.operation is not None:
                 operations.append(cleanup.operation)
             if cleanup.slope > settings.max_slope_deg:
                 warnings.append(f"faces in the steep regions slope up to {cleanup.slope:.0f} degrees across the "
                                 f"cleanup raster too; its stepover allows for {settings.max_slope_deg:g} degrees, "
                                 f"so the scallop is higher there")
+        wall_pass = None
+        if walls.any():
+            report(0.9, "walls")
+            wall_pass = _wall_pass(vertices, faces, mesh, settings, walls, flat, top, bottom, clearance_z, safe_z,
+                                   kernel, lambda f, text="": report(0.9 + 0.1 * f, "walls"))
+            if wall_pass.operation is not None:
+                operations.append(wall_pass.operation)
     except DropCutterError as error:
         raise CarveError(str(error)) from None
     report(1.0, "done")
     program = Program(name, operations, notes=list(warnings))
     result = CarveResult(program, (bounds[0], bounds[1], bottom, bounds[2], bounds[3], top), stepover, flat, slope,
-                         rho, levels, warnings)
+                         rho, levels, warnings, raster_slope_deg=raster_slope, walls=wall_pass,
+                         wall_area_mm2=wall_area)
     if cleanup is not None:
         result.steep_area_mm2 = cleanup.area
         if cleanup.operation is not None:
@@ -297,8 +345,93 @@ def plan(vertices, faces, settings: CarveSettings | None = None, *, name: str = 
 
 def _spacing(flat: float, slope_deg: float, cap_deg: float, rho: float, r: float) -> float:
     """Raster spacing for a scallop whose level-ground stepover is ``flat``: see the module docstring."""
+    rho = max(rho, r)         # the floor: a bend tighter than the ball counts as one of its radius
     bend = math.sqrt(rho / (rho + r)) if rho < math.inf else 1.0
     return MARGIN * flat * math.cos(math.radians(min(slope_deg, cap_deg))) * bend
+
+
+def raster_slope_deg(vertices, faces, angle_deg: float, cap_deg: float) -> float:
+    """Steepest slope across the raster among the upward faces it finishes (those no steeper
+    than ``cap_deg`` across it; the steeper ones are the cleanup's or the wall pass's)."""
+    slope, up = face_slopes(vertices, faces, angle_deg)
+    ok = up & (slope <= cap_deg + 1e-9)
+    return float(slope[ok].max()) if ok.any() else 0.0
+
+
+def _areas(vertices, faces) -> np.ndarray:
+    tri = vertices[faces]
+    return 0.5 * np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
+
+
+def wall_faces(vertices, faces, angle_deg: float, cap_deg: float, bounds) -> np.ndarray:
+    """Per face: a wall no finishing raster finishes, left to the wall pass.  A wall is not
+    turned down (an overhang no 3-axis tool reaches), does not lie on a side of the stock's box
+    (nothing stands beyond it), and either stands vertical (a raster only drops past it) or
+    slopes more than ``cap_deg`` across both the raster (``angle_deg``) and the cleanup's
+    raster at +90 degrees."""
+    tri = vertices[faces]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    length = np.linalg.norm(normal, axis=1)
+    vertical = (np.abs(normal[:, 2]) <= 1e-9 * length) & (length > 0)
+    across, up = face_slopes(vertices, faces, angle_deg)
+    cross, _ = face_slopes(vertices, faces, angle_deg + 90.0)
+    steep = up & (across > cap_deg + 1e-9) & (cross > cap_deg + 1e-9)
+    x0, y0, x1, y1 = bounds
+    near = 1e-9 * max(x1 - x0, y1 - y0)
+    side = np.zeros(len(faces), bool)
+    for axis, value in ((0, x0), (0, x1), (1, y0), (1, y1)):
+        side |= np.all(np.abs(tri[:, :, axis] - value) <= near, axis=1)
+    return (vertical | steep) & ~side
+
+
+def _wall_pass(vertices, faces, mesh, s: CarveSettings, walls, flat, top, bottom, clearance_z, safe_z, kernel,
+               report) -> WallPass:
+    """Waterlines along the walls (:mod:`.waterline`), from the walls' top down to their foot,
+    ``z_step`` apart: on a wall of slope a, levels dz apart put the ball's contacts dz / sin(a)
+    apart along it, and two ball contacts c apart on a plane leave r - sqrt(r^2 - c^2 / 4), so
+    dz = MARGIN * 2 sqrt(2 r h - h^2) * sin(a) for the least steep wall leaves at most h."""
+    r = s.finish_tool.radius
+    tri = vertices[faces[walls]]
+    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    sine = np.sqrt(normal[:, 0] ** 2 + normal[:, 1] ** 2) / np.linalg.norm(normal, axis=1)
+    shallowest = float(np.degrees(np.arcsin(np.clip(sine.min(), 0.0, 1.0))))
+    z_step = MARGIN * flat * float(sine.min())
+    contact = z_step / float(sine.min())
+    scallop = r - math.sqrt(r * r - contact * contact / 4)
+    # tip levels: from where the ball's equator meets the walls' top edge down to their foot
+    z_top, z_foot = float(tri[:, :, 2].max()) - r, max(float(tri[:, :, 2].min()), bottom)
+    count = max(1, math.ceil((z_top - z_foot) / z_step - 1e-9)) if z_top > z_foot else 0
+    if count > MAX_WALL_LEVELS:     # Max Slope near 0 makes every sloped face a wall, at a Z step near 0
+        raise CarveError(f"the wall pass would need {count} waterline levels {z_step:.4g} mm apart (walls as shallow "
+                         f"as {shallowest:.1f} degrees, steeper than Max Slope {s.max_slope_deg:g}): raise Max Slope "
+                         f"or turn Wall Pass off")
+    levels = list(np.linspace(z_top, z_foot, count + 1)) if count else [z_foot]
+    # the drop cutter's heights once, on a grid over the walls' footprint grown by the ball
+    cell = min(s.sample_spacing, r / 4)
+    lo, hi = tri[:, :, :2].reshape(-1, 2).min(axis=0) - r - 3 * cell, tri[:, :, :2].reshape(-1, 2).max(axis=0) + r + 3 * cell
+    x = lo[0] + cell * np.arange(int(math.ceil((hi[0] - lo[0]) / cell)) + 1)
+    y = lo[1] + cell * np.arange(int(math.ceil((hi[1] - lo[1]) / cell)) + 1)
+    band = footprint_mask(tri[:, :, :2], lo, (len(x), len(y)), cell, r + cell)
+    cutter = DropCutter(vertices, faces, s.finish_tool, floor=-np.inf, kernel=kernel, mesh=mesh)
+    gx, gy = np.meshgrid(x, y, indexing="ij")
+    heights = np.full(band.shape, -np.inf)
+    heights[band] = cutter.points(np.column_stack([gx[band], gy[band]]))
+    pieces = []
+    for n, z in enumerate(levels):
+        for points, closed in waterline.contours(cutter, z, x, y, heights, band, s.tolerance):
+            if len(points) >= 2:
+                pieces.append((n, float(z), points, closed))
+        report(0.8 * (n + 1) / len(levels))
+    builder = PathBuilder(clearance_z, s.finish_feed, s.plunge_feed, surface_z=top)
+    links = waterline.cut(builder, cutter, pieces, LINK * s.finish_tool.diameter, s.sample_spacing, s.tolerance)
+    if builder.position is None:
+        return WallPass(None, z_step, levels, shallowest, scallop, 0)
+    builder.retract()
+    builder.rapid(builder.position[0], builder.position[1], safe_z)
+    operation = Operation("wall pass", s.finish_tool, s.finish_rpm, clearance_z=clearance_z, safe_z=safe_z,
+                          comment=f"waterlines {z_step:.3f} mm apart on walls steeper than {s.max_slope_deg:g} deg, "
+                                  f"climb", **builder.arrays())
+    return WallPass(operation, z_step, levels, shallowest, scallop, links)
 
 
 MAX_ROUGHING_MOVES = 10_000_000   # a program past this is hundreds of MB; the memory runs out first
@@ -454,10 +587,10 @@ def dilate(mask: np.ndarray, k: int) -> np.ndarray:
 
 
 def _steep_cleanup(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom, flat, rho, clearance_z, safe_z,
-                   kernel, report) -> _Cleanup:
+                   kernel, report, rastered) -> _Cleanup:
     r = s.finish_tool.radius
     slope, up = face_slopes(vertices, faces, s.raster_angle)
-    steep = up & (slope > s.max_slope_deg + 1e-9)
+    steep = up & (slope > s.max_slope_deg + 1e-9) & rastered        # the walls are the wall pass's
     tri = vertices[faces[steep]][:, :, :2]
     area = float(0.5 * np.abs(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])).sum())
     g = 0.7 * r
@@ -473,7 +606,9 @@ def _steep_cleanup(vertices, faces, mesh, s: CarveSettings, bounds, top, bottom,
 
     # the cleanup's own stepover: the steepest slope across it among the faces it passes over
     cross, _ = face_slopes(vertices, faces, s.raster_angle + 90.0)
-    near = up & inside(vertices[faces].mean(axis=1)[:, :2])
+    # (not counting the faces steeper across it than across the first raster: that one finishes them)
+    cap = s.max_slope_deg + 1e-9
+    near = up & rastered & inside(vertices[faces].mean(axis=1)[:, :2]) & ~((cross > cap) & (slope <= cap))
     cross_slope = float(cross[near].max()) if near.any() else 0.0
     stepover = _spacing(flat, cross_slope, s.max_slope_deg, rho, r)
     cutter = DropCutter(vertices, faces, s.finish_tool, floor=-np.inf, kernel=kernel, mesh=mesh)
@@ -533,7 +668,8 @@ def _bridge(cutter, position, start, reach: float, s: CarveSettings, bottom: flo
 
 def _drop_collinear(points: np.ndarray, tolerance: float) -> np.ndarray:
     """Leave out points within ``tolerance`` of the line through their neighbours (one pass,
-    never two neighbours in a row, so no point ends up further than that from the path)."""
+    never two neighbours in a row, so no point ends up further than that from the path; never
+    one beside a segment steeper than 89 degrees)."""
     if len(points) < 3:
         return points
     a, b, c = points[:-2], points[1:-1], points[2:]
@@ -542,7 +678,11 @@ def _drop_collinear(points: np.ndarray, tolerance: float) -> np.ndarray:
     t = np.einsum("ij,ij->i", b - a, ac) / np.where(length > 0, length ** 2, 1)
     off = np.linalg.norm(a + ac * t[:, None] - b, axis=1)
     below = (b[:, 2] <= (a + ac * t[:, None])[:, 2] + tolerance)
-    drop = (off <= tolerance) & below & (t > 0) & (t < 1)
+    # nor a point next to a jump (a vertical wall): the near-vertical line through its neighbours
+    # passes within the tolerance of points that hold the ball off the wall
+    run = np.linalg.norm(np.diff(points[:, :2], axis=0), axis=1)
+    jump = np.abs(np.diff(points[:, 2])) > STEEP * run
+    drop = (off <= tolerance) & below & (t > 0) & (t < 1) & ~jump[:-1] & ~jump[1:]
     # never two in a row: of each run of neighbouring candidates, the first, third, ... go
     keep = np.ones(len(points), bool)
     candidates = np.flatnonzero(drop) + 1

@@ -6,6 +6,12 @@ raised, rounded ring along its edge (a frame for a name), on a 0.5 mm grid (a co
 leaves facet creases in the ring's hollow that no ball reaches).
 ``steep_ridge``: a 100 x 60 mm plate with a ridge along X: a crest rounded to 6 mm, flanks
 sloping 55 degrees, feet filleted to 4 mm, the floor 10 mm below the crest (:func:`ridge_profile`).
+``walled_block``: an 80 x 60 mm plate with a raised block whose walls stand one grid cell wide
+(87 degrees on the 0.5 mm grid: a relief made from a height image has such walls): a 56 x 36 mm
+rounded rectangle (8 mm corners), its top sloping 6 degrees towards -y (10 mm above the floor
+along y = +18, 6.2 mm along y = -18), with a round pocket 14 mm across, 4 mm deep, in it (:data:`BLOCK`).
+``vertical_block``: the same block with truly vertical walls (manifold3d booleans, its circles in
+facets about 1 mm long; :func:`vertical_block`).
 Work zero: the top of the stock (the design's highest point is at z = 0 or just below).
 """
 from __future__ import annotations
@@ -79,4 +85,50 @@ def steep_ridge(cell: float = 0.25) -> tuple:
     return heightmap_solid(x, y, top, -15.0)
 
 
-SAMPLES = {"wave": wave_relief, "dome": domed_plate, "ridge": steep_ridge}
+BLOCK = {"floor": -10.0, "half": (20.0, 10.0), "corner": 8.0, "tilt_deg": 6.0, "pocket": (14.0, 0.0, 7.0),
+         "depth": 4.0}
+"""The walled block (mm, degrees): the block is the points within ``corner`` of the rectangle
+|x| <= half[0], |y| <= half[1]; its top is z = tan(tilt) (y - half[1] - corner); the pocket
+(centre x, centre y, radius) is ``depth`` below the top at its centre."""
+
+
+def block_top(x, y) -> np.ndarray:
+    """The walled block's height over the points x, y (the floor outside the block)."""
+    b = BLOCK
+    t = np.tan(np.radians(b["tilt_deg"]))
+    (hx, hy), rc = b["half"], b["corner"]
+    inside = np.hypot(np.maximum(np.abs(x) - hx, 0), np.maximum(np.abs(y) - hy, 0)) <= rc
+    top = np.where(inside, t * (y - hy - rc), b["floor"])
+    px, py, pr = b["pocket"]
+    return np.where(np.hypot(x - px, y - py) <= pr, t * (py - hy - rc) - b["depth"], top)
+
+
+def walled_block(cell: float = 0.5) -> tuple:
+    x = np.linspace(-40, 40, int(round(80 / cell)) + 1)
+    y = np.linspace(-30, 30, int(round(60 / cell)) + 1)
+    gx, gy = np.meshgrid(x, y, indexing="ij")
+    return heightmap_solid(x, y, block_top(gx, gy), -15.0)
+
+
+
+def vertical_block() -> tuple:
+    """The walled block with vertical walls: the plate plus the extruded outline cut by the top's
+    plane, minus the pocket's cylinder."""
+    from manifold3d import CrossSection, JoinType, Manifold
+
+    b = BLOCK
+    floor, base = b["floor"], -15.0
+    plate = Manifold.cube((80.0, 60.0, floor - base)).translate((-40.0, -30.0, base))
+    (hx, hy), rc = b["half"], b["corner"]
+    outline = CrossSection.square((2 * hx, 2 * hy), center=True).offset(rc, JoinType.Round, circular_segments=48)
+    block = outline.extrude(-floor + 1.0).translate((0.0, 0.0, floor - 0.5))
+    t = float(np.tan(np.radians(b["tilt_deg"])))
+    # keep t y - z >= t (hy + rc): below the top's plane
+    block = block.trim_by_plane((0.0, t, -1.0), t * (hy + rc) / float(np.sqrt(1 + t * t)))
+    px, py, pr = b["pocket"]
+    pocket = Manifold.cylinder(10.0, pr, circular_segments=44).translate((px, py, t * (py - hy - rc) - b["depth"]))
+    mesh = ((plate + block) - pocket).to_mesh()
+    return np.asarray(mesh.vert_properties, float)[:, :3].copy(), np.asarray(mesh.tri_verts, np.int64)
+
+
+SAMPLES = {"wave": wave_relief, "dome": domed_plate, "ridge": steep_ridge, "walls": walled_block, "block": vertical_block}

@@ -54,6 +54,8 @@ from .errors import InputError
 
 PAIR_CHUNK = 1 << 20          # (point, triangle) pairs per numpy batch
 MAX_ENTRIES = 30_000_000      # bucket entries (triangle, bucket) kept at most; buckets grow beyond
+STEEP = math.tan(math.radians(89.0))   # a path segment rising faster than this spans a jump (a vertical wall)
+RISING = math.tan(math.radians(60.0))  # ...and one rising faster than this may: its midpoint is checked both ways
 ROUNDED, CONE = 0, 1
 
 
@@ -315,7 +317,12 @@ class DropCutter:
     def path(self, xy, spacing: float, tolerance: float = 1e-4, min_step: float = 1e-3) -> np.ndarray:
         """The tool dropped along the polyline ``xy`` (k, 2): (n, 3) points, sampled at most
         ``spacing`` apart, then refined where the tip between two points stands more than
-        ``tolerance`` above the straight line between them (down to ``min_step``)."""
+        ``tolerance`` above the straight line between them (down to ``min_step``), and where the
+        tip rises more than 60 degrees between them and the midpoint stands more than ``tolerance``
+        off that line either way, or more than 89 degrees (down to ``tolerance``): beside a vertical wall
+        the envelope jumps (the ball's equator meets the wall), and a midpoint on the low side of
+        the jump says nothing of the high side, so such a segment is halved until the jump lies
+        within ``tolerance`` in XY."""
         xy = np.asarray(xy, float).reshape(-1, 2)
         if len(xy) < 2:
             raise DropCutterError("a path needs at least two points")
@@ -332,13 +339,20 @@ class DropCutter:
         known = np.zeros(len(samples) - 1, bool)
         for _ in range(40):
             a, b = samples[:-1], samples[1:]
-            long_enough = np.linalg.norm(b - a, axis=1) > 2 * min_step
+            length = np.linalg.norm(b - a, axis=1)
+            long_enough = length > 2 * min_step
+            with np.errstate(invalid="ignore"):
+                rise = np.where(np.isfinite(z[1:]) & np.isfinite(z[:-1]), np.abs(z[1:] - z[:-1]), 0.0)
+            steep = (rise > RISING * length) & (length > tolerance)
             mid = 0.5 * (a + b)
-            fresh = long_enough & ~known
+            fresh = (long_enough | steep) & ~known
             if fresh.any():
                 zm[fresh] = self.points(mid[fresh])
                 known |= fresh
-            high = long_enough & (zm > 0.5 * (z[:-1] + z[1:]) + tolerance)
+            chord = 0.5 * (z[:-1] + z[1:])
+            with np.errstate(invalid="ignore"):
+                off = np.abs(zm - chord) > tolerance
+            high = (long_enough & (zm > chord + tolerance)) | (steep & (off | (rise > STEEP * length)))
             if not high.any():
                 break
             split = np.flatnonzero(high)
