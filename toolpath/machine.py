@@ -104,6 +104,8 @@ class MachineProfile:
         if self.clearance_z > self.clearance_max:
             bad("clearance z", self.clearance_z, f"is above the {self.clearance_max:g} mm the machine reaches "
                                                  "above the work zero")
+        if self.travel[2] > 0 and self.clearance_max > self.travel[2]:
+            bad("clearance max", self.clearance_max, f"is more than the {self.travel[2]:g} mm Z travel")
         if not _finite(self.machine_top_z):
             bad("machine top z", self.machine_top_z, "must be a number")
         for field in ("memory_kb", "block_ms", "max_table_rpm"):
@@ -120,6 +122,23 @@ class MachineProfile:
             if not (isinstance(clamp, Clamp) and _finite(clamp.x) and _finite(clamp.width) and clamp.width > 0
                     and _finite(clamp.depth) and clamp.depth > 0):
                 bad("clamps", clamp, "must be clamps with a position and a positive width and depth")
+
+    def reach_problem(self, z: float, what: str) -> str | None:
+        """Why a Z of ``z`` above the work zero (``what`` names it: "operation 'roughing': safe Z
+        (the workflow's Safe Z)") cannot be written for this machine, or None if it can."""
+        if z > self.clearance_max + 1e-9:
+            return (f"{what} {z:g} mm is above the {self.clearance_max:g} mm the machine {self.label!r} reaches "
+                    f"above the work zero (machine setting Z Reach); lower it or raise Z Reach if the machine "
+                    f"really reaches it")
+        return None
+
+    def summary(self) -> dict:
+        """The profile as report.json records it."""
+        return {"name": self.name, "label": self.label, "family": self.family, "travel_mm": list(self.travel),
+                "z_reach_mm": self.clearance_max, "clearance_height_mm": self.clearance_z, "retract": self.retract,
+                "machine_top_z": self.machine_top_z, "tool_change": self.tool_change,
+                "m6_retracts": self.m6_retracts, "max_spindle_rpm": self.max_spindle_rpm,
+                "max_feed": self.max_feed, "rapid_rate": self.rapid_rate}
 
     @property
     def manual_change(self) -> bool:
@@ -154,11 +173,12 @@ PRESETS = {p.name: p for p in (
     MachineProfile(
         "grbl-router", "Hobby router (GRBL)", "milling",
         "GRBL 1.1 hobby router, not homed, bits changed by hand at an M00 pause, Z zeroed on the top",
-        travel=(800.0, 800.0, 100.0), clearance_max=40.0, clearance_z=10.0, retract="clearance",
+        travel=(800.0, 800.0, 100.0), clearance_max=60.0, clearance_z=20.0, retract="clearance",
         tool_change="manual", max_spindle_rpm=24000.0, min_spindle_rpm=0.0, max_feed=5000.0,
         rapid_rate=5000.0,
         source="Grbl v1.1 wiki: no tool changer (M6 is not supported), G53 only on a homed machine "
-               "($22 homing), soft limits alarm past $130-$132 travel; the spindle is a trim router"),
+               "($22 homing), soft limits alarm past $130-$132 travel; the spindle is a trim router.  Reach: "
+               "100 mm of Z travel less a 20 mm board and the bit's stick-out leaves about 60 mm above the top"),
     MachineProfile(
         "linuxcnc-manual", "LinuxCNC mill, manual tool change", "milling",
         "LinuxCNC router or mill, homed, M6 stops and asks for the tool (hal_manualtoolchange)",
@@ -178,10 +198,11 @@ PRESETS = {p.name: p for p in (
         "fanuc-vmc", "Machining centre (Fanuc 0i-MF)", "milling",
         "Fanuc 0i-MF vertical machining centre with a tool changer",
         travel=(800.0, 500.0, 500.0), clearance_max=300.0, clearance_z=100.0, retract="reference",
-        tool_change="atc", m6_retracts=False, max_spindle_rpm=12000.0, max_feed=10000.0,
+        tool_change="atc", m6_retracts=False, max_spindle_rpm=24000.0, max_feed=10000.0,
         rapid_rate=24000.0, memory_kb=512.0, block_ms=1.0,
         source="FANUC Series 0i-MODEL F operator's manual B-64604EN: reference position return G28, "
-               "part program storage 512 kB standard"),
+               "part program storage 512 kB standard; 24000 rpm: the spindle of FANUC's own ROBODRILL "
+               "compact machining centres (high-speed option), so the routers' speeds fit"),
     MachineProfile(
         "wood-lathe-cxz", "CNC wood lathe, rotary face plate (C-X-Z)", "cxz",
         "Rotating face plate (C) with a ball bit on X and Z (seed 001)",
@@ -189,6 +210,13 @@ PRESETS = {p.name: p for p in (
         tool_change="atc", max_spindle_rpm=24000.0, max_feed=5000.0, rapid_rate=5000.0,
         max_table_rpm=30.0,
         source="seed 001 (rotating-table C-X-Z machining of a wooden bento box)"),
+    MachineProfile(
+        "wood-lathe-cxz-linuxcnc", "CNC wood lathe, LinuxCNC (C-X-Z)", "cxz",
+        "Rotating face plate (C) with a ball bit on X and Z, homed LinuxCNC control (seed 001)",
+        travel=(300.0, 0.0, 150.0), clearance_max=100.0, clearance_z=20.0, retract="machine",
+        machine_top_z=0.0, tool_change="atc", m6_retracts=False, max_spindle_rpm=24000.0, max_feed=5000.0,
+        rapid_rate=5000.0, max_table_rpm=30.0,
+        source="seed 001; LinuxCNC 2.9 G53 (machine coordinates) after homing with HOME = 0 at the top of Z"),
     MachineProfile(
         "fanuc-0it-turnmill", "Turn-mill (Fanuc 0i-T)", "xzc",
         "Fanuc 0i-T turning centre with driven tools and a C axis (seed 003)",
@@ -205,6 +233,8 @@ PRESETS = {p.name: p for p in (
         sheet_origin=(1000.0, 1040.0), clamps=(Clamp(200.0), Clamp(700.0)), sheet_max=(1270.0, 1270.0),
         source="seed 004 (G92 X1000. Y1040. program origin, Table 2); clamp positions typical of the class"),
 )}
+# The machine a post's program assumes when the user picks only the post (``Post.default_machine``
+# names one of these; a post that names none gets its family's).
 DEFAULT_FOR_FAMILY = {"milling": "fanuc-vmc", "cxz": "wood-lathe-cxz", "xzc": "fanuc-0it-turnmill",
                       "punch": "amada-04p"}
 
