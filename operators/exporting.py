@@ -28,25 +28,12 @@ def spindle_options(families, post_name: str, orient: bool, given_as: str = "Ori
     return {"orient_spindle": True}
 
 
-def machine_post(families, post_name: str, work_offset: str | None, orient_spindle: bool = False):
-    """The post ``post_name`` set up for the machine: its work offset, and M19 where asked."""
+def machine_post(families, post_name: str, work_offset: str | None, orient_spindle: bool = False, machine=None):
+    """The post ``post_name`` set up for the machine: its work offset, M19 where asked, and the
+    machine profile its frames are written for (None: the post's own default machine)."""
+    options = {} if machine is None else {"machine": machine}
     return posts.create(families, post_name, work_offset=work_offset,
-                        **spindle_options(families, post_name, orient_spindle))
-
-
-def orient_spindle_argument(parser) -> None:
-    """Batch's ``--orient-spindle`` (Machine & Stock's check box)."""
-    parser.add_argument("--orient-spindle", action="store_true",
-                        help="Fanuc posts: M19 before each tool change (other posts refuse it)")
-
-
-def batch_orient_spindle(args, scene, families, post_name: str) -> None:
-    """Batch, before any work: ``--orient-spindle`` (or the .blend's check box) against the post."""
-    machine = scene.kezuri.machine
-    if args.orient_spindle:
-        machine.orient_spindle = True
-    spindle_options(families, post_name, machine.orient_spindle,
-                    "--orient-spindle" if args.orient_spindle else "Orient Spindle (M19) of the .blend")
+                        **spindle_options(families, post_name, orient_spindle), **options)
 
 
 class NCExport(ExportHelper):

@@ -21,6 +21,8 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from .errors import InputError
 
 # How the frames lift Z before XY moves (at the start, after a tool load and at the end):
@@ -157,6 +159,53 @@ class MachineProfile:
         if self.memory_kb is not None:
             lines.append(f"program memory {self.memory_kb:g} kB")
         return lines
+
+
+def travel_problems(operations, profile: MachineProfile) -> list:
+    """Where a program does not fit the machine: ``(operation index, move index, message)`` per axis.
+
+    The program's extent along X, Y and Z (every move's end point, each operation's start, its
+    safe and clearance heights, and the height the frames lift to on a machine without a
+    machine-coordinate retract) must fit the axis's travel, and no Z may lie above the height the
+    tool reaches over the work zero.  Where the work zero sits in the machine is the operator's
+    setting, so the extent (highest less lowest), not the absolute position, is what is checked.
+    """
+    found = []
+    spans = {}
+    for index, op in enumerate(operations):
+        xyz = np.asarray(op.xyz, float).reshape(-1, 3)
+        start = np.asarray(op.start, float).reshape(1, 3)
+        points = np.vstack([start, xyz]) if len(xyz) else start
+        heights = [float(op.safe_z), float(op.clearance_z)]
+        if profile.retract == "clearance":
+            heights.append(float(profile.clearance_z))
+        for axis, column in (("X", 0), ("Y", 1), ("Z", 2)):
+            values = points[:, column]
+            low_move, high_move = int(np.argmin(values)) - 1, int(np.argmax(values)) - 1
+            low, high = float(values.min()), float(values.max())
+            if axis == "Z" and max(heights) > high:
+                high, high_move = max(heights), -1
+            span = spans.setdefault(axis, [math.inf, -math.inf, None, None])
+            if low < span[0]:
+                span[0], span[2] = low, (index, max(low_move, 0))
+            if high > span[1]:
+                span[1], span[3] = high, (index, max(high_move, 0))
+    for column, axis in enumerate("XYZ"):
+        if axis not in spans:
+            continue
+        low, high, (low_op, low_move), (high_op, high_move) = spans[axis]
+        travel = float(profile.travel[column])
+        if high - low > travel + 1e-6:
+            found.append((high_op, high_move,
+                          f"the program spans {high - low:.3f} mm along {axis} (from {low:.3f} to {high:.3f}), more "
+                          f"than the {travel:g} mm {axis} travel of the machine {profile.label!r} (machine setting "
+                          f"Travel {axis})"))
+        if axis == "Z" and high > profile.clearance_max + 1e-6:
+            found.append((high_op, high_move,
+                          f"the program lifts Z to {high:.3f} mm above the work zero, higher than the "
+                          f"{profile.clearance_max:g} mm the machine {profile.label!r} reaches (machine setting "
+                          f"Z Reach)"))
+    return found
 
 
 def _finite(value) -> bool:
