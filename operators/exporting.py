@@ -36,6 +36,21 @@ def machine_post(families, post_name: str, work_offset: str | None, orient_spind
                         **spindle_options(families, post_name, orient_spindle), **options)
 
 
+def orient_spindle_argument(parser) -> None:
+    """Batch's ``--orient-spindle`` (Machine & Stock's check box)."""
+    parser.add_argument("--orient-spindle", action="store_true",
+                        help="Fanuc posts: M19 before each tool change (other posts refuse it)")
+
+
+def batch_orient_spindle(args, scene, families, post_name: str) -> None:
+    """Batch, before any work: ``--orient-spindle`` (or the .blend's check box) against the post."""
+    machine = scene.kezuri.machine
+    if args.orient_spindle:
+        machine.orient_spindle = True
+    spindle_options(families, post_name, machine.orient_spindle,
+                    "--orient-spindle" if args.orient_spindle else "Orient Spindle (M19) of the .blend")
+
+
 class NCExport(ExportHelper):
     """Mixed into an ExportHelper operator with a ``post`` enum of ``post_families``.  The operator
     sets ``file_suffix`` and implements ``write(context) -> path``; ``preferred_post`` names the

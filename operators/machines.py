@@ -83,18 +83,3 @@ def batch_machine(args, scene, families, post_name: str):
             for axis, value in zip("xyz", args.travel):
                 set_exactly(props, f"travel_{axis}", value, "--travel")
     return scene_machine(props, families, post_name)
-
-
-def orient_spindle_argument(parser) -> None:
-    """Batch's ``--orient-spindle`` (Machine & Stock's check box)."""
-    parser.add_argument("--orient-spindle", action="store_true",
-                        help="Fanuc posts: M19 before each tool change (other posts refuse it)")
-
-
-def batch_orient_spindle(args, scene, families, post_name: str) -> None:
-    """Batch, before any work: ``--orient-spindle`` (or the .blend's check box) against the post."""
-    machine = scene.kezuri.machine
-    if args.orient_spindle:
-        machine.orient_spindle = True
-    spindle_options(families, post_name, machine.orient_spindle,
-                    "--orient-spindle" if args.orient_spindle else "Orient Spindle (M19) of the .blend")
