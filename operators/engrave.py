@@ -24,7 +24,7 @@ from . import gate
 from .common import SteppedOperator
 from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument
 from .machines import batch_machine, machine_arguments, scene_machine
-from .limits import check_group
+from .limits import SettingError, check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -52,6 +52,10 @@ def settings_from(props, machine=None) -> core.EngraveSettings:
     """The core's settings from the Engrave panel; a Safe Z of 0 is the machine profile's clearance
     height (``machine``; the core's own default without one)."""
     safe_z = props.safe_z if props.safe_z > 0 or machine is None else machine.clearance_z
+    if props.safe_z <= 0 and machine is not None and safe_z < props.clearance_z:
+        raise SettingError(f"Engrave: Safe Z 0 takes the machine's Clearance Height, {safe_z:g} mm, below the "
+                           f"Clearance Plane {props.clearance_z:g} mm: give Safe Z, lower the Clearance Plane or "
+                           f"raise the machine's Clearance Height")
     props = convert.Typed(props)
     texture = core.GougeTexture(base_depth=props.base_depth, quantum=props.quantum, amplitude=props.amplitude,
                                 spacing=props.spacing, motion=props.motion, spacing_jitter=props.spacing_jitter,
