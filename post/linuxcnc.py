@@ -39,8 +39,8 @@ class LinuxCNCPost(GcodePost):
         the length offset cancelled, then M6; on a manual change M6 stops and asks for the tool
         (hal_manualtoolchange), so the comment says which."""
         lift = [] if self.machine.m6_retracts else self.lift()
-        ask = ([f"(M6 ASKS FOR {comment_text(op.tool.describe())}: LOAD IT, THEN CONTINUE. Z IS LIFTED BEFORE "
-                f"XY MOVES)"] if self.machine.manual_change else [])
+        ask = ([f"(THE TOOL CHANGE ASKS FOR {comment_text(op.tool.describe())}: LOAD IT, THEN CONTINUE. Z IS "
+                f"LIFTED BEFORE XY MOVES)"] if self.machine.manual_change else [])
         return ["M05", *lift, "G49", *ask, f"T{op.tool.number} M06"]
 
     def after_load(self, op, first):

@@ -155,7 +155,7 @@ class MachineProfile:
                   "machine": f"Z retract: machine Z {self.machine_top_z:g}",
                   "clearance": f"Z retract: Z {self.clearance_z:g} above the work zero"}[self.retract],
                  ("tool change: manual, at a pause" if self.manual_change else
-                  "tool change: changer, M06" + (" lifts Z" if self.m6_retracts else ""))]
+                  "tool change: by the changer" + (", which lifts Z" if self.m6_retracts else ""))]
         if self.memory_kb is not None:
             lines.append(f"program memory {self.memory_kb:g} kB")
         return lines
