@@ -221,7 +221,10 @@ def test_clearance_retract_on_linuxcnc_applies_the_offset_then_lifts():
     from kezuri.toolpath import machine
     baked, _ = engrave.bake(sample_job().program)
     unhomed = machine.preset("linuxcnc-manual").replace(retract="clearance", clearance_z=25.0)
-    lines = frame_lines(LinuxCNCPost(machine=unhomed).to_text(baked))
+    text = LinuxCNCPost(machine=unhomed).to_text(baked)
+    if rs274.available():
+        rs274.run(text)                                  # LinuxCNC's interpreter takes it (raises otherwise)
+    lines = frame_lines(text)
     i = lines.index("T2 M06")
     assert lines[i + 1:i + 4] == ["G43 H2", "G00 G90 G54 Z25.", "G00 G90 G54 X-100. Y-49.99 S6000 M03"]
     assert "G53" not in "\n".join(lines)
@@ -266,3 +269,23 @@ def test_every_post_names_its_default_machine():
     assert post.registry.default_machine(post.find("milling", "fanuc-macro")).name == "fanuc-vmc"
     assert post.registry.default_machine(post.find("cxz", "linuxcnc")).name == "wood-lathe-cxz-linuxcnc"
     assert post.registry.default_machine(post.find("cxz", "fanuc")).name == "wood-lathe-cxz"
+
+
+@needs_rs274
+def test_rs274_moves_only_z_after_every_tool_change():
+    """Read back by LinuxCNC's interpreter: after each CHANGE_TOOL the first motion is a traverse
+    that keeps X and Y where they were (Z alone: the G53 lift); X/Y move only after it."""
+    baked, _ = engrave.bake(sample_job().program)
+    calls = rs274.run(post.milling_post("linuxcnc").to_text(baked))
+    position, pending, checked = None, False, 0
+    for name, args in calls:
+        if name == "CHANGE_TOOL":
+            pending = True
+        elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED"):
+            xyz = [float(v) for v in args[:3]] if name != "ARC_FEED" else None
+            if pending:
+                assert name == "STRAIGHT_TRAVERSE" and position is not None
+                assert xyz[:2] == position[:2], (position, xyz)
+                pending, checked = False, checked + 1
+            position = xyz if xyz is not None else position
+    assert checked == 3
