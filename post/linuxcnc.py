@@ -38,10 +38,19 @@ class LinuxCNCPost(GcodePost):
         """Spindle stopped, Z lifted (unless the profile says M6 lifts it: TOOL_CHANGE_QUILL_UP),
         the length offset cancelled, then M6; on a manual change M6 stops and asks for the tool
         (hal_manualtoolchange), so the comment says which."""
-        lift = [] if self.machine.m6_retracts else self.lift()
         ask = ([f"(THE TOOL CHANGE ASKS FOR {comment_text(op.tool.describe())}: LOAD IT, THEN CONTINUE. Z IS "
                 f"LIFTED BEFORE XY MOVES)"] if self.machine.manual_change else [])
-        return ["M05", *lift, "G49", *ask, f"T{op.tool.number} M06"]
+        return ["M05", *self.offset_off(lift=not self.machine.m6_retracts), *ask, f"T{op.tool.number} M06"]
+
+    def offset_off(self, lift: bool = True) -> list:
+        """The length offset cancelled and Z lifted: to the machine's top with the offset off (the
+        spindle's gauge line to Machine Top Z whatever the tool), or to the clearance height while
+        the tool's offset still counts (the tip at that height above the work zero)."""
+        if not lift:
+            return ["G49"]
+        if self.machine.retract == "machine":
+            return ["G49", *self.lift()]
+        return [*self.lift(), "G49"]
 
     def after_load(self, op, first):
         """Z first: G53 to the top of travel (homed), or with the new tool's offset the clearance height."""
@@ -59,4 +68,4 @@ class LinuxCNCPost(GcodePost):
         return [f"G43 H{op.tool.number}", f"G00 Z{self.n(op.safe_z)}"]
 
     def ending(self, program):
-        return ["M05", *self.lift(), "G49", "M30"]
+        return ["M05", *self.offset_off(), "M30"]

@@ -200,11 +200,11 @@ def test_linuxcnc_lifts_in_machine_coordinates_around_every_manual_change():
     changes = [i for i, line in enumerate(lines) if line.endswith("M06")]
     assert len(changes) == 3
     for i in changes:
-        assert lines[i - 3:i] == ["M05", "G53 G00 Z0.", "G49"]             # Z up before the change (M6 does not)
+        assert lines[i - 3:i] == ["M05", "G49", "G53 G00 Z0."]             # Z up before the change (M6 does not)
         assert lines[i + 1] == "G53 G00 Z0."                               # and again before XY
         assert lines[i + 2].startswith("G00 G90 G54 X")
         assert lines[i + 3].startswith("G43 H")
-    assert lines[-5:] == ["M05", "G53 G00 Z0.", "G49", "M30", "%"]
+    assert lines[-5:] == ["M05", "G49", "G53 G00 Z0.", "M30", "%"]
 
 
 def test_a_changer_that_lifts_on_m6_needs_no_lift_before_it_but_one_after():
