@@ -804,6 +804,8 @@ MESSAGE_TEMPLATES = {
         "機械と素材：機械 {0} は {1} 用の機械で、{2} ポストは {3} 用のプログラムを書きます。{4} 用の機械か「ポストの既定の機械」を選んでください",
     "Engrave: Safe Z 0 takes the machine's Clearance Height, {} mm, below the Clearance Plane {} mm: give Safe Z, lower the Clearance Plane or raise the machine's Clearance Height":
         "彫刻：安全高さ Z が 0 のときは機械の逃げ高さ {0} mm を使いますが、これはクリアランス高さ {1} mm より低い値です。安全高さ Z を指定するか、クリアランス高さを下げるか、機械の逃げ高さを上げてください",
+    "line {}: G53 moves in machine coordinates, which the reader does not know (only a Z lift is followed): {}":
+        "{0}行目：G53 は機械座標での移動で、読み込み側はその位置を知りません（Zの上昇だけを扱います）：{1}",
     "Machine & Stock: Clearance Height = {} mm is above Z Reach = {} mm":
         "機械と素材：逃げ高さ = {0} mm が Zの届く高さ = {1} mm を超えています",
     "{}: Tool Change = {}: this post writes {} tool changes only":
