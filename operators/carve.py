@@ -26,6 +26,7 @@ from . import convert
 from . import gate
 from .common import SteppedOperator, run_reported
 from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument
+from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
@@ -118,13 +119,15 @@ def show_carve(scene, job: CarveJob, show_rapids: bool = False) -> list:
 
 
 def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | None = None,
-                 allow: bool | str = False, checked: bool = False, orient_spindle: bool = False) -> str:
+                 allow: bool | str = False, checked: bool = False, orient_spindle: bool = False,
+                 machine=None) -> str:
     """Write the program; the export gate simulates it first unless the caller has (``checked``);
-    ``orient_spindle``: M19 before each tool change (Fanuc posts only)."""
-    post = machine_post(POST_FAMILIES, post_name, work_offset, orient_spindle)
+    ``orient_spindle``: M19 before each tool change (Fanuc posts only); ``machine``: the machine
+    profile (None: the post's own)."""
+    post = machine_post(POST_FAMILIES, post_name, work_offset, orient_spindle, machine)
     text = post.to_text(job.result.program)
     if not checked:
-        gate.check(simulation(job), allow)
+        gate.check(simulation(job), allow, machine=post.machine)
     return write_atomic(path, text)
 
 
@@ -246,7 +249,8 @@ class KEZURI_OT_carve_export(NCExport, bpy.types.Operator):
         job = run_carve(context.scene, context.evaluated_depsgraph_get())
         machine = context.scene.kezuri.machine
         return export_carve(job, self.post, self.filepath, machine.work_offset,
-                            allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle)
+                            allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle,
+                            machine=scene_machine(machine, POST_FAMILIES, self.post))
 
 
 CLASSES = (KEZURI_OT_carve_generate, KEZURI_OT_carve_sample, KEZURI_OT_carve_export)
@@ -263,6 +267,7 @@ def batch_arguments(p):
     source.add_argument("--sample", choices=sorted(carve_samples.SAMPLES), help="a built-in design (default: wave)")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
     orient_spindle_argument(p)
+    machine_arguments(p)
     from .batchio import number
     from .limits import RANGES
     p.add_argument("--scallop", type=number("--scallop", limit=RANGES["carve"]["scallop"]),
@@ -338,6 +343,7 @@ def batch(args) -> dict:
     machine = scene.kezuri.machine
     post_name = args.post or scene_post(scene)
     batch_orient_spindle(args, scene, POST_FAMILIES, post_name)
+    profile = batch_machine(args, scene, POST_FAMILIES, post_name)
     if args.mesh:
         vertices, faces = read_mesh_file(args.mesh)
         frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
@@ -349,8 +355,9 @@ def batch(args) -> dict:
             add_sample(scene, args.sample or "wave")
         job = run_carve(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "carve"))
     nc_path = os.path.join(args.out, f"carve{extension_for(post_name)}")
-    simulated, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
-    export_carve(job, post_name, nc_path, machine.work_offset, checked=True, orient_spindle=machine.orient_spindle)
+    simulated, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"), machine=profile)
+    export_carve(job, post_name, nc_path, machine.work_offset, checked=True, orient_spindle=machine.orient_spindle,
+                 machine=profile)
     design_path = batchio.write_stl(os.path.join(args.out, "design.stl"), job.vertices, job.faces)
     if batchio.shown():
         show_carve(scene, job)
@@ -385,6 +392,7 @@ def batch(args) -> dict:
         "gate": gate_report,
         "workflow": "carve",
         "post": post_name,
+        "machine": profile.summary(),
         "files": [nc_path, design_path],
         "preview": png,
         "toolpaths_preview": toolpaths_png,

@@ -23,7 +23,8 @@ from . import convert
 from . import gate
 from .common import SteppedOperator
 from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument
-from .limits import check_group
+from .machines import batch_machine, machine_arguments, scene_machine
+from .limits import SettingError, check_group
 from .preferences import scene_post
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -47,7 +48,14 @@ class EngraveJob:
     surface: object = None          # surface_engrave.SurfaceJob on a curved plate, else None
 
 
-def settings_from(props) -> core.EngraveSettings:
+def settings_from(props, machine=None) -> core.EngraveSettings:
+    """The core's settings from the Engrave panel; a Safe Z of 0 is the machine profile's clearance
+    height (``machine``; the core's own default without one)."""
+    safe_z = props.safe_z if props.safe_z > 0 or machine is None else machine.clearance_z
+    if props.safe_z <= 0 and machine is not None and safe_z < props.clearance_z:
+        raise SettingError(f"Engrave: Safe Z 0 takes the machine's Clearance Height, {safe_z:g} mm, below the "
+                           f"Clearance Plane {props.clearance_z:g} mm: give Safe Z, lower the Clearance Plane or "
+                           f"raise the machine's Clearance Height")
     props = convert.Typed(props)
     texture = core.GougeTexture(base_depth=props.base_depth, quantum=props.quantum, amplitude=props.amplitude,
                                 spacing=props.spacing, motion=props.motion, spacing_jitter=props.spacing_jitter,
@@ -59,7 +67,7 @@ def settings_from(props) -> core.EngraveSettings:
         band_width=props.band_width, band_depth=props.band_depth, band_stepover=props.band_stepover,
         burr_depth=props.band_depth, texture=texture, rough_rpm=props.rough_rpm, finish_rpm=props.finish_rpm,
         rough_feed=props.rough_feed, finish_feed=props.finish_feed, plunge_feed=props.plunge_feed,
-        clearance_z=props.clearance_z, safe_z=props.safe_z)
+        clearance_z=props.clearance_z, safe_z=safe_z if safe_z > 0 else core.EngraveSettings.safe_z)
 
 
 def letter_objects(props) -> list:
@@ -85,9 +93,10 @@ def surface_of(scene, depsgraph, frame):
     return surface_engrave.Surface(frame.to_work(world), faces, obj.name)
 
 
-def engrave_request(scene, depsgraph):
+def engrave_request(scene, depsgraph, post_name: str | None = None):
     """Read the plate, the letters and the settings from the scene; return ``compute(progress)``,
-    which plans the job without touching Blender data (so it can run in steps)."""
+    which plans the job without touching Blender data (so it can run in steps).  ``post_name``: the
+    post the program is for (default: the scene's), whose machine gives a Safe Z of 0 its height."""
     settings = scene.kezuri
     props = settings.engrave
     check_group(settings.machine, "machine")
@@ -98,7 +107,8 @@ def engrave_request(scene, depsgraph):
         raise convert.SceneInputError("no letters: pick a Text, curve or mesh object as Letters in the Engrave panel")
     letters = [(obj.name, convert.outlines_in_work(obj, depsgraph, plate.frame)) for obj in objects]
     surface = surface_of(scene, depsgraph, plate.frame)
-    engrave_settings, name = settings_from(props), scene.name
+    machine = scene_machine(settings.machine, POST_FAMILIES, post_name or scene_post(scene))
+    engrave_settings, name = settings_from(props, machine), scene.name
     work_offset, rapid_rate = settings.machine.work_offset, settings.machine.rapid_rate
 
     def compute(progress=None) -> EngraveJob:
@@ -120,8 +130,8 @@ def engrave_request(scene, depsgraph):
     return compute
 
 
-def run_engrave(scene, depsgraph, progress=None) -> EngraveJob:
-    return engrave_request(scene, depsgraph)(progress)
+def run_engrave(scene, depsgraph, progress=None, post_name: str | None = None) -> EngraveJob:
+    return engrave_request(scene, depsgraph, post_name)(progress)
 
 
 def show_engrave(scene, job: EngraveJob, show_rapids: bool = True) -> list:
@@ -145,14 +155,16 @@ def program_for_post(job: EngraveJob, post_name: str):
 
 
 def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str | None = None,
-                   allow: bool | str = False, checked: bool = False, orient_spindle: bool = False) -> str:
+                   allow: bool | str = False, checked: bool = False, orient_spindle: bool = False,
+                   machine=None) -> str:
     """Write the program for ``post_name``; the export gate simulates it first unless the caller
     has (``checked``); ``allow``: the gate's override (see :func:`gate.check`); ``orient_spindle``:
-    M19 before each tool change (Fanuc posts only)."""
-    post = machine_post(POST_FAMILIES, post_name, work_offset, orient_spindle)
+    M19 before each tool change (Fanuc posts only); ``machine``: the machine profile (None: the
+    post's own)."""
+    post = machine_post(POST_FAMILIES, post_name, work_offset, orient_spindle, machine)
     text = post.to_text(program_for_post(job, post_name))
     if not checked:
-        gate.check(simulation(job), allow)
+        gate.check(simulation(job), allow, machine=post.machine)
     return write_atomic(path, text)
 
 
@@ -225,10 +237,11 @@ class KEZURI_OT_engrave_export(NCExport, bpy.types.Operator):
         return KEZURI_OT_engrave_generate.poll(context)
 
     def write(self, context) -> str:
-        job = run_engrave(context.scene, context.evaluated_depsgraph_get())
+        job = run_engrave(context.scene, context.evaluated_depsgraph_get(), post_name=self.post)
         machine = context.scene.kezuri.machine
         return export_engrave(job, self.post, self.filepath, machine.work_offset,
-                              allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle)
+                              allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle,
+                              machine=scene_machine(machine, POST_FAMILIES, self.post))
 
 
 CLASSES = (KEZURI_OT_engrave_generate, KEZURI_OT_engrave_export)
@@ -240,6 +253,7 @@ def batch_arguments(p):
     p.add_argument("--blend", help="a .blend whose scene has the Kezuri plate and letters set")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
     orient_spindle_argument(p)
+    machine_arguments(p)
     from .batchio import number
     from .limits import RANGES
     p.add_argument("--seed", type=number("--seed", limit=RANGES["engrave"]["seed"]))
@@ -284,14 +298,15 @@ def batch(args) -> dict:
         add_surface(scene, args.surface)
     post_name = args.post or scene_post(scene)
     batch_orient_spindle(args, scene, POST_FAMILIES, post_name)
+    machine = batch_machine(args, scene, POST_FAMILIES, post_name)
     started = time.perf_counter()
-    job = run_engrave(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "engrave"))
+    job = run_engrave(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "engrave"), post_name)
     seconds = time.perf_counter() - started
     nc_path = os.path.join(args.out, f"engrave{extension_for(post_name)}")
     setup = simulation(job)
-    checked, gate_report = gate.check(setup, args.allow_findings, Progress(None, "check"))
+    checked, gate_report = gate.check(setup, args.allow_findings, Progress(None, "check"), machine=machine)
     export_engrave(job, post_name, nc_path, props.machine.work_offset, checked=True,
-                   orient_spindle=props.machine.orient_spindle)
+                   orient_spindle=props.machine.orient_spindle, machine=machine)
     files = [nc_path]
     solids = []
     if job.surface is not None:
@@ -309,6 +324,7 @@ def batch(args) -> dict:
         "toolpaths_preview": toolpaths_png,
         "workflow": "engrave",
         "post": post_name,
+        "machine": machine.summary(),
         "seed": props.engrave.seed,
         "surface": props.engrave.surface.name if props.engrave.surface is not None else "flat",
         "files": files,

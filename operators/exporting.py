@@ -28,10 +28,12 @@ def spindle_options(families, post_name: str, orient: bool, given_as: str = "Ori
     return {"orient_spindle": True}
 
 
-def machine_post(families, post_name: str, work_offset: str | None, orient_spindle: bool = False):
-    """The post ``post_name`` set up for the machine: its work offset, and M19 where asked."""
+def machine_post(families, post_name: str, work_offset: str | None, orient_spindle: bool = False, machine=None):
+    """The post ``post_name`` set up for the machine: its work offset, M19 where asked, and the
+    machine profile its frames are written for (None: the post's own default machine)."""
+    options = {} if machine is None else {"machine": machine}
     return posts.create(families, post_name, work_offset=work_offset,
-                        **spindle_options(families, post_name, orient_spindle))
+                        **spindle_options(families, post_name, orient_spindle), **options)
 
 
 def orient_spindle_argument(parser) -> None:

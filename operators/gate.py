@@ -1,6 +1,7 @@
 """The export gate: a program is simulated on its stock before it is written, and a program the
 simulation finds fault with (a gouge, a rapid into material, a plunge a tool cannot make, a cut
-below the stock into the fixture, a cut with the spindle stopped, a move outside the travel) is
+below the stock into the fixture, a cut with the spindle stopped, a move outside the travel, a
+program wider or taller than the machine profile's travel or lifting Z above its reach) is
 not written unless the user overrides it knowingly:
 
 * in the panel, Simulate & Check lists the findings and offers "Write despite these findings";
@@ -13,6 +14,7 @@ from __future__ import annotations
 
 import time
 
+from ..toolpath import machine as machines
 from ..toolpath import simulate as core
 from ..toolpath.errors import InputError
 from . import simview
@@ -46,8 +48,17 @@ def signature(findings) -> str:
     return "\n".join(finding_key(f) for f in findings)
 
 
-def check(setup, allow: bool | str = False, progress=None):
-    """Simulate ``setup`` (a workflow's :class:`SimulationSetup`) and decide.
+def machine_findings(program, machine) -> list:
+    """``travel`` findings where the program does not fit the machine profile (its extent along an
+    axis beyond the travel, a Z above what the machine reaches): see :func:`machine.travel_problems`."""
+    operations = getattr(program, "operations", program)
+    return [core.Finding("travel", message, op, move)
+            for op, move, message in machines.travel_problems(operations, machine)]
+
+
+def check(setup, allow: bool | str = False, progress=None, machine=None):
+    """Simulate ``setup`` (a workflow's :class:`SimulationSetup`) and decide; ``machine``: the
+    machine profile every move must fit (:func:`machine_findings`).
 
     ``allow``: True (batch's ``--allow-findings``) overrides any findings; a string (the panel's
     acknowledged :func:`signature`) overrides exactly those findings.  Returns
@@ -68,6 +79,8 @@ def check(setup, allow: bool | str = False, progress=None):
             raise core.SimulationError(f"{setup.name}: the export gate simulates every program on a {cell:g} mm "
                                        f"grid before writing it, and cannot on this job's stock: {error}") from None
     faults = core.blocking(job.result.findings)
+    if machine is not None:
+        faults += machine_findings(setup.program, machine)
     report = {"findings": [{"kind": f.kind, "operation": f.operation, "move": f.move, "message": f.message,
                             "depth_mm": None if f.depth_mm is None else round(float(f.depth_mm), 4)}
                            for f in faults],

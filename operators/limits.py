@@ -75,7 +75,10 @@ HEIGHT = mm(0.0, 1000.0)
 
 # group (the attribute of scene.kezuri, or "pocket" for an object's rotary pocket) -> property -> range
 RANGES: dict = {
-    "machine": {"rapid_rate": Range(1.0, 200000.0, unit="mm/min")},
+    "machine": {"rapid_rate": Range(1.0, 200000.0, unit="mm/min"), "travel_x": mm(0.0, MAX_REACH_MM),
+                "travel_y": mm(0.0, MAX_REACH_MM), "travel_z": mm(0.0, MAX_REACH_MM),
+                "z_reach": mm(0.0, MAX_REACH_MM, lo_open=True), "clearance_height": mm(0.0, MAX_REACH_MM, lo_open=True),
+                "machine_top_z": mm(-MAX_REACH_MM, MAX_REACH_MM), "max_spindle": rpm(), "max_feed": feed()},
     "engrave": {
         "rough_diameter": DIAMETER, "rough_tool_number": TOOL_NUMBER, "stepover": mm(0.0, 100.0, lo_open=True),
         "raster_angle": degrees(-180.0, 180.0), "letter_clearance": mm(0.0, 100.0),

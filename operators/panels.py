@@ -90,6 +90,11 @@ class KEZURI_PT_machine(KezuriPanel, bpy.types.Panel):
         layout = self.layout
         settings = context.scene.kezuri
         field(layout, settings.machine, "post", wide=True)
+        field(layout, settings.machine, "preset", wide=True)
+        if settings.machine.preset != "POST":       # the picked preset's settings, the user's to change
+            fields(layout, settings.machine, ("travel_x", "travel_y", "travel_z", "z_reach", "clearance_height"))
+            field(layout, settings.machine, "retract", wide=True)
+            fields(layout, settings.machine, ("machine_top_z", "tool_change", "m6_lifts_z", "max_spindle", "max_feed"))
         fields(layout, settings.machine, ("work_offset", "rapid_rate", "output_dir", "orient_spindle"))
         layout.separator()
         field(layout, settings.stock, "plate")

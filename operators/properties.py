@@ -15,7 +15,7 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
 from .. import post as posts
 from ..toolpath import machine as _machine
 from ..toolpath import nibbling as _nibbling
-from . import limits
+from . import limits, machines
 
 _ENUM_ITEMS: dict = {}   # Blender reads dynamic enum strings after the callback returns: keep them alive
 
@@ -82,6 +82,32 @@ def limited(cls, group: str):
 
 
 
+# The menu's names where a preset's label does not fit the sidebar (toolpath/machine.py keeps the full one)
+MACHINE_MENU_NAMES = {"linuxcnc-manual": "LinuxCNC, Manual Change", "linuxcnc-atc": "LinuxCNC, Tool Changer",
+                      "wood-lathe-cxz": "Wood Lathe C-X-Z (Fanuc)", "wood-lathe-cxz-linuxcnc": "Wood Lathe C-X-Z (LinuxCNC)"}
+
+
+def _machine_items():
+    from ..toolpath import machine
+    return [("POST", "Post's Machine", "The machine the chosen post's program assumes (its own preset)")] + [
+        (p.name, MACHINE_MENU_NAMES.get(p.name, p.label), p.description) for p in machine.PRESETS.values()]
+
+
+MACHINE_ITEMS = _machine_items()
+RETRACT_ITEMS = [
+    ("reference", "Reference Return", "Fanuc G91 G28 Z0.: Z to the reference position (machine coordinates)"),
+    ("machine", "Machine Z (G53)", "G53 G00 Z to Machine Top Z: needs a homed machine"),
+    ("clearance", "Clearance Height", "G00 Z to the clearance height above the work zero (a machine not homed)"),
+]
+TOOL_CHANGE_ITEMS = [("atc", "Tool Changer", "M06 changes the tool"),
+                     ("manual", "Manual", "The operator changes the tool at a pause (M00, or an M6 that asks)")]
+
+
+def _fill_machine(self, context):
+    if self.preset != "POST":
+        machines.fill_machine(self, self.preset)
+
+
 class KezuriMachine(bpy.types.PropertyGroup):
     post: EnumProperty(name="Post", items=post_items("milling", first=(DEFAULT_POST,)), default=0,
                        description="Controller the NC program is written for")
@@ -91,6 +117,24 @@ class KezuriMachine(bpy.types.PropertyGroup):
                               description="Rapid traverse speed used for cycle-time estimates (mm/min)")
     output_dir: StringProperty(name="Output Folder", subtype="DIR_PATH", default="",
                                description="Folder for exported NC programs (empty: the preferences' folder)")
+    preset: EnumProperty(name="Machine", items=MACHINE_ITEMS, default="POST", update=_fill_machine,
+                         description="The machine the programs are written for: travel, how high Z reaches, how "
+                                     "the frames lift Z, the tool change (picking one fills the settings below)")
+    travel_x: mm("Travel X", 600.0, "How far the X axis travels")
+    travel_y: mm("Travel Y", 400.0, "How far the Y axis travels (0: no Y axis)")
+    travel_z: mm("Travel Z", 150.0, "How far the Z axis travels")
+    z_reach: mm("Z Reach", 80.0, "How high above the work zero the tool can be lifted")
+    clearance_height: mm("Clearance Height", 20.0, "Where the frames lift Z to on a machine without a "
+                                                   "machine-coordinate retract, above the work zero")
+    retract: EnumProperty(name="Retract", items=RETRACT_ITEMS, default="machine",
+                          description="How Z is lifted at the start, around tool changes and at the end")
+    machine_top_z: mm("Machine Top Z", 0.0, "Machine-coordinate Z of the top of travel (G53)")
+    tool_change: EnumProperty(name="Tool Change", items=TOOL_CHANGE_ITEMS, default="manual",
+                              description="How a tool gets into the spindle")
+    m6_lifts_z: BoolProperty(name="M6 Lifts Z", default=False,
+                             description="The changer's M6 lifts Z by itself (LinuxCNC TOOL_CHANGE_QUILL_UP)")
+    max_spindle: FloatProperty(name="Max Spindle", default=24000.0, description="Fastest spindle speed (rpm)")
+    max_feed: FloatProperty(name="Max Feed", default=6000.0, description="Fastest cutting feed (mm/min)")
     orient_spindle: BoolProperty(name="Orient Spindle (M19)", default=False,
                                  description="Fanuc posts: M19 before each tool change, for a changer that needs "
                                              "the spindle keys aligned (a post without it refuses the export)")
@@ -146,7 +190,8 @@ class KezuriEngrave(bpy.types.PropertyGroup):
     finish_feed: FloatProperty(name="Flat Feed", default=600.0, min=0.0, description="Cutting feed (mm/min)")
     plunge_feed: FloatProperty(name="Plunge Feed", default=300.0, min=0.0, description="Plunge feed (mm/min)")
     clearance_z: mm("Clearance Plane", 20.0, "Height of rapid moves between cuts", minimum=0.0)
-    safe_z: mm("Safe Z", 100.0, "Height for tool changes and the program end", minimum=0.0)
+    safe_z: mm("Safe Z", 0.0, "Height where each operation starts and ends; 0: the machine's clearance height "
+                              "(tool changes and the program end lift Z as the machine profile says)", minimum=0.0)
     show_rapids: BoolProperty(name="Show Rapids", default=True, description="Show rapid moves as well")
 
 

@@ -23,6 +23,7 @@ from . import convert
 from . import gate
 from .common import SteppedOperator
 from .exporting import NCExport
+from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -111,13 +112,15 @@ def extension_for(post_name: str) -> str:
     return posts.extension(POST_FAMILIES, post_name)
 
 
-def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str = False, checked: bool = False) -> str:
-    """Write the program; the export gate simulates it first unless the caller has (``checked``)."""
+def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str = False, checked: bool = False,
+                  machine=None) -> str:
+    """Write the program; the export gate simulates it first unless the caller has (``checked``);
+    ``machine``: the machine profile (None: the post's own)."""
     post = posts.create(POST_FAMILIES, post_name, work_offset=job.result.program.work_offset,
-                        max_table_rpm=job.settings.max_table_rpm)
+                        max_table_rpm=job.settings.max_table_rpm, **({} if machine is None else {"machine": machine}))
     text = post.to_text(job.result.program)
     if not checked:
-        gate.check(simulation(job), allow)
+        gate.check(simulation(job), allow, machine=post.machine)
     return write_atomic(path, text)
 
 
@@ -178,7 +181,8 @@ class KEZURI_OT_rotary_export(NCExport, bpy.types.Operator):
 
     def write(self, context) -> str:
         job = run_rotary(context.scene, context.evaluated_depsgraph_get())
-        return export_rotary(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged)
+        return export_rotary(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged,
+                             machine=scene_machine(context.scene.kezuri.machine, POST_FAMILIES, self.post))
 
 
 class KEZURI_OT_mark_pocket(bpy.types.Operator):
@@ -216,6 +220,7 @@ CLASSES = (KEZURI_OT_rotary_generate, KEZURI_OT_rotary_export, KEZURI_OT_mark_po
 def batch_arguments(p):
     p.add_argument("--blend", help="a .blend with the block as Kezuri stock and pocket outlines marked")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
+    machine_arguments(p)
     gate.allow_findings_argument(p)
 
 
@@ -227,11 +232,13 @@ def batch(args) -> dict:
     if not args.blend:
         samples.rotary_block(scene)
     post_name = args.post or scene.kezuri.rotary.post
+    machine = batch_machine(args, scene, POST_FAMILIES, post_name)
     started = time.perf_counter()
     job = run_rotary(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "rotary"))
     seconds = time.perf_counter() - started
-    checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
-    nc_path = export_rotary(job, post_name, os.path.join(args.out, f"rotary{extension_for(post_name)}"), checked=True)
+    checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"), machine=machine)
+    nc_path = export_rotary(job, post_name, os.path.join(args.out, f"rotary{extension_for(post_name)}"), checked=True,
+                            machine=machine)
     if batchio.shown():
         show_rotary(scene, job)
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "rotary-toolpaths.png"),
@@ -244,6 +251,7 @@ def batch(args) -> dict:
         "toolpaths_preview": toolpaths_png,
         "workflow": "rotary",
         "post": post_name,
+        "machine": machine.summary(),
         "files": [nc_path],
         "preview": png,
         "toolpath_seconds": round(seconds, 3),

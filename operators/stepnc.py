@@ -25,6 +25,7 @@ from . import convert
 from . import gate
 from .common import run_reported
 from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument
+from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
 from .properties import post_items, post_number
 from .translations import iface, translate_message
@@ -134,18 +135,19 @@ def show_workplan(scene, loaded, program=None) -> list:
     return objects
 
 
-def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progress=None) -> tuple:
+def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progress=None, profile=None) -> tuple:
     """Convert the workplan, simulate it (the export gate) and write it: (path, program, gate's
-    simulation job, gate report)."""
+    simulation job, gate report).  ``profile``: the machine (default: Machine & Stock's for the post)."""
     loaded = load_scene_workplan(scene)
     program = scene_program(scene, loaded)
     machine = scene.kezuri.machine
-    post = machine_post(POST_FAMILIES, post_name, machine.work_offset, machine.orient_spindle)
+    profile = profile or scene_machine(machine, POST_FAMILIES, post_name)
+    post = machine_post(POST_FAMILIES, post_name, machine.work_offset, machine.orient_spindle, profile)
     if post.needs_texture:
         raise posts.PostError(f"the {post.name} post writes textured engravings only; pick another post")
     text = post.to_text(program)
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
-    checked, report = gate.check(simulation((loaded, program, frame)), allow, progress)
+    checked, report = gate.check(simulation((loaded, program, frame)), allow, progress, machine=post.machine)
     return write_atomic(path, text), program, checked, report
 
 
@@ -334,6 +336,7 @@ def batch_arguments(p):
     p.add_argument("--input", help="ISO 14649 Part 21 file (.stp, .p21); default: a built-in two-pocket plate")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES, texture=False))
     orient_spindle_argument(p)
+    machine_arguments(p)
     p.add_argument("--order", help="workingstep instance ids in the order to cut, e.g. 13,14,10 (default: "
                                    "the workplan's order); workingsteps left out are not cut")
     gate.allow_findings_argument(p)
@@ -386,6 +389,7 @@ def batch(args) -> dict:
     from .common import Progress
     post_name = args.post or "fanuc"
     batch_orient_spindle(args, scene, POST_FAMILIES, post_name)
+    profile = batch_machine(args, scene, POST_FAMILIES, post_name)
     try:
         if not os.path.isfile(path):
             raise FileNotFoundError(f"no such ISO 14649 file: {path}")
@@ -395,7 +399,7 @@ def batch(args) -> dict:
             apply_order(scene, args.order, path if staging is None else "the built-in sample")
         nc_path, program, checked, gate_report = export_nc(
             scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"), args.allow_findings,
-            Progress(None, "check"))
+            Progress(None, "check"), profile)
         if staging is not None:
             path = sample_file(args.out)
             scene.kezuri.stepnc.filepath = os.path.abspath(path)    # the scene points at the kept copy
@@ -426,6 +430,7 @@ def batch(args) -> dict:
         "toolpaths_preview": toolpaths_png,
         "input": os.path.abspath(path),
         "post": post_name,
+        "machine": profile.summary(),
         "files": [nc_path],
         "preview": png,
         "workingsteps": workingsteps,

@@ -227,6 +227,70 @@ PROPERTY_TEXTS = {
     "Output Folder": "出力フォルダー",
     "Folder for exported NC programs (empty: the preferences' folder)":
         "NCプログラムの書き出し先フォルダー（空欄：プリファレンスのフォルダー）",
+    # Machine profile (Machine & Stock > Machine and its settings)
+    "Machine": "機械",
+    "The machine the programs are written for: travel, how high Z reaches, how the frames lift Z, the tool "
+    "change (picking one fills the settings below)":
+        "プログラムを書き出す対象の機械：ストローク、Zが届く高さ、Zの退避方法、工具交換（選ぶと下の設定に値が入ります）",
+    "Post's Machine": "ポストの既定の機械",
+    "The machine the chosen post's program assumes (its own preset)": "選んだポストのプログラムが前提とする機械（ポスト既定のプリセット）",
+    "Hobby router (GRBL)": "ホビー用ルーター（GRBL）",
+    "GRBL 1.1 hobby router, not homed, bits changed by hand at an M00 pause, Z zeroed on the top":
+        "GRBL 1.1 のホビー用ルーター。原点復帰なし、M00 の一時停止で手で刃物を交換し、Zは上面でゼロ合わせ",
+    "LinuxCNC, Manual Change": "LinuxCNC（手動工具交換）",
+    "LinuxCNC router or mill, homed, M6 stops and asks for the tool (hal_manualtoolchange)":
+        "LinuxCNC のルーターまたはフライス盤。原点復帰済み、M6 で停止して工具を求めます（hal_manualtoolchange）",
+    "LinuxCNC, Tool Changer": "LinuxCNC（自動工具交換）",
+    "LinuxCNC mill, homed, tool changer; M6 lifts Z (TOOL_CHANGE_QUILL_UP = 1)":
+        "LinuxCNC フライス盤。原点復帰済み、自動工具交換装置付き。M6 でZが上がります（TOOL_CHANGE_QUILL_UP = 1）",
+    "Machining centre (Fanuc 0i-MF)": "マシニングセンタ（FANUC 0i-MF）",
+    "Fanuc 0i-MF vertical machining centre with a tool changer": "自動工具交換装置付きの FANUC 0i-MF 立形マシニングセンタ",
+    "Wood Lathe C-X-Z (Fanuc)": "木工旋盤 C-X-Z（FANUC）",
+    "Rotating face plate (C) with a ball bit on X and Z (seed 001)": "回転する面板（C）と、XとZで動くボールビット（シード001）",
+    "Wood Lathe C-X-Z (LinuxCNC)": "木工旋盤 C-X-Z（LinuxCNC）",
+    "Rotating face plate (C) with a ball bit on X and Z, homed LinuxCNC control (seed 001)":
+        "回転する面板（C）と、XとZで動くボールビット。原点復帰済みの LinuxCNC 制御（シード001）",
+    "Turn-mill (Fanuc 0i-T)": "複合加工機（FANUC 0i-T）",
+    "Fanuc 0i-T turning centre with driven tools and a C axis (seed 003)":
+        "回転工具とC軸を持つ FANUC 0i-T ターニングセンタ（シード003）",
+    "Turret punch (Amada 04P)": "タレットパンチ（アマダ 04P）",
+    "Amada turret punch press with the 04P control (seed 004)": "04P 制御のアマダ製タレットパンチプレス（シード004）",
+    "Travel X": "ストローク X",
+    "How far the X axis travels (mm)": "X軸の移動量 (mm)",
+    "Travel Y": "ストローク Y",
+    "How far the Y axis travels (0: no Y axis) (mm)": "Y軸の移動量（0：Y軸なし）(mm)",
+    "Travel Z": "ストローク Z",
+    "How far the Z axis travels (mm)": "Z軸の移動量 (mm)",
+    "Z Reach": "Zの届く高さ",
+    "How high above the work zero the tool can be lifted (mm)": "工具をワーク原点からどこまで上げられるか (mm)",
+    "Clearance Height": "逃げ高さ",
+    "Where the frames lift Z to on a machine without a machine-coordinate retract, above the work zero (mm)":
+        "機械座標で退避できない機械で、開始・工具交換・終了時にZを上げる高さ（ワーク原点から）(mm)",
+    "Retract": "Z退避",
+    "How Z is lifted at the start, around tool changes and at the end": "開始時・工具交換の前後・終了時にZを上げる方法",
+    "Reference Return": "原点復帰",
+    "Fanuc G91 G28 Z0.: Z to the reference position (machine coordinates)": "FANUC G91 G28 Z0.：Zを原点（機械座標）へ",
+    "Machine Z (G53)": "機械座標Z (G53)",
+    "G53 G00 Z to Machine Top Z: needs a homed machine": "G53 G00 Z で「機械座標の上端Z」へ。原点復帰済みの機械が必要です",
+    "G00 Z to the clearance height above the work zero (a machine not homed)":
+        "G00 Z でワーク原点上の逃げ高さへ（原点復帰しない機械）",
+    "Machine Top Z": "機械座標の上端Z",
+    "Machine-coordinate Z of the top of travel (G53) (mm)": "Zストローク上端の機械座標値 (G53) (mm)",
+    "Tool Change": "工具交換",
+    "How a tool gets into the spindle": "工具を主軸に取り付ける方法",
+    "Tool Changer": "自動工具交換",
+    "M06 changes the tool": "M06 で工具を交換します",
+    "Manual": "手動",
+    "The operator changes the tool at a pause (M00, or an M6 that asks)": "一時停止中にオペレーターが工具を交換します（M00、または問い合わせる M6）",
+    "M6 Lifts Z": "M6でZ上昇",
+    "The changer's M6 lifts Z by itself (LinuxCNC TOOL_CHANGE_QUILL_UP)": "工具交換装置の M6 が自らZを上げます（LinuxCNC TOOL_CHANGE_QUILL_UP）",
+    "Max Spindle": "最高主軸回転",
+    "Fastest spindle speed (rpm)": "主軸の最高回転数 (rpm)",
+    "Max Feed": "最大送り",
+    "Fastest cutting feed (mm/min)": "最大の切削送り速度 (mm/min)",
+    "Height where each operation starts and ends; 0: the machine's clearance height (tool changes and the program "
+    "end lift Z as the machine profile says) (mm)":
+        "各工程の開始・終了の高さ。0：機械の逃げ高さ（工具交換とプログラム終了時のZ退避は機械プロファイルに従います）(mm)",
     "Orient Spindle (M19)": "主軸オリエント (M19)",
     "Fanuc posts: M19 before each tool change, for a changer that needs the spindle keys aligned (a post "
     "without it refuses the export)":
@@ -800,6 +864,34 @@ MESSAGE_TEMPLATES = {
         "切断輪郭の線分 {0} の長さは {1} mm で、NCワードの分解能 {2} mm より短いです",
     "machine profile {} says no sheet size (sheet max): the part cannot be placed":
         "機械プロファイル {0} に板材の大きさ（最大板材）がありません。部品を配置できません",
+    # the machine profile (toolpath/machine.py, the posts' frames, operators/exporting.py)
+    "Machine & Stock: Machine {} is a {} machine and the {} post writes {} programs; pick a {} machine or Post's Machine":
+        "機械と素材：機械 {0} は {1} 用の機械で、{2} ポストは {3} 用のプログラムを書きます。{4} 用の機械か「ポストの既定の機械」を選んでください",
+    "Engrave: Safe Z 0 takes the machine's Clearance Height, {} mm, below the Clearance Plane {} mm: give Safe Z, lower the Clearance Plane or raise the machine's Clearance Height":
+        "彫刻：安全高さ Z が 0 のときは機械の逃げ高さ {0} mm を使いますが、これはクリアランス高さ {1} mm より低い値です。安全高さ Z を指定するか、クリアランス高さを下げるか、機械の逃げ高さを上げてください",
+    "line {}: G53 moves in machine coordinates, which the reader does not know (only a Z lift is followed): {}":
+        "{0}行目：G53 は機械座標での移動で、読み込み側はその位置を知りません（Zの上昇だけを扱います）：{1}",
+    "Machine & Stock: Clearance Height = {} mm is above Z Reach = {} mm":
+        "機械と素材：逃げ高さ = {0} mm が Zの届く高さ = {1} mm を超えています",
+    "{}: Tool Change = {}: this post writes {} tool changes only":
+        "{0}：工具交換 = {1}：このポストが書ける工具交換は {2} だけです",
+    "{} spindle speed S {} is above the {} rpm of the machine {} (machine setting Max Spindle)":
+        "{0} 主軸回転数 S {1} が機械 {3} の {2} rpm を超えています（機械の設定「最高主軸回転」）",
+    "{} feed {} mm/min is above the {} mm/min of the machine {} (machine setting Max Feed)":
+        "{0} 送り {1} mm/min が機械 {3} の {2} mm/min を超えています（機械の設定「最大送り」）",
+    "{}: Retract = {} is not a move this control has; choose {}":
+        "{0}：Z退避 = {1} はこの制御装置にない動作です。{2} を選んでください",
+    "{} {} mm is above the {} mm the machine {} reaches above the work zero (machine setting Z Reach); lower it or "
+    "raise Z Reach if the machine really reaches it":
+        "{0} {1} mm が、機械 {3} がワーク原点から届く {2} mm を超えています（機械の設定「Zの届く高さ」）。"
+        "下げるか、機械が本当に届くなら「Zの届く高さ」を上げてください",
+    "the program spans {} mm along {} (from {} to {}), more than the {} mm {} travel of the machine {} (machine "
+    "setting Travel {})":
+        "プログラムは {1} 方向に {0} mm（{2} から {3} まで）にわたり、機械 {6} の {5} ストローク {4} mm を超えています"
+        "（機械の設定「ストローク {7}」）",
+    "the program lifts Z to {} mm above the work zero, higher than the {} mm the machine {} reaches (machine "
+    "setting Z Reach)":
+        "プログラムはZをワーク原点から {0} mm まで上げ、機械 {2} が届く {1} mm を超えています（機械の設定「Zの届く高さ」）",
     "the design is flat (Z {} mm everywhere) and no stock stands above it: nothing to carve (Stock Above in the Carve panel gives the stock)":
         "デザインが平ら（どこも Z {0} mm）で、その上に素材がありません。削るものがありません（素材は曲面加工パネルの「上面の余肉」で与えます）",
     "{}: a path relative to the .blend file ('//') needs the .blend saved first":

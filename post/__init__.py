@@ -18,14 +18,15 @@ for _module in pkgutil.iter_modules(__path__):
     importlib.import_module(f"{__name__}.{_module.name}")
 
 
-def milling_post(name: str, work_offset: str | None = None) -> GcodePost:
-    """A 3-axis milling post by name (``fanuc``, ``fanuc-macro``, ``linuxcnc``, ``grbl`` ...)."""
-    return create("milling", name, work_offset=work_offset)
+def milling_post(name: str, work_offset: str | None = None, machine=None) -> GcodePost:
+    """A 3-axis milling post by name (``fanuc``, ``fanuc-macro``, ``linuxcnc``, ``grbl`` ...), for
+    ``machine`` (a :class:`toolpath.machine.MachineProfile`; None: the post's own default machine)."""
+    return create("milling", name, work_offset=work_offset, **({} if machine is None else {"machine": machine}))
 
 
-def rotary_post(name: str, work_offset: str | None = None, max_table_rpm: float | None = None):
+def rotary_post(name: str, work_offset: str | None = None, max_table_rpm: float | None = None, machine=None):
     """A C-X-Z rotary-table post by its choice word (``linuxcnc``, ``fanuc`` ...)."""
-    options = {"work_offset": work_offset}
+    options = {"work_offset": work_offset, **({} if machine is None else {"machine": machine})}
     if max_table_rpm is not None:
         options["max_table_rpm"] = max_table_rpm
     return create("cxz", name, **options)

@@ -95,9 +95,28 @@ class FanucPost(GcodePost):
     program_number = "O0001"
     limits = FANUC_MILL_LIMITS
 
-    def __init__(self, work_offset: str | None = None, orient_spindle: bool = False):
-        super().__init__(work_offset)
+    default_machine = "fanuc-vmc"
+    states_machine = True
+    # The frames: G91 G28 Z0. (reference return), G90 G53 Z.. (machine coordinates) or G00 Z.. (the
+    # clearance height); the tool change itself is always at the reference position.  A machining
+    # centre's M06 runs the changer, so a manual change is refused rather than written as M06.
+    retracts = ("reference", "machine", "clearance")
+    tool_changes = ("atc",)
+
+    def __init__(self, work_offset: str | None = None, orient_spindle: bool = False, machine=None):
+        super().__init__(work_offset, machine)
         self.orient_spindle = orient_spindle     # M19 before M06, for changers that need the keys aligned
+
+    def lift(self):
+        if self.machine.retract == "machine":
+            return [f"G90 G53 Z{self.n(self.machine.machine_top_z)}"]
+        return super().lift()
+
+    def after_load(self, op, first):
+        """Nothing: the change was made at the reference position (G91 G28 Z0. before M06), where
+        the changer leaves Z (FANUC 0i-MF operator's manual B-64604EN, reference position return:
+        the reference position is where the tool is changed)."""
+        return []
 
     def length_offset(self, op):
         return [f"G43 Z{self.n(op.safe_z)} H{op.tool.number:02d}", f"Z{self.n(op.clearance_z)}"]
@@ -110,7 +129,9 @@ class FanucPost(GcodePost):
                 f"T{op.tool.number:02d} M06"]
 
     def ending(self, program):
-        return ["M05", "G91 G28 Z0.", "G28 X0. Y0.", "G90", "M30"]
+        if self.machine.retract == "reference":
+            return ["M05", "G91 G28 Z0.", "G28 X0. Y0.", "G90", "M30"]
+        return ["M05", *self.lift(), "M30"]
 
 
 class FanucMacroPost(FanucPost):

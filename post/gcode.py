@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..toolpath.machine import MachineProfile
 from ..toolpath.program import FEED, RAPID, Operation, Program
 from . import words
-from .registry import ControllerLimits, Post, PostError
+from .registry import ControllerLimits, Post, PostError, default_machine
 
 
 def fmt(value: float, decimals: int) -> str:
@@ -91,15 +92,37 @@ class GcodePost(Post):
     program_number = None        # "O0001" for Fanuc
     percent_wrapped = True
 
-    def __init__(self, work_offset: str | None = None):
+    # How this control can lift Z in the frames (machine.RETRACTS it writes); a profile asking for
+    # another is refused naming the setting.
+    retracts: tuple = ("machine", "clearance")
+    tool_changes: tuple = ("atc", "manual")
+
+    def __init__(self, work_offset: str | None = None, machine: MachineProfile | None = None):
         self.work_offset = work_offset
+        self.machine = machine if machine is not None else default_machine(type(self))
+        self.frame_offset = work_offset or "G54"     # the work offset of the program being written
 
     # ----- hooks -------------------------------------------------------------------
     def preamble(self, program: Program) -> list:
         return ["G21 G17 G40 G49 G80 G90"]
 
+    def lift(self) -> list:
+        """Z to the safe height of the frames, before any XY (or C) move: the machine-coordinate
+        retract where the profile says the machine has one, else the profile's clearance height."""
+        machine = self.machine
+        if machine.retract == "machine":
+            return [f"G53 G00 Z{self.n(machine.machine_top_z)}"]
+        if machine.retract == "clearance":
+            return [f"G00 G90 {self.frame_offset} Z{self.n(machine.clearance_z)}"]
+        return ["G91 G28 Z0.", "G90"]
+
     def tool_change(self, op: Operation, first: bool) -> list:
         return [f"T{op.tool.number} M06"]
+
+    def after_load(self, op: Operation, first: bool) -> list:
+        """After the tool load (M06, or the pause of a manual change) and before the XY move: Z
+        is not known to be clear of the work, so it is lifted first."""
+        return self.lift()
 
     def spindle_on(self, op: Operation) -> str:
         return f"S{int(round(op.spindle_rpm))} {'M03' if op.spindle_cw else 'M04'}"
@@ -109,6 +132,39 @@ class GcodePost(Post):
 
     def ending(self, program: Program) -> list:
         return ["M05", "G91 G28 Z0.", "G90", "M30"]
+
+    def check_machine(self, program: Program) -> None:
+        """Refuse a program the machine profile says the machine cannot run as written: a retract
+        or a tool change this control's frames cannot do, a Z above what the machine reaches over
+        the work zero (the operation's safe and clearance heights, any move), a spindle speed or a
+        feed above the machine's.  Each message names the numbers and the setting."""
+        machine = self.machine
+        if machine is None:
+            return
+        where = f"the {self.name} post, machine {machine.label!r}"
+        if machine.retract not in self.retracts:
+            raise PostError(f"{where}: Retract = {machine.retract!r} is not a move this control has; choose "
+                            f"{' or '.join(repr(r) for r in self.retracts)}")
+        if machine.tool_change not in self.tool_changes:
+            raise PostError(f"{where}: Tool Change = {machine.tool_change!r}: this post writes "
+                            f"{' or '.join(repr(t) for t in self.tool_changes)} tool changes only")
+        for op in program.operations:
+            what = f"{self.name} post, operation {op.name!r}:"
+            z_top = float(np.max(op.xyz[:, 2])) if len(op) else -np.inf
+            for z, name in ((op.safe_z, "safe Z (the workflow's Safe Z, or the STEP-NC security plane)"),
+                            (op.clearance_z, "clearance height (the workflow's clearance)"),
+                            (float(op.start[2]), "start height"), (z_top, "highest move, Z")):
+                problem = machine.reach_problem(z, f"{what} its {name}")
+                if problem:
+                    raise PostError(problem)
+            if op.spindle_rpm > machine.max_spindle_rpm + 1e-9:
+                raise PostError(f"{what} spindle speed S {op.spindle_rpm:g} is above the {machine.max_spindle_rpm:g} "
+                                f"rpm of the machine {machine.label!r} (machine setting Max Spindle)")
+            cutting = op.kind != RAPID
+            if np.any(cutting) and float(np.max(op.feed[cutting])) > machine.max_feed + 1e-9:
+                raise PostError(f"{what} feed {float(np.max(op.feed[cutting])):g} mm/min is above the "
+                                f"{machine.max_feed:g} mm/min of the machine {machine.label!r} (machine setting "
+                                f"Max Feed)")
 
     def check(self, program: Program):
         for op in program.operations:
@@ -131,6 +187,7 @@ class GcodePost(Post):
 
     # Lines the header adds after the units: a dialect's conventions worth stating in the file.
     conventions: tuple = ()
+    states_machine = False      # the header names the machine profile the frames were written for
 
     def operation_seconds(self, op: Operation, rapid_rate: float) -> float:
         """Estimated time of one operation on this machine."""
@@ -141,6 +198,8 @@ class GcodePost(Post):
         limit = self.limits.max_line_length
         lines = [*comment_lines(f"KEZURI CAM - {program.name}", limit), f"(POST: {comment_text(self.name)})",
                  "(UNITS: MM)", *self.conventions]
+        if self.states_machine and self.machine is not None:
+            lines += [f"({comment_text(line)})" for line in self.machine.describe()]
         for tool in program.tools():
             lines += comment_lines(tool.describe(), limit, "TOOL")
         total = 0.0
@@ -189,20 +248,22 @@ class GcodePost(Post):
                 limits.check_word(word, float(values[bad[0]]), f"{what}, move {int(bad[0]) + 1}")
 
     def to_text(self, program: Program) -> str:
+        work_offset = self.frame_offset = self.work_offset or program.work_offset
         lines = self.opening(program)
-        work_offset = self.work_offset or program.work_offset
         tool = None
         for index, op in enumerate(program.operations):
             self.check_limits(op)
             lines.append(f"(OPERATION {index + 1}: {comment_text(op.name)})")
             if tool is None or op.tool.number != tool.number:   # never a change to the tool in the spindle
                 lines += self.tool_change(op, tool is None)
+                lines += self.after_load(op, tool is None)
                 tool = op.tool
             lines.append(f"G00 G90 {work_offset} X{self.n(op.start[0])} Y{self.n(op.start[1])} {self.spindle_on(op)}")
             lines += self.length_offset(op)
             lines += self.operation_moves(op)
             lines.append(f"G00 Z{self.n(op.safe_z)}")
         lines += self.ending(program)
+        self.check_machine(program)      # after the control's word ranges: those name the move
         body = "\n".join(fitted(lines, self.limits.max_line_length, self.name)) + "\n"
         return f"%\n{body}%\n" if self.percent_wrapped else body
 

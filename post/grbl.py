@@ -41,14 +41,28 @@ class GrblPost(GcodePost):
     def preamble(self, program):
         return ["G21 G17 G90 G94"]
 
+    default_machine = "grbl-router"
+    states_machine = True
+    tool_changes = ("manual",)      # Grbl 1.1 has no M6: every change is the operator's, at M00
+
+    def lift_text(self) -> str:
+        machine = self.machine
+        return (f"MACHINE Z {self.n(machine.machine_top_z)}" if machine.retract == "machine"
+                else f"Z {self.n(machine.clearance_z)}")
+
     def tool_change(self, op, first):
+        """At the start the operator has loaded the bit and zeroed Z on the plate top (the tool
+        touches it); at a later change the program stops at M00 with Z lifted.  Either way the
+        program lifts Z before it moves XY (:meth:`after_load`), and the comment says so."""
         label = comment_text(op.tool.describe())
         if first:
-            return [f"(LOAD {label}, ZERO Z ON THE PLATE TOP)"]
-        return ["M05", f"G00 Z{self.n(op.safe_z)}", f"(CHANGE TO {label}, ZERO Z ON THE PLATE TOP)", "M00"]
+            return [f"(BEFORE THE START: LOAD {label}, ZERO Z ON THE PLATE TOP. THE PROGRAM LIFTS TO "
+                    f"{self.lift_text()} BEFORE XY)"]
+        return ["M05", *self.lift(), f"(CHANGE TO {label}, ZERO Z ON THE PLATE TOP, CYCLE START. THE PROGRAM "
+                                      f"LIFTS TO {self.lift_text()} BEFORE XY)", "M00"]
 
     def length_offset(self, op):
         return [f"G00 Z{self.n(op.safe_z)}"]
 
     def ending(self, program):
-        return ["M05", "M30"]
+        return ["M05", *self.lift(), "M30"]

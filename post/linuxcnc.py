@@ -1,7 +1,7 @@
 """LinuxCNC (rs274ngc) dialect: checked in the tests by LinuxCNC's own ``rs274`` interpreter."""
 from __future__ import annotations
 
-from .gcode import GcodePost
+from .gcode import GcodePost, comment_text
 from .registry import ControllerLimits
 
 # LinuxCNC 2.9 documentation, "G-code overview" and "G-Codes" / "M-Codes" pages.
@@ -35,15 +35,41 @@ class LinuxCNCPost(GcodePost):
     decimals = 4
     limits = LINUXCNC_LIMITS
 
+    default_machine = "linuxcnc-manual"
+    states_machine = True
+
     def tool_change(self, op, first):
-        return ["M05", "G49", f"T{op.tool.number} M06"]
+        """Spindle stopped, Z lifted (unless the profile says M6 lifts it: TOOL_CHANGE_QUILL_UP),
+        the length offset cancelled, then M6; on a manual change M6 stops and asks for the tool
+        (hal_manualtoolchange), so the comment says which."""
+        ask = ([f"(THE TOOL CHANGE ASKS FOR {comment_text(op.tool.describe())}: LOAD IT, THEN CONTINUE. Z IS "
+                f"LIFTED BEFORE XY MOVES)"] if self.machine.manual_change else [])
+        return ["M05", *self.offset_off(lift=not self.machine.m6_retracts), *ask, f"T{op.tool.number} M06"]
+
+    def offset_off(self, lift: bool = True) -> list:
+        """The length offset cancelled and Z lifted: to the machine's top with the offset off (the
+        spindle's gauge line to Machine Top Z whatever the tool), or to the clearance height while
+        the tool's offset still counts (the tip at that height above the work zero)."""
+        if not lift:
+            return ["G49"]
+        if self.machine.retract == "machine":
+            return ["G49", *self.lift()]
+        return [*self.lift(), "G49"]
+
+    def after_load(self, op, first):
+        """Z first: G53 to the top of travel (homed), or with the new tool's offset the clearance height."""
+        if self.machine.retract == "clearance":
+            return [f"G43 H{op.tool.number}", *self.lift()]
+        return self.lift()
 
     def preamble(self, program):
         # G64 P: path blending within 0.01 mm, so texture ramps are cut as written.
         return ["G21 G17 G40 G49 G80 G90 G94", "G64 P0.01"]
 
     def length_offset(self, op):
+        if self.machine.retract == "clearance":       # G43 H is already on (after_load)
+            return [f"G00 Z{self.n(op.safe_z)}"]
         return [f"G43 H{op.tool.number}", f"G00 Z{self.n(op.safe_z)}"]
 
     def ending(self, program):
-        return ["M05", "G49", "M30"]
+        return ["M05", *self.offset_off(), "M30"]

@@ -26,6 +26,7 @@ from __future__ import annotations
 import zlib
 from dataclasses import dataclass
 
+from ..toolpath import machine as machines
 from ..toolpath.errors import InputError
 
 # Machine families: the kind of machine a post's program runs on.
@@ -107,6 +108,8 @@ class Post:
     extension: str = ".nc"
     order: int = 100
     needs_texture: bool = False       # writes only programs that carry a gouge texture (the macro post)
+    default_machine: str = ""         # the machine preset (toolpath.machine) a user who picks only the post
+                                      # gets; empty: the family's (machine.DEFAULT_FOR_FAMILY)
     limits: ControllerLimits = ControllerLimits()
 
     def __init_subclass__(cls, **kwargs):
@@ -169,6 +172,13 @@ def find(families, choice: str, *, texture: bool | None = None):
             return cls
     names = ", ".join(key_of(cls) for cls in candidates)
     raise UnknownPostError(f"unknown post {choice!r}; choose one of {names}")
+
+
+def default_machine(cls):
+    """The machine profile a post's program assumes when the user picks only the post (None for a
+    family without machines, e.g. CL data)."""
+    name = cls.default_machine or machines.DEFAULT_FOR_FAMILY.get(cls.family)
+    return machines.preset(name) if name else None
 
 
 def create(families, choice: str, **options):

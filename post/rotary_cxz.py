@@ -41,8 +41,9 @@ class RotaryCXZPost(GcodePost):
     angle_decimals = 4
     feed_decimals = 4
 
-    def __init__(self, work_offset: str | None = None, max_table_rpm: float = kinematics.DEFAULT_MAX_TABLE_RPM):
-        super().__init__(work_offset)
+    def __init__(self, work_offset: str | None = None, max_table_rpm: float = kinematics.DEFAULT_MAX_TABLE_RPM,
+                 machine=None):
+        super().__init__(work_offset, machine=machine)
         self.max_table_rpm = max_table_rpm
 
     def a(self, value: float) -> str:
@@ -71,13 +72,14 @@ class RotaryCXZPost(GcodePost):
         return kinematics.cycle_time(op, rapid_rate, self.max_table_rpm)
 
     def to_text(self, program: Program) -> str:
+        work_offset = self.frame_offset = self.work_offset or program.work_offset
         lines = self.opening(program)
-        work_offset = self.work_offset or program.work_offset
         tool = None
         for index, op in enumerate(program.operations):
             lines.append(f"(OPERATION {index + 1}: {comment_text(op.name)})")
             if op.tool != tool:
                 lines += self.tool_change(op, tool is None)
+                lines += self.after_load(op, tool is None)       # Z first, then X and C
                 tool = op.tool
             lines.append(f"G00 G90 {work_offset} X{self.n(op.start[0])} C{self.a(op.rotary['c'][0])} "
                          f"{self.spindle_on(op)}")
@@ -86,6 +88,7 @@ class RotaryCXZPost(GcodePost):
             lines += self.rotary_moves(op)
             lines += ["G94", f"G00 Z{self.n(op.safe_z)}"]
         lines += self.ending(program)
+        self.check_machine(program)      # after the control's word ranges: those name the move
         body = "\n".join(lines) + "\n"
         return f"%\n{body}%\n" if self.percent_wrapped else body
 
@@ -123,6 +126,7 @@ class LinuxCNCRotaryPost(RotaryCXZPost, LinuxCNCPost):
     extension = ".ngc"
     decimals = 4
     limits = LINUXCNC_LIMITS
+    default_machine = "wood-lathe-cxz-linuxcnc"
 
 
 class FanucRotaryPost(RotaryCXZPost, FanucPost):
@@ -143,5 +147,7 @@ class FanucRotaryPost(RotaryCXZPost, FanucPost):
     def preamble(self, program):
         return ["G21 G17 G40 G49 G80 G90 G94"]
 
+    default_machine = "wood-lathe-cxz"
+
     def ending(self, program):
-        return ["M05", "G91 G28 Z0.", "G90", "M30"]
+        return ["M05", *self.lift(), "M30"]

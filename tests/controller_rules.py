@@ -41,6 +41,23 @@ made in G01 only, and cancelled (G67) before any rapid or retract (G00), referen
 G53), spindle stop, tool change, stop or program end (M00 M01 M02 M05 M06 M30): every block
 under G66.1 is handed to the macro, which should then have to tell a rapid from a cut.
 
+Where the tool is when XY moves (rule ``safe-z``; milling and C-X-Z controls).  After the program
+start and after every tool load the controller does not know where the tool tip is above the work:
+at the start it is wherever the operator left it (on a hobby router, touching the plate top after
+Z was zeroed there); an ``M00``/``M01`` pause lets the operator change the bit, jog and re-zero
+(Grbl v1.1 "Commands": M0 program pause, no M6; LinuxCNC "M-Codes": M0/M1 pause, and M6 with
+``hal_manualtoolchange`` stops and waits for the operator, while Z moves only if the INI's
+``TOOL_CHANGE_QUILL_UP`` asks for it, [EMCIO] section of the INI reference).  So after these, any
+X, Y or C motion before Z has been raised is a violation: raised means a return to a machine
+position with Z (``G28``/``G30`` Z, FANUC 0i-MF operator's manual B-64604EN "Reference position
+return"; LinuxCNC and Grbl ``G28``/``G30``), a machine-coordinate move with Z (``G53 ... Z``, LinuxCNC
+"G53 Move in Machine Coordinates", Grbl v1.1 G53 on a homed machine), or an absolute rapid to a Z of
+at least ``clearance`` above the work zero (the caller's, e.g. the machine's clearance height).
+One exception, the Fanuc changer: an ``M06`` with Z still at the reference position it was sent
+to (``G28 Z0.`` and no Z move since) leaves Z there, at the top (B-64604EN: the reference position is
+where a machining centre changes tools).  At the program end the same: after the last feed move,
+an X/Y/C move before Z is raised is a violation.
+
 Tool changes (milling controls with a changer): the spindle stopped (M05), for Fanuc Z sent to the
 change position (``G91 G28 Z0.``) and back to G90, the length offset cancelled (G49), never a change
 to the tool already in the spindle, and the offset re-applied (G43 H) before the first cut.  Every
@@ -73,6 +90,8 @@ CONTROLS = {
                          coord=99999.999, decimals=3, point=True, frame="fanuc", changer="turret"),
 }
 EXCLUSIVE_MIN = {"linuxcnc", "linuxcnc-cxz", "turnmill-linuxcnc", "grbl"}   # F must be > 0
+SAFE_Z_CONTROLS = {"fanuc-mill", "fanuc-cxz", "linuxcnc", "linuxcnc-cxz", "grbl"}   # rule "safe-z"
+DEFAULT_CLEARANCE = 10.0      # mm above the work zero: the least absolute G00 Z counted as a raise
 
 
 def _blocks(text: str):
@@ -82,9 +101,73 @@ def _blocks(text: str):
         yield number, line, bare, WORD.findall(bare.upper())
 
 
-def check(text: str, control: str) -> list:
+def check(text: str, control: str, clearance: float = DEFAULT_CLEARANCE) -> list:
+    """The violations of ``text`` on ``control``; ``clearance``: the lowest absolute ``G00 Z`` (mm
+    above the work zero) that counts as lifting the tool clear of the work (rule ``safe-z``)."""
     if control == "amada-04p":
         return check_punch(text)
+    found = check_blocks(text, control)
+    if control in SAFE_Z_CONTROLS:
+        found += check_safe_z(text, control, clearance)
+    return sorted(found, key=lambda violation: violation[1])
+
+
+def check_safe_z(text: str, control: str, clearance: float) -> list:
+    """Rule ``safe-z`` (see the module's docstring): X/Y/C motion while Z is unknown (after the
+    start, a tool load or a pause) or, after the last feed move, not yet raised."""
+    found = []
+    unknown, low, distance, motion, at_reference = True, False, 90, None, False
+    reason = "the program start"
+    after_last_feed = []          # XY moves with the tool not raised since the last feed move
+    for number, raw, bare, words in _blocks(text):
+        if not bare or bare == "%" or re.match(r"^O\d+", bare):
+            continue              # the frame and the program number (subprograms follow M30)
+        letters = dict((letter, value) for letter, value in reversed(words))
+        gnum = [float(value) for letter, value in words if letter == "G"]
+        ms = [int(float(value)) for letter, value in words if letter == "M"]
+        for g in gnum:
+            if g in (90, 91):
+                distance = int(g)
+            if g in (0, 1, 2, 3):
+                motion = int(g)
+        machine_move = any(g in (28, 30, 53) for g in gnum)
+        raised = False
+        if machine_move and "Z" in letters:
+            raised = True
+        elif "Z" in letters and motion == 0 and distance == 90 and float(letters["Z"]) >= clearance - 1e-9:
+            raised = True
+        xy = [axis for axis in "XYC" if axis in letters]
+        if raised:
+            unknown, low = False, False
+        if xy and (motion is not None or machine_move):
+            if unknown:
+                found.append(("safe-z", number, f"{'/'.join(xy)} move after {reason} before Z is raised "
+                                                f"(G28/G30 Z, G53 Z, or G00 Z{clearance:g} or higher first): {bare!r}"))
+                unknown = False           # one finding per start or load
+            elif low and not raised:
+                after_last_feed.append((number, bare))
+        if "Z" in letters and not raised and not machine_move:
+            low = True
+        if motion in (1, 2, 3) and any(a in letters for a in "XYZC") and not machine_move:
+            low, after_last_feed = True, []
+        # Where M06 leaves Z: at the reference position on a Fanuc changer if it was sent there.
+        if any(g == 28 for g in gnum) and "Z" in letters:
+            at_reference = True
+        elif "Z" in letters:
+            at_reference = False
+        if 6 in ms and not (control.startswith("fanuc") and at_reference):
+            unknown, reason = True, f"the tool load (M06, line {number})"
+        if 0 in ms or 1 in ms:
+            unknown, reason = True, f"the pause (M0{0 if 0 in ms else 1}, line {number})"
+        if any(m in (2, 30) for m in ms):
+            for line, block in after_last_feed:
+                found.append(("safe-z", line, f"X/Y/C move at the program end before Z is raised: {block!r}"))
+            break
+    return found
+
+
+def check_blocks(text: str, control: str) -> list:
+    """Every rule but ``safe-z``: frame, words, ranges, modes, spindle, tool changes."""
     rules = CONTROLS[control]
     found = []
 

@@ -1,5 +1,6 @@
 """batch.py as a user runs it: a separate process with the bpy wheel, files on disk."""
 import json
+import re
 import os
 import subprocess
 import sys
@@ -105,3 +106,62 @@ def test_arguments_after_the_double_dash_when_run_by_blender():
     assert batch_module.script_arguments(["batch.py", "demo", "--out", "d"]) == ["demo", "--out", "d"]
     args = batch_module.parser().parse_args(["rotary", "--post", "fanuc", "--out", "x"])
     assert (args.command, args.post, args.out) == ("rotary", "fanuc", "x")
+
+
+def test_the_report_records_the_machine_and_the_frames_follow_it(runs):
+    """A user who picks only the post gets the post's machine: LinuxCNC with a manual change, homed,
+    Z lifted in machine coordinates around every M6 and before XY."""
+    report = json.loads((runs["a"] / "report.json").read_text())
+    machine = report["machine"]
+    assert machine["name"] == "linuxcnc-manual" and machine["retract"] == "machine"
+    assert machine["z_reach_mm"] == 80.0 and machine["travel_mm"] == [600.0, 400.0, 150.0]
+    lines = [line for line in (runs["a"] / "engrave.ngc").read_text().splitlines() if not line.startswith("(")]
+    for i, line in enumerate(lines):
+        if line.endswith("M06"):
+            assert lines[i + 1] == "G53 G00 Z0." and lines[i + 2].startswith("G00 G90 G54 X")
+    # Safe Z 0 (the panel's default): the machine's clearance height, 20 mm, not 100 above its 80 mm reach
+    z = [float(v) for v in re.findall(r"(?<![G\d])Z(-?[\d.]+)", "\n".join(l for l in lines if "G53" not in l))]
+    assert max(z) == 20.0
+    macro = json.loads((runs["macro"] / "report.json").read_text())["machine"]
+    assert macro["name"] == "fanuc-vmc" and macro["retract"] == "reference"
+
+
+def test_machine_options_set_the_profile_and_bad_ones_are_refused(tmp_path):
+    out = tmp_path / "grbl"
+    batch("engrave", "--post", "grbl", "--machine", "grbl-router", "--clearance-height", "25", "--clearance-max", "45",
+          "--out", str(out))
+    report = json.loads((out / "report.json").read_text())
+    assert (report["machine"]["clearance_height_mm"], report["machine"]["z_reach_mm"]) == (25.0, 45.0)
+    text = (out / "engrave.nc").read_text()
+    first_motion = next(line for line in text.splitlines() if line.startswith("G0"))
+    assert first_motion == "G00 G90 G54 Z25."
+    # a machine clearance below the engraving's Clearance Plane (20 mm) with Safe Z 0: refused naming both
+    done = batch("engrave", "--post", "grbl", "--clearance-height", "15", "--out", str(tmp_path / "bad"), check=False)
+    assert done.returncode == 2 and "Clearance Height, 15 mm, below the Clearance Plane 20 mm" in done.stderr
+    # Clearance Height above Z Reach: refused naming both (exit 2, nothing written)
+    done = batch("engrave", "--post", "grbl", "--machine", "grbl-router", "--clearance-height", "50",
+                 "--clearance-max", "45", "--out", str(tmp_path / "bad"), check=False)
+    assert done.returncode == 2 and "Clearance Height = 50 mm is above Z Reach = 45 mm" in done.stderr
+    # a machine of another family, and a retract the control does not have
+    done = batch("engrave", "--post", "grbl", "--machine", "wood-lathe-cxz", "--out", str(tmp_path / "bad"),
+                 check=False)
+    assert done.returncode == 2 and "is a cxz machine and the grbl post writes milling programs" in done.stderr
+    done = batch("engrave", "--post", "grbl", "--retract", "reference", "--out", str(tmp_path / "bad"), check=False)
+    assert done.returncode == 2 and "Retract = 'reference' is not a move this control has" in done.stderr
+    done = batch("engrave", "--post", "grbl", "--clearance-max", "-5", "--out", str(tmp_path / "bad"), check=False)
+    assert done.returncode == 2 and "--clearance-max" in done.stderr
+    assert not (tmp_path / "bad").exists()
+
+
+def test_a_program_larger_than_the_travel_is_refused_by_the_gate(tmp_path):
+    """The engraving spans 200 mm along X: on a machine with 150 mm of X travel the gate refuses it
+    (exit 3), naming the axis, the extent and the travel; --allow-findings writes it and says so."""
+    done = batch("engrave", "--post", "grbl", "--travel", "150", "400", "100", "--out", str(tmp_path / "no"),
+                 check=False)
+    assert done.returncode == 3, done.stderr[-2000:]
+    assert ("the program spans 200.000 mm along X (from -100.000 to 100.000), more than the 150 mm X travel of "
+            "the machine 'Hobby router (GRBL)'") in done.stderr
+    assert not (tmp_path / "no").exists()
+    batch("engrave", "--post", "grbl", "--travel", "150", "400", "100", "--allow-findings", "--out", str(tmp_path / "yes"))
+    report = json.loads((tmp_path / "yes" / "report.json").read_text())
+    assert report["gate"]["overridden"] and [f["kind"] for f in report["gate"]["findings"]] == ["travel"]

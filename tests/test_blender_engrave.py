@@ -77,7 +77,7 @@ def nc_for_units(unit_mm, system="METRIC"):
     scene.unit_settings.system = system
     scene.unit_settings.scale_length = unit_mm / 1000.0
     samples.name_plate(scene, unit_mm=unit_mm)
-    job = shell.run_engrave(scene, bpy.context.evaluated_depsgraph_get())
+    job = shell.run_engrave(scene, bpy.context.evaluated_depsgraph_get(), post_name="linuxcnc")   # its machine's Safe Z
     from kezuri.post import milling_post
     return milling_post("linuxcnc").to_text(job.baked)
 

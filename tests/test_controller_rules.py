@@ -9,7 +9,7 @@ import pytest
 import controller_rules as rules
 from kezuri import post
 from kezuri.post import amada_punch, turnmill_xzc
-from kezuri.toolpath import engrave, machine, nibbling, placement, rotary, turnmill, unfold
+from kezuri.toolpath import carve, carve_samples, engrave, machine, nibbling, placement, rotary, turnmill, unfold
 from kezuri.toolpath.program import Program
 from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
 from test_engrave import LETTERS, PLATE
@@ -38,6 +38,10 @@ def programs():
     ex1 = to_program(load_workplan(EX1))
     for name, control in (("fanuc", "fanuc-mill"), ("linuxcnc", "linuxcnc"), ("grbl", "grbl")):
         out.append((f"stepnc {name}", control, post.milling_post(name).to_text(ex1)))
+    v, f = carve_samples.wave_relief(cell=2.0)
+    relief = carve.plan(v, f, carve.CarveSettings(scallop=0.05, step_down=4.0)).program
+    for name, control in (("fanuc", "fanuc-mill"), ("linuxcnc", "linuxcnc"), ("grbl", "grbl")):
+        out.append((f"carve {name}", control, post.milling_post(name).to_text(relief)))
     v, f, stock = turnmill.sample_part()
     plan = turnmill.plan(v, f, stock, name="sample").program
     out.append(("turnmill xzc", "turnmill-xzc", turnmill_xzc.TurnMillXZCPost().to_text(plan)))
@@ -60,10 +64,97 @@ def punch_program(contour, joints=2):
                                      origin=profile.sheet_origin, notes=placement.describe(where))
 
 
+def clearance_of(name: str) -> float:
+    """The height the safe-z rule counts as clear: the clearance height of the post's default
+    machine (tests/controller_rules.py knows no posts; the caller gives it)."""
+    for family in ("milling", "cxz"):
+        try:
+            return post.registry.default_machine(post.find(family, name.split()[-1])).clearance_z
+        except post.UnknownPostError:
+            continue
+    return rules.DEFAULT_CLEARANCE
+
+
 def test_every_program_passes_the_controller_rules(programs):
-    assert len(programs) >= 17
-    report = {name: rules.check(text, control)[:3] for name, control, text in programs}
+    assert len(programs) >= 20
+    report = {name: rules.check(text, control, clearance_of(name))[:3] for name, control, text in programs}
     assert {name: found for name, found in report.items() if found} == {}
+    # the rule ran: every milling and C-X-Z program lifts Z (a machine move or the clearance) before XY
+    milling = [text for _, control, text in programs if control in rules.SAFE_Z_CONTROLS]
+    assert len(milling) == 12            # engrave 4 posts, rotary 2, STEP-NC 3, carve 3
+
+
+# The frames the GRBL and LinuxCNC posts wrote before issue 26 (hand-written here, from the engraving
+# program): XY right after the load, Z lifted only after it.
+OLD_GRBL = """G21 G17 G90 G94
+(LOAD T2 6 MM BALL END MILL, ZERO Z ON THE PLATE TOP)
+G00 G90 G54 X-100. Y-49.99 S6000 M03
+G00 Z100.
+G00 Z20.
+Z2.
+G01 Z-2. F300.
+X-80. Z-2.6 F1200.
+G00 Z20.
+G00 Z100.
+M05
+G00 Z100.
+(CHANGE TO T3 1 MM FLAT END MILL, ZERO Z ON THE PLATE TOP)
+M00
+G00 G90 G54 X-3.998 Y-0.188 S12000 M03
+G00 Z100.
+G00 Z20.
+G01 Z-1. F300.
+X3. F600.
+G00 X10. Y10.
+M05
+M30
+"""
+OLD_LINUXCNC = """%
+G21 G17 G40 G49 G80 G90 G94
+G64 P0.01
+M05
+G49
+T2 M06
+G00 G90 G54 X-100. Y-49.99 S6000 M03
+G43 H2
+G00 Z100.
+G00 Z20.
+G01 Z-2. F300.
+X-80. F1200.
+G00 Z100.
+M05
+G49
+M30
+%
+"""
+
+
+def test_the_old_frames_are_caught_at_the_line_that_moves_xy():
+    grbl = rules.check(OLD_GRBL, "grbl", 20.0)
+    assert [(rule, line) for rule, line, _ in grbl] == [("safe-z", 3), ("safe-z", 15), ("safe-z", 20)]
+    messages = {line: message for rule, line, message in grbl}
+    assert "program start" in messages[3] and "X/Y" in messages[3]
+    assert "pause (M00, line 14)" in messages[15]
+    assert "program end" in messages[20]           # X10 Y10 after the last cut, at Z -1
+    linuxcnc = rules.check(OLD_LINUXCNC, "linuxcnc", 20.0)
+    assert [(rule, line) for rule, line, _ in linuxcnc] == [("safe-z", 7)]
+    assert "M06, line 6" in linuxcnc[0][2]
+    # a lift only to 5 mm is not enough when the caller says the clearance is 20 mm
+    low = OLD_LINUXCNC.replace("T2 M06\n", "T2 M06\nG00 Z5.\n")
+    assert [(r, line) for r, line, _ in rules.check(low, "linuxcnc", 20.0)] == [("safe-z", 8)]
+    # and each old program passes once Z is lifted first
+    fixed = OLD_LINUXCNC.replace("T2 M06\n", "T2 M06\nG53 G00 Z0.\n")
+    assert rules.check(fixed, "linuxcnc", 20.0) == []
+    grbl_fixed = (OLD_GRBL.replace("ZERO Z ON THE PLATE TOP)\nG00 G90", "ZERO Z ON THE PLATE TOP)\nG00 Z20.\nG00 G90")
+                  .replace("M00\n", "M00\nG00 Z20.\n").replace("G00 X10. Y10.\n", "G00 Z20.\nX10. Y10.\n"))
+    assert rules.check(grbl_fixed, "grbl", 20.0) == []
+
+
+def test_a_fanuc_change_at_the_reference_position_leaves_z_there():
+    assert rules.check(FANUC_GOOD, "fanuc-mill") == []
+    # without the G28 before M06 the changer rule fires and Z is unknown at the XY move after it
+    found = rules.check(bad(FANUC_GOOD, "G91 G28 Z0.\nG90\nG49\nT01", "G49\nT01"), "fanuc-mill")
+    assert ("safe-z", 7) in [(r, line) for r, line, _ in found]
 
 
 def test_inverse_time_feeds_stay_in_the_fanuc_range(programs):
@@ -177,8 +268,8 @@ def test_the_checker_catches_each_rule(control, text, rule):
 def test_the_good_hand_written_program_passes():
     assert rules.check(FANUC_GOOD, "fanuc-mill") == []
     assert rules.check(MACRO_GOOD, "fanuc-mill") == []
-    assert rules.check("G21 G90\nT1 M06\nG43 H1\nS1000 M03\nG93\nG01 X1 F10\nG94\nM05\nG49\nM30\n",
-                       "linuxcnc") == []
+    assert rules.check("G21 G90\nT1 M06\nG53 G00 Z0\nG43 H1\nS1000 M03\nG93\nG01 X1 F10\nG94\nM05\nG49\n"
+                       "M30\n", "linuxcnc") == []
 
 
 def test_short_moves_are_merged_within_tolerance_and_the_rest_timed_at_the_floor():

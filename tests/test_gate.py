@@ -121,3 +121,34 @@ def test_the_panel_override_covers_the_findings_it_was_given(empty_scene, tmp_pa
     assert os.path.exists(nc)
     assert bpy.ops.kezuri.simulate(workflow="STEPNC") == {"FINISHED"}     # a new simulation: a new decision
     assert props.allow_findings is False and props.acknowledged == ""
+
+
+def test_the_gate_checks_every_move_against_the_machine_profile():
+    """ISO 14649 Example 1 (a 100 x 60 mm plate) on machines too small for it: the gate names the
+    axis, the program's extent and the machine's travel; the reach is checked against the highest
+    Z written (the security plane and the frames' clearance height)."""
+    from kezuri.operators import convert, gate, stepnc as shell
+    from kezuri.toolpath import machine
+    plain = stepnc.load_workplan(os.path.join(FIXTURES, "ex1.stp"))
+    program = stepnc.to_program(plain)
+    setup = shell.simulation((plain, program, convert.WorkFrame(1.0, (0.0, 0.0, 0.0))))
+    points = np.vstack([np.vstack([op.start, op.xyz]) for op in program.operations])
+    heights = [max(op.safe_z, op.clearance_z) for op in program.operations]
+    span = points.max(axis=0) - points.min(axis=0)
+    top = max(points[:, 2].max(), *heights)
+    router = machine.preset("grbl-router")
+    _, report = gate.check(setup, machine=router)                  # fits: 800 x 800 x 100 mm, 60 mm reach
+    assert report["findings"] == []
+    small = router.replace(travel=(float(np.floor(span[0])) - 1.0, 800.0, 100.0))
+    with pytest.raises(gate.GateRefused) as refused:
+        gate.check(setup, machine=small)
+    assert [f.kind for f in refused.value.findings] == ["travel"]
+    assert f"spans {span[0]:.3f} mm along X" in str(refused.value)
+    assert f"more than the {small.travel[0]:g} mm X travel of the machine 'Hobby router (GRBL)'" in str(refused.value)
+    _, report = gate.check(setup, True, machine=small)
+    assert report["overridden"] and report["findings"][0]["kind"] == "travel"
+    # the frames lift to the clearance height (20 mm on the router): a reach below it is refused
+    low = router.replace(clearance_max=top - 1.0, clearance_z=min(router.clearance_z, top - 1.0))
+    found = gate.machine_findings(program, low)
+    assert [f.kind for f in found] == ["travel"]
+    assert f"lifts Z to {top:.3f} mm above the work zero, higher than the {top - 1.0:g} mm" in found[0].message

@@ -744,3 +744,13 @@ def test_the_self_crossing_search_is_a_cancel_point_of_the_simulation():
     with time_limit(60), pytest.raises(sim.SimulationCancelled):
         sim.simulate([slot_op()], BOX_STOCK, cell=0.5, design=sphere, progress=stop)
     assert calls == [0.0]            # stopped at the first chunk of the design check, before any cutting
+
+
+def test_a_g53_lift_is_followed_as_staying_put_and_other_g53_moves_are_refused():
+    """The posts lift Z in machine coordinates (G53 G00 Z..) before XY after a start or a tool load:
+    the reader takes the lift as the tool staying put (so an XY move after it is still checked at
+    the height it had) and refuses a G53 move in X or Y, whose place it cannot know."""
+    op, _ = read(START + "G00 Z5\nG53 G00 Z0\nG00 X10 Y10\nG01 Z-1 F100\n")
+    assert op.xyz[:, 2].tolist()[:2] == [5.0, 5.0]          # the XY rapid at the height before the lift
+    with pytest.raises(ncread.NCReadError, match="G53 moves in machine coordinates, which the reader does not know"):
+        read(START + "G53 G00 X0 Y0\n")

@@ -355,7 +355,8 @@ def test_an_inch_ap238_part_is_checked_by_the_gate_on_a_coarser_grid(tmp_path):
     path.write_text(open(EX1_AP238).read().replace(MM, conversion_unit("INCH", "25.4")))
     out = tmp_path / "out"
     with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
-        status = BATCH.main(["batch.py", "stepnc", "--input", str(path), "--out", str(out)])
+        status = BATCH.main(["batch.py", "stepnc", "--input", str(path), "--out", str(out),   # a machine that holds it
+                             "--machine", "fanuc-vmc", "--travel", "6000", "6000", "2000", "--clearance-max", "1500"])
     assert status == 0
     import json
     assert json.loads((out / "report.json").read_text())["gate"]["cell_mm"] == 0.8
@@ -451,7 +452,8 @@ def test_a_1200_by_600_mm_sign_is_engraved_and_checked(tmp_path):
     bpy.ops.wm.save_as_mainfile(filepath=str(blend))
     out = tmp_path / "out"
     with time_limit(CASE_SECONDS), contextlib.redirect_stderr(io.StringIO()), contextlib.redirect_stdout(io.StringIO()):
-        status = BATCH.main(["batch.py", "engrave", "--blend", str(blend), "--post", "linuxcnc", "--out", str(out)])
+        status = BATCH.main(["batch.py", "engrave", "--blend", str(blend), "--post", "linuxcnc", "--out", str(out),
+                             "--travel", "1400", "800", "150"])      # the preset's 600 x 400 mm would not hold it
     assert status == 0
     import json
     report = json.loads((out / "report.json").read_text())

@@ -94,7 +94,7 @@ def test_header_names_job_tools_and_cycle_time():
 
 
 def test_fanuc_frame_follows_the_paper():
-    baked, _ = engrave.bake(sample_job().program)
+    baked, _ = engrave.bake(engrave.plan(PLATE, LETTERS, engrave.EngraveSettings(safe_z=100.0)).program)
     lines = post.milling_post("fanuc", "G59").to_text(baked).splitlines()
     assert lines[0] == "%" and lines[1].startswith("O0001") and lines[-1] == "%"
     assert "T02 M06" in lines
@@ -164,3 +164,128 @@ def test_written_files_get_ordinary_permissions(tmp_path):
     assert os.stat(path).st_mode & 0o777 == 0o666 & ~mask
     post.write_atomic(str(tmp_path / "mesh.stl"), b"\x00\x01")
     assert (tmp_path / "mesh.stl").read_bytes() == b"\x00\x01"
+
+
+# ----- the frames: Z first after the start and every tool load (issue 26) ---------------------------
+
+def frame_lines(text: str) -> list:
+    return [line for line in text.splitlines() if line and not line.startswith("(")]
+
+
+def test_grbl_lifts_z_to_the_clearance_height_before_any_xy_and_never_above_the_reach():
+    from kezuri.toolpath import machine
+    baked, _ = engrave.bake(sample_job().program)
+    text = post.milling_post("grbl").to_text(baked)
+    lines = frame_lines(text)
+    router = machine.preset("grbl-router")
+    assert (router.clearance_z, router.clearance_max) == (20.0, 60.0)
+    # the start: the operator zeroed Z on the plate top; the first motion lifts to Z 20, then XY
+    assert lines[1] == "G00 G90 G54 Z20."
+    assert lines[2].startswith("G00 G90 G54 X-100. Y-49.99 ")
+    # every M00 (manual change) is followed by the lift, then the XY move
+    pauses = [i for i, line in enumerate(lines) if line == "M00"]
+    assert len(pauses) == 2
+    for i in pauses:
+        assert lines[i - 1] == "G00 G90 G54 Z20." and lines[i - 2] == "M05"
+        assert lines[i + 1] == "G00 G90 G54 Z20." and re.match(r"G00 G90 G54 X\S+ Y\S+ S\d+ M03$", lines[i + 2])
+    assert lines[-3:] == ["M05", "G00 G90 G54 Z20.", "M30"]
+    assert "BEFORE THE START: LOAD T2" in text and "LIFTS TO Z 20. BEFORE XY" in text
+    z_words = [float(z) for z in re.findall(r"\bZ(-?[\d.]+)", "\n".join(lines))]
+    assert max(z_words) == 20.0 <= router.clearance_max
+
+
+def test_linuxcnc_lifts_in_machine_coordinates_around_every_manual_change():
+    baked, _ = engrave.bake(sample_job().program)
+    lines = frame_lines(post.milling_post("linuxcnc").to_text(baked))
+    changes = [i for i, line in enumerate(lines) if line.endswith("M06")]
+    assert len(changes) == 3
+    for i in changes:
+        assert lines[i - 3:i] == ["M05", "G49", "G53 G00 Z0."]             # Z up before the change (M6 does not)
+        assert lines[i + 1] == "G53 G00 Z0."                               # and again before XY
+        assert lines[i + 2].startswith("G00 G90 G54 X")
+        assert lines[i + 3].startswith("G43 H")
+    assert lines[-5:] == ["M05", "G49", "G53 G00 Z0.", "M30", "%"]
+
+
+def test_a_changer_that_lifts_on_m6_needs_no_lift_before_it_but_one_after():
+    from kezuri.post.linuxcnc import LinuxCNCPost
+    from kezuri.toolpath import machine
+    baked, _ = engrave.bake(sample_job().program)
+    lines = frame_lines(LinuxCNCPost(machine=machine.preset("linuxcnc-atc")).to_text(baked))
+    for i in [i for i, line in enumerate(lines) if line.endswith("M06")]:
+        assert lines[i - 2:i] == ["M05", "G49"] and lines[i + 1] == "G53 G00 Z0."
+
+
+def test_clearance_retract_on_linuxcnc_applies_the_offset_then_lifts():
+    from kezuri.post.linuxcnc import LinuxCNCPost
+    from kezuri.toolpath import machine
+    baked, _ = engrave.bake(sample_job().program)
+    unhomed = machine.preset("linuxcnc-manual").replace(retract="clearance", clearance_z=25.0)
+    text = LinuxCNCPost(machine=unhomed).to_text(baked)
+    if rs274.available():
+        rs274.run(text)                                  # LinuxCNC's interpreter takes it (raises otherwise)
+    lines = frame_lines(text)
+    i = lines.index("T2 M06")
+    assert lines[i + 1:i + 4] == ["G43 H2", "G00 G90 G54 Z25.", "G00 G90 G54 X-100. Y-49.99 S6000 M03"]
+    assert "G53" not in "\n".join(lines)
+
+
+def test_a_height_above_the_reach_is_refused_naming_both_numbers_and_the_setting():
+    from kezuri.toolpath import machine
+    job = engrave.plan(PLATE, LETTERS, engrave.EngraveSettings(safe_z=100.0))
+    baked, _ = engrave.bake(job.program)
+    with pytest.raises(PostError, match=r"safe Z .* 100 mm is above the 60 mm the machine 'Hobby router \(GRBL\)' "
+                                        r"reaches above the work zero \(machine setting Z Reach\)"):
+        post.milling_post("grbl").to_text(baked)
+    with pytest.raises(PostError, match=r"100 mm is above the 80 mm"):
+        post.milling_post("linuxcnc").to_text(baked)
+    assert "G43 Z100. H02" in post.milling_post("fanuc").to_text(baked)       # 300 mm on the machining centre
+    taller = post.create("milling", "grbl", machine=machine.preset("grbl-router").replace(clearance_max=100.0))
+    assert "G00 Z100." in taller.to_text(baked)
+    with pytest.raises(machine.MachineError, match=r"clearance z = 80.0 is above the 60 mm"):
+        machine.preset("grbl-router").replace(clearance_z=80.0)
+
+
+def test_a_post_refuses_a_retract_or_tool_change_its_control_cannot_write():
+    from kezuri.toolpath import machine
+    baked, _ = engrave.bake(sample_job().program)
+    grbl = post.create("milling", "grbl", machine=machine.preset("grbl-router").replace(retract="reference"))
+    with pytest.raises(PostError, match=r"Retract = 'reference' is not a move this control has"):
+        grbl.to_text(baked)
+    fanuc = post.create("milling", "fanuc", machine=machine.preset("fanuc-vmc").replace(tool_change="manual"))
+    with pytest.raises(PostError, match=r"Tool Change = 'manual'"):
+        fanuc.to_text(baked)
+    slow = post.create("milling", "linuxcnc", machine=machine.preset("linuxcnc-manual").replace(max_spindle_rpm=8000.0))
+    with pytest.raises(PostError, match=r"spindle speed S 12000 is above the 8000 rpm"):
+        slow.to_text(baked)
+
+
+def test_every_post_names_its_default_machine():
+    for cls in post.posts(("milling", "cxz")):
+        profile = post.registry.default_machine(cls)
+        assert profile.family == cls.family, cls.name
+    assert post.registry.default_machine(post.find("milling", "grbl")).name == "grbl-router"
+    assert post.registry.default_machine(post.find("milling", "linuxcnc")).name == "linuxcnc-manual"
+    assert post.registry.default_machine(post.find("milling", "fanuc-macro")).name == "fanuc-vmc"
+    assert post.registry.default_machine(post.find("cxz", "linuxcnc")).name == "wood-lathe-cxz-linuxcnc"
+    assert post.registry.default_machine(post.find("cxz", "fanuc")).name == "wood-lathe-cxz"
+
+
+@needs_rs274
+def test_rs274_moves_only_z_after_every_tool_change():
+    """Read back by LinuxCNC's interpreter: after each CHANGE_TOOL the first motion is a traverse
+    that keeps X and Y where they were (Z alone: the G53 lift); X/Y move only after it."""
+    baked, _ = engrave.bake(sample_job().program)
+    calls = rs274.run(post.milling_post("linuxcnc").to_text(baked))
+    position, pending, checked = None, False, 0
+    for name, args in calls:
+        if name == "CHANGE_TOOL":
+            pending = True
+        elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED"):
+            xyz = [float(v) for v in args[:3]] if name != "ARC_FEED" else None
+            if pending:
+                assert name == "STRAIGHT_TRAVERSE" and position is not None
+                assert xyz[:2] == position[:2], (position, xyz)
+                pending, checked = False, checked + 1
+            position = xyz if xyz is not None else position
+    assert checked == 3

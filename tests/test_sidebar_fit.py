@@ -145,3 +145,19 @@ def test_a_text_too_wide_is_reported(empty_scene):
     walk.node(layout._node, fit.layout_width(), "test")
     problems = fit.too_wide(walk.texts)
     assert len(problems) == 1 and "has 220 px" in problems[0]
+
+
+@pytest.mark.parametrize("language", sorted(LANGUAGES))
+def test_the_machine_settings_fit_when_a_preset_is_picked(empty_scene, tmp_path, language):
+    """Picking a machine preset shows its settings (travel, reach, retract, tool change, limits)."""
+    context = filled_scene(empty_scene, tmp_path)
+    machine = empty_scene.kezuri.machine
+    machine.preset = "linuxcnc-manual"
+    assert (machine.z_reach, machine.clearance_height, machine.retract) == (80.0, 20.0, "machine")  # filled in
+    texts = fit.all_texts([panels.KEZURI_PT_machine], context, LANGUAGES[language])
+    shown = {t.text for t in texts}
+    for name in ("Travel X", "Z Reach", "Clearance Height", "Retract", "Machine Top Z", "Tool Change", "M6 Lifts Z",
+                 "Max Spindle", "Max Feed"):
+        assert (JA.get(("*", name), name) if language == "ja" else name) in shown, name
+    assert not fit.too_wide(texts), "\n".join(fit.too_wide(texts))
+    machine.preset = "POST"

@@ -58,7 +58,7 @@ class EngraveSettings:
     finish_feed: float = 600.0
     plunge_feed: float = 300.0
     clearance_z: float = 20.0
-    safe_z: float = 100.0
+    safe_z: float = 20.0                 # the frames lift by the machine profile; this is the operation's own
     approach_gap: float = 2.0
     climb: bool = True
 

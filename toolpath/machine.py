@@ -21,6 +21,8 @@ import dataclasses
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from .errors import InputError
 
 # How the frames lift Z before XY moves (at the start, after a tool load and at the end):
@@ -106,6 +108,8 @@ class MachineProfile:
         if self.clearance_z > self.clearance_max:
             bad("clearance z", self.clearance_z, f"is above the {self.clearance_max:g} mm the machine reaches "
                                                  "above the work zero")
+        if self.travel[2] > 0 and self.clearance_max > self.travel[2]:
+            bad("clearance max", self.clearance_max, f"is more than the {self.travel[2]:g} mm Z travel")
         if not _finite(self.machine_top_z):
             bad("machine top z", self.machine_top_z, "must be a number")
         for field in ("memory_kb", "block_ms", "max_table_rpm"):
@@ -125,6 +129,23 @@ class MachineProfile:
                     and _finite(clamp.depth) and clamp.depth > 0):
                 bad("clamps", clamp, "must be clamps with a position and a positive width and depth")
 
+    def reach_problem(self, z: float, what: str) -> str | None:
+        """Why a Z of ``z`` above the work zero (``what`` names it: "operation 'roughing': safe Z
+        (the workflow's Safe Z)") cannot be written for this machine, or None if it can."""
+        if z > self.clearance_max + 1e-9:
+            return (f"{what} {z:g} mm is above the {self.clearance_max:g} mm the machine {self.label!r} reaches "
+                    f"above the work zero (machine setting Z Reach); lower it or raise Z Reach if the machine "
+                    f"really reaches it")
+        return None
+
+    def summary(self) -> dict:
+        """The profile as report.json records it."""
+        return {"name": self.name, "label": self.label, "family": self.family, "travel_mm": list(self.travel),
+                "z_reach_mm": self.clearance_max, "clearance_height_mm": self.clearance_z, "retract": self.retract,
+                "machine_top_z": self.machine_top_z, "tool_change": self.tool_change,
+                "m6_retracts": self.m6_retracts, "max_spindle_rpm": self.max_spindle_rpm,
+                "max_feed": self.max_feed, "rapid_rate": self.rapid_rate}
+
     @property
     def manual_change(self) -> bool:
         return self.tool_change == "manual"
@@ -138,7 +159,7 @@ class MachineProfile:
                   "machine": f"Z retract: machine Z {self.machine_top_z:g}",
                   "clearance": f"Z retract: Z {self.clearance_z:g} above the work zero"}[self.retract],
                  ("tool change: manual, at a pause" if self.manual_change else
-                  "tool change: changer, M06" + (" lifts Z" if self.m6_retracts else ""))]
+                  "tool change: by the changer" + (", which lifts Z" if self.m6_retracts else ""))]
         if self.memory_kb is not None:
             lines.append(f"program memory {self.memory_kb:g} kB")
         if self.family == "punch":
@@ -149,6 +170,53 @@ class MachineProfile:
             lines += [f"clamp {i} at X {c.x:g}: dead zone X {c.x - c.width / 2:g}..{c.x + c.width / 2:g}, "
                       f"Y 0..{c.depth:g}" for i, c in enumerate(self.clamps, start=1)]
         return lines
+
+
+def travel_problems(operations, profile: MachineProfile) -> list:
+    """Where a program does not fit the machine: ``(operation index, move index, message)`` per axis.
+
+    The program's extent along X, Y and Z (every move's end point, each operation's start, its
+    safe and clearance heights, and the height the frames lift to on a machine without a
+    machine-coordinate retract) must fit the axis's travel, and no Z may lie above the height the
+    tool reaches over the work zero.  Where the work zero sits in the machine is the operator's
+    setting, so the extent (highest less lowest), not the absolute position, is what is checked.
+    """
+    found = []
+    spans = {}
+    for index, op in enumerate(operations):
+        xyz = np.asarray(op.xyz, float).reshape(-1, 3)
+        start = np.asarray(op.start, float).reshape(1, 3)
+        points = np.vstack([start, xyz]) if len(xyz) else start
+        heights = [float(op.safe_z), float(op.clearance_z)]
+        if profile.retract == "clearance":
+            heights.append(float(profile.clearance_z))
+        for axis, column in (("X", 0), ("Y", 1), ("Z", 2)):
+            values = points[:, column]
+            low_move, high_move = int(np.argmin(values)) - 1, int(np.argmax(values)) - 1
+            low, high = float(values.min()), float(values.max())
+            if axis == "Z" and max(heights) > high:
+                high, high_move = max(heights), -1
+            span = spans.setdefault(axis, [math.inf, -math.inf, None, None])
+            if low < span[0]:
+                span[0], span[2] = low, (index, max(low_move, 0))
+            if high > span[1]:
+                span[1], span[3] = high, (index, max(high_move, 0))
+    for column, axis in enumerate("XYZ"):
+        if axis not in spans:
+            continue
+        low, high, (low_op, low_move), (high_op, high_move) = spans[axis]
+        travel = float(profile.travel[column])
+        if high - low > travel + 1e-6:
+            found.append((high_op, high_move,
+                          f"the program spans {high - low:.3f} mm along {axis} (from {low:.3f} to {high:.3f}), more "
+                          f"than the {travel:g} mm {axis} travel of the machine {profile.label!r} (machine setting "
+                          f"Travel {axis})"))
+        if axis == "Z" and high > profile.clearance_max + 1e-6:
+            found.append((high_op, high_move,
+                          f"the program lifts Z to {high:.3f} mm above the work zero, higher than the "
+                          f"{profile.clearance_max:g} mm the machine {profile.label!r} reaches (machine setting "
+                          f"Z Reach)"))
+    return found
 
 
 def _finite(value) -> bool:
@@ -165,11 +233,12 @@ PRESETS = {p.name: p for p in (
     MachineProfile(
         "grbl-router", "Hobby router (GRBL)", "milling",
         "GRBL 1.1 hobby router, not homed, bits changed by hand at an M00 pause, Z zeroed on the top",
-        travel=(800.0, 800.0, 100.0), clearance_max=40.0, clearance_z=10.0, retract="clearance",
+        travel=(800.0, 800.0, 100.0), clearance_max=60.0, clearance_z=20.0, retract="clearance",
         tool_change="manual", max_spindle_rpm=24000.0, min_spindle_rpm=0.0, max_feed=5000.0,
         rapid_rate=5000.0,
         source="Grbl v1.1 wiki: no tool changer (M6 is not supported), G53 only on a homed machine "
-               "($22 homing), soft limits alarm past $130-$132 travel; the spindle is a trim router"),
+               "($22 homing), soft limits alarm past $130-$132 travel; the spindle is a trim router.  Reach: "
+               "100 mm of Z travel less a 20 mm board and the bit's stick-out leaves about 60 mm above the top"),
     MachineProfile(
         "linuxcnc-manual", "LinuxCNC mill, manual tool change", "milling",
         "LinuxCNC router or mill, homed, M6 stops and asks for the tool (hal_manualtoolchange)",
@@ -189,10 +258,11 @@ PRESETS = {p.name: p for p in (
         "fanuc-vmc", "Machining centre (Fanuc 0i-MF)", "milling",
         "Fanuc 0i-MF vertical machining centre with a tool changer",
         travel=(800.0, 500.0, 500.0), clearance_max=300.0, clearance_z=100.0, retract="reference",
-        tool_change="atc", m6_retracts=False, max_spindle_rpm=12000.0, max_feed=10000.0,
+        tool_change="atc", m6_retracts=False, max_spindle_rpm=24000.0, max_feed=10000.0,
         rapid_rate=24000.0, memory_kb=512.0, block_ms=1.0,
         source="FANUC Series 0i-MODEL F operator's manual B-64604EN: reference position return G28, "
-               "part program storage 512 kB standard"),
+               "part program storage 512 kB standard; 24000 rpm: the spindle of FANUC's own ROBODRILL "
+               "compact machining centres (high-speed option), so the routers' speeds fit"),
     MachineProfile(
         "wood-lathe-cxz", "CNC wood lathe, rotary face plate (C-X-Z)", "cxz",
         "Rotating face plate (C) with a ball bit on X and Z (seed 001)",
@@ -200,6 +270,13 @@ PRESETS = {p.name: p for p in (
         tool_change="atc", max_spindle_rpm=24000.0, max_feed=5000.0, rapid_rate=5000.0,
         max_table_rpm=30.0,
         source="seed 001 (rotating-table C-X-Z machining of a wooden bento box)"),
+    MachineProfile(
+        "wood-lathe-cxz-linuxcnc", "CNC wood lathe, LinuxCNC (C-X-Z)", "cxz",
+        "Rotating face plate (C) with a ball bit on X and Z, homed LinuxCNC control (seed 001)",
+        travel=(300.0, 0.0, 150.0), clearance_max=100.0, clearance_z=20.0, retract="machine",
+        machine_top_z=0.0, tool_change="atc", m6_retracts=False, max_spindle_rpm=24000.0, max_feed=5000.0,
+        rapid_rate=5000.0, max_table_rpm=30.0,
+        source="seed 001; LinuxCNC 2.9 G53 (machine coordinates) after homing with HOME = 0 at the top of Z"),
     MachineProfile(
         "fanuc-0it-turnmill", "Turn-mill (Fanuc 0i-T)", "xzc",
         "Fanuc 0i-T turning centre with driven tools and a C axis (seed 003)",
@@ -223,6 +300,8 @@ PRESETS = {p.name: p for p in (
                "(X 200, 700), their 80 x 50 mm dead zones, the 1270 x 1270 mm (50 x 50 in) sheet and the "
                "10 mm skeleton margin are typical of the class, not one model's: set the machine's own"),
 )}
+# The machine a post's program assumes when the user picks only the post (``Post.default_machine``
+# names one of these; a post that names none gets its family's).
 DEFAULT_FOR_FAMILY = {"milling": "fanuc-vmc", "cxz": "wood-lathe-cxz", "xzc": "fanuc-0it-turnmill",
                       "punch": "amada-04p"}
 

@@ -59,7 +59,7 @@ IGNORED_CODES = {
 }
 # Codes the reader follows.
 MOTION = {"G0": 0, "G1": 1, "G2": 2, "G3": 3}
-MODES = {"G20", "G21", "G90", "G91", "G28"} | set(MOTION)
+MODES = {"G20", "G21", "G90", "G91", "G28", "G53"} | set(MOTION)
 # Refused with a reason a user can act on.
 REFUSED = {
     "G92": "sets a coordinate offset, which the reader does not follow",
@@ -67,7 +67,6 @@ REFUSED = {
     "G92.2": "suspends coordinate offsets, which the reader does not follow",
     "G92.3": "restores coordinate offsets, which the reader does not follow",
     "G52": "sets a local coordinate offset, which the reader does not follow",
-    "G53": "moves in machine coordinates, which the reader does not know",
     "G68": "rotates the coordinate system, which the reader does not follow",
     "G69": "cancels a coordinate rotation, which the reader does not follow",
     "G41": "cutter radius compensation is not simulated",
@@ -260,7 +259,7 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             if all(code in codes for code in group):
                 raise NCReadError(f"line {number}: {group[0]} and {group[1]} are in one modal group, so one block "
                                   f"cannot have both: {_shown(raw)}")
-        home = False
+        home = lift = False
         for code in codes:
             if code in REFUSED:
                 raise NCReadError(f"line {number}: {code} {REFUSED[code]}: {_shown(raw)}")
@@ -276,6 +275,8 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
                 scale = 1.0
             elif code == "G28":
                 home = True
+            elif code == "G53":
+                lift = True
             elif code in _END_CODES:
                 pass
             elif code in IGNORED_CODES:
@@ -302,6 +303,17 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
                 raise NCReadError(f"line {number}: G28 is followed only as G91 G28 with zero words (home is not "
                                   f"known to the reader): {_shown(raw)}")
             ignore("G28", "return to the reference point (not simulated: the tool is taken to stay put)", number)
+            if ends:
+                break
+            continue
+        if lift:
+            # G53 moves in machine coordinates, which the reader does not know; a Z-only move is the
+            # posts' lift to the top of travel (before XY after a start or a tool load), followed as
+            # the tool staying put: any XY move after it is still checked at the height it had.
+            if [a for a in axes if a != "Z"] or "I" in values or "J" in values:
+                raise NCReadError(f"line {number}: G53 moves in machine coordinates, which the reader does not "
+                                  f"know (only a Z lift is followed): {_shown(raw)}")
+            ignore("G53", "lift in machine coordinates (not simulated: the tool is taken to stay put)", number)
             if ends:
                 break
             continue

@@ -110,7 +110,7 @@ class Operation:
     rotary: dict = field(default_factory=dict)
     spindle_cw: bool = True
     clearance_z: float = 20.0
-    safe_z: float = 100.0
+    safe_z: float = 50.0           # where the operation starts and ends; within every preset machine's reach
     start: np.ndarray | None = None
     texture: GougeTexture | None = None
     texture_marks: np.ndarray | None = None
