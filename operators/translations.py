@@ -1407,6 +1407,8 @@ MESSAGE_TEMPLATES = {
         '{0}行目：{1}：どちらも移動指令です：{2}',
     'line {}: {} and {} are in one modal group, so one block cannot have both: {}':
         '{0}行目：{1} と {2} は同じモーダルグループなので、1つのブロックに両方は書けません：{3}',
+    'line {}: S{} is not a spindle speed: {}':
+        '{0}行目：S{1} は主軸回転数ではありません：{2}',
     "line {}: a block delete '/' is not followed (whether the control skips the line depends on its Block Delete switch): {}":
         '{0}行目：ブロックデリート「/」には対応していません（その行を飛ばすかは制御装置のブロックデリートスイッチ次第です）：{1}',
     'line {}: {} {}: {}':
