@@ -65,6 +65,7 @@ def settings_from(props, machine=None) -> core.EngraveSettings:
         finish_tool=Tool(props.finish_tool_number, "flat", props.finish_diameter, name="band finishing"),
         stepover=props.stepover, raster_angle=props.raster_angle, letter_clearance=props.letter_clearance,
         band_width=props.band_width, band_depth=props.band_depth, band_stepover=props.band_stepover,
+        band_step_down=props.band_step_down, band_ramp_angle=props.band_ramp_angle,
         burr_depth=props.band_depth, texture=texture, rough_rpm=props.rough_rpm, finish_rpm=props.finish_rpm,
         rough_feed=props.rough_feed, finish_feed=props.finish_feed, plunge_feed=props.plunge_feed,
         clearance_z=props.clearance_z, safe_z=safe_z if safe_z > 0 else core.EngraveSettings.safe_z)
@@ -106,6 +107,7 @@ def engrave_request(scene, depsgraph, post_name: str | None = None):
     if not objects:
         raise convert.SceneInputError("no letters: pick a Text, curve or mesh object as Letters in the Engrave panel")
     letters = [(obj.name, convert.outlines_in_work(obj, depsgraph, plate.frame)) for obj in objects]
+    texts = {obj.name: obj.data.body for obj in objects if obj.type == "FONT"}     # to name a glyph left uncut
     surface = surface_of(scene, depsgraph, plate.frame)
     machine = scene_machine(settings.machine, POST_FAMILIES, post_name or scene_post(scene))
     engrave_settings, name = settings_from(props, machine), scene.name
@@ -115,13 +117,13 @@ def engrave_request(scene, depsgraph, post_name: str | None = None):
         loops = [loop for _, object_loops in letters for loop in object_loops]
         if surface is not None:
             curved = surface_engrave.plan(plate.outline, letters, surface, engrave_settings, name=name,
-                                          progress=progress, plate_thickness=float(plate.size[2]))
+                                          progress=progress, plate_thickness=float(plate.size[2]), texts=texts)
             for program in (curved.result.program, curved.baked, curved.macro):
                 program.work_offset, program.rapid_rate = work_offset, rapid_rate
                 program.notes = list(curved.result.warnings)
             return EngraveJob(curved.result, curved.baked, curved.depths, plate, loops, engrave_settings, curved)
         result = core.plan(plate.outline, letters, engrave_settings, name=name, progress=progress,
-                           plate_thickness=float(plate.size[2]))
+                           plate_thickness=float(plate.size[2]), texts=texts)
         result.program.work_offset = work_offset
         result.program.rapid_rate = rapid_rate
         result.program.notes = list(result.warnings)
@@ -257,6 +259,10 @@ def batch_arguments(p):
     from .batchio import number
     from .limits import RANGES
     p.add_argument("--seed", type=number("--seed", limit=RANGES["engrave"]["seed"]))
+    p.add_argument("--band-step-down", type=number("--band-step-down", limit=RANGES["engrave"]["band_step_down"]),
+                   help="deepest cut of one level of the band in mm (default 1, the 1 mm flat end mill's diameter)")
+    p.add_argument("--band-ramp-angle", type=number("--band-ramp-angle", limit=RANGES["engrave"]["band_ramp_angle"]),
+                   help="ramp angle in degrees entering each level of the band (default 3)")
     p.add_argument("--surface", help="the plate's curved top: " + ", ".join(surface_engrave.SURFACES)
                    + " (built in, over the plate) or an STL/OBJ/PLY mesh in work mm (Z 0: the plate's top); "
                    "default: flat")
@@ -284,6 +290,15 @@ def add_surface(scene, which: str):
     return obj
 
 
+def uncut_marks(result) -> list:
+    """The picture's marks for the regions no tool can enter: (x, y, 0, label) each."""
+    marks = []
+    for s in result.skipped:
+        character = f" '{s['character']}'" if s.get("character") else ""
+        marks.append((s["at"][0], s["at"][1], 0.0, f"UNCUT{character} {s['area_mm2']:.2f} MM2"))
+    return marks
+
+
 def batch(args) -> dict:
     from . import batchio, preview, samples, simview
     from .common import Progress
@@ -294,6 +309,9 @@ def batch(args) -> dict:
     props = scene.kezuri
     if args.seed is not None:
         batchio.set_exactly(props.engrave, "seed", args.seed, "--seed")
+    for name in ("band_step_down", "band_ramp_angle"):
+        if getattr(args, name) is not None:
+            batchio.set_exactly(props.engrave, name, getattr(args, name), "--" + name.replace("_", "-"))
     if args.surface:
         add_surface(scene, args.surface)
     post_name = args.post or scene_post(scene)
@@ -315,9 +333,10 @@ def batch(args) -> dict:
         solids = [(design.vertices, design.faces, preview.picture_jobs.PART_COLOUR)]
     if batchio.shown():
         show_engrave(scene, job, show_rapids=False)
+    marks = uncut_marks(job.result)
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "engrave-toolpaths.png"), job.baked.operations,
-                                         setup.stock, solids, "ENGRAVING: TOOLPATHS")
-    simulation_report, png = simview.batch_simulation(scene, setup, args.out, "engrave", checked)
+                                         setup.stock, solids, "ENGRAVING: TOOLPATHS", marks=marks)
+    simulation_report, png = simview.batch_simulation(scene, setup, args.out, "engrave", checked, marks=marks)
     return {
         "gate": gate_report,
         "simulation": simulation_report,

@@ -86,6 +86,8 @@ RANGES: dict = {
         "spacing": mm(0.1, 1000.0), "spacing_jitter": Range(0.0, 0.5), "seed": Range(0, 2**31 - 1, integer=True),
         "finish_diameter": mm(0.05, 100.0), "finish_tool_number": TOOL_NUMBER, "band_width": mm(0.0, 100.0),
         "band_depth": mm(-100.0, 0.0), "band_stepover": mm(0.0, 100.0, lo_open=True),
+        "band_step_down": mm(0.0, 100.0, lo_open=True), "band_ramp_angle": Range(0.0, 45.0, lo_open=True,
+                                                                                 unit="degrees"),
         "rough_rpm": rpm(), "finish_rpm": rpm(), "rough_feed": feed(), "finish_feed": feed(),
         "plunge_feed": feed(), "clearance_z": HEIGHT, "safe_z": HEIGHT,
     },

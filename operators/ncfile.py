@@ -78,18 +78,22 @@ def batch(args) -> dict:
             raise core.SimulationError(f"--nc {args.nc}: line {lines[turns[0]]} turns the C axis; give --rotary c "
                                        f"to simulate the part turning with it")
         op.rotary = {}
+        runs = [(run.replace(rotary={}), run_lines) for run, run_lines in read.runs]
+    else:
+        runs = read.runs
     design = None
     if args.design:
         if not os.path.isfile(args.design):
             raise FileNotFoundError(f"no such design file: {args.design}")
         design = load_design(args.design)
-    result = core.simulate([op], parse_stock(args.stock), engine=args.engine, cell=args.cell, design=design,
+    # one operation per spindle state (the reader's runs): a cut with the spindle stopped is named by its line
+    result = core.simulate([run for run, _ in runs], parse_stock(args.stock), engine=args.engine, cell=args.cell, design=design,
                            design_name=os.path.basename(args.design or ""))
     report = simview.report_of(result)
     report["nc_ignored"] = read.ignored          # what the reader read and set aside, per code
     report["warnings"] = list(result.warnings)   # what the simulation repaired in its input
     for entry in report["gouges"] + report["rapid_collisions"] + report["other_findings"]:
-        entry["line"] = lines[entry["move"]]
+        entry["line"] = runs[entry["operation"]][1][entry["move"]]
     vertices, faces = result.mesh()
     mesh_path = write_atomic(os.path.join(args.out, "simulated.stl"),
                              trimesh.Trimesh(vertices, faces, process=False).export(file_type="stl"))

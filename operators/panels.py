@@ -307,7 +307,8 @@ class KEZURI_PT_simulate(KezuriPanel, bpy.types.Panel):
 
 KEZURI_PT_engrave_finish = property_subpanel(
     "KEZURI_PT_engrave_finish", "Band & Burr Finishing", "KEZURI_PT_engrave", "engrave",
-    ("finish_diameter", "finish_tool_number", "band_width", "band_depth", "band_stepover"))
+    ("finish_diameter", "finish_tool_number", "band_width", "band_depth", "band_stepover", "band_step_down",
+     "band_ramp_angle"))
 KEZURI_PT_engrave_feeds = property_subpanel(
     "KEZURI_PT_engrave_feeds", "Feeds & Heights", "KEZURI_PT_engrave", "engrave",
     ("rough_rpm", "rough_feed", "finish_rpm", "finish_feed", "plunge_feed", "clearance_z", "safe_z", "show_rapids"))

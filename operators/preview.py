@@ -40,18 +40,19 @@ def object_solid(obj, frame, depsgraph=None, colour=picture_jobs.PART_COLOUR) ->
 
 
 def toolpath_png(path: str, operations, stock, solids=(), title: str = "", tilt_deg: float = 35.0,
-                 caption: str = "") -> str:
+                 caption: str = "", marks=()) -> str:
     """The toolpaths (cut, plunge, link, rapid) over ``solids`` ([(vertices mm, faces, rgb)]);
-    ``caption``: a line under the title (what was not cut)."""
+    ``caption``: a line under the title (what was not cut); ``marks``: places left uncut,
+    [(x, y, z, label)]."""
     picture = picture_jobs.toolpath_picture(list(operations), stock, list(solids), title, SIZE, tilt_deg,
-                                            caption=caption)
+                                            caption=caption, marks=marks)
     return write_atomic(path, picture.png())
 
 
-def simulation_png(path: str, result, title: str = "", tilt_deg: float = 35.0, mesh=None) -> str:
+def simulation_png(path: str, result, title: str = "", tilt_deg: float = 35.0, mesh=None, marks=()) -> str:
     """The simulated stock coloured by depth over the job's own depth range (``mesh``: the
-    stock's (vertices, faces) if already built)."""
-    picture = picture_jobs.simulation_picture(result, title, SIZE, tilt_deg, mesh=mesh)
+    stock's (vertices, faces) if already built; ``marks``: places left uncut)."""
+    picture = picture_jobs.simulation_picture(result, title, SIZE, tilt_deg, mesh=mesh, marks=marks)
     return write_atomic(path, picture.png())
 
 

@@ -183,6 +183,11 @@ class KezuriEngrave(bpy.types.PropertyGroup):
     band_width: mm("Band Width", 4.0, "Width of the flat band cut around every letter", minimum=0.0)
     band_depth: mm("Band Depth", -2.0, "Depth of the band around the letters", maximum=0.0)
     band_stepover: mm("Band Stepover", 0.5, "Distance between the band's contour passes", minimum=0.0)
+    band_step_down: mm("Band Step Down", 1.0, "Deepest cut of one level of the band: at most the flat end mill's "
+                       "diameter", minimum=0.0)
+    band_ramp_angle: FloatProperty(name="Band Ramp Angle", default=3.0, min=0.0, max=45.0,
+                                   description="Each level of the band is entered on a ramp along the ring at this "
+                                               "angle (degrees); the flat end mill never plunges straight down")
     # Feeds and heights
     rough_rpm: FloatProperty(name="Ball Spindle", default=6000.0, min=0.0, description="Spindle speed (rpm)")
     finish_rpm: FloatProperty(name="Flat Spindle", default=12000.0, min=0.0, description="Spindle speed (rpm)")

@@ -131,9 +131,10 @@ def store_findings(scene, job: SimulationJob):
             item.location = job.frame.to_world([(float(f.xy[0]), float(f.xy[1]), f.z or 0.0)])[0]
 
 
-def batch_simulation(scene, setup, out_dir: str, stem: str, job: SimulationJob | None = None) -> tuple:
+def batch_simulation(scene, setup, out_dir: str, stem: str, job: SimulationJob | None = None, marks=()) -> tuple:
     """Batch: cut ``setup``'s stock (height field, 0.1 mm) unless ``job`` has done it already (the
-    export gate's), render the carved stock to ``<stem>.png``: (report entry, png path)."""
+    export gate's), render the carved stock to ``<stem>.png`` (``marks``: places left uncut, drawn
+    on it): (report entry, png path)."""
     import os
 
     from . import preview
@@ -150,5 +151,5 @@ def batch_simulation(scene, setup, out_dir: str, stem: str, job: SimulationJob |
         mesh = job.result.surface(250_000)
     png = preview.simulation_png(os.path.join(out_dir, f"{stem}.png"), job.result,
                                  f"{stem.upper()}: SIMULATED STOCK", preview.SIDE_VIEW_DEG if stem == "turnmill" else 35.0,
-                                 mesh)
+                                 mesh, marks)
     return report_of(job.result), png

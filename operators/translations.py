@@ -355,6 +355,13 @@ PROPERTY_TEXTS = {
     "Depth of the band around the letters (mm)": "文字の周りの帯の深さ (mm)",
     "Band Stepover": "帯のステップ",
     "Distance between the band's contour passes (mm)": "帯の輪郭加工パスの間隔 (mm)",
+    "Band Step Down": "帯の切込み",
+    "Deepest cut of one level of the band: at most the flat end mill's diameter (mm)":
+        "帯の1段の最大切込み：フラットエンドミルの直径以下 (mm)",
+    "Band Ramp Angle": "帯のランプ角度",
+    "Each level of the band is entered on a ramp along the ring at this angle (degrees); the flat end mill never "
+    "plunges straight down":
+        "帯の各段へはリングに沿ってこの角度の斜め送りで入ります（度）。フラットエンドミルを真下に突っ込みません",
     # Engrave: feeds and heights
     "Ball Spindle": "ボールの主軸回転数",
     "Flat Spindle": "フラット回転数",
@@ -1591,6 +1598,19 @@ MESSAGE_TEMPLATES = {
         '{0}行目：{1}：どちらも移動指令です：{2}',
     'line {}: {} and {} are in one modal group, so one block cannot have both: {}':
         '{0}行目：{1} と {2} は同じモーダルグループなので、1つのブロックに両方は書けません：{3}',
+    # toolpath/engrave.py, toolpath/ramp.py: the band's step-downs and ramps
+    "band step down {} mm is more than the {} mm finishing tool's diameter: a small flat end mill takes at most 1 x its diameter in depth per pass":
+        'バンドの切込み {0} mm が仕上げ工具の直径 {1} mm を超えています：小径のフラットエンドミルの1回の切込みは直径の1倍までです',
+    'band ramp angle must be more than 0 and at most {} degrees, got {}':
+        'バンドのランプ角度は 0 より大きく {0} 度以下にしてください（{1} が指定されました）',
+    'ramp angle must be more than 0 and at most {} degrees, got {}':
+        'ランプ角度は 0 より大きく {0} 度以下にしてください（{1} が指定されました）',
+    'step down must be a number > 0 mm, got {}':
+        '切込みは 0 mm より大きい数にしてください（{0} が指定されました）',
+    'depth {} must lie below the top Z {}':
+        '深さ {0} は上面 Z {1} より下にしてください',
+    'line {}: S{} is not a spindle speed: {}':
+        '{0}行目：S{1} は主軸回転数ではありません：{2}',
     "line {}: a block delete '/' is not followed (whether the control skips the line depends on its Block Delete switch): {}":
         '{0}行目：ブロックデリート「/」には対応していません（その行を飛ばすかは制御装置のブロックデリートスイッチ次第です）：{1}',
     'line {}: {} {}: {}':

@@ -71,6 +71,34 @@ def test_letters_never_cut_in_the_blender_sample(scene):
         assert not region.contains_points(glyphs, below[:, :2]).any(), op.name
 
 
+def test_a_counter_too_small_for_the_tool_is_named_in_the_nc_header_and_marked_in_the_picture(scene, tmp_path):
+    from kezuri.toolpath import picture_jobs, region
+    scene.kezuri.engrave.letters.data.size = 8.0        # "Kezuri" 8 mm high: the e's eye is narrower than 1 mm
+    path = str(tmp_path / "plate.ngc")
+    assert bpy.ops.kezuri.engrave_export(filepath=path, post="linuxcnc") == {"FINISHED"}
+    notes = re.findall(r"\(NOTE: BAND FINISHING: THE TOOL IS TOO BIG TO ENTER A GAP OF ([\d.]+) MM\^2 IN 'E' "
+                       r"\[U\+0065\] OF LETTERS 'LETTERS' NEAR X(-?[\d.]+) Y(-?[\d.]+); IT IS LEFT UNCUT\)",
+                       open(path).read())
+    assert len(notes) == 1
+    area, x, y = (float(v) for v in notes[0])
+    # the place named lies in a counter of the word: inside its outline, outside its strokes,
+    # in the second glyph from the left (K, e, ...), and the gap is one the 1 mm tool cannot enter
+    job = shell.run_engrave(scene, bpy.context.evaluated_depsgraph_get())
+    loops = shell.convert.outlines_in_work(scene.kezuri.engrave.letters, bpy.context.evaluated_depsgraph_get(),
+                                           job.plate.frame)
+    strokes = region.from_loops(loops)
+    filled = region.from_loops([loop for loop in region.loops(strokes) if region.signed_area(loop) > 0])
+    point = np.array([[x, y]])
+    assert region.contains_points(filled, point)[0] and not region.contains_points(strokes, point)[0]
+    pieces = sorted(region.components(strokes), key=lambda piece: piece.bounds()[0])
+    assert pieces[1].bounds()[0] <= x <= pieces[1].bounds()[2]
+    assert 0 < area < 2.0
+    marks = shell.uncut_marks(job.result)
+    assert [label for *_, label in marks] == [f"UNCUT 'e' {area:.2f} MM2"]
+    picture = picture_jobs.toolpath_picture(job.baked.operations, shell.simulation(job).stock, marks=marks)
+    assert f"UNCUT 'e' {area:.2f} MM2" in picture.texts and "LEFT UNCUT (1)" in picture.texts
+
+
 def nc_for_units(unit_mm, system="METRIC"):
     scene = bpy.context.scene
     samples.clear_scene(scene)

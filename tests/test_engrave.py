@@ -173,8 +173,11 @@ def test_roughing_depths_follow_the_rule_and_band_is_flat():
     assert np.allclose(np.array(depths), -2.0 + 0.2 * grid)
     assert min(depths) >= -2.8 - 1e-9 and max(depths) <= -1.2 + 1e-9
     assert set(np.round(depths, 6)) == set(np.round(np.arange(-2.8, -1.19, 0.2), 6))
-    # Every cutting move below the top is at a drawn depth, the base depth or a plunge.
-    assert np.allclose(band.xyz[(band.kind == FEED) & (band.xyz[:, 2] < 0), 2], -2.0)
+    # Every cutting move below the top is at a drawn depth, the base depth or a plunge; the band
+    # is cut at two 1 mm levels, each entered on a ramp (tests/test_band_ramp.py checks the ramps)
+    band_z = band.xyz[(band.kind == FEED) & (band.xyz[:, 2] < 0), 2]
+    assert band_z.min() == pytest.approx(-2.0) and np.isclose(band_z, -1.0).any()
+    assert np.isclose(band_z, -2.0).sum() + np.isclose(band_z, -1.0).sum() > 0.5 * len(band_z)
     assert np.allclose(burr.xyz[(burr.kind == FEED) & (burr.xyz[:, 2] < 0), 2], -2.0)
 
 
@@ -239,6 +242,38 @@ def test_tool_too_big_for_a_counter_is_reported_as_skipped():
     assert skipped[0]["area_mm2"] == pytest.approx(0.8 * 10, rel=0.01)
     assert skipped[0]["at"] == pytest.approx([15.0, 0.0], abs=0.01)
     assert any("too big" in w for w in result.warnings)
+    # named by the letters object it lies in; the character is not known without the object's text
+    assert (skipped[0]["letters"], skipped[0]["character"]) == ("Letters", None)
+    assert "band finishing: the tool is too big to enter a gap of 8.00 mm^2 in letters 'Letters' near X15.0 Y0.0; it " \
+           "is left uncut" in result.warnings
+
+
+def test_a_region_left_uncut_is_named_by_its_character_when_the_text_tells_it():
+    tiny = np.array([[14.6, -5], [15.4, -5], [15.4, 5], [14.6, 5]])
+    letters = [("Word", [LETTER_I, LETTER_O_OUT, tiny])]
+    result = engrave.plan(PLATE, letters, texts={"Word": "I O"})       # two glyphs, two characters (not spaces)
+    band = [s for s in result.skipped if s["operation"] == "band finishing"]
+    assert [(s["letters"], s["character"]) for s in band] == [("Word", "O")]
+    assert "band finishing: the tool is too big to enter a gap of 8.00 mm^2 in 'O' of letters 'Word' near X15.0 Y0.0; " \
+           "it is left uncut" in result.warnings
+    # a text that does not match the glyphs (three characters, two glyphs): the object only
+    result = engrave.plan(PLATE, letters, texts={"Word": "IOX"})
+    assert [s["character"] for s in result.skipped if s["operation"] == "band finishing"] == [None]
+
+
+def test_glyphs_of_an_i_and_a_lower_case_letter():
+    from kezuri.toolpath import glyphs
+    stem, dot = np.array([[0, 0], [2, 0], [2, 10], [0, 10]], float), np.array([[0, 12], [2, 12], [2, 14], [0, 14]])
+    ring_out = np.array([[5, 0], [12, 0], [12, 8], [5, 8]], float)
+    ring_in = np.array([[7, 2], [10, 2], [10, 6], [7, 6]], float)
+    loops = [stem, dot, ring_out, ring_in]
+    assert glyphs.character_at(loops, "io", (8.5, 4.0)) == "o"              # in the o's counter
+    assert glyphs.character_at(loops, "io", (1.0, 13.0)) == "i"             # the dot is the i's
+    assert glyphs.character_at(loops, "i\no", (8.5, 4.0)) is None          # two lines: not told
+    assert glyphs.describe("o") == "'o' (U+006F)" and glyphs.describe("O") == "'O'"
+    assert glyphs.describe("\u6f22") == "'\u6f22' (U+6F22)"
+    assert glyphs.owner([("A", [stem]), ("B", [ring_out, ring_in])], (8.5, 4.0)) == "B"
+    assert glyphs.owner([("A", [stem]), ("B", [ring_out, ring_in])], (3.0, 5.0)) == "A"   # nearest
 
 
 @pytest.mark.parametrize("plate, letters, match", [

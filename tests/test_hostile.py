@@ -185,7 +185,9 @@ def test_what_the_reader_sets_aside_is_listed_and_the_old_unpacking_still_works(
     ignored = {entry["code"]: entry for entry in result.ignored}
     assert ignored["comment"]["count"] == 3 and ignored["comment"]["first_line"] == 3
     assert ignored["M8"]["meaning"] == "coolant on" and ignored["M8"]["first_line"] == 7
-    assert ignored["M6"]["count"] == 1 and ignored["F"]["count"] == 1 and ignored["S"]["count"] == 1
+    assert ignored["M6"]["count"] == 1 and ignored["F"]["count"] == 1
+    assert "S" not in ignored and "M3" not in ignored and "M5" not in ignored    # followed: the spindle
+    assert op.spindle_rpm == 8000 and op.spindle_cw and result.runs == [(op, lines)]
     assert ignored["G28"]["first_line"] == 13 and ignored["G54"]["count"] == 1
     assert [e["first_line"] for e in result.ignored] == sorted(e["first_line"] for e in result.ignored)
 

@@ -78,6 +78,25 @@ def test_toolpath_picture_colours_legend_and_labels():
     assert "DEEPEST CUT 1.5 MM" in picture.texts and "STOCK 100 x 60 x 10 MM" in picture.texts
 
 
+def test_a_place_left_uncut_is_marked_red_with_its_label_and_counted_in_the_legend():
+    stock = BoxStock(0, 0, -10, 100, 60, 0)
+    marks = [(30.0, 45.0, 0.0, "UNCUT 'E' 0.42 MM2")]
+    red = np.array(pj.UNCUT_COLOUR, np.uint8)
+    for picture in (pj.toolpath_picture([pocket_operation()], stock, title="POCKET", tilt_deg=0.0, marks=marks),
+                    pj.simulation_picture(simulate([pocket_operation()], stock, cell=0.5), tilt_deg=0.0,
+                                          marks=marks)):
+        image = picture.image()
+        px, py, _ = picture.view.project([(30.0, 45.0, 0.0)])
+        cx, cy, r = int(round(px[0])), int(round(py[0])), pj.MARK_PX
+        # the square's four sides are red, its inside is not painted
+        for x, y in ((cx, cy - r + 1), (cx, cy + r - 2), (cx - r + 1, cy), (cx + r - 2, cy)):
+            assert np.all(image[y, x] == red), (x, y)
+        assert not np.all(image[cy, cx] == red)
+        assert "UNCUT 'E' 0.42 MM2" in picture.texts
+    assert "LEFT UNCUT (1)" in pj.toolpath_picture([pocket_operation()], stock, marks=marks).texts
+    assert not any("UNCUT" in text for text in pj.toolpath_picture([pocket_operation()], stock).texts)
+
+
 def test_text_is_drawn_with_the_font():
     picture = Picture(200, 40)
     width = picture.text(3, 5, "DEEPEST CUT 1.5 MM", INK, 2)

@@ -6,7 +6,10 @@ Three operations, as the paper cuts a horizontal name plate:
    along the raster, every ``spacing`` mm of travel the tool goes to a new random depth
    (the "chisel-mark" texture), moving in straight lines between them.
 2. Band finishing: a small flat end mill clears a band of ``band_width`` around every
-   letter at one depth, so the letters stand out crisply.
+   letter at one depth, so the letters stand out crisply.  Each ring of the band is cut down
+   to that depth in step-downs of at most ``band_step_down`` (default 1 x the 1 mm tool's
+   diameter), every level entered on a ramp of ``band_ramp_angle`` along the ring
+   (:mod:`ramp`): the flat end mill never feeds straight down into the plate.
 3. Burr contour: the ball runs once along the border between texture and band.
 
 The roughing operation is planned untextured (at the base depth) and carries a
@@ -28,6 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import glyphs, ramp
 from . import region as rg
 from .program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, PathBuilder, Program, Tool
 from .texture import GOUGE_MOTIONS, EngraveError, GougeTexture  # noqa: F401  (the texture lives in the IR)
@@ -50,6 +54,11 @@ class EngraveSettings:
     band_width: float = 4.0
     band_depth: float = -2.0
     band_stepover: float = 0.5
+    band_step_down: float = 1.0     # at most 1 x D of the flat end mill per level
+    # 3 degrees: the low end of the 2-5 degrees a standard end mill ramps at (carbide-tooling.com,
+    # "Ramping Angle Calculator": "standard end mills have a maximum ramping angle of 2-5 degrees
+    # depending on the number of flutes and the core diameter"); a 1 mm tool's core is thin
+    band_ramp_angle: float = 3.0
     burr_depth: float = -2.0
     texture: GougeTexture = GougeTexture()
     rough_rpm: float = 6000.0
@@ -64,13 +73,15 @@ class EngraveSettings:
 
     def validate(self):
         numbers = {k: getattr(self, k) for k in ("stepover", "raster_angle", "letter_clearance", "band_width",
-                                                 "band_depth", "band_stepover", "burr_depth", "rough_rpm",
+                                                 "band_depth", "band_stepover", "band_step_down",
+                                                 "band_ramp_angle", "burr_depth", "rough_rpm",
                                                  "finish_rpm", "rough_feed", "finish_feed", "plunge_feed",
                                                  "clearance_z", "safe_z", "approach_gap")}
         for name, value in numbers.items():
             if not math.isfinite(value):
                 raise EngraveError(f"{name.replace('_', ' ')} must be a finite number, got {value}")
-        for name in ("stepover", "band_stepover", "band_width", "rough_feed", "finish_feed", "plunge_feed"):
+        for name in ("stepover", "band_stepover", "band_step_down", "band_width", "rough_feed", "finish_feed",
+                     "plunge_feed"):
             if numbers[name] <= 0:
                 raise EngraveError(f"{name.replace('_', ' ')} must be greater than zero, got {numbers[name]}")
         if self.stepover > self.rough_tool.diameter:
@@ -82,6 +93,13 @@ class EngraveSettings:
         if self.finish_tool.diameter > self.band_width:
             raise EngraveError(f"the {self.finish_tool.diameter} mm finishing tool is wider than the "
                                f"{self.band_width} mm band")
+        if self.band_step_down > self.finish_tool.diameter + 1e-9:
+            raise EngraveError(f"band step down {self.band_step_down:g} mm is more than the "
+                               f"{self.finish_tool.diameter:g} mm finishing tool's diameter: a small flat end mill "
+                               "takes at most 1 x its diameter in depth per pass")
+        if not 0 < self.band_ramp_angle <= ramp.MAX_ANGLE:
+            raise EngraveError(f"band ramp angle must be more than 0 and at most {ramp.MAX_ANGLE:g} degrees, got "
+                               f"{self.band_ramp_angle:g}")
         if self.band_depth >= 0 or self.burr_depth >= 0:
             raise EngraveError("band and burr depths must be below the plate top (negative Z)")
         if not 0 < self.approach_gap < self.clearance_z <= self.safe_z:
@@ -92,14 +110,17 @@ class EngraveSettings:
 class EngraveResult:
     program: Program                       # roughing untextured, carrying its GougeTexture
     warnings: list = field(default_factory=list)
-    skipped: list = field(default_factory=list)   # [{operation, area_mm2, at: [x, y]}]
+    # [{operation, area_mm2, at: [x, y], letters: object name, character: the Text's character or None}]
+    skipped: list = field(default_factory=list)
     texture_area_mm2: float = 0.0
     band_area_mm2: float = 0.0
     corner_leftover_mm2: float = 0.0    # left by round tools in sharp inside corners
+    letters: list = field(default_factory=list)   # the letters as planned: [(object name, loops)]
+    texts: dict = field(default_factory=dict)     # {object name: text} of the Text objects
 
 
 def plan(plate_loops, letters, settings: EngraveSettings = EngraveSettings(), name: str = "engrave",
-         progress=None, plate_thickness: float | None = None) -> EngraveResult:
+         progress=None, plate_thickness: float | None = None, texts: dict | None = None) -> EngraveResult:
     """Plan the three operations.
 
     plate_loops: closed loops (mm, work XY; the plate top is Z = 0) of the plate face.
@@ -108,6 +129,8 @@ def plan(plate_loops, letters, settings: EngraveSettings = EngraveSettings(), na
     progress:    optional callable(fraction, text).
     plate_thickness: mm; every cut (the deepest gouge, the band and burr depths) must stay above
                  the plate's bottom, Z = -thickness.  None: not checked (the caller does not know).
+    texts:       {object_name: its text} for the letters objects that are Text objects, so a region
+                 left uncut is named by its character where that can be told (:mod:`glyphs`).
     """
     settings.validate()
     if plate_thickness is not None:
@@ -135,7 +158,7 @@ def plan(plate_loops, letters, settings: EngraveSettings = EngraveSettings(), na
     glyphs = letter_regions[0]
     for region in letter_regions[1:]:
         glyphs = glyphs + region
-    result = EngraveResult(Program(name, []))
+    result = EngraveResult(Program(name, []), letters=list(letters), texts=dict(texts or {}))
 
     report(0.05, "roughing raster")
     rough = _roughing(plate, glyphs, settings, result)
@@ -167,17 +190,27 @@ def _finish(builder: PathBuilder, settings, name, tool, rpm, texture=None) -> Op
 
 def _report_skipped(result, operation, target, reached):
     """Warn about islands of ``target`` the tool cannot enter at all (e.g. a counter narrower than
-    the tool).  What a round tool leaves in sharp inside corners is not an island: it is summed
-    into ``corner_leftover_mm2`` instead."""
+    the tool), naming the letters object and, where it can be told, the character it lies in
+    (the warnings become NOTE lines of the NC header).  What a round tool leaves in sharp inside
+    corners is not an island: it is summed into ``corner_leftover_mm2`` instead."""
     for piece in rg.components(target):
         if rg.area(piece ^ reached) > rg.MIN_AREA:
             result.corner_leftover_mm2 += rg.area(piece - reached)
             continue
         x, y = rg.centroid(piece)
+        name = glyphs.owner(result.letters, (x, y))
+        loops = next((loops for object_name, loops in result.letters if object_name == name), [])
+        character = glyphs.character_at(loops, result.texts.get(name), (x, y)) if loops else None
         result.skipped.append({"operation": operation, "area_mm2": round(rg.area(piece), 3),
-                               "at": [round(x, 2), round(y, 2)]})
-        result.warnings.append(f"{operation}: the tool is too big to enter a gap of {rg.area(piece):.2f} mm^2 "
-                               f"near X{x:.1f} Y{y:.1f}; it is left uncut")
+                               "at": [round(x, 2), round(y, 2)], "letters": name, "character": character})
+        area = rg.area(piece)
+        if character is not None:
+            result.warnings.append(f"{operation}: the tool is too big to enter a gap of {area:.2f} mm^2 in "
+                                   f"{glyphs.describe(character)} of letters {name!r} near X{x:.1f} Y{y:.1f}; it is "
+                                   "left uncut")
+        else:
+            result.warnings.append(f"{operation}: the tool is too big to enter a gap of {area:.2f} mm^2 in letters "
+                                   f"{name!r} near X{x:.1f} Y{y:.1f}; it is left uncut")
 
 
 def _roughing(plate, glyphs, settings, result) -> Operation | None:
@@ -212,14 +245,16 @@ def _band_finishing(plate, glyphs, settings, result) -> Operation | None:
     _report_skipped(result, "band finishing", band, rg.offset(centre_region, r))
     builder = _builder(settings, settings.finish_feed)
     here = (0.0, 0.0)
+    depths = ramp.levels(settings.band_depth, settings.band_step_down)
     for d in distances:
         rings = [loop for _, loop in rg.contour_rings(glyphs, [d], clip=plate)]
         for loop, start_index in rg.order_loops_nearest(rings, here):
             path = _directed(loop, start_index, settings.climb)
-            builder.plunge(path[0, 0], path[0, 1], settings.band_depth)
-            for x, y in path[1:]:
-                builder.line(x, y, settings.band_depth)
-            here = path[-1]
+            # fed down to the plate's top only, then ramped along the ring to each level
+            moves = ramp.ramped_passes(path, depths, settings.band_ramp_angle)
+            builder.plunge(*moves[0])
+            builder.polyline(moves[1:])
+            here = builder.position[:2]
     return _finish(builder, settings, "band finishing", tool, settings.finish_rpm)
 
 

@@ -13,9 +13,17 @@ tolerances, interp_internal.hh): the end may lie off the start's circle by at mo
 0.02*sqrt(2) mm (0.002*sqrt(2) inch under G20) unless that is also within 0.1 % of the radius,
 and never by more than 100 times that; a radius under 0.00127 mm (I0 J0) is refused.
 
-What it deliberately ignores, because it does not change where the tool goes (feeds, spindle,
-coolant, pauses, tool length offsets, work offsets, path blending, comments ...), is listed in
-the result's ``ignored`` (:class:`NCRead`), so a report can say so.  Everything else (G92
+The spindle is followed as LinuxCNC's interpreter does (its canonical output): ``S`` sets the
+speed, ``M3``/``M4`` start it, ``M5`` stops it, and so does a tool change ``M6`` and the program
+end; in one block the speed is set first, then the tool changed, then the spindle started or
+stopped, then the tool moved.  Every move is read with the spindle state it runs at; the result
+is split into :attr:`NCRead.runs` where a cutting move's spindle differs from the one before,
+so each run is one :class:`Operation` with its own ``spindle_rpm`` (0: stopped), and the
+simulation's "cuts with the spindle at 0 rpm" names the move that does.
+
+What it deliberately ignores, because it does not change where the tool goes (feeds, coolant,
+pauses, tool length offsets, work offsets, path blending, comments ...), is listed in the
+result's ``ignored`` (:class:`NCRead`), so a report can say so.  Everything else (G92
 offsets, G68 rotation, G38 probing, G81..G89 canned cycles, G41/G42 cutter compensation,
 other planes, macros, block delete ``/`` (whether the line runs depends on the control's switch),
 two codes of one modal group in a block (G90 G91), unknown M codes, words it does not know, malformed numbers such as
@@ -52,14 +60,16 @@ IGNORED_CODES = {
     "G61": "exact path mode", "G61.1": "exact stop mode", "G64": "path blending", "G80": "canned cycle off",
     "G91.1": "incremental arc centres (the default)", "G93": "inverse-time feed", "G94": "feed per minute",
     "G97": "spindle rpm mode",
-    "M0": "program pause", "M1": "optional pause", "M3": "spindle on, clockwise",
-    "M4": "spindle on, counter-clockwise", "M5": "spindle off",
+    "M0": "program pause", "M1": "optional pause",
     "M6": "tool change (every move is simulated with the one tool given)", "M7": "mist coolant on",
     "M8": "coolant on", "M9": "coolant off",
 }
 # Codes the reader follows.
 MOTION = {"G0": 0, "G1": 1, "G2": 2, "G3": 3}
 MODES = {"G20", "G21", "G90", "G91", "G28", "G53"} | set(MOTION)
+# The spindle codes followed (LinuxCNC's modal group 7; M6 stops the spindle before the change,
+# rs274 writes STOP_SPINDLE_TURNING before CHANGE_TOOL): the direction each sets, None = stopped.
+SPINDLE = {"M3": True, "M4": False, "M5": None}
 # Refused with a reason a user can act on.
 REFUSED = {
     "G92": "sets a coordinate offset, which the reader does not follow",
@@ -91,7 +101,7 @@ REFUSED.update({f"G{k}": "canned cycles are not simulated" for k in (73, 74, 76,
                                                                       88, 89)})
 AXES = ("X", "Y", "Z", "C")
 # Words that go with a code it reads or ignores; any other address is refused.
-WORD_USE = {"F": "feed", "S": "spindle speed", "T": "tool number", "H": "tool length offset number"}
+WORD_USE = {"F": "feed", "T": "tool number", "H": "tool length offset number"}
 
 
 class NCReadError(InputError):
@@ -101,11 +111,15 @@ class NCReadError(InputError):
 class NCRead(tuple):
     """What :func:`read_nc` returns: ``(operation, lines)`` as before (it unpacks as a pair),
     plus ``ignored``: what the reader read and set aside, one entry per code or word, as
-    {"code", "meaning", "count", "first_line"}, in order of first appearance."""
+    {"code", "meaning", "count", "first_line"}, in order of first appearance; ``runs``: the
+    moves split where the spindle of a cutting move changes, as [(Operation, lines)], each
+    with the spindle its cutting moves run at (what the simulation checks).  The whole
+    ``operation``'s ``spindle_rpm`` is the lowest any cutting move runs at."""
 
-    def __new__(cls, operation, lines, ignored):
+    def __new__(cls, operation, lines, ignored, runs=None):
         self = super().__new__(cls, (operation, lines))
         self.ignored = ignored
+        self.runs = runs if runs is not None else [(operation, lines)]
         return self
 
     @property
@@ -214,6 +228,8 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
     known = set()
     mode, absolute, scale = None, True, 1.0
     kinds, points, centres, c_values, lines = [], [], [], [], []
+    speeds, turning = [], []          # per move: the S in effect, the direction (None: stopped)
+    speed, direction = 0.0, None
     saw_c = False
     ignored: dict = {}
     comments: list = []
@@ -255,10 +271,20 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
         motions = [c for c in codes if c in MOTION]
         if len(motions) > 1:
             raise NCReadError(f"line {number}: {' and '.join(motions)} are both motions in {_shown(raw)}")
-        for group in (("G90", "G91"), ("G20", "G21")):
-            if all(code in codes for code in group):
+        spindle = [c for c in codes if c in SPINDLE]
+        for group in (("G90", "G91"), ("G20", "G21"), tuple(spindle[:2])):
+            if len(group) == 2 and all(code in codes for code in group):
                 raise NCReadError(f"line {number}: {group[0]} and {group[1]} are in one modal group, so one block "
                                   f"cannot have both: {_shown(raw)}")
+        # LinuxCNC's order of execution in a block: S, then the tool change M6, then M3/M4/M5
+        if "S" in values:
+            if values["S"] < 0:
+                raise NCReadError(f"line {number}: S{values['S']:g} is not a spindle speed: {_shown(raw)}")
+            speed = values["S"]
+        if "M6" in codes:
+            direction = None
+        if spindle:
+            direction = SPINDLE[spindle[0]]
         home = lift = False
         for code in codes:
             if code in REFUSED:
@@ -277,14 +303,14 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
                 home = True
             elif code == "G53":
                 lift = True
-            elif code in _END_CODES:
+            elif code in _END_CODES or code in SPINDLE:
                 pass
             elif code in IGNORED_CODES:
                 ignore(code, IGNORED_CODES[code], number)
             else:
                 raise NCReadError(f"line {number}: {code} is not a code this reader knows: {_shown(raw)}")
         for letter in values:
-            if letter in AXES or letter in "IJ":
+            if letter in AXES or letter in "IJS":
                 continue
             if letter in WORD_USE:
                 ignore(letter, WORD_USE[letter], number)
@@ -350,6 +376,8 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             centres.append(centre)
             c_values.append(position["C"])
             lines.append(number)
+            speeds.append(speed if direction is not None else 0.0)
+            turning.append(direction is not False)
         if ends:
             break
     if comments:
@@ -359,9 +387,33 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
         raise NCReadError("the NC file has no moves")
     feed = np.where(np.array(kinds) == RAPID, np.nan, 1000.0)
     rotary = {"c": np.array(c_values)} if saw_c else {}
+    cutting = np.flatnonzero(np.array(kinds) != RAPID)
+    slowest = min((speeds[i] for i in cutting), default=speeds[-1])
+    clockwise = turning[cutting[0]] if len(cutting) else True
     # The tool is taken to start where the first move ends: nothing is known of where it was.
-    op = Operation(name, tool, 0.0, kinds, points, feed, center=centres, rotary=rotary, start=np.array(points[0]))
-    return NCRead(op, lines, sorted(ignored.values(), key=lambda e: e["first_line"]))
+    op = Operation(name, tool, slowest, kinds, points, feed, center=centres, rotary=rotary, start=np.array(points[0]),
+                   spindle_cw=clockwise)
+    return NCRead(op, lines, sorted(ignored.values(), key=lambda e: e["first_line"]),
+                  _spindle_runs(op, lines, speeds, turning, cutting))
+
+
+def _spindle_runs(op: Operation, lines: list, speeds: list, turning: list, cutting) -> list:
+    """[(Operation, lines)]: ``op`` cut where a cutting move runs at another spindle (speed or
+    direction) than the cutting move before it; rapids go with the run they lie in."""
+    starts = [0] + [int(i) for i, j in zip(cutting[1:], cutting[:-1])
+                    if (speeds[i], turning[i]) != (speeds[j], turning[j])]
+    if len(starts) == 1:
+        return [(op, lines)]
+    runs = []
+    for a, b in zip(starts, starts[1:] + [len(op)]):
+        first = next((i for i in cutting if a <= i < b), a)
+        where = f"line {lines[a]}" if b - a == 1 else f"lines {lines[a]}-{lines[b - 1]}"
+        part = op.replace(name=f"{op.name} {where}", spindle_rpm=speeds[first],
+                          spindle_cw=turning[first], kind=op.kind[a:b], xyz=op.xyz[a:b], feed=op.feed[a:b],
+                          center=op.center[a:b], rotary={k: v[a:b] for k, v in op.rotary.items()},
+                          start=op.xyz[a - 1] if a else op.start, links=None)
+        runs.append((part, lines[a:b]))
+    return runs
 
 
 def parse_tool(text: str) -> Tool:

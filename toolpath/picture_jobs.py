@@ -4,7 +4,9 @@
   part's solids and the stock's outline, with a legend, the stock's size and the deepest cut;
 * the simulated stock: shaded, coloured by depth over the job's own depth range (0 .. deepest cut),
   with a colour bar;
-* sheet patterns: filled faces, dashed bend lines, the cut contour, each pattern's size.
+* sheet patterns: filled faces, dashed bend lines, the cut contour, each pattern's size;
+* on the toolpaths and the simulated stock, what a workflow leaves uncut (``marks``): a red square
+  round each place with its label, and "LEFT UNCUT" in the legend, so nothing is skipped unseen.
 
 Every picture frames all it draws (the part's corners, the stock and every toolpath point).
 """
@@ -29,7 +31,9 @@ OUTLINE_COLOUR = (120, 110, 95)
 DEPTH_RAMP = np.array([(236, 218, 178), (232, 160, 70), (190, 70, 40), (95, 25, 70), (30, 20, 90)], float)
 PATTERN_COLOURS = ((150, 190, 235), (160, 215, 170), (240, 200, 140), (210, 175, 230))
 BEND_COLOUR, CONTOUR_COLOUR = (40, 40, 160), (230, 70, 20)
+UNCUT_COLOUR = (235, 20, 20)
 HEADER, LEGEND, SCALE = 58, 44, 2
+MARK_PX = 12           # half the side of the square round a place left uncut
 STEEP = 0.25           # a plunge: at most this much sideways per mm along the tool axis
 ARC_STEP = np.radians(6.0)
 
@@ -203,12 +207,25 @@ def _legend(picture: Picture, entries: list):
         left += picture.text(left, top, label, INK, SCALE) + 28
 
 
+def mark_uncut(picture: Picture, view: View, marks) -> None:
+    """A square of :data:`UNCUT_COLOUR` round each place of ``marks`` = [(x, y, z, label)] (work
+    mm), its label beside it."""
+    for x, y, z, label in marks:
+        px, py, _ = view.project([(x, y, z)])
+        cx, cy, r = int(round(px[0])), int(round(py[0])), MARK_PX
+        for left, top, right, bottom in ((cx - r, cy - r, cx + r, cy - r + 3), (cx - r, cy + r - 3, cx + r, cy + r),
+                                         (cx - r, cy - r, cx - r + 3, cy + r), (cx + r - 3, cy - r, cx + r, cy + r)):
+            picture.box(left, top, right, bottom, UNCUT_COLOUR)
+        picture.text(cx + r + 4, cy - 7, label, UNCUT_COLOUR, SCALE)
+
+
 # ----- pictures ---------------------------------------------------------------------------
 def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 800), tilt_deg: float = 35.0,
-                     caption: str = ""):
+                     caption: str = "", marks=()):
     """The toolpaths over the part: ``solids`` = [(vertices (k, 3), faces (f, 3), rgb), ...] in
     the same work mm as the moves; ``caption``: a line of text drawn over the picture's top edge
-    below the header (e.g. what was not cut), cut short with '...' where the picture ends."""
+    below the header (e.g. what was not cut), cut short with '...' where the picture ends;
+    ``marks``: places left uncut, [(x, y, z, label)]."""
     from .simulate.stock import as_stock
 
     stock = as_stock(stock)
@@ -232,10 +249,12 @@ def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 
         picture.segments(view, a, b, ROLE_COLOURS[name], (3 if role == PLUNGE else 2) - thin,
                          dash=6.0 if role == RAPID_ROLE else 0.0)
     deepest = deepest_cut(operations, stock)
+    mark_uncut(picture, view, marks)
     _header(picture, title, [stock_label(stock), f"DEEPEST CUT {mm(deepest)} MM"])
     if caption:
         _caption(picture, caption)
-    _legend(picture, [(ROLE_LABELS[name], ROLE_COLOURS[name], name == "rapid") for name in ROLES])
+    _legend(picture, [(ROLE_LABELS[name], ROLE_COLOURS[name], name == "rapid") for name in ROLES]
+            + ([(f"LEFT UNCUT ({len(marks)})", UNCUT_COLOUR, False)] if len(marks) else []))
     picture.deepest = deepest
     picture.view = view
     return picture
@@ -260,9 +279,10 @@ def depth_colours(depth, deepest: float) -> np.ndarray:
 
 
 def simulation_picture(result, title: str = "", size=(1200, 800), tilt_deg: float = 35.0, max_cells: int = 160_000,
-                       mesh=None):
+                       mesh=None, marks=()):
     """The simulated stock, shaded and coloured by depth over 0 .. its deepest cut; ``mesh``:
-    its (vertices, faces) when the caller has them already (else ``result.surface(max_cells)``)."""
+    its (vertices, faces) when the caller has them already (else ``result.surface(max_cells)``);
+    ``marks``: places left uncut, [(x, y, z, label)]."""
     vertices, faces = result.surface(max_cells) if mesh is None else mesh
     vertices = np.asarray(vertices, float)
     faces = np.asarray(faces, np.int64)
@@ -276,8 +296,10 @@ def simulation_picture(result, title: str = "", size=(1200, 800), tilt_deg: floa
     view = View(np.vstack([vertices, stock_corners(result.stock)]),
                 (0, HEADER, picture.width, picture.height - LEGEND), tilt_deg)
     picture.triangles(view, vertices, faces, colours)
+    mark_uncut(picture, view, marks)
     _header(picture, title, [stock_label(result.stock), f"DEEPEST CUT {mm(deepest)} MM",
-                             f"REMOVED {result.removed_volume_mm3:.0f} MM3"])
+                             f"REMOVED {result.removed_volume_mm3:.0f} MM3"]
+            + ([f"LEFT UNCUT: {len(marks)} (RED)"] if len(marks) else []))
     top = picture.height - LEGEND + 10
     picture.box(0, picture.height - LEGEND, picture.width, picture.height - LEGEND + 1, (200, 200, 196))
     left = 12 + picture.text(12, top, "DEPTH 0", INK, SCALE) + 10
