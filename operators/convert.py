@@ -232,8 +232,10 @@ def split_runs(kinds, points) -> tuple:
 
 
 def operation_paths(op) -> tuple:
-    """Cutting and rapid polylines of a 3-axis operation (work mm)."""
-    return split_runs(op.kind, np.vstack([op.start[None, :], op.xyz]))
+    """Cutting and rapid polylines of a 3-axis operation (work mm), arcs walked along the arc."""
+    from ..toolpath.program import walked
+
+    return split_runs(*walked(op))
 
 
 def fill_mesh(mesh, vertices, faces):

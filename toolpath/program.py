@@ -300,6 +300,36 @@ def arc_sweep(a: np.ndarray, b: np.ndarray, c: np.ndarray, clockwise: np.ndarray
     return np.where(clockwise, -cw, ccw)
 
 
+def walked(op: "Operation", arc_step: float = np.radians(6.0)) -> tuple:
+    """(kind (m,), points (m + 1, 3)): the operation's path with every arc walked in pieces of at
+    most ``arc_step`` radians (helical arcs climbing evenly), each piece keeping its arc's kind;
+    straight moves as they are.  The start is the first point.  For drawing a path that has arcs
+    (a viewport polyline would otherwise join an arc's ends with a chord)."""
+    a, b = op.start_points(), op.xyz
+    arcs = np.flatnonzero((op.kind == ARC_CW) | (op.kind == ARC_CCW))
+    if not len(arcs) or op.rotary:
+        return op.kind.copy(), np.vstack([op.start[None, :], op.xyz])
+    centre = op.center[arcs, :2]
+    sweep = arc_sweep(a[arcs, :2], b[arcs, :2], centre, op.kind[arcs] == ARC_CW)
+    count = np.ones(len(op), np.int64)
+    count[arcs] = np.maximum(np.ceil(np.abs(sweep) / arc_step).astype(np.int64), 1)
+    owner = np.repeat(np.arange(len(op)), count)
+    piece = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count) + 1
+    points = b[owner].copy()
+    on_arc = np.isin(owner, arcs)
+    index = np.searchsorted(arcs, owner[on_arc])
+    t = piece[on_arc] / count[owner[on_arc]]
+    start = a[arcs][index]
+    angle = np.arctan2(start[:, 1] - centre[index, 1], start[:, 0] - centre[index, 0]) + sweep[index] * t
+    radius = np.hypot(start[:, 0] - centre[index, 0], start[:, 1] - centre[index, 1])
+    points[on_arc] = np.column_stack([centre[index, 0] + radius * np.cos(angle),
+                                      centre[index, 1] + radius * np.sin(angle),
+                                      start[:, 2] + (b[arcs][index, 2] - start[:, 2]) * t])
+    last = np.cumsum(count) - 1
+    points[last] = b                   # each move ends exactly where it says
+    return op.kind[owner], np.vstack([op.start[None, :], points])
+
+
 @dataclass
 class Program:
     """What a post turns into one NC file."""
