@@ -39,9 +39,12 @@ def object_solid(obj, frame, depsgraph=None, colour=picture_jobs.PART_COLOUR) ->
     return frame.to_work(world), triangles.reshape(-1, 3).astype(np.int64), colour
 
 
-def toolpath_png(path: str, operations, stock, solids=(), title: str = "", tilt_deg: float = 35.0) -> str:
-    """The toolpaths (cut, plunge, link, rapid) over ``solids`` ([(vertices mm, faces, rgb)])."""
-    picture = picture_jobs.toolpath_picture(list(operations), stock, list(solids), title, SIZE, tilt_deg)
+def toolpath_png(path: str, operations, stock, solids=(), title: str = "", tilt_deg: float = 35.0,
+                 highlights=()) -> str:
+    """The toolpaths (cut, plunge, link, rapid) over ``solids`` ([(vertices mm, faces, rgb)]);
+    ``highlights``: [(vertices, faces, rgb, legend label)] drawn over the solids, each in the legend."""
+    picture = picture_jobs.toolpath_picture(list(operations), stock, list(solids), title, SIZE, tilt_deg,
+                                            highlights=list(highlights))
     return write_atomic(path, picture.png())
 
 

@@ -195,9 +195,12 @@ def _legend(picture: Picture, entries: list):
 
 
 # ----- pictures ---------------------------------------------------------------------------
-def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 800), tilt_deg: float = 35.0):
+def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 800), tilt_deg: float = 35.0,
+                     highlights=()):
     """The toolpaths over the part: ``solids`` = [(vertices (k, 3), faces (f, 3), rgb), ...] in
-    the same work mm as the moves."""
+    the same work mm as the moves.  ``highlights`` = [(vertices, faces, rgb, label), ...]: faces
+    drawn over the solids (seen through them, so a cross hole inside the part shows) and named in
+    the legend, such as the faces no tool reaches."""
     from .simulate.stock import as_stock
 
     stock = as_stock(stock)
@@ -210,6 +213,11 @@ def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 
         picture.depth[:] = -np.inf        # the part inside the stock is drawn over the stock
     for vertices, faces, colour in solids:
         picture.triangles(view, vertices, faces, colour)
+    for vertices, faces, colour, _ in highlights:
+        solid_depth = picture.depth.copy()
+        picture.depth[:] = -np.inf        # over the part: what lies inside it shows
+        picture.triangles(view, vertices, faces, colour)
+        np.maximum(picture.depth, solid_depth, out=picture.depth)   # the part still hides the paths behind it
     stock_outline(picture, view, stock)
     counts = {}
     thin = sum(len(a) for a, _, _ in pieces) > 20_000      # dense paths: 1 px lines, the part shows through
@@ -222,7 +230,8 @@ def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 
                          dash=6.0 if role == RAPID_ROLE else 0.0)
     deepest = deepest_cut(operations, stock)
     _header(picture, title, [stock_label(stock), f"DEEPEST CUT {mm(deepest)} MM"])
-    _legend(picture, [(ROLE_LABELS[name], ROLE_COLOURS[name], name == "rapid") for name in ROLES])
+    _legend(picture, [(ROLE_LABELS[name], ROLE_COLOURS[name], name == "rapid") for name in ROLES]
+            + [(label, colour, False) for _, _, colour, label in highlights])
     picture.deepest = deepest
     picture.view = view
     return picture
