@@ -419,7 +419,7 @@ class PathBuilder:
 
 
 def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kinematics.SHORTEST_BLOCK_MINUTES,
-                      resolution: float = 0.001) -> Operation:
+                      resolution: float = 0.001, accept=None) -> Operation:
     """``op`` with its too-short straight cutting moves merged into their neighbours.
 
     A cutting move is too short when it is shorter than ``resolution`` (the least increment a
@@ -434,6 +434,8 @@ def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kine
     (:func:`kinematics.block_minutes`) then times it, so it is cut slower, never written with an F
     word the control cannot read.  Rapids and arcs are never touched.  The planners of the rotary
     machines (:mod:`rotary`, :mod:`turnmill`) apply this to every operation they make.
+    ``accept(a, c_a, b, c_b)``: optional, a further condition on each merged move from machine
+    point a at C c_a to b at c_b (C 0 without a C axis), such as the tool staying clear of the part.
     """
     n = len(op)
     if n < 2:
@@ -475,6 +477,9 @@ def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kine
         else:
             continue
         if deviation(previous[drop], drop, after) > tolerance:
+            continue
+        if accept is not None and not accept(machine[previous[drop]], float(c_all[previous[drop]]),
+                                             machine[after], float(c_all[after])):
             continue
         keep[drop] = False
         previous[after] = previous[drop]

@@ -580,7 +580,7 @@ def _machine(centres: np.ndarray, direction: str, r: float):
     return rho, centres[:, 2] - r, angle
 
 
-def _operation(name, direction, layers, stock, settings) -> TurnMillOperation | None:
+def _operation(name, direction, layers, stock, settings, surface=None) -> TurnMillOperation | None:
     """Moves through the passes, layer by layer.  Between passes the tool retracts along its own
     axis to the clearance outside the stock, turns C there, and feeds back in."""
     passes = [p for layer in layers for p in layer]
@@ -623,8 +623,31 @@ def _operation(name, direction, layers, stock, settings) -> TurnMillOperation | 
     op = TurnMillOperation(name, settings.tool(direction), settings.spindle_rpm, np.concatenate(kind), xyz,
                            np.concatenate(feed), rotary={"c": c}, clearance_z=z_clear, safe_z=z_clear,
                            start=np.array([x_clear, 0.0, z_clear]), direction=direction)
-    # no dip deeper than a chord's; no block shorter than the control processes in time, where it can merge
-    return merge_short_moves(op, min(settings.tolerance, CHORD_DIP), settings.shortest_block_minutes)
+    # no dip deeper than a chord's; then blocks shorter than the control processes in time merge within the
+    # chordal tolerance where the ball stays clear of the part along the merged move
+    minutes = settings.shortest_block_minutes
+    op = merge_short_moves(op, min(settings.tolerance, CHORD_DIP), minutes)
+    if surface is None or settings.tolerance <= CHORD_DIP:
+        return op
+    return merge_short_moves(op, settings.tolerance, minutes, accept=_ball_clear(direction, surface, settings))
+
+
+def _ball_clear(direction: str, surface, settings):
+    """``accept`` for :func:`merge_short_moves`: along the merged X-Z-C move (the curve the
+    machine traces), ball centres :func:`turnjoin` 's chord spacing apart each stay clear of the
+    part by r - CHORD_DIP / 2, so between them the ball dips no deeper than a planned chord."""
+    r = settings.radius
+    dx, dz = (r, 0.0) if direction == "radial" else (0.0, r)
+    spacing = math.sqrt(4 * r * CHORD_DIP)
+
+    def accept(a, c_a, b, c_b) -> bool:
+        def centres(t):
+            return kinematics.interpolate(a[0] + dx, c_a, a[2] + dz, b[0] + dx, c_b, b[2] + dz, t)
+        ends = centres(np.array([0.0, 1.0]))
+        along = centres(np.linspace(0.0, 1.0, max(2, math.ceil(float(np.linalg.norm(ends[1] - ends[0])) / spacing) + 1)))
+        distance, _ = surface.nearest(along, r)
+        return bool(np.all(distance >= r - CHORD_DIP / 2))
+    return accept
 
 
 @dataclass
@@ -688,10 +711,11 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
     axial = axial_layers(v, f, axial_ids, stock, settings,
                          lambda fraction: report(0.8 + 0.15 * fraction, "axial layers"))
     report(0.95, "operations")
+    surface = Triangles.shared(v[f])
     operations = []
     for direction, layers in (("radial", radial), ("axial", axial)):
         for label, part in (("roughing", layers[:-1]), ("finishing", layers[-1:])):
-            op = _operation(f"{direction} {label}", direction, part, stock, settings)
+            op = _operation(f"{direction} {label}", direction, part, stock, settings, surface)
             if op is not None:
                 operations.append(op)
     if not operations:
