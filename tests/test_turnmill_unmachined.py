@@ -143,3 +143,18 @@ def test_batch_names_the_hole_in_report_stderr_and_nc(tmp_path):
     assert "(NOTE: NOT MACHINED: 64 FACES, 752.8 MM2" in (out / "turnmill.nc").read_text()
     faces = [face["label"] for face in report["faces"]]
     assert faces.count("none") >= 2 * SEGMENTS
+    # the program against the 0i-T's memory and block time, counted here from the text
+    text = (out / "turnmill.nc").read_text()
+    size_kb = len(text.encode()) / 1024
+    short = 0
+    inverse = False
+    for line in text.splitlines():
+        inverse = (inverse or " G93" in f" {line}") and not re.search(r"\bG9[48]\b", line)
+        f = re.search(r"\bF([0-9.]+)", line)
+        if inverse and f and line.startswith(("G01", "X", "Z", "C")) and 60000.0 / float(f.group(1)) < 7.5:
+            short += 1
+    assert short > 1000
+    assert report["programs"]["xzc"] == {"size_kb": round(size_kb, 1), "memory_kb": 512.0, "short_blocks": short,
+                                         "block_ms": 7.5}
+    assert f"the turnmill-xzc program is {size_kb:,.1f} kB, larger than the 512 kB program memory" in run.stderr
+    assert f"has {short:,} inverse-time blocks shorter than the 7.5 ms" in run.stderr
