@@ -1,5 +1,6 @@
 """Turn-mill passes: runs of ball centres kept a stepover apart (:func:`_short_segments`), and
-joining the runs of a layer into passes, nearest first.
+joining the runs of a layer into passes, nearest first; whether a merged move keeps the ball clear
+(:func:`merged_move_clear`).
 
 :func:`_join` orders the runs of one layer nearest first and joins neighbours into passes; the
 nearest run end is found on a grid (:class:`_RunEnds`), so the time follows the number of runs,
@@ -12,6 +13,7 @@ import math
 
 import numpy as np
 
+from . import kinematics
 from .program import TurnMillError
 
 MAX_BALL_POSITIONS = 5_000_000     # roughing copies of the passes: past this the memory runs out first
@@ -287,3 +289,22 @@ def _join(runs: list, surface, settings, progress=None) -> list:
         else:
             passes.append(run)
     return passes
+
+
+def merged_move_clear(direction: str, surface, settings):
+    """``accept`` for :func:`merge_short_moves`: along the merged X-Z-C move (the curve the
+    machine traces), ball centres the chord spacing of :func:`_link_clear` apart each stay clear of the
+    part by r - CHORD_DIP / 2, so between them the ball dips no deeper than a planned chord."""
+    r = settings.radius
+    dx, dz = (r, 0.0) if direction == "radial" else (0.0, r)
+    spacing = math.sqrt(4 * r * CHORD_DIP)
+
+    def accept(a, c_a, b, c_b) -> bool:
+        def centres(t):
+            return kinematics.interpolate(a[0] + dx, c_a, a[2] + dz, b[0] + dx, c_b, b[2] + dz, t)
+        ends = centres(np.array([0.0, 1.0]))
+        along = centres(np.linspace(0.0, 1.0, max(2, math.ceil(float(np.linalg.norm(ends[1] - ends[0])) / spacing) + 1)))
+        distance, _ = surface.nearest(along, r)
+        return bool(np.all(distance >= r - CHORD_DIP / 2))
+    return accept
+

@@ -77,7 +77,7 @@ from .program import (FEED, RAPID, Program, Tool, TurnMillError, TurnMillOperati
 from .turnreach import (AXIAL, BOTH, DIRECTIONS, LABEL_NAMES, NEITHER, RADIAL,  # noqa: F401
                         classify_faces, path_faces)
 from .turnjoin import (CHORD_DIP, MAX_BALL_POSITIONS, TurnMillCancelled, _counted, _join, _join_layers,  # noqa: F401
-                       _link_clear, _short_segments, _subdivide)
+                       _link_clear, _short_segments, _subdivide, merged_move_clear)
 
 PUSH_ITERATIONS = 8      # rounds of pushing a ball centre clear of the surface (corners need 2-3)
 
@@ -629,25 +629,7 @@ def _operation(name, direction, layers, stock, settings, surface=None) -> TurnMi
     op = merge_short_moves(op, min(settings.tolerance, CHORD_DIP), minutes)
     if surface is None or settings.tolerance <= CHORD_DIP:
         return op
-    return merge_short_moves(op, settings.tolerance, minutes, accept=_ball_clear(direction, surface, settings))
-
-
-def _ball_clear(direction: str, surface, settings):
-    """``accept`` for :func:`merge_short_moves`: along the merged X-Z-C move (the curve the
-    machine traces), ball centres :func:`turnjoin` 's chord spacing apart each stay clear of the
-    part by r - CHORD_DIP / 2, so between them the ball dips no deeper than a planned chord."""
-    r = settings.radius
-    dx, dz = (r, 0.0) if direction == "radial" else (0.0, r)
-    spacing = math.sqrt(4 * r * CHORD_DIP)
-
-    def accept(a, c_a, b, c_b) -> bool:
-        def centres(t):
-            return kinematics.interpolate(a[0] + dx, c_a, a[2] + dz, b[0] + dx, c_b, b[2] + dz, t)
-        ends = centres(np.array([0.0, 1.0]))
-        along = centres(np.linspace(0.0, 1.0, max(2, math.ceil(float(np.linalg.norm(ends[1] - ends[0])) / spacing) + 1)))
-        distance, _ = surface.nearest(along, r)
-        return bool(np.all(distance >= r - CHORD_DIP / 2))
-    return accept
+    return merge_short_moves(op, settings.tolerance, minutes, accept=merged_move_clear(direction, surface, settings))
 
 
 @dataclass
