@@ -292,19 +292,26 @@ def _join(runs: list, surface, settings, progress=None) -> list:
 
 
 def merged_move_clear(direction: str, surface, settings):
-    """``accept`` for :func:`merge_short_moves`: along the merged X-Z-C move (the curve the
-    machine traces), ball centres the chord spacing of :func:`_link_clear` apart each stay clear of the
-    part by r - CHORD_DIP / 2, so between them the ball dips no deeper than a planned chord."""
+    """``accept`` for :func:`program.merge_short_moves`: along each merged X-Z-C move (the curve the
+    machine traces), ball centres the chord spacing of :func:`_link_clear` apart each stay clear of
+    the part by r - CHORD_DIP / 2, so between them the ball dips no deeper than a planned chord.
+    All the moves asked about at once are checked in one nearest-point query."""
     r = settings.radius
     dx, dz = (r, 0.0) if direction == "radial" else (0.0, r)
     spacing = math.sqrt(4 * r * CHORD_DIP)
 
-    def accept(a, c_a, b, c_b) -> bool:
-        def centres(t):
-            return kinematics.interpolate(a[0] + dx, c_a, a[2] + dz, b[0] + dx, c_b, b[2] + dz, t)
-        ends = centres(np.array([0.0, 1.0]))
-        along = centres(np.linspace(0.0, 1.0, max(2, math.ceil(float(np.linalg.norm(ends[1] - ends[0])) / spacing) + 1)))
-        distance, _ = surface.nearest(along, r)
-        return bool(np.all(distance >= r - CHORD_DIP / 2))
-    return accept
+    def accept(a, c_a, b, c_b) -> np.ndarray:
+        a, b = np.atleast_2d(a), np.atleast_2d(b)
+        c_a, c_b = np.atleast_1d(np.asarray(c_a, float)), np.atleast_1d(np.asarray(c_b, float))
 
+        def centres(owner, t):
+            return kinematics.interpolate(a[owner, 0] + dx, c_a[owner], a[owner, 2] + dz,
+                                          b[owner, 0] + dx, c_b[owner], b[owner, 2] + dz, t)
+        every = np.arange(len(a))
+        length = np.linalg.norm(centres(every, np.ones(len(a))) - centres(every, np.zeros(len(a))), axis=1)
+        counts = np.maximum(2, np.ceil(length / spacing).astype(np.int64) + 1)
+        owner = np.repeat(every, counts)
+        t = (np.arange(len(owner)) - np.repeat(np.cumsum(counts) - counts, counts)) / (counts[owner] - 1)
+        distance, _ = surface.nearest(centres(owner, t), r)
+        return np.bincount(owner, weights=(distance < r - CHORD_DIP / 2).astype(float), minlength=len(a)) == 0
+    return accept

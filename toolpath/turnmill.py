@@ -625,11 +625,11 @@ def _operation(name, direction, layers, stock, settings, surface=None) -> TurnMi
                            start=np.array([x_clear, 0.0, z_clear]), direction=direction)
     # no dip deeper than a chord's; then blocks shorter than the control processes in time merge within the
     # chordal tolerance where the ball stays clear of the part along the merged move
-    minutes = settings.shortest_block_minutes
-    op = merge_short_moves(op, min(settings.tolerance, CHORD_DIP), minutes)
-    if surface is None or settings.tolerance <= CHORD_DIP:
-        return op
-    return merge_short_moves(op, settings.tolerance, minutes, accept=merged_move_clear(direction, surface, settings))
+    dip = min(settings.tolerance, CHORD_DIP)
+    if surface is None:
+        return merge_short_moves(op, dip, settings.shortest_block_minutes)
+    return merge_short_moves(op, settings.tolerance, settings.shortest_block_minutes,
+                             accept=merged_move_clear(direction, surface, settings), accept_above=dip)
 
 
 @dataclass

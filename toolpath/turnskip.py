@@ -88,6 +88,7 @@ def reached(points: np.ndarray, centres: np.ndarray, distance: float) -> np.ndar
     order = np.argsort(key, kind="stable")
     key, sorted_centres = key[order], centres[order]
     offsets = np.array([(i, j, k) for i in (-1, 0, 1) for j in (-1, 0, 1) for k in (-1, 0, 1)])
+    offsets = offsets[np.argsort(np.abs(offsets).sum(axis=1), kind="stable")]   # own cell first: most stop there
     limit = distance * distance
     for begin in range(0, len(points), SAMPLE_CHUNK):
         chunk = points[begin:begin + SAMPLE_CHUNK]
