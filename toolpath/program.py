@@ -437,7 +437,8 @@ def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kine
     ``accept(a, c_a, b, c_b)``: optional, a further condition on merged moves whose dropped point
     lies more than ``accept_above`` off them, such as the tool staying clear of the part: for m
     moves from machine points a (m, 3) at C c_a (m,) to b at c_b (C 0 without a C axis), (m,) bool.
-    It is asked once for every merge as first proposed, and again for any proposed after others.
+    It is asked once, for every merge as first proposed (move k's end dropped into k + 1, or k - 1's
+    into k); a merge proposed only after others were made is not made where ``accept`` is asked.
     """
     n = len(op)
     if n < 2:
@@ -473,9 +474,7 @@ def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kine
             accepted = dict(zip(first, np.asarray(answers, bool).tolist()))
 
     def accepts(a, drop, b) -> bool:
-        if (a, drop, b) not in accepted:
-            accepted[(a, drop, b)] = bool(np.asarray(accept(machine[[a]], c_all[[a]], machine[[b]], c_all[[b]]))[0])
-        return accepted[(a, drop, b)]
+        return accepted.get((a, drop, b), False)
 
     for k in np.flatnonzero(short).tolist():
         if not keep[k]:
