@@ -739,6 +739,8 @@ MESSAGE_TEMPLATES = {
     "{} {}: {} is not a turn-mill; the turn-mill presets are {}":
         "{0} {1}：{2} は複合加工機ではありません。複合加工機のプリセットは {3} です",
     "block time must be a number > 0 (ms), got {}": "ブロック処理時間は 0 より大きい数（ms）にしてください（指定値 {0}）",
+    "unknown machine {}: the presets are {}": "不明な機械 {0}：プリセットは {1} です",
+    "machine profile {}: {} = {} {}": "機械プロファイル {0}：{1} = {2} {3}",
     "not machined: {} (neither the radial nor the axial tool reaches it)":
         "未加工：{0}（径方向・軸方向のどちらの工具も届きません）",
     "{} is {} kB, larger than the {} kB program memory of {}: run it from a memory card or DNC, or split it":
