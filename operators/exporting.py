@@ -51,6 +51,13 @@ def batch_orient_spindle(args, scene, families, post_name: str) -> None:
                     "--orient-spindle" if args.orient_spindle else "Orient Spindle (M19) of the .blend")
 
 
+def report_findings(operator, findings) -> None:
+    """Show what the program leaves out or the machine cannot take (``post.capacity``'s findings,
+    faces not machined) as warnings in the panel's report."""
+    for finding in findings:
+        operator.report({"WARNING"}, translate_message(finding))
+
+
 class NCExport(ExportHelper):
     """Mixed into an ExportHelper operator with a ``post`` enum of ``post_families``.  The operator
     sets ``file_suffix`` and implements ``write(context) -> path``; ``preferred_post`` names the

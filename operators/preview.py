@@ -40,12 +40,13 @@ def object_solid(obj, frame, depsgraph=None, colour=picture_jobs.PART_COLOUR) ->
 
 
 def toolpath_png(path: str, operations, stock, solids=(), title: str = "", tilt_deg: float = 35.0,
-                 caption: str = "", marks=()) -> str:
+                 caption: str = "", marks=(), highlights=()) -> str:
     """The toolpaths (cut, plunge, link, rapid) over ``solids`` ([(vertices mm, faces, rgb)]);
     ``caption``: a line under the title (what was not cut); ``marks``: places left uncut,
-    [(x, y, z, label)]."""
+    [(x, y, z, label)]; ``highlights``: [(vertices, faces, rgb, legend label)] drawn over the
+    solids, each in the legend."""
     picture = picture_jobs.toolpath_picture(list(operations), stock, list(solids), title, SIZE, tilt_deg,
-                                            caption=caption, marks=marks)
+                                            caption=caption, marks=marks, highlights=list(highlights))
     return write_atomic(path, picture.png())
 
 

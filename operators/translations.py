@@ -899,6 +899,18 @@ MESSAGE_TEMPLATES = {
     "the program lifts Z to {} mm above the work zero, higher than the {} mm the machine {} reaches (machine "
     "setting Z Reach)":
         "プログラムはZをワーク原点から {0} mm まで上げ、機械 {2} が届く {1} mm を超えています（機械の設定「Zの届く高さ」）",
+    # turn-mill: the machine profile, faces not machined, what the control cannot take (post/capacity.py)
+    "{} {}: {} is not a turn-mill; the turn-mill presets are {}":
+        "{0} {1}：{2} は複合加工機ではありません。複合加工機のプリセットは {3} です",
+    "block time must be a number > 0 (ms), got {}": "ブロック処理時間は 0 より大きい数（ms）にしてください（指定値 {0}）",
+    "not machined: {} (neither the radial nor the axial tool reaches it)":
+        "未加工：{0}（径方向・軸方向のどちらの工具も届きません）",
+    "{} is {} kB, larger than the {} kB program memory of {}: run it from a memory card or DNC, or split it":
+        "{0} は {1} kB で、{3} のプログラムメモリ {2} kB を超えています。メモリカードか DNC で運転するか、分割してください",
+    "{} has {} inverse-time blocks shorter than the {} ms {} takes to process a block (first on line {}): the feed "
+    "drops there":
+        "{0} には、{3} が1ブロックの処理にかかる {2} ms より短い逆時間送りのブロックが {1} 個あります"
+        "（最初は {4} 行目）。そこで送りが落ちます",
     "the design is flat (Z {} mm everywhere) and no stock stands above it: nothing to carve (Stock Above in the Carve panel gives the stock)":
         "デザインが平ら（どこも Z {0} mm）で、その上に素材がありません。削るものがありません（素材は曲面加工パネルの「上面の余肉」で与えます）",
     "{}: a path relative to the .blend file ('//') needs the .blend saved first":

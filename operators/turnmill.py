@@ -7,6 +7,7 @@ core's trimesh engine is the other choice (and the one batch runs use without Bl
 from __future__ import annotations
 
 import os
+import sys
 import time
 from dataclasses import dataclass
 
@@ -18,13 +19,14 @@ from mathutils.bvhtree import BVHTree
 
 from .. import post as posts
 from ..post import write_atomic
-from ..toolpath import meshdata
+from ..post.capacity import program_findings, program_kb, short_blocks
+from ..toolpath import machine, meshdata
 from ..toolpath import turnmill as core
 from ..toolpath.errors import MAX_REACH_MM
 from . import convert
 from . import gate
 from .common import SteppedOperator
-from .exporting import NCExport
+from .exporting import NCExport, report_findings
 from .limits import check_group
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -38,6 +40,7 @@ LABEL_COLOURS = {core.NEITHER: (0.45, 0.45, 0.45, 1.0), core.RADIAL: (0.15, 0.45
                  core.AXIAL: (0.2, 0.85, 0.3, 1.0), core.BOTH: (0.75, 0.3, 0.95, 1.0)}
 REPORT_LABELS = {core.NEITHER: "none", core.RADIAL: "radial", core.AXIAL: "axial", core.BOTH: "both"}
 PATH_COLOURS = {"radial": (0.95, 0.45, 0.1, 1.0), "axial": (1.0, 0.9, 0.1, 1.0)}
+SKIPPED_COLOUR = (250, 150, 20)       # the toolpath picture's faces no tool reaches (RGB 0-255)
 
 
 class BVHRayEngine:
@@ -70,19 +73,35 @@ class TurnMillJob:
     classification_seconds: float
     engine: str
     stock: core.Stock
+    profile: machine.MachineProfile = machine.PRESETS[machine.DEFAULT_FOR_FAMILY["xzc"]]
 
 
-def settings_from(props) -> core.TurnMillSettings:
+def machine_profile(name: str | None = None, given_as: str = "--machine") -> machine.MachineProfile:
+    """The turn-mill's machine profile: the preset ``name`` (default: the 0i-T turn-mill), refused
+    by name when it is not a turn-mill (X-Z-C) machine."""
+    profile = machine.preset(name or machine.DEFAULT_FOR_FAMILY["xzc"])
+    if profile.family != "xzc":
+        raise machine.MachineError(f"{given_as} {name}: {profile.label} is not a turn-mill; the turn-mill presets are "
+                                   f"{', '.join(p.name for p in machine.presets('xzc'))}")
+    return profile
+
+
+def settings_from(props, profile: machine.MachineProfile | None = None) -> core.TurnMillSettings:
+    """The panel's settings; the machine's block time (``profile.block_ms``) sets the shortest move."""
     check_group(props, "turnmill")
     props = convert.Typed(props)
+    profile = machine_profile() if profile is None else profile
     return core.TurnMillSettings(tool_diameter=props.tool_diameter, tolerance=props.tolerance, feed=props.feed,
-                                 spindle_rpm=props.spindle_rpm, sample_spacing=props.sample_spacing)
+                                 spindle_rpm=props.spindle_rpm, sample_spacing=props.sample_spacing,
+                                 block_ms=profile.block_ms)
 
 
 def run_on_mesh(vertices, faces, stock: core.Stock, settings: core.TurnMillSettings, engine_name: str,
-                frame: convert.WorkFrame, owner=None, selected=None, name="turn-mill", progress=None) -> TurnMillJob:
+                frame: convert.WorkFrame, owner=None, selected=None, name="turn-mill", progress=None,
+                profile: machine.MachineProfile | None = None) -> TurnMillJob:
     """Classify (timed), then plan.  ``selected``: a face mask; unselected faces still block rays
-    but get no paths.  Touches no Blender data (the BVH engine is mathutils only)."""
+    but get no paths (nor are they reported as not machined).  Touches no Blender data (the BVH
+    engine is mathutils only)."""
     report = progress or (lambda fraction, text="": None)
     vertices, faces = core.check_mesh(vertices, faces)
     engine = engine_for(engine_name, vertices, faces)
@@ -93,10 +112,11 @@ def run_on_mesh(vertices, faces, stock: core.Stock, settings: core.TurnMillSetti
     samples, _ = core.face_samples(vertices[faces], settings.sample_spacing)
     machined = labels if selected is None else np.where(selected, labels, core.NEITHER)
     result = core.plan(vertices, faces, stock, settings, engine, labels=machined, name=name,
-                       progress=lambda fraction, text="": report(0.6 + 0.4 * fraction, text))
+                       progress=lambda fraction, text="": report(0.6 + 0.4 * fraction, text), reported=selected)
     result.labels = labels
     owner = np.arange(len(faces)) if owner is None else owner
-    return TurnMillJob(result, vertices, faces, owner, frame, 2 * len(samples), seconds, engine_name, stock)
+    return TurnMillJob(result, vertices, faces, owner, frame, 2 * len(samples), seconds, engine_name, stock,
+                       machine_profile() if profile is None else profile)
 
 
 def part_mesh(scene, depsgraph) -> tuple:
@@ -113,7 +133,7 @@ def part_mesh(scene, depsgraph) -> tuple:
     return obj, vertices, faces, owner, frame
 
 
-def turnmill_request(scene, depsgraph):
+def turnmill_request(scene, depsgraph, profile: machine.MachineProfile | None = None):
     """Read the part and the settings; return ``compute(progress)``, which classifies and plans
     without touching Blender data (so it can run in steps)."""
     props = scene.kezuri.turnmill
@@ -128,13 +148,14 @@ def turnmill_request(scene, depsgraph):
                                           "or switch off Selected Faces Only)")
         selected = selected_polygons[owner]
     stock = core.Stock(props.stock_radius, props.stock_z_min, props.stock_z_max)
-    settings, engine, name = settings_from(props), props.engine, scene.name
+    profile = machine_profile() if profile is None else profile
+    settings, engine, name = settings_from(props, profile), props.engine, scene.name
     return lambda progress=None: run_on_mesh(vertices, faces, stock, settings, engine, frame, owner, selected,
-                                             name=name, progress=progress)
+                                             name=name, progress=progress, profile=profile)
 
 
-def run_turnmill(scene, depsgraph, progress=None) -> TurnMillJob:
-    return turnmill_request(scene, depsgraph)(progress)
+def run_turnmill(scene, depsgraph, progress=None, profile: machine.MachineProfile | None = None) -> TurnMillJob:
+    return turnmill_request(scene, depsgraph, profile)(progress)
 
 
 def polygon_labels(triangle_labels: np.ndarray, owner: np.ndarray, polygon_count: int) -> np.ndarray:
@@ -170,14 +191,31 @@ def show_turnmill(scene, job: TurnMillJob) -> list:
     return objects
 
 
+def machine_findings(job: TurnMillJob, post, text: str) -> list:
+    """What the machine cannot take of a posted program (size past its memory, blocks shorter
+    than its block time: :func:`post.capacity.program_findings`).  Only the program the profile's
+    control stores is measured: the one with a program number (the LinuxCNC variant is streamed
+    from disk, the CL data goes to another post-processor)."""
+    if not getattr(post, "program_number", None):
+        return []
+    return program_findings(text, job.profile, f"the {post.name} program")
+
+
+def unmachined_warnings(job: TurnMillJob) -> list:
+    """One line for each feature no tool reaches (as in the NC header)."""
+    return [f"not machined: {feature.describe()} (neither the radial nor the axial tool reaches it)"
+            for feature in job.plan.skipped]
+
+
 def export_turnmill(job: TurnMillJob, post_name: str, path: str, allow: bool | str = False,
-                    checked: bool = False) -> str:
-    """Write the program; the export gate simulates it first unless the caller has (``checked``)."""
+                    checked: bool = False) -> tuple:
+    """Write the program; the export gate simulates it first unless the caller has (``checked``).
+    Returns the path and the machine's findings on the program (:func:`machine_findings`)."""
     post = posts.create(POST_FAMILIES, post_name)
     text = post.to_text(job.plan.program)
     if not checked:
         gate.check(simulation(job), allow)
-    return write_atomic(path, text)
+    return write_atomic(path, text), machine_findings(job, post, text)
 
 
 def extension_for(post_name: str) -> str:
@@ -257,6 +295,7 @@ class KEZURI_OT_turnmill_generate(SteppedOperator, bpy.types.Operator):
         obj = context.scene.kezuri.turnmill.part
         colour_faces(obj, polygon_labels(job.plan.labels, job.owner, len(obj.data.polygons)))
         show_turnmill(context.scene, job)
+        report_findings(self, unmachined_warnings(job))
         ops = job.plan.program.operations
         self.report({"INFO"},
                     translate_message(f"{len(ops)} operations, about {job.plan.program.cycle_time() / 60:.1f} min"))
@@ -285,7 +324,10 @@ class KEZURI_OT_turnmill_export(NCExport, bpy.types.Operator):
 
     def write(self, context) -> str:
         job = run_turnmill(context.scene, context.evaluated_depsgraph_get())
-        return export_turnmill(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged)
+        path, findings = export_turnmill(job, self.post, self.filepath,
+                                         allow=context.scene.kezuri.simulation.acknowledged)
+        report_findings(self, unmachined_warnings(job) + findings)
+        return path
 
 
 CLASSES = (KEZURI_OT_turnmill_classify, KEZURI_OT_turnmill_generate, KEZURI_OT_turnmill_export)
@@ -298,6 +340,8 @@ def batch_arguments(p):
     source.add_argument("--blend", help="a .blend whose Turn-Mill panel names the part and the stock")
     source.add_argument("--mesh", help="an STL/OBJ/PLY of the part in mm, around the Z axis (stock from its size)")
     p.add_argument("--engine", choices=["BVH", "TRIMESH"], help="ray engine (default: BVH, trimesh for --mesh)")
+    p.add_argument("--machine", choices=[profile.name for profile in machine.presets("xzc")],
+                   help="machine profile: program memory and block time (default: fanuc-0it-turnmill)")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES), action="append",
                    help="write the program for this post (repeat for more; default: every turn-mill post)")
     gate.allow_findings_argument(p)
@@ -336,11 +380,12 @@ def batch(args) -> dict:
     from . import batchio, preview, samples, simview
 
     scene = batchio.open_blend(args.blend)
+    profile = machine_profile(getattr(args, "machine", None))
     if args.mesh:
         vertices, faces, stock = read_mesh_file(args.mesh)
         frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
-        job = run_on_mesh(vertices, faces, stock, settings_from(scene.kezuri.turnmill), args.engine or "TRIMESH",
-                          frame, name=os.path.basename(args.mesh))
+        job = run_on_mesh(vertices, faces, stock, settings_from(scene.kezuri.turnmill, profile),
+                          args.engine or "TRIMESH", frame, name=os.path.basename(args.mesh), profile=profile)
         labels = job.plan.labels
         face_centroids = job.vertices[job.faces].mean(axis=1)
     else:
@@ -348,7 +393,7 @@ def batch(args) -> dict:
             samples.turnmill_part(scene)
         if args.engine:
             scene.kezuri.turnmill.engine = args.engine
-        job = run_turnmill(scene, bpy.context.evaluated_depsgraph_get())
+        job = run_turnmill(scene, bpy.context.evaluated_depsgraph_get(), profile=profile)
         part = scene.kezuri.turnmill.part
         labels = polygon_labels(job.plan.labels, job.owner, len(part.data.polygons))
         if batchio.shown():
@@ -360,14 +405,20 @@ def batch(args) -> dict:
     from .common import Progress
     checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"))
     names = args.post or posts.choices(POST_FAMILIES)
-    texts = {name: posts.create(POST_FAMILIES, name).to_text(job.plan.program) for name in dict.fromkeys(names)}
+    made = {name: posts.create(POST_FAMILIES, name) for name in dict.fromkeys(names)}
+    texts = {name: post.to_text(job.plan.program) for name, post in made.items()}
     files = [write_atomic(os.path.join(args.out, f"turnmill{extension_for(name)}"), text)
              for name, text in texts.items()]
+    warnings = unmachined_warnings(job) + [finding for name, post in made.items()
+                                           for finding in machine_findings(job, post, texts[name])]
+    for warning in warnings:
+        print(f"kezuri: warning: {warning}", file=sys.stderr)
     if batchio.shown():
         show_turnmill(scene, job)
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "turnmill-toolpaths.png"), job.plan.program.operations,
                                          job.stock, [(job.vertices, job.faces, preview.picture_jobs.PART_COLOUR)],
-                                         "TURN-MILL X-Z-C: TOOLPATHS ON THE PART", tilt_deg=preview.SIDE_VIEW_DEG)
+                                         "TURN-MILL X-Z-C: TOOLPATHS ON THE PART", tilt_deg=preview.SIDE_VIEW_DEG,
+                                         highlights=skipped_highlight(job))
     simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "turnmill", checked)
     return {
         "gate": gate_report,
@@ -383,7 +434,25 @@ def batch(args) -> dict:
                   for c, k in zip(face_centroids, labels)],
         "operations": job.plan.program.summary(),
         "cycle_time_s": round(job.plan.program.cycle_time(), 1),
+        "machine": job.profile.name,
+        "not_machined": {"faces": int(sum(len(f.faces) for f in job.plan.skipped)),
+                         "area_mm2": round(float(sum(f.area for f in job.plan.skipped)), 3),
+                         "features": [feature.as_dict() for feature in job.plan.skipped]},
+        "programs": {name: {"size_kb": round(program_kb(text), 1), "memory_kb": job.profile.memory_kb,
+                            "short_blocks": (len(short_blocks(text, job.profile.block_ms))
+                                             if job.profile.block_ms is not None else None),
+                            "block_ms": job.profile.block_ms}
+                     for name, text in texts.items() if getattr(made[name], "program_number", None)},
+        "warnings": warnings,
     }
+
+
+def skipped_highlight(job: TurnMillJob) -> list:
+    """The toolpath picture's highlight of the faces no tool reaches, in their own colour."""
+    ids = job.plan.skipped_faces()
+    if not len(ids):
+        return []
+    return [(job.vertices, job.faces[ids], SKIPPED_COLOUR, f"NOT MACHINED ({len(ids)} FACES)")]
 
 
 WORKFLOW = Workflow(

@@ -414,3 +414,63 @@ def check_punch(text: str, sheet=None, clamp_zones=(), punch_radius: float = 0.0
                 found.append(("double hit", max(number, other), f"X{x:.2f} Y{y:.2f} is punched twice "
                                                                  f"(lines {min(number, other)} and {max(number, other)})"))
     return found
+
+
+def check_turret_frames(text: str, control: str, radius: float, end_z: float) -> list:
+    """The lathe's frame rule (``turnmill-xzc``, ``turnmill-linuxcnc``): away from the cut, the
+    tool never enters the bar's envelope (radius ``radius``, end face at ``end_z``; X words are
+    diameters on the Fanuc control, radii on LinuxCNC).
+
+    A rapid (G00) is positioned axis by axis at each axis's own rate unless the machine builder set
+    linear positioning (Fanuc B-63944EN 4.1 "Positioning (G00)": non-linear interpolation type
+    positioning, bit LRP of parameter No. 1401), so its path may be any dog-leg inside the box its
+    end points span; the home return ``G28 U0. W0.`` goes from where the tool is straight to the
+    reference position (the intermediate point U0 W0 is the current one), which is outside the
+    bar in both X and Z.  So:
+
+    * from the program start, and after every turret index (T) or driven-tool stop (M135 / M05),
+      until the first feed move: every move's box must lie outside the bar (all its X at or beyond
+      the radius, or all its Z at or above the end face);
+    * every home return starts outside the bar (X beyond the radius or Z above the end face);
+    * at the program end the tool is home or outside the bar.
+    Returns ``(rule, line, message)`` for each violation, as :func:`check`."""
+    scale = 0.5 if control == "turnmill-xzc" else 1.0
+    inf = float("inf")
+    x, z, motion, approach = inf, inf, 0, True
+    found = []
+
+    def outside(x0, z0, x1=None, z1=None) -> bool:
+        x1 = x0 if x1 is None else x1
+        z1 = z0 if z1 is None else z1
+        return min(x0, x1) >= radius - 1e-9 or min(z0, z1) >= end_z - 1e-9
+
+    for number, raw, bare, words in _blocks(text):
+        if not bare or bare == "%":
+            continue
+        letters = dict((letter, value) for letter, value in words if letter not in "GM")
+        gnum = [float(value) for letter, value in words if letter == "G"]
+        ms = [int(float(value)) for letter, value in words if letter == "M"]
+        for g in gnum:
+            if g in (0, 1, 2, 3):
+                motion = int(g)
+        if 28 in gnum:
+            if not outside(x, z):
+                found.append(("frame", number, f"home return from X{x / scale:g} Z{z:g}, inside the bar "
+                                               f"(radius {radius:g}, end face Z{end_z:g}): retract first"))
+            x, z, approach = inf, inf, True
+            continue
+        if "T" in letters or any(m in (5, 135) for m in ms):
+            approach = True
+        if any(axis in letters for axis in "XZ"):
+            nx = float(letters["X"]) * scale if "X" in letters else x
+            nz = float(letters["Z"]) if "Z" in letters else z
+            if motion == 0 and approach and not outside(x, z, nx, nz):
+                found.append(("frame", number, f"rapid into the bar's envelope before the first cut after a start "
+                                               f"or tool change: to X{nx / scale:g} Z{nz:g} (radius {radius:g}, end "
+                                               f"face Z{end_z:g})"))
+            if motion in (1, 2, 3):
+                approach = False
+            x, z = nx, nz
+        if any(m in (2, 30) for m in ms) and not outside(x, z):
+            found.append(("frame", number, f"program ends with the tool at X{x / scale:g} Z{z:g}, inside the bar"))
+    return found

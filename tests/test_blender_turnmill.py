@@ -111,3 +111,29 @@ def test_batch_turnmill_report(tmp_path):
     assert 18000 < simulation["removed_volume_mm3"] < 21000
     assert (tmp_path / "turnmill.png").stat().st_size > 10000
     assert (tmp_path / "turnmill-toolpaths.png").stat().st_size > 10000
+
+
+def test_the_panel_reports_the_faces_it_skips_and_what_the_machine_cannot_take(empty_scene, tmp_path, capfd):
+    """A hex bar with a cross hole: Generate and Export warn about the hole's 64 faces, and Export
+    about the program's size against the 0i-T's 512 kB and its blocks under 7.5 ms."""
+    from test_turnmill_unmachined import hex_bar_with_hole
+
+    vertices, faces, stock = hex_bar_with_hole()
+    mesh = bpy.data.meshes.new("Hex bar")
+    mesh.from_pydata(vertices.tolist(), [], faces.tolist())
+    mesh.update()
+    part = bpy.data.objects.new("Hex bar", mesh)
+    empty_scene.collection.objects.link(part)
+    props = empty_scene.kezuri.turnmill
+    props.part = part
+    props.stock_radius, props.stock_z_min, props.stock_z_max = stock.radius, stock.z_min, stock.z_max
+    capfd.readouterr()
+    assert bpy.ops.kezuri.turnmill_generate() == {"FINISHED"}
+    assert "not machined: 64 faces, 752.8 mm2" in "".join(capfd.readouterr())
+    path = tmp_path / "hex.nc"
+    assert bpy.ops.kezuri.turnmill_export(filepath=str(path), post="xzc") == {"FINISHED"}
+    said = "".join(capfd.readouterr())
+    size = len(path.read_bytes()) / 1024
+    assert "not machined: 64 faces" in said
+    assert f"the turnmill-xzc program is {size:,.1f} kB, larger than the 512 kB program memory" in said
+    assert "inverse-time blocks shorter than the 7.5 ms" in said

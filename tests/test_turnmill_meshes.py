@@ -15,6 +15,7 @@ import pytest
 import trimesh
 
 bpy = pytest.importorskip("bpy")
+import controller_rules  # noqa: E402
 import rs274  # noqa: E402
 from test_hostile import time_limit  # noqa: E402
 
@@ -115,6 +116,12 @@ def test_turnmill_mesh_runs_to_the_end(batch, name, tmp_path):
         for path in programs:
             calls = rs274.run(open(path).read())
             assert sum(1 for call, _ in calls if call in {"STRAIGHT_FEED", "ARC_FEED"}) > 50, path
+    part = np.asarray(trimesh.load(stl, force="mesh").vertices)
+    radius, end_z = float(np.hypot(part[:, 0], part[:, 1]).max()), float(part[:, 2].max())
+    for path in report["files"]:
+        control = {".nc": "turnmill-xzc", ".ngc": "turnmill-linuxcnc"}.get(os.path.splitext(path)[1])
+        if control:      # the frames stay clear of the bar (the lathe's frame rule)
+            assert controller_rules.check_turret_frames(open(path).read(), control, radius, end_z) == [], path
     simulation = report["simulation"]
     assert simulation["gouges"] == [] and simulation["max_gouge_mm"] == 0, simulation["gouges"][:3]
     assert simulation["rapid_collisions"] == []

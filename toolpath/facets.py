@@ -46,7 +46,7 @@ def _compiled():
     return kernel_module("auto", f"{__package__}.facets_kernel", TurnMillError, "facet kernel")
 
 
-def _components(count: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+def connected(count: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Connected components of ``count`` nodes joined by pairs (a, b): each node's smallest member."""
     comp = np.arange(count)
     while True:
@@ -107,7 +107,7 @@ def facet_ids(vertices: np.ndarray, faces: np.ndarray, labels=None, reverse=None
            (np.abs(offsets[a] - offsets[b]) <= PLANE_TOLERANCE) & (areas[a] > 0) & (areas[b] > 0)
     if labels is not None:
         same &= labels[a] == labels[b]
-    return _components(len(faces), a[same], b[same])
+    return connected(len(faces), a[same], b[same])
 
 
 def _pinned_loops(edges, splits, pinned, vertex_count):

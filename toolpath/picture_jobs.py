@@ -221,11 +221,13 @@ def mark_uncut(picture: Picture, view: View, marks) -> None:
 
 # ----- pictures ---------------------------------------------------------------------------
 def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 800), tilt_deg: float = 35.0,
-                     caption: str = "", marks=()):
+                     caption: str = "", marks=(), highlights=()):
     """The toolpaths over the part: ``solids`` = [(vertices (k, 3), faces (f, 3), rgb), ...] in
     the same work mm as the moves; ``caption``: a line of text drawn over the picture's top edge
     below the header (e.g. what was not cut), cut short with '...' where the picture ends;
-    ``marks``: places left uncut, [(x, y, z, label)]."""
+    ``marks``: places left uncut, [(x, y, z, label)]; ``highlights`` = [(vertices, faces, rgb,
+    label), ...]: faces drawn over the solids (seen through them, so a cross hole inside the part
+    shows) and named in the legend, such as the faces no tool reaches."""
     from .simulate.stock import as_stock
 
     stock = as_stock(stock)
@@ -238,6 +240,11 @@ def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 
         picture.depth[:] = -np.inf        # the part inside the stock is drawn over the stock
     for vertices, faces, colour in solids:
         picture.triangles(view, vertices, faces, colour)
+    for vertices, faces, colour, _ in highlights:
+        solid_depth = picture.depth.copy()
+        picture.depth[:] = -np.inf        # over the part: what lies inside it shows
+        picture.triangles(view, vertices, faces, colour)
+        np.maximum(picture.depth, solid_depth, out=picture.depth)   # the part still hides the paths behind it
     stock_outline(picture, view, stock)
     counts = {}
     thin = sum(len(a) for a, _, _ in pieces) > 20_000      # dense paths: 1 px lines, the part shows through
@@ -254,7 +261,8 @@ def toolpath_picture(operations, stock, solids=(), title: str = "", size=(1200, 
     if caption:
         _caption(picture, caption)
     _legend(picture, [(ROLE_LABELS[name], ROLE_COLOURS[name], name == "rapid") for name in ROLES]
-            + ([(f"LEFT UNCUT ({len(marks)})", UNCUT_COLOUR, False)] if len(marks) else []))
+            + ([(f"LEFT UNCUT ({len(marks)})", UNCUT_COLOUR, False)] if len(marks) else [])
+            + [(label, colour, False) for _, _, colour, label in highlights])
     picture.deepest = deepest
     picture.view = view
     return picture

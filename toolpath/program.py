@@ -449,7 +449,7 @@ class PathBuilder:
 
 
 def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kinematics.SHORTEST_BLOCK_MINUTES,
-                      resolution: float = 0.001) -> Operation:
+                      resolution: float = 0.001, accept=None, accept_above: float = 0.0) -> Operation:
     """``op`` with its too-short straight cutting moves merged into their neighbours.
 
     A cutting move is too short when it is shorter than ``resolution`` (the least increment a
@@ -464,6 +464,11 @@ def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kine
     (:func:`kinematics.block_minutes`) then times it, so it is cut slower, never written with an F
     word the control cannot read.  Rapids and arcs are never touched.  The planners of the rotary
     machines (:mod:`rotary`, :mod:`turnmill`) apply this to every operation they make.
+    ``accept(a, c_a, b, c_b)``: optional, a further condition on merged moves whose dropped point
+    lies more than ``accept_above`` off them, such as the tool staying clear of the part: for m
+    moves from machine points a (m, 3) at C c_a (m,) to b at c_b (C 0 without a C axis), (m,) bool.
+    It is asked once, for every merge as first proposed (move k's end dropped into k + 1, or k - 1's
+    into k); a merge proposed only after others were made is not made where ``accept`` is asked.
     """
     n = len(op)
     if n < 2:
@@ -489,6 +494,18 @@ def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kine
             off += float(bend[0]) / 8.0
         return off
 
+    accepted = {}
+    if accept is not None:
+        first = [(k - 1, k, k + 1) if k < n and kind[k + 1] == FEED else (k - 2, k - 1, k)
+                 for k in np.flatnonzero(short).tolist() if k >= 2 or (k == 1 and k < n and kind[k + 1] == FEED)]
+        if first:
+            triples = np.array(first)
+            answers = accept(machine[triples[:, 0]], c_all[triples[:, 0]], machine[triples[:, 2]], c_all[triples[:, 2]])
+            accepted = dict(zip(first, np.asarray(answers, bool).tolist()))
+
+    def accepts(a, drop, b) -> bool:
+        return accepted.get((a, drop, b), False)
+
     for k in np.flatnonzero(short).tolist():
         if not keep[k]:
             continue
@@ -504,7 +521,8 @@ def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kine
             drop, after = a, k
         else:
             continue
-        if deviation(previous[drop], drop, after) > tolerance:
+        off = deviation(previous[drop], drop, after)
+        if off > tolerance or (accept is not None and off > accept_above and not accepts(previous[drop], drop, after)):
             continue
         keep[drop] = False
         previous[after] = previous[drop]

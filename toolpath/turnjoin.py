@@ -1,5 +1,6 @@
 """Turn-mill passes: runs of ball centres kept a stepover apart (:func:`_short_segments`), and
-joining the runs of a layer into passes, nearest first.
+joining the runs of a layer into passes, nearest first; whether a merged move keeps the ball clear
+(:func:`merged_move_clear`).
 
 :func:`_join` orders the runs of one layer nearest first and joins neighbours into passes; the
 nearest run end is found on a grid (:class:`_RunEnds`), so the time follows the number of runs,
@@ -12,6 +13,7 @@ import math
 
 import numpy as np
 
+from . import kinematics
 from .program import TurnMillError
 
 MAX_BALL_POSITIONS = 5_000_000     # roughing copies of the passes: past this the memory runs out first
@@ -287,3 +289,29 @@ def _join(runs: list, surface, settings, progress=None) -> list:
         else:
             passes.append(run)
     return passes
+
+
+def merged_move_clear(direction: str, surface, settings):
+    """``accept`` for :func:`program.merge_short_moves`: along each merged X-Z-C move (the curve the
+    machine traces), ball centres the chord spacing of :func:`_link_clear` apart each stay clear of
+    the part by r - CHORD_DIP / 2, so between them the ball dips no deeper than a planned chord.
+    All the moves asked about at once are checked in one nearest-point query."""
+    r = settings.radius
+    dx, dz = (r, 0.0) if direction == "radial" else (0.0, r)
+    spacing = math.sqrt(4 * r * CHORD_DIP)
+
+    def accept(a, c_a, b, c_b) -> np.ndarray:
+        a, b = np.atleast_2d(a), np.atleast_2d(b)
+        c_a, c_b = np.atleast_1d(np.asarray(c_a, float)), np.atleast_1d(np.asarray(c_b, float))
+
+        def centres(owner, t):
+            return kinematics.interpolate(a[owner, 0] + dx, c_a[owner], a[owner, 2] + dz,
+                                          b[owner, 0] + dx, c_b[owner], b[owner, 2] + dz, t)
+        every = np.arange(len(a))
+        length = np.linalg.norm(centres(every, np.ones(len(a))) - centres(every, np.zeros(len(a))), axis=1)
+        counts = np.maximum(2, np.ceil(length / spacing).astype(np.int64) + 1)
+        owner = np.repeat(every, counts)
+        t = (np.arange(len(owner)) - np.repeat(np.cumsum(counts) - counts, counts)) / (counts[owner] - 1)
+        distance, _ = surface.nearest(centres(owner, t), r)
+        return np.bincount(owner, weights=(distance < r - CHORD_DIP / 2).astype(float), minlength=len(a)) == 0
+    return accept

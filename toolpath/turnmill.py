@@ -12,12 +12,8 @@ This follows the paper, where the axial layers stop once their lowest point clea
 
 The workflow, after the paper:
 
-1. :func:`classify_faces`.  Each face gets area-weighted sample points.  Each point is lifted a
-   little along the face normal and casts a ray in the candidate direction.  For the radial tool
-   that direction is the point's position projected onto XY, pointing away from the axis.  For the
-   axial tool it is +Z.  A face is reachable from a direction when every sample faces it
-   (normal . direction > 0) and no sample's ray hits the mesh.  One blocked sample turns the face
-   down, as in the paper.  Labels: NEITHER, RADIAL, AXIAL, BOTH.
+1. :func:`classify_faces` (:mod:`.turnreach`).  Rays cast from samples of every face, radially
+   out from the axis and along +Z, label it NEITHER, RADIAL, AXIAL or BOTH.
 2. :func:`radial_layers`.  Planes parallel to XY slice the radial faces.  The section points are
    offset to the ball centre, then offset again step by step along the normal projected onto XY,
    out to the stock (the roughing layers).  Centres whose ball would not cut stock are deleted and
@@ -67,27 +63,22 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import kinematics
+from . import kinematics, turnskip
 from .facets import planning_mesh
 from .kinematics import machine_to_part  # noqa: F401  (callers of turnmill.machine_to_part)
 from .meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEngine, check_mesh,  # noqa: F401
                        face_normals, face_samples)
-from .program import (FEED, RAPID, TOOL_DIRECTIONS, Program, Tool, TurnMillError, TurnMillOperation,
+from .program import (FEED, RAPID, Program, Tool, TurnMillError, TurnMillOperation,
                       merge_short_moves)
+from .turnreach import (AXIAL, BOTH, DIRECTIONS, LABEL_NAMES, NEITHER, RADIAL,  # noqa: F401
+                        classify_faces, path_faces)
 from .turnjoin import (CHORD_DIP, MAX_BALL_POSITIONS, TurnMillCancelled, _counted, _join, _join_layers,  # noqa: F401
-                       _link_clear, _short_segments, _subdivide)
+                       _link_clear, _short_segments, _subdivide, merged_move_clear)
 
-NEITHER, RADIAL, AXIAL, BOTH = 0, 1, 2, 3      # face labels: bit 1 = radial, bit 2 = axial
-LABEL_NAMES = ("neither", "radial", "axial", "both")
-DIRECTIONS = TOOL_DIRECTIONS
-
-FACING = 1e-6            # normal . direction above this counts as facing the tool
-LIFT = 1e-4              # ray origins are lifted this fraction of the part size along the normal
-RAY_BATCH = 50_000       # rays cast at once between progress reports
 PUSH_ITERATIONS = 8      # rounds of pushing a ball centre clear of the surface (corners need 2-3)
 
 # The grid search order of the axial chaining (paper 4.4): outward, counter-clockwise, inward,
@@ -138,6 +129,7 @@ class TurnMillSettings:
     radial_station: int = 1
     axial_station: int = 2
     rapid_rate: float = 5000.0     # for the cycle-time estimate
+    block_ms: float | None = None  # the control's shortest block (ms, machine profile): shorter moves merge
 
     def __post_init__(self):
         def positive(value):
@@ -153,6 +145,8 @@ class TurnMillSettings:
             raise TurnMillError(f"tolerance {self.tolerance} must be smaller than the tool radius {self.radius}")
         if self.stepover is not None and not (positive(self.stepover) and self.stepover <= self.tool_diameter):
             raise TurnMillError(f"stepover must be > 0 and at most the tool diameter, got {self.stepover!r}")
+        if self.block_ms is not None and not positive(self.block_ms):
+            raise TurnMillError(f"block time must be a number > 0 (ms), got {self.block_ms!r}")
         if self.radial_station == self.axial_station:
             raise TurnMillError("the radial and axial tools need different turret stations")
         for direction in DIRECTIONS:
@@ -174,6 +168,13 @@ class TurnMillSettings:
         return 2.0 * math.sqrt(2.0 * r * h - h * h)
 
     @property
+    def shortest_block_minutes(self) -> float:
+        """Cutting moves shorter than this are merged where the path stays within tolerance: the
+        control's block time (``block_ms``), never less than the timing floor of every G93 F word."""
+        given = 0.0 if self.block_ms is None else self.block_ms / 60000.0
+        return max(given, kinematics.SHORTEST_BLOCK_MINUTES)
+
+    @property
     def max_turn(self) -> float:
         """Largest normal turn (radians) between ball centres whose chord stays within the tolerance."""
         return 2.0 * math.acos(1.0 - self.tolerance / self.radius)
@@ -188,72 +189,6 @@ def _face_ids(face_ids, face_count: int) -> np.ndarray:
     if len(ids) and (ids[0] < 0 or ids[-1] >= face_count):
         raise TurnMillError(f"face indices must lie in 0..{face_count - 1}")
     return ids
-
-
-# ----- classification -------------------------------------------------------------------------
-def classify_faces(vertices, faces, engine: RayEngine | None = None, sample_spacing: float = 2.0,
-                   progress=None) -> np.ndarray:
-    """Label each face NEITHER / RADIAL / AXIAL / BOTH ((m,) int8) by casting rays from its samples.
-    ``progress``: optional callable(fraction, text), called between batches of rays."""
-    v, f = check_mesh(vertices, faces)
-    if not (isinstance(sample_spacing, (int, float)) and math.isfinite(sample_spacing) and sample_spacing > 0):
-        raise TurnMillError(f"sample spacing must be a number > 0, got {sample_spacing!r}")
-    engine = TrimeshRayEngine(v, f) if engine is None else engine
-    triangles = v[f]
-    normals, _ = face_normals(triangles)
-    points, owner = face_samples(triangles, sample_spacing)
-    n = normals[owner]
-    origins = points + LIFT * float(np.ptp(v, axis=0).max()) * n
-
-    rho = np.hypot(points[:, 0], points[:, 1])
-    radial = np.zeros_like(points)
-    on_axis = rho <= 1e-9
-    radial[~on_axis, :2] = points[~on_axis, :2] / rho[~on_axis, None]
-    axial = np.broadcast_to(np.array([0.0, 0.0, 1.0]), points.shape)
-
-    labels = np.zeros(len(f), dtype=np.int8)
-    for half, (bit, directions) in enumerate(((RADIAL, radial), (AXIAL, axial))):
-        facing = np.einsum("ij,ij->i", n, directions) > FACING
-        report = None if progress is None else \
-            (lambda fraction, half=half: progress((half + fraction) / 2, f"casting {DIRECTIONS[half]} rays"))
-        labels[_reachable(engine, origins, directions, facing, owner, len(f), report)] |= bit
-    return labels
-
-
-def _reachable(engine, origins, directions, facing, owner, face_count, progress=None) -> np.ndarray:
-    """Faces all of whose samples face the direction and see out along it unblocked."""
-    samples = np.bincount(owner, minlength=face_count)
-    all_facing = np.bincount(owner, weights=(~facing).astype(float), minlength=face_count) == 0
-    cast = np.flatnonzero(all_facing[owner])
-    hits = []
-    for start in range(0, len(cast), RAY_BATCH):
-        batch = cast[start:start + RAY_BATCH]
-        batch_hits = np.asarray(engine.intersects_any(origins[batch], directions[batch]))
-        if batch_hits.shape != (len(batch),):
-            raise TurnMillError(f"the ray engine returned {batch_hits.shape} results for {len(batch)} rays")
-        hits.append(batch_hits)
-        if progress is not None:
-            progress(min(1.0, (start + len(batch)) / len(cast)))
-    hits = np.concatenate(hits) if hits else np.zeros(0, bool)
-    blocked = np.bincount(owner[cast], weights=hits.astype(bool).astype(float), minlength=face_count)
-    return (samples > 0) & all_facing & (blocked == 0)
-
-
-def path_faces(vertices, faces, labels) -> tuple[np.ndarray, np.ndarray]:
-    """(radial face ids, axial face ids) to machine.  A face labelled BOTH goes to the direction
-    it faces more squarely (at its centroid), so it is cut once."""
-    v, f = check_mesh(vertices, faces)
-    labels = np.asarray(labels)
-    if labels.shape != (len(f),) or not np.all(np.isin(labels, (NEITHER, RADIAL, AXIAL, BOTH))):
-        raise TurnMillError(f"labels must be {len(f)} values from NEITHER, RADIAL, AXIAL, BOTH")
-    triangles = v[f]
-    normals, _ = face_normals(triangles)
-    centre = triangles.mean(axis=1)
-    rho = np.maximum(np.hypot(centre[:, 0], centre[:, 1]), 1e-12)
-    radial_facing = (normals[:, 0] * centre[:, 0] + normals[:, 1] * centre[:, 1]) / rho
-    radial = (labels == RADIAL) | ((labels == BOTH) & (radial_facing >= normals[:, 2]))
-    axial = (labels == AXIAL) | ((labels == BOTH) & ~radial)
-    return np.flatnonzero(radial), np.flatnonzero(axial)
 
 
 # ----- ball centres -----------------------------------------------------------------------------
@@ -645,7 +580,7 @@ def _machine(centres: np.ndarray, direction: str, r: float):
     return rho, centres[:, 2] - r, angle
 
 
-def _operation(name, direction, layers, stock, settings) -> TurnMillOperation | None:
+def _operation(name, direction, layers, stock, settings, surface=None) -> TurnMillOperation | None:
     """Moves through the passes, layer by layer.  Between passes the tool retracts along its own
     axis to the clearance outside the stock, turns C there, and feeds back in."""
     passes = [p for layer in layers for p in layer]
@@ -688,7 +623,13 @@ def _operation(name, direction, layers, stock, settings) -> TurnMillOperation | 
     op = TurnMillOperation(name, settings.tool(direction), settings.spindle_rpm, np.concatenate(kind), xyz,
                            np.concatenate(feed), rotary={"c": c}, clearance_z=z_clear, safe_z=z_clear,
                            start=np.array([x_clear, 0.0, z_clear]), direction=direction)
-    return merge_short_moves(op, min(settings.tolerance, CHORD_DIP))    # no dip deeper than a chord's
+    # no dip deeper than a chord's; then blocks shorter than the control processes in time merge within the
+    # chordal tolerance where the ball stays clear of the part along the merged move
+    dip = min(settings.tolerance, CHORD_DIP)
+    if surface is None:
+        return merge_short_moves(op, dip, settings.shortest_block_minutes)
+    return merge_short_moves(op, settings.tolerance, settings.shortest_block_minutes,
+                             accept=merged_move_clear(direction, surface, settings), accept_above=dip)
 
 
 @dataclass
@@ -703,20 +644,28 @@ class TurnMillPlan:
     axial_faces: np.ndarray
     radial_layers: list
     axial_layers: list
+    skipped: list = field(default_factory=list)    # turnskip.SkippedFeature s: faces no tool reaches
+
+    def skipped_faces(self) -> np.ndarray:
+        """Ids of the input faces no tool reaches (sorted)."""
+        return np.sort(np.concatenate([f.faces for f in self.skipped])) if self.skipped else np.zeros(0, np.int64)
 
 
 def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None, engine: RayEngine | None = None,
-         labels=None, name: str = "turn-mill", progress=None) -> TurnMillPlan:
+         labels=None, name: str = "turn-mill", progress=None, reported=None) -> TurnMillPlan:
     """Classify the faces (or use ``labels``), generate the radial and axial layers, and build the
     program: radial roughing, radial finishing (radial station), axial roughing, axial finishing
     (axial station).  Operations with nothing to cut are left out.
     ``progress``: optional callable(fraction, text); while the passes are joined, returning False
-    cancels (:class:`TurnMillCancelled`)."""
+    cancels (:class:`TurnMillCancelled`).  Faces labelled NEITHER that no ball sweeps either are
+    named (:attr:`TurnMillPlan.skipped`, in the program's notes): among ``reported`` (a face mask;
+    default every face), so faces a user left out of a selection are not reported as skipped."""
     report = progress or (lambda fraction, text="": None)
     settings = TurnMillSettings() if settings is None else settings
     if not isinstance(stock, Stock):
         raise TurnMillError(f"stock must be a Stock, got {type(stock).__name__}")
     v, f = check_mesh(vertices, faces)
+    given_v, given_f = v, f
     outside = (np.hypot(v[:, 0], v[:, 1]) > stock.radius + settings.tolerance) | \
               (v[:, 2] < stock.z_min - settings.tolerance) | (v[:, 2] > stock.z_max + settings.tolerance)
     if outside.any():
@@ -744,10 +693,11 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
     axial = axial_layers(v, f, axial_ids, stock, settings,
                          lambda fraction: report(0.8 + 0.15 * fraction, "axial layers"))
     report(0.95, "operations")
+    surface = Triangles.shared(v[f])
     operations = []
     for direction, layers in (("radial", radial), ("axial", axial)):
         for label, part in (("roughing", layers[:-1]), ("finishing", layers[-1:])):
-            op = _operation(f"{direction} {label}", direction, part, stock, settings)
+            op = _operation(f"{direction} {label}", direction, part, stock, settings, surface)
             if op is not None:
                 operations.append(op)
     if not operations:
@@ -757,11 +707,29 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
     for previous, op in zip(operations, operations[1:]):
         c = op.rotary["c"]
         c += 360.0 * np.round((previous.rotary["c"][-1] - c[0]) / 360.0)
+    skipped = _skipped(v, f, labels, planning, given_v, given_f, stock, settings, radial + axial, reported)
     notes = [f"tolerance {settings.tolerance:g} mm, stepover {settings.pick_feed:.3f} mm, "
-             f"roughing step {settings.roughing_step:g} mm"]
+             f"roughing step {settings.roughing_step:g} mm"] + turnskip.notes(skipped)
     program = Program(name, operations, rapid_rate=settings.rapid_rate, notes=notes)
     return TurnMillPlan(program, np.asarray(labels, dtype=np.int8)[planning.group],
-                        _mapped(radial_ids, planning, face_count), _mapped(axial_ids, planning, face_count), radial, axial)
+                        _mapped(radial_ids, planning, face_count), _mapped(axial_ids, planning, face_count), radial, axial,
+                        skipped)
+
+
+def _skipped(v, f, labels, planning, given_v, given_f, stock, settings, layers, reported) -> list:
+    """The NEITHER faces no ball centre comes near (:mod:`.turnskip`), tested on the planning mesh
+    and named as input faces, grouped into features."""
+    candidates = np.flatnonzero((np.asarray(labels) == NEITHER)
+                                & ~turnskip.on_stock_surface(v, f, stock, settings.tolerance))
+    centres = [p for layer in layers for p in layer]
+    centres = np.vstack(centres) if centres else np.zeros((0, 3))
+    distance = turnskip.reach(settings.radius, settings.roughing_step, settings.pick_feed, settings.tolerance)
+    missed = np.zeros(len(f), bool)
+    missed[turnskip.unreached_faces(v, f, candidates, centres, distance, settings.sample_spacing)] = True
+    chosen = missed[planning.group] if planning.merged else missed
+    if reported is not None:
+        chosen &= np.asarray(reported, bool)
+    return turnskip.features(given_v, given_f, np.flatnonzero(chosen))
 
 
 def _mapped(ids: np.ndarray, planning, face_count: int) -> np.ndarray:

@@ -1,0 +1,75 @@
+"""Programs the control cannot hold or cannot read fast enough are flagged (``post.capacity``),
+and the turn-mill planner merges blocks shorter than the machine's block time where it can.
+
+Every count here is taken from the posted TEXT by this file's own reader: a G93 block's time is
+1 / F minutes (Fanuc B-64114EN, inverse time feed), a program's size its bytes.  The cam-like
+case of a program far past the 0i-T's 512 kB is made with a small ``memory_kb`` instead of a
+16 MB program."""
+import re
+
+import pytest
+
+from kezuri.post import capacity, turnmill_xzc
+from kezuri.toolpath import machine, turnmill as tm
+
+TURNMILL = machine.preset("fanuc-0it-turnmill")
+
+
+def g93_block_ms(text: str) -> list:
+    """Milliseconds of every G01 block under G93, from its F word; our own reader."""
+    times, inverse = [], False
+    for line in text.splitlines():
+        if line.startswith("("):
+            continue
+        if re.search(r"\bG93\b", line):
+            inverse = True
+        if re.search(r"\bG9[48]\b", line):
+            inverse = False
+        f = re.search(r"\bF([0-9.]+)", line)
+        if inverse and f and re.search(r"[XZC]-?[0-9.]", line):
+            times.append(60000.0 / float(f.group(1)))
+    return times
+
+
+@pytest.fixture(scope="module")
+def sample_texts():
+    v, f, stock = tm.sample_part()
+    out = {}
+    for block_ms in (None, TURNMILL.block_ms):
+        plan = tm.plan(v, f, stock, tm.TurnMillSettings(block_ms=block_ms), name="sample")
+        out[block_ms] = turnmill_xzc.TurnMillXZCPost().to_text(plan.program)
+    return out
+
+
+def test_the_planner_merges_blocks_shorter_than_the_profiles(sample_texts):
+    before = [ms for ms in g93_block_ms(sample_texts[None]) if ms < 7.5]
+    after = [ms for ms in g93_block_ms(sample_texts[7.5]) if ms < 7.5]
+    assert len(after) < len(before)
+    assert min(g93_block_ms(sample_texts[7.5])) >= 60000.0 / 9999.999      # F never past the word's ceiling
+
+
+def test_the_rest_are_flagged_with_their_count(sample_texts):
+    text = sample_texts[7.5]
+    short = [ms for ms in g93_block_ms(text) if ms < 7.5]
+    assert len(short) > 100                # the sample's convex rolls: chords held to 0.5 micron
+    found = capacity.program_findings(text, TURNMILL.replace(memory_kb=None))
+    assert len(found) == 1
+    assert f"{len(short):,} inverse-time blocks shorter than the 7.5 ms" in found[0]
+    assert len(capacity.short_blocks(text, 7.5)) == len(short)
+
+
+def test_a_program_past_the_memory_is_flagged_with_both_sizes(sample_texts):
+    text = sample_texts[7.5]
+    size_kb = len(text.encode()) / 1024
+    small = TURNMILL.replace(memory_kb=64.0, block_ms=None)
+    found = capacity.program_findings(text, small, "the turnmill-xzc program")
+    assert found == [f"the turnmill-xzc program is {size_kb:,.1f} kB, larger than the 64 kB program memory of "
+                     f"{small.label}: run it from a memory card or DNC, or split it"]
+    assert capacity.program_findings(text, small.replace(memory_kb=size_kb + 1)) == []
+    assert capacity.program_findings(text, None) == []
+
+
+def test_the_reader_follows_the_feed_mode():
+    text = "%\nO0001\nG93\nG01 X10. F9000.\nX11. F100.\nG98\nG01 X12. F9000.\nG93 G01 Z1. C5. F8500.\nM30\n%\n"
+    assert capacity.short_blocks(text, 7.5) == [4, 8]
+    assert capacity.program_kb(text) == pytest.approx(len(text) / 1024)
