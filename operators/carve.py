@@ -17,7 +17,6 @@ import numpy as np
 from bpy.props import EnumProperty, StringProperty
 
 from .. import post as posts
-from ..post import write_atomic
 from ..toolpath import carve as core
 from ..toolpath import carve_samples, meshdata
 from ..toolpath.program import Tool
@@ -25,7 +24,7 @@ from ..toolpath.simulate import BoxStock
 from . import convert
 from . import gate
 from .common import SteppedOperator, run_reported
-from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument
+from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
 from .preferences import scene_post
@@ -120,7 +119,7 @@ def show_carve(scene, job: CarveJob, show_rapids: bool = False) -> list:
 
 def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | None = None,
                  allow: bool | str = False, checked: bool = False, orient_spindle: bool = False,
-                 machine=None) -> str:
+                 machine=None, findings: list | None = None) -> str:
     """Write the program; the export gate simulates it first unless the caller has (``checked``);
     ``orient_spindle``: M19 before each tool change (Fanuc posts only); ``machine``: the machine
     profile (None: the post's own)."""
@@ -128,7 +127,7 @@ def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | No
     text = post.to_text(job.result.program)
     if not checked:
         gate.check(simulation(job), allow, machine=post.machine)
-    return write_atomic(path, text)
+    return write_program(path, text, post, findings)
 
 
 def extension_for(post_name: str) -> str:
@@ -250,7 +249,7 @@ class KEZURI_OT_carve_export(NCExport, bpy.types.Operator):
         machine = context.scene.kezuri.machine
         return export_carve(job, self.post, self.filepath, machine.work_offset,
                             allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle,
-                            machine=scene_machine(machine, POST_FAMILIES, self.post))
+                            machine=scene_machine(machine, POST_FAMILIES, self.post), findings=self.findings)
 
 
 CLASSES = (KEZURI_OT_carve_generate, KEZURI_OT_carve_sample, KEZURI_OT_carve_export)
@@ -356,8 +355,9 @@ def batch(args) -> dict:
         job = run_carve(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "carve"))
     nc_path = os.path.join(args.out, f"carve{extension_for(post_name)}")
     simulated, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"), machine=profile)
+    findings = []
     export_carve(job, post_name, nc_path, machine.work_offset, checked=True, orient_spindle=machine.orient_spindle,
-                 machine=profile)
+                 machine=profile, findings=findings)
     design_path = batchio.write_stl(os.path.join(args.out, "design.stl"), job.vertices, job.faces)
     if batchio.shown():
         show_carve(scene, job)
@@ -388,7 +388,7 @@ def batch(args) -> dict:
             "max_scallop_before_mm": round(core.measured_scallop(before.heightfield, job.vertices,
                                                                  job.faces)["max_scallop_mm"], 5),
             "max_scallop_after_mm": round(scallop["max_scallop_mm"], 5)})
-    return {
+    report = {
         "gate": gate_report,
         "workflow": "carve",
         "post": post_name,
@@ -413,6 +413,8 @@ def batch(args) -> dict:
         "cycle_time_s": round(result.program.cycle_time(), 1),
         "warnings": result.warnings,
     }
+    warn(findings, report)
+    return report
 
 
 WORKFLOW = Workflow(

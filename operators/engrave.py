@@ -14,7 +14,6 @@ import numpy as np
 from bpy.props import EnumProperty, StringProperty
 
 from .. import post as posts
-from ..post import write_atomic
 from ..toolpath import engrave as core
 from ..toolpath import meshdata
 from ..toolpath import surface_engrave
@@ -22,7 +21,7 @@ from ..toolpath.program import Tool
 from . import convert
 from . import gate
 from .common import SteppedOperator
-from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument
+from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import SettingError, check_group
 from .preferences import scene_post
@@ -158,7 +157,7 @@ def program_for_post(job: EngraveJob, post_name: str):
 
 def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str | None = None,
                    allow: bool | str = False, checked: bool = False, orient_spindle: bool = False,
-                   machine=None) -> str:
+                   machine=None, findings: list | None = None) -> str:
     """Write the program for ``post_name``; the export gate simulates it first unless the caller
     has (``checked``); ``allow``: the gate's override (see :func:`gate.check`); ``orient_spindle``:
     M19 before each tool change (Fanuc posts only); ``machine``: the machine profile (None: the
@@ -167,7 +166,7 @@ def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str 
     text = post.to_text(program_for_post(job, post_name))
     if not checked:
         gate.check(simulation(job), allow, machine=post.machine)
-    return write_atomic(path, text)
+    return write_program(path, text, post, findings)
 
 
 def extension_for(post_name: str) -> str:
@@ -243,7 +242,7 @@ class KEZURI_OT_engrave_export(NCExport, bpy.types.Operator):
         machine = context.scene.kezuri.machine
         return export_engrave(job, self.post, self.filepath, machine.work_offset,
                               allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle,
-                              machine=scene_machine(machine, POST_FAMILIES, self.post))
+                              machine=scene_machine(machine, POST_FAMILIES, self.post), findings=self.findings)
 
 
 CLASSES = (KEZURI_OT_engrave_generate, KEZURI_OT_engrave_export)
@@ -323,8 +322,9 @@ def batch(args) -> dict:
     nc_path = os.path.join(args.out, f"engrave{extension_for(post_name)}")
     setup = simulation(job)
     checked, gate_report = gate.check(setup, args.allow_findings, Progress(None, "check"), machine=machine)
+    findings = []
     export_engrave(job, post_name, nc_path, props.machine.work_offset, checked=True,
-                   orient_spindle=props.machine.orient_spindle, machine=machine)
+                   orient_spindle=props.machine.orient_spindle, machine=machine, findings=findings)
     files = [nc_path]
     solids = []
     if job.surface is not None:
@@ -337,7 +337,7 @@ def batch(args) -> dict:
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "engrave-toolpaths.png"), job.baked.operations,
                                          setup.stock, solids, "ENGRAVING: TOOLPATHS", marks=marks)
     simulation_report, png = simview.batch_simulation(scene, setup, args.out, "engrave", checked, marks=marks)
-    return {
+    report = {
         "gate": gate_report,
         "simulation": simulation_report,
         "toolpaths_preview": toolpaths_png,
@@ -355,6 +355,8 @@ def batch(args) -> dict:
         "warnings": job.result.warnings,
         "skipped": job.result.skipped,
     }
+    warn(findings, report)
+    return report
 
 
 WORKFLOW = Workflow(

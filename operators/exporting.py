@@ -11,6 +11,8 @@ import bpy
 from bpy_extras.io_utils import ExportHelper
 
 from .. import post as posts
+from ..post.capacity import program_findings
+from ..post.output import write_atomic
 from .common import run_reported
 from .preferences import scene_output_dir, scene_post
 from .translations import translate_message
@@ -49,6 +51,23 @@ def batch_orient_spindle(args, scene, families, post_name: str) -> None:
         machine.orient_spindle = True
     spindle_options(families, post_name, machine.orient_spindle,
                     "--orient-spindle" if args.orient_spindle else "Orient Spindle (M19) of the .blend")
+
+
+def write_program(path: str, text: str, post, findings: list | None = None) -> str:
+    """Write the NC text (atomically); what the machine cannot take of it (``post.capacity``: a
+    program larger than its memory, blocks shorter than its block time) is added to ``findings``."""
+    if findings is not None:
+        findings += program_findings(text, post.machine, f"the {post.name} program")
+    return write_atomic(path, text)
+
+
+def warn(findings, report: dict) -> None:
+    """Batch: the machine's findings printed and added to the report's warnings."""
+    import sys
+
+    for finding in findings:
+        print(f"kezuri: warning: {finding}", file=sys.stderr)
+    report["warnings"] = list(report.get("warnings") or []) + list(findings)
 
 
 def report_findings(operator, findings) -> None:
@@ -91,7 +110,9 @@ class NCExport(ExportHelper):
 
     def execute(self, context):
         def work():
+            self.findings = []       # what the machine cannot take of the program (write_program)
             path = self.write(context)
             self.report({"INFO"}, translate_message(f"Wrote {path}"))
+            report_findings(self, self.findings)
             return {"FINISHED"}
         return run_reported(self, work)

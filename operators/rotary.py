@@ -16,13 +16,12 @@ import numpy as np
 from bpy.props import EnumProperty, StringProperty
 
 from .. import post as posts
-from ..post import write_atomic
 from ..toolpath import rotary as core
 from ..toolpath.program import Tool
 from . import convert
 from . import gate
 from .common import SteppedOperator
-from .exporting import NCExport
+from .exporting import NCExport, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
 from .properties import post_items, post_number
@@ -113,7 +112,7 @@ def extension_for(post_name: str) -> str:
 
 
 def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str = False, checked: bool = False,
-                  machine=None) -> str:
+                  machine=None, findings: list | None = None) -> str:
     """Write the program; the export gate simulates it first unless the caller has (``checked``);
     ``machine``: the machine profile (None: the post's own)."""
     post = posts.create(POST_FAMILIES, post_name, work_offset=job.result.program.work_offset,
@@ -121,7 +120,7 @@ def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str =
     text = post.to_text(job.result.program)
     if not checked:
         gate.check(simulation(job), allow, machine=post.machine)
-    return write_atomic(path, text)
+    return write_program(path, text, post, findings)
 
 
 def simulation(job: RotaryJob) -> SimulationSetup:
@@ -182,7 +181,8 @@ class KEZURI_OT_rotary_export(NCExport, bpy.types.Operator):
     def write(self, context) -> str:
         job = run_rotary(context.scene, context.evaluated_depsgraph_get())
         return export_rotary(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged,
-                             machine=scene_machine(context.scene.kezuri.machine, POST_FAMILIES, self.post))
+                             machine=scene_machine(context.scene.kezuri.machine, POST_FAMILIES, self.post),
+                             findings=self.findings)
 
 
 class KEZURI_OT_mark_pocket(bpy.types.Operator):
@@ -237,15 +237,16 @@ def batch(args) -> dict:
     job = run_rotary(scene, bpy.context.evaluated_depsgraph_get(), Progress(None, "rotary"))
     seconds = time.perf_counter() - started
     checked, gate_report = gate.check(simulation(job), args.allow_findings, Progress(None, "check"), machine=machine)
+    findings = []
     nc_path = export_rotary(job, post_name, os.path.join(args.out, f"rotary{extension_for(post_name)}"), checked=True,
-                            machine=machine)
+                            machine=machine, findings=findings)
     if batchio.shown():
         show_rotary(scene, job)
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "rotary-toolpaths.png"),
                                          job.result.program.operations, simulation(job).stock, [],
                                          "ROTARY TABLE C-X-Z: TOOLPATHS (PART FRAME)")
     simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "rotary", checked)
-    return {
+    report = {
         "gate": gate_report,
         "simulation": simulation_report,
         "toolpaths_preview": toolpaths_png,
@@ -259,6 +260,8 @@ def batch(args) -> dict:
         "operations": job.result.program.summary(),
         "pockets": job.result.reports,
     }
+    warn(findings, report)
+    return report
 
 
 WORKFLOW = Workflow(

@@ -24,7 +24,7 @@ from ..toolpath.stepnc.solids import block_of, feature_solid, fixture_clearance,
 from . import convert
 from . import gate
 from .common import run_reported
-from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument
+from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
 from .properties import post_items, post_number
@@ -135,7 +135,8 @@ def show_workplan(scene, loaded, program=None) -> list:
     return objects
 
 
-def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progress=None, profile=None) -> tuple:
+def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progress=None, profile=None,
+              findings: list | None = None) -> tuple:
     """Convert the workplan, simulate it (the export gate) and write it: (path, program, gate's
     simulation job, gate report).  ``profile``: the machine (default: Machine & Stock's for the post)."""
     loaded = load_scene_workplan(scene)
@@ -148,7 +149,7 @@ def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progr
     text = post.to_text(program)
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
     checked, report = gate.check(simulation((loaded, program, frame)), allow, progress, machine=post.machine)
-    return write_atomic(path, text), program, checked, report
+    return write_program(path, text, post, findings), program, checked, report
 
 
 def extension_for(post_name: str) -> str:
@@ -262,7 +263,8 @@ class KEZURI_OT_stepnc_export(NCExport, bpy.types.Operator):
         return KEZURI_OT_stepnc_generate.poll(context)
 
     def write(self, context) -> str:
-        path, *_ = export_nc(context.scene, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged)
+        path, *_ = export_nc(context.scene, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged,
+                             findings=self.findings)
         return path
 
 
@@ -390,6 +392,7 @@ def batch(args) -> dict:
     post_name = args.post or "fanuc"
     batch_orient_spindle(args, scene, POST_FAMILIES, post_name)
     profile = batch_machine(args, scene, POST_FAMILIES, post_name)
+    findings = []
     try:
         if not os.path.isfile(path):
             raise FileNotFoundError(f"no such ISO 14649 file: {path}")
@@ -399,7 +402,7 @@ def batch(args) -> dict:
             apply_order(scene, args.order, path if staging is None else "the built-in sample")
         nc_path, program, checked, gate_report = export_nc(
             scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"), args.allow_findings,
-            Progress(None, "check"), profile)
+            Progress(None, "check"), profile, findings)
         if staging is not None:
             path = sample_file(args.out)
             scene.kezuri.stepnc.filepath = os.path.abspath(path)    # the scene points at the kept copy
@@ -423,7 +426,7 @@ def batch(args) -> dict:
         entry = describe_step(steps[op.source_id])
         entry.update(tool=op.tool.describe(), moves=len(op))
         workingsteps.append(entry)
-    return {
+    report = {
         "gate": gate_report,
         "workflow": "stepnc",
         "simulation": simulation_report,
@@ -439,6 +442,8 @@ def batch(args) -> dict:
         "warnings": list(program.notes),
         "cycle_time_s": round(program.cycle_time(), 1),
     }
+    warn(findings, report)
+    return report
 
 
 WORKFLOW = Workflow(

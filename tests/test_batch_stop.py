@@ -124,3 +124,4 @@ def test_a_full_disk_leaves_out_as_it_was(tmp_path):
     assert "File too large" in done.stderr and str(out) in done.stderr and "staging" not in done.stderr
     assert not out.exists()
     assert [name for name in os.listdir(tmp_path) if name.startswith(".kezuri")] == []
+

@@ -73,3 +73,20 @@ def test_the_reader_follows_the_feed_mode():
     text = "%\nO0001\nG93\nG01 X10. F9000.\nX11. F100.\nG98\nG01 X12. F9000.\nG93 G01 Z1. C5. F8500.\nM30\n%\n"
     assert capacity.short_blocks(text, 7.5) == [4, 8]
     assert capacity.program_kb(text) == pytest.approx(len(text) / 1024)
+
+
+def test_a_milling_program_larger_than_the_control_memory_is_flagged(tmp_path):
+    """The carving sample posted for a Fanuc 0i-MF machining centre (512 kB of part program
+    storage, the fanuc post's default machine) is far larger: batch says so on stderr and in the
+    report, naming both sizes; the size is the file's own, measured here."""
+    out = tmp_path / "carve"
+    pytest.importorskip("bpy")
+    from test_batch_stop import run
+
+    code, message, _ = run(["carve", "--post", "fanuc", "--out", str(out)])
+    assert code == 0, message[-2000:]
+    size_kb = (out / "carve.nc").stat().st_size / 1024
+    assert size_kb > 512
+    report = (out / "report.json").read_text()
+    expected = f"is {size_kb:,.1f} kB, larger than the 512 kB program memory"
+    assert expected in message and expected in report
