@@ -110,6 +110,12 @@ class NCExport(ExportHelper):
 
     def execute(self, context):
         def work():
+            if not self.properties.is_property_set("post"):
+                # run from a script without a post (invoke sets it from the file browser): the
+                # job's own post, as the file browser would have started with, not the enum's default
+                preferred = self.preferred_post(context)
+                if preferred is not None:
+                    self.post = preferred
             self.findings = []       # what the machine cannot take of the program (write_program)
             path = self.write(context)
             self.report({"INFO"}, translate_message(f"Wrote {path}"))

@@ -251,3 +251,16 @@ def test_a_base_depth_through_the_sample_plate_is_refused_in_the_shell_and_in_ba
     assert done.returncode == 2, done.stderr[-2000:]
     assert "through the 20 mm plate" in done.stderr and "Traceback" not in done.stderr
     assert not (tmp_path / "out" / "engrave.nc").exists() and not list((tmp_path / "out").glob("*.n*"))
+
+
+def test_a_scripted_export_without_a_post_writes_the_scenes_post(scene, tmp_path):
+    """``bpy.ops.kezuri.engrave_export(filepath=...)`` from a script: the post is the scene's (as the
+    file browser would start with), not the operator's first choice; an explicit post still wins."""
+    scene.kezuri.machine.post = "linuxcnc"
+    path = tmp_path / "plate.ngc"
+    assert bpy.ops.kezuri.engrave_export(filepath=str(path)) == {"FINISHED"}
+    text = path.read_text()
+    assert "(POST: LINUXCNC)" in text and not text.startswith("%\nO")
+    explicit = tmp_path / "plate.nc"
+    assert bpy.ops.kezuri.engrave_export(filepath=str(explicit), post="fanuc") == {"FINISHED"}
+    assert "(POST: FANUC)" in explicit.read_text()
