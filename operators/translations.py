@@ -1621,6 +1621,16 @@ MESSAGE_TEMPLATES = {
         '切込みは 0 mm より大きい数にしてください（{0} が指定されました）',
     'depth {} must lie below the top Z {}':
         '深さ {0} は上面 Z {1} より下にしてください',
+    'line {}: {}{} lies beyond the {} mm any machine reaches: {}':
+        '{0}行目：{1}{2} はどの機械も届かない {3} mm の外です：{4}',
+    'line {}: F{} is a negative feed, which no control takes: {}':
+        '{0}行目：F{1} は負の送りで、どの制御装置も受け付けません：{2}',
+    'line {}: G4 P{} is a negative dwell: {}':
+        '{0}行目：G4 P{1} は負のドウェルです：{2}',
+    'line {}: a G{} move with no F word before it (a control refuses a cutting move without a feed): {}':
+        '{0}行目：G{1} の移動の前に F がありません（送りのない切削移動は制御装置が受け付けません）：{2}',
+    'line {}: a G{} move with F0 in effect since line {} (a control refuses a cutting move without a feed): {}':
+        '{0}行目：{2}行目から F0 のままの G{1} の移動です（送りのない切削移動は制御装置が受け付けません）：{3}',
     'line {}: S{} is not a spindle speed: {}':
         '{0}行目：S{1} は主軸回転数ではありません：{2}',
     "line {}: a block delete '/' is not followed (whether the control skips the line depends on its Block Delete switch): {}":

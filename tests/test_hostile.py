@@ -68,7 +68,7 @@ def read(text):
 
 # ----- 1. the NC reader is strict like a control ------------------------------------------------
 
-START = "G21 G90\nG0 X0 Y0 Z5\n"
+START = "G21 G90\nG0 X0 Y0 Z5 F300\n"        # F set before any cutting move, as a control needs
 
 
 @pytest.mark.parametrize("line, reason", [
@@ -159,7 +159,7 @@ def test_arcs_are_held_to_linuxcncs_radius_tolerance(radius, error, refused):
     from the one at the start by more than 100 x 0.02*sqrt(2) mm, or by more than 0.02*sqrt(2) mm
     and 0.1 % of the radius."""
     end = radius + error    # start (r, 0), centre at the origin (I-r), end straight above it
-    text = f"G21 G90\nG0 X{radius:.4f} Y0 Z0\nG3 X0 Y{end:.4f} I{-radius:.4f} J0\n"
+    text = f"G21 G90\nG0 X{radius:.4f} Y0 Z0 F300\nG3 X0 Y{end:.4f} I{-radius:.4f} J0\n"
     if refused:
         with pytest.raises(ncread.NCReadError, match=rf"line 3: the arc's end lies {error:.4f} mm off its circle"):
             read(text)
@@ -170,9 +170,9 @@ def test_arcs_are_held_to_linuxcncs_radius_tolerance(radius, error, refused):
 
 def test_inch_arcs_use_the_inch_tolerance():
     # 0.002*sqrt(2) in = 0.0718 mm: 0.002 in off on a 1 in radius (0.2 %) is refused, 0.0015 in is not
-    read("G20 G90\nG0 X1 Y0 Z0\nG3 X0 Y1.0015 I-1 J0\n")
+    read("G20 G90\nG0 X1 Y0 Z0 F12\nG3 X0 Y1.0015 I-1 J0\n")
     with pytest.raises(ncread.NCReadError, match="line 3: the arc's end lies 0.0762 mm"):
-        read("G20 G90\nG0 X1 Y0 Z0\nG3 X0 Y1.003 I-1 J0\n")
+        read("G20 G90\nG0 X1 Y0 Z0 F12\nG3 X0 Y1.003 I-1 J0\n")
 
 
 def test_what_the_reader_sets_aside_is_listed_and_the_old_unpacking_still_works():
@@ -756,3 +756,22 @@ def test_a_g53_lift_is_followed_as_staying_put_and_other_g53_moves_are_refused()
     assert op.xyz[:, 2].tolist()[:2] == [5.0, 5.0]          # the XY rapid at the height before the lift
     with pytest.raises(ncread.NCReadError, match="G53 moves in machine coordinates, which the reader does not know"):
         read(START + "G53 G00 X0 Y0\n")
+
+
+@pytest.mark.parametrize("text, reason", [
+    # a feed a control refuses (rs274: "Cannot do g1 with zero feed rate", "Negative f word used")
+    ("G21 G90\nG0 X0 Y0 Z5\nG1 X10 F0\n", "line 3: a G1 move with F0 in effect since line 3"),
+    ("G21 G90\nF0\nG0 X0 Y0 Z5\nG1 X10\n", "line 4: a G1 move with F0 in effect since line 2"),
+    ("G21 G90\nG0 X0 Y0 Z5\nG1 X10\n", "line 3: a G1 move with no F word before it"),
+    ("G21 G90\nG0 X0 Y0 Z5\nG1 X10 F-300\n", "line 3: F-300 is a negative feed"),
+    ("G21 G93\nG0 X0 Y0 Z5\nG2 X10 Y0 I5 J0 F0\n", "line 3: a G2 move with F0"),
+    # a dwell that cannot be, and a coordinate no machine reaches (300 digits, which overflowed the
+    # simulation's sums and made the moves vanish)
+    ("G21 G90\nG0 X0 Y0 Z5\nG4 P-5\n", "line 3: G4 P-5 is a negative dwell"),
+    ("G21 G90\nG0 X" + "1" * 300 + " Y0 Z5\n", "line 2: X1.11111e\\+299 lies beyond the 100000 mm"),
+    ("G20 G90\nG0 X0 Y0 Z5 F10\nG1 X4000\n", "line 3: X4000 lies beyond the 100000 mm"),   # 101.6 m in inches
+    ("G21 G90\nG0 X0 Y0 Z5 F10\nG20 G1 X4000\n", "line 3: X4000 lies beyond the 100000 mm"),   # inches from this block on
+])
+def test_feeds_dwells_and_coordinates_a_control_refuses_are_refused(text, reason):
+    with time_limit(10), pytest.raises(ncread.NCReadError, match=reason):
+        read(text)

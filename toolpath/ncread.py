@@ -36,7 +36,7 @@ import re
 
 import numpy as np
 
-from .errors import InputError
+from .errors import MAX_REACH_MM, InputError
 from .program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Tool
 from .tools import SHAPES
 
@@ -230,6 +230,7 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
     kinds, points, centres, c_values, lines = [], [], [], [], []
     speeds, turning = [], []          # per move: the S in effect, the direction (None: stopped)
     speed, direction = 0.0, None
+    feed_rate, feed_line = None, None     # the F in effect and the line that set it
     saw_c = False
     ignored: dict = {}
     comments: list = []
@@ -276,6 +277,18 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             if len(group) == 2 and all(code in codes for code in group):
                 raise NCReadError(f"line {number}: {group[0]} and {group[1]} are in one modal group, so one block "
                                   f"cannot have both: {_shown(raw)}")
+        block_scale = 25.4 if "G20" in codes else 1.0 if "G21" in codes else scale
+        for letter in [a for a in AXES if a in values] + [w for w in "IJ" if w in values]:
+            if abs(values[letter]) * (block_scale if letter != "C" else 1.0) > MAX_REACH_MM:
+                raise NCReadError(f"line {number}: {letter}{values[letter]:.6g} lies beyond the {MAX_REACH_MM:g} mm "
+                                  f"any machine reaches: {_shown(raw)}")
+        if "F" in values:
+            if values["F"] < 0:
+                raise NCReadError(f"line {number}: F{values['F']:g} is a negative feed, which no control takes: "
+                                  f"{_shown(raw)}")
+            feed_rate, feed_line = values["F"], number
+        if "P" in values and "G4" in codes and values["P"] < 0:
+            raise NCReadError(f"line {number}: G4 P{values['P']:g} is a negative dwell: {_shown(raw)}")
         # LinuxCNC's order of execution in a block: S, then the tool change M6, then M3/M4/M5
         if "S" in values:
             if values["S"] < 0:
@@ -358,6 +371,12 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
                 value = values[axis] * (scale if axis != "C" else 1.0)
                 position[axis] = value if absolute else position[axis] + value
             kind = (RAPID, FEED, ARC_CW, ARC_CCW)[mode]
+            if kind != RAPID and feed_line is None:
+                raise NCReadError(f"line {number}: a G{mode} move with no F word before it (a control refuses a "
+                                  f"cutting move without a feed): {_shown(raw)}")
+            if kind != RAPID and not feed_rate:
+                raise NCReadError(f"line {number}: a G{mode} move with F0 in effect since line {feed_line} (a control "
+                                  f"refuses a cutting move without a feed): {_shown(raw)}")
             centre = (np.nan, np.nan, np.nan)
             if kind in (ARC_CW, ARC_CCW):
                 if "I" not in values and "J" not in values:
