@@ -626,3 +626,13 @@ def test_bad_job_raises_rotary_error():
     with pytest.raises(RotaryError, match="board"):
         rotary.plan(Block(105, float("nan"), 30), [Pocket("a", GOOD, 5.0)])
     assert issubclass(RotaryError, ValueError)
+
+
+def test_board_sizes_read_from_blender_are_named_as_typed():
+    """A board read from a scene in single precision (140.00000664964318 x 90.00000427477062 mm)
+    is named 140 x 90 in the message, as the user typed it."""
+    wide = GOOD * 3
+    with pytest.raises(RotaryError, match=r"outside the 140 x 90 mm board"):
+        rotary.plan(Block(140.00000664964318, 90.00000427477062, 30.000001), [Pocket("wide", wide, 5.0)])
+    with pytest.raises(RotaryError, match=r"depth 30 mm goes through the 30 mm board"):
+        rotary.plan(Block(140.00000664964318, 90.00000427477062, 30.000001), [Pocket("deep", GOOD, 30.000001)])

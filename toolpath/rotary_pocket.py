@@ -241,10 +241,10 @@ class _Geometry:
         if pocket.depth <= 0:
             raise RotaryError(f"{what}: depth must be greater than zero, got {pocket.depth}")
         if pocket.depth >= block.thickness:
-            raise RotaryError(f"{what}: depth {pocket.depth} mm goes through the {block.thickness} mm board")
+            raise RotaryError(f"{what}: depth {pocket.depth:.6g} mm goes through the {block.thickness:.6g} mm board")
         if pocket.depth > settings.tool.flute_length:
-            raise RotaryError(f"{what}: depth {pocket.depth} mm is beyond the bit's flute length "
-                              f"{settings.tool.flute_length} mm")
+            raise RotaryError(f"{what}: depth {pocket.depth:.6g} mm is beyond the bit's flute length "
+                              f"{settings.tool.flute_length:.6g} mm")
         if not 0 <= pocket.wall_angle_deg <= MAX_WALL_ANGLE:
             raise RotaryError(f"{what}: wall angle must be 0..{MAX_WALL_ANGLE} degrees from vertical, "
                               f"got {pocket.wall_angle_deg}")
@@ -252,7 +252,7 @@ class _Geometry:
             raise RotaryError(f"{what}: bottom must be one of {BOTTOMS}, got {pocket.bottom!r}")
         half = np.array([block.size_x, block.size_y]) / 2
         if np.any(np.abs(loop) > half + 1e-9):
-            raise RotaryError(f"{what}: the outline reaches outside the {block.size_x} x {block.size_y} mm board")
+            raise RotaryError(f"{what}: the outline reaches outside the {block.size_x:.6g} x {block.size_y:.6g} mm board")
 
         self.centre = centre
         self.loop = loop - centre
