@@ -13,8 +13,8 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
                        IntProperty, PointerProperty, StringProperty)
 
 from .. import post as posts
-from ..toolpath import machine as _machine
-from ..toolpath import nibbling as _nibbling
+from ..toolpath import machine as machine_presets
+from ..toolpath import nibbling
 from . import limits, machines
 
 _ENUM_ITEMS: dict = {}   # Blender reads dynamic enum strings after the callback returns: keep them alive
@@ -230,7 +230,7 @@ def copies(settings: dict) -> dict:
     return {name: prop.function(**prop.keywords) for name, prop in settings.items()}
 
 
-_PUNCH = _machine.preset("amada-04p")
+_PUNCH = machine_presets.preset("amada-04p")
 # Where the part goes on the turret punch's sheet, and the micro-joints that keep it there
 # (defaults: the Amada 04P preset of toolpath/machine.py).
 SHEET_SETUP = ranged({
@@ -243,10 +243,10 @@ SHEET_SETUP = ranged({
                                          "(mm, separated by commas)"),
     "clamp_width": mm("Clamp Width", _PUNCH.clamps[0].width, "Width of each clamp's dead zone along X"),
     "clamp_depth": mm("Clamp Depth", _PUNCH.clamps[0].depth, "Depth of each clamp's dead zone into the sheet"),
-    "joints": IntProperty(name="Micro-Joints", default=_nibbling.DEFAULT_JOINTS, min=0, max=_nibbling.MAX_JOINTS,
+    "joints": IntProperty(name="Micro-Joints", default=nibbling.DEFAULT_JOINTS, min=0, max=nibbling.MAX_JOINTS,
                           description="Webs left uncut on the part's outline so it stays in the sheet (0: the part "
                                       "falls free at the last hits)"),
-    "joint_width": mm("Joint Width", _nibbling.DEFAULT_JOINT_WIDTH, "Width of the web each micro-joint leaves"),
+    "joint_width": mm("Joint Width", nibbling.DEFAULT_JOINT_WIDTH, "Width of the web each micro-joint leaves"),
 }, "sheet")
 
 
