@@ -82,7 +82,7 @@ root, warm = sys.argv[1], sys.argv[2] == "warm"
 sys.path.insert(0, root)
 import batch
 batch.import_package()
-from kezuri.toolpath import warmup
+from kezuri.toolpath.engines import warmup
 from kezuri.toolpath.simulate import BoxStock, simulate
 if warm:
     warmup.warm_kernels()

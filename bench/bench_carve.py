@@ -6,7 +6,7 @@ from timing import best_of
 
 
 def run():
-    from kezuri.toolpath import carve, carve_samples
+    from kezuri.toolpath.operations.carve import carve, carve_samples
 
     vertices, faces = carve_samples.wave_relief()
     result = carve.plan(vertices, faces)

@@ -64,8 +64,8 @@ def _ocl(vertices, faces, xy):
 
 
 def run():
-    from kezuri.toolpath import dropcutter as dc
-    from kezuri.toolpath.program import Tool
+    from kezuri.toolpath.engines import dropcutter as dc
+    from kezuri.toolpath.ir.program import Tool
 
     vertices, faces = _sphere()
     tool = Tool(1, "ball", TOOL_DIAMETER)

@@ -24,7 +24,7 @@ def sample_inputs():
 
 
 def plan_rows():
-    from kezuri.toolpath import engrave
+    from kezuri.toolpath.operations.engrave import engrave
 
     plate, letters = sample_inputs()
     result = engrave.plan(plate, letters)
@@ -45,7 +45,7 @@ def sign_fill_rows(scale: float = 4.0, cell: float = 0.1):
 
     import numpy as np
 
-    from kezuri.toolpath import region
+    from kezuri.toolpath.engines import region
 
     _, letters = sample_inputs()
     loops = [np.asarray(loop, float) * scale for _, object_loops in letters for loop in object_loops]

@@ -21,7 +21,7 @@ def _sample_jobs():
 
     import kezuri
     from kezuri.operators import samples, stepnc, workflows
-    from kezuri.toolpath import stepnc as stepnc_core
+    from kezuri.toolpath.operations import stepnc as stepnc_core
 
     if not hasattr(bpy.types.Scene, "kezuri"):
         kezuri.register()

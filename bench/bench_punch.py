@@ -1,7 +1,7 @@
 """W5: the turret-punch simulation (core only): a 60-piece pipe elbow of 400 mm diameter, every
 piece's program punched out of its blank, and one program at the 20,000-hit limit.
 
-Before the hits of a line were united in closed form (toolpath/punch.py ``_chain``) every hit was a
+Before the hits of a line were united in closed form (toolpath/operations/sheetmetal/punch.py ``_chain``) every hit was a
 polygon of its own in the union: on 2026-11-27 the elbow took 48 s
 (and batch punched every piece twice).  Since issue 26 each piece is placed on the sheet with two
 micro-joints, and the simulation also releases the part at its joints (one more boolean a piece)."""
@@ -16,7 +16,8 @@ def elbow_programs(diameter: float = 400.0, pieces: int = 60, punch_diameter: fl
     placed on the Amada 04P preset's sheet clear of the clamps, nibbled with merged lines, each hit
     once, and two micro-joints."""
     from kezuri.post import amada_punch
-    from kezuri.toolpath import machine, nibbling, placement, unfold
+    from kezuri.toolpath.ir import machine
+    from kezuri.toolpath.operations.sheetmetal import nibbling, placement, unfold
 
     # the 400 mm pipe's pattern is 1257 mm round: a 2500 x 1250 sheet (the 1270 mm preset's is too narrow)
     profile = machine.preset("amada-04p").replace(sheet_max=(2500.0, 1250.0))
@@ -45,7 +46,7 @@ def square_program(side: float = 499.0, pitch: float = 0.1) -> str:
 
 
 def run():
-    from kezuri.toolpath import punch
+    from kezuri.toolpath.operations.sheetmetal import punch
 
     programs = elbow_programs()
     hits = sum(len(punch.read_amada(text).hits) for text, _, _ in programs)

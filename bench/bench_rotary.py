@@ -6,7 +6,7 @@ from timing import best_of
 
 
 def run():
-    from kezuri.toolpath import rotary
+    from kezuri.toolpath.operations.rotary import rotary
 
     block, pockets = rotary.sample_job()
     settings = rotary.RotarySettings(spacing=1.0, stepover=1.0)

@@ -21,7 +21,7 @@ STOCK = (0.0, 0.0, -20.0, 200.0, 100.0, 0.0)
 def raster(moves: int = 100_000, seed: int = 0):
     """A zigzag finishing pass over a smooth random surface: rows along X every 0.5 mm,
     points every 0.4 mm, Z from a sum of seeded sinusoids (about -5..-1 mm)."""
-    from kezuri.toolpath.program import FEED, Operation, Tool
+    from kezuri.toolpath.ir.program import FEED, Operation, Tool
 
     rng = np.random.default_rng(seed)
     rows = 200
@@ -80,7 +80,7 @@ def naive_exact(op, cell: float) -> np.ndarray:
 def run():
     from kezuri.toolpath import simulate as sim
     from kezuri.toolpath.simulate import sweep
-    from kezuri.toolpath.program import Tool
+    from kezuri.toolpath.ir.program import Tool
 
     op = raster()
     rows = []

@@ -10,8 +10,8 @@ EX1 = os.path.join(HERE, "..", "tests", "fixtures", "iso14649", "ex1.stp")
 
 def large_file(pockets: int = 400) -> str:
     """A plate with many pockets written by our own writer (each pocket ~25 instances)."""
-    from kezuri.toolpath import stepnc
-    from kezuri.toolpath.program import Tool
+    from kezuri.toolpath.operations import stepnc
+    from kezuri.toolpath.ir.program import Tool
 
     specs = []
     for k in range(pockets):
@@ -22,7 +22,7 @@ def large_file(pockets: int = 400) -> str:
 
 
 def run():
-    from kezuri.toolpath import stepnc
+    from kezuri.toolpath.operations import stepnc
     text = large_file()
     size_mb = len(text.encode()) / 1e6
     started = time.perf_counter()

@@ -14,7 +14,7 @@ from pointsets import hausdorff  # noqa: E402  (the tests' point-set distance, n
 def run():
     import trimesh
 
-    from kezuri.toolpath import turnmill
+    from kezuri.toolpath.operations.turnmill import turnmill
 
     sphere = trimesh.creation.icosphere(subdivisions=6, radius=40.0)       # 81,920 faces
     box = trimesh.creation.box((30, 30, 30))
@@ -56,7 +56,8 @@ def run_planning():
     cylinder (before the grid join: over 5 minutes; 8 sides took 40 s)."""
     import trimesh
 
-    from kezuri.toolpath import meshrays, turnmill
+    from kezuri.toolpath.engines import meshrays
+    from kezuri.toolpath.operations.turnmill import turnmill
 
     vertices, faces, stock = turnmill.sample_part()
     dense_v, dense_f = vertices, faces
@@ -90,7 +91,7 @@ def run_planning():
          "target_s": 1.2 * base,
          "notes": f"{seconds / base:.2f}x the sample's time (target 1.2x, fastest of 3 back to back); "
                   f"same operations: {same}, every point within {apart:.2g} mm of the other program's. "
-                  "Planned on the planning mesh (coplanar faces merged back, toolpath/facets.py); left "
+                  "Planned on the planning mesh (coplanar faces merged back, toolpath/engines/facets.py); left "
                   "(grows with the faces): checking the input mesh and merging its facets"},
         {"name": "turnmill: plan a plain 64-sided cylinder", "seconds": plain_cylinder,
          "notes": "before the grid join: over 300 s"},

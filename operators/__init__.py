@@ -31,7 +31,7 @@ def start_warmup():
     LLVM compiling beside the UI's own LLVM (Mesa's software GL) crashed Blender 4.3."""
     from .common import CoreCall, ProcessJob
 
-    return ProcessJob(CoreCall("toolpath.warmup", "warm_kernels", {}))
+    return ProcessJob(CoreCall("toolpath.engines.warmup", "warm_kernels", {}))
 
 
 def warm_kernels_in_background():

@@ -17,9 +17,10 @@ import numpy as np
 from bpy.props import EnumProperty, StringProperty
 
 from .. import post as posts
-from ..toolpath import carve as core
-from ..toolpath import carve_samples, meshdata
-from ..toolpath.program import Tool
+from ..toolpath.operations.carve import carve as core
+from ..toolpath.operations.carve import carve_samples
+from ..toolpath.engines import meshdata
+from ..toolpath.ir.program import Tool
 from ..toolpath.simulate import BoxStock
 from . import convert
 from . import gate

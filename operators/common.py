@@ -10,7 +10,7 @@ from .translations import translate_message
 def user_errors():
     """Exception types whose message is meant for the user (no traceback): every input error of
     the core and the shell, and file-system errors (a missing file, a folder not writable)."""
-    from ..toolpath.errors import InputError
+    from ..toolpath.ir.errors import InputError
     return (InputError, OSError)
 
 

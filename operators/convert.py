@@ -10,8 +10,8 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
-from ..toolpath import meshdata, region
-from ..toolpath.errors import MAX_REACH_MM, InputError
+from ..toolpath.engines import meshdata, region
+from ..toolpath.ir.errors import MAX_REACH_MM, InputError
 
 COLLECTION = "Kezuri"
 
@@ -220,7 +220,7 @@ def split_runs(kinds, points) -> tuple:
 
     ``points`` has one more row than ``kinds``: the start, then each move's end point.
     """
-    from ..toolpath.program import RAPID
+    from ..toolpath.ir.program import RAPID
 
     is_rapid = np.asarray(kinds) == RAPID
     change = (np.flatnonzero(is_rapid[1:] != is_rapid[:-1]) + 1).tolist()   # where a run of one kind ends
@@ -233,7 +233,7 @@ def split_runs(kinds, points) -> tuple:
 
 def operation_paths(op) -> tuple:
     """Cutting and rapid polylines of a 3-axis operation (work mm), arcs walked along the arc."""
-    from ..toolpath.program import walked
+    from ..toolpath.ir.program import walked
 
     return split_runs(*walked(op))
 

@@ -14,10 +14,10 @@ import numpy as np
 from bpy.props import EnumProperty, StringProperty
 
 from .. import post as posts
-from ..toolpath import engrave as core
-from ..toolpath import meshdata
-from ..toolpath import surface_engrave
-from ..toolpath.program import Tool
+from ..toolpath.operations.engrave import engrave as core
+from ..toolpath.engines import meshdata
+from ..toolpath.operations.engrave import surface_engrave
+from ..toolpath.ir.program import Tool
 from . import convert
 from . import gate
 from .common import SteppedOperator

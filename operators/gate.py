@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import time
 
-from ..toolpath import machine as machines
+from ..toolpath.ir import machine as machines
 from ..toolpath import simulate as core
-from ..toolpath.errors import InputError
+from ..toolpath.ir.errors import InputError
 from . import simview
 
 GATE_CELL = 0.1        # mm: the height field the gate cuts (the batch preview's cell)

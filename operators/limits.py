@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from ..toolpath.errors import MAX_REACH_MM, InputError
+from ..toolpath.ir.errors import MAX_REACH_MM, InputError
 
 FLOAT_MAX = 3.4028234663852886e+38     # what Blender stores for inf: not a number anyone gave
 

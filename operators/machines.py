@@ -1,16 +1,16 @@
 """The machine profile in the shell: Machine & Stock's Machine menu and settings (and batch's
-``--machine`` with its overrides) -> the :class:`toolpath.machine.MachineProfile` a program is written
+``--machine`` with its overrides) -> the :class:`toolpath.ir.machine.MachineProfile` a program is written
 for and checked against.  Machine = Post's Machine gives the chosen post's own preset; picking a
 preset fills the settings, which are then the user's (each checked against its range in
 :mod:`.limits`)."""
 from __future__ import annotations
 
 from .. import post as posts
-from ..toolpath import machine as machines
+from ..toolpath.ir import machine as machines
 from .limits import check_group
 
 POST_MACHINE = "POST"      # the Machine menu's first item: the chosen post's own default machine
-# Machine & Stock's settings -> the profile's fields (toolpath.machine.MachineProfile)
+# Machine & Stock's settings -> the profile's fields (toolpath.ir.machine.MachineProfile)
 PROFILE_FIELDS = {"z_reach": "clearance_max", "clearance_height": "clearance_z", "retract": "retract",
                   "machine_top_z": "machine_top_z", "tool_change": "tool_change", "m6_lifts_z": "m6_retracts",
                   "max_spindle": "max_spindle_rpm", "max_feed": "max_feed", "rapid_rate": "rapid_rate"}

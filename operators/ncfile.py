@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 
 from ..toolpath import simulate as core
-from ..toolpath.textfile import read_text
+from ..toolpath.engines.textfile import read_text
 from .workflow import BatchCommand, Workflow
 
 
@@ -50,7 +50,7 @@ def batch(args) -> dict:
     import trimesh
 
     from ..post import write_atomic
-    from ..toolpath import ncread
+    from ..toolpath.simulate import ncread
     from . import batchio, convert, preview, simview
 
     if not os.path.isfile(args.nc):

@@ -1,4 +1,4 @@
-"""Batch pictures, drawn by the core's software rasteriser (:mod:`..toolpath.picture_jobs`) from
+"""Batch pictures, drawn by the core's software rasteriser (:mod:`..toolpath.pictures.picture_jobs`) from
 the toolpaths and the simulation's result: no renderer starts, the scene is only read.
 
 Each picture is written through :func:`..post.output.write_atomic`: a failed write leaves no
@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..post.output import write_atomic
-from ..toolpath import picture_jobs
+from ..toolpath.pictures import picture_jobs
 from . import convert
 
 SIZE = (1200, 800)

@@ -13,8 +13,8 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
                        IntProperty, PointerProperty, StringProperty)
 
 from .. import post as posts
-from ..toolpath import machine as machine_presets
-from ..toolpath import nibbling
+from ..toolpath.ir import machine as machine_presets
+from ..toolpath.operations.sheetmetal import nibbling
 from . import limits, machines
 
 _ENUM_ITEMS: dict = {}   # Blender reads dynamic enum strings after the callback returns: keep them alive
@@ -82,13 +82,13 @@ def limited(cls, group: str):
 
 
 
-# The menu's names where a preset's label does not fit the sidebar (toolpath/machine.py keeps the full one)
+# The menu's names where a preset's label does not fit the sidebar (toolpath/ir/machine.py keeps the full one)
 MACHINE_MENU_NAMES = {"linuxcnc-manual": "LinuxCNC, Manual Change", "linuxcnc-atc": "LinuxCNC, Tool Changer",
                       "wood-lathe-cxz": "Wood Lathe C-X-Z (Fanuc)", "wood-lathe-cxz-linuxcnc": "Wood Lathe C-X-Z (LinuxCNC)"}
 
 
 def _machine_items():
-    from ..toolpath import machine
+    from ..toolpath.ir import machine
     return [("POST", "Post's Machine", "The machine the chosen post's program assumes (its own preset)")] + [
         (p.name, MACHINE_MENU_NAMES.get(p.name, p.label), p.description) for p in machine.PRESETS.values()]
 
@@ -232,7 +232,7 @@ def copies(settings: dict) -> dict:
 
 _PUNCH = machine_presets.preset("amada-04p")
 # Where the part goes on the turret punch's sheet, and the micro-joints that keep it there
-# (defaults: the Amada 04P preset of toolpath/machine.py).
+# (defaults: the Amada 04P preset of toolpath/ir/machine.py).
 SHEET_SETUP = ranged({
     "sheet_origin": FloatVectorProperty(name="G92 Origin", size=2, default=_PUNCH.sheet_origin, precision=2,
                                         description="The program origin the control is told (G92 X Y, mm)"),

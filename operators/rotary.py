@@ -16,8 +16,8 @@ import numpy as np
 from bpy.props import EnumProperty, StringProperty
 
 from .. import post as posts
-from ..toolpath import rotary as core
-from ..toolpath.program import Tool
+from ..toolpath.operations.rotary import rotary as core
+from ..toolpath.ir.program import Tool
 from . import convert
 from . import gate
 from .common import SteppedOperator

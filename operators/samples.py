@@ -67,7 +67,7 @@ def rotary_block(scene):
     with three non-circular pockets as closed curves: slanted walls, vertical walls, a bowl."""
     import numpy as np
 
-    from ..toolpath import rotary
+    from ..toolpath.operations.rotary import rotary
 
     block, pockets = rotary.sample_job()
     hx, hy = block.size_x / 2, block.size_y / 2
@@ -98,7 +98,7 @@ def rotary_block(scene):
 def turnmill_part(scene):
     """An 85 mm chemical-wood bar, 60 mm long (end face at Z = 0), with a flat and a groove on its
     side and two pockets in its end face, one of them exactly 20 mm wide."""
-    from ..toolpath import turnmill
+    from ..toolpath.operations.turnmill import turnmill
 
     vertices, faces, stock = turnmill.sample_part()
     mesh = bpy.data.meshes.new("Turned part")

@@ -17,10 +17,11 @@ from bpy_extras.io_utils import ExportHelper, ImportHelper
 
 from .. import post as posts
 from ..post import flat_export, write_atomic
-from ..toolpath import machine, nibbling, placement, punch
-from ..toolpath import unfold as core
-from ..toolpath.errors import InputError
-from ..toolpath.textfile import read_text
+from ..toolpath.ir import machine
+from ..toolpath.operations.sheetmetal import nibbling, placement, punch
+from ..toolpath.operations.sheetmetal import unfold as core
+from ..toolpath.ir.errors import InputError
+from ..toolpath.engines.textfile import read_text
 from . import convert, gate
 from .common import run_reported
 from .limits import SettingError, check_group

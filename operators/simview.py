@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import bpy
 import numpy as np
 
-from ..toolpath import picture_jobs
+from ..toolpath.pictures import picture_jobs
 from ..toolpath import simulate as core
 from . import convert
 from .common import CoreCall

@@ -15,12 +15,12 @@ from bpy_extras.io_utils import ExportHelper, ImportHelper
 
 from .. import post as posts
 from ..post import write_atomic
-from ..toolpath import stepnc
-from ..toolpath.meshdata import prism
-from ..toolpath.program import Tool
-from ..toolpath.stepnc.tools import tool_numbers
-from ..toolpath.stepnc.workplan import skipped_workingsteps
-from ..toolpath.stepnc.solids import block_of, feature_solid, fixture_clearance, stock_box
+from ..toolpath.operations import stepnc
+from ..toolpath.engines.meshdata import prism
+from ..toolpath.ir.program import Tool
+from ..toolpath.operations.stepnc.tools import tool_numbers
+from ..toolpath.operations.stepnc.workplan import skipped_workingsteps
+from ..toolpath.operations.stepnc.solids import block_of, feature_solid, fixture_clearance, stock_box
 from . import convert
 from . import gate
 from .common import run_reported

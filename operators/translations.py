@@ -661,7 +661,7 @@ MESSAGES = {
         "ワーキングステップがすべてオフです：書き出すものがありません",
     "no pockets: mark closed outline objects as pockets (with a depth)":
         "ポケットがありません：閉じた輪郭オブジェクトを（深さを付けて）ポケットに指定してください",
-    # toolpath/engrave.py
+    # toolpath/operations/engrave/engrave.py
     "texture quantum and gouge spacing must be > 0, amplitude >= 0":
         "テクスチャの深さの刻みと刀跡の間隔は 0 より大きく、振幅は 0 以上にしてください",
     "scoop dive fraction must be between 0 and 1": "すくい彫りの突込みの割合は 0～1 にしてください",
@@ -677,11 +677,11 @@ MESSAGES = {
         "文字がありません：周りを彫るテキスト・カーブ・メッシュのオブジェクトを選択してください",
     "nothing to cut: the letters leave no room on the plate for the tools":
         "削るところがありません：文字で板材が埋まり、工具が入る余地がありません",
-    # toolpath/rotary.py
+    # toolpath/operations/rotary/rotary.py
     "a cutting move could not be linearised for the rotary table (path through the axis?)":
         "切削の移動を回転テーブル用に直線化できませんでした（経路が回転軸を通っていませんか？）",
     "no pockets to cut": "削るポケットがありません",
-    # toolpath/unfold.py
+    # toolpath/operations/sheetmetal/unfold.py
     "corner coordinates must be finite (no NaN or infinity)": "頂点の座標は有限の値にしてください（NaN や無限大は使えません）",
     "cannot lay a triangle on a zero-length edge (two strip points coincide)":
         "長さ 0 の辺には三角形を置けません（帯の2点が重なっています）",
@@ -702,7 +702,7 @@ MESSAGES = {
     "the stock's top surface does not cover the plate": "素材の上面の曲面が板材を覆っていません",
     'a plate with a curved top is simulated on the height field only (engine "heightfield")':
         '上面が曲面の板材はハイトフィールドでのみシミュレーションできます（エンジン "heightfield"）',
-    # toolpath/dropcutter.py, toolpath/carve.py
+    # toolpath/engines/dropcutter.py, toolpath/operations/carve/carve.py
     "a vertex has a non-finite coordinate": "頂点に有限でない座標があります",
     "a query point has a non-finite coordinate": "問い合わせ点に有限でない座標があります",
     "a path needs at least two points": "経路には少なくとも2点が必要です",
@@ -713,9 +713,9 @@ MESSAGES = {
         "設計形状は関数 z(x, y)、頂点と面を持つメッシュ、または数値で指定してください",
     "radial turn-mill operations cut a bar: give a cylinder stock about the C axis":
         "ラジアル方向のターンミル工程は丸棒を削ります：C軸まわりの円柱素材を指定してください",
-    # toolpath/ncread.py
+    # toolpath/simulate/ncread.py
     "the NC file has no moves": "NCファイルに移動がありません",
-    # toolpath/punch.py
+    # toolpath/operations/sheetmetal/punch.py
     "a punch program must be text": "パンチプログラムはテキストにしてください",
     "the program has no end (G50 or M30)": "プログラムに終わり（G50 または M30）がありません",
     "the program punches nothing: no G69 or G79 line": "プログラムは何も打ち抜きません：G69 も G79 の行もありません",
@@ -728,10 +728,10 @@ MESSAGES = {
         "プログラムの線は工具中心の経路（P0）です：パンチの直径を指定してください",
     "the pattern does not overlap what is left of the sheet: are the pattern and the program in the same coordinates?":
         "展開図が残った板と重なりません：展開図とプログラムは同じ座標系ですか？",
-    # toolpath/stepnc/part21.py
+    # toolpath/operations/stepnc/part21.py
     "None is not a Part 21 value; use UNSET for '$'": "None は Part 21 の値ではありません。'$' には UNSET を使ってください",
     "a complex instance needs at least one part": "複合インスタンスには少なくとも1つの部分が必要です",
-    # toolpath/turnmill.py
+    # toolpath/operations/turnmill/turnmill.py
     "the mesh is empty: it needs vertices and triangles": "メッシュが空です：頂点と三角形が必要です",
     "the mesh has NaN or infinite vertex coordinates": "メッシュの頂点座標に NaN または無限大があります",
     "a face uses the same vertex twice": "同じ頂点を2回使っている面があります",
@@ -744,7 +744,7 @@ MESSAGES = {
     "vertices and faces must be numeric arrays": "頂点と面は数値の配列にしてください",
     "the face normals point inward: flip them so they point out of the part":
         "面の法線が内側を向いています：部品の外側を向くように反転してください",
-    # toolpath/stepnc/workplan.py: notes the STEP-NC operators report as warnings
+    # toolpath/operations/stepnc/workplan.py: notes the STEP-NC operators report as warnings
     "the workplan has no workingstep": "ワークプランにワーキングステップがありません",
     "the reduced spindle speeds of DRILLING_TYPE_STRATEGY are not written (one spindle speed per operation)":
         "DRILLING_TYPE_STRATEGY の減速した主軸回転数は書き出しません（主軸回転数は工程ごとに1つです）",
@@ -763,7 +763,7 @@ MESSAGES = {
     "nothing to export": "書き出すものがありません",
     "the program has no operations": "プログラムに加工工程がありません",
     'the NC program must be text': 'NCプログラムはテキストにしてください',
-    # toolpath/picture.py, toolpath/picture_jobs.py
+    # toolpath/pictures/picture.py, toolpath/pictures/picture_jobs.py
     "nothing to draw: no finite point to frame": "描くものがありません：枠に収める有限の点がありません",
     "no pattern to draw": "描く展開図がありません",
 }
@@ -871,7 +871,7 @@ MESSAGE_TEMPLATES = {
         "切断輪郭の線分 {0} の長さは {1} mm で、NCワードの分解能 {2} mm より短いです",
     "machine profile {} says no sheet size (sheet max): the part cannot be placed":
         "機械プロファイル {0} に板材の大きさ（最大板材）がありません。部品を配置できません",
-    # the machine profile (toolpath/machine.py, the posts' frames, operators/exporting.py)
+    # the machine profile (toolpath/ir/machine.py, the posts' frames, operators/exporting.py)
     "Machine & Stock: Machine {} is a {} machine and the {} post writes {} programs; pick a {} machine or Post's Machine":
         "機械と素材：機械 {0} は {1} 用の機械で、{2} ポストは {3} 用のプログラムを書きます。{4} 用の機械か「ポストの既定の機械」を選んでください",
     "Engrave: Safe Z 0 takes the machine's Clearance Height, {} mm, below the Clearance Plane {} mm: give Safe Z, lower the Clearance Plane or raise the machine's Clearance Height":
@@ -1027,13 +1027,13 @@ MESSAGE_TEMPLATES = {
     'the {} post is for 3-axis milling; operation {} moves rotary axes {}': '{0} ポストは3軸フライス用です。工程 {1} は回転軸 {2} を動かします',
     'unknown rotary post {}; choose one of {}': '不明な回転テーブルポスト {0}。{1} から選んでください',
     '{} carries a texture; the {} post writes C-X-Z pockets only': '{0} にはテクスチャがあります。{1} ポストが書き出すのは C-X-Z ポケットだけです',
-    '{}: the {} post needs C positions for every move (got rotary axes {}); plan it with toolpath.rotary':
-        '{0}：{1} ポストにはすべての移動の C 位置が必要です（回転軸 {2}）。toolpath.rotary で作成してください',
+    '{}: the {} post needs C positions for every move (got rotary axes {}); plan it with toolpath.operations.rotary.rotary':
+        '{0}：{1} ポストにはすべての移動の C 位置が必要です（回転軸 {2}）。toolpath.operations.rotary.rotary で作成してください',
     '{} has arcs; a C-X-Z machine cuts straight X/C/Z moves only': '{0} に円弧があります。C-X-Z 機は X/C/Z の直線移動しか削れません',
     '{}: X must stay on the negative side of the rotation centre (X = -R)': '{0}：X は回転中心の負側（X = -R）にしてください',
     '{}: the machine has no Y axis; Y must be 0': '{0}：この機械にY軸はありません。Y は0にしてください',
-    'operation {} is not an X-Z-C turn-mill operation (it has no radial/axial tool direction): plan it with toolpath.turnmill':
-        '工程 {0} は X-Z-C 複合加工の工程ではありません（径方向・軸方向の工具方向がありません）。toolpath.turnmill で作成してください',
+    'operation {} is not an X-Z-C turn-mill operation (it has no radial/axial tool direction): plan it with toolpath.operations.turnmill.turnmill':
+        '工程 {0} は X-Z-C 複合加工の工程ではありません（径方向・軸方向の工具方向がありません）。toolpath.operations.turnmill.turnmill で作成してください',
     'operation {} has arc moves; the {} post writes straight moves only': '工程 {0} に円弧移動があります。{1} ポストは直線移動しか書き出しません',
     'gouge motion must be one of {}, got {}': '彫り動作は {0} のいずれかにしてください（指定値 {1}）',
     'stepover {} mm is wider than the {} mm roughing tool: ridges would be left standing':
@@ -1350,7 +1350,7 @@ MESSAGE_TEMPLATES = {
     '--order: #{} is not a workingstep of {} ({})': '--order：#{0} は {1} のワーキングステップではありません（{2}）',
     'no such ISO 14649 file: {}': 'ISO 14649 ファイルがありません：{0}',
     'no such mesh file: {}': 'メッシュファイルがありません：{0}',
-    # toolpath/surface_engrave.py, operators/engrave.py: engraving on a curved plate
+    # toolpath/operations/engrave/surface_engrave.py, operators/engrave.py: engraving on a curved plate
     'surface {}: {}': '曲面 {0}：{1}',
     'surface {}: vertices must be an (n, 3) array of numbers (mm)': '曲面 {0}：頂点は数値 (mm) の (n, 3) 配列にしてください',
     'surface {} does not cover the plate: nothing of it lies over or under X{} Y{}; it must be a mesh spanning the whole plate outline':
@@ -1375,7 +1375,7 @@ MESSAGE_TEMPLATES = {
         '工程 {0}：リンクの印は送り移動にだけ、移動ごとに1つ付けてください',
     # operators/limits.py: a panel or batch number outside its range
     '{}: {} = {} is outside the allowed range {}': '{0}：{1} = {2} は指定できる範囲 {3} の外です',
-    # toolpath/dropcutter.py, toolpath/carve.py, operators/carve.py
+    # toolpath/engines/dropcutter.py, toolpath/operations/carve/carve.py, operators/carve.py
     'stock allowance must be a number >= 0 mm, got {}': '取り代は 0 mm 以上の数値にしてください（指定：{0}）',
     'a {} cannot leave a stock allowance (use a ball, flat or bull nose)':
         '{0} では取り代を残せません（ボール・フラット・ブルノーズを使ってください）',
@@ -1476,7 +1476,7 @@ MESSAGE_TEMPLATES = {
     '#{} SQUARE_U_PROFILE: width must be positive, found {}': '#{0} SQUARE_U_PROFILE：幅は正の値にしてください（値 {1}）',
     "the flat end of slot #{} keeps the tool's radius R{} in its corners":
         "溝 #{0} の平らな端の隅には工具の半径 R{1} が残ります",
-    # toolpath/stepnc/ap238*.py: the AP238 integrated form
+    # toolpath/operations/stepnc/ap238*.py: the AP238 integrated form
     '#{} {}: {} must refer to an instance, found {}': '#{0} {1}：{2} はインスタンスを参照してください（値 {3}）',
     '#{} {}: the value must be a number, found {}': '#{0} {1}：値は数値にしてください（値 {2}）',
     'an AP238 file needs exactly one MACHINING_PROJECT, this one has {}':
@@ -1533,7 +1533,7 @@ MESSAGE_TEMPLATES = {
         '#{0} {1}：{2} 番目の属性がありません（このインスタンスの属性は {3} 個）',
     'the AP238 data does not follow the mapping of ISO 10303-238 near #{} ({}: {})':
         'AP238 のデータが ISO 10303-238 の対応付けに従っていません（#{0} 付近、{1}：{2}）',
-    # toolpath/stepnc/freeform.py and model.py: explicit toolpaths and rapid movements
+    # toolpath/operations/stepnc/freeform.py and model.py: explicit toolpaths and rapid movements
     '#{} COMPOSITE_CURVE: a segment starts away from the end of the one before it':
         '#{0} COMPOSITE_CURVE：セグメントが前のセグメントの終点から離れて始まっています',
     '#{} HELIX: the pitch is zero': '#{0} HELIX：ピッチが0です',
@@ -1610,7 +1610,7 @@ MESSAGE_TEMPLATES = {
         '{0}行目：{1}：どちらも移動指令です：{2}',
     'line {}: {} and {} are in one modal group, so one block cannot have both: {}':
         '{0}行目：{1} と {2} は同じモーダルグループなので、1つのブロックに両方は書けません：{3}',
-    # toolpath/engrave.py, toolpath/ramp.py: the band's step-downs and ramps
+    # toolpath/operations/engrave/engrave.py, toolpath/engines/ramp.py: the band's step-downs and ramps
     "band step down {} mm is more than the {} mm finishing tool's diameter: a small flat end mill takes at most 1 x its diameter in depth per pass":
         'バンドの切込み {0} mm が仕上げ工具の直径 {1} mm を超えています：小径のフラットエンドミルの1回の切込みは直径の1倍までです',
     'band ramp angle must be more than 0 and at most {} degrees, got {}':
@@ -1711,17 +1711,17 @@ MESSAGE_TEMPLATES = {
         '{0} を書き込めません：同じ名前のフォルダーがあります',
     'cannot move the files into {}: {}':
         'ファイルを {0} に移せません：{1}',
-    # toolpath/arcfit.py
+    # toolpath/engines/arcfit.py
     'arc tolerance must lie in 0..1 mm, got {}':
         '円弧の許容差は 0～1 mm にしてください（指定値 {0}）',
     'an arc must replace at least 2 chords, got {}':
         '円弧は少なくとも 2 本の弦を置き換えます（指定値 {0}）',
-    # toolpath/machine.py
+    # toolpath/ir/machine.py
     'unknown machine {}: the presets are {}':
         '機械 {0} はありません。プリセットは {1} です',
     'machine profile {}: {} = {} {}':
         '機械プロファイル {0}：{1} = {2} {3}',
-    # toolpath/ncread.py: the refused codes (REFUSED), each its own template so the reason is Japanese too
+    # toolpath/simulate/ncread.py: the refused codes (REFUSED), each its own template so the reason is Japanese too
     'line {}: {} NURBS are not simulated: {}':
         '{0}行目：{1}：NURBS はシミュレーションしません：{2}',
     'line {}: {} cancels a coordinate rotation, which the reader does not follow: {}':
@@ -1772,7 +1772,7 @@ MESSAGE_TEMPLATES = {
         '{0}行目：{1}：タッピングはシミュレーションしません：{2}',
     'line {}: {} threading is not simulated: {}':
         '{0}行目：{1}：ねじ切りはシミュレーションしません：{2}',
-    # toolpath/picture.py, operators/convert.py, operators/__init__.py
+    # toolpath/pictures/picture.py, operators/convert.py, operators/__init__.py
     'picture size must be whole pixels, 16..8192, got {} x {}':
         '画像の大きさは 16〜8192 の整数ピクセルにしてください（指定値 {0} x {1}）',
     'the drawing area {} is too small': '描画領域 {0} が小さすぎます',

@@ -20,9 +20,10 @@ from mathutils.bvhtree import BVHTree
 from .. import post as posts
 from ..post import write_atomic
 from ..post.capacity import program_findings, program_kb, short_blocks
-from ..toolpath import machine, meshdata
-from ..toolpath import turnmill as core
-from ..toolpath.errors import MAX_REACH_MM
+from ..toolpath.ir import machine
+from ..toolpath.engines import meshdata
+from ..toolpath.operations.turnmill import turnmill as core
+from ..toolpath.ir.errors import MAX_REACH_MM
 from . import convert
 from . import gate
 from .common import SteppedOperator

@@ -20,7 +20,7 @@ for _module in pkgutil.iter_modules(__path__):
 
 def milling_post(name: str, work_offset: str | None = None, machine=None) -> GcodePost:
     """A 3-axis milling post by name (``fanuc``, ``fanuc-macro``, ``linuxcnc``, ``grbl`` ...), for
-    ``machine`` (a :class:`toolpath.machine.MachineProfile`; None: the post's own default machine)."""
+    ``machine`` (a :class:`toolpath.ir.machine.MachineProfile`; None: the post's own default machine)."""
     return create("milling", name, work_offset=work_offset, **({} if machine is None else {"machine": machine}))
 
 

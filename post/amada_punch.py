@@ -20,7 +20,7 @@ sequence numbers N000..N999.  The angle comes from atan2, so all four quadrants 
 are right (the seed's ATN(dy/dx) loses the quadrant and divides by zero on vertical segments).
 
 The sheet-metal workflows write :func:`lines_to_text`: the lines as nibbled by
-``toolpath/nibbling.py`` (collinear pieces merged, each hit once, gaps at the micro-joints), with
+``toolpath/operations/sheetmetal/nibbling.py`` (collinear pieces merged, each hit once, gaps at the micro-joints), with
 comment lines after the G92 block saying where the part's hits lie on the sheet, the clamps' dead
 zones and the joints.  Comments are in parentheses, as Fanuc-built controls take them (control
 out / control in); a control that does not would need them left out.

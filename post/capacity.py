@@ -3,7 +3,7 @@
 Read from the program's text after posting, so it holds for every post alike:
 
 * **Size**: a control that keeps its programs in memory (a Fanuc 0i: 512 kB of part program
-  storage, :attr:`toolpath.machine.MachineProfile.memory_kb`) cannot load a larger one; it must be
+  storage, :attr:`toolpath.ir.machine.MachineProfile.memory_kb`) cannot load a larger one; it must be
   run from a memory card or DNC, or split.  The size is the text's bytes (one per character, the
   end of block one), in kB of 1024 bytes.
 * **Block time**: a control reads and plans each block in a fixed time (``block_ms``: 7.5 ms for
@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import re
 
-from ..toolpath.machine import MachineProfile
+from ..toolpath.ir.machine import MachineProfile
 
 WORD = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
 COMMENT = re.compile(r"\([^)]*\)|;.*$")

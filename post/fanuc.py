@@ -34,7 +34,7 @@ addition or subtraction if the division rounded across an integer.  ``#115`` is 
 power-on (or holds something that is not a state 1..32748); the first gouge then seeds it once
 from the clock, ``FIX[frac(#3001 / 32749) * 32748] + 1`` (the clock's 16 ms granularity does not
 matter: 16 k mod 32749 reaches every residue).  Later runs continue the sequence, so each run
-still cuts a different texture.  Depth rule as in :mod:`..toolpath.engrave`: digit 0 and 5 both
+still cuts a different texture.  Depth rule as in :mod:`..toolpath.operations.engrave.engrave`: digit 0 and 5 both
 give the base depth, so the base occurs 2/10 of the time and each other depth 1/10.
 
 O7023 follows the published macro with its two defects fixed: ``IF[#28GT5]`` sent d = 5 to
@@ -49,7 +49,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.program import FEED, RAPID, GougeTexture
+from ..toolpath.ir.program import FEED, RAPID, GougeTexture
 
 from .gcode import GcodePost, PostError, fmt
 from .registry import ControllerLimits
@@ -174,7 +174,7 @@ class FanucMacroPost(FanucPost):
     def confined_moves(self, op) -> list:
         """The flat roughing with the macro confined to cutting.
 
-        A raster block is a feed move at constant Z (the moves :func:`..toolpath.engrave.apply_texture`
+        A raster block is a feed move at constant Z (the moves :func:`..toolpath.operations.engrave.engrave.apply_texture`
         textures or cuts at the current depth: rows, stepovers, short moves).  Each run of raster
         blocks is written between ``G66.1 P7023`` (on the run's first block, so the call that
         block makes carries its move) and ``G67``; every other move (rapid, retract, plunge,

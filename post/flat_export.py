@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.errors import InputError
+from ..toolpath.ir.errors import InputError
 
 
 LAYER_CUT = "CUT"

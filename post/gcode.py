@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.machine import MachineProfile
-from ..toolpath.program import FEED, RAPID, Operation, Program
+from ..toolpath.ir.machine import MachineProfile
+from ..toolpath.ir.program import FEED, RAPID, Operation, Program
 from . import words
 from .registry import ControllerLimits, Post, PostError, default_machine
 

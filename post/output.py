@@ -14,7 +14,7 @@ import re
 import tempfile
 import time
 
-from ..toolpath.errors import InputError
+from ..toolpath.ir.errors import InputError
 
 PREFIX, SUFFIX = ".kezuri-", ".part"
 STALE_SECONDS = 3600.0      # a temporary file of ours this old belongs to a write that died

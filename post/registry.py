@@ -26,8 +26,8 @@ from __future__ import annotations
 import zlib
 from dataclasses import dataclass
 
-from ..toolpath import machine as machines
-from ..toolpath.errors import InputError
+from ..toolpath.ir import machine as machines
+from ..toolpath.ir.errors import InputError
 
 # Machine families: the kind of machine a post's program runs on.
 FAMILIES = {
@@ -108,7 +108,7 @@ class Post:
     extension: str = ".nc"
     order: int = 100
     needs_texture: bool = False       # writes only programs that carry a gouge texture (the macro post)
-    default_machine: str = ""         # the machine preset (toolpath.machine) a user who picks only the post
+    default_machine: str = ""         # the machine preset (toolpath.ir.machine) a user who picks only the post
                                       # gets; empty: the family's (machine.DEFAULT_FOR_FAMILY)
     limits: ControllerLimits = ControllerLimits()
 

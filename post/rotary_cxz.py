@@ -1,8 +1,8 @@
 """C-X-Z rotary-table posts (W2): the board turns on C, the bit moves in X (= -R) and Z.
 
-Moves come from :mod:`toolpath.rotary`: xyz = (X word, 0, tool-tip Z), rotary["c"] in
+Moves come from :mod:`toolpath.operations.rotary.rotary`: xyz = (X word, 0, tool-tip Z), rotary["c"] in
 degrees (continuous), feed in mm/min along the path on the part (frames, move lengths and
-the table's timing: :mod:`toolpath.kinematics`).  Cutting moves are written
+the table's timing: :mod:`toolpath.ir.kinematics`).  Cutting moves are written
 in inverse-time feed, ``G93``, with ``F`` = 1 / minutes for the block on every G01 (both
 controllers require it there), so a move that turns the table is timed by the distance the
 bit travels over the wood and never read as degrees per minute.  ``G94`` is restored after
@@ -19,16 +19,16 @@ Flavours:
   frame, 3 decimals on every axis and always a decimal point, ``T01 M06``,
   ``G43 Z.. H01``, no ``G64``, ends ``G91 G28 Z0.`` (no X/Y reference return: the machine
   has no Y, and X homes outside the board).  Fanuc reads G93 F 0.001..9999.999 only: the
-  planner merges moves too short to time (:func:`toolpath.program.merge_short_moves`) and the
-  timing floor (:data:`toolpath.kinematics.SHORTEST_BLOCK_MINUTES`) keeps every F below 9000;
+  planner merges moves too short to time (:func:`toolpath.ir.program.merge_short_moves`) and the
+  timing floor (:data:`toolpath.ir.kinematics.SHORTEST_BLOCK_MINUTES`) keeps every F below 9000;
   a word still out of range raises :class:`PostError` naming the operation and the move.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath import kinematics
-from ..toolpath.program import FEED, RAPID, Operation, Program
+from ..toolpath.ir import kinematics
+from ..toolpath.ir.program import FEED, RAPID, Operation, Program
 from .fanuc import FANUC_MILL_LIMITS, FanucPost
 from .gcode import GcodePost, PostError, comment_text, fmt
 from .linuxcnc import LINUXCNC_LIMITS, LinuxCNCPost
@@ -56,7 +56,7 @@ class RotaryCXZPost(GcodePost):
                 raise PostError(f"{what} carries a texture; the {self.name} post writes C-X-Z pockets only")
             if set(op.rotary) != {"c"}:
                 raise PostError(f"{what}: the {self.name} post needs C positions for every move "
-                                f"(got rotary axes {sorted(op.rotary)}); plan it with toolpath.rotary")
+                                f"(got rotary axes {sorted(op.rotary)}); plan it with toolpath.operations.rotary.rotary")
             if np.any((op.kind != RAPID) & (op.kind != FEED)):
                 raise PostError(f"{what} has arcs; a C-X-Z machine cuts straight X/C/Z moves only")
             if np.any(op.xyz[:, 0] > 1e-9) or op.start[0] > 1e-9:

@@ -24,7 +24,7 @@ the part angle brought to the tool, in degrees, unwrapped (continuous, never a j
 Feed: with C turning during a cut, a feed per minute would be applied to the linear axes alone
 and the cutting speed at the part would be wrong.  So cutting moves are written in inverse time
 (G93): F = 1 / minutes for the block, from the part-space length at the programmed feed, never
-more than 9000 (a block takes at least :data:`toolpath.kinematics.SHORTEST_BLOCK_MINUTES`; the
+more than 9000 (a block takes at least :data:`toolpath.ir.kinematics.SHORTEST_BLOCK_MINUTES`; the
 planner merges shorter moves first).
 ``inverse_time=False`` writes plain feeds per minute, for controls that handle rotary feed
 themselves.
@@ -52,8 +52,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..toolpath import kinematics
-from ..toolpath.program import FEED, RAPID, Operation, Program, TurnMillOperation
+from ..toolpath.ir import kinematics
+from ..toolpath.ir.program import FEED, RAPID, Operation, Program, TurnMillOperation
 from . import words
 from .gcode import GcodePost, PostError, comment_text, fmt
 from .linuxcnc import LINUXCNC_LIMITS
@@ -127,7 +127,7 @@ class TurnMillXZCPost(GcodePost):
         for op in program.operations:
             if not isinstance(op, TurnMillOperation):
                 raise PostError(f"operation {op.name!r} is not an X-Z-C turn-mill operation (it has no radial/axial "
-                                f"tool direction): plan it with toolpath.turnmill")
+                                f"tool direction): plan it with toolpath.operations.turnmill.turnmill")
             if not np.all(np.isin(op.kind, (RAPID, FEED))):
                 raise PostError(f"operation {op.name!r} has arc moves; the {self.name} post writes straight moves only")
 

@@ -65,7 +65,7 @@ result["unfold_quad"] = sorted(bpy.ops.kezuri.unfold_quad())
 result["add_elbow"] = sorted(bpy.ops.kezuri.add_elbow())
 # The exact simulation as the UI runs it: in a child process, from the installed copy.
 common = importlib.import_module(package + ".operators.common")
-program = importlib.import_module(package + ".toolpath.program")
+program = importlib.import_module(package + ".toolpath.ir.program")
 slot = program.Operation("slot", program.Tool(1, "flat", 2.0), 10000, [program.FEED, program.FEED],
                          [[2.0, 5.0, -1.0], [8.0, 5.0, -1.0]], [300.0, 300.0], start=[2.0, 5.0, 5.0])
 job = common.ProcessJob(common.CoreCall("toolpath.simulate", "simulate", {

@@ -11,7 +11,7 @@ from kezuri.post import write_atomic
 from kezuri.post.amada_punch import to_text
 from kezuri.post.gcode import PostError
 from kezuri.post.flat_export import ExportError, to_dxf, to_svg
-from kezuri.toolpath.unfold import compensate_outline, signed_area, unfold_elbow, unfold_twisted_quad
+from kezuri.toolpath.operations.sheetmetal.unfold import (compensate_outline, signed_area, unfold_elbow, unfold_twisted_quad)
 
 PAPER_CORNERS = np.array([[0, 0, 0], [0, 30, 100], [100, 50, 100], [100, 40, 0]], float)
 G72 = re.compile(r"^N(\d{3}) G72 X(-?\d+\.\d\d) Y(-?\d+\.\d\d)$")

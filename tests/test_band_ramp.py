@@ -18,7 +18,9 @@ import pytest
 
 import rs274
 from kezuri import post
-from kezuri.toolpath import engrave, ramp, simulate
+from kezuri.toolpath.operations.engrave import engrave
+from kezuri.toolpath.engines import ramp
+from kezuri.toolpath import simulate
 from test_engrave import LETTERS, PLATE
 
 pytestmark = pytest.mark.skipif(not rs274.available(), reason="LinuxCNC's rs274 is not installed")

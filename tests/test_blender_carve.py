@@ -10,7 +10,7 @@ bpy = pytest.importorskip("bpy")
 import rs274  # noqa: E402
 from kezuri.operators import carve as shell  # noqa: E402
 from kezuri.operators import panels  # noqa: E402
-from kezuri.toolpath import carve_samples  # noqa: E402
+from kezuri.toolpath.operations.carve import carve_samples  # noqa: E402
 from kezuri.toolpath import simulate as sim  # noqa: E402
 from blender_helpers import draw_panel, run_batch  # noqa: E402
 

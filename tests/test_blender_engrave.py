@@ -59,7 +59,7 @@ def test_export_operator_writes_a_program_rs274_accepts(scene, tmp_path):
 
 
 def test_letters_never_cut_in_the_blender_sample(scene):
-    from kezuri.toolpath import region
+    from kezuri.toolpath.engines import region
     job = shell.run_engrave(scene, bpy.context.evaluated_depsgraph_get())
     glyph_loops = [loop for _, loops in
                    [(o.name, shell.convert.outlines_in_work(o, bpy.context.evaluated_depsgraph_get(), job.plate.frame))
@@ -72,7 +72,8 @@ def test_letters_never_cut_in_the_blender_sample(scene):
 
 
 def test_a_counter_too_small_for_the_tool_is_named_in_the_nc_header_and_marked_in_the_picture(scene, tmp_path):
-    from kezuri.toolpath import picture_jobs, region
+    from kezuri.toolpath.pictures import picture_jobs
+    from kezuri.toolpath.engines import region
     scene.kezuri.engrave.letters.data.size = 8.0        # "Kezuri" 8 mm high: the e's eye is narrower than 1 mm
     path = str(tmp_path / "plate.ngc")
     assert bpy.ops.kezuri.engrave_export(filepath=path, post="linuxcnc") == {"FINISHED"}
@@ -220,7 +221,7 @@ def test_letters_from_mesh_faces_and_closed_curves(scene):
     scene.kezuri.engrave.letters = None
     scene.kezuri.engrave.letters_collection = collection
     job = shell.run_engrave(scene, bpy.context.evaluated_depsgraph_get())
-    from kezuri.toolpath import region
+    from kezuri.toolpath.engines import region
     band = job.baked.operations[1]
     ring_points = band.xyz[band.xyz[:, 2] < 0][:, :2]
     # The band runs inside the O's counter (a 10 mm hole) and around the L.

@@ -9,8 +9,8 @@ bpy = pytest.importorskip("bpy")
 import rs274  # noqa: E402
 from kezuri.operators import panels, samples  # noqa: E402
 from kezuri.operators import rotary as shell  # noqa: E402
-from kezuri.toolpath import region  # noqa: E402
-from kezuri.toolpath import rotary as core  # noqa: E402
+from kezuri.toolpath.engines import region  # noqa: E402
+from kezuri.toolpath.operations.rotary import rotary as core  # noqa: E402
 from blender_helpers import draw_panel, run_batch  # noqa: E402
 
 

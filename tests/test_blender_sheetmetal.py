@@ -188,7 +188,7 @@ def test_batch_elbow_punches_each_piece_from_its_own_sheet(tmp_path):
     assert done.returncode == 0, done.stderr[-2000:]
     report = json.loads((tmp_path / "report.json").read_text())
     assert report["gate"] == {"findings": [], "overridden": False, "seconds": report["gate"]["seconds"]}
-    from kezuri.toolpath import punch
+    from kezuri.toolpath.operations.sheetmetal import punch
     for index, piece in enumerate(report["pieces"], start=1):
         outline = np.array(piece["outline"]) - np.array(piece["outline"]).min(axis=0)
         program = punch.read_amada((tmp_path / f"elbow-{index}.nc").read_text())
@@ -205,7 +205,7 @@ def test_the_punch_gate_refuses_a_bite_and_a_part_left_in_the_sheet():
     from test_punch import RECT, rectangle_program
 
     from kezuri.operators import gate, sheetmetal
-    from kezuri.toolpath import punch
+    from kezuri.toolpath.operations.sheetmetal import punch
     text = rectangle_program(2.0, 1.0)
     bigger = RECT + np.array([[-1.0, 0], [0, 0], [0, 0], [-1.0, 0]])
     bitten = punch.simulate_punching(text, punch_diameter=2.0, pattern=bigger)

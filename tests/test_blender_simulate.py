@@ -7,8 +7,8 @@ import pytest
 bpy = pytest.importorskip("bpy")
 
 from kezuri.operators import panels, samples  # noqa: E402
-from kezuri.toolpath import ncread  # noqa: E402
-from kezuri.toolpath.program import Tool  # noqa: E402
+from kezuri.toolpath.simulate import ncread  # noqa: E402
+from kezuri.toolpath.ir.program import Tool  # noqa: E402
 from blender_helpers import draw_panel, run_batch  # noqa: E402
 
 
@@ -75,7 +75,7 @@ def test_exact_turnmill_simulation_can_go_to_a_child_process(scene):
 def test_a_gouge_is_listed_and_framed(scene):
     """The name plate checked against a design 1 mm below the top: every cut deeper is a gouge."""
     from kezuri.operators import engrave, simview
-    from kezuri.toolpath import engrave as engrave_core
+    from kezuri.toolpath.operations.engrave import engrave as engrave_core
     from kezuri.toolpath import simulate as core
     samples.name_plate(scene)
     job = engrave.run_engrave(scene, bpy.context.evaluated_depsgraph_get())

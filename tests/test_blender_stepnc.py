@@ -10,7 +10,7 @@ bpy = pytest.importorskip("bpy")
 
 import rs274  # noqa: E402
 from kezuri.operators import panels, samples  # noqa: E402
-from kezuri.toolpath import stepnc  # noqa: E402
+from kezuri.toolpath.operations import stepnc  # noqa: E402
 from blender_helpers import draw_panel, run_batch  # noqa: E402
 
 FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "fixtures"))

@@ -13,7 +13,7 @@ bpy = pytest.importorskip("bpy")
 from kezuri.operators import common, samples  # noqa: E402
 from kezuri.operators import simulate as simulate_shell  # noqa: E402
 from kezuri.operators import turnmill as turnmill_shell  # noqa: E402
-from kezuri.toolpath.errors import InputError  # noqa: E402
+from kezuri.toolpath.ir.errors import InputError  # noqa: E402
 
 
 def run_in_steps(job: common.SteppedJob) -> int:
@@ -90,7 +90,7 @@ def test_operators_read_the_scene_before_and_write_it_after(empty_scene):
 
 
 def slot_program():
-    from kezuri.toolpath.program import FEED, Operation, Program, Tool
+    from kezuri.toolpath.ir.program import FEED, Operation, Program, Tool
     xyz = np.array([[0.0, 0.0, -2.0], [40.0, 0.0, -2.0], [40.0, 20.0, -3.0], [0.0, 20.0, -1.0]])
     op = Operation("slots", Tool(1, "ball", 6.0), 10000, np.full(4, FEED), xyz, np.full(4, 600.0),
                    start=np.array([0.0, 0.0, 5.0]))

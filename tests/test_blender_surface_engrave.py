@@ -8,7 +8,7 @@ bpy = pytest.importorskip("bpy")
 from blender_helpers import draw_panel  # noqa: E402
 from kezuri.operators import engrave as shell  # noqa: E402
 from kezuri.operators import panels, samples  # noqa: E402
-from kezuri.toolpath import surface_engrave as se  # noqa: E402
+from kezuri.toolpath.operations.engrave import surface_engrave as se  # noqa: E402
 
 R = se.CYLINDER_RADIUS
 

@@ -9,7 +9,7 @@ bpy = pytest.importorskip("bpy")
 import rs274  # noqa: E402
 from kezuri.operators import panels, samples  # noqa: E402
 from kezuri.operators import turnmill as shell  # noqa: E402
-from kezuri.toolpath import turnmill as core  # noqa: E402
+from kezuri.toolpath.operations.turnmill import turnmill as core  # noqa: E402
 from blender_helpers import draw_panel, run_batch  # noqa: E402
 
 

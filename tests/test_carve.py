@@ -8,9 +8,9 @@ import pytest
 
 import rs274
 from kezuri import post as posts
-from kezuri.toolpath import carve, carve_samples
+from kezuri.toolpath.operations.carve import carve, carve_samples
 from kezuri.toolpath import simulate as sim
-from kezuri.toolpath.program import FEED, Tool
+from kezuri.toolpath.ir.program import FEED, Tool
 
 
 def test_ball_stepover_is_the_chord_of_the_scallop():

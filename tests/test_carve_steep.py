@@ -12,9 +12,9 @@ import pytest
 import rs274
 from test_hostile import time_limit
 from kezuri import post as posts
-from kezuri.toolpath import carve, carve_samples
+from kezuri.toolpath.operations.carve import carve, carve_samples
 from kezuri.toolpath import simulate as sim
-from kezuri.toolpath.program import FEED, RAPID
+from kezuri.toolpath.ir.program import FEED, RAPID
 
 R = 1.5                  # the default finishing ball's radius
 SCALLOP = 0.02

@@ -12,9 +12,9 @@ import pytest
 
 import rs274
 from kezuri import post as posts
-from kezuri.toolpath import carve, carve_samples
+from kezuri.toolpath.operations.carve import carve, carve_samples
 from kezuri.toolpath import simulate as sim
-from kezuri.toolpath.program import FEED
+from kezuri.toolpath.ir.program import FEED
 
 R = 1.5                  # the default finishing ball's radius
 H = 0.02                 # the default scallop

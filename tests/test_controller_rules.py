@@ -9,9 +9,14 @@ import pytest
 import controller_rules as rules
 from kezuri import post
 from kezuri.post import amada_punch, turnmill_xzc
-from kezuri.toolpath import carve, carve_samples, engrave, machine, nibbling, placement, rotary, turnmill, unfold
-from kezuri.toolpath.program import Program
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.operations.carve import carve, carve_samples
+from kezuri.toolpath.operations.engrave import engrave
+from kezuri.toolpath.ir import machine
+from kezuri.toolpath.operations.sheetmetal import nibbling, placement, unfold
+from kezuri.toolpath.operations.rotary import rotary
+from kezuri.toolpath.operations.turnmill import turnmill
+from kezuri.toolpath.ir.program import Program
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 from test_engrave import LETTERS, PLATE
 
 EX1 = os.path.join(os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "fixtures")),
@@ -273,7 +278,7 @@ def test_the_good_hand_written_program_passes():
 
 
 def test_short_moves_are_merged_within_tolerance_and_the_rest_timed_at_the_floor():
-    from kezuri.toolpath.program import FEED, Operation, Tool, merge_short_moves
+    from kezuri.toolpath.ir.program import FEED, Operation, Tool, merge_short_moves
     tool = Tool(1, "flat", 6.0)
     # Along X: 10 mm, then 0.0004 mm (below the 0.001 mm increment), then 10 mm: the middle point goes.
     op = Operation("line", tool, 1000, [FEED] * 3, [[10, 0, 0], [10.0004, 0, 0], [20, 0, 0]], [600.0] * 3,
@@ -287,7 +292,7 @@ def test_short_moves_are_merged_within_tolerance_and_the_rest_timed_at_the_floor
 
 
 def test_a_post_refuses_an_out_of_range_word_naming_operation_move_and_value():
-    from kezuri.toolpath.program import FEED, Operation, Tool
+    from kezuri.toolpath.ir.program import FEED, Operation, Tool
     op = Operation("fast", Tool(1, "flat", 6.0), 1000, [FEED, FEED], [[0, 0, -1], [100, 0, -1]],
                    [600.0, 300000.0], start=[0, 0, 5])
     with pytest.raises(post.PostError, match=r"operation 'fast', move 2: feed F \(mm/min\) 300000 is outside "

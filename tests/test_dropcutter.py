@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from kezuri.toolpath import dropcutter as dc
-from kezuri.toolpath.program import Tool
+from kezuri.toolpath.engines import dropcutter as dc
+from kezuri.toolpath.ir.program import Tool
 
 KERNELS = ["numpy", "numba"]
 
@@ -245,7 +245,7 @@ def test_bull_nose_edge_bound_skips_only_edges_that_cannot_lift_the_tip():
     the edge stays at or below the best tip so far; otherwise it must return exactly the full
     bisection's point.  Random edges (including nearly grazing ones) against edge_best, with the
     best tip just below, at and above the edge's own maximum."""
-    kernel = pytest.importorskip("kezuri.toolpath.dropcutter_kernel")
+    kernel = pytest.importorskip("kezuri.toolpath.engines.dropcutter_kernel")
     rng = np.random.default_rng(5)
     skipped = 0
     for R, rc in ((3.5, 0.5), (3.0, 1.0), (10.0, 0.01), (2.0, 1.999)):

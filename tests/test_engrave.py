@@ -4,8 +4,9 @@ import math
 import numpy as np
 import pytest
 
-from kezuri.toolpath import engrave, region
-from kezuri.toolpath.program import FEED, RAPID, Operation, Tool
+from kezuri.toolpath.operations.engrave import engrave
+from kezuri.toolpath.engines import region
+from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Tool
 
 PLATE = [np.array([[-100, -50], [100, -50], [100, 50], [-100, 50]], float)]
 # Two block letters: an "I" bar and an "O" (a square ring with a counter).
@@ -262,7 +263,7 @@ def test_a_region_left_uncut_is_named_by_its_character_when_the_text_tells_it():
 
 
 def test_glyphs_of_an_i_and_a_lower_case_letter():
-    from kezuri.toolpath import glyphs
+    from kezuri.toolpath.operations.engrave import glyphs
     stem, dot = np.array([[0, 0], [2, 0], [2, 10], [0, 10]], float), np.array([[0, 12], [2, 12], [2, 14], [0, 14]])
     ring_out = np.array([[5, 0], [12, 0], [12, 8], [5, 8]], float)
     ring_in = np.array([[7, 2], [10, 2], [10, 6], [7, 6]], float)

@@ -13,9 +13,10 @@ import os
 import numpy as np
 import pytest
 
-from kezuri.toolpath import simulate, stepnc
-from kezuri.toolpath.program import Operation, Program, Tool
-from kezuri.toolpath.stepnc.solids import stock_box
+from kezuri.toolpath import simulate
+from kezuri.toolpath.operations import stepnc
+from kezuri.toolpath.ir.program import Operation, Program, Tool
+from kezuri.toolpath.operations.stepnc.solids import stock_box
 
 BOX = simulate.BoxStock(0.0, 0.0, -20.0, 40.0, 40.0, 0.0)
 
@@ -128,7 +129,7 @@ def test_the_gate_checks_every_move_against_the_machine_profile():
     axis, the program's extent and the machine's travel; the reach is checked against the highest
     Z written (the security plane and the frames' clearance height)."""
     from kezuri.operators import convert, gate, stepnc as shell
-    from kezuri.toolpath import machine
+    from kezuri.toolpath.ir import machine
     plain = stepnc.load_workplan(os.path.join(FIXTURES, "ex1.stp"))
     program = stepnc.to_program(plain)
     setup = shell.simulation((plain, program, convert.WorkFrame(1.0, (0.0, 0.0, 0.0))))

@@ -14,12 +14,13 @@ import pytest
 import trimesh
 
 from kezuri.post import output
-from kezuri.toolpath import ncread, punch, unfold
+from kezuri.toolpath.simulate import ncread
+from kezuri.toolpath.operations.sheetmetal import punch, unfold
 from kezuri.toolpath import simulate as sim
-from kezuri.toolpath import turnmill as tm
-from kezuri.toolpath.errors import InputError
-from kezuri.toolpath.program import Tool
-from kezuri.toolpath.stepnc import part21
+from kezuri.toolpath.operations.turnmill import turnmill as tm
+from kezuri.toolpath.ir.errors import InputError
+from kezuri.toolpath.ir.program import Tool
+from kezuri.toolpath.operations.stepnc import part21
 
 import rs274  # noqa: E402  (tests/rs274.py)
 
@@ -54,7 +55,7 @@ def refused_in_capped_memory(setup: str, call: str) -> str:
     """What a fresh interpreter prints running ``setup`` then ``call`` with its address space capped
     at 6 GB: 'REFUSED <message>' for an input error, 'PLANNED' when the call returned."""
     done = run_python("import resource; resource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\n"
-                      "from kezuri.toolpath.errors import InputError\n" + setup +
+                      "from kezuri.toolpath.ir.errors import InputError\n" + setup +
                       f"try:\n    {call}\n    print('PLANNED')\n"
                       "except InputError as error:\n    print('REFUSED', error)\n", timeout=120)
     assert done.returncode == 0, done.stderr[-2000:]
@@ -194,7 +195,7 @@ def test_what_the_reader_sets_aside_is_listed_and_the_old_unpacking_still_works(
 
 def test_our_own_posts_read_back_without_refusals():
     from kezuri import post
-    from kezuri.toolpath import engrave
+    from kezuri.toolpath.operations.engrave import engrave
     from test_engrave import LETTERS, PLATE
     baked, _ = engrave.bake(engrave.plan(PLATE, LETTERS).program)
     for name in ("linuxcnc", "fanuc", "grbl"):
@@ -343,7 +344,7 @@ def test_turn_mill_on_a_plain_64_sided_cylinder_finishes():
     # tube (no end caps) the same.
     done = run_python(
         "import time, numpy as np, trimesh\n"
-        "from kezuri.toolpath import turnmill as tm\n"
+        "from kezuri.toolpath.operations.turnmill import turnmill as tm\n"
         "m = trimesh.creation.cylinder(radius=20, height=40, sections=64)\n"
         "v = np.asarray(m.vertices)\n"
         "stock = tm.Stock(float(np.hypot(v[:, 0], v[:, 1]).max()), float(v[:, 2].min()), float(v[:, 2].max()))\n"
@@ -366,7 +367,7 @@ def test_a_stock_far_larger_than_the_part_is_refused_not_out_of_memory(stock, na
     Run in a child process with its address space capped at 6 GB, so a regression fails here."""
     printed = refused_in_capped_memory(
         "import numpy as np, trimesh\n"
-        "from kezuri.toolpath import turnmill as tm\n"
+        "from kezuri.toolpath.operations.turnmill import turnmill as tm\n"
         "m = trimesh.creation.cylinder(radius=12, height=60, sections=48)\n"
         "m.apply_translation((0, 0, -30))\n"
         "top = trimesh.creation.box(extents=(8, 8, 10)); top.apply_translation((0, 0, -5))\n"
@@ -377,7 +378,7 @@ def test_a_stock_far_larger_than_the_part_is_refused_not_out_of_memory(stock, na
 
 def test_a_finishing_layer_too_fine_to_hold_is_blamed_on_the_fineness_not_the_stock():
     # Tolerance 0.0001 mm on the turn-mill sample: over the limit before any roughing layer
-    from kezuri.toolpath import turnjoin
+    from kezuri.toolpath.operations.turnmill import turnjoin
     v = np.array([[0.0, 0.0, -10.0], [10.0, 0.0, 0.0], [0.0, 10.0, 0.0]])
     with pytest.raises(InputError, match="the radial finishing alone would need more than 5000000 tool positions"):
         turnjoin._counted([4_000_000, 0], 1_500_000, "radial", 0, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
@@ -392,7 +393,7 @@ def test_carving_through_a_metre_of_stock_at_the_finest_step_down_is_refused_not
     """Stock Above Design 1000 mm and Step Down 0.01 mm, both inside their ranges: 100,000 roughing
     levels ended in a MemoryError ("Kezuri internal error") after 25 s under a 6 GB cap."""
     printed = refused_in_capped_memory(
-        "from kezuri.toolpath import carve, carve_samples\nv, f = carve_samples.wave_relief()\n",
+        "from kezuri.toolpath.operations.carve import carve, carve_samples\nv, f = carve_samples.wave_relief()\n",
         "carve.plan(v, f, carve.CarveSettings(step_down=0.01), stock_top=float(v[:, 2].max()) + 1000)")
     assert "REFUSED the roughing would need more than 10000000 moves" in printed, printed[-1000:]
 
@@ -401,7 +402,7 @@ def test_a_rotary_pocket_at_the_finest_spacing_and_step_down_is_refused_not_out_
     """Spacing and Step Down both 0.01 mm (in range): 16.7 million points, a MemoryError in the C
     unwrapping ("Kezuri internal error")."""
     printed = refused_in_capped_memory(
-        "from kezuri.toolpath import rotary\nblock, pockets = rotary.sample_job()\n",
+        "from kezuri.toolpath.operations.rotary import rotary\nblock, pockets = rotary.sample_job()\n",
         "rotary.plan(block, [pockets[2]], rotary.RotarySettings(spacing=0.01, step_down=0.01))")
     assert "REFUSED pocket 'bowl': the toolpath would have" in printed, printed[-1000:]
 
@@ -639,7 +640,7 @@ def crosses(t, u) -> bool:
 
 @pytest.mark.parametrize("make, where", [(two_boxes_unjoined, None), (bow_tie, (20.0, 20.0))])
 def test_a_self_intersecting_design_is_refused_naming_the_faces_and_a_place(make, where):
-    from kezuri.toolpath.selfcross import self_crossing
+    from kezuri.toolpath.engines.selfcross import self_crossing
     mesh = make()
     stock = (0, 0, -10, 40, 40, 0)
     reference = crossing_reference(mesh)
@@ -661,7 +662,7 @@ def test_a_self_intersecting_design_is_refused_naming_the_faces_and_a_place(make
 
 
 def test_closed_meshes_that_do_not_cross_themselves_pass():
-    from kezuri.toolpath.selfcross import self_crossing
+    from kezuri.toolpath.engines.selfcross import self_crossing
     sphere = trimesh.creation.icosphere(subdivisions=3, radius=15)
     torus = trimesh.creation.torus(major_radius=15, minor_radius=4)
     both = trimesh.util.concatenate([block(), trimesh.creation.box(extents=(5, 5, 5), transform=trimesh.transformations
@@ -701,7 +702,7 @@ def brute_nearest(points, tri, reach):
 
 @pytest.mark.parametrize("seed", range(4))
 def test_the_nearest_surface_point_is_the_brute_force_one(seed):
-    from kezuri.toolpath.meshrays import Triangles
+    from kezuri.toolpath.engines.meshrays import Triangles
     rng = np.random.default_rng(seed)
     mesh = trimesh.creation.icosphere(subdivisions=2, radius=20)
     vertices = mesh.vertices + rng.normal(0, 1.5, mesh.vertices.shape)        # a lumpy closed part
@@ -720,7 +721,7 @@ def test_the_nearest_surface_point_is_the_brute_force_one(seed):
 
 
 def test_a_ball_on_a_finely_split_surface_finds_the_same_nearest_point():
-    from kezuri.toolpath.meshrays import Triangles
+    from kezuri.toolpath.engines.meshrays import Triangles
     v, f, _ = tm.sample_part(48)
     dense_v, dense_f = trimesh.remesh.subdivide(*trimesh.remesh.subdivide(v, f))
     rng = np.random.default_rng(3)

@@ -1,4 +1,4 @@
-"""toolpath/kinematics.py: machine <-> part for the C-X-Z table and the X-Z-C turn-mill, and the
+"""toolpath/ir/kinematics.py: machine <-> part for the C-X-Z table and the X-Z-C turn-mill, and the
 length convention of a move that turns C."""
 import math
 
@@ -7,8 +7,8 @@ import pytest
 
 from kezuri.post.rotary_cxz import RotaryCXZPost
 from kezuri.post.turnmill_xzc import TurnMillXZCPost
-from kezuri.toolpath import kinematics as kin
-from kezuri.toolpath.program import FEED, RAPID, Operation, Program, Tool, TurnMillOperation
+from kezuri.toolpath.ir import kinematics as kin
+from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Program, Tool, TurnMillOperation
 
 RNG = np.random.default_rng(20261125)
 

@@ -5,8 +5,8 @@ import os
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-# What a post may take from toolpath/: the IR, the rotary-axis kinematics, the machine profile, the error base class.
-POST_MAY_IMPORT = {"program", "kinematics", "errors", "machine"}
+# What a post may take from toolpath/: the IR package (program, machine profile, tools, kinematics, errors).
+POST_MAY_IMPORT = "ir"
 BLENDER = {"bpy", "bmesh", "mathutils", "gpu", "blf"}
 
 
@@ -30,29 +30,34 @@ def imports(path):
 
 
 def toolpath_modules_of_post(module, level, names):
-    """The toolpath modules a post/*.py import statement reaches (post/ sits beside toolpath/)."""
+    """The toolpath modules (dotted, below toolpath/) a post/*.py import statement reaches (post/ sits
+    beside toolpath/)."""
     parts = module.split(".") if module else []
     if level == 2 and parts[:1] == ["toolpath"]:
-        return [parts[1]] if len(parts) > 1 else names          # from ..toolpath.x import / from ..toolpath import x
-    if level == 2 and not parts:
-        return [f"toolpath.{n}" for n in names if n == "toolpath"]   # from .. import toolpath
-    if level == 0 and parts[:2] == ["kezuri", "toolpath"]:
-        return [parts[2]] if len(parts) > 2 else names
-    return []
+        below = parts[1:]
+    elif level == 0 and parts[:2] == ["kezuri", "toolpath"]:
+        below = parts[2:]
+    elif level == 2 and not parts:
+        return ["toolpath"] if "toolpath" in names else []     # from .. import toolpath: the whole core
+    else:
+        return []
+    return [".".join(below + [n]) for n in names] if below else list(names)
 
 
 def test_the_checks_see_the_import_forms():
-    assert toolpath_modules_of_post("toolpath.turnmill", 2, ["TurnMillOperation"]) == ["turnmill"]
-    assert toolpath_modules_of_post("toolpath", 2, ["rotary"]) == ["rotary"]
-    assert toolpath_modules_of_post("", 2, ["toolpath"]) == ["toolpath.toolpath"]
-    assert toolpath_modules_of_post("kezuri.toolpath.engrave", 0, ["GougeTexture"]) == ["engrave"]
+    assert toolpath_modules_of_post("toolpath.operations.turnmill", 2, ["turnmill"]) == ["operations.turnmill.turnmill"]
+    assert toolpath_modules_of_post("toolpath", 2, ["ir"]) == ["ir"]
+    assert toolpath_modules_of_post("toolpath.ir.program", 2, ["Tool"]) == ["ir.program.Tool"]
+    assert toolpath_modules_of_post("", 2, ["toolpath"]) == ["toolpath"]
+    assert toolpath_modules_of_post("kezuri.toolpath.operations.engrave", 0, ["engrave"]) == ["operations.engrave.engrave"]
     assert toolpath_modules_of_post("gcode", 1, ["GcodePost"]) == []
 
 
 @pytest.mark.parametrize("path", list(python_files("post")))
 def test_posts_import_only_the_ir_kinematics_and_errors(path):
     reached = {m for statement in imports(path) for m in toolpath_modules_of_post(*statement)}
-    assert reached <= POST_MAY_IMPORT, f"{path} imports toolpath modules {sorted(reached - POST_MAY_IMPORT)}"
+    outside = sorted(m for m in reached if m.split(".")[0] != POST_MAY_IMPORT)
+    assert not outside, f"{path} imports toolpath modules outside the IR: {outside}"
 
 
 @pytest.mark.parametrize("path", list(python_files("toolpath")) + list(python_files("post")))
@@ -63,4 +68,4 @@ def test_the_core_and_the_posts_never_import_blender(path):
 
 def test_kinematics_imports_nothing_of_the_project():
     """program.py imports kinematics, so kinematics must not import the IR (or anything else of ours)."""
-    assert [m for m, level, _ in imports("toolpath/kinematics.py") if level > 0] == []
+    assert [m for m, level, _ in imports("toolpath/ir/kinematics.py") if level > 0] == []

@@ -13,7 +13,7 @@ import pytest
 import controller_rules as rules
 import rs274
 from kezuri.post import registry
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 from test_stepnc import ex1_text, replace_instance
 
 # the independent checker's name for each post's control

@@ -5,7 +5,7 @@ import pytest
 
 from kezuri import post
 from kezuri.post.fanuc import macro_program
-from kezuri.toolpath import engrave
+from kezuri.toolpath.operations.engrave import engrave
 from macrob import MacroError, run_program
 from test_engrave import LETTERS, PLATE
 

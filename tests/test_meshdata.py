@@ -1,9 +1,9 @@
-"""toolpath/meshdata.py: polygons into triangles (fans) and the polygon each came from, written
+"""toolpath/engines/meshdata.py: polygons into triangles (fans) and the polygon each came from, written
 out by hand for small meshes: a triangle stays as it is, a quad and a pentagon fan from corner 0,
 a degenerate polygon (fewer than three corners) gives nothing."""
 import numpy as np
 
-from kezuri.toolpath import meshdata
+from kezuri.toolpath.engines import meshdata
 
 
 def test_fans_of_mixed_polygons():

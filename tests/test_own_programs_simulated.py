@@ -29,8 +29,8 @@ import numpy as np
 import pytest
 
 import rs274
-from kezuri.toolpath import ncread
-from kezuri.toolpath.program import Tool
+from kezuri.toolpath.simulate import ncread
+from kezuri.toolpath.ir.program import Tool
 from macrob import run_program
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

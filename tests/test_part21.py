@@ -1,4 +1,4 @@
-"""Tests for the ISO 10303-21 reader and writer (toolpath/stepnc/part21.py, part21_writer.py)."""
+"""Tests for the ISO 10303-21 reader and writer (toolpath/operations/stepnc/part21.py, part21_writer.py)."""
 import os
 import random
 import time
@@ -6,11 +6,8 @@ import time
 import numpy as np
 import pytest
 
-from kezuri.toolpath.stepnc.part21 import (
-    DERIVED, UNKNOWN, UNSET, ComplexInstance, Entity, Enum, Instance, Part21Error, Part21File, Ref, Typed,
-    iter_refs, parse_part21, read_part21,
-)
-from kezuri.toolpath.stepnc.part21_writer import Part21Writer, format_real, format_string, make_header, write_part21
+from kezuri.toolpath.operations.stepnc.part21 import (DERIVED, UNKNOWN, UNSET, ComplexInstance, Entity, Enum, Instance, Part21Error, Part21File, Ref, Typed, iter_refs, parse_part21, read_part21)
+from kezuri.toolpath.operations.stepnc.part21_writer import (Part21Writer, format_real, format_string, make_header, write_part21)
 
 FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "fixtures"))
 EX1 = os.path.join(FIXTURES, "iso14649", "ex1.stp")

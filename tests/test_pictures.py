@@ -10,10 +10,10 @@ import zlib
 import numpy as np
 import pytest
 
-from kezuri.toolpath import picture_font as font
-from kezuri.toolpath import picture_jobs as pj
-from kezuri.toolpath.picture import BACKGROUND, INK, Picture, PictureError, View, png_bytes
-from kezuri.toolpath.program import FEED, RAPID, Operation, Tool
+from kezuri.toolpath.pictures import picture_font as font
+from kezuri.toolpath.pictures import picture_jobs as pj
+from kezuri.toolpath.pictures.picture import BACKGROUND, INK, Picture, PictureError, View, png_bytes
+from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Tool
 from kezuri.toolpath.simulate import BoxStock, CylinderStock, simulate
 
 W, H = 1200, 800
@@ -233,7 +233,8 @@ def test_warm_kernels_leaves_nothing_to_compile_for_a_real_job():
     """After the warm-up, simulating a different job (other sizes, every tool shape, a radial
     move) adds no compiled signature to any numba kernel."""
     numba = pytest.importorskip("numba")
-    from kezuri.toolpath import dropcutter_kernel, picture_kernel, warmup
+    from kezuri.toolpath.engines import dropcutter_kernel, warmup
+    from kezuri.toolpath.pictures import picture_kernel
     from kezuri.toolpath.simulate import kernel
 
     def signatures():
@@ -315,7 +316,7 @@ def test_stepnc_pocket_links_are_marked_and_drawn_as_links():
     (a link, not a cut).  It is marked in the IR and drawn green; the passes stay blue."""
     from manifold3d import CrossSection
 
-    from kezuri.toolpath.stepnc.motion import _Motion
+    from kezuri.toolpath.operations.stepnc.motion import _Motion
     region = CrossSection.square((80.0, 40.0)).translate((10.0, 10.0))
     motion = _Motion(clearance_z=10.0, feed=400.0, region=region, radius=3.0)
     first, second = np.array([(20.0, 20.0), (80.0, 20.0)]), np.array([(80.0, 40.0), (20.0, 40.0)])

@@ -5,7 +5,7 @@ import numpy as np
 from kezuri.post import words
 from kezuri.post.cldata import CLDataPost
 from kezuri.post.gcode import GcodePost, fmt
-from kezuri.toolpath.program import ARC_CCW, FEED, RAPID, Operation, Tool
+from kezuri.toolpath.ir.program import ARC_CCW, FEED, RAPID, Operation, Tool
 
 
 def test_column_words_at_the_edges():

@@ -9,8 +9,8 @@ import rs274
 from kezuri import post
 from kezuri.post import output
 from kezuri.post.gcode import PostError, fmt
-from kezuri.toolpath import engrave
-from kezuri.toolpath.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool
+from kezuri.toolpath.operations.engrave import engrave
+from kezuri.toolpath.ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool
 from test_engrave import LETTERS, PLATE
 
 needs_rs274 = pytest.mark.skipif(not rs274.available(), reason="LinuxCNC rs274 is not installed (.ci/run installs it)")
@@ -173,7 +173,7 @@ def frame_lines(text: str) -> list:
 
 
 def test_grbl_lifts_z_to_the_clearance_height_before_any_xy_and_never_above_the_reach():
-    from kezuri.toolpath import machine
+    from kezuri.toolpath.ir import machine
     baked, _ = engrave.bake(sample_job().program)
     text = post.milling_post("grbl").to_text(baked)
     lines = frame_lines(text)
@@ -209,7 +209,7 @@ def test_linuxcnc_lifts_in_machine_coordinates_around_every_manual_change():
 
 def test_a_changer_that_lifts_on_m6_needs_no_lift_before_it_but_one_after():
     from kezuri.post.linuxcnc import LinuxCNCPost
-    from kezuri.toolpath import machine
+    from kezuri.toolpath.ir import machine
     baked, _ = engrave.bake(sample_job().program)
     lines = frame_lines(LinuxCNCPost(machine=machine.preset("linuxcnc-atc")).to_text(baked))
     for i in [i for i, line in enumerate(lines) if line.endswith("M06")]:
@@ -218,7 +218,7 @@ def test_a_changer_that_lifts_on_m6_needs_no_lift_before_it_but_one_after():
 
 def test_clearance_retract_on_linuxcnc_applies_the_offset_then_lifts():
     from kezuri.post.linuxcnc import LinuxCNCPost
-    from kezuri.toolpath import machine
+    from kezuri.toolpath.ir import machine
     baked, _ = engrave.bake(sample_job().program)
     unhomed = machine.preset("linuxcnc-manual").replace(retract="clearance", clearance_z=25.0)
     text = LinuxCNCPost(machine=unhomed).to_text(baked)
@@ -231,7 +231,7 @@ def test_clearance_retract_on_linuxcnc_applies_the_offset_then_lifts():
 
 
 def test_a_height_above_the_reach_is_refused_naming_both_numbers_and_the_setting():
-    from kezuri.toolpath import machine
+    from kezuri.toolpath.ir import machine
     job = engrave.plan(PLATE, LETTERS, engrave.EngraveSettings(safe_z=100.0))
     baked, _ = engrave.bake(job.program)
     with pytest.raises(PostError, match=r"safe Z .* 100 mm is above the 60 mm the machine 'Hobby router \(GRBL\)' "
@@ -247,7 +247,7 @@ def test_a_height_above_the_reach_is_refused_naming_both_numbers_and_the_setting
 
 
 def test_a_post_refuses_a_retract_or_tool_change_its_control_cannot_write():
-    from kezuri.toolpath import machine
+    from kezuri.toolpath.ir import machine
     baked, _ = engrave.bake(sample_job().program)
     grbl = post.create("milling", "grbl", machine=machine.preset("grbl-router").replace(retract="reference"))
     with pytest.raises(PostError, match=r"Retract = 'reference' is not a move this control has"):

@@ -10,7 +10,8 @@ import re
 import pytest
 
 from kezuri.post import capacity, turnmill_xzc
-from kezuri.toolpath import machine, turnmill as tm
+from kezuri.toolpath.ir import machine
+from kezuri.toolpath.operations.turnmill import turnmill as tm
 
 TURNMILL = machine.preset("fanuc-0it-turnmill")
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from kezuri.post import amada_punch
-from kezuri.toolpath import punch, unfold
+from kezuri.toolpath.operations.sheetmetal import punch, unfold
 
 RECT = np.array([[0.0, 0.0], [40.0, 0.0], [40.0, 20.0], [0.0, 20.0]])
 PAPER_QUAD = np.array([(0, 0, 0), (0, 30, 100), (100, 50, 100), (100, 40, 0)], float)

@@ -15,7 +15,8 @@ import pytest
 
 import controller_rules as rules
 from kezuri.post import amada_punch
-from kezuri.toolpath import machine, nibbling, placement, punch, unfold
+from kezuri.toolpath.ir import machine
+from kezuri.toolpath.operations.sheetmetal import nibbling, placement, punch, unfold
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PAPER_CORNERS = np.array([[0, 0, 0], [0, 30, 100], [100, 50, 100], [100, 40, 0]], float)

@@ -8,9 +8,10 @@ import pytest
 import trimesh
 from manifold3d import Manifold
 
-from kezuri.toolpath import simulate, turnmill
+from kezuri.toolpath import simulate
+from kezuri.toolpath.operations.turnmill import turnmill
 from kezuri.toolpath.simulate import radiusmap
-from kezuri.toolpath.program import FEED, RAPID, Tool
+from kezuri.toolpath.ir.program import FEED, RAPID, Tool
 
 BAR = turnmill.Stock(20.0, -30.0, 0.0)
 BALL_R = 3.0
@@ -277,7 +278,7 @@ def test_turned_mesh_joins_the_untouched_bar_to_the_cut_end():
 
 def _depth_pictures(meshes, tilt: float):
     """(view, [depth buffer of each (vertices, faces)]): the bar r 20, z -30..0 framed at ``tilt``."""
-    from kezuri.toolpath.picture import Picture, View
+    from kezuri.toolpath.pictures.picture import Picture, View
     view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), tilt)
     depths = []
     for vertices, faces in meshes:
@@ -330,7 +331,7 @@ def test_turned_surface_of_a_faced_bar_keeps_its_edge():
     uncut, as the simulation leaves them): nothing of the picture's surface stands above the new
     face, and seen from above the face covers the bar to its edge; the closed mesh is the bar
     1 mm shorter (its volume that of the radius map's 2513-gon prism)."""
-    from kezuri.toolpath.picture import Picture, View
+    from kezuri.toolpath.pictures.picture import Picture, View
     from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
     from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
 

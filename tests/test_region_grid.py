@@ -4,7 +4,7 @@ on random polygons with holes, vertices on grid lines and rows, and grids that s
 import numpy as np
 import pytest
 
-from kezuri.toolpath import region as rg
+from kezuri.toolpath.engines import region as rg
 
 
 def random_region(rng):

@@ -14,10 +14,10 @@ import rs274
 from kezuri.post.gcode import PostError
 from kezuri.post import rotary_post
 from kezuri.post.rotary_cxz import FanucRotaryPost, LinuxCNCRotaryPost
-from kezuri.toolpath import region as rg
-from kezuri.toolpath import rotary
-from kezuri.toolpath.program import RAPID, Operation, Program, Tool
-from kezuri.toolpath.rotary import Block, Pocket, RotaryError, RotarySettings
+from kezuri.toolpath.engines import region as rg
+from kezuri.toolpath.operations.rotary import rotary
+from kezuri.toolpath.ir.program import RAPID, Operation, Program, Tool
+from kezuri.toolpath.operations.rotary.rotary import Block, Pocket, RotaryError, RotarySettings
 
 needs_rs274 = pytest.mark.skipif(not rs274.available(), reason="LinuxCNC rs274 is not installed (.ci/run installs it)")
 

@@ -18,7 +18,7 @@ import sidebar_fit as fit  # noqa: E402
 from blender_helpers import empty_scene  # noqa: E402,F401  (fixture)
 from kezuri.operators import panels, samples, translations, workflows  # noqa: E402
 from kezuri.operators.stepnc import fill_workplan_list  # noqa: E402
-from kezuri.toolpath import stepnc  # noqa: E402
+from kezuri.toolpath.operations import stepnc  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 JA = translations.TRANSLATIONS["ja_JP"]

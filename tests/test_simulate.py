@@ -9,7 +9,7 @@ import pytest
 import trimesh
 
 from kezuri.toolpath import simulate as sim
-from kezuri.toolpath.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool
+from kezuri.toolpath.ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool
 
 FLAT6 = Tool(1, "flat", 6.0)
 BALL6 = Tool(2, "ball", 6.0)

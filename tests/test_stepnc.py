@@ -1,4 +1,4 @@
-"""W3: ISO 14649 (STEP-NC) workplans to G-code (toolpath/stepnc/model.py and workplan.py).
+"""W3: ISO 14649 (STEP-NC) workplans to G-code (toolpath/operations/stepnc/model.py and workplan.py).
 
 The reference is ISO 14649-11 Example 1 as NIST runs it (fixtures/iso14649/ex1.stp) and
 NIST's interpreter output for it (ex1.can): a planar face, a drilled and reamed hole, and a
@@ -14,16 +14,11 @@ import pytest
 
 import rs274
 from kezuri import post
-from kezuri.toolpath import region as rg
-from kezuri.toolpath.program import ARC_CCW, ARC_CW, FEED, RAPID, Tool
-from kezuri.toolpath.stepnc.model import (
-    Bidirectional, BottomAndSideMilling, ClosedPocket, ContourParallel, GeneralClosedProfile,
-    PlanarFace, PlaneMilling, RectangularClosedProfile, RoundHole, StepNcError,
-)
-from kezuri.toolpath.stepnc.part21 import Part21Error
-from kezuri.toolpath.stepnc.workplan import (
-    PocketSpec, finishing_leftover, load_workplan, pocket_region, pockets_to_part21, to_program,
-)
+from kezuri.toolpath.engines import region as rg
+from kezuri.toolpath.ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Tool
+from kezuri.toolpath.operations.stepnc.model import (Bidirectional, BottomAndSideMilling, ClosedPocket, ContourParallel, GeneralClosedProfile, PlanarFace, PlaneMilling, RectangularClosedProfile, RoundHole, StepNcError)
+from kezuri.toolpath.operations.stepnc.part21 import Part21Error
+from kezuri.toolpath.operations.stepnc.workplan import (PocketSpec, finishing_leftover, load_workplan, pocket_region, pockets_to_part21, to_program)
 
 FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "fixtures"))
 EX1 = os.path.join(FIXTURES, "iso14649", "ex1.stp")

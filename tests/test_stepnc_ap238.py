@@ -16,12 +16,12 @@ import pytest
 
 import rs274
 from kezuri import post
-from kezuri.toolpath.program import FEED
+from kezuri.toolpath.ir.program import FEED
 from kezuri.toolpath.simulate import blocking, simulate
-from kezuri.toolpath.errors import InputError
-from kezuri.toolpath.stepnc.model import StepNcError
-from kezuri.toolpath.stepnc.solids import fixture_clearance, stock_box
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.ir.errors import InputError
+from kezuri.toolpath.operations.stepnc.model import StepNcError
+from kezuri.toolpath.operations.stepnc.solids import fixture_clearance, stock_box
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 from test_hostile import time_limit
 
 FIXTURES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fixtures", "iso14649")

@@ -20,9 +20,9 @@ import controller_rules as rules
 import rs274
 from kezuri import post
 from kezuri.toolpath import simulate
-from kezuri.toolpath.program import RAPID
-from kezuri.toolpath.stepnc.solids import fixture_clearance, stock_box
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.ir.program import RAPID
+from kezuri.toolpath.operations.stepnc.solids import fixture_clearance, stock_box
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 
 AIM = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fixtures", "iso14649", "ex1_ap238.stp")
 

@@ -10,7 +10,7 @@ file: the 10 mm slot on a quarter circle and the roughing of the L-shaped 16 mm 
 import pytest
 
 from kezuri import post
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 from test_stepnc_slot_paths import slot_file
 
 

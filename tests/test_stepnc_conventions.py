@@ -9,9 +9,9 @@ import re
 import numpy as np
 import pytest
 
-from kezuri.toolpath.program import FEED
+from kezuri.toolpath.ir.program import FEED
 from kezuri.toolpath.simulate import BoxStock, simulate
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 
 TOOL_DIAMETER = 10.0
 
@@ -252,7 +252,7 @@ def test_feeds_the_tool_cannot_run_are_flagged():
 
 
 def test_nothing_to_machine_lists_the_reason_of_every_workingstep():
-    from kezuri.toolpath.stepnc import nothing_to_machine
+    from kezuri.toolpath.operations.stepnc import nothing_to_machine
 
     loaded = load_workplan(pocket_file(rough="SIDE_ROUGH_MILLING", finish="SIDE_FINISH_MILLING"))
     assert loaded.workingsteps == ()
@@ -266,7 +266,7 @@ def test_the_new_warnings_have_japanese_templates():
     """Every warning these files give comes out in Japanese (operators/translations.py)."""
     pytest.importorskip("bpy")
     from kezuri.operators import translations
-    from kezuri.toolpath.stepnc import nothing_to_machine
+    from kezuri.toolpath.operations.stepnc import nothing_to_machine
 
     files = [pocket_file(pocket_at=(75.0, 50.0), profile_at=(75.0, 50.0, 0.0)),
              pocket_file(pocket_at=(75.0, 50.0), profile_at=(75.0, 50.0, 0.0), block=False),

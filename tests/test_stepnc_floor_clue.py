@@ -12,9 +12,9 @@ import re
 import numpy as np
 import pytest
 
-from kezuri.toolpath.program import FEED
+from kezuri.toolpath.ir.program import FEED
 from kezuri.toolpath.simulate import BoxStock, blocking, simulate
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 
 
 def pocket_file(hole_a=(65.0, 35.0), hole_b=(75.0, 45.0)) -> str:

@@ -4,8 +4,8 @@ import os
 import random
 import re
 
-from kezuri.toolpath import stepnc
-from kezuri.toolpath.errors import InputError
+from kezuri.toolpath.operations import stepnc
+from kezuri.toolpath.ir.errors import InputError
 
 FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "fixtures"))
 EX1 = open(os.path.join(FIXTURES, "iso14649", "ex1.stp"), encoding="latin-1").read()

@@ -13,7 +13,7 @@ import pytest
 
 import rs274
 from kezuri import post
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 from test_stepnc import add_instances, ex1_text, replace_instance
 
 ANGLE = 5.0

@@ -13,9 +13,9 @@ import pytest
 
 import rs274
 from kezuri import post
-from kezuri.toolpath.program import ARC_CCW, ARC_CW, RAPID
+from kezuri.toolpath.ir.program import ARC_CCW, ARC_CW, RAPID
 from kezuri.toolpath.simulate import BoxStock, simulate
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 
 
 def bore_file(tool="#22", bore_diameter=30.0) -> str:
@@ -132,7 +132,7 @@ def test_simulated_bores_have_their_volume_and_no_findings(bores):
     text, loaded, program = bores
     centre1, d1, depth1 = hole_from_text(text, "BORE1")
     centre2, d2, depth2 = hole_from_text(text, "HOLE2")
-    from kezuri.toolpath.stepnc.solids import fixture_clearance
+    from kezuri.toolpath.operations.stepnc.solids import fixture_clearance
     clearance = fixture_clearance(loaded)
     assert clearance == pytest.approx(1.01)         # the 1 mm a milled through hole goes below its bottom
     result = simulate(program, BoxStock(0, 0, -30, 120, 80, 0), cell=0.2, fixture_clearance=clearance)

@@ -12,12 +12,12 @@ import pytest
 
 import rs274
 from kezuri import post
-from kezuri.toolpath import region as rg
-from kezuri.toolpath.program import FEED, RAPID, Operation, Program, Tool
+from kezuri.toolpath.engines import region as rg
+from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Program, Tool
 from kezuri.toolpath.simulate import BoxStock, simulate
-from kezuri.toolpath.stepnc.inprocess import InProcessStock
-from kezuri.toolpath.stepnc.workplan import APPROACH_GAP, load_workplan, pockets_to_part21, to_program
-from kezuri.toolpath.stepnc import PocketSpec
+from kezuri.toolpath.operations.stepnc.inprocess import InProcessStock
+from kezuri.toolpath.operations.stepnc.workplan import APPROACH_GAP, load_workplan, pockets_to_part21, to_program
+from kezuri.toolpath.operations.stepnc import PocketSpec
 
 from test_stepnc import EX1
 
@@ -115,7 +115,7 @@ def test_default_orders_are_unchanged_where_they_were_safe(sample):
 def test_random_orders_and_subsets_of_ex1_are_safe():
     """ex1 (planar face, drilling, reaming, pocket rough and finish; no BLOCK: the stock is the
     simulation's box around the cuts): random orders, some with workingsteps switched off."""
-    from kezuri.toolpath.stepnc.solids import stock_box
+    from kezuri.toolpath.operations.stepnc.solids import stock_box
 
     loaded = load_workplan(EX1)
     ids = [step.id for step in loaded.workingsteps]

@@ -8,8 +8,8 @@ import sys
 
 import pytest
 
-from kezuri.toolpath.stepnc import nothing_to_machine
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.operations.stepnc import nothing_to_machine
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 from test_stepnc_ap238 import AIM, aim_text
 from test_stepnc_contour_bidirectional import TEXT as STRATEGIES
 from test_stepnc_floor_clue import pocket_file

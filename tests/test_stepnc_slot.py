@@ -14,9 +14,9 @@ import pytest
 
 import rs274
 from kezuri import post
-from kezuri.toolpath.program import FEED
+from kezuri.toolpath.ir.program import FEED
 from kezuri.toolpath.simulate import BoxStock, simulate
-from kezuri.toolpath.stepnc.workplan import load_workplan, to_program
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 
 STOCK = BoxStock(0, 0, -30, 120, 80, 0)
 

@@ -14,8 +14,8 @@ import pytest
 import controller_rules as rules
 import rs274
 from kezuri import post
-from kezuri.toolpath.stepnc.tools import number_in
-from kezuri.toolpath.stepnc.workplan import load_workplan, skipped_workingsteps, to_program
+from kezuri.toolpath.operations.stepnc.tools import number_in
+from kezuri.toolpath.operations.stepnc.workplan import load_workplan, skipped_workingsteps, to_program
 from test_stepnc import add_instances, ex1_text, replace_instance
 
 needs_rs274 = pytest.mark.skipif(not rs274.available(), reason="LinuxCNC rs274 is not installed (.ci/run installs it)")
@@ -164,7 +164,7 @@ def test_a_flat_end_mill_finishing_the_hole_makes_it_flat():
 
 
 def test_the_toolpath_picture_captions_what_was_not_cut():
-    from kezuri.toolpath import picture_jobs
+    from kezuri.toolpath.pictures import picture_jobs
     from kezuri.toolpath.simulate import BoxStock
 
     loaded = load_workplan(named_tools())

@@ -1,12 +1,13 @@
-"""The gouge texture on a curved plate (toolpath/surface_engrave.py), checked against closed forms:
+"""The gouge texture on a curved plate (toolpath/operations/engrave/surface_engrave.py), checked against closed forms:
 a ball or a flat end resting on a sphere or a cylinder has its tip where elementary geometry says,
 and every cut lies at the paper's depths below that, along the tool axis."""
 import numpy as np
 import pytest
 
 from kezuri import post
-from kezuri.toolpath import engrave, region as rg, surface_engrave as se
-from kezuri.toolpath.program import FEED, Program
+from kezuri.toolpath.operations.engrave import engrave, surface_engrave as se
+from kezuri.toolpath.engines import region as rg
+from kezuri.toolpath.ir.program import FEED, Program
 from kezuri.toolpath.simulate import simulate
 from macrob import run_program
 import rs274
@@ -274,7 +275,7 @@ def test_a_broken_surface_mesh_is_refused_by_name(vertices, faces, message):
 def ridged_surface():
     """A flat plate top with a narrow raised ridge across it (a cosine bump 1.5 mm high, 5 mm wide,
     along Y at X = -80): a tool placed by the depth under its tip alone would cut into its flanks."""
-    from kezuri.toolpath.carve_samples import heightmap_solid
+    from kezuri.toolpath.operations.carve.carve_samples import heightmap_solid
 
     x, y = np.linspace(-101, 101, 809), np.linspace(-51, 51, 103)
     gx, _ = np.meshgrid(x, y, indexing="ij")
@@ -314,7 +315,7 @@ def test_the_letter_guard_lifts_a_tool_over_a_letter_to_its_top():
     """A path planned straight through a letter (the planner never does this) is lifted by the
     drop onto the letters' solid: beside the letter the ball rests on its top edge,
     z = -(r - sqrt(r^2 - d^2)) at a distance d from the edge; over the letter on its top, z = 0."""
-    from kezuri.toolpath.program import PathBuilder, Tool, Operation
+    from kezuri.toolpath.ir.program import PathBuilder, Tool, Operation
 
     plane = se.Surface(np.array([[-60, -60, 0], [60, -60, 0], [60, 60, 0], [-60, 60, 0]], float),
                        np.array([[0, 1, 2], [0, 2, 3]]), "plane")

@@ -10,7 +10,7 @@ from kezuri.toolpath import simulate as sim
 from kezuri.toolpath.simulate import sweep
 from kezuri.toolpath.simulate.paths import _Chain
 from kezuri.toolpath.simulate.stock import _stock_solid
-from kezuri.toolpath.program import FEED, Operation, Tool
+from kezuri.toolpath.ir.program import FEED, Operation, Tool
 
 BALL6 = Tool(2, "ball", 6.0)
 FLAT6 = Tool(1, "flat", 6.0)
@@ -311,8 +311,8 @@ def test_pocket_layers_on_the_side_of_a_bar_leave_out_the_ones_a_deeper_layer_co
     # x = 22 (y +-8), 21 (y +-6) and 20 (y +-7), all at z = -15.  The chord at 20 lies nearer the
     # C axis than the one at 21 along every ray the latter crosses; the chord at 22 reaches
     # further round than the one at 20 and is kept.  Volumes: the radius map, an independent engine.
-    from kezuri.toolpath import turnmill
-    from kezuri.toolpath.program import RAPID
+    from kezuri.toolpath.operations.turnmill import turnmill
+    from kezuri.toolpath.ir.program import RAPID
 
     def chord(x, half_width, n=40):
         y = np.linspace(-half_width, half_width, n + 1)

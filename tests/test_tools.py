@@ -1,12 +1,12 @@
-"""Tool shapes (toolpath/tools.py): each kind's profile against closed forms, which kinds plunge,
+"""Tool shapes (toolpath/ir/tools.py): each kind's profile against closed forms, which kinds plunge,
 and unknown kinds refused."""
 import math
 
 import numpy as np
 import pytest
 
-from kezuri.toolpath import tools
-from kezuri.toolpath.program import TOOL_KINDS, ProgramError, Tool
+from kezuri.toolpath.ir import tools
+from kezuri.toolpath.ir.program import TOOL_KINDS, ProgramError, Tool
 
 H = np.linspace(0.0, 12.0, 241)     # heights above the tip, past every tool's end
 

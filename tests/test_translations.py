@@ -174,8 +174,9 @@ def raised_messages():
     """(message node, where) for every message the core or the shell raises (``raise
     ...Error(...)``) or reports (``report(level, ...)``)."""
     root = os.path.dirname(os.path.dirname(operators.__file__))
-    for folder in ("toolpath", "toolpath/stepnc", "toolpath/simulate", "post", "operators"):
-        for filename in sorted(os.listdir(os.path.join(root, folder))):
+    for top in ("toolpath", "post", "operators"):
+        for folder, filename in sorted((os.path.relpath(base, root), name)
+                                       for base, _, names in os.walk(os.path.join(root, top)) for name in names):
             if not filename.endswith(".py") or filename == "translations.py":
                 continue
             with open(os.path.join(root, folder, filename), encoding="utf-8") as stream:
@@ -288,7 +289,7 @@ def test_the_formatted_message_collector_finds_the_known_ones():
     found = formatted_messages()
     assert "stock radius must be > 0, got {}" in found                      # toolpath (a raise)
     assert "Wrote {}" in found                                              # operators (a report)
-    assert "line {}: cannot read {}" in found                               # toolpath/punch.py
+    assert "line {}: cannot read {}" in found                               # toolpath/operations/sheetmetal/punch.py
     assert "#{} DIRECTION: direction_ratios are all zero" in found         # toolpath/stepnc
     assert len(found) > 200
 
@@ -302,7 +303,7 @@ def test_every_formatted_message_has_a_japanese_template():
 def test_every_fixed_error_message_is_translated():
     fixed = {(message.value, where) for message, where in raised_messages()
              if isinstance(message, ast.Constant) and isinstance(message.value, str)}
-    assert "the NC file has no moves" in {text for text, _ in fixed}          # toolpath/ncread.py
+    assert "the NC file has no moves" in {text for text, _ in fixed}          # toolpath/simulate/ncread.py
     missing = sorted(f"{where}: {text!r}" for text, where in fixed if (DEFAULT, text) not in JA)
     assert not missing, f"{len(missing)} fixed error messages without ja_JP translation:\n" + "\n".join(missing)
 
@@ -329,7 +330,8 @@ def test_a_formatted_message_comes_out_in_japanese_with_its_values(english):
 
 
 def test_real_error_messages_are_matched():
-    from kezuri.toolpath import punch, turnmill
+    from kezuri.toolpath.operations.sheetmetal import punch
+    from kezuri.toolpath.operations.turnmill import turnmill
     with pytest.raises(turnmill.TurnMillError) as raised:
         turnmill.Stock(radius=-1.0, z_min=0.0, z_max=1.0)
     assert translations.japanese_message(str(raised.value)) == "素材の半径は0より大きくしてください（指定値 -1.0）"

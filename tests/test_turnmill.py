@@ -14,8 +14,8 @@ from manifold3d import Manifold
 import rs274
 from kezuri.post import cldata, turnmill_xzc
 from kezuri.post.gcode import PostError
-from kezuri.toolpath import turnmill as tm
-from kezuri.toolpath.program import FEED, RAPID, Operation, Program, Tool
+from kezuri.toolpath.operations.turnmill import turnmill as tm
+from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Program, Tool
 
 needs_rs274 = pytest.mark.skipif(not rs274.available(), reason="LinuxCNC rs274 is not installed (.ci/run installs it)")
 

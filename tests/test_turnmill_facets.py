@@ -1,4 +1,4 @@
-"""The planning mesh (toolpath/facets.py): a mesh whose faces were split into many coplanar ones
+"""The planning mesh (toolpath/engines/facets.py): a mesh whose faces were split into many coplanar ones
 plans on the coarse mesh it came from.  Expected face counts, volumes and areas are closed forms
 of the solids; closedness is checked edge by edge here, not by the module."""
 import math
@@ -9,8 +9,9 @@ import trimesh
 from manifold3d import Manifold
 from pointsets import hausdorff
 
-from kezuri.toolpath import facets, turnmill
-from kezuri.toolpath.meshrays import check_mesh, face_normals
+from kezuri.toolpath.engines import facets
+from kezuri.toolpath.operations.turnmill import turnmill
+from kezuri.toolpath.engines.meshrays import check_mesh, face_normals
 
 
 def subdivided(v, f, times):
@@ -131,7 +132,7 @@ def test_subdivided_sample_plans_the_same_program():
 
 def test_face_pass_gives_the_closed_form_volume_and_areas_of_a_box():
     """The compiled one-pass normals/areas/volume against the box's closed form."""
-    from kezuri.toolpath import facets_kernel
+    from kezuri.toolpath.engines import facets_kernel
     a, b, c = 30.0, 20.0, 12.5
     v, f = subdivided(*box_mesh(a, b, c), 2)
     normals, areas, volume = facets_kernel.face_pass(v, f)

@@ -12,8 +12,8 @@ import math
 import numpy as np
 import pytest
 
-from kezuri.toolpath import turnmill as tm
-from kezuri.toolpath.program import FEED
+from kezuri.toolpath.operations.turnmill import turnmill as tm
+from kezuri.toolpath.ir.program import FEED
 
 from test_hostile import time_limit
 

@@ -9,7 +9,7 @@ import pytest
 
 import controller_rules as rules
 from kezuri.post import turnmill_xzc
-from kezuri.toolpath import turnmill as tm
+from kezuri.toolpath.operations.turnmill import turnmill as tm
 from test_turnmill_unmachined import hex_bar_with_hole
 
 

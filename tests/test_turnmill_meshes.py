@@ -174,8 +174,9 @@ def test_every_chord_keeps_the_ball_off_a_faceted_sphere():
     """Each move of every operation on the faceted sphere, followed as the control moves (X, Z and
     C interpolated linearly), keeps the 6 mm ball's centre at least r - 1 micron from every face
     (the gate reports a cut 1 micron deep): measured by brute force over all 1,280 faces."""
-    from kezuri.toolpath import kinematics, turnmill
-    from kezuri.toolpath.program import RAPID
+    from kezuri.toolpath.ir import kinematics
+    from kezuri.toolpath.operations.turnmill import turnmill
+    from kezuri.toolpath.ir.program import RAPID
     mesh = sphere()
     v, f = np.asarray(mesh.vertices), np.asarray(mesh.faces)
     plan = turnmill.plan(v, f, turnmill.Stock(20.0, -20.0, 20.0))

@@ -3,7 +3,8 @@ axial operations (polar X-C interpolation), simulated on a fine height field, is
 import numpy as np
 import pytest
 
-from kezuri.toolpath import simulate, turnmill
+from kezuri.toolpath import simulate
+from kezuri.toolpath.operations.turnmill import turnmill
 
 
 def test_axial_pocket_is_machined_20_mm_wide():

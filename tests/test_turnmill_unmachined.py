@@ -20,7 +20,8 @@ import trimesh
 from manifold3d import Manifold
 
 from kezuri.post import turnmill_xzc
-from kezuri.toolpath import picture_jobs, turnmill as tm
+from kezuri.toolpath.pictures import picture_jobs
+from kezuri.toolpath.operations.turnmill import turnmill as tm
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 AF = 30.0              # across flats

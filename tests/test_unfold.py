@@ -6,17 +6,7 @@ import numpy as np
 import pytest
 from manifold3d import CrossSection, JoinType, Manifold
 
-from kezuri.toolpath.unfold import (
-    UnfoldError,
-    compensate_outline,
-    divide_edge,
-    read_cdl,
-    signed_area,
-    square_to_round_rails,
-    unfold_elbow,
-    unfold_quad_strip,
-    unfold_twisted_quad,
-)
+from kezuri.toolpath.operations.sheetmetal.unfold import (UnfoldError, compensate_outline, divide_edge, read_cdl, signed_area, square_to_round_rails, unfold_elbow, unfold_quad_strip, unfold_twisted_quad)
 
 # The seed paper's test data (Table 1 / Fig. 10)
 PAPER_CORNERS = np.array([[0, 0, 0], [0, 30, 100], [100, 50, 100], [100, 40, 0]], float)
@@ -462,7 +452,7 @@ def test_a_quad_whose_edges_cross_is_refused(corners, edges):
 
 def test_the_segment_gap_is_the_closest_approach():
     """_segment_gap against dense sampling of both segments, on random pairs (parallel ones too)."""
-    from kezuri.toolpath.unfold import _segment_gap
+    from kezuri.toolpath.operations.sheetmetal.unfold import _segment_gap
     rng = np.random.default_rng(5)
     t = np.linspace(0, 1, 401)
     for k in range(60):

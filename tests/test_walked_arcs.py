@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from kezuri.toolpath.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Tool, walked
+from kezuri.toolpath.ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Tool, walked
 
 TOOL = Tool(1, "flat", 6.0)
 

@@ -17,10 +17,10 @@ root = sys.argv[1]
 spec = importlib.util.spec_from_file_location("kezuri", os.path.join(root, "__init__.py"),
                                               submodule_search_locations=[root])
 package = importlib.util.module_from_spec(spec); sys.modules["kezuri"] = package; spec.loader.exec_module(package)
-from kezuri.toolpath import warmup
+from kezuri.toolpath.engines import warmup
 from kezuri.toolpath.simulate import BoxStock, simulate
 from kezuri.toolpath.simulate import CylinderStock, kernel
-from kezuri.toolpath import facets, facets_kernel, meshrays
+from kezuri.toolpath.engines import facets, facets_kernel, meshrays
 simulate([warmup._box_operation("ball", 1)], BoxStock(0.0, 0.0, -3.0, 8.0, 8.0, 0.0), cell=0.5, kernel="numba")
 # a turn-mill check against a design (the radius map's rays), and its part's mesh check and planning mesh
 design = warmup._prism(30.0, -40.0, 0.0, sides=24)
@@ -53,8 +53,8 @@ def test_the_warm_up_process_leaves_the_kernels_in_numbas_cache(tmp_path, monkey
     ran = job.result()
     assert "heightfield ball" in ran and "radius map" in ran and "nearest point" in ran
     stats = fresh_process_stats(cache)
-    assert {"kezuri.toolpath.simulate.kernel.outer_rays", "kezuri.toolpath.facets_kernel.face_pass",
-            "kezuri.toolpath.facets_kernel.edge_check"} <= set(stats), sorted(stats)
+    assert {"kezuri.toolpath.simulate.kernel.outer_rays", "kezuri.toolpath.engines.facets_kernel.face_pass",
+            "kezuri.toolpath.engines.facets_kernel.edge_check"} <= set(stats), sorted(stats)
     for name, (hits, misses) in stats.items():
         assert hits >= 1 and misses == 0, (name, hits, misses)     # loaded from the cache, not compiled
     # and the statistics do tell the difference: with a cache nobody warmed, the kernels compile

@@ -60,9 +60,7 @@ from __future__ import annotations
 from .api import check, simulate
 from .checks import BLOCKING_KINDS, blocking
 from .paths import can_plunge
-from .stock import (CHORD_TOLERANCE, ENGINES, GOUGE_TOLERANCE, KERNELS, MAX_CELLS, TOUCH_TOLERANCE, BoxStock, SurfaceStock,
-                    CellError, CellTooFine, CylinderStock, Finding, HeightField, SimulationCancelled, SimulationError, SimulationResult,
-                    as_stock)
+from .stock import (CHORD_TOLERANCE, ENGINES, GOUGE_TOLERANCE, KERNELS, MAX_CELLS, TOUCH_TOLERANCE, BoxStock, SurfaceStock, CellError, CellTooFine, CylinderStock, Finding, HeightField, SimulationCancelled, SimulationError, SimulationResult, as_stock)
 
 __all__ = ["simulate", "check", "blocking", "BLOCKING_KINDS", "can_plunge", "as_stock", "BoxStock", "SurfaceStock", "CylinderStock", "Finding", "HeightField",
            "SimulationResult", "SimulationError", "CellError", "CellTooFine", "SimulationCancelled", "ENGINES", "KERNELS", "CHORD_TOLERANCE",

@@ -9,16 +9,13 @@ import time
 import numpy as np
 from manifold3d import Error, Manifold
 
-from ..program import FEED, RAPID
+from ..ir.program import FEED, RAPID
 from . import radiusmap as rmap
 from . import sweep
-from .checks import (_design_heights, _findings, _floor_findings, _spindle_findings, _travel_findings,
-                     check_design_mesh)
+from .checks import (_design_heights, _findings, _floor_findings, _spindle_findings, _travel_findings, check_design_mesh)
 from .heightfield import _compiled_kernels, _grid, _Simulation
 from .paths import _chains, _operations, can_plunge
-from .stock import (ENGINES, GOUGE_TOLERANCE, MAX_CELLS, TOUCH_TOLERANCE, CylinderStock, Finding, HeightField,
-                    CellError, CellTooFine, SimulationCancelled, SimulationError, SimulationResult, _solid_of, _stock_box, _stock_solid,
-                    as_stock)
+from .stock import (ENGINES, GOUGE_TOLERANCE, MAX_CELLS, TOUCH_TOLERANCE, CylinderStock, Finding, HeightField, CellError, CellTooFine, SimulationCancelled, SimulationError, SimulationResult, _solid_of, _stock_box, _stock_solid, as_stock)
 
 MIN_CELLS_ACROSS = 4       # a cell coarser than a quarter of the stock's smaller side means nothing
 

@@ -7,8 +7,8 @@ import math
 import numpy as np
 from manifold3d import CrossSection
 
-from .. import region as rg
-from ..selfcross import self_crossing
+from ..engines import region as rg
+from ..engines.selfcross import self_crossing
 from .families import _halfline
 from .heightfield import _lowest_move, _Simulation
 from .paths import _machine_samples

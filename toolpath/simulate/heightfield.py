@@ -6,12 +6,11 @@ import math
 
 import numpy as np
 
-from ..compiled import kernel_module
+from ..engines.compiled import kernel_module
 
 from .families import _columns, _Family, _families
 from .paths import _Chain
-from .stock import (MAX_CELLS, TOUCH_TOLERANCE, BoxStock, CylinderStock, HeightField,
-                    CellTooFine, SimulationCancelled, SimulationError)
+from .stock import (MAX_CELLS, TOUCH_TOLERANCE, BoxStock, CylinderStock, HeightField, CellTooFine, SimulationCancelled, SimulationError)
 
 _PAIR_BATCH = 32768        # (item, grid column) pairs per numpy batch
 _CELL_CHUNK = 1 << 17      # cells per evaluation chunk, in reused buffers
@@ -38,8 +37,8 @@ def _grid(stock, cell: float) -> HeightField:
         top = _mesh_top(hf, vertices, faces)
         gaps = ~np.isfinite(top)
         if gaps.any():      # cell centres on a triangle's edge: drop a point there
-            from ..dropcutter import DropCutter
-            from ..program import Tool
+            from ..engines.dropcutter import DropCutter
+            from ..ir.program import Tool
 
             gx, gy = np.meshgrid(hf.x(), hf.y(), indexing="ij")
             top[gaps] = DropCutter(vertices, faces, Tool(0, "flat", 0.002), bucket=1.0).points(
@@ -56,7 +55,7 @@ def _grid(stock, cell: float) -> HeightField:
 
 def _compiled_kernels(kernel: str):
     """The compiled kernels module for ``kernel`` ("auto", "numba", "numpy"), or None for numpy
-    (see :mod:`toolpath.compiled`)."""
+    (see :mod:`toolpath.engines.compiled`)."""
     return kernel_module(kernel, f"{__package__}.kernel", SimulationError, "numba kernel")
 
 

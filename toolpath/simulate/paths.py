@@ -7,8 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .. import kinematics
-from ..program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool, arc_sweep
+from ..ir import kinematics
+from ..ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool, arc_sweep
 from .stock import CHORD_TOLERANCE, SimulationError
 
 def can_plunge(tool: Tool, no_plunge_tools=()) -> bool:

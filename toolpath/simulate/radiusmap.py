@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..program import ARC_CCW, ARC_CW, Operation
+from ..ir.program import ARC_CCW, ARC_CW, Operation
 
 _STAMP_BATCH = 1024      # ball stamps evaluated together (bounds the memory of one batch)
 _TRIANGLE_BATCH = 4096   # design triangles sliced together

@@ -7,12 +7,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from manifold3d import Manifold, Mesh
 
-from ..errors import InputError
+from ..ir.errors import InputError
 from . import radiusmap as rmap
 from . import sweep
 
 ENGINES = ("heightfield", "manifold")
-from ..compiled import KERNELS  # noqa: E402,F401  (height field kernels; "auto": numba where it can be imported)
+from ..engines.compiled import KERNELS
 CHORD_TOLERANCE = 0.01     # mm: arcs and rotary moves are cut into chords this close to the path
 TOUCH_TOLERANCE = 1e-3     # mm: a rapid must go this deep into material to count as touching it
 GOUGE_TOLERANCE = 1e-3     # mm: cutting this far below the design is reported

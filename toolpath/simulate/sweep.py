@@ -55,7 +55,7 @@ import math
 import numpy as np
 from manifold3d import CrossSection, Error, FillRule, JoinType, Manifold, Mesh64, OpType
 
-from ..program import Tool
+from ..ir.program import Tool
 from .repeats import _Level, _RadialLevel, _Repeats
 
 MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
