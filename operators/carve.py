@@ -8,7 +8,6 @@ point up to its highest plus "Stock Above".
 from __future__ import annotations
 
 import os
-import time
 from dataclasses import dataclass
 from types import SimpleNamespace
 
@@ -22,6 +21,8 @@ from ..toolpath.operations.carve import carve_samples
 from ..toolpath.engines import meshdata
 from ..toolpath.ir.program import Tool
 from ..toolpath.simulate import BoxStock
+from ..toolpath.job import Job, JobOperation, Setup, plan_job
+from ..toolpath.operations.carve.kind import CarveGeometry
 from . import convert
 from . import gate
 from .common import SteppedOperator, run_reported
@@ -78,14 +79,12 @@ def design_mesh(scene, depsgraph) -> tuple:
 
 def run_on_mesh(vertices, faces, settings: core.CarveSettings, frame, stock_above: float = 0.0, name="carve",
                 work_offset="G54", rapid_rate=5000.0, progress=None) -> CarveJob:
-    """Plan (timed) without touching Blender data."""
-    vertices, faces = core.check_mesh(vertices, faces)
-    started = time.perf_counter()
-    result = core.plan(vertices, faces, settings, name=name, stock_top=float(vertices[:, 2].max()) + stock_above,
-                       progress=progress)
-    result.program.work_offset = work_offset
-    result.program.rapid_rate = rapid_rate
-    return CarveJob(result, vertices, faces, frame, time.perf_counter() - started)
+    """Plan (timed) without touching Blender data: a job of one carving operation."""
+    setup = Setup(name=name, work_offset=work_offset, rapid_rate=rapid_rate)
+    geometry = CarveGeometry(np.asarray(vertices), np.asarray(faces), float(stock_above))
+    planned = plan_job(Job(setup, (JobOperation("carve", "carve", settings, geometry),)), progress=progress)
+    part = planned.parts[0]
+    return CarveJob(part.result.result, part.result.vertices, part.result.faces, frame, part.seconds)
 
 
 def carve_request(scene, depsgraph):

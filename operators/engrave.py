@@ -18,6 +18,8 @@ from ..toolpath.operations.engrave import engrave as core
 from ..toolpath.engines import meshdata
 from ..toolpath.operations.engrave import surface_engrave
 from ..toolpath.ir.program import Tool
+from ..toolpath.job import Job, JobOperation, Setup, plan_job
+from ..toolpath.operations.engrave.kind import EngraveGeometry
 from . import convert
 from . import gate
 from .common import SteppedOperator
@@ -112,22 +114,16 @@ def engrave_request(scene, depsgraph, post_name: str | None = None):
     engrave_settings, name = settings_from(props, machine), scene.name
     work_offset, rapid_rate = settings.machine.work_offset, settings.machine.rapid_rate
 
+    geometry = EngraveGeometry(tuple(plate.outline), float(plate.size[2]),
+                               tuple((name, tuple(loops)) for name, loops in letters), tuple(texts.items()), surface)
+    setup = Setup(name=name, post=post_name or scene_post(scene), machine=machine, work_offset=work_offset,
+                  rapid_rate=rapid_rate)
+    job = Job(setup, (JobOperation("engrave", "engrave", engrave_settings, geometry),))
+
     def compute(progress=None) -> EngraveJob:
-        loops = [loop for _, object_loops in letters for loop in object_loops]
-        if surface is not None:
-            curved = surface_engrave.plan(plate.outline, letters, surface, engrave_settings, name=name,
-                                          progress=progress, plate_thickness=float(plate.size[2]), texts=texts)
-            for program in (curved.result.program, curved.baked, curved.macro):
-                program.work_offset, program.rapid_rate = work_offset, rapid_rate
-                program.notes = list(curved.result.warnings)
-            return EngraveJob(curved.result, curved.baked, curved.depths, plate, loops, engrave_settings, curved)
-        result = core.plan(plate.outline, letters, engrave_settings, name=name, progress=progress,
-                           plate_thickness=float(plate.size[2]), texts=texts)
-        result.program.work_offset = work_offset
-        result.program.rapid_rate = rapid_rate
-        result.program.notes = list(result.warnings)
-        baked, depths = core.bake(result.program)
-        return EngraveJob(result, baked, depths, plate, loops, engrave_settings)
+        outcome = plan_job(job, progress=progress).parts[0].result
+        return EngraveJob(outcome.result, outcome.baked, outcome.depths, plate, geometry.letter_loops,
+                          engrave_settings, outcome.surface)
     return compute
 
 

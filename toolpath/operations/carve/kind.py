@@ -1,0 +1,39 @@
+"""Carving as an operation kind of the job model: Z-level roughing, the ball finishing raster, the
+steep-region cleanup and the wall pass over a design mesh (:mod:`.carve`)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from types import SimpleNamespace
+
+import numpy as np
+
+from ...job import DesignLayer, OperationKind, Part
+from ...simulate import BoxStock
+from . import carve
+
+
+@dataclass(frozen=True)
+class CarveGeometry:
+    """The design mesh in work mm (``vertices`` (n, 3), ``faces`` (m, 3)) and how far the stock's
+    top stands above the design's highest point (``stock_above``, mm)."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    stock_above: float = 0.0
+
+
+class CarveKind(OperationKind):
+    key = "carve"
+    label = "Carving"
+    families = ("milling",)
+    settings_type = carve.CarveSettings
+
+    def plan(self, setup, settings, geometry: CarveGeometry, progress=None) -> Part:
+        vertices, faces = carve.check_mesh(geometry.vertices, geometry.faces)
+        result = carve.plan(vertices, faces, settings, name=setup.name,
+                            stock_top=float(vertices[:, 2].max()) + float(geometry.stock_above), progress=progress)
+        result.program.work_offset = setup.work_offset
+        result.program.rapid_rate = setup.rapid_rate
+        design = DesignLayer(SimpleNamespace(vertices=vertices, faces=faces))
+        return Part(tuple(result.program.operations), BoxStock(*result.stock), design, tuple(result.warnings),
+                    (), None, SimpleNamespace(result=result, vertices=vertices, faces=faces))
