@@ -95,10 +95,10 @@ def surface_of(scene, depsgraph, frame):
     return surface_engrave.Surface(frame.to_work(world), faces, obj.name)
 
 
-def engrave_request(scene, depsgraph, post_name: str | None = None):
-    """Read the plate, the letters and the settings from the scene; return ``compute(progress)``,
-    which plans the job without touching Blender data (so it can run in steps).  ``post_name``: the
-    post the program is for (default: the scene's), whose machine gives a Safe Z of 0 its height."""
+def engrave_operation(scene, depsgraph, post_name: str | None = None, name: str = "engrave"):
+    """Read the plate, the letters and the settings from the scene: (the job operation, the job's
+    setup, the plate).  ``post_name``: the post the program is for (default: the scene's), whose
+    machine gives a Safe Z of 0 its height."""
     settings = scene.kezuri
     props = settings.engrave
     check_group(settings.machine, "machine")
@@ -110,21 +110,44 @@ def engrave_request(scene, depsgraph, post_name: str | None = None):
     letters = [(obj.name, convert.outlines_in_work(obj, depsgraph, plate.frame)) for obj in objects]
     texts = {obj.name: obj.data.body for obj in objects if obj.type == "FONT"}     # to name a glyph left uncut
     surface = surface_of(scene, depsgraph, plate.frame)
-    machine = scene_machine(settings.machine, POST_FAMILIES, post_name or scene_post(scene))
-    engrave_settings, name = settings_from(props, machine), scene.name
-    work_offset, rapid_rate = settings.machine.work_offset, settings.machine.rapid_rate
-
+    post_name = post_name or scene_post(scene)
+    machine = scene_machine(settings.machine, POST_FAMILIES, post_name)
     geometry = EngraveGeometry(tuple(plate.outline), float(plate.size[2]),
-                               tuple((name, tuple(loops)) for name, loops in letters), tuple(texts.items()), surface)
-    setup = Setup(name=name, post=post_name or scene_post(scene), machine=machine, work_offset=work_offset,
-                  rapid_rate=rapid_rate)
-    job = Job(setup, (JobOperation("engrave", "engrave", engrave_settings, geometry),))
+                               tuple((obj, tuple(loops)) for obj, loops in letters), tuple(texts.items()), surface)
+    setup = Setup(name=scene.name, post=post_name, machine=machine, work_offset=settings.machine.work_offset,
+                  rapid_rate=settings.machine.rapid_rate)
+    return JobOperation("engrave", name, settings_from(props, machine), geometry), setup, plate
+
+
+def engrave_request(scene, depsgraph, post_name: str | None = None):
+    """Read the scene (:func:`engrave_operation`); return ``compute(progress)``, which plans the job
+    without touching Blender data (so it can run in steps)."""
+    operation, setup, plate = engrave_operation(scene, depsgraph, post_name)
 
     def compute(progress=None) -> EngraveJob:
-        outcome = plan_job(job, progress=progress).parts[0].result
-        return EngraveJob(outcome.result, outcome.baked, outcome.depths, plate, geometry.letter_loops,
-                          engrave_settings, outcome.surface)
+        outcome = plan_job(Job(setup, (operation,)), progress=progress).parts[0].result
+        return EngraveJob(outcome.result, outcome.baked, outcome.depths, plate, operation.geometry.letter_loops,
+                          operation.settings, outcome.surface)
     return compute
+
+
+def job_operation(scene, depsgraph, entry, post_name: str):
+    """A job file's engraving: objects ``plate`` and ``letters`` (and ``surface``), the Engrave panel's
+    settings by name."""
+    from .jobfile import JobFileError, apply_settings
+
+    slots = {"plate": (scene.kezuri.stock, "plate"), "letters": (scene.kezuri.engrave, "letters"),
+             "surface": (scene.kezuri.engrave, "surface")}
+    for slot, obj in entry.objects.items():
+        if slot not in slots:
+            raise JobFileError(f"{entry.where}: objects.{slot}: an engraving's objects are {', '.join(slots)}")
+        setattr(*slots[slot], obj)
+    apply_settings(scene.kezuri.engrave, entry)
+    operation, setup, plate = engrave_operation(scene, depsgraph, post_name, entry.name)
+    setup = Setup(name=setup.name, post=setup.post, machine=setup.machine, work_offset=setup.work_offset,
+                  rapid_rate=setup.rapid_rate, stock=core.plate_stock(plate.outline, plate.size[2]))
+    return JobOperation(operation.kind, operation.name, operation.settings, operation.geometry,
+                        entry.enabled), setup, plate.frame
 
 
 def run_engrave(scene, depsgraph, progress=None, post_name: str | None = None) -> EngraveJob:
@@ -357,7 +380,7 @@ def batch(args) -> dict:
 
 WORKFLOW = Workflow(
     "ENGRAVE", "Engraving", "The gouge-texture name plate", classes=CLASSES, post_families=POST_FAMILIES,
-    request=engrave_request, simulation=simulation,
+    request=engrave_request, simulation=simulation, kind="engrave", job_operation=job_operation,
     commands=(BatchCommand("engrave", "gouge-texture name plate (W1)", batch_arguments, batch,
                            demo=("--post", "linuxcnc"),
                            more_demos=(("engrave-dome", ("--surface", "dome", "--post", "fanuc-macro")),)),))

@@ -111,3 +111,7 @@ def turnmill_part(scene):
     props.part = part
     props.stock_radius, props.stock_z_min, props.stock_z_max = stock.radius, stock.z_min, stock.z_max
     return part
+
+
+# The built-in scenes a job file may start from ([setup] sample = ...)
+SCENES = {"name_plate": name_plate, "rotary_block": rotary_block, "turnmill_part": turnmill_part}

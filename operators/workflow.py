@@ -49,6 +49,10 @@ class Workflow:
     simulation: Callable | None = None
     commands: tuple = field(default_factory=tuple)
     button: str = ""                  # short text on the Simulate panel's button (default: label)
+    kind: str = ""                    # its operation kind in the job model (toolpath/operations/<kind>)
+    # (scene, depsgraph, jobfile.JobEntry, post name) -> (JobOperation, Setup or None, WorkFrame or None):
+    # one operation of a job file, its objects and settings read from the scene.
+    job_operation: Callable | None = None
 
     @property
     def short_label(self) -> str:

@@ -269,15 +269,16 @@ def check_tools(operations) -> None:
             continue
         other, where = known
         if (other.kind, other.diameter, other.corner_radius) != (tool.kind, tool.diameter, tool.corner_radius):
-            raise JobError(f"tool T{tool.number} is {other.describe()} in {where!r} but {tool.describe()} in "
-                           f"{op.name!r}: give one of them another tool number")
+            raise JobError(f"tool number {tool.number} is the {other.describe()} in {where!r} but the "
+                           f"{tool.describe()} in {op.name!r}: give one of them another tool number")
 
 
 @dataclass(frozen=True)
 class LaidDesign:
     """Design layers laid in order, read as a function z(x, y) on the simulation's cell grid: the
     lowest Z the finished part allows at each point, from the last layer whose area holds it
-    (-inf where no layer speaks)."""
+    (-inf where no layer speaks); every layer's keep regions stand over all (a hole drilled into
+    an engraving's letter is a gouge of the letter)."""
 
     layers: tuple
     top: float = 0.0     # the stock's top: where a keep region without its own height is kept to
@@ -288,11 +289,11 @@ class LaidDesign:
         for layer in self.layers:
             inside = np.ones(allowed.shape, bool) if layer.area is None else _inside(layer.area, gx, gy)
             values = np.broadcast_to(_heights(layer.design, gx, gy), allowed.shape)
+            allowed = np.where(inside, values, allowed)
+        for layer in self.layers:       # what must stand stands, whatever a later layer cut around it
             for item in layer.keep_regions:
                 loops, z_min = item if isinstance(item, tuple) else (item, self.top)
-                kept = _inside(loops, gx, gy)
-                values = np.where(kept, np.maximum(values, z_min), values)
-            allowed = np.where(inside, values, allowed)
+                allowed = np.where(_inside(loops, gx, gy), np.maximum(allowed, z_min), allowed)
         return allowed
 
 

@@ -1,0 +1,247 @@
+"""Job files: ``batch.py job FILE.toml`` plans a whole job (setup + operations) and writes one
+program, its report, pictures and the gate's check over the whole job.
+
+A job file (TOML)::
+
+    [setup]
+    name = "nameplate"          # the program's name (default: the file's name)
+    sample = "name_plate"       # a built-in scene (samples.SCENES), or
+    blend = "plate.blend"       # a .blend beside the job file (its scene's objects by name)
+    text = "Kezuri"             # the name_plate sample's word
+    post = "linuxcnc"           # default: the scene's
+    machine = "linuxcnc-manual" # a machine preset (default: the post's own machine)
+
+    [[operations]]              # in the order they are cut
+    kind = "engrave"            # an operation kind (toolpath/operations/<kind>)
+    name = "name plate"         # unique in the job
+    enabled = true
+    objects = { plate = "Plate", letters = "Letters" }   # the kind's object slots
+    settings = { seed = 7 }     # the kind's panel settings by property name, checked like the panel's
+
+Every value is checked before any work: an unknown key, kind, object or setting, or a value the
+setting's range refuses, is an error naming the file, the operation and the key as typed.
+"""
+from __future__ import annotations
+
+import os
+import time
+import tomllib
+from dataclasses import dataclass
+
+from ..toolpath.ir.errors import InputError
+from ..toolpath.job import Job, Setup, plan_job
+
+SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings"}
+OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes"}
+
+
+class JobFileError(InputError):
+    """A job file that cannot be run as written: the message names the file, the table and the key."""
+
+
+@dataclass
+class JobEntry:
+    """One ``[[operations]]`` table, read: ``objects`` by slot (Blender objects), ``settings`` as
+    typed, ``where`` the words that name it in messages."""
+
+    name: str
+    kind: str
+    enabled: bool
+    objects: dict
+    settings: dict
+    table: dict
+    where: str
+
+
+def read(path: str) -> dict:
+    """The job file as a dict; a file TOML cannot read is an error naming the file and the line."""
+    try:
+        with open(path, "rb") as stream:
+            data = tomllib.load(stream)
+    except FileNotFoundError:
+        raise JobFileError(f"job file {path}: no such file") from None
+    except IsADirectoryError:
+        raise JobFileError(f"job file {path}: a folder, not a job file") from None
+    except UnicodeDecodeError:
+        raise JobFileError(f"job file {path}: not UTF-8 text") from None
+    except tomllib.TOMLDecodeError as error:
+        raise JobFileError(f"job file {path}: not TOML ({error})") from None
+    unknown = sorted(set(data) - {"setup", "operations"})
+    if unknown:
+        raise JobFileError(f"job file {path}: unknown table {unknown[0]!r}; a job file has [setup] and "
+                           "[[operations]]")
+    setup = data.get("setup", {})
+    if not isinstance(setup, dict):
+        raise JobFileError(f"job file {path}: setup must be a table")
+    unknown = sorted(set(setup) - SETUP_KEYS)
+    if unknown:
+        raise JobFileError(f"job file {path}: [setup] has an unknown key {unknown[0]!r}; the keys are "
+                           f"{', '.join(sorted(SETUP_KEYS))}")
+    operations = data.get("operations")
+    if not isinstance(operations, list) or not operations:
+        raise JobFileError(f"job file {path}: no [[operations]]; a job needs at least one")
+    for index, table in enumerate(operations, 1):
+        if not isinstance(table, dict):
+            raise JobFileError(f"job file {path}: operation {index} must be a table")
+        unknown = sorted(set(table) - OPERATION_KEYS)
+        if unknown:
+            raise JobFileError(f"job file {path}: operation {index} has an unknown key {unknown[0]!r}; the keys "
+                               f"are {', '.join(sorted(OPERATION_KEYS))}")
+        for key in ("kind", "name"):
+            if not isinstance(table.get(key), str) or not table[key].strip():
+                raise JobFileError(f"job file {path}: operation {index} needs a {key} (text)")
+        for key in ("objects", "settings"):
+            if not isinstance(table.get(key, {}), dict):
+                raise JobFileError(f"job file {path}: operation {index} ({table['name']!r}): {key} must be a table")
+        if not isinstance(table.get("enabled", True), bool):
+            raise JobFileError(f"job file {path}: operation {index} ({table['name']!r}): enabled must be "
+                               "true or false")
+    return data
+
+
+def scene_for(setup: dict, path: str):
+    """The scene the job's objects come from: the .blend named in [setup] (beside the job file),
+    else a built-in sample scene."""
+    from . import batchio, samples
+
+    if "blend" in setup and "sample" in setup:
+        raise JobFileError(f"job file {path}: [setup] gives both blend and sample; give one")
+    if "blend" in setup:
+        blend = os.path.join(os.path.dirname(os.path.abspath(path)), str(setup["blend"]))
+        return batchio.open_blend(blend)
+    scene = batchio.open_blend(None)
+    sample = setup.get("sample", "name_plate")
+    if sample not in samples.SCENES:
+        raise JobFileError(f"job file {path}: [setup] sample {sample!r} is not one of "
+                           f"{', '.join(sorted(samples.SCENES))}")
+    options = {"word": str(setup["text"])} if "text" in setup else {}
+    if options and sample != "name_plate":
+        raise JobFileError(f"job file {path}: [setup] text is for the name_plate sample")
+    samples.SCENES[sample](scene, **options)
+    return scene
+
+
+def entries(data: dict, scene, path: str) -> list:
+    import bpy
+
+    found = []
+    for index, table in enumerate(data["operations"], 1):
+        where = f"job file {os.path.basename(path)}: operation {index} ({table['name']!r})"
+        objects = {}
+        for slot, name in table.get("objects", {}).items():
+            obj = bpy.data.objects.get(name) if isinstance(name, str) else None
+            if obj is None or scene not in obj.users_scene:
+                raise JobFileError(f"{where}: objects.{slot} = {name!r} is not an object of the scene")
+            objects[slot] = obj
+        found.append(JobEntry(table["name"], table["kind"], table.get("enabled", True), objects,
+                              dict(table.get("settings", {})), table, where))
+    return found
+
+
+def apply_settings(group, entry: JobEntry, skip=()) -> None:
+    """The entry's settings into a panel's property group, each checked: an unknown name or a
+    value the property does not hold as given is an error naming it."""
+    from .batchio import set_exactly
+    from .limits import check_group
+
+    for key, value in entry.settings.items():
+        if key in skip:
+            continue
+        if key not in group.bl_rna.properties or key == "rna_type":
+            raise JobFileError(f"{entry.where}: settings.{key} is not a setting of {entry.kind}")
+        set_exactly(group, key, value, f"{entry.where}: settings.{key}")
+    check_group(group, entry.kind)
+
+
+def plan_file(path: str, post_name: str | None = None, progress=None):
+    """Read the job file and plan it: (the planned job, the setup dict, the scene)."""
+    import bpy
+
+    from .preferences import scene_post
+    from .workflows import WORKFLOWS
+
+    data = read(path)
+    setup_table = data.get("setup", {})
+    scene = scene_for(setup_table, path)
+    adapters = {w.kind: w for w in WORKFLOWS if w.kind and w.job_operation is not None}
+    post_name = post_name or setup_table.get("post") or scene_post(scene)
+    if "machine" in setup_table:
+        from . import machines
+        scene.kezuri.machine.preset = str(setup_table["machine"])
+        machines.fill_machine(scene.kezuri.machine, str(setup_table["machine"]))
+    if "work_offset" in setup_table:
+        from .batchio import set_exactly
+        set_exactly(scene.kezuri.machine, "work_offset", setup_table["work_offset"], f"job file {path}: work_offset")
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    operations, setup, frame, families = [], None, None, []
+    for entry in entries(data, scene, path):
+        if entry.kind not in adapters:
+            raise JobFileError(f"{entry.where}: kind {entry.kind!r} is not one of {', '.join(sorted(adapters))}")
+        workflow = adapters[entry.kind]
+        operation, op_setup, op_frame = workflow.job_operation(scene, depsgraph, entry, post_name)
+        operations.append(operation)
+        families += [f for f in workflow.post_families if f not in families]
+        if setup is None and op_setup is not None:
+            setup, frame = op_setup, op_frame
+    if setup is None:
+        raise JobFileError(f"job file {path}: no operation gives the stock: begin with one that works on a "
+                           "plate or a part (engrave, carve)")
+    name = str(setup_table.get("name") or os.path.splitext(os.path.basename(path))[0])
+    setup = Setup(name=name, post=post_name, machine=setup.machine, work_offset=setup.work_offset,
+                  rapid_rate=setup.rapid_rate, stock=setup.stock)
+    planned = plan_job(Job(setup, tuple(operations)), progress=progress)
+    return planned, frame, tuple(families), scene
+
+
+def batch_arguments(p):
+    p.add_argument("file", help="the job file (TOML): [setup] and [[operations]]")
+    p.add_argument("--post", help="the post (default: the job file's, else the scene's)")
+    from . import gate
+    gate.allow_findings_argument(p)
+
+
+def batch(args) -> dict:
+    from .. import post as posts
+    from . import gate, preview, simview
+    from .common import Progress
+    from .exporting import machine_post, warn, write_program
+    from .workflow import SimulationSetup
+
+    started = time.perf_counter()
+    planned, frame, families, scene = plan_file(args.file, args.post, Progress(None, "job"))
+    seconds = time.perf_counter() - started
+    setup = planned.job.setup
+    post_class = posts.find(families, setup.post)
+    program = planned.program(macro=post_class.needs_texture)
+    cut, stock, limits = planned.simulation()
+    simulation = SimulationSetup(cut, stock, limits, frame, setup.name)
+    checked, gate_report = gate.check(simulation, args.allow_findings, Progress(None, "check"), machine=setup.machine)
+    post = machine_post(families, setup.post, setup.work_offset, False, setup.machine)
+    nc_path = os.path.join(args.out, f"{setup.name}{post_class.extension}")
+    findings = []
+    write_program(nc_path, post.to_text(program), post, findings)
+    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "job-toolpaths.png"), cut.operations, stock, [],
+                                         f"JOB {setup.name.upper()}: TOOLPATHS")
+    simulation_report, png = simview.batch_simulation(scene, simulation, args.out, "job", checked)
+    report = {
+        "workflow": "job",
+        "job_file": os.path.abspath(args.file),
+        "gate": gate_report,
+        "simulation": simulation_report,
+        "post": setup.post,
+        "machine": None if setup.machine is None else setup.machine.summary(),
+        "files": [nc_path],
+        "preview": png,
+        "toolpaths_preview": toolpaths_png,
+        "toolpath_seconds": round(seconds, 3),
+        "job_operations": [{"name": item.operation.name, "kind": item.operation.kind,
+                            "operations": [op.name for op in item.part.operations],
+                            "warnings": list(item.part.warnings), "plan_seconds": round(item.part.seconds, 3)}
+                           for item in planned.planned],
+        "operations": program.summary(),
+        "tools": [tool.describe() for tool in program.tools()],
+        "cycle_time_s": round(cut.cycle_time(), 1),
+        "warnings": planned.warnings,
+    }
+    warn(findings, report)
+    return report
