@@ -11,12 +11,16 @@ Commands (``python batch.py <command> --help`` for the options):
     unfold    twisted quad -> flat pattern, turret-punch NC, DXF, SVG (W5)
     elbow     segmented pipe elbow -> flat patterns, DXF, SVG (W5)
     simulate  material removal and safety checks of any NC file we can read (W6)
+    job       a job file (TOML): several operations on one stock, one program, one check;
+              --each rows.csv runs it as a template once per row (--jobs N side by side)
     demo      every workflow on its built-in sample part, each into a sub-folder of --out
 
 Each command writes its output files, ``report.json`` and a preview PNG into --out.
 Exit status: 0 on success, 2 on bad input (the message says what to fix), 3 when the export gate
 refuses a program the simulation finds fault with (``--allow-findings`` writes it anyway, and
 ``report.json`` records the override), 130 / 143 when stopped by SIGINT (Ctrl-C) / SIGTERM.
+``job --each``: the rows that could run are written; the status is 2 when a row had bad input,
+else 3 when the gate refused a row.
 A run writes all its files or none: everything goes into a hidden staging folder beside --out and
 is moved in only when every file is written; a failure, a refusal or a stop leaves --out as it was.
 """
@@ -64,9 +68,10 @@ def write_report(out_dir: str, report: dict) -> str:
 
 
 def commands() -> dict:
-    """Every workflow's batch commands, from the shell's workflow table."""
+    """Every workflow's batch commands, from the shell's workflow table, and ``job`` (job files)."""
+    from kezuri.operators import jobbatch
     from kezuri.operators.workflows import commands as table_commands
-    return table_commands()
+    return {**table_commands(), jobbatch.COMMAND.name: jobbatch.COMMAND}
 
 
 def demo(args, final=lambda value: value) -> dict:
@@ -182,7 +187,7 @@ def run(args) -> int:
     finally:
         staging.discard()
     print(f"wrote {os.path.join(staging.out, 'report.json')}")
-    return 0
+    return int(report.get("exit_status", 0)) if isinstance(report, dict) else 0
 
 
 if __name__ == "__main__":

@@ -18,7 +18,7 @@ SETTINGS = {"tool_number": "the drill's tool number", "diameter": "the drill's d
 
 
 def settings_from(entry) -> core.DrillSettings:
-    from .jobfile import JobFileError
+    from .jobentry import JobFileError
 
     given = dict(entry.settings)
     for key, value in given.items():
@@ -36,14 +36,14 @@ def settings_from(entry) -> core.DrillSettings:
                     flute_length=float(given.get("flute_length", default.tool.flute_length)),
                     name=f"{float(given.get('diameter', default.tool.diameter)):g} mm drill")
     except ProgramError as error:
-        raise JobFileError(f"{entry.where}: {error}") from None
+        raise JobFileError(f"{entry.where}: the drill: {error}") from None
     numbers = {key: float(given[key]) for key in ("depth", "peck", "rpm", "feed") if key in given}
     return core.DrillSettings(tool=tool, **numbers)
 
 
 def job_operation(scene, depsgraph, entry, post_name: str):
     """A job file's drilling: ``holes = [[x, y], ...]`` in work mm (the plate's top at Z = 0)."""
-    from .jobfile import JobFileError
+    from .jobentry import JobFileError
 
     if entry.objects:
         raise JobFileError(f"{entry.where}: drilling takes its holes as holes = [[x, y], ...], not objects")
@@ -54,7 +54,7 @@ def job_operation(scene, depsgraph, entry, post_name: str):
         settings = settings_from(entry)
         settings.check()
     except core.DrillError as error:
-        raise JobFileError(f"{entry.where}: {error}") from None
+        raise JobFileError(f"{entry.where}: the holes or the drill: {error}") from None
     geometry = DrillGeometry(tuple(map(tuple, holes.tolist())), 0.0)
     return JobOperation("drill", entry.name, settings, geometry, entry.enabled), None, None
 

@@ -134,7 +134,7 @@ def engrave_request(scene, depsgraph, post_name: str | None = None):
 def job_operation(scene, depsgraph, entry, post_name: str):
     """A job file's engraving: objects ``plate`` and ``letters`` (and ``surface``), the Engrave panel's
     settings by name."""
-    from .jobfile import JobFileError, apply_settings
+    from .jobentry import JobFileError, apply_settings
 
     slots = {"plate": (scene.kezuri.stock, "plate"), "letters": (scene.kezuri.engrave, "letters"),
              "surface": (scene.kezuri.engrave, "surface")}

@@ -26,38 +26,23 @@ from __future__ import annotations
 import os
 import time
 import tomllib
-from dataclasses import dataclass
 
-from ..toolpath.ir.errors import InputError
 from ..toolpath.job import Job, Setup, plan_job
+from .jobentry import JobEntry, JobFileError
 
 SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings"}
 OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes"}
 
 
-class JobFileError(InputError):
-    """A job file that cannot be run as written: the message names the file, the table and the key."""
-
-
-@dataclass
-class JobEntry:
-    """One ``[[operations]]`` table, read: ``objects`` by slot (Blender objects), ``settings`` as
-    typed, ``where`` the words that name it in messages."""
-
-    name: str
-    kind: str
-    enabled: bool
-    objects: dict
-    settings: dict
-    table: dict
-    where: str
-
-
-def read(path: str) -> dict:
-    """The job file as a dict; a file TOML cannot read is an error naming the file and the line."""
+def read(path: str, text: str | None = None) -> dict:
+    """The job file as a dict (``text``: its contents already read, e.g. a template's row); a file
+    TOML cannot read is an error naming the file and the line."""
     try:
-        with open(path, "rb") as stream:
-            data = tomllib.load(stream)
+        if text is not None:
+            data = tomllib.loads(text)
+        else:
+            with open(path, "rb") as stream:
+                data = tomllib.load(stream)
     except FileNotFoundError:
         raise JobFileError(f"job file {path}: no such file") from None
     except IsADirectoryError:
@@ -99,7 +84,7 @@ def read(path: str) -> dict:
     return data
 
 
-def scene_for(setup: dict, path: str):
+def scene_for(setup: dict, path: str, base_dir: str | None = None):
     """The scene the job's objects come from: the .blend named in [setup] (beside the job file),
     else a built-in sample scene."""
     from . import batchio, samples
@@ -107,7 +92,7 @@ def scene_for(setup: dict, path: str):
     if "blend" in setup and "sample" in setup:
         raise JobFileError(f"job file {path}: [setup] gives both blend and sample; give one")
     if "blend" in setup:
-        blend = os.path.join(os.path.dirname(os.path.abspath(path)), str(setup["blend"]))
+        blend = os.path.join(base_dir or os.path.dirname(os.path.abspath(path)), str(setup["blend"]))
         return batchio.open_blend(blend)
     scene = batchio.open_blend(None)
     sample = setup.get("sample", "name_plate")
@@ -138,31 +123,19 @@ def entries(data: dict, scene, path: str) -> list:
     return found
 
 
-def apply_settings(group, entry: JobEntry, skip=()) -> None:
-    """The entry's settings into a panel's property group, each checked: an unknown name or a
-    value the property does not hold as given is an error naming it."""
-    from .batchio import set_exactly
-    from .limits import check_group
-
-    for key, value in entry.settings.items():
-        if key in skip:
-            continue
-        if key not in group.bl_rna.properties or key == "rna_type":
-            raise JobFileError(f"{entry.where}: settings.{key} is not a setting of {entry.kind}")
-        set_exactly(group, key, value, f"{entry.where}: settings.{key}")
-    check_group(group, entry.kind)
-
-
-def plan_file(path: str, post_name: str | None = None, progress=None):
-    """Read the job file and plan it: (the planned job, the setup dict, the scene)."""
+def plan_file(path: str, post_name: str | None = None, progress=None, text: str | None = None,
+              base_dir: str | None = None):
+    """Read the job file (``text``: its contents, already read) and plan it: (the planned job, the
+    work frame, the post families, the scene).  ``base_dir``: where the file's relative paths start
+    (default: the file's folder)."""
     import bpy
 
     from .preferences import scene_post
     from .workflows import WORKFLOWS
 
-    data = read(path)
+    data = read(path, text)
     setup_table = data.get("setup", {})
-    scene = scene_for(setup_table, path)
+    scene = scene_for(setup_table, path, base_dir)
     adapters = {w.kind: w for w in WORKFLOWS if w.kind and w.job_operation is not None}
     post_name = post_name or setup_table.get("post") or scene_post(scene)
     if "machine" in setup_table:
@@ -193,14 +166,9 @@ def plan_file(path: str, post_name: str | None = None, progress=None):
     return planned, frame, tuple(families), scene
 
 
-def batch_arguments(p):
-    p.add_argument("file", help="the job file (TOML): [setup] and [[operations]]")
-    p.add_argument("--post", help="the post (default: the job file's, else the scene's)")
-    from . import gate
-    gate.allow_findings_argument(p)
-
-
-def batch(args) -> dict:
+def write_job(path: str, out: str, post_name: str | None = None, allow_findings: bool = False,
+              text: str | None = None, base_dir: str | None = None) -> dict:
+    """Plan the job file, check it, write its program, pictures and report data into ``out``."""
     from .. import post as posts
     from . import gate, preview, simview
     from .common import Progress
@@ -208,24 +176,24 @@ def batch(args) -> dict:
     from .workflow import SimulationSetup
 
     started = time.perf_counter()
-    planned, frame, families, scene = plan_file(args.file, args.post, Progress(None, "job"))
+    planned, frame, families, scene = plan_file(path, post_name, Progress(None, "job"), text, base_dir)
     seconds = time.perf_counter() - started
     setup = planned.job.setup
     post_class = posts.find(families, setup.post)
     program = planned.program(macro=post_class.needs_texture)
     cut, stock, limits = planned.simulation()
     simulation = SimulationSetup(cut, stock, limits, frame, setup.name)
-    checked, gate_report = gate.check(simulation, args.allow_findings, Progress(None, "check"), machine=setup.machine)
+    checked, gate_report = gate.check(simulation, allow_findings, Progress(None, "check"), machine=setup.machine)
     post = machine_post(families, setup.post, setup.work_offset, False, setup.machine)
-    nc_path = os.path.join(args.out, f"{setup.name}{post_class.extension}")
+    nc_path = os.path.join(out, f"{setup.name}{post_class.extension}")
     findings = []
     write_program(nc_path, post.to_text(program), post, findings)
-    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "job-toolpaths.png"), cut.operations, stock, [],
+    toolpaths_png = preview.toolpath_png(os.path.join(out, "job-toolpaths.png"), cut.operations, stock, [],
                                          f"JOB {setup.name.upper()}: TOOLPATHS")
-    simulation_report, png = simview.batch_simulation(scene, simulation, args.out, "job", checked)
+    simulation_report, png = simview.batch_simulation(scene, simulation, out, "job", checked)
     report = {
         "workflow": "job",
-        "job_file": os.path.abspath(args.file),
+        "job_file": os.path.abspath(path),
         "gate": gate_report,
         "simulation": simulation_report,
         "post": setup.post,

@@ -766,6 +766,11 @@ MESSAGES = {
     # toolpath/pictures/picture.py, toolpath/pictures/picture_jobs.py
     "nothing to draw: no finite point to frame": "描くものがありません：枠に収める有限の点がありません",
     "no pattern to draw": "描く展開図がありません",
+    # jobs (issue 28)
+    "--jobs is for the rows of --each": "--jobs は --each の行のためのものです",
+    "the job has no operation switched on": "ジョブに有効な加工がありません",
+    "a design mesh can only be the job's one design layer for now":
+        "設計メッシュは、現在ジョブの唯一の設計レイヤーとしてのみ使えます",
 }
 
 
@@ -1780,6 +1785,70 @@ MESSAGE_TEMPLATES = {
     'mesh {}: a face index is outside 0..{}': 'メッシュ {0}：面の頂点番号が 0〜{1} の範囲外です',
     'Kezuri: the simulation kernels were not compiled ahead ({}); the first Simulate compiles them':
         'Kezuri：シミュレーションのカーネルを前もってコンパイルできませんでした（{0}）。最初のシミュレーションでコンパイルします',
+    # jobs and job files (issue 28)
+    '{}: settings.{} is not a drilling setting; they are {}': '{0}：settings.{1} は穴あけの設定ではありません（設定は {2}）',
+    '{}: settings.{} = {} is not a number': '{0}：settings.{1} = {2} は数値ではありません',
+    '{}: settings.tool_number = {} is not a whole number': '{0}：settings.tool_number = {1} は整数ではありません',
+    '{}: the drill: {}': '{0}：ドリル：{1}',
+    '{}: the holes or the drill: {}': '{0}：穴またはドリル：{1}',
+    '{}: drilling takes its holes as holes = [[x, y], ...], not objects':
+        '{0}：穴あけの穴はオブジェクトではなく holes = [[x, y], ...] で指定します',
+    '{}: no holes: give holes = [[x, y], ...] in work mm': '{0}：穴がありません：holes = [[x, y], ...]（ワーク座標 mm）を指定してください',
+    "{}: objects.{}: an engraving's objects are {}": '{0}：objects.{1}：彫刻のオブジェクトは {2} です',
+    'job file {}: operation {} ({}): enabled must be true or false': 'ジョブファイル {0}：加工 {1}（{2}）：enabled は true か false です',
+    'job file {}: [setup] gives both blend and sample; give one': 'ジョブファイル {0}：[setup] に blend と sample の両方があります。どちらか一方にしてください',
+    'job file {}: [setup] sample {} is not one of {}': 'ジョブファイル {0}：[setup] の sample {1} は {2} のいずれでもありません',
+    'job file {}: [setup] text is for the name_plate sample': 'ジョブファイル {0}：[setup] の text は name_plate サンプル用です',
+    '{}: objects.{} = {} is not an object of the scene': '{0}：objects.{1} = {2} はシーンのオブジェクトではありません',
+    '{}: settings.{} is not a setting of {}': '{0}：settings.{1} は {2} の設定ではありません',
+    '{}: kind {} is not one of {}': '{0}：種類 {1} は {2} のいずれでもありません',
+    'job file {}: no operation gives the stock: begin with one that works on a plate or a part (engrave, carve)':
+        'ジョブファイル {0}：素材を決める加工がありません。板や部品を加工するもの（engrave、carve）から始めてください',
+    'job file {}: no such file': 'ジョブファイル {0}：ファイルがありません',
+    'job file {}: a folder, not a job file': 'ジョブファイル {0}：ジョブファイルではなくフォルダーです',
+    'job file {}: not UTF-8 text': 'ジョブファイル {0}：UTF-8 のテキストではありません',
+    'job file {}: not TOML ({})': 'ジョブファイル {0}：TOML ではありません（{1}）',
+    'job file {}: unknown table {}; a job file has [setup] and [[operations]]':
+        'ジョブファイル {0}：不明な表 {1}。ジョブファイルにあるのは [setup] と [[operations]] です',
+    'job file {}: setup must be a table': 'ジョブファイル {0}：setup は表でなければなりません',
+    'job file {}: [setup] has an unknown key {}; the keys are {}': 'ジョブファイル {0}：[setup] に不明なキー {1} があります（キーは {2}）',
+    'job file {}: no [[operations]]; a job needs at least one': 'ジョブファイル {0}：[[operations]] がありません。ジョブには少なくとも1つ必要です',
+    'job file {}: operation {} must be a table': 'ジョブファイル {0}：加工 {1} は表でなければなりません',
+    'job file {}: operation {} has an unknown key {}; the keys are {}': 'ジョブファイル {0}：加工 {1} に不明なキー {2} があります（キーは {3}）',
+    'job file {}: operation {} needs a {} (text)': 'ジョブファイル {0}：加工 {1} には {2}（テキスト）が必要です',
+    'job file {}: operation {} ({}): {} must be a table': 'ジョブファイル {0}：加工 {1}（{2}）：{3} は表でなければなりません',
+    '--each {}: no such file': '--each {0}：ファイルがありません',
+    '--each {}: a folder, not a CSV file': '--each {0}：CSV ファイルではなくフォルダーです',
+    '--each {}: not UTF-8 text (save the CSV as UTF-8)': '--each {0}：UTF-8 のテキストではありません（CSV を UTF-8 で保存してください）',
+    '--each {}: not a CSV file ({})': '--each {0}：CSV ファイルではありません（{1}）',
+    '--each {}: empty; the first line names the columns': '--each {0}：空です。1行目に列名を書いてください',
+    '--each {}: line 1 has an empty column name': '--each {0}：1行目に空の列名があります',
+    '--each {}: line 1 names the column {} twice': '--each {0}：1行目で列 {1} が2回あります',
+    '--each {}: no rows under the header line': '--each {0}：見出し行の下に行がありません',
+    '--each {}: {} rows; at most {} in one run': '--each {0}：{1} 行あります。1回の実行で最大 {2} 行です',
+    '--each {}: line {} has {} values for {} columns': '--each {0}：{1} 行目の値は {2} 個ですが、列は {3} 個です',
+    "{}: the job file's line {} asks for {{{{{}}}}}, a column the CSV does not have ({})":
+        '{0}：ジョブファイルの {1} 行目が {{{{{2}}}}} を求めていますが、CSV にその列はありません（{3}）',
+    '{}: column {} = {} is not a number, and the job file uses it outside quotes (as a number)':
+        '{0}：列 {1} = {2} は数値ではありませんが、ジョブファイルは引用符の外（数値として）で使っています',
+    'operation kind {} is declared twice': '加工の種類 {0} が2回宣言されています',
+    'unknown operation kind {}; the kinds are {}': '不明な加工の種類 {0}（種類は {1}）',
+    'tool number {} is the {} in {} but the {} in {}: give one of them another tool number':
+        '工具番号 {0} は {2} では {1}、{4} では {3} です。どちらかに別の工具番号を付けてください',
+    'two operations are named {}: give each operation its own name': '2つの加工が {0} という名前です。それぞれに別の名前を付けてください',
+    "operation {} ({}) runs on {} machines, not on the job's {} machine":
+        '加工 {0}（{1}）は {2} の機械用で、ジョブの {3} の機械では使えません',
+    'operation {}: settings must be {}, got {}': '加工 {0}：設定は {1} でなければなりません（指定は {2}）',
+    'drilling needs a drill, not a {}': '穴あけにはドリルが必要です（{0} ではなく）',
+    'drilling: {} must be a positive number, got {}': '穴あけ：{0} は正の数でなければなりません（指定値 {1}）',
+    'drilling: {} must be 0 or more, got {}': '穴あけ：{0} は 0 以上でなければなりません（指定値 {1}）',
+    "drilling: depth {} mm is deeper than the {}'s {} mm flutes": '穴あけ：深さ {0} mm は {1} の刃長 {2} mm より深いです',
+    'drilling: the approach gap {} mm, clearance plane {} mm and safe Z {} mm must rise in that order':
+        '穴あけ：アプローチ隙間 {0} mm、クリアランス面 {1} mm、安全 Z {2} mm はこの順に高くなければなりません',
+    'holes must be (x, y) pairs in mm, got {}': '穴は mm の (x, y) の組でなければなりません（指定値 {0}）',
+    'holes must be a list of (x, y) pairs in mm, got shape {}': '穴は mm の (x, y) の組のリストでなければなりません（形 {0}）',
+    'hole {} has a coordinate that is not a number: {}': '穴 {0} の座標に数値でないものがあります：{1}',
+    'holes {} and {} are the same point {}': '穴 {0} と {1} は同じ点 {2} です',
 }
 
 

@@ -5,8 +5,7 @@ the demo loop over :data:`WORKFLOWS`; nothing else lists the workflows.
 """
 from __future__ import annotations
 
-from .workflow import BatchCommand
-from . import carve, drill, engrave, jobfile, ncfile, rotary, sheetmetal, stepnc, turnmill
+from . import carve, drill, engrave, ncfile, rotary, sheetmetal, stepnc, turnmill
 
 WORKFLOWS = (engrave.WORKFLOW, rotary.WORKFLOW, stepnc.WORKFLOW, turnmill.WORKFLOW, sheetmetal.WORKFLOW,
              carve.WORKFLOW, drill.WORKFLOW, ncfile.WORKFLOW)
@@ -25,11 +24,8 @@ def workflow_of(key: str):
 
 
 def commands() -> dict:
-    """Batch commands by name: every workflow's, and ``job`` (a job file of several operations)."""
-    found = {command.name: command for workflow in WORKFLOWS for command in workflow.commands}
-    found["job"] = BatchCommand("job", "a job file (TOML): several operations on one stock, one program",
-                                jobfile.batch_arguments, jobfile.batch, demo=None)
-    return found
+    """Batch commands by name: every workflow's."""
+    return {command.name: command for workflow in WORKFLOWS for command in workflow.commands}
 
 
 def job_items() -> list:
