@@ -159,6 +159,8 @@ def write_setup_sheet(out_dir: str, report: dict) -> dict:
     pictures = [(caption, data) for key, caption in SHEET_PICTURES
                 if (data := read(report.get(key))) is not None and data.startswith(setupsheet.PNG_SIGNATURE)]
     workflow, program = report.get("workflow"), (report.get("gate") or {}).get("program")
+    if program is None and isinstance(report.get("nc"), str):
+        program = os.path.basename(report["nc"])
     name = f"{workflow}: {program}" if workflow and program else None
     sheet = setupsheet.sheet_from(None, report, machine_label(report.get("machine")), post_label(report) or None,
                                   pictures, programs=programs, job_name=name)

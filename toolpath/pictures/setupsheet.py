@@ -256,7 +256,7 @@ GATE_CLASSES = {"passed": "gate-passed", "refused": "gate-refused", "written des
 GATE_WORDS = {"passed": "Passed: the simulation found nothing that stops the program.",
               "refused": "Refused: the program was not written.",
               "written despite findings": "Written despite findings: the override was given knowingly.",
-              "not run": "Not run: no simulation checked this program."}
+              "not run": "Not run: the export gate did not check this program."}
 
 
 def _text(value) -> str:
