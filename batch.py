@@ -86,7 +86,8 @@ def demo(args, final=lambda value: value) -> dict:
             sub = parser().parse_args([name, *line, "--out", os.path.join(args.out, folder)])
             report = final(finished(command, sub))
             write_report(sub.out, report)
-            results[folder] = {"files": report["files"], "preview": report.get("preview")}
+            results[folder] = {"files": report["files"], "preview": report.get("preview"),
+                               "setup_sheet": report.get("setup_sheet")}
             print(f"{folder}: wrote {', '.join(report['files'])}")
     return {"workflow": "demo", "files": [f for r in results.values() for f in r["files"]], "workflows": results}
 

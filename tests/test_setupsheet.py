@@ -26,7 +26,8 @@ def operation(name, tool, rpm, moves, start=(0.0, 0.0, 50.0)):
     kind = [k for k, _, _ in moves]
     xyz = [p for _, p, _ in moves]
     feed = [np.nan if f is None else f for _, _, f in moves]
-    return Operation(name, tool, rpm, np.array(kind), np.array(xyz, float), np.array(feed, float), start=np.array(start))
+    return Operation(name, tool, rpm, np.array(kind), np.array(xyz, float), np.array(feed, float),
+                     start=np.array(start))
 
 
 def two_tool_program(name="PLATE-01"):

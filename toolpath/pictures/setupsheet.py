@@ -133,23 +133,28 @@ def rate(value: float | None) -> str:
 
 # ----- stock and work zero -----------------------------------------------------------------------
 
+def _mm6(value) -> float:
+    return round(float(value), 6)
+
+
 def stock_entry(stock) -> dict | None:
-    """A stock as plain numbers (mm) for the sheet and report.json: a box (``x0``..``z1``; a curved
-    plate's box with ``"surface": True``), a cylinder about Z (``radius``, ``height``, ``z_top``; a
-    turn-mill bar's ``z_min``/``z_max`` read as one), a dict as it is, or None."""
+    """A stock as plain numbers (mm, to 6 decimals) for the sheet and report.json: a box (``x0``..``z1``;
+    a curved plate's box with ``"surface": True``), a cylinder about Z (``radius``, ``height``,
+    ``z_top``; a turn-mill bar's ``z_min``/``z_max`` read as one), a dict as it is, or None."""
     if stock is None or isinstance(stock, dict):
         return stock
     if all(hasattr(stock, name) for name in ("x0", "y0", "z0", "x1", "y1", "z1")):
-        entry = {"kind": "box", **{name: float(getattr(stock, name)) for name in ("x0", "y0", "z0", "x1", "y1", "z1")}}
-        if getattr(stock, "surface", None):
+        entry = {"kind": "box", **{name: _mm6(getattr(stock, name)) for name in ("x0", "y0", "z0", "x1", "y1", "z1")}}
+        surface = getattr(stock, "surface", None)
+        if surface is not None and len(surface):
             entry["surface"] = True
         return entry
     if all(hasattr(stock, name) for name in ("radius", "height", "z_top")):
-        return {"kind": "cylinder", "radius": float(stock.radius), "height": float(stock.height),
-                "z_top": float(stock.z_top)}
+        return {"kind": "cylinder", "radius": _mm6(stock.radius), "height": _mm6(stock.height),
+                "z_top": _mm6(stock.z_top)}
     if all(hasattr(stock, name) for name in ("radius", "z_min", "z_max")):
-        return {"kind": "cylinder", "radius": float(stock.radius), "height": float(stock.z_max - stock.z_min),
-                "z_top": float(stock.z_max)}
+        return {"kind": "cylinder", "radius": _mm6(stock.radius), "height": _mm6(stock.z_max - stock.z_min),
+                "z_top": _mm6(stock.z_max)}
     raise SetupSheetError(f"setup sheet: a stock of type {type(stock).__name__} is neither a box nor a cylinder")
 
 
@@ -246,7 +251,7 @@ dd { margin: 0; }
 .gate-override { border-color: #c07000; background: #fdf3e3; }
 .gate-none { border-color: #888; background: #f3f3f3; }
 figure { margin: 3mm 0; }
-figure img { display: block; max-width: 100%; height: auto; margin: 0 auto; }
+figure img { display: block; max-width: 100%; max-height: 240mm; width: auto; height: auto; margin: 0 auto; }
 figcaption { font-size: 9pt; color: #444; text-align: center; }
 @media print { body { max-width: none; } a { color: inherit; text-decoration: none; } }
 """
@@ -386,7 +391,8 @@ def _from_report(entries: list) -> tuple:
         number = entry.get("tool_number")
         if number is not None and number not in tools:
             tools[number] = SheetTool(int(number), str(entry.get("tool_kind", DASH)),
-                                      _number(entry.get("tool_diameter_mm")), _number(entry.get("tool_corner_radius_mm")),
+                                      _number(entry.get("tool_diameter_mm")),
+                                      _number(entry.get("tool_corner_radius_mm")),
                                       _number(entry.get("tool_flute_length_mm")), None, str(entry.get("tool", "")))
         moves = entry.get("moves")
         operations.append(SheetOperation(str(entry.get("name", DASH)), number, _number(entry.get("spindle_rpm")),
