@@ -15,7 +15,8 @@ Commands (``python batch.py <command> --help`` for the options):
               --each rows.csv runs it as a template once per row (--jobs N side by side)
     demo      every workflow on its built-in sample part, each into a sub-folder of --out
 
-Each command writes its output files, ``report.json`` and a preview PNG into --out.
+Each command writes its output files, ``report.json``, a preview PNG and ``setup-sheet.html`` (the
+job's setup sheet for the operator, one self-contained page) into --out.
 Exit status: 0 on success, 2 on bad input (the message says what to fix), 3 when the export gate
 refuses a program the simulation finds fault with (``--allow-findings`` writes it anyway, and
 ``report.json`` records the override), 130 / 143 when stopped by SIGINT (Ctrl-C) / SIGTERM.
@@ -74,6 +75,12 @@ def commands() -> dict:
     return {**table_commands(), jobbatch.COMMAND.name: jobbatch.COMMAND}
 
 
+def finished(command, args) -> dict:
+    """Run one batch command into ``args.out``; its report, with the setup sheet written beside it."""
+    from kezuri.operators.batchio import write_setup_sheet
+    return write_setup_sheet(args.out, command.run(args))
+
+
 def demo(args, final=lambda value: value) -> dict:
     """Every workflow on its built-in sample, each into its own sub-folder of --out; ``final`` maps
     the staged paths to where the files will be."""
@@ -82,9 +89,10 @@ def demo(args, final=lambda value: value) -> dict:
         runs = ([(name, command.demo)] if command.demo is not None else []) + list(command.more_demos)
         for folder, line in runs:
             sub = parser().parse_args([name, *line, "--out", os.path.join(args.out, folder)])
-            report = final(command.run(sub))
+            report = final(finished(command, sub))
             write_report(sub.out, report)
-            results[folder] = {"files": report["files"], "preview": report.get("preview")}
+            results[folder] = {"files": report["files"], "preview": report.get("preview"),
+                               "setup_sheet": report.get("setup_sheet")}
             print(f"{folder}: wrote {', '.join(report['files'])}")
     return {"workflow": "demo", "files": [f for r in results.values() for f in r["files"]], "workflows": results}
 
@@ -175,7 +183,7 @@ def run(args) -> int:
         if args.command == "demo":
             report = demo(args, staging.final)
         else:
-            report = staging.final(commands()[args.command].run(args))
+            report = staging.final(finished(commands()[args.command], args))
         write_report(staging.folder, report)
         staging.commit()
     except GateRefused as error:

@@ -96,3 +96,73 @@ def write_stl(path: str, vertices, faces) -> str:
 
     data = trimesh.exchange.stl.export_stl(trimesh.Trimesh(vertices, faces, process=False))
     return write_atomic(path, data)
+
+
+# ----- the setup sheet -------------------------------------------------------------------------------
+
+SHEET_NAME = "setup-sheet.html"
+SHEET_PICTURES = (("toolpaths_preview", "Toolpaths"), ("preview", "Result"))
+
+
+def program_extensions() -> set:
+    """The file extensions a post writes programs with (the post registry's)."""
+    from ..post import registry
+    return {cls.extension.lower() for cls in registry.posts()}
+
+
+def post_label(report: dict) -> str:
+    """The label of the report's post (the registry's, within the machine's family where known)."""
+    from ..post import registry
+    choice = report.get("post")
+    if not isinstance(choice, str):
+        return ""
+    machine = report.get("machine")
+    family = machine.get("family") if isinstance(machine, dict) else None
+    for families in ((family,) if family else (), None):
+        try:
+            return registry.find(families, choice).label
+        except registry.UnknownPostError:
+            continue
+    return choice
+
+
+def machine_label(machine):
+    """The report's machine: its summary (a dict), or a preset's name turned into its label."""
+    from ..toolpath.ir import machine as machines
+    if isinstance(machine, str):
+        try:
+            return machines.preset(machine).label
+        except machines.MachineError:
+            return machine
+    return machine
+
+
+def write_setup_sheet(out_dir: str, report: dict) -> dict:
+    """Write ``setup-sheet.html`` into ``out_dir`` (the staging folder) from a batch run's
+    ``report`` and the files it lists (programs, pictures); returns the report with its
+    ``setup_sheet`` entry.  Every batch command's report goes through here once (batch.py)."""
+    from ..post.output import write_atomic
+    from ..toolpath.pictures import setupsheet
+
+    def read(path) -> bytes | None:
+        if not isinstance(path, str) or not os.path.isfile(path):
+            return None
+        with open(path, "rb") as stream:
+            return stream.read()
+
+    extensions = program_extensions()
+    listed = [path for path in report.get("files") or () if os.path.splitext(str(path))[1].lower() in extensions]
+    if isinstance(report.get("nc"), str):          # the simulate command: the program it read
+        listed.append(report["nc"])
+    programs = [setupsheet.program_file(os.path.basename(path), data) for path in listed
+                if (data := read(path)) is not None]
+    pictures = [(caption, data) for key, caption in SHEET_PICTURES
+                if (data := read(report.get(key))) is not None and data.startswith(setupsheet.PNG_SIGNATURE)]
+    workflow, program = report.get("workflow"), (report.get("gate") or {}).get("program")
+    if program is None and isinstance(report.get("nc"), str):
+        program = os.path.basename(report["nc"])
+    name = f"{workflow}: {program}" if workflow and program else None
+    sheet = setupsheet.sheet_from(None, report, machine_label(report.get("machine")), post_label(report) or None,
+                                  pictures, programs=programs, job_name=name)
+    path = write_atomic(os.path.join(out_dir, SHEET_NAME), setupsheet.setup_sheet(sheet).encode("utf-8"))
+    return {**report, "setup_sheet": path}

@@ -16,6 +16,7 @@ import time
 
 from ..toolpath.ir import machine as machines
 from ..toolpath import simulate as core
+from ..toolpath.pictures.setupsheet import stock_entry
 from ..toolpath.ir.errors import InputError
 from . import simview
 
@@ -84,7 +85,10 @@ def check(setup, allow: bool | str = False, progress=None, machine=None):
     report = {"findings": [{"kind": f.kind, "operation": f.operation, "move": f.move, "message": f.message,
                             "depth_mm": None if f.depth_mm is None else round(float(f.depth_mm), 4)}
                            for f in faults],
-              "overridden": False, "seconds": round(time.perf_counter() - started, 3), "cell_mm": cell}
+              "overridden": False, "seconds": round(time.perf_counter() - started, 3), "cell_mm": cell,
+              # what was checked: the setup sheet reads these
+              "program": getattr(setup.program, "name", setup.name), "stock": stock_entry(setup.stock),
+              "work_offset": getattr(setup.program, "work_offset", "")}
     if faults:
         acknowledged = allow is True or (isinstance(allow, str) and allow and allow == signature(faults))
         if not acknowledged:

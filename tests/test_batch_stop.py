@@ -104,7 +104,8 @@ def test_a_successful_run_reports_the_final_paths(tmp_path):
     assert code == 0, message
     text = (out / "report.json").read_text()
     assert "staging" not in text and str(out / "unfold.nc") in text
-    assert sorted(os.listdir(out)) == ["report.json", "unfold.dxf", "unfold.nc", "unfold.png", "unfold.svg"]
+    assert sorted(os.listdir(out)) == ["report.json", "setup-sheet.html", "unfold.dxf", "unfold.nc", "unfold.png",
+                                       "unfold.svg"]
     assert os.listdir(tmp_path) == ["deep"]
 
 

@@ -229,12 +229,44 @@ class Operation:
         z = self.xyz[cutting, 2]
         return (float(z.min()), float(z.max()))
 
+    def feeds(self) -> tuple:
+        """(cutting feed, plunge feed) in mm/min, None where the operation has no such move: the
+        cutting feed is the one the longest share of the cutting length runs at; the plunge feed
+        the one of the longest share of the straight feed moves going only down Z (X, Y and the
+        rotary axes still)."""
+        cutting = self.kind != RAPID
+        if not cutting.any():
+            return None, None
+        lengths = self.move_lengths()
+        a, b = self.start_points(), self.xyz
+        still = np.all(np.abs(b[:, :2] - a[:, :2]) <= 1e-9, axis=1) & (b[:, 2] < a[:, 2])
+        for values in self.rotary.values():
+            before = np.concatenate([values[:1], values[:-1]])
+            still &= np.abs(values - before) <= 1e-9
+        plunges = (self.kind == FEED) & still
+        return _weighted_mode(self.feed[cutting & ~plunges], lengths[cutting & ~plunges]), \
+            _weighted_mode(self.feed[plunges], lengths[plunges])
+
     def summary(self, rapid_rate: float) -> dict:
         zmin, zmax = self.feed_z_range()
-        return {"name": self.name, "tool": self.tool.describe(), "tool_number": self.tool.number,
+        feed, plunge = self.feeds()
+        tool = self.tool
+        return {"name": self.name, "tool": tool.describe(), "tool_number": tool.number,
+                "tool_kind": tool.kind, "tool_diameter_mm": float(tool.diameter),
+                "tool_corner_radius_mm": float(tool.corner_radius), "tool_flute_length_mm": float(tool.flute_length),
+                "spindle_rpm": float(self.spindle_rpm),
+                "feed_mm_min": feed, "plunge_feed_mm_min": plunge,
                 "moves": len(self), "feed_length_mm": round(self.feed_length(), 3),
                 "cycle_time_s": round(self.cycle_time(rapid_rate), 1),
                 "min_feed_z_mm": round(zmin, 4), "max_feed_z_mm": round(zmax, 4)}
+
+
+def _weighted_mode(values: np.ndarray, weights: np.ndarray) -> float | None:
+    """The value carrying the largest total weight (the first of equals); None for no values."""
+    if not len(values):
+        return None
+    unique, index = np.unique(values, return_inverse=True)
+    return float(unique[int(np.argmax(np.bincount(index.ravel(), weights=weights)))])
 
 
 class TurnMillError(InputError):
