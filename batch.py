@@ -78,7 +78,10 @@ def commands() -> dict:
 def finished(command, args) -> dict:
     """Run one batch command into ``args.out``; its report, with the setup sheet written beside it."""
     from kezuri.operators.batchio import write_setup_sheet
-    return write_setup_sheet(args.out, command.run(args))
+    report = command.run(args)
+    if "rows" in report:            # a template's summary: each row's folder has its own sheet
+        return report
+    return write_setup_sheet(args.out, report)
 
 
 def demo(args, final=lambda value: value) -> dict:
@@ -179,6 +182,7 @@ def run(args) -> int:
         print(f"kezuri: {error}", file=sys.stderr)
         return 2
     args.out = staging.folder
+    args.final = staging.final          # where the staged paths will be (a template's rows write reports)
     try:
         if args.command == "demo":
             report = demo(args, staging.final)

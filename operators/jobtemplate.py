@@ -157,6 +157,9 @@ def batch_rows(args) -> dict:
         for index, folder, text, _ in runnable:
             results[index] = run_here(args, base_dir, index, folder, text)
             print_row(results[index], len(rows))
+    for result in results.values():
+        if result["folder"] is not None:
+            relocate(os.path.join(args.out, result["folder"], "report.json"), getattr(args, "final", None))
     summary = [results[index] for index in sorted(results)]
     failed = [r for r in summary if r["status"] != "written"]
     status = 0 if not failed else (2 if any(r["status"] == "bad input" for r in failed) else 3)
@@ -165,6 +168,19 @@ def batch_rows(args) -> dict:
     return {"workflow": "job", "template": os.path.abspath(args.file), "rows_file": os.path.abspath(args.each),
             "columns": columns, "rows": summary, "written": len(summary) - len(failed), "failed": len(failed),
             "seconds": round(time.perf_counter() - started, 3), "exit_status": status}
+
+
+def relocate(path: str, final) -> None:
+    """A row's report with the paths it names where the run's files will end up (``final``: the
+    batch run's staging map; None: they are there already)."""
+    import json
+
+    from ..post import write_atomic
+    if final is None:
+        return
+    with open(path, encoding="utf-8") as stream:
+        report = json.load(stream)
+    write_atomic(path, json.dumps(final(report), indent=2, sort_keys=True) + "\n")
 
 
 def print_row(result: dict, count: int) -> None:
@@ -176,14 +192,16 @@ def run_here(args, base_dir, index, folder, text) -> dict:
     """One row in this process, all its files or none (its own staging inside --out)."""
     from ..post.output import Staging
     from . import jobfile
+    from .batchio import write_setup_sheet
     from .common import user_errors
     from .gate import GateRefused
 
     out = os.path.join(args.out, folder)
     staging = Staging(out, "--out")
     try:
-        report = staging.final(jobfile.write_job(args.file, staging.folder, args.post, args.allow_findings,
-                                                 text=text, base_dir=base_dir))
+        report = jobfile.write_job(args.file, staging.folder, args.post, args.allow_findings, text=text,
+                                   base_dir=base_dir)
+        report = staging.final(write_setup_sheet(staging.folder, report))
         write_row_report(staging.folder, report)
         staging.commit()
     except GateRefused as error:

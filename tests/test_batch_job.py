@@ -86,6 +86,9 @@ def test_a_template_runs_every_row_into_its_folder_and_reports_the_bad_row(tmp_p
     first = open(os.path.join(out, "001-Ab", "plate.nc")).read()
     second = open(os.path.join(out, '002-Q', "plate.nc")).read()
     assert first != second and first.startswith(("%", "(")) and "T4" in first
+    for folder in ("001-Ab", "002-Q"):      # every row has its setup sheet, listed in its report
+        row = json.loads(open(os.path.join(out, folder, "report.json")).read())
+        assert row["setup_sheet"] == os.path.join(out, folder, "setup-sheet.html") and os.path.isfile(row["setup_sheet"])
 
 
 def test_the_template_text_goes_in_as_typed():
@@ -153,3 +156,17 @@ def test_a_missing_job_file_and_bad_rows_files_are_named(tmp_path):
         status, message, out = run("job", os.path.join(JOBS, "nameplate-template.toml"), "--each", str(rows))
         assert status == 2 and words in message, message[-1500:]
         assert not os.path.exists(out)
+
+
+def test_rows_in_worker_processes_write_what_one_process_writes(tmp_path):
+    rows = tmp_path / "rows.csv"
+    rows.write_text("name,seed\nAb,1\n鈴木,3\n", encoding="utf-8")
+    template = os.path.join(JOBS, "nameplate-template.toml")
+    status, message, here = run("job", template, "--each", str(rows))
+    assert status == 0, message[-2000:]
+    status, message, workers = run("job", template, "--each", str(rows), "--jobs", "2")
+    assert status == 0, message[-2000:]
+    for folder in ("001-Ab", "002-鈴木"):
+        assert open(os.path.join(here, folder, "plate.nc")).read() == open(os.path.join(workers, folder, "plate.nc")).read()
+        row = json.loads(open(os.path.join(workers, folder, "report.json")).read())
+        assert row["files"] == [os.path.join(workers, folder, "plate.nc")]
