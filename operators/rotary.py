@@ -18,6 +18,8 @@ from bpy.props import EnumProperty, StringProperty
 from .. import post as posts
 from ..toolpath.operations.rotary import rotary as core
 from ..toolpath.ir.program import Tool
+from ..toolpath.job import Job, JobOperation, Setup, plan_job
+from ..toolpath.operations.rotary.kind import RotaryGeometry
 from . import convert
 from . import gate
 from .common import SteppedOperator
@@ -39,6 +41,7 @@ class RotaryJob:
     settings: core.RotarySettings
     frame: convert.WorkFrame
     block: core.Block
+    stock: object               # the job's part's stock: the block, its top centre on the axis
 
 
 def settings_from(props) -> core.RotarySettings:
@@ -77,12 +80,14 @@ def rotary_request(scene, depsgraph):
                                    props.sphere_radius if props.bottom == "sphere" else None))
     if not pockets:
         raise convert.SceneInputError("no pockets: mark outline objects as pockets in the Rotary Pockets panel")
-    rotary_settings, name, work_offset = settings_from(settings.rotary), scene.name, settings.machine.work_offset
+    rotary_settings = settings_from(settings.rotary)
+    setup = Setup(name=scene.name, post=settings.rotary.post, work_offset=settings.machine.work_offset,
+                  rapid_rate=settings.machine.rapid_rate)
+    job = Job(setup, (JobOperation("rotary", "rotary", rotary_settings, RotaryGeometry(block, tuple(pockets))),))
 
     def compute(progress=None) -> RotaryJob:
-        result = core.plan(block, pockets, rotary_settings, name=name, progress=progress)
-        result.program.work_offset = work_offset
-        return RotaryJob(result, rotary_settings, plate.frame, block)
+        part = plan_job(job, progress=progress).parts[0]
+        return RotaryJob(part.result, rotary_settings, plate.frame, block, part.stock)
     return compute
 
 
@@ -125,11 +130,7 @@ def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str =
 
 def simulation(job: RotaryJob) -> SimulationSetup:
     """The C-X-Z program on the block (its top centre on the table's axis)."""
-    from ..toolpath.simulate import BoxStock
-
-    b = job.block
-    stock = BoxStock(-b.size_x / 2, -b.size_y / 2, -b.thickness, b.size_x / 2, b.size_y / 2, 0.0)
-    return SimulationSetup(job.result.program, stock, {}, job.frame, "rotary")
+    return SimulationSetup(job.result.program, job.stock, {}, job.frame, "rotary")
 
 
 class KEZURI_OT_rotary_generate(SteppedOperator, bpy.types.Operator):

@@ -7,6 +7,7 @@ list (order and on/off); export reads the file again and converts it in the list
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 
 import bpy
 import numpy as np
@@ -17,10 +18,12 @@ from .. import post as posts
 from ..post import write_atomic
 from ..toolpath.operations import stepnc
 from ..toolpath.engines.meshdata import prism
+from ..toolpath.engines.textfile import read_text
+from ..toolpath.job import Job, JobOperation, Setup, plan_job
 from ..toolpath.ir.program import Tool
+from ..toolpath.operations.stepnc.kind import StepncGeometry, StepncSettings
 from ..toolpath.operations.stepnc.tools import tool_numbers
-from ..toolpath.operations.stepnc.workplan import skipped_workingsteps
-from ..toolpath.operations.stepnc.solids import block_of, feature_solid, fixture_clearance, stock_box
+from ..toolpath.operations.stepnc.solids import block_of, feature_solid
 from . import convert
 from . import gate
 from .common import run_reported
@@ -83,27 +86,47 @@ def fill_workplan_list(scene, path: str, loaded) -> None:
     props.active_step = 0
 
 
-def load_scene_workplan(scene):
+@dataclass
+class WorkplanJob:
+    """The planned workplan: ``part``, the job's part (its result: the file as read, the program with
+    the file's notes), and ``frame``, where the work frame sits in the scene."""
+
+    part: object
+    frame: object
+
+    @property
+    def loaded(self):
+        return self.part.result.loaded
+
+    @property
+    def program(self):
+        return self.part.result.program
+
+
+def scene_workplan_path(scene) -> str:
     path = bpy.path.abspath(scene.kezuri.stepnc.filepath)
     if not path:
         raise convert.SceneInputError("no ISO 14649 file: use File > Import > ISO 14649 first")
     if not os.path.isfile(path):
         raise convert.SceneInputError(f"the imported ISO 14649 file is gone: {path}")
-    return stepnc.load_workplan(path)
+    return path
 
 
-def scene_program(scene, loaded):
-    props = scene.kezuri.stepnc
-    if not loaded.workingsteps:
-        raise convert.SceneInputError(stepnc.nothing_to_machine(loaded.warnings))
-    order = [item.ident for item in props.steps]
-    enabled = [item.ident for item in props.steps if item.enabled]
-    if not enabled:
-        raise convert.SceneInputError("every workingstep is switched off: nothing to export")
-    program = stepnc.to_program(loaded, order=order, enabled=enabled, name=scene.name)   # notes: the file's too
-    if not program.operations:
-        raise convert.SceneInputError(stepnc.nothing_to_machine(program.notes))
-    return program
+def workplan_job(scene, machine=None, post_name: str = "") -> Job:
+    """A job of one operation: the imported file's workplan in the list's order, without the
+    switched-off workingsteps.  ``machine``: the machine profile (None: not checked here)."""
+    props, settings = scene.kezuri.stepnc, scene.kezuri.machine
+    order = tuple(item.ident for item in props.steps)
+    enabled = tuple(item.ident for item in props.steps if item.enabled)
+    geometry = StepncGeometry(read_text(scene_workplan_path(scene)))
+    setup = Setup(name=scene.name, post=post_name, machine=machine, work_offset=settings.work_offset,
+                  rapid_rate=settings.rapid_rate)
+    return Job(setup, (JobOperation("stepnc", "stepnc", StepncSettings(order, enabled), geometry),))
+
+
+def plan_workplan(scene, machine=None, post_name: str = "", progress=None) -> WorkplanJob:
+    part = plan_job(workplan_job(scene, machine, post_name), progress=progress).parts[0]
+    return WorkplanJob(part, convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0)))
 
 
 def show_workplan(scene, loaded, program=None) -> list:
@@ -137,19 +160,19 @@ def show_workplan(scene, loaded, program=None) -> list:
 
 def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progress=None, profile=None,
               findings: list | None = None) -> tuple:
-    """Convert the workplan, simulate it (the export gate) and write it: (path, program, gate's
-    simulation job, gate report).  ``profile``: the machine (default: Machine & Stock's for the post)."""
-    loaded = load_scene_workplan(scene)
-    program = scene_program(scene, loaded)
+    """Convert the workplan, simulate it (the export gate) and write it: (path, the planned
+    :class:`WorkplanJob`, gate's simulation job, gate report).  ``profile``: the machine (default:
+    Machine & Stock's for the post)."""
     machine = scene.kezuri.machine
     profile = profile or scene_machine(machine, POST_FAMILIES, post_name)
+    job = plan_workplan(scene, profile, post_name)
+    program = job.program
     post = machine_post(POST_FAMILIES, post_name, machine.work_offset, machine.orient_spindle, profile)
     if post.needs_texture:
         raise posts.PostError(f"the {post.name} post writes textured engravings only; pick another post")
     text = post.to_text(program)
-    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
-    checked, report = gate.check(simulation((loaded, program, frame)), allow, progress, machine=post.machine)
-    return write_program(path, text, post, findings), program, checked, report
+    checked, report = gate.check(simulation(job), allow, progress, machine=post.machine)
+    return write_program(path, text, post, findings), job, checked, report
 
 
 def extension_for(post_name: str) -> str:
@@ -157,19 +180,17 @@ def extension_for(post_name: str) -> str:
 
 
 def stepnc_request(scene, depsgraph):
-    """Read the imported workplan and convert it in the list's order: ``compute(progress)``."""
-    loaded = load_scene_workplan(scene)
-    program = scene_program(scene, loaded)
+    """Read the imported workplan and the list; ``compute(progress)`` converts it in the list's order."""
+    job = workplan_job(scene)
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
-    return lambda progress=None: (loaded, program, frame)
+    return lambda progress=None: WorkplanJob(plan_job(job, progress=progress).parts[0], frame)
 
 
-def simulation(job) -> SimulationSetup:
+def simulation(job: WorkplanJob) -> SimulationSetup:
     """The program on the workpiece's block; drills may break through its bottom by their point
     length and 2 mm (the workplan's through-hole rule), onto a spoil board."""
-    loaded, program, frame = job
-    return SimulationSetup(program, stock_box(loaded, program), {"fixture_clearance": fixture_clearance(loaded)},
-                           frame, "stepnc")
+    return SimulationSetup(job.program, job.part.stock, {"fixture_clearance": job.part.result.fixture_clearance},
+                           job.frame, "stepnc")
 
 
 def pockets_part21(scene, depsgraph) -> str:
@@ -234,9 +255,9 @@ class KEZURI_OT_stepnc_generate(bpy.types.Operator):
 
     def execute(self, context):
         def work():
-            loaded = load_scene_workplan(context.scene)
-            program = scene_program(context.scene, loaded)
-            show_workplan(context.scene, loaded, program)
+            job = plan_workplan(context.scene)
+            program = job.program
+            show_workplan(context.scene, job.loaded, program)
             for note in program.notes:
                 self.report({"WARNING"}, translate_message(note))
             minutes = program.cycle_time() / 60
@@ -400,7 +421,7 @@ def batch(args) -> dict:
         fill_workplan_list(scene, os.path.abspath(path), loaded)
         if args.order:
             apply_order(scene, args.order, path if staging is None else "the built-in sample")
-        nc_path, program, checked, gate_report = export_nc(
+        nc_path, job, checked, gate_report = export_nc(
             scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"), args.allow_findings,
             Progress(None, "check"), profile, findings)
         if staging is not None:
@@ -409,18 +430,17 @@ def batch(args) -> dict:
     finally:
         if staging is not None:
             shutil.rmtree(staging, ignore_errors=True)
-    objects = show_workplan(scene, loaded, program)
-    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    program = job.program
+    objects = show_workplan(scene, job.loaded, program)
     depsgraph = bpy.context.evaluated_depsgraph_get()
-    solids = [preview.object_solid(o, frame, depsgraph) for o in objects if o.type == "MESH" and o.display_type != "WIRE"]
-    skipped = skipped_workingsteps(program.notes)
+    solids = [preview.object_solid(o, job.frame, depsgraph) for o in objects
+              if o.type == "MESH" and o.display_type != "WIRE"]
+    skipped = list(job.part.skipped)
     caption = ("NOT CUT: " + ", ".join(f"#{s['id']} {s['name']}" for s in skipped)) if skipped else ""
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "stepnc-toolpaths.png"), program.operations,
-                                         simulation((loaded, program, frame)).stock, solids,
-                                         "STEP-NC: FEATURES AND TOOLPATHS", caption=caption)
-    simulation_report, png = simview.batch_simulation(scene, simulation((loaded, program, frame)), args.out,
-                                                      "stepnc", checked)
-    steps = {step.id: step for step in loaded.workingsteps}
+                                         job.part.stock, solids, "STEP-NC: FEATURES AND TOOLPATHS", caption=caption)
+    simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "stepnc", checked)
+    steps = {step.id: step for step in job.loaded.workingsteps}
     workingsteps = []
     for op in program.operations:
         entry = describe_step(steps[op.source_id])

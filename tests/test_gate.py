@@ -38,6 +38,16 @@ def overcut_file(folder) -> str:
     return path
 
 
+def planned_workplan(path):
+    """A file's workplan as the shell plans it (a job of one STEP-NC operation), in the work frame."""
+    from kezuri.operators import convert, stepnc as shell
+    from kezuri.toolpath.engines.textfile import read_text
+    from kezuri.toolpath.job import Job, JobOperation, Setup, plan_job
+    from kezuri.toolpath.operations.stepnc.kind import StepncGeometry, StepncSettings
+    job = Job(Setup(name=""), (JobOperation("stepnc", "stepnc", StepncSettings(), StepncGeometry(read_text(path))),))
+    return shell.WorkplanJob(plan_job(job).parts[0], convert.WorkFrame(1.0, (0.0, 0.0, 0.0)))
+
+
 def drill(depth: float, rpm: float = 3000.0) -> Operation:
     return Operation("drill", Tool(1, "drill", 8.0), rpm, [0, 1, 1, 0], [[20, 20, 5], [20, 20, 0], [20, 20, depth],
                                                                         [20, 20, 5]], [np.nan, 100, 100, np.nan])
@@ -63,10 +73,8 @@ bpy = pytest.importorskip("bpy")
 
 
 def test_the_gate_refuses_and_an_override_must_name_the_findings(tmp_path):
-    from kezuri.operators import convert, gate, stepnc as shell
-    loaded = stepnc.load_workplan(overcut_file(tmp_path))
-    program = stepnc.to_program(loaded)
-    setup = shell.simulation((loaded, program, convert.WorkFrame(1.0, (0.0, 0.0, 0.0))))
+    from kezuri.operators import gate, stepnc as shell
+    setup = shell.simulation(planned_workplan(overcut_file(tmp_path)))
     assert setup.stock.z0 == pytest.approx(-30.0)                 # HOLE1's depth plane
     assert setup.extra["fixture_clearance"] == pytest.approx(POINT + 0.01, abs=1e-6)
     with pytest.raises(gate.GateRefused) as refused:
@@ -82,8 +90,7 @@ def test_the_gate_refuses_and_an_override_must_name_the_findings(tmp_path):
     with pytest.raises(gate.GateRefused):
         gate.check(setup, "below_stock 0:0")                       # another move is not this one
     # The file without the overcut: the drill stops at the rule's breakthrough and the gate is quiet.
-    plain = stepnc.load_workplan(os.path.join(FIXTURES, "ex1.stp"))
-    _, report = gate.check(shell.simulation((plain, stepnc.to_program(plain), convert.WorkFrame(1.0, (0, 0, 0)))))
+    _, report = gate.check(shell.simulation(planned_workplan(os.path.join(FIXTURES, "ex1.stp"))))
     assert report["findings"] == [] and not report["overridden"]
 
 
@@ -128,11 +135,11 @@ def test_the_gate_checks_every_move_against_the_machine_profile():
     """ISO 14649 Example 1 (a 100 x 60 mm plate) on machines too small for it: the gate names the
     axis, the program's extent and the machine's travel; the reach is checked against the highest
     Z written (the security plane and the frames' clearance height)."""
-    from kezuri.operators import convert, gate, stepnc as shell
+    from kezuri.operators import gate, stepnc as shell
     from kezuri.toolpath.ir import machine
-    plain = stepnc.load_workplan(os.path.join(FIXTURES, "ex1.stp"))
-    program = stepnc.to_program(plain)
-    setup = shell.simulation((plain, program, convert.WorkFrame(1.0, (0.0, 0.0, 0.0))))
+    job = planned_workplan(os.path.join(FIXTURES, "ex1.stp"))
+    program = job.program
+    setup = shell.simulation(job)
     points = np.vstack([np.vstack([op.start, op.xyz]) for op in program.operations])
     heights = [max(op.safe_z, op.clearance_z) for op in program.operations]
     span = points.max(axis=0) - points.min(axis=0)

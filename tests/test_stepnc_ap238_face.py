@@ -140,11 +140,11 @@ def test_the_nc_passes_rs274_and_the_rules(loaded):
 
 def test_the_export_gate_writes_it(tmp_path):
     pytest.importorskip("bpy")
-    from kezuri.operators import convert, gate, stepnc as shell
+    from kezuri.operators import gate, stepnc as shell
+    from test_gate import planned_workplan
     path = tmp_path / "face_ap238.stp"
     path.write_text(face_file(), encoding="latin-1")
-    loaded = load_workplan(str(path))
-    _, report = gate.check(shell.simulation((loaded, to_program(loaded), convert.WorkFrame(1.0, (0, 0, 0)))))
+    _, report = gate.check(shell.simulation(planned_workplan(str(path))))
     assert report["findings"] == [] and not report["overridden"]
     assert math.isfinite(report["seconds"])
 

@@ -76,9 +76,16 @@ def load_workplan(source) -> LoadedWorkplan:
     StepNcError for malformed ISO 14649 data; both name the instance.
     """
     if isinstance(source, str) and "ISO-10303-21;" in source:
-        part21 = parse_part21(source)
-    else:
-        part21 = read_part21(os.fspath(source))
+        return workplan_from_text(source)
+    return workplan_of(read_part21(os.fspath(source)))
+
+
+def workplan_from_text(text: str) -> LoadedWorkplan:
+    """:func:`load_workplan` of a file's Part 21 text (whatever its first lines say)."""
+    return workplan_of(parse_part21(text))
+
+
+def workplan_of(part21) -> LoadedWorkplan:
     project, warnings = read_project(part21)
     return LoadedWorkplan(project, tuple(project.main_workplan.workingsteps()), tuple(warnings))
 
