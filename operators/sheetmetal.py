@@ -18,7 +18,9 @@ from bpy_extras.io_utils import ExportHelper, ImportHelper
 from .. import post as posts
 from ..post import flat_export, write_atomic
 from ..toolpath.ir import machine
+from ..toolpath.job import Job, JobOperation, Setup, plan_job
 from ..toolpath.operations.sheetmetal import nibbling, placement, punch
+from ..toolpath.operations.sheetmetal.kind import PunchGeometry, PunchSettings
 from ..toolpath.operations.sheetmetal import unfold as core
 from ..toolpath.ir.errors import InputError
 from ..toolpath.engines.textfile import read_text
@@ -78,23 +80,27 @@ class PunchJob:
     offset: np.ndarray          # added to the pattern's coordinates to put it on the sheet
 
 
-def punch_job(contour, pattern, props, profile=None) -> PunchJob:
-    """Place the tool-centre ``contour`` on the sheet clear of the clamps, nibble round it (merged
-    lines, micro-joints, each hit once), write the program and punch it out of the sheet."""
+def punch_settings(props) -> PunchSettings:
+    """The punch program's settings from the sheet panel (or batch's options)."""
+    return PunchSettings(props.station, props.tool_diameter, props.pitch, props.thickness, props.joints,
+                         props.joint_width)
+
+
+def punch_job(pattern, props, profile=None) -> PunchJob:
+    """Plan the flat ``pattern`` as a job of one punching operation (its tool-centre contour placed
+    on the sheet clear of the clamps, nibbled round: merged lines, micro-joints, each hit once),
+    write the program and punch it out of the sheet."""
     profile = punch_profile(props) if profile is None else profile
-    where = placement.place(contour, props.tool_diameter, profile)
-    lines = nibbling.nibble(contour, props.pitch, props.tool_diameter, joints=props.joints,
-                            joint_width=props.joint_width).moved(where.offset)
-    notes = placement.describe(where)
-    notes.append(f"micro-joints: {len(lines.joints)} of {lines.joint_width:g} mm" if len(lines.joints)
-                 else "micro-joints: none, the part falls free at the last hits")
-    post = posts.create(POST_FAMILIES, PUNCH_POST, station=props.station, pitch=props.pitch,
-                        thickness=props.thickness, origin=profile.sheet_origin)
-    nc = post.lines_to_text(lines.lines, notes=notes)
-    offset = np.asarray(where.offset, float)
-    punched = punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=np.asarray(pattern) + offset,
-                                      joints=lines.joints)
-    return PunchJob(nc, punched, where, lines, offset)
+    setup = Setup(name="punch", post=PUNCH_POST, machine=profile)
+    operation = JobOperation("punch", "punch", punch_settings(props), PunchGeometry(np.asarray(pattern)))
+    part = plan_job(Job(setup, (operation,))).parts[0]
+    lines, plan = part.operations[0], part.result
+    post = posts.create(POST_FAMILIES, PUNCH_POST, station=lines.station, pitch=lines.pitch,
+                        thickness=lines.thickness, origin=lines.origin)
+    nc = post.lines_to_text(lines.lines, notes=list(lines.notes))
+    punched = punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=plan.pattern,
+                                      joints=plan.nibbling.joints)
+    return PunchJob(nc, punched, plan.placement, plan.nibbling, plan.offset)
 
 
 def placement_report(jobs: list) -> dict:
@@ -204,7 +210,7 @@ def run_unfold(corners, props, names: dict = PANEL_NAMES) -> UnfoldJob:
     quad = core.unfold_twisted_quad(corners, props.divisions, props.direction)
     contour = core.compensate_outline(quad.pattern.outline, props.tool_diameter)
     check_contour(contour, props, f"the flat pattern of {names['corners']}", names)
-    job = punch_job(contour, quad.pattern.outline, props)
+    job = punch_job(quad.pattern.outline, props)
     return UnfoldJob(quad, contour, job.nc, job.punched, job)
 
 
@@ -326,7 +332,7 @@ def elbow_punching(elbow: core.Elbow, props, names: dict = PANEL_NAMES) -> list:
     profile = punch_profile(props)
     for index, (outline, contour) in enumerate(contours, start=1):
         try:
-            job = punch_job(contour, outline, props, profile)
+            job = punch_job(outline, props, profile)
         except InputError as error:     # which piece's program: the message's line is that program's
             raise core.UnfoldError(f"elbow piece {index} of {len(elbow.pieces)}: {error}") from None
         jobs.append((job.nc, job.punched, job))

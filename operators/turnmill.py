@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import os
 import sys
-import time
 from dataclasses import dataclass
 
 import bpy
@@ -24,6 +23,8 @@ from ..toolpath.ir import machine
 from ..toolpath.engines import meshdata
 from ..toolpath.operations.turnmill import turnmill as core
 from ..toolpath.ir.errors import MAX_REACH_MM
+from ..toolpath.job import Job, JobOperation, Setup, plan_job
+from ..toolpath.operations.turnmill import kind as turnmill_kind
 from . import convert
 from . import gate
 from .common import SteppedOperator
@@ -100,24 +101,18 @@ def settings_from(props, profile: machine.MachineProfile | None = None) -> core.
 def run_on_mesh(vertices, faces, stock: core.Stock, settings: core.TurnMillSettings, engine_name: str,
                 frame: convert.WorkFrame, owner=None, selected=None, name="turn-mill", progress=None,
                 profile: machine.MachineProfile | None = None) -> TurnMillJob:
-    """Classify (timed), then plan.  ``selected``: a face mask; unselected faces still block rays
-    but get no paths (nor are they reported as not machined).  Touches no Blender data (the BVH
-    engine is mathutils only)."""
-    report = progress or (lambda fraction, text="": None)
-    vertices, faces = core.check_mesh(vertices, faces)
-    engine = engine_for(engine_name, vertices, faces)
-    started = time.perf_counter()
-    labels = core.classify_faces(vertices, faces, engine, settings.sample_spacing,
-                                 lambda fraction, text="": report(0.6 * fraction, text))
-    seconds = time.perf_counter() - started
-    samples, _ = core.face_samples(vertices[faces], settings.sample_spacing)
-    machined = labels if selected is None else np.where(selected, labels, core.NEITHER)
-    result = core.plan(vertices, faces, stock, settings, engine, labels=machined, name=name,
-                       progress=lambda fraction, text="": report(0.6 + 0.4 * fraction, text), reported=selected)
-    result.labels = labels
-    owner = np.arange(len(faces)) if owner is None else owner
-    return TurnMillJob(result, vertices, faces, owner, frame, 2 * len(samples), seconds, engine_name, stock,
-                       machine_profile() if profile is None else profile)
+    """Classify (timed), then plan: a job of one turn-mill operation.  ``selected``: a face mask;
+    unselected faces still block rays but get no paths (nor are they reported as not machined).
+    Touches no Blender data (the BVH engine is mathutils only)."""
+    profile = machine_profile() if profile is None else profile
+    setup = Setup(name=name, machine=profile)
+    geometry = turnmill_kind.TurnMillGeometry(vertices, faces, stock, selected,
+                                              BVHRayEngine if engine_name == "BVH" else core.TrimeshRayEngine)
+    planned = plan_job(Job(setup, (JobOperation("turnmill", "turn-mill", settings, geometry),)), progress=progress)
+    outcome = planned.parts[0].result
+    owner = np.arange(len(outcome.faces)) if owner is None else owner
+    return TurnMillJob(outcome.plan, outcome.vertices, outcome.faces, owner, frame, outcome.rays,
+                       outcome.classification_seconds, engine_name, stock, profile)
 
 
 def part_mesh(scene, depsgraph) -> tuple:
@@ -204,8 +199,7 @@ def machine_findings(job: TurnMillJob, post, text: str) -> list:
 
 def unmachined_warnings(job: TurnMillJob) -> list:
     """One line for each feature no tool reaches (as in the NC header)."""
-    return [f"not machined: {feature.describe()} (neither the radial nor the axial tool reaches it)"
-            for feature in job.plan.skipped]
+    return turnmill_kind.unmachined_warnings(job.plan)
 
 
 def export_turnmill(job: TurnMillJob, post_name: str, path: str, allow: bool | str = False,
