@@ -1849,6 +1849,13 @@ MESSAGE_TEMPLATES = {
     'holes must be a list of (x, y) pairs in mm, got shape {}': '穴は mm の (x, y) の組のリストでなければなりません（形 {0}）',
     'hole {} has a coordinate that is not a number: {}': '穴 {0} の座標に数値でないものがあります：{1}',
     'holes {} and {} are the same point {}': '穴 {0} と {1} は同じ点 {2} です',
+    'operation {}: {}': '加工 {0}：{1}',
+    'sheet thickness must be a finite number > 0 (mm), got {}': '板厚は 0 より大きい有限の数（mm）でなければなりません（指定値 {0}）',
+    'nibbling pitch {} mm: the flat pattern takes {} hits, more than the {} one program may have; raise the pitch':
+        'ニブリングピッチ {0} mm：展開図は {1} 回の打ち抜きになり、1つのプログラムに入る {2} 回を超えます。ピッチを大きくしてください',
+    'setup sheet: a stock of type {} is neither a box nor a cylinder': '段取りシート：種類 {0} の素材は直方体でも円柱でもありません',
+    'setup sheet picture {}: not a PNG image': '段取りシートの画像 {0}：PNG 画像ではありません',
+    'setup sheet gate status {}: one of {}': '段取りシートのゲート状態 {0}：{1} のいずれかです',
 }
 
 

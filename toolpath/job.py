@@ -80,7 +80,9 @@ class Part:
     ``operations``: IR operations as they are cut; ``macro_operations``: the same for a post
     that honours the IR's texture request (the untextured path), None when there is no such
     variant.  ``stock``: the stock the part works on; ``design``: its :class:`DesignLayer`;
-    ``result``: the kind's own result (what the shell shows and reports)."""
+    ``result``: the kind's own result (what the shell shows and reports); ``notes``: what the
+    program's header says of it (None: its warnings); ``fixture_clearance``: how far below the
+    stock's bottom its tools may go (a drill breaking through onto a spoil board)."""
 
     operations: tuple
     stock: object
@@ -90,6 +92,8 @@ class Part:
     macro_operations: tuple | None = None
     result: object = None
     seconds: float = 0.0
+    notes: tuple | None = None          # the program header's notes (None: the warnings)
+    fixture_clearance: float = 0.0      # how far below the stock's bottom it may cut (a drill through)
 
 
 class OperationKind:
@@ -234,7 +238,11 @@ class PlannedJob:
             chosen = part.macro_operations if macro and part.macro_operations is not None else part.operations
             operations += list(chosen)
         check_tools(operations)
-        notes = list(self.warnings)
+        notes = []
+        for part in self.parts:
+            for note in (part.warnings if part.notes is None else part.notes):
+                if note not in notes:
+                    notes.append(note)
         return Program(setup.name, operations, work_offset=setup.work_offset, rapid_rate=setup.rapid_rate,
                        notes=notes)
 
@@ -242,14 +250,16 @@ class PlannedJob:
         """The design layers laid in order, as keyword arguments of ``simulate.simulate``: one
         layer as it is; several as one function z(x, y) (each cell takes the last layer whose
         area holds it)."""
+        clearance = max((part.fixture_clearance for part in self.parts), default=0.0)
+        extra = {"fixture_clearance": clearance} if clearance > 0 else {}
         layers = [part.design for part in self.parts if part.design is not None]
         if not layers:
-            return {}
+            return extra
         if len(layers) == 1:
-            return layers[0].limits()
+            return {**layers[0].limits(), **extra}
         stock = self.stock
         top = float(getattr(stock, "z1", 0.0))      # a box's top; a cylinder stock's top face is z = 0
-        return {"design": LaidDesign(tuple(layers), top)}
+        return {"design": LaidDesign(tuple(layers), top), **extra}
 
 
     def simulation(self) -> tuple:
@@ -341,7 +351,12 @@ def plan_job(job: Job, cache: dict | None = None, progress=None) -> PlannedJob:
         replanned = part is None
         if part is None:
             started = time.perf_counter()
-            part = kind.plan(job.setup, op.settings, op.geometry, _share(progress, index, len(active)))
+            try:
+                part = kind.plan(job.setup, op.settings, op.geometry, _share(progress, index, len(active)))
+            except InputError as error:
+                if len(active) == 1:        # a job of one operation: the message as the workflow gives it
+                    raise
+                raise JobError(f"operation {op.name!r}: {error}") from None
             part = dataclasses.replace(part, seconds=time.perf_counter() - started)
             if cache is not None:
                 cache[key] = part

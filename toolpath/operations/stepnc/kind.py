@@ -57,4 +57,5 @@ class StepncKind(OperationKind):
         outcome = StepncOutcome(loaded, program, fixture_clearance(loaded))
         # no design layer: the gate checks the workplan's cuts against its stock and the fixture clearance
         return Part(tuple(program.operations), stock_box(loaded, program), None, tuple(program.notes),
-                    tuple(skipped_workingsteps(program.notes)), None, outcome)
+                    tuple(skipped_workingsteps(program.notes)), None, outcome,
+                    fixture_clearance=outcome.fixture_clearance)
