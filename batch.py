@@ -92,6 +92,7 @@ def demo(args, final=lambda value: value) -> dict:
         runs = ([(name, command.demo)] if command.demo is not None else []) + list(command.more_demos)
         for folder, line in runs:
             sub = parser().parse_args([name, *line, "--out", os.path.join(args.out, folder)])
+            sub.final = final
             report = final(finished(command, sub))
             write_report(sub.out, report)
             results[folder] = {"files": report["files"], "preview": report.get("preview"),

@@ -2,6 +2,8 @@
 template run once per row of a CSV (:mod:`.jobtemplate`)."""
 from __future__ import annotations
 
+import os
+
 from . import gate, jobfile, jobtemplate
 from .batchio import number
 from .workflow import BatchCommand
@@ -28,5 +30,20 @@ def batch(args) -> dict:
     return jobfile.write_job(args.file, args.out, args.post, args.allow_findings, base_dir=args.base_dir)
 
 
+def sample_jobs() -> tuple:
+    """The demo's job runs: every job file in samples/jobs, a template (a .toml with a .csv of the
+    same name beside it) once per row: (sub-folder, command line) pairs."""
+    folder = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "samples", "jobs")
+    runs = []
+    for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else ():
+        stem, extension = os.path.splitext(name)
+        if extension != ".toml":
+            continue
+        rows = os.path.join(folder, stem + ".csv")
+        line = (os.path.join(folder, name),) + (("--each", rows) if os.path.isfile(rows) else ())
+        runs.append((f"jobs/{stem}", line))
+    return tuple(runs)
+
+
 COMMAND = BatchCommand("job", "a job file (TOML): several operations on one stock, one program (--each: a "
-                       "template per CSV row)", batch_arguments, batch, demo=None)
+                       "template per CSV row)", batch_arguments, batch, demo=None, more_demos=sample_jobs())

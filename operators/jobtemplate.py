@@ -166,7 +166,8 @@ def batch_rows(args) -> dict:
     print(f"kezuri: {len(summary) - len(failed)} of {len(summary)} rows written"
           + (f"; failed: {', '.join(str(r['row']) for r in failed)}" if failed else ""), file=sys.stderr)
     return {"workflow": "job", "template": os.path.abspath(args.file), "rows_file": os.path.abspath(args.each),
-            "columns": columns, "rows": summary, "written": len(summary) - len(failed), "failed": len(failed),
+            "columns": columns, "rows": summary,
+            "files": [os.path.join(args.out, f) for r in summary for f in r.get("files", ())], "written": len(summary) - len(failed), "failed": len(failed),
             "seconds": round(time.perf_counter() - started, 3), "exit_status": status}
 
 

@@ -77,7 +77,7 @@ def test_a_one_operation_job_writes_the_engrave_commands_program_byte_for_byte(t
 def test_a_template_runs_every_row_into_its_folder_and_reports_the_bad_row(tmp_path):
     rows = tmp_path / "rows.csv"
     rows.write_text('name,seed\nAb,1\n"Q""\\\\",2\nCd,x\n', encoding="utf-8")       # Q"\\ and a seed 'x'
-    status, message, out = run("job", os.path.join(JOBS, "nameplate-template.toml"), "--each", str(rows))
+    status, message, out = run("job", os.path.join(JOBS, "nameplates.toml"), "--each", str(rows))
     assert status == 2, message[-2000:]
     summary = json.loads(open(os.path.join(out, "report.json")).read())
     assert [r["status"] for r in summary["rows"]] == ["written", "written", "bad input"]
@@ -153,7 +153,7 @@ def test_a_missing_job_file_and_bad_rows_files_are_named(tmp_path):
                         ("a,b\n1\n", "line 2 has 1 values for 2 columns")):
         rows = tmp_path / "rows.csv"
         rows.write_text(text, encoding="utf-8")
-        status, message, out = run("job", os.path.join(JOBS, "nameplate-template.toml"), "--each", str(rows))
+        status, message, out = run("job", os.path.join(JOBS, "nameplates.toml"), "--each", str(rows))
         assert status == 2 and words in message, message[-1500:]
         assert not os.path.exists(out)
 
@@ -161,7 +161,7 @@ def test_a_missing_job_file_and_bad_rows_files_are_named(tmp_path):
 def test_rows_in_worker_processes_write_what_one_process_writes(tmp_path):
     rows = tmp_path / "rows.csv"
     rows.write_text("name,seed\nAb,1\n鈴木,3\n", encoding="utf-8")
-    template = os.path.join(JOBS, "nameplate-template.toml")
+    template = os.path.join(JOBS, "nameplates.toml")
     status, message, here = run("job", template, "--each", str(rows))
     assert status == 0, message[-2000:]
     status, message, workers = run("job", template, "--each", str(rows), "--jobs", "2")
