@@ -215,29 +215,6 @@ def curve_points(obj) -> np.ndarray:
     return np.array([p.co[:3] for spline in obj.data.splines for p in spline.points])
 
 
-def split_runs(kinds, points) -> tuple:
-    """Split a path into cutting polylines and rapid polylines.
-
-    ``points`` has one more row than ``kinds``: the start, then each move's end point.
-    """
-    from ..toolpath.ir.program import RAPID
-
-    is_rapid = np.asarray(kinds) == RAPID
-    change = (np.flatnonzero(is_rapid[1:] != is_rapid[:-1]) + 1).tolist()   # where a run of one kind ends
-    cutting, rapid = [], []
-    for start, end in zip([0] + change, change + [len(is_rapid)]):
-        if end > start:
-            (rapid if is_rapid[start] else cutting).append(points[start:end + 1])
-    return cutting, rapid
-
-
-def operation_paths(op) -> tuple:
-    """Cutting and rapid polylines of a 3-axis operation (work mm), arcs walked along the arc."""
-    from ..toolpath.ir.program import walked
-
-    return split_runs(*walked(op))
-
-
 def fill_mesh(mesh, vertices, faces):
     """Fill an empty mesh with (k, 3) vertices and faces (an (f, n) array or a list of index
     sequences) with bulk array calls; faces drawn flat (the "sharp_face" attribute), as
