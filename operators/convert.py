@@ -189,8 +189,9 @@ def remove_objects(prefix: str):
 def polyline_object(scene, name: str, paths, frame: WorkFrame, color=(1, 1, 1, 1), tube_mm: float = 0.3):
     """A thin tube through each (k, 3) work-mm path: how toolpaths and contours are shown.
 
-    A curve with a small bevel, not a wire mesh: the viewport draws it in the object's colour
-    in Solid mode and it renders in the batch preview pictures.
+    A curve with a small bevel, not a wire mesh, so Solid mode draws it as a surface: in the
+    object's colour with Color: Object, in its material's with the default Color: Material
+    (toolpaths get their move kind's material: :mod:`.pathview`).
     """
     curve = bpy.data.curves.new(name, type="CURVE")
     curve.dimensions = "3D"
