@@ -25,6 +25,7 @@ from ..toolpath.job import Job, JobOperation, Setup, plan_job
 from ..toolpath.operations.carve.kind import CarveGeometry
 from . import convert
 from . import gate
+from . import pathview
 from .common import SteppedOperator, run_reported
 from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
@@ -37,8 +38,6 @@ from .workflow import BatchCommand, SimulationSetup, Workflow
 POST_FAMILIES = ("milling",)
 
 PREFIX = "Kezuri Carve"
-COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "finishing": (0.1, 0.6, 1.0, 1.0),
-           "steep cleanup": (0.2, 0.85, 0.3, 1.0), "wall pass": (0.75, 0.3, 0.95, 1.0), "rapid": (0.9, 0.1, 0.1, 1.0)}
 
 
 @dataclass
@@ -103,18 +102,11 @@ def run_carve(scene, depsgraph, progress=None) -> CarveJob:
     return carve_request(scene, depsgraph)(progress)
 
 
-def show_carve(scene, job: CarveJob, show_rapids: bool = False) -> list:
+def show_carve(scene, job: CarveJob) -> list:
     """Replace the previous carving preview with this job's toolpaths."""
     convert.remove_objects(PREFIX)
-    objects = []
-    for op in job.result.program.operations:
-        cutting, rapid = convert.operation_paths(op)
-        objects.append(convert.polyline_object(scene, f"{PREFIX} {op.name}", cutting, job.frame,
-                                               COLOURS.get(op.name, (1, 1, 1, 1)), tube_mm=0.15))
-        if show_rapids and rapid:
-            objects.append(convert.polyline_object(scene, f"{PREFIX} {op.name} rapids", rapid, job.frame,
-                                                   COLOURS["rapid"], tube_mm=0.15))
-    return objects
+    return pathview.show_toolpaths(scene, PREFIX, job.result.program.operations, job.result.stock, job.frame,
+                                   tube_mm=0.15)
 
 
 def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | None = None,
@@ -185,7 +177,7 @@ class KEZURI_OT_carve_generate(SteppedOperator, bpy.types.Operator):
         return carve_request(context.scene, context.evaluated_depsgraph_get())
 
     def finish(self, context, job):
-        show_carve(context.scene, job, context.scene.kezuri.carve.show_rapids)
+        show_carve(context.scene, job)
         for warning in job.result.warnings:
             self.report({"WARNING"}, translate_message(warning))
         program = job.result.program

@@ -189,8 +189,9 @@ def remove_objects(prefix: str):
 def polyline_object(scene, name: str, paths, frame: WorkFrame, color=(1, 1, 1, 1), tube_mm: float = 0.3):
     """A thin tube through each (k, 3) work-mm path: how toolpaths and contours are shown.
 
-    A curve with a small bevel, not a wire mesh: the viewport draws it in the object's colour
-    in Solid mode and it renders in the batch preview pictures.
+    A curve with a small bevel, not a wire mesh, so Solid mode draws it as a surface: in the
+    object's colour with Color: Object, in its material's with the default Color: Material
+    (toolpaths get their move kind's material: :mod:`.pathview`).
     """
     curve = bpy.data.curves.new(name, type="CURVE")
     curve.dimensions = "3D"
@@ -213,29 +214,6 @@ def polyline_object(scene, name: str, paths, frame: WorkFrame, color=(1, 1, 1, 1
 def curve_points(obj) -> np.ndarray:
     """World coordinates (Blender units) of every point of a polyline_object."""
     return np.array([p.co[:3] for spline in obj.data.splines for p in spline.points])
-
-
-def split_runs(kinds, points) -> tuple:
-    """Split a path into cutting polylines and rapid polylines.
-
-    ``points`` has one more row than ``kinds``: the start, then each move's end point.
-    """
-    from ..toolpath.ir.program import RAPID
-
-    is_rapid = np.asarray(kinds) == RAPID
-    change = (np.flatnonzero(is_rapid[1:] != is_rapid[:-1]) + 1).tolist()   # where a run of one kind ends
-    cutting, rapid = [], []
-    for start, end in zip([0] + change, change + [len(is_rapid)]):
-        if end > start:
-            (rapid if is_rapid[start] else cutting).append(points[start:end + 1])
-    return cutting, rapid
-
-
-def operation_paths(op) -> tuple:
-    """Cutting and rapid polylines of a 3-axis operation (work mm), arcs walked along the arc."""
-    from ..toolpath.ir.program import walked
-
-    return split_runs(*walked(op))
 
 
 def fill_mesh(mesh, vertices, faces):

@@ -22,6 +22,7 @@ from ..toolpath.job import Job, JobOperation, Setup, plan_job
 from ..toolpath.operations.engrave.kind import EngraveGeometry
 from . import convert
 from . import gate
+from . import pathview
 from .common import SteppedOperator
 from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
@@ -34,8 +35,6 @@ from .workflow import BatchCommand, SimulationSetup, Workflow
 POST_FAMILIES = ("milling",)
 
 PREFIX = "Kezuri Engrave"
-COLOURS = {"roughing": (0.95, 0.45, 0.1, 1.0), "band": (0.1, 0.6, 1.0, 1.0), "burr": (0.2, 0.9, 0.3, 1.0),
-           "rapid": (0.9, 0.1, 0.1, 1.0)}
 
 
 @dataclass
@@ -154,17 +153,10 @@ def run_engrave(scene, depsgraph, progress=None, post_name: str | None = None) -
     return engrave_request(scene, depsgraph, post_name)(progress)
 
 
-def show_engrave(scene, job: EngraveJob, show_rapids: bool = True) -> list:
+def show_engrave(scene, job: EngraveJob) -> list:
     """Replace the previous engrave preview with this job's toolpaths (baked: what will be cut)."""
     convert.remove_objects(PREFIX)
-    objects = []
-    for op, key in zip(job.baked.operations, ("roughing", "band", "burr")):
-        cutting, rapid = convert.operation_paths(op)
-        objects.append(convert.polyline_object(scene, f"{PREFIX} {op.name}", cutting, job.plate.frame, COLOURS[key]))
-        if show_rapids and rapid:
-            objects.append(convert.polyline_object(scene, f"{PREFIX} {op.name} rapids", rapid, job.plate.frame,
-                                                   COLOURS["rapid"]))
-    return objects
+    return pathview.show_toolpaths(scene, PREFIX, job.baked.operations, simulation(job).stock, job.plate.frame)
 
 
 def program_for_post(job: EngraveJob, post_name: str):
@@ -229,7 +221,7 @@ class KEZURI_OT_engrave_generate(SteppedOperator, bpy.types.Operator):
         return engrave_request(context.scene, context.evaluated_depsgraph_get())
 
     def finish(self, context, job):
-        show_engrave(context.scene, job, context.scene.kezuri.engrave.show_rapids)
+        show_engrave(context.scene, job)
         for warning in job.result.warnings:
             self.report({"WARNING"}, translate_message(warning))
         minutes = job.baked.cycle_time() / 60
@@ -351,7 +343,7 @@ def batch(args) -> dict:
         files.append(batchio.write_stl(os.path.join(args.out, "design.stl"), design.vertices, design.faces))
         solids = [(design.vertices, design.faces, preview.picture_jobs.PART_COLOUR)]
     if batchio.shown():
-        show_engrave(scene, job, show_rapids=False)
+        show_engrave(scene, job)
     marks = uncut_marks(job.result)
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "engrave-toolpaths.png"), job.baked.operations,
                                          setup.stock, solids, "ENGRAVING: TOOLPATHS", marks=marks)

@@ -32,7 +32,10 @@ class KEZURI_PT_job(KezuriPanel, bpy.types.Panel):
     bl_options = {"HIDE_HEADER"}
 
     def draw(self, context):
-        self.layout.prop(context.scene.kezuri, "job", text="", icon="TOOL_SETTINGS")
+        settings = context.scene.kezuri
+        self.layout.prop(settings, "job", text="", icon="TOOL_SETTINGS")
+        if workflow_of(settings.job).simulation is not None:     # a job with toolpaths in the viewport
+            self.layout.prop(settings, "show_rapids")
 
 
 NAME_SHARE = 0.5    # of the panel's width, for a setting's name (Blender's split gives it 0.4 less a column)
@@ -311,7 +314,7 @@ KEZURI_PT_engrave_finish = property_subpanel(
      "band_ramp_angle"))
 KEZURI_PT_engrave_feeds = property_subpanel(
     "KEZURI_PT_engrave_feeds", "Feeds & Heights", "KEZURI_PT_engrave", "engrave",
-    ("rough_rpm", "rough_feed", "finish_rpm", "finish_feed", "plunge_feed", "clearance_z", "safe_z", "show_rapids"))
+    ("rough_rpm", "rough_feed", "finish_rpm", "finish_feed", "plunge_feed", "clearance_z", "safe_z"))
 KEZURI_PT_rotary_settings = property_subpanel(
     "KEZURI_PT_rotary_settings", "Bit, Feeds & Pitch", "KEZURI_PT_rotary", "rotary",
     ("tool_diameter", "tool_number", "flute_length", "spindle_rpm", "cutting_speed", "plunge_speed", "spacing",
@@ -325,7 +328,7 @@ KEZURI_PT_carve_roughing = property_subpanel(
 KEZURI_PT_carve_settings = property_subpanel(
     "KEZURI_PT_carve_settings", "Finishing, Feeds & Heights", "KEZURI_PT_carve", "carve",
     ("finish_tool_number", "max_slope", "steep_cleanup", "wall_pass", "sample_spacing", "rough_rpm", "finish_rpm", "rough_feed",
-     "finish_feed", "plunge_feed", "clearance", "safe_z", "show_rapids"))
+     "finish_feed", "plunge_feed", "clearance", "safe_z"))
 
 CLASSES = (KEZURI_PT_job, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
            KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_stepnc,

@@ -15,7 +15,7 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
 from .. import post as posts
 from ..toolpath.ir import machine as machine_presets
 from ..toolpath.operations.sheetmetal import nibbling
-from . import limits, machines
+from . import limits, machines, pathview
 
 _ENUM_ITEMS: dict = {}   # Blender reads dynamic enum strings after the callback returns: keep them alive
 
@@ -197,7 +197,6 @@ class KezuriEngrave(bpy.types.PropertyGroup):
     clearance_z: mm("Clearance Plane", 20.0, "Height of rapid moves between cuts", minimum=0.0)
     safe_z: mm("Safe Z", 0.0, "Height where each operation starts and ends; 0: the machine's clearance height "
                               "(tool changes and the program end lift Z as the machine profile says)", minimum=0.0)
-    show_rapids: BoolProperty(name="Show Rapids", default=True, description="Show rapid moves as well")
 
 
 # Shared by the Sheet Metal panel (scene settings) and the operators' redo panels.
@@ -382,7 +381,6 @@ class KezuriCarve(bpy.types.PropertyGroup):
     plunge_feed: FloatProperty(name="Plunge Feed", default=400.0, min=1.0, description="Feed into the work (mm/min)")
     clearance: mm("Clearance", 5.0, "Height above the stock top for moves between cuts", minimum=0.1)
     safe_z: mm("Safe Z", 50.0, "Height above the stock top at the start and the end", minimum=0.1)
-    show_rapids: BoolProperty(name="Show Rapids", default=False, description="Show the rapid moves in the preview")
 
 
 class KezuriFinding(bpy.types.PropertyGroup):
@@ -436,6 +434,8 @@ class KezuriSettings(bpy.types.PropertyGroup):
     turnmill: PointerProperty(type=KezuriTurnMill)
     carve: PointerProperty(type=KezuriCarve)
     simulation: PointerProperty(type=KezuriSimulation)
+    show_rapids: BoolProperty(name="Show Rapids", default=True, update=pathview.show_rapids,
+                              description="Show the rapid moves in the preview")
 
 
 for _cls, _group in ((KezuriMachine, "machine"), (KezuriEngrave, "engrave"), (KezuriPocket, "pocket"),

@@ -12,7 +12,6 @@ import time
 from dataclasses import dataclass
 
 import bpy
-import numpy as np
 from bpy.props import EnumProperty, StringProperty
 
 from .. import post as posts
@@ -22,6 +21,7 @@ from ..toolpath.job import Job, JobOperation, Setup, plan_job
 from ..toolpath.operations.rotary.kind import RotaryGeometry
 from . import convert
 from . import gate
+from . import pathview
 from .common import SteppedOperator
 from .exporting import NCExport, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
@@ -31,7 +31,6 @@ from .translations import translate_message
 from .workflow import BatchCommand, SimulationSetup, Workflow
 
 PREFIX = "Kezuri Rotary"
-COLOURS = ((0.95, 0.45, 0.1, 1.0), (0.1, 0.6, 1.0, 1.0), (0.2, 0.9, 0.3, 1.0), (0.9, 0.8, 0.1, 1.0))
 POST_FAMILIES = ("cxz",)
 
 
@@ -95,21 +94,12 @@ def run_rotary(scene, depsgraph, progress=None) -> RotaryJob:
     return rotary_request(scene, depsgraph)(progress)
 
 
-def part_frame_paths(op) -> tuple:
-    """Cutting and rapid polylines of a C-X-Z operation, back in the part frame (work mm)."""
-    points = core.part_points(op)
-    start = core.from_cylindrical([op.start[0]], [op.rotary["c"][0]])[0]
-    return convert.split_runs(op.kind, np.vstack([[start[0], start[1], op.start[2]], points]))
-
-
 def show_rotary(scene, job: RotaryJob) -> list:
+    """Replace the previous preview with each pocket's toolpaths, back in the part frame."""
     convert.remove_objects(PREFIX)
-    objects = []
-    for index, path in enumerate(job.result.pockets):
-        cutting, rapid = part_frame_paths(path.operation)
-        objects.append(convert.polyline_object(scene, f"{PREFIX} {path.pocket.name}", cutting, job.frame,
-                                               COLOURS[index % len(COLOURS)]))
-    return objects
+    pockets = job.result.pockets
+    return pathview.show_toolpaths(scene, PREFIX, [p.operation for p in pockets], simulation(job).stock, job.frame,
+                                   names=[p.pocket.name for p in pockets])
 
 
 def extension_for(post_name: str) -> str:

@@ -26,6 +26,7 @@ from ..toolpath.operations.stepnc.tools import tool_numbers
 from ..toolpath.operations.stepnc.solids import block_of, feature_solid
 from . import convert
 from . import gate
+from . import pathview
 from .common import run_reported
 from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
@@ -39,7 +40,6 @@ POST_FAMILIES = ("milling",)
 PREFIX = "Kezuri STEP-NC"
 FEATURE_COLOURS = {"ClosedPocket": (0.2, 0.6, 1.0, 1.0), "PlanarFace": (0.9, 0.8, 0.2, 1.0),
                    "RoundHole": (0.9, 0.3, 0.3, 1.0)}
-TOOLPATH_COLOUR = (0.95, 0.45, 0.1, 1.0)
 
 
 def describe_step(step) -> dict:
@@ -151,10 +151,8 @@ def show_workplan(scene, loaded, program=None) -> list:
             objects.append(convert.mesh_object(scene, f"{PREFIX} {feature.its_id}", *solid, frame,
                                                FEATURE_COLOURS.get(type(feature).__name__, (0.7, 0.7, 0.7, 1.0))))
     if program is not None:
-        for op in program.operations:
-            cutting, _ = convert.operation_paths(op)
-            objects.append(convert.polyline_object(scene, f"{PREFIX} path {op.name}", cutting, frame,
-                                                   TOOLPATH_COLOUR))
+        objects += pathview.show_toolpaths(scene, f"{PREFIX} path", program.operations,
+                                           simulation((loaded, program, frame)).stock, frame)
     return objects
 
 

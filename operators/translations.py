@@ -376,7 +376,6 @@ PROPERTY_TEXTS = {
     "Safe Z": "安全高さ Z",
     "Height for tool changes and the program end (mm)": "工具交換とプログラム終了のときの高さ (mm)",
     "Show Rapids": "早送りを表示",
-    "Show rapid moves as well": "早送りの移動も表示します",
     # Sheet metal: twisted quad
     "Corners": "頂点",
     "P1..P4 of the twisted quad, x y z each (mm)": "ねじれ四辺形の P1～P4、それぞれ x y z (mm)",

@@ -27,6 +27,7 @@ from ..toolpath.job import Job, JobOperation, Setup, plan_job
 from ..toolpath.operations.turnmill import kind as turnmill_kind
 from . import convert
 from . import gate
+from . import pathview
 from .common import SteppedOperator
 from .exporting import NCExport, report_findings
 from .limits import check_group
@@ -41,7 +42,6 @@ ATTRIBUTE = "Kezuri reach"
 LABEL_COLOURS = {core.NEITHER: (0.45, 0.45, 0.45, 1.0), core.RADIAL: (0.15, 0.45, 1.0, 1.0),
                  core.AXIAL: (0.2, 0.85, 0.3, 1.0), core.BOTH: (0.75, 0.3, 0.95, 1.0)}
 REPORT_LABELS = {core.NEITHER: "none", core.RADIAL: "radial", core.AXIAL: "axial", core.BOTH: "both"}
-PATH_COLOURS = {"radial": (0.95, 0.45, 0.1, 1.0), "axial": (1.0, 0.9, 0.1, 1.0)}
 SKIPPED_COLOUR = (250, 150, 20)       # the toolpath picture's faces no tool reaches (RGB 0-255)
 
 
@@ -177,14 +177,7 @@ def colour_faces(obj, labels: np.ndarray):
 
 def show_turnmill(scene, job: TurnMillJob) -> list:
     convert.remove_objects(PREFIX)
-    objects = []
-    for op in job.plan.program.operations:
-        points = op.part_points()
-        start = points[:1]
-        cutting, _ = convert.split_runs(op.kind, np.vstack([start, points]))
-        objects.append(convert.polyline_object(scene, f"{PREFIX} {op.name}", cutting, job.frame,
-                                               PATH_COLOURS.get(op.direction, (1, 1, 1, 1))))
-    return objects
+    return pathview.show_toolpaths(scene, PREFIX, job.plan.program.operations, job.stock, job.frame)
 
 
 def machine_findings(job: TurnMillJob, post, text: str) -> list:

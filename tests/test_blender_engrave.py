@@ -42,8 +42,11 @@ def test_generate_operator_builds_the_preview_and_rerun_replaces_it(scene):
     assert any(name.endswith("rapids") for name in first)
     rough = bpy.data.objects["Kezuri Engrave roughing (gouge texture)"]
     z = shell.convert.curve_points(rough)[:, 2]
-    # mm scene: 1 unit = 1 mm; cutting runs start with the feed plunge from the 2 mm approach gap.
-    assert z.min() == pytest.approx(-2.8, abs=1e-5) and z.max() == pytest.approx(2.0, abs=1e-5)
+    # mm scene: 1 unit = 1 mm; the cuts lie in the plate (top Z 0), the deepest gouge 2.8 mm down;
+    # the feed plunges into it start at the 2 mm approach gap (their own object, in the legend's red)
+    assert z.min() == pytest.approx(-2.8, abs=1e-5) and z.max() < 0.0
+    plunges = shell.convert.curve_points(bpy.data.objects["Kezuri Engrave roughing (gouge texture) plunges"])
+    assert plunges[:, 2].max() == pytest.approx(2.0, abs=1e-5)
     assert bpy.ops.kezuri.engrave_generate() == {"FINISHED"}
     assert sorted(o.name for o in bpy.data.collections["Kezuri"].objects) == first
 

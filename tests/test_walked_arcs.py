@@ -1,4 +1,4 @@
-"""The viewport's polylines of a path with arcs (program.walked, used by convert.operation_paths):
+"""The viewport's polylines of a path with arcs (program.walked, used by picture_jobs.role_paths):
 every point of a walked arc lies on its circle (checked against the centre given, not the walk),
 the angle steps are small, helices climb evenly, and straight moves are left as they are."""
 import math

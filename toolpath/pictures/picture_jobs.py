@@ -1,6 +1,6 @@
 """What each batch picture shows (drawn by :mod:`.picture`): one look for every workflow.
 
-* toolpaths: cuts, plunges, links and rapids in their own colours (:data:`ROLE_COLOURS`), over the
+* toolpaths: cuts, plunges, links and rapids in their own colours (:data:`.legend.ROLE_COLOURS`), over the
   part's solids and the stock's outline, with a legend, the stock's size and the deepest cut;
 * the simulated stock: shaded, coloured by depth over the job's own depth range (0 .. deepest cut),
   with a colour bar;
@@ -15,14 +15,11 @@ from __future__ import annotations
 import numpy as np
 
 from . import picture_font as font
+from .legend import CUT, LINK, PLUNGE, RAPID_ROLE, ROLE_COLOURS, ROLE_LABELS, ROLES, UNCUT_COLOUR
 from .picture import INK, Picture, PictureError, View
-from ..ir.program import ARC_CCW, ARC_CW, RAPID, arc_sweep
+from ..ir.program import ARC_CCW, ARC_CW, RAPID, arc_sweep, walked
 
-CUT, PLUNGE, LINK, RAPID_ROLE = 0, 1, 2, 3
-ROLES = ("cut", "plunge", "link", "rapid")
-ROLE_COLOURS = {"cut": (25, 95, 225), "plunge": (220, 30, 30), "link": (10, 160, 60), "rapid": (200, 40, 200)}
 CAPTION_INK = (170, 30, 20)        # what was not cut, in red under the header
-ROLE_LABELS = {"cut": "CUT", "plunge": "PLUNGE", "link": "LINK (FEED BETWEEN CUTS)", "rapid": "RAPID (DASHED)"}
 STOCK_COLOUR = (222, 196, 150)
 PART_COLOUR = (178, 186, 198)
 SIDE_COLOUR = (200, 184, 150)
@@ -31,7 +28,6 @@ OUTLINE_COLOUR = (120, 110, 95)
 DEPTH_RAMP = np.array([(236, 218, 178), (232, 160, 70), (190, 70, 40), (95, 25, 70), (30, 20, 90)], float)
 PATTERN_COLOURS = ((150, 190, 235), (160, 215, 170), (240, 200, 140), (210, 175, 230))
 BEND_COLOUR, CONTOUR_COLOUR = (40, 40, 160), (230, 70, 20)
-UNCUT_COLOUR = (235, 20, 20)
 HEADER, LEGEND, SCALE = 58, 44, 2
 MARK_PX = 12           # half the side of the square round a place left uncut
 STEEP = 0.25           # a plunge: at most this much sideways per mm along the tool axis
@@ -116,6 +112,26 @@ def toolpath_segments(op, stock) -> tuple:
     straight[arcs] = False
     return (np.vstack([a[straight], arc_a]), np.vstack([b[straight], arc_b]),
             np.concatenate([roles[straight], roles[arcs][owner]]))
+
+
+def role_paths(op, stock) -> list:
+    """The path of ``op`` in part coordinates, cut where its move kind (:func:`move_roles`)
+    changes: [(role, points (k, 3))] in the path's order, each run starting where the one
+    before it ended; 3-axis arcs walked in chords of at most 6 degrees (for drawing them)."""
+    roles = move_roles(op, stock)
+    if op.rotary:
+        points, owner = part_points(op), np.arange(len(op))
+    else:
+        _, points = walked(op, ARC_STEP)
+        count = np.ones(len(op), np.int64)       # the pieces walked() makes of each move
+        arcs = np.flatnonzero((op.kind == ARC_CW) | (op.kind == ARC_CCW))
+        sweep = arc_sweep(op.start_points()[arcs, :2], op.xyz[arcs, :2], op.center[arcs, :2], op.kind[arcs] == ARC_CW)
+        count[arcs] = np.maximum(np.ceil(np.abs(sweep) / ARC_STEP).astype(np.int64), 1)
+        owner = np.repeat(np.arange(len(op)), count)
+    piece_roles = roles[owner]
+    change = (np.flatnonzero(piece_roles[1:] != piece_roles[:-1]) + 1).tolist()
+    return [(int(piece_roles[start]), points[start:end + 1])
+            for start, end in zip([0] + change, change + [len(piece_roles)]) if end > start]
 
 
 def deepest_cut(operations, stock) -> float:
