@@ -23,7 +23,7 @@ from ..toolpath.job import Job, JobOperation, Setup, plan_job
 from ..toolpath.ir.program import Tool
 from ..toolpath.operations.stepnc.kind import StepncGeometry, StepncSettings
 from ..toolpath.operations.stepnc.tools import tool_numbers
-from ..toolpath.operations.stepnc.solids import block_of, feature_solid
+from ..toolpath.operations.stepnc.solids import block_of, feature_solid, stock_box
 from . import convert
 from . import gate
 from . import pathview
@@ -152,7 +152,7 @@ def show_workplan(scene, loaded, program=None) -> list:
                                                FEATURE_COLOURS.get(type(feature).__name__, (0.7, 0.7, 0.7, 1.0))))
     if program is not None:
         objects += pathview.show_toolpaths(scene, f"{PREFIX} path", program.operations,
-                                           simulation((loaded, program, frame)).stock, frame)
+                                           stock_box(loaded, program), frame)
     return objects
 
 
