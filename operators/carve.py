@@ -86,6 +86,25 @@ def run_on_mesh(vertices, faces, settings: core.CarveSettings, frame, stock_abov
     return CarveJob(part.result.result, part.result.vertices, part.result.faces, frame, part.seconds)
 
 
+def job_operation(scene, depsgraph, entry, post_name: str):
+    """A job file's carving: object ``design`` (the mesh), the Carve panel's settings by name."""
+    from .jobentry import JobFileError, apply_settings
+
+    props = scene.kezuri.carve
+    for slot, obj in entry.objects.items():
+        if slot != "design":
+            raise JobFileError(f"{entry.where}: objects.{slot}: a carving takes objects.design (the mesh)")
+        props.design = obj
+    apply_settings(props, entry)
+    vertices, faces, frame = design_mesh(scene, depsgraph)
+    machine = scene.kezuri.machine
+    check_group(machine, "machine")
+    geometry = CarveGeometry(np.asarray(vertices), np.asarray(faces), float(props.stock_above))
+    setup = Setup(name=scene.name, post=post_name, machine=scene_machine(machine, POST_FAMILIES, post_name),
+                  work_offset=machine.work_offset, rapid_rate=machine.rapid_rate)
+    return JobOperation("carve", entry.name, settings_from(props), geometry, entry.enabled), setup, frame
+
+
 def carve_request(scene, depsgraph):
     """Read the design and the settings; return ``compute(progress)``, which plans the job
     without touching Blender data (so it can run in steps)."""
@@ -411,6 +430,7 @@ def batch(args) -> dict:
 
 WORKFLOW = Workflow(
     "CARVE", "Carving", "Roughing and finishing of a 3-D surface (relief, domed plate, any mesh)", classes=CLASSES,
-    post_families=POST_FAMILIES, request=carve_request, simulation=simulation,
+    post_families=POST_FAMILIES, request=carve_request, simulation=simulation, kind="carve",
+    job_operation=job_operation,
     commands=(BatchCommand("carve", "3-D surface carving of a mesh: Z-level roughing, ball finishing raster",
                            batch_arguments, batch, demo=("--post", "linuxcnc")),))

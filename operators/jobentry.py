@@ -24,6 +24,7 @@ class JobEntry:
     settings: dict
     table: dict
     where: str
+    base_dir: str = "."      # where the job file's relative paths start
 
 
 def apply_settings(group, entry: JobEntry, skip=()) -> None:

@@ -31,7 +31,7 @@ from ..toolpath.job import Job, Setup, plan_job
 from .jobentry import JobEntry, JobFileError
 
 SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings"}
-OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes"}
+OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "file"}
 
 
 def read(path: str, text: str | None = None) -> dict:
@@ -106,7 +106,7 @@ def scene_for(setup: dict, path: str, base_dir: str | None = None):
     return scene
 
 
-def entries(data: dict, scene, path: str) -> list:
+def entries(data: dict, scene, path: str, base_dir: str | None = None) -> list:
     import bpy
 
     found = []
@@ -119,8 +119,37 @@ def entries(data: dict, scene, path: str) -> list:
                 raise JobFileError(f"{where}: objects.{slot} = {name!r} is not an object of the scene")
             objects[slot] = obj
         found.append(JobEntry(table["name"], table["kind"], table.get("enabled", True), objects,
-                              dict(table.get("settings", {})), table, where))
+                              dict(table.get("settings", {})), table, where,
+                              base_dir or os.path.dirname(os.path.abspath(path))))
     return found
+
+
+def job_post(families, planned):
+    """The job's post, made with what it takes of the setup (work offset, machine: a turn-mill post
+    has neither) and with every option the parts ask for (a rotary table's top speed)."""
+    import inspect
+
+    from .. import post as posts
+
+    setup = planned.job.setup
+    post_class = posts.find(families, setup.post)
+    accepted = inspect.signature(post_class.__init__).parameters
+    options = {"work_offset": setup.work_offset}
+    if setup.machine is not None:
+        options["machine"] = setup.machine
+    options = {key: value for key, value in options.items() if key in accepted}
+    for part in planned.parts:
+        options.update(dict(part.post_options))
+    return posts.create(families, setup.post, **options)
+
+
+def same_frame(a, b) -> bool:
+    return abs(a.mm_per_unit - b.mm_per_unit) <= 1e-9 * max(1.0, a.mm_per_unit) and all(
+        abs(float(x) - float(y)) <= 1e-6 for x, y in zip(a.origin_mm, b.origin_mm))
+
+
+def describe_frame(frame) -> str:
+    return "X {:g} Y {:g} Z {:g} in the scene".format(*(float(v) for v in frame.origin_mm))
 
 
 def plan_file(path: str, post_name: str | None = None, progress=None, text: str | None = None,
@@ -147,7 +176,7 @@ def plan_file(path: str, post_name: str | None = None, progress=None, text: str 
         set_exactly(scene.kezuri.machine, "work_offset", setup_table["work_offset"], f"job file {path}: work_offset")
     depsgraph = bpy.context.evaluated_depsgraph_get()
     operations, setup, frame, families = [], None, None, []
-    for entry in entries(data, scene, path):
+    for entry in entries(data, scene, path, base_dir):
         if entry.kind not in adapters:
             raise JobFileError(f"{entry.where}: kind {entry.kind!r} is not one of {', '.join(sorted(adapters))}")
         workflow = adapters[entry.kind]
@@ -156,6 +185,9 @@ def plan_file(path: str, post_name: str | None = None, progress=None, text: str 
         families += [f for f in workflow.post_families if f not in families]
         if setup is None and op_setup is not None:
             setup, frame = op_setup, op_frame
+        elif op_frame is not None and frame is not None and not same_frame(op_frame, frame):
+            raise JobFileError(f"{entry.where}: its work zero ({describe_frame(op_frame)}) is not the job's "
+                               f"({describe_frame(frame)}): the operations of one job share one work zero")
     if setup is None:
         raise JobFileError(f"job file {path}: no operation gives the stock: begin with one that works on a "
                            "plate or a part (engrave, carve)")
@@ -172,7 +204,7 @@ def write_job(path: str, out: str, post_name: str | None = None, allow_findings:
     from .. import post as posts
     from . import gate, preview, simview
     from .common import Progress
-    from .exporting import machine_post, warn, write_program
+    from .exporting import warn, write_program
     from .workflow import SimulationSetup
 
     started = time.perf_counter()
@@ -184,7 +216,7 @@ def write_job(path: str, out: str, post_name: str | None = None, allow_findings:
     cut, stock, limits = planned.simulation()
     simulation = SimulationSetup(cut, stock, limits, frame, setup.name)
     checked, gate_report = gate.check(simulation, allow_findings, Progress(None, "check"), machine=setup.machine)
-    post = machine_post(families, setup.post, setup.work_offset, False, setup.machine)
+    post = job_post(families, planned)
     nc_path = os.path.join(out, f"{setup.name}{post_class.extension}")
     findings = []
     write_program(nc_path, post.to_text(program), post, findings)

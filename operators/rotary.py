@@ -7,6 +7,8 @@ Pockets panel): its outline (a closed curve or mesh), depth, wall angle and bott
 """
 from __future__ import annotations
 
+import dataclasses
+
 import os
 import time
 from dataclasses import dataclass
@@ -58,9 +60,9 @@ def pocket_objects(scene) -> list:
     return sorted((o for o in scene.objects if o.kezuri_pocket.enabled), key=lambda o: o.name)
 
 
-def rotary_request(scene, depsgraph):
-    """Read the block, the pockets and the settings; return ``compute(progress)``, which plans
-    without touching Blender data (so it can run in steps)."""
+def rotary_operation(scene, depsgraph, name: str = "rotary"):
+    """Read the block, the pockets and the settings: (the job operation, the job's setup, the
+    block's frame, the block)."""
     settings = scene.kezuri
     check_group(settings.machine, "machine")
     check_group(settings.rotary, "rotary")
@@ -82,12 +84,34 @@ def rotary_request(scene, depsgraph):
     rotary_settings = settings_from(settings.rotary)
     setup = Setup(name=scene.name, post=settings.rotary.post, work_offset=settings.machine.work_offset,
                   rapid_rate=settings.machine.rapid_rate)
-    job = Job(setup, (JobOperation("rotary", "rotary", rotary_settings, RotaryGeometry(block, tuple(pockets))),))
+    operation = JobOperation("rotary", name, rotary_settings, RotaryGeometry(block, tuple(pockets)))
+    return operation, setup, plate.frame, block
+
+
+def rotary_request(scene, depsgraph):
+    """Read the scene (:func:`rotary_operation`); return ``compute(progress)``, which plans
+    without touching Blender data (so it can run in steps)."""
+    operation, setup, frame, block = rotary_operation(scene, depsgraph)
+    job = Job(setup, (operation,))
 
     def compute(progress=None) -> RotaryJob:
         part = plan_job(job, progress=progress).parts[0]
-        return RotaryJob(part.result, rotary_settings, plate.frame, block, part.stock)
+        return RotaryJob(part.result, operation.settings, frame, block, part.stock)
     return compute
+
+
+def job_operation(scene, depsgraph, entry, post_name: str):
+    """A job file's rotary pockets: object ``block`` (the board; the pockets are the scene's objects
+    marked as pockets), the Rotary Pockets panel's settings by name."""
+    from .jobentry import JobFileError, apply_settings
+
+    for slot, obj in entry.objects.items():
+        if slot != "block":
+            raise JobFileError(f"{entry.where}: objects.{slot}: rotary pockets take objects.block (the board)")
+        scene.kezuri.stock.plate = obj
+    apply_settings(scene.kezuri.rotary, entry)
+    operation, setup, frame, _ = rotary_operation(scene, depsgraph, entry.name)
+    return dataclasses.replace(operation, enabled=entry.enabled), setup, frame
 
 
 def run_rotary(scene, depsgraph, progress=None) -> RotaryJob:
@@ -257,5 +281,5 @@ def batch(args) -> dict:
 
 WORKFLOW = Workflow(
     "ROTARY", "Rotary Pockets", "The pockets on the rotating table", classes=CLASSES, post_families=POST_FAMILIES,
-    request=rotary_request, simulation=simulation, button="Rotary",
+    request=rotary_request, simulation=simulation, button="Rotary", kind="rotary", job_operation=job_operation,
     commands=(BatchCommand("rotary", "pockets on a rotating table, C-X-Z (W2)", batch_arguments, batch),))

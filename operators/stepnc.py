@@ -124,6 +124,34 @@ def workplan_job(scene, machine=None, post_name: str = "") -> Job:
     return Job(setup, (JobOperation("stepnc", "stepnc", StepncSettings(order, enabled), geometry),))
 
 
+def job_operation(scene, depsgraph, entry, post_name: str):
+    """A job file's STEP-NC workplan: ``file = "part.stp"`` (beside the job file), and optionally
+    settings ``order`` (instance ids in cutting order) and ``enabled`` (those cut; default all)."""
+    from .jobentry import JobFileError
+
+    if entry.objects:
+        raise JobFileError(f"{entry.where}: a STEP-NC workplan comes from its file = \"...\", not objects")
+    path = entry.table.get("file")
+    if not isinstance(path, str) or not path:
+        raise JobFileError(f"{entry.where}: no file: give file = \"part.stp\" (an ISO 14649 Part 21 file)")
+    path = os.path.join(entry.base_dir, path)
+    unknown = sorted(set(entry.settings) - {"order", "enabled"})
+    if unknown:
+        raise JobFileError(f"{entry.where}: settings.{unknown[0]} is not a STEP-NC setting; they are order, enabled")
+    ids = {}
+    for key in ("order", "enabled"):
+        value = entry.settings.get(key)
+        if value is not None and (not isinstance(value, list)
+                                  or not all(isinstance(v, int) and not isinstance(v, bool) for v in value)):
+            raise JobFileError(f"{entry.where}: settings.{key} = {value!r} is not a list of instance ids")
+        ids[key] = tuple(value) if value is not None else None
+    settings = StepncSettings(ids["order"], ids["enabled"])
+    machine = scene.kezuri.machine
+    setup = Setup(name=scene.name, post=post_name, work_offset=machine.work_offset, rapid_rate=machine.rapid_rate)
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    return JobOperation("stepnc", entry.name, settings, StepncGeometry(read_text(path)), entry.enabled), setup, frame
+
+
 def plan_workplan(scene, machine=None, post_name: str = "", progress=None) -> WorkplanJob:
     part = plan_job(workplan_job(scene, machine, post_name), progress=progress).parts[0]
     return WorkplanJob(part, convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0)))
@@ -467,4 +495,5 @@ def batch(args) -> dict:
 WORKFLOW = Workflow(
     "STEPNC", "STEP-NC Workplan", "The imported ISO 14649 workplan", classes=CLASSES, menus=MENUS,
     post_families=POST_FAMILIES, request=stepnc_request, simulation=simulation, button="STEP-NC",
+    kind="stepnc", job_operation=job_operation,
     commands=(BatchCommand("stepnc", "ISO 14649 (STEP-NC) workplan to G-code (W3)", batch_arguments, batch),))

@@ -150,6 +150,26 @@ def turnmill_request(scene, depsgraph, profile: machine.MachineProfile | None = 
                                              name=name, progress=progress, profile=profile)
 
 
+def job_operation(scene, depsgraph, entry, post_name: str):
+    """A job file's turn-mill operation: object ``part`` (the mesh around the Z axis), the Turn-Mill
+    panel's settings by name (the bar: stock_radius, stock_z_min, stock_z_max)."""
+    from .jobentry import JobFileError, apply_settings
+
+    props = scene.kezuri.turnmill
+    for slot, obj in entry.objects.items():
+        if slot != "part":
+            raise JobFileError(f"{entry.where}: objects.{slot}: a turn-mill operation takes objects.part")
+        props.part = obj
+    apply_settings(props, entry, skip=("selected_only",))
+    obj, vertices, faces, owner, frame = part_mesh(scene, depsgraph)
+    profile = machine_profile()
+    geometry = turnmill_kind.TurnMillGeometry(vertices, faces, core.Stock(props.stock_radius, props.stock_z_min,
+                                                                          props.stock_z_max), None,
+                                              BVHRayEngine if props.engine == "BVH" else core.TrimeshRayEngine)
+    operation = JobOperation("turnmill", entry.name, settings_from(props, profile), geometry, entry.enabled)
+    return operation, Setup(name=scene.name, machine=profile), frame
+
+
 def run_turnmill(scene, depsgraph, progress=None, profile: machine.MachineProfile | None = None) -> TurnMillJob:
     return turnmill_request(scene, depsgraph, profile)(progress)
 
@@ -445,6 +465,7 @@ def skipped_highlight(job: TurnMillJob) -> list:
 
 WORKFLOW = Workflow(
     "TURNMILL", "Turn-Mill", "The turn-mill part's radial and axial operations", classes=CLASSES,
-    post_families=POST_FAMILIES, request=turnmill_request, simulation=simulation,
+    post_families=POST_FAMILIES, request=turnmill_request, simulation=simulation, kind="turnmill",
+    job_operation=job_operation,
     commands=(BatchCommand("turnmill", "4.5-axis turn-mill: reach classification, radial/axial paths, X-Z-C (W4)",
                            batch_arguments, batch),))

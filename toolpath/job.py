@@ -94,6 +94,7 @@ class Part:
     seconds: float = 0.0
     notes: tuple | None = None          # the program header's notes (None: the warnings)
     fixture_clearance: float = 0.0      # how far below the stock's bottom it may cut (a drill through)
+    post_options: tuple = ()            # (name, value) pairs the post is made with (a table's top speed)
 
 
 class OperationKind:

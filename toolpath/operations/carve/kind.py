@@ -36,4 +36,5 @@ class CarveKind(OperationKind):
         result.program.rapid_rate = setup.rapid_rate
         design = DesignLayer(SimpleNamespace(vertices=vertices, faces=faces))
         return Part(tuple(result.program.operations), BoxStock(*result.stock), design, tuple(result.warnings),
-                    (), None, SimpleNamespace(result=result, vertices=vertices, faces=faces))
+                    (), None, SimpleNamespace(result=result, vertices=vertices, faces=faces),
+                    notes=tuple(result.program.notes))

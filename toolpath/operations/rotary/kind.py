@@ -33,4 +33,4 @@ class RotaryKind(OperationKind):
         stock = BoxStock(-b.size_x / 2, -b.size_y / 2, -b.thickness, b.size_x / 2, b.size_y / 2, 0.0)
         # no design layer: the gate checks the pockets' cuts against the block only
         return Part(tuple(result.program.operations), stock, None, (), (), None, result,
-                    notes=tuple(result.program.notes))
+                    notes=tuple(result.program.notes), post_options=(("max_table_rpm", settings.max_table_rpm),))

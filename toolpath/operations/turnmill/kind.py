@@ -75,4 +75,5 @@ class TurnMillKind(OperationKind):
         outcome = TurnMillOutcome(result, vertices, faces, 2 * len(samples), seconds)
         design = DesignLayer(SimpleNamespace(vertices=vertices, faces=faces))
         return Part(tuple(result.program.operations), as_stock(geometry.stock), design,
-                    tuple(unmachined_warnings(result)), tuple(result.skipped), None, outcome)
+                    tuple(unmachined_warnings(result)), tuple(result.skipped), None, outcome,
+                    notes=tuple(result.program.notes))
