@@ -85,12 +85,8 @@ def punch_job(contour, pattern, props, profile=None) -> PunchJob:
     where = placement.place(contour, props.tool_diameter, profile)
     lines = nibbling.nibble(contour, props.pitch, props.tool_diameter, joints=props.joints,
                             joint_width=props.joint_width).moved(where.offset)
-    notes = placement.describe(where)
-    notes.append(f"micro-joints: {len(lines.joints)} of {lines.joint_width:g} mm" if len(lines.joints)
-                 else "micro-joints: none, the part falls free at the last hits")
-    post = posts.create(POST_FAMILIES, PUNCH_POST, station=props.station, pitch=props.pitch,
-                        thickness=props.thickness, origin=profile.sheet_origin)
-    nc = post.lines_to_text(lines.lines, notes=notes)
+    program = placement.program(where, lines, props.station, props.thickness, profile)
+    nc = posts.create(POST_FAMILIES, PUNCH_POST).to_text(program)
     offset = np.asarray(where.offset, float)
     punched = punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=np.asarray(pattern) + offset,
                                       joints=lines.joints)

@@ -751,7 +751,6 @@ MESSAGES = {
     "the spindle is not stopped at the bottom (not written); the reamer is fed out":
         "穴底での主軸停止は書き出しません。リーマは回転したまま送りで抜きます",
     # post/*.py
-    "contour has a non-finite coordinate (NaN or infinity)": "輪郭に有限でない座標（NaN または無限大）があります",
     "a closed contour needs at least 3 distinct points": "閉じた輪郭には異なる点が3つ以上必要です",
     "G92 origin must be finite": "G92 の原点は有限の値にしてください",
     "the controller-macro post needs an operation with a gouge texture; use the baked Fanuc post for this program":
@@ -1002,12 +1001,15 @@ MESSAGE_TEMPLATES = {
     '{}: {} {} is outside the {}..{} the control accepts ({})':
         '{0}：{1} {2} は制御装置が受け付ける範囲 {3}..{4} の外です（{5}）',
     '{} must be a finite number {}, got {}': '{0} は有限の数値（{1}）にしてください（指定値 {2}）',
-    'a contour must be a list of (x, y) points, got shape {}': '輪郭は (x, y) 点のリストにしてください（形状 {0}）',
+    'the turret punch writes a PunchProgram (lines of hits), got {}': 'タレットパンチが書くのは PunchProgram（パンチ線の列）です（指定：{0}）',
+    'punch program {}: its operations must be one or more PunchOperations': 'パンチプログラム {0}：操作は1つ以上の PunchOperation にしてください',
+    'G92 origin must be two numbers (x, y), got {}': 'G92 の原点は2つの数値 (x, y) にしてください（指定値 {0}）',
+    '{} must be a finite number > 0, got {}': '{0} は0より大きい有限の数値にしてください（指定値 {1}）',
     'tool side must be one of {}, got {}': '工具の側は {0} のいずれかにしてください（指定値 {1}）',
     'turret station must be an integer 1..999, got {}': 'タレットステーションは1〜999の整数にしてください（指定値 {0}）',
     'end code must be one of {}, got {}': '終了コードは {0} のいずれかにしてください（指定値 {1}）',
-    '{} segments do not fit sequence numbers N001..N999': '{0} 個の線分はシーケンス番号 N001〜N999 に収まりません',
-    'segment {} is {} mm long, shorter than the {} mm output resolution': '線分 {0} の長さは {1} mm で、出力分解能 {2} mm より短いです',
+    'operation {}: lines must be (first hit, last hit) pairs of (x, y)': '操作 {0}：線は (x, y) の（最初の打点、最後の打点）の組にしてください',
+    'operation {}: compensation must be one of {}, got {}': '操作 {0}：工具補正は {1} のいずれかにしてください（指定値 {2}）',
     'G79 punching line: pitch Q {} must be at least the thickness {} mm': 'G79 パンチング直線：ピッチ Q {0} は板厚 {1} mm 以上にしてください',
     '{} must be a number, got {}': '{0} は数値にしてください（指定値 {1}）',
     'operation {} has arc moves; the CL data writer writes GOTO points only': '工程 {0} に円弧移動があります。CLデータ出力は GOTO 点のみです',

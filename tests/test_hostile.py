@@ -18,6 +18,7 @@ from kezuri.toolpath.simulate import ncread
 from kezuri.toolpath.operations.sheetmetal import punch, unfold
 from kezuri.toolpath import simulate as sim
 from kezuri.toolpath.operations.turnmill import turnmill as tm
+from kezuri.toolpath.engines.meshdata import MeshInputError
 from kezuri.toolpath.ir.errors import InputError
 from kezuri.toolpath.ir.program import Tool
 from kezuri.toolpath.operations.stepnc import part21
@@ -411,7 +412,7 @@ def test_nan_vertices_are_refused_up_front():
     v, f, stock = tm.sample_part(48)
     v = v.copy()
     v[5, 1] = np.nan
-    with time_limit(20), pytest.raises(tm.TurnMillError, match="NaN or infinite vertex"):
+    with time_limit(20), pytest.raises(MeshInputError, match="NaN or infinite vertex"):
         tm.plan(v, f, stock)
 
 
