@@ -933,8 +933,8 @@ MESSAGE_TEMPLATES = {
     "plate {} reaches {} mm from the world origin (more than {} mm) at the scene's unit scale of {} m per unit: is the unit scale right?":
         "板材 {0} がワールド原点から {1} mm まで達しています（{2} mm 超、シーンの単位スケールは1単位 {3} m）。単位スケールは正しいですか",
     "--tool {}: {} {} mm is outside the allowed range {}": "--tool {0}：{1} {2} mm が許容範囲 {3} の外です",
-    "the part reaches {} mm from the origin (more than {} mm): is it in other units?":
-        "部品が原点から {0} mm まで達しています（{1} mm 超）。単位が違っていませんか",
+    "{} {}: the mesh reaches {} mm from the origin (more than {} mm): is it in other units?":
+        "{0} {1}：メッシュが原点から {2} mm まで達しています（{3} mm 超）。単位が違っていませんか",
     "--mesh {}: {}": "メッシュファイル --mesh {0}：{1}",
     "--surface {}: {}": "板面のメッシュファイル --surface {0}：{1}",
     "the design mesh reaches {} mm from the work zero (more than {} mm): is it in other units?":
@@ -1341,7 +1341,6 @@ MESSAGE_TEMPLATES = {
     '--stock {}: not numbers': '--stock {0}：数値ではありません',
     '--stock {}: give box:x0,y0,z0,x1,y1,z1 or cylinder:R,H': '--stock {0}：box:x0,y0,z0,x1,y1,z1 か cylinder:R,H で指定してください',
     'no such NC file: {}': 'NC ファイルがありません：{0}',
-    'no such design file: {}': '設計形状のファイルがありません：{0}',
     '--corners: not numbers: {}': '--corners：数値ではありません：{0}',
     '--corners needs four "x,y,z" corners separated by ";", got {}':
         '--corners には ";" で区切った "x,y,z" の頂点が4つ必要です（指定：{0}）',
@@ -1351,7 +1350,7 @@ MESSAGE_TEMPLATES = {
     '--order: instance ids separated by commas, got {}': '--order：インスタンス番号をカンマ区切りで指定してください（指定：{0}）',
     '--order: #{} is not a workingstep of {} ({})': '--order：#{0} は {1} のワーキングステップではありません（{2}）',
     'no such ISO 14649 file: {}': 'ISO 14649 ファイルがありません：{0}',
-    'no such mesh file: {}': 'メッシュファイルがありません：{0}',
+    '{} {}: no such file': '{0} {1}：ファイルがありません',
     # toolpath/operations/engrave/surface_engrave.py, operators/engrave.py: engraving on a curved plate
     'surface {}: {}': '曲面 {0}：{1}',
     'surface {}: vertices must be an (n, 3) array of numbers (mm)': '曲面 {0}：頂点は数値 (mm) の (n, 3) 配列にしてください',
@@ -1421,8 +1420,11 @@ MESSAGE_TEMPLATES = {
     'stepover':
         '急斜面の追加仕上げ：走査に直交する方向で {1} 度より急な面 {0} mm2 を、それに直交する走査でピックフィード '
         '{2} mm でもう一度削りました',
-    '{}: not a readable mesh ({})': '{0}：読み込めるメッシュではありません（{1}）',
-    '{}: the mesh has no faces': '{0}：メッシュに面がありません',
+    '{} {}: not a readable mesh ({})': '{0} {1}：読み込めるメッシュではありません（{2}）',
+    '{} {}: the mesh has no faces': '{0} {1}：メッシュに面がありません',
+    '{} {}: the mesh has a non-finite vertex coordinate (NaN or infinity)':
+        '{0} {1}：メッシュに有限でない頂点座標（NaN または無限大）があります',
+    '{} {}: a face has a vertex index outside 0..{}': '{0} {1}：面の頂点番号が 0..{2} の外にあります',
     'no workflow {}; the table has {}': 'ワークフロー {0} はありません。あるのは {1} です',
     'post class {} needs {}': 'ポストプロセッサのクラス {0} には {1} が必要です',
     'post {} ({}, {}) is already registered by {}.{}': 'ポストプロセッサ {0}（{1}、{2}）は {3}.{4} が登録済みです',
@@ -1585,8 +1587,6 @@ MESSAGE_TEMPLATES = {
         "ポケットは {5} に加工します",
     '#{} {}: radius must be positive and sweep_angle within 0 to 360 degrees, found radius {} and sweep {}':
         '#{0} {1}：半径は正、sweep_angle は0〜360度にしてください（半径 {2}、角度 {3}）',
-    'design {}: not a readable mesh ({})':
-        '設計形状 {0}：読み込めるメッシュではありません（{1}）',
     'line {}: {} is not a word (a letter and a number) in {}':
         '{0}行目：{1}：ワード（英字と数値）ではありません：{2}',
     'line {}: {} is not followed by a number in {}': '{0}行目：{1} の後に数値がありません：{2}',
