@@ -28,8 +28,7 @@ def elbow_programs(diameter: float = 400.0, pieces: int = 60, punch_diameter: fl
         contour = unfold.compensate_outline(outline, punch_diameter)
         where = placement.place(contour, punch_diameter, profile)
         lines = nibbling.nibble(contour, pitch, punch_diameter).moved(where.offset)
-        text = amada_punch.lines_to_text(lines.lines, station=302, pitch=pitch, thickness=1.6,
-                                         origin=profile.sheet_origin, notes=placement.describe(where))
+        text = amada_punch.AmadaPunchPost().to_text(placement.program(where, lines, 302, 1.6, profile))
         out.append((text, outline + where.offset, lines.joints))
     return out
 

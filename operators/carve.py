@@ -18,7 +18,7 @@ from bpy.props import EnumProperty, StringProperty
 from .. import post as posts
 from ..toolpath.operations.carve import carve as core
 from ..toolpath.operations.carve import carve_samples
-from ..toolpath.engines import meshdata
+from ..toolpath.engines import meshdata, meshfile
 from ..toolpath.ir.program import Tool
 from ..toolpath.simulate import BoxStock
 from ..toolpath.job import Job, JobOperation, Setup, plan_job
@@ -296,21 +296,11 @@ def batch_arguments(p):
 
 
 def read_mesh_file(path: str, option: str = "--mesh") -> tuple:
-    """Vertices (mm) and triangles of an STL/OBJ/PLY design; what is wrong with it is said naming
-    ``option`` and the file."""
-    import trimesh
-
-    if not os.path.isfile(path):
-        raise FileNotFoundError(f"no such mesh file: {path}")
+    """Vertices (mm) and triangles of an STL/OBJ/PLY design (:func:`meshfile.read_mesh`), checked
+    as a design; what is wrong with it is said naming ``option`` and the file."""
+    vertices, faces = meshfile.read_mesh(path, option)
     try:
-        loaded = trimesh.load(path, force="mesh", process=False)   # as the file says: trimesh drops NaN faces
-    except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file
-        raise core.CarveError(f"{path}: not a readable mesh ({error})") from None
-    vertices, faces = np.asarray(loaded.vertices, float), np.asarray(loaded.faces)
-    try:
-        vertices, faces = core.check_mesh(vertices, faces)      # NaN, 1e300 ... before trimesh merges them away
-        merged = trimesh.Trimesh(vertices, faces, process=True)  # then the STL's repeated corners merged
-        return core.check_mesh(np.asarray(merged.vertices, float), np.asarray(merged.faces))
+        return core.check_mesh(vertices, faces)
     except core.CarveError as error:
         if option == "--surface":
             raise core.CarveError(f"--surface {path}: {error}") from None

@@ -3,8 +3,10 @@ dialect, cut a stock with it, check it against a design mesh, write the carved s
 from __future__ import annotations
 
 import os
+from types import SimpleNamespace
 
 from ..toolpath import simulate as core
+from ..toolpath.engines import meshfile
 from ..toolpath.engines.textfile import read_text
 from .workflow import BatchCommand, Workflow
 
@@ -35,15 +37,11 @@ def parse_stock(text: str):
     raise core.SimulationError(f"--stock {text!r}: give box:x0,y0,z0,x1,y1,z1 or cylinder:R,H")
 
 
-def load_design(path: str):
-    """The design mesh of an STL/OBJ/PLY file; a file trimesh cannot read is an error naming it
-    (random bytes load as a mesh without faces, which the simulation refuses by name)."""
-    import trimesh
-
-    try:
-        return trimesh.load(path, force="mesh")
-    except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file
-        raise core.SimulationError(f"design {os.path.basename(path)}: not a readable mesh ({error})") from None
+def load_design(path: str, option: str = "--design"):
+    """The design mesh (vertices, faces in mm) of an STL/OBJ/PLY file (:func:`meshfile.read_mesh`: a
+    file that is no mesh, or random bytes that load as one without faces, is refused naming it)."""
+    vertices, faces = meshfile.read_mesh(path, option)
+    return SimpleNamespace(vertices=vertices, faces=faces)
 
 
 def batch(args) -> dict:
@@ -83,8 +81,6 @@ def batch(args) -> dict:
         runs = read.runs
     design = None
     if args.design:
-        if not os.path.isfile(args.design):
-            raise FileNotFoundError(f"no such design file: {args.design}")
         design = load_design(args.design)
     # one operation per spindle state (the reader's runs): a cut with the spindle stopped is named by its line
     result = core.simulate([run for run, _ in runs], parse_stock(args.stock), engine=args.engine, cell=args.cell, design=design,

@@ -93,11 +93,8 @@ def punch_job(pattern, props, profile=None) -> PunchJob:
     profile = punch_profile(props) if profile is None else profile
     setup = Setup(name="punch", post=PUNCH_POST, machine=profile)
     operation = JobOperation("punch", "punch", punch_settings(props), PunchGeometry(np.asarray(pattern)))
-    part = plan_job(Job(setup, (operation,))).parts[0]
-    lines, plan = part.operations[0], part.result
-    post = posts.create(POST_FAMILIES, PUNCH_POST, station=lines.station, pitch=lines.pitch,
-                        thickness=lines.thickness, origin=lines.origin)
-    nc = post.lines_to_text(lines.lines, notes=list(lines.notes))
+    plan = plan_job(Job(setup, (operation,))).parts[0].result
+    nc = posts.create(POST_FAMILIES, PUNCH_POST).to_text(plan.program)
     punched = punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=plan.pattern,
                                       joints=plan.nibbling.joints)
     return PunchJob(nc, punched, plan.placement, plan.nibbling, plan.offset)

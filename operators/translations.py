@@ -750,7 +750,6 @@ MESSAGES = {
     "the spindle is not stopped at the bottom (not written); the reamer is fed out":
         "穴底での主軸停止は書き出しません。リーマは回転したまま送りで抜きます",
     # post/*.py
-    "contour has a non-finite coordinate (NaN or infinity)": "輪郭に有限でない座標（NaN または無限大）があります",
     "a closed contour needs at least 3 distinct points": "閉じた輪郭には異なる点が3つ以上必要です",
     "G92 origin must be finite": "G92 の原点は有限の値にしてください",
     "the controller-macro post needs an operation with a gouge texture; use the baked Fanuc post for this program":
@@ -938,8 +937,8 @@ MESSAGE_TEMPLATES = {
     "plate {} reaches {} mm from the world origin (more than {} mm) at the scene's unit scale of {} m per unit: is the unit scale right?":
         "板材 {0} がワールド原点から {1} mm まで達しています（{2} mm 超、シーンの単位スケールは1単位 {3} m）。単位スケールは正しいですか",
     "--tool {}: {} {} mm is outside the allowed range {}": "--tool {0}：{1} {2} mm が許容範囲 {3} の外です",
-    "the part reaches {} mm from the origin (more than {} mm): is it in other units?":
-        "部品が原点から {0} mm まで達しています（{1} mm 超）。単位が違っていませんか",
+    "{} {}: the mesh reaches {} mm from the origin (more than {} mm): is it in other units?":
+        "{0} {1}：メッシュが原点から {2} mm まで達しています（{3} mm 超）。単位が違っていませんか",
     "--mesh {}: {}": "メッシュファイル --mesh {0}：{1}",
     "--surface {}: {}": "板面のメッシュファイル --surface {0}：{1}",
     "the design mesh reaches {} mm from the work zero (more than {} mm): is it in other units?":
@@ -1006,12 +1005,15 @@ MESSAGE_TEMPLATES = {
     '{}: {} {} is outside the {}..{} the control accepts ({})':
         '{0}：{1} {2} は制御装置が受け付ける範囲 {3}..{4} の外です（{5}）',
     '{} must be a finite number {}, got {}': '{0} は有限の数値（{1}）にしてください（指定値 {2}）',
-    'a contour must be a list of (x, y) points, got shape {}': '輪郭は (x, y) 点のリストにしてください（形状 {0}）',
+    'the turret punch writes a PunchProgram (lines of hits), got {}': 'タレットパンチが書くのは PunchProgram（パンチ線の列）です（指定：{0}）',
+    'punch program {}: its operations must be one or more PunchOperations': 'パンチプログラム {0}：操作は1つ以上の PunchOperation にしてください',
+    'G92 origin must be two numbers (x, y), got {}': 'G92 の原点は2つの数値 (x, y) にしてください（指定値 {0}）',
+    '{} must be a finite number > 0, got {}': '{0} は0より大きい有限の数値にしてください（指定値 {1}）',
     'tool side must be one of {}, got {}': '工具の側は {0} のいずれかにしてください（指定値 {1}）',
     'turret station must be an integer 1..999, got {}': 'タレットステーションは1〜999の整数にしてください（指定値 {0}）',
     'end code must be one of {}, got {}': '終了コードは {0} のいずれかにしてください（指定値 {1}）',
-    '{} segments do not fit sequence numbers N001..N999': '{0} 個の線分はシーケンス番号 N001〜N999 に収まりません',
-    'segment {} is {} mm long, shorter than the {} mm output resolution': '線分 {0} の長さは {1} mm で、出力分解能 {2} mm より短いです',
+    'operation {}: lines must be (first hit, last hit) pairs of (x, y)': '操作 {0}：線は (x, y) の（最初の打点、最後の打点）の組にしてください',
+    'operation {}: compensation must be one of {}, got {}': '操作 {0}：工具補正は {1} のいずれかにしてください（指定値 {2}）',
     'G79 punching line: pitch Q {} must be at least the thickness {} mm': 'G79 パンチング直線：ピッチ Q {0} は板厚 {1} mm 以上にしてください',
     '{} must be a number, got {}': '{0} は数値にしてください（指定値 {1}）',
     'operation {} has arc moves; the CL data writer writes GOTO points only': '工程 {0} に円弧移動があります。CLデータ出力は GOTO 点のみです',
@@ -1343,7 +1345,6 @@ MESSAGE_TEMPLATES = {
     '--stock {}: not numbers': '--stock {0}：数値ではありません',
     '--stock {}: give box:x0,y0,z0,x1,y1,z1 or cylinder:R,H': '--stock {0}：box:x0,y0,z0,x1,y1,z1 か cylinder:R,H で指定してください',
     'no such NC file: {}': 'NC ファイルがありません：{0}',
-    'no such design file: {}': '設計形状のファイルがありません：{0}',
     '--corners: not numbers: {}': '--corners：数値ではありません：{0}',
     '--corners needs four "x,y,z" corners separated by ";", got {}':
         '--corners には ";" で区切った "x,y,z" の頂点が4つ必要です（指定：{0}）',
@@ -1353,7 +1354,7 @@ MESSAGE_TEMPLATES = {
     '--order: instance ids separated by commas, got {}': '--order：インスタンス番号をカンマ区切りで指定してください（指定：{0}）',
     '--order: #{} is not a workingstep of {} ({})': '--order：#{0} は {1} のワーキングステップではありません（{2}）',
     'no such ISO 14649 file: {}': 'ISO 14649 ファイルがありません：{0}',
-    'no such mesh file: {}': 'メッシュファイルがありません：{0}',
+    '{} {}: no such file': '{0} {1}：ファイルがありません',
     # toolpath/operations/engrave/surface_engrave.py, operators/engrave.py: engraving on a curved plate
     'surface {}: {}': '曲面 {0}：{1}',
     'surface {}: vertices must be an (n, 3) array of numbers (mm)': '曲面 {0}：頂点は数値 (mm) の (n, 3) 配列にしてください',
@@ -1423,8 +1424,11 @@ MESSAGE_TEMPLATES = {
     'stepover':
         '急斜面の追加仕上げ：走査に直交する方向で {1} 度より急な面 {0} mm2 を、それに直交する走査でピックフィード '
         '{2} mm でもう一度削りました',
-    '{}: not a readable mesh ({})': '{0}：読み込めるメッシュではありません（{1}）',
-    '{}: the mesh has no faces': '{0}：メッシュに面がありません',
+    '{} {}: not a readable mesh ({})': '{0} {1}：読み込めるメッシュではありません（{2}）',
+    '{} {}: the mesh has no faces': '{0} {1}：メッシュに面がありません',
+    '{} {}: the mesh has a non-finite vertex coordinate (NaN or infinity)':
+        '{0} {1}：メッシュに有限でない頂点座標（NaN または無限大）があります',
+    '{} {}: a face has a vertex index outside 0..{}': '{0} {1}：面の頂点番号が 0..{2} の外にあります',
     'no workflow {}; the table has {}': 'ワークフロー {0} はありません。あるのは {1} です',
     'post class {} needs {}': 'ポストプロセッサのクラス {0} には {1} が必要です',
     'post {} ({}, {}) is already registered by {}.{}': 'ポストプロセッサ {0}（{1}、{2}）は {3}.{4} が登録済みです',
@@ -1587,8 +1591,6 @@ MESSAGE_TEMPLATES = {
         "ポケットは {5} に加工します",
     '#{} {}: radius must be positive and sweep_angle within 0 to 360 degrees, found radius {} and sweep {}':
         '#{0} {1}：半径は正、sweep_angle は0〜360度にしてください（半径 {2}、角度 {3}）',
-    'design {}: not a readable mesh ({})':
-        '設計形状 {0}：読み込めるメッシュではありません（{1}）',
     'line {}: {} is not a word (a letter and a number) in {}':
         '{0}行目：{1}：ワード（英字と数値）ではありません：{2}',
     'line {}: {} is not followed by a number in {}': '{0}行目：{1} の後に数値がありません：{2}',

@@ -20,7 +20,7 @@ from .. import post as posts
 from ..post import write_atomic
 from ..post.capacity import program_findings, program_kb, short_blocks
 from ..toolpath.ir import machine
-from ..toolpath.engines import meshdata
+from ..toolpath.engines import meshdata, meshfile
 from ..toolpath.operations.turnmill import turnmill as core
 from ..toolpath.ir.errors import MAX_REACH_MM
 from ..toolpath.job import Job, JobOperation, Setup, plan_job
@@ -356,31 +356,15 @@ def batch_arguments(p):
 
 
 def read_mesh_file(path: str) -> tuple:
-    """Vertices (mm) and triangles of an STL/OBJ/PLY part, and the round bar around it."""
-    import trimesh
-
-    if not os.path.isfile(path):
-        raise FileNotFoundError(f"no such mesh file: {path}")
+    """Vertices (mm) and triangles of an STL/OBJ/PLY part (:func:`meshfile.read_mesh`), checked as
+    the turn-mill planner needs it, and the round bar around it."""
+    vertices, faces = meshfile.read_mesh(path, "--mesh")
     try:
-        loaded = trimesh.load(path, force="mesh", process=False)   # as the file says: trimesh drops NaN faces
-    except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file
-        raise core.TurnMillError(f"{path}: not a readable mesh ({error})") from None
-    vertices, faces = np.asarray(loaded.vertices, float), np.asarray(loaded.faces)
-    if not len(vertices) or not len(faces):
-        raise core.TurnMillError(f"{path}: the mesh has no faces")
-    try:
-        if np.all(np.isfinite(vertices)):
-            reach = float(np.abs(vertices).max())
-            if reach > MAX_REACH_MM:      # trimesh's merging rounds such coordinates together
-                raise core.TurnMillError(f"the part reaches {reach:g} mm from the origin (more than "
-                                         f"{MAX_REACH_MM:g} mm): is it in other units?")
-            merged = trimesh.Trimesh(vertices, faces, process=True)   # then merge the STL's repeated corners
-            vertices, faces = np.asarray(merged.vertices, float), np.asarray(merged.faces)
-        vertices, faces = core.check_mesh(vertices, faces)     # NaN vertices, bad indices: named before the stock
+        vertices, faces = core.check_mesh(vertices, faces)     # closed, consistently wound: named before the stock
         radius = float(np.hypot(vertices[:, 0], vertices[:, 1]).max())
         stock = core.Stock(radius, float(vertices[:, 2].min()), float(vertices[:, 2].max()))
-    except core.TurnMillError as error:
-        raise core.TurnMillError(f"--mesh {path}: {error}") from None
+    except (core.TurnMillError, meshdata.MeshInputError) as error:
+        raise type(error)(f"--mesh {path}: {error}") from None
     return vertices, faces, stock
 
 

@@ -8,15 +8,29 @@ import numpy as np
 import pytest
 
 from kezuri.post import write_atomic
-from kezuri.post.amada_punch import to_text
+from kezuri.post.amada_punch import AmadaPunchPost
 from kezuri.post.gcode import PostError
 from kezuri.post.flat_export import ExportError, to_dxf, to_svg
+from kezuri.toolpath.ir.program import ProgramError
+from kezuri.toolpath.ir.punch import PunchOperation, PunchProgram
+from kezuri.toolpath.operations.sheetmetal.nibbling import NibblingError, offset_side, segment_lines
 from kezuri.toolpath.operations.sheetmetal.unfold import (compensate_outline, signed_area, unfold_elbow, unfold_twisted_quad)
 
 PAPER_CORNERS = np.array([[0, 0, 0], [0, 30, 100], [100, 50, 100], [100, 40, 0]], float)
 G72 = re.compile(r"^N(\d{3}) G72 X(-?\d+\.\d\d) Y(-?\d+\.\d\d)$")
 G69 = re.compile(r"^G69 I(\d+\.\d\d) J(-?\d+\.\d\d) P(-?\d+\.\d\d) Q(\d+\.\d\d) T(\d{3})$")
 G79 = re.compile(r"^G79 I(\d+\.\d\d) J(-?\d+\.\d\d) P(-?\d+\.\d\d) Q(\d+\.\d\d) D(\d+\.\d\d) T(\d{3})$")
+
+
+def to_text(contour, *, station, pitch, thickness, tool_diameter=0.0, tool_side="outside", origin=(1000.0, 1040.0),
+            end_code="G50", punch_diameter=2.0):
+    """The seed paper's program of ``contour`` through the IR: one line per segment
+    (:func:`segment_lines`), P0 (the contour is the punch centre's path) unless ``tool_diameter`` is
+    given: the control then offsets the punch that size to ``tool_side`` (:func:`offset_side`)."""
+    compensation = "none" if tool_diameter == 0 else offset_side(contour, tool_side)
+    op = PunchOperation("contour", station, tool_diameter or punch_diameter, pitch, thickness, segment_lines(contour),
+                        compensation)
+    return AmadaPunchPost(end_code).to_text(PunchProgram("part", [op], origin))
 
 
 def paper_contour(tool_diameter=2.0):
@@ -81,7 +95,7 @@ def test_tool_offset_sign():
     assert p_words(ccw, tool_diameter=10.0, tool_side="left") == {"10.00"}
     assert p_words(ccw, tool_diameter=10.0, tool_side="right") == {"-10.00"}
     assert p_words(ccw) == {"0.00"}
-    with pytest.raises(PostError, match="tool side"):
+    with pytest.raises(NibblingError, match="tool side"):
         to_text(ccw, station=302, pitch=2.0, thickness=1.0, tool_diameter=5.0, tool_side="up")
 
 
@@ -109,15 +123,15 @@ def test_bad_input_is_rejected():
     square = [(0, 0), (10, 0), (10, 10), (0, 10)]
     ok = dict(station=302, pitch=2.0, thickness=1.0)
     for station in (0, 1000, 3.0, True):
-        with pytest.raises(PostError, match="station"):
+        with pytest.raises(ProgramError, match="station"):
             to_text(square, **{**ok, "station": station})
-    with pytest.raises(PostError, match="pitch"):
+    with pytest.raises(ProgramError, match="pitch"):
         to_text(square, **{**ok, "pitch": 0.0})
-    with pytest.raises(PostError, match="thickness"):
+    with pytest.raises(ProgramError, match="thickness"):
         to_text(square, **{**ok, "thickness": float("nan")})
     with pytest.raises(PostError, match="output resolution"):
         to_text([(0, 0), (10, 0), (10, 10), (10.004, 10)], **ok)
-    with pytest.raises(PostError, match="3 distinct points"):
+    with pytest.raises(NibblingError, match="3 distinct points"):
         to_text([(0, 0), (10, 0), (0, 0)], **ok)
     with pytest.raises(PostError, match="end code"):
         to_text(square, **ok, end_code="M02")
@@ -130,6 +144,43 @@ def test_write_atomic(tmp_path):
     write_atomic(target, text)
     assert target.read_text() == text
     assert [p.name for p in tmp_path.iterdir()] == ["PART.NC"]
+
+
+def test_the_punch_ir_refuses_what_no_punch_can_do():
+    line = [[[0.0, 0.0], [10.0, 0.0]]]
+    ok = dict(name="op", station=302, punch_diameter=10.0, pitch=2.0, thickness=1.0, lines=line)
+    for change, words in ((dict(punch_diameter=0.0), "punch diameter must be a finite number > 0"),
+                          (dict(pitch="x"), "nibbling pitch Q must be a number, got 'x'"),
+                          (dict(thickness=math.inf), "sheet thickness must be a finite number > 0"),
+                          (dict(lines=[[[0.0, 0.0], [math.nan, 0.0]]]), "non-finite"),
+                          (dict(lines=np.zeros((0, 2, 2))), r"pairs of \(x, y\), got shape \(0, 2, 2\)"),
+                          (dict(compensation="outside"), "compensation must be one of")):
+        with pytest.raises(ProgramError, match=words):
+            PunchOperation(**{**ok, **change})
+    op = PunchOperation(**ok)
+    line[0][1][0] = 99.0                                  # the caller's array changed after: not the operation's
+    assert op.lengths().tolist() == [10.0] and op.angles().tolist() == [0.0]
+    with pytest.raises(ProgramError, match="G92 origin must be finite"):
+        PunchProgram("p", [op], (math.inf, 0.0))
+    with pytest.raises(ProgramError, match="one or more PunchOperations"):
+        PunchProgram("p", [])
+    with pytest.raises(PostError, match="writes a PunchProgram"):
+        AmadaPunchPost().to_text("N001 G72 X0 Y0")
+    with pytest.raises(PostError, match="end code"):
+        AmadaPunchPost(end_code="M02")
+
+
+def test_two_stations_in_one_program_are_numbered_on():
+    """Two operations: the second's lines go on numbering after the first's, each with its own
+    station, pitch and offset word; the notes are comments after G92."""
+    first = PunchOperation("outline", 302, 10.0, 2.0, 1.6, [[[10.0, 20.0], [60.0, 20.0]]])
+    second = PunchOperation("slot", 101, 4.0, 1.5, 1.6, [[[30.0, 40.0], [30.0, 30.0]], [[30.0, 30.0], [20.0, 30.0]]],
+                            compensation="left")
+    text = AmadaPunchPost().to_text(PunchProgram("p", [first, second], (1250.0, 1000.0), notes=["part (a)"]))
+    assert text == ("N000 G92 X1250.00 Y1000.00\n(PART [A])\n"
+                    "N001 G72 X10.00 Y20.00\nG69 I50.00 J0.00 P0.00 Q2.00 T302\n"
+                    "N002 G72 X30.00 Y40.00\nG69 I10.00 J-90.00 P4.00 Q1.50 T101\n"
+                    "N003 G72 X30.00 Y30.00\nG69 I10.00 J180.00 P4.00 Q1.50 T101\nG50\n")
 
 
 # ---------------------------------------------------------------- DXF / SVG

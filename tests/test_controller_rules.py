@@ -65,8 +65,7 @@ def punch_program(contour, joints=2):
     profile = machine.preset("amada-04p")
     where = placement.place(contour, 10.0, profile)
     lines = nibbling.nibble(contour, 2.0, 10.0, joints=joints).moved(where.offset)
-    return amada_punch.lines_to_text(lines.lines, station=302, pitch=2.0, thickness=1.6,
-                                     origin=profile.sheet_origin, notes=placement.describe(where))
+    return amada_punch.AmadaPunchPost().to_text(placement.program(where, lines, 302, 1.6, profile))
 
 
 def clearance_of(name: str) -> float:

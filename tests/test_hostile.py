@@ -4,6 +4,7 @@ limit (SIGALRM, or a subprocess with a timeout), so a hang fails instead of stal
 import contextlib
 import math
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -18,6 +19,8 @@ from kezuri.toolpath.simulate import ncread
 from kezuri.toolpath.operations.sheetmetal import punch, unfold
 from kezuri.toolpath import simulate as sim
 from kezuri.toolpath.operations.turnmill import turnmill as tm
+from kezuri.toolpath.engines.meshdata import MeshInputError
+from kezuri.toolpath.engines.meshfile import MeshFileError
 from kezuri.toolpath.ir.errors import InputError
 from kezuri.toolpath.ir.program import Tool
 from kezuri.toolpath.operations.stepnc import part21
@@ -293,11 +296,12 @@ def test_a_design_larger_than_the_stock_does_not_pass_silently():
 
 
 def test_random_bytes_as_a_design_file_are_refused_by_name(tmp_path):
+    """Refused as the file is read (before: read as a mesh without faces, refused by the simulation)."""
     from kezuri.operators.ncfile import load_design
     path = tmp_path / "noise.stl"
     path.write_bytes(np.random.default_rng(7).bytes(3000))
-    with pytest.raises(sim.SimulationError, match="design noise.stl: "):
-        sim.simulate([slot_op()], BOX_STOCK, cell=0.5, design=load_design(str(path)), design_name="noise.stl")
+    with pytest.raises(MeshFileError, match=f"--design {re.escape(str(path))}: (the mesh has no faces|not a readable)"):
+        load_design(str(path))
 
 
 # ----- 3. no hang, whatever the mesh or number ----------------------------------------------------
@@ -411,7 +415,7 @@ def test_nan_vertices_are_refused_up_front():
     v, f, stock = tm.sample_part(48)
     v = v.copy()
     v[5, 1] = np.nan
-    with time_limit(20), pytest.raises(tm.TurnMillError, match="NaN or infinite vertex"):
+    with time_limit(20), pytest.raises(MeshInputError, match="NaN or infinite vertex"):
         tm.plan(v, f, stock)
 
 

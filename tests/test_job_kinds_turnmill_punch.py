@@ -18,7 +18,8 @@ from kezuri.toolpath import job
 from kezuri.toolpath.engines.meshrays import TrimeshRayEngine
 from kezuri.toolpath.ir import machine
 from kezuri.toolpath.operations.sheetmetal import nibbling, placement, punch, unfold
-from kezuri.toolpath.operations.sheetmetal.kind import PunchGeometry, PunchKind, PunchLines, PunchSettings
+from kezuri.toolpath.ir.punch import PunchOperation
+from kezuri.toolpath.operations.sheetmetal.kind import PunchGeometry, PunchKind, PunchSettings
 from kezuri.toolpath.operations.turnmill import turnmill as tm
 from kezuri.toolpath.operations.turnmill.kind import TurnMillGeometry, TurnMillKind
 from kezuri.toolpath.simulate import BoxStock, CylinderStock
@@ -149,11 +150,11 @@ def test_the_punch_part_is_what_place_and_nibble_make_on_the_sheet():
     where = placement.place(contour, 10.0, profile)
     lines = nibbling.nibble(contour, 2.0, 10.0, joints=2, joint_width=0.4).moved(where.offset)
     (operation,) = part.operations
-    assert isinstance(operation, PunchLines)
+    assert isinstance(operation, PunchOperation)
     assert np.array_equal(operation.lines, lines.lines)
-    assert (operation.station, operation.pitch, operation.thickness) == (302, 2.0, 1.6)
-    assert tuple(operation.origin) == ORIGIN
-    assert list(operation.notes) == placement.describe(where) + ["micro-joints: 2 of 0.4 mm"]
+    assert (operation.station, operation.pitch, operation.thickness, operation.punch_diameter) == (302, 2.0, 1.6, 10.0)
+    assert tuple(part.result.program.origin) == ORIGIN
+    assert list(part.notes) == placement.describe(where) + ["micro-joints: 2 of 0.4 mm"]
     # every hit of every line lies on the tool-centre contour moved onto the sheet, in the sheet
     moved = contour + np.asarray(where.offset)
     segments = np.stack([moved, np.roll(moved, -1, axis=0)], axis=1)
@@ -168,8 +169,7 @@ def test_the_punch_part_is_what_place_and_nibble_make_on_the_sheet():
     assert np.allclose(region[0], outline + np.asarray(where.offset))
     assert np.array_equal(part.result.contour, contour)
     # the program the post writes from it punches the part out, held by its two joints
-    text = amada_punch.lines_to_text(operation.lines, station=302, pitch=2.0, thickness=1.6, origin=ORIGIN,
-                                     notes=list(operation.notes))
+    text = amada_punch.AmadaPunchPost().to_text(part.result.program)
     punched = punch.simulate_punching(text, punch_diameter=10.0, pattern=region[0], joints=part.result.nibbling.joints)
     assert punched.held_by_joints and not punched.part_separated and punched.gouges == []
 
@@ -192,7 +192,7 @@ def test_replanning_the_punch_job_returns_the_cached_part_and_a_changed_setting_
     fewer = job.plan_job(punch_job(dataclasses.replace(PUNCH, joints=0)), cache)
     assert fewer.replanned() == ["punch"]
     assert len(first.parts[0].result.nibbling.joints) == 2 and len(fewer.parts[0].result.nibbling.joints) == 0
-    assert fewer.parts[0].operations[0].notes[-1] == "micro-joints: none, the part falls free at the last hits"
+    assert fewer.parts[0].notes[-1] == "micro-joints: none, the part falls free at the last hits"
 
 
 def test_a_punch_job_is_refused_naming_the_operation():

@@ -69,3 +69,37 @@ def test_the_core_and_the_posts_never_import_blender(path):
 def test_kinematics_imports_nothing_of_the_project():
     """program.py imports kinematics, so kinematics must not import the IR (or anything else of ours)."""
     assert [m for m, level, _ in imports("toolpath/ir/kinematics.py") if level > 0] == []
+
+
+def reached_packages(path):
+    """The toolpath packages (dotted, below toolpath/) a toolpath module's imports reach."""
+    package = os.path.dirname(path).replace(os.sep, ".").split(".")[1:]      # below toolpath/
+    for module, level, names in imports(path):
+        if level == 0:
+            parts = module.split(".")
+            if parts[:2] == ["kezuri", "toolpath"]:
+                yield ".".join(parts[2:])
+            continue
+        base = package[:len(package) - (level - 1)] if level > 1 else package
+        yield ".".join(base + (module.split(".") if module else []))
+
+
+@pytest.mark.parametrize("path", list(python_files("toolpath/ir")))
+def test_the_ir_imports_only_the_ir(path):
+    """The IR is what the posts read: it knows no engine, simulation or operation kind (a workflow's
+    type or error in it would make every post depend on that workflow)."""
+    outside = sorted(m for m in reached_packages(path) if m.split(".")[0] != "ir")
+    assert not outside, f"{path} imports {outside}"
+
+
+@pytest.mark.parametrize("path", list(python_files("toolpath/engines")))
+def test_the_engines_import_no_operation_kind(path):
+    """The engines are shared by the operation kinds: their errors and types are their own."""
+    kinds = sorted(m for m in reached_packages(path) if m.split(".")[0] == "operations")
+    assert not kinds, f"{path} imports {kinds}"
+
+
+def test_the_import_reader_resolves_relative_imports():
+    assert list(reached_packages("toolpath/ir/xzc.py")) == ["ir", "ir.program"]      # from . import kinematics
+    assert "operations.turnmill.errors" in reached_packages("toolpath/operations/turnmill/turnjoin.py")
+    assert "engines.meshdata" in reached_packages("toolpath/engines/meshrays.py")

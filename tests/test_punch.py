@@ -7,8 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from kezuri.post import amada_punch
+from kezuri.post.amada_punch import AmadaPunchPost
+from kezuri.toolpath.ir.punch import PunchOperation, PunchProgram
 from kezuri.toolpath.operations.sheetmetal import punch, unfold
+from kezuri.toolpath.operations.sheetmetal.nibbling import offset_side, segment_lines
 
 RECT = np.array([[0.0, 0.0], [40.0, 0.0], [40.0, 20.0], [0.0, 20.0]])
 PAPER_QUAD = np.array([(0, 0, 0), (0, 30, 100), (100, 50, 100), (100, 40, 0)], float)
@@ -22,10 +24,15 @@ def one_line(move):
     return punch.read_amada(program(["N001 G72 X0.00 Y0.00", move]))
 
 
+def segment_program(contour, diameter, pitch, compensation="none"):
+    """One G72 + G69 per side of ``contour`` (station 302, 1 mm sheet), through the IR and the post."""
+    op = PunchOperation("contour", 302, diameter, pitch, 1.0, segment_lines(contour), compensation)
+    return AmadaPunchPost().to_text(PunchProgram("part", [op]))
+
+
 def rectangle_program(diameter, pitch, outline=RECT):
     """P0: the rectangle compensated by the punch radius, one G72 + G69 per side."""
-    return amada_punch.to_text(unfold.compensate_outline(outline, diameter), station=302, pitch=pitch,
-                               thickness=1.0)
+    return segment_program(unfold.compensate_outline(outline, diameter), diameter, pitch)
 
 
 def cusp(diameter, spacing):
@@ -202,7 +209,7 @@ def test_a_hit_into_the_part_is_a_gouge_on_its_line():
 
 def test_the_controller_offset_p_punches_the_same_part():
     # uncompensated rectangle with the offset done by the controller: P-4.00 (outside a CCW loop)
-    text = amada_punch.to_text(RECT, station=302, pitch=2.05, thickness=1.0, tool_diameter=4.0)
+    text = segment_program(RECT, 4.0, 2.05, offset_side(RECT, "outside"))
     assert " P-4.00 " in text
     offset = punch.simulate_punching(text, pattern=RECT)
     compensated = punch.simulate_punching(rectangle_program(4.0, 2.05), punch_diameter=4.0, pattern=RECT)
@@ -223,7 +230,7 @@ def test_without_a_pattern_the_part_is_the_loose_piece():
 
 def test_paper_quad_is_punched_out():
     outline = unfold.unfold_twisted_quad(PAPER_QUAD, 5).pattern.outline
-    text = amada_punch.to_text(unfold.compensate_outline(outline, 2.0), station=302, pitch=2.0, thickness=1.0)
+    text = segment_program(unfold.compensate_outline(outline, 2.0), 2.0, 2.0)
     result = punch.simulate_punching(text, punch_diameter=2.0, pattern=outline)
     assert result.part_separated and result.pieces == 2
     # the compensated path stops one radius from both edges at the (slightly) concave corners;
@@ -325,7 +332,7 @@ def test_the_union_of_lines_is_the_union_of_every_hit():
     angle = np.linspace(0, 2 * np.pi, 40, endpoint=False)
     outline = np.column_stack([60 * np.cos(angle) * (1 + 0.2 * np.cos(3 * angle)), 45 * np.sin(angle)])
     for d, q in ((4.0, 0.5), (10.0, 3.0), (6.0, 5.9)):
-        text = amada_punch.to_text(unfold.compensate_outline(outline, d), station=302, pitch=q, thickness=1.0)
+        text = segment_program(unfold.compensate_outline(outline, d), d, q)
         program = punch.read_amada(text)
         r, tolerance = d / 2, 0.01
         n = 4 * math.ceil(math.pi / math.acos(1 - tolerance / r) / 4)

@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 import controller_rules as rules
-from kezuri.post import amada_punch
+from kezuri.post.amada_punch import AmadaPunchPost
+from kezuri.toolpath.ir.punch import PunchOperation, PunchProgram
 from kezuri.toolpath.ir import machine
 from kezuri.toolpath.operations.sheetmetal import nibbling, placement, punch, unfold
 
@@ -31,8 +32,13 @@ def program(contour, joints=2, width=0.4, profile=None):
     profile = profile or machine.preset("amada-04p")
     where = placement.place(contour, 10.0, profile)
     lines = nibbling.nibble(contour, 2.0, 10.0, joints=joints, joint_width=width).moved(where.offset)
-    text = amada_punch.lines_to_text(lines.lines, origin=profile.sheet_origin, notes=placement.describe(where), **PUNCH)
+    text = AmadaPunchPost().to_text(placement.program(where, lines, PUNCH["station"], PUNCH["thickness"], profile))
     return text, lines, where
+
+
+def written(nib):
+    """The nibbled lines as a program of their own (G92 at the post's default origin, no notes)."""
+    return AmadaPunchPost().to_text(PunchProgram("part", [nib.operation(PUNCH["station"], PUNCH["thickness"])]))
 
 
 def quad_contour():
@@ -62,7 +68,8 @@ def test_the_checker_finds_the_old_programs_faults():
     assert any(rule == "sheet" and line == 3 for rule, line, _ in found)
     # the old per-segment writer on the paper's quad: every corner punched twice
     _, contour = quad_contour()
-    old = amada_punch.to_text(contour, **PUNCH)
+    old = AmadaPunchPost().to_text(PunchProgram("old", [PunchOperation("per segment", 302, 10.0, 2.0, 1.6,
+                                                                       nibbling.segment_lines(contour))]))
     doubles = [f for f in rules.check_punch(old) if f[0] == "double hit"]
     assert len(doubles) == 12                      # 12 corners
 
@@ -176,7 +183,7 @@ def test_collinear_pieces_are_one_line_and_no_hit_is_punched_twice():
     square = np.array([[0, 0], [25, 0], [50, 0], [50, 50], [50, 100], [0, 100], [0, 60]], float)
     nib = nibbling.nibble(square, 2.0, 10.0, joints=0)
     assert len(nib.corners) == 4 and nib.merged == 3 and len(nib.lines) == 4
-    text = amada_punch.lines_to_text(nib.lines, **PUNCH)
+    text = written(nib)
     read = punch.read_amada(text)
     hits = read.hits
     gaps = spacing_round(hits)
@@ -194,8 +201,7 @@ def test_collinear_pieces_are_one_line_and_no_hit_is_punched_twice():
 def test_a_corner_between_two_lines_shorter_than_the_pitch():
     # a 1 mm chamfer between two long edges: the short line keeps both its hits, the others stop short
     shape = np.array([[0, 0], [50, 0], [51, 1], [51, 50], [0, 50]], float)
-    hits = punch.read_amada(amada_punch.lines_to_text(nibbling.nibble(shape, 2.0, 10.0, joints=0).lines,
-                                                      **PUNCH)).hits
+    hits = punch.read_amada(written(nibbling.nibble(shape, 2.0, 10.0, joints=0))).hits
     gaps = spacing_round(hits)
     assert gaps.min() > 0.5 and gaps.max() <= 2.0 + 0.01
     two_short = np.array([[0, 0], [50, 0], [51, 0.5], [52, 2], [52, 50], [0, 50]], float)

@@ -15,7 +15,8 @@ import rs274
 from kezuri.post import cldata, turnmill_xzc
 from kezuri.post.gcode import PostError
 from kezuri.toolpath.operations.turnmill import turnmill as tm
-from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Program, Tool
+from kezuri.toolpath.engines.meshdata import MeshInputError
+from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Program, ProgramError, Tool
 
 needs_rs274 = pytest.mark.skipif(not rs274.available(), reason="LinuxCNC rs274 is not installed (.ci/run installs it)")
 
@@ -149,19 +150,19 @@ def test_face_samples_are_deterministic_and_area_weighted():
 
 def test_bad_input_is_rejected_with_clear_errors():
     v, f = mesh_of(bar())
-    with pytest.raises(tm.TurnMillError, match="empty"):
+    with pytest.raises(MeshInputError, match="empty"):
         tm.classify_faces(np.empty((0, 3)), np.empty((0, 3), dtype=int))
     bad = v.copy()
     bad[3, 1] = np.nan
-    with pytest.raises(tm.TurnMillError, match="NaN"):
+    with pytest.raises(MeshInputError, match="NaN"):
         tm.classify_faces(bad, f)
-    with pytest.raises(tm.TurnMillError, match="non-manifold"):
+    with pytest.raises(MeshInputError, match="non-manifold"):
         tm.check_mesh(np.vstack([v, [[0, 0, 50]]]), np.vstack([f, [[f[0, 0], f[0, 1], len(v)]]]))
-    with pytest.raises(tm.TurnMillError, match="inward"):
+    with pytest.raises(MeshInputError, match="inward"):
         tm.check_mesh(v, f[:, ::-1])
     flipped = f.copy()
     flipped[0] = flipped[0, ::-1]
-    with pytest.raises(tm.TurnMillError, match="inconsistently"):
+    with pytest.raises(MeshInputError, match="inconsistently"):
         tm.check_mesh(v, flipped)
     with pytest.raises(tm.TurnMillError, match="tool radius"):
         tm.TurnMillSettings(tool_diameter=0.0)
@@ -336,7 +337,7 @@ def test_xzc_post_rejects_plain_milling_operations():
     op = Operation("plain", Tool(1, "ball", 6.0), 1000, [FEED], [[1, 2, 3]], [100.0], start=[0, 0, 10])
     with pytest.raises(PostError, match="turn-mill"):
         turnmill_xzc.TurnMillXZCPost().to_text(Program("p", [op]))
-    with pytest.raises(tm.TurnMillError, match="Y axis"):
+    with pytest.raises(ProgramError, match="Y axis"):
         tm.TurnMillOperation("y", Tool(1, "ball", 6.0), 1000, [FEED], [[1, 2, 3]], [100.0], rotary={"c": [0.0]})
 
 

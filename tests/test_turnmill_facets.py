@@ -11,6 +11,7 @@ from pointsets import hausdorff
 
 from kezuri.toolpath.engines import facets
 from kezuri.toolpath.operations.turnmill import turnmill
+from kezuri.toolpath.engines.meshdata import MeshInputError
 from kezuri.toolpath.engines.meshrays import check_mesh, face_normals
 
 
@@ -150,9 +151,9 @@ def test_a_mesh_changed_in_place_after_its_check_is_checked_again():
     v, f = box_mesh(30.0, 20.0, 12.5)
     check_mesh(v, f)
     f[:] = f[:, ::-1]                        # every face flipped: the normals now point inward
-    with pytest.raises(turnmill.TurnMillError, match="inward"):
+    with pytest.raises(MeshInputError, match="inward"):
         check_mesh(v, f)
     f[:] = f[:, ::-1]
     v[0] = np.nan
-    with pytest.raises(turnmill.TurnMillError, match="NaN"):
+    with pytest.raises(MeshInputError, match="NaN"):
         check_mesh(v, f)

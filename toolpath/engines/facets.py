@@ -19,7 +19,7 @@ import numpy as np
 
 from .compiled import kernel_module
 from .meshrays import checked_normals, checked_reverse, face_normals
-from ..ir.program import TurnMillError
+from .meshdata import MeshInputError
 
 PLANE_TOLERANCE = 1e-9       # normals and plane offsets (relative to the part's size) this close are one plane
 
@@ -43,7 +43,7 @@ def _identity(v, f) -> PlanningMesh:
 
 
 def _compiled():
-    return kernel_module("auto", f"{__package__}.facets_kernel", TurnMillError, "facet kernel")
+    return kernel_module("auto", f"{__package__}.facets_kernel", MeshInputError, "facet kernel")
 
 
 def connected(count: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -5,8 +5,8 @@ nearest-point queries against its triangles.
 :class:`Triangles` answers "does this ray hit the mesh?" (Moller-Trumbore) and "how far is the
 nearest surface point?" (Ericson's region test) in numpy, culling with bounding boxes a chunk of
 queries at a time.  :class:`TrimeshRayEngine` is the default :class:`RayEngine` for
-classification: Embree through trimesh when embreex is installed, otherwise :class:`Triangles`.  Errors are the turn-mill workflow's
-(:class:`program.TurnMillError`).
+classification: Embree through trimesh when embreex is installed, otherwise :class:`Triangles`.  Errors are
+:class:`meshdata.MeshInputError`.
 """
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from typing import Protocol
 import numpy as np
 
 from .compiled import kernel_module
-from ..ir.program import TurnMillError
+from .meshdata import MeshInputError
 
 PAIR_BUDGET = 1 << 20    # (query, triangle) pairs handled at once: bounds the memory
 QUERY_CHUNK = 256        # at most this many nearby queries are culled against the triangles together
@@ -35,33 +35,33 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
         v = np.asarray(vertices, dtype=float)
         f = np.asarray(faces)
     except (TypeError, ValueError):
-        raise TurnMillError("vertices and faces must be numeric arrays") from None
+        raise MeshInputError("vertices and faces must be numeric arrays") from None
     if v.size == 0 or f.size == 0:
-        raise TurnMillError("the mesh is empty: it needs vertices and triangles")
+        raise MeshInputError("the mesh is empty: it needs vertices and triangles")
     if v.ndim != 2 or v.shape[1] != 3:
-        raise TurnMillError(f"vertices must have shape (n, 3), got {v.shape}")
+        raise MeshInputError(f"vertices must have shape (n, 3), got {v.shape}")
     if f.ndim != 2 or f.shape[1] != 3:
-        raise TurnMillError(f"faces must be triangles, shape (m, 3), got {f.shape}")
+        raise MeshInputError(f"faces must be triangles, shape (m, 3), got {f.shape}")
     if not np.all(np.isfinite(v)):
-        raise TurnMillError("the mesh has NaN or infinite vertex coordinates")
+        raise MeshInputError("the mesh has NaN or infinite vertex coordinates")
     if not np.issubdtype(f.dtype, np.integer):
-        raise TurnMillError(f"face indices must be integers, got {f.dtype}")
+        raise MeshInputError(f"face indices must be integers, got {f.dtype}")
     if f.min() < 0 or f.max() >= len(v):
-        raise TurnMillError(f"face indices must lie in 0..{len(v) - 1}")
+        raise MeshInputError(f"face indices must lie in 0..{len(v) - 1}")
     f = f.astype(np.int64)
     if _LAST_CHECKED and _same(_LAST_CHECKED[0], v) and _same(_LAST_CHECKED[1], f):
         if _LAST_REVERSE:                            # what was found for it holds for this copy too
             _LAST_REVERSE[0] = f
         return v, f                                  # the planner checks the same mesh at each stage
     if np.any((f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])):
-        raise TurnMillError("a face uses the same vertex twice")
-    compiled = kernel_module("auto", f"{__package__}.facets_kernel", TurnMillError, "facet kernel")
+        raise MeshInputError("a face uses the same vertex twice")
+    compiled = kernel_module("auto", f"{__package__}.facets_kernel", MeshInputError, "facet kernel")
     if compiled is not None:                    # one pass over each vertex's edges instead of sorting
         reverse, clean, closed = compiled.edge_check(f, len(v))
         if clean:
             normals, areas, volume = compiled.face_pass(v, f)
             if closed and volume < 0:
-                raise TurnMillError(INWARD)
+                raise MeshInputError(INWARD)
             _LAST_REVERSE[:] = [f, reverse, (normals, areas)]
             _remember(v, f)
             return v, f
@@ -69,10 +69,10 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     _, counts = np.unique(directed.min(axis=1) * len(v) + directed.max(axis=1), return_counts=True)
     if np.any(counts > 2):
-        raise TurnMillError(f"the mesh is non-manifold: {int(np.sum(counts > 2))} edge(s) are shared by more "
+        raise MeshInputError(f"the mesh is non-manifold: {int(np.sum(counts > 2))} edge(s) are shared by more "
                             f"than two faces")
     if len(np.unique(directed[:, 0] * len(v) + directed[:, 1])) < len(directed):
-        raise TurnMillError("the faces are wound inconsistently (some normals are flipped): recalculate normals")
+        raise MeshInputError("the faces are wound inconsistently (some normals are flipped): recalculate normals")
     if np.all(counts == 2):
         _check_outward(v, f)
     _remember(v, f)
@@ -95,7 +95,7 @@ def _check_outward(v: np.ndarray, f: np.ndarray) -> None:
     tri = v[f]
     volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0
     if volume < 0:
-        raise TurnMillError(INWARD)
+        raise MeshInputError(INWARD)
 
 
 def checked_reverse(faces: np.ndarray):
@@ -202,7 +202,7 @@ class Triangles:
     Queries are paired with triangles whose boxes overlap theirs, a chunk at a time."""
 
     def __init__(self, triangles: np.ndarray, kernel: str = "auto"):
-        self.compiled = kernel_module(kernel, f"{__package__}.nearest_kernel", TurnMillError,
+        self.compiled = kernel_module(kernel, f"{__package__}.nearest_kernel", MeshInputError,
                                       "numba nearest-point kernel")
         self._tree = None
         normals, areas = face_normals(triangles)
@@ -377,7 +377,7 @@ class TrimeshRayEngine:
 
     def __init__(self, vertices, faces, chunk_size: int = 20000):
         if not (isinstance(chunk_size, int) and chunk_size > 0):
-            raise TurnMillError(f"ray chunk size must be a positive integer, got {chunk_size!r}")
+            raise MeshInputError(f"ray chunk size must be a positive integer, got {chunk_size!r}")
         v, f = check_mesh(vertices, faces)
         self.chunk_size = chunk_size
         try:

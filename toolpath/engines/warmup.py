@@ -16,7 +16,8 @@ from types import SimpleNamespace
 import numpy as np
 
 from .meshdata import prism, triangulated
-from ..ir.program import ARC_CCW, FEED, RAPID, Operation, Tool, TurnMillOperation
+from ..ir.program import ARC_CCW, FEED, RAPID, Operation, Tool
+from ..ir.xzc import TurnMillOperation
 from ..ir.tools import KINDS
 
 

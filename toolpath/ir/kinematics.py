@@ -30,7 +30,7 @@ radius R is 2 pi R; a move without C motion is its straight length.  This is wha
 inverse-time F words and cycle-time estimates are made of (:func:`inverse_time_feed`,
 :func:`cycle_time`), and what the rotary planner's feeds mean.
 
-The X-Z-C turn-mill operation (``program.TurnMillOperation``) measures its moves the same way.
+The X-Z-C turn-mill operation (``xzc.TurnMillOperation``) measures its moves the same way.
 (It once used the chord between the part points, :func:`chord_lengths`, still here for its planner,
 which splits every move until the traced curve stays within the chordal tolerance of that chord,
 :func:`polar_split_counts`.  Moving it to the traced length made its cutting moves a few parts per

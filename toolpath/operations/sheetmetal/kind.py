@@ -2,10 +2,9 @@
 turret punch, placed clear of the clamps (:mod:`.placement`), its outline cut as merged nibbling
 lines with micro-joints (:mod:`.nibbling`).
 
-The part's operation is :class:`PunchLines`, what the punch post writes today (its lines, the
-post's words and the header's notes); the shell writes the program and punches it out of the
-sheet (:func:`.punch.simulate_punching`) for the export gate.  When the IR has a punch type,
-:class:`PunchLines` is the one thing to point at it.
+The part's operations are the IR's punch operations (:mod:`...ir.punch`); its result keeps the
+whole PunchProgram (with the G92 origin and the notes) the punch post writes; the shell punches
+the written program out of the sheet (:func:`.punch.simulate_punching`) for the export gate.
 """
 from __future__ import annotations
 
@@ -14,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...ir import machine
+from ...ir.punch import PunchProgram
 from ...job import DesignLayer, OperationKind, Part
 from ...simulate import BoxStock
 from . import nibbling, placement, punch
@@ -44,33 +44,19 @@ class PunchGeometry:
     outline: np.ndarray
 
 
-@dataclass(frozen=True, eq=False)
-class PunchLines:
-    """One nibbling program as the punch post takes it: ``lines`` (k, 2, 2), the first and the last
-    hit of each line on the sheet (:class:`.nibbling.Nibbling`), the post's words (``station``,
-    ``pitch``, ``thickness``, the G92 ``origin``) and the header's ``notes``."""
-
-    name: str
-    lines: np.ndarray
-    station: int
-    pitch: float
-    thickness: float
-    origin: tuple
-    notes: tuple
-
-
 @dataclass(frozen=True)
 class PunchPlan:
     """What the shell shows and checks: the tool-centre ``contour`` round the outline (pattern
     coordinates), the ``placement`` on the sheet, the ``nibbling`` lines (moved onto the sheet),
-    ``offset`` (added to pattern coordinates to put them on the sheet) and the ``pattern`` on the
-    sheet."""
+    ``offset`` (added to pattern coordinates to put them on the sheet), the ``pattern`` on the
+    sheet and the ``program`` (the IR's PunchProgram the punch post writes)."""
 
     contour: np.ndarray
     placement: placement.Placement
     nibbling: nibbling.Nibbling
     offset: np.ndarray
     pattern: np.ndarray
+    program: PunchProgram
 
 
 def punch_profile(setup) -> machine.MachineProfile:
@@ -95,17 +81,13 @@ class PunchKind(OperationKind):
         where = placement.place(contour, settings.tool_diameter, profile)
         lines = nibbling.nibble(contour, settings.pitch, settings.tool_diameter, joints=settings.joints,
                                 joint_width=settings.joint_width).moved(where.offset)
-        notes = placement.describe(where)
-        notes.append(f"micro-joints: {len(lines.joints)} of {lines.joint_width:g} mm" if len(lines.joints)
-                     else "micro-joints: none, the part falls free at the last hits")
         thickness = settings.thickness
         if not (isinstance(thickness, (int, float, np.floating)) and np.isfinite(thickness) and thickness > 0):
             raise punch.PunchError(f"sheet thickness must be a finite number > 0 (mm), got {thickness!r}")
         offset = np.asarray(where.offset, float)
         on_sheet = outline + offset
-        operation = PunchLines(setup.name, lines.lines, settings.station, settings.pitch, settings.thickness,
-                               profile.sheet_origin, tuple(notes))
+        program = placement.program(where, lines, settings.station, thickness, profile)
         sheet = BoxStock(0.0, 0.0, -float(thickness), float(where.sheet[0]), float(where.sheet[1]), 0.0)
         design = DesignLayer(keep_regions=([on_sheet],))      # no hit inside the part
-        return Part((operation,), sheet, design, (), (), None,
-                    PunchPlan(contour, where, lines, offset, on_sheet))
+        return Part(tuple(program.operations), sheet, design, (), (), None,
+                    PunchPlan(contour, where, lines, offset, on_sheet, program), notes=tuple(program.notes))

@@ -20,7 +20,11 @@ separate lines with a double hit at every joint.  Here:
   diameter and a half from the corners; the hits either side of it are ``joint_width`` + the punch
   diameter apart, centre to centre, so their discs leave a web ``joint_width`` wide.
 
-Everything is in the contour's coordinates (the tool-centre path, mm).
+Everything is in the contour's coordinates (the tool-centre path, mm).  :meth:`Nibbling.operation`
+gives the lines as the IR's :class:`~...ir.punch.PunchOperation`, which a punch post writes.
+
+:func:`segment_lines` is the seed paper's layout instead: one line per contour segment, every
+corner punched twice; with :func:`offset_side` the control may offset the punch off the contour.
 """
 from __future__ import annotations
 
@@ -30,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...ir.errors import InputError
+from ...ir.punch import PunchOperation
 from .punch import line_steps
 
 COLLINEAR_TOL = 0.005      # mm: half the 0.01 mm the NC words resolve
@@ -39,6 +44,7 @@ MAX_JOINTS = 8
 # range; 0.4 mm is used as the default (issue 26 asks for 0.3..0.5 mm).
 DEFAULT_JOINT_WIDTH = 0.4
 DEFAULT_JOINTS = 2
+TOOL_SIDES = ("left", "right", "outside", "inside")
 
 
 class NibblingError(InputError):
@@ -50,20 +56,34 @@ class Nibbling:
     """``lines`` (k, 2, 2): the first and the last hit of each line, in order round the contour;
     ``joints`` (j, 2, 2): the two hits either side of each micro-joint; ``corners`` the contour's
     corners after merging; ``merged`` how many contour points were on a straight line between
-    their neighbours."""
+    their neighbours; ``pitch`` and ``punch_diameter`` what the lines were spaced for."""
 
     lines: np.ndarray
     joints: np.ndarray
     joint_width: float
     corners: np.ndarray
     merged: int
+    pitch: float
+    punch_diameter: float
 
     def moved(self, offset) -> "Nibbling":
         d = np.asarray(offset, float)
-        return Nibbling(self.lines + d, self.joints + d, self.joint_width, self.corners + d, self.merged)
+        return Nibbling(self.lines + d, self.joints + d, self.joint_width, self.corners + d, self.merged,
+                        self.pitch, self.punch_diameter)
+
+    def operation(self, station: int, thickness: float, name: str = "nibbling") -> PunchOperation:
+        """The lines as the IR's punch operation: turret ``station``, on a sheet ``thickness`` mm."""
+        return PunchOperation(name, station, self.punch_diameter, self.pitch, thickness, self.lines)
+
+    def describe(self) -> list:
+        """One line for the NC header and the report: the micro-joints left."""
+        if len(self.joints):
+            return [f"micro-joints: {len(self.joints)} of {self.joint_width:g} mm"]
+        return ["micro-joints: none, the part falls free at the last hits"]
 
 
-def _clean(contour) -> np.ndarray:
+def contour_points(contour) -> np.ndarray:
+    """Clean (k, 2) points of a closed contour: repeated points and the repeated closing point removed."""
     pts = np.asarray(contour, float)
     if pts.ndim != 2 or pts.shape[1] != 2 or not np.all(np.isfinite(pts)):
         raise NibblingError("a contour must be finite (x, y) points")
@@ -95,7 +115,7 @@ def _on_chord(pts: np.ndarray, a: np.ndarray, b: np.ndarray, tol: float) -> bool
 def corners(contour, tol: float = COLLINEAR_TOL) -> np.ndarray:
     """The corners of the closed ``contour``: points within ``tol`` of the straight line between
     the corners either side (and between them along it) are dropped."""
-    pts = _clean(contour)
+    pts = contour_points(contour)
     k = len(pts)
     # start at the sharpest turn: certainly a corner
     d_in = pts - np.roll(pts, 1, axis=0)
@@ -183,7 +203,7 @@ def nibble(contour, pitch: float, punch_diameter: float, joints: int = DEFAULT_J
         raise NibblingError(f"micro-joints: the count must be a whole number 0..{MAX_JOINTS}, got {joints!r}")
     if not (isinstance(joint_width, (int, float, np.floating)) and math.isfinite(joint_width) and joint_width > 0):
         raise NibblingError(f"micro-joint width must be a number > 0 (mm), got {joint_width!r}")
-    raw = _clean(contour)
+    raw = contour_points(contour)
     pts = corners(raw, tol)
     k = len(pts)
     ends = np.roll(pts, -1, axis=0)
@@ -194,7 +214,8 @@ def nibble(contour, pitch: float, punch_diameter: float, joints: int = DEFAULT_J
                             f"shorter than the {MIN_LINE} mm the NC words resolve")
     if joints == 0:
         lines = _assign([(pts[i], ends[i]) for i in range(k)], pitch, closed=True)
-        return Nibbling(np.array(lines), np.zeros((0, 2, 2)), float(joint_width), pts, len(raw) - k)
+        return Nibbling(np.array(lines), np.zeros((0, 2, 2)), float(joint_width), pts, len(raw) - k, float(pitch),
+                        float(punch_diameter))
     counts = _joint_counts(pts, joints, joint_width, punch_diameter)
     half = joint_width / 2 + punch_diameter / 2
     pieces, gaps = [], []                  # pieces in order round the contour; a gap after some
@@ -218,4 +239,25 @@ def nibble(contour, pitch: float, punch_diameter: float, joints: int = DEFAULT_J
             lines[index] = hits
     for gap in gaps:
         joint_hits.append((pieces[gap][1], pieces[(gap + 1) % n][0]))
-    return Nibbling(np.array(lines), np.array(joint_hits), float(joint_width), pts, len(raw) - k)
+    return Nibbling(np.array(lines), np.array(joint_hits), float(joint_width), pts, len(raw) - k, float(pitch),
+                    float(punch_diameter))
+
+
+def segment_lines(contour) -> np.ndarray:
+    """(k, 2, 2): one line per segment of the closed ``contour``, corner to corner, the last closing
+    the loop: the seed paper's program, where every corner is punched twice (:func:`nibble` shares
+    the corners' hits and merges collinear pieces)."""
+    pts = contour_points(contour)
+    return np.stack([pts, np.roll(pts, -1, axis=0)], axis=1)
+
+
+def offset_side(contour, tool_side: str) -> str:
+    """Which side of travel ("left" or "right") the control offsets the punch to, for the closed
+    part ``contour`` and ``tool_side``: "left" / "right" of travel, or "outside" / "inside" of it."""
+    if tool_side not in TOOL_SIDES:
+        raise NibblingError(f"tool side must be one of {TOOL_SIDES}, got {tool_side!r}")
+    if tool_side in ("left", "right"):
+        return tool_side
+    x, y = contour_points(contour).T
+    ccw = float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y)) > 0
+    return "left" if (tool_side == "outside") != ccw else "right"      # travelling CCW the outside is on the right

@@ -22,6 +22,7 @@ import numpy as np
 
 from ...ir.errors import InputError
 from ...ir.machine import MachineProfile
+from ...ir.punch import PunchProgram
 
 
 class PlacementError(InputError):
@@ -104,3 +105,13 @@ def describe(placement: Placement) -> list:
     lines += [f"clamp {i} dead zone X {z[0]:g}..{z[2]:g} Y {z[1]:g}..{z[3]:g}"
               for i, z in enumerate(placement.zones, start=1)]
     return lines
+
+
+def program(where: Placement, nibbled, station: int, thickness: float, profile: MachineProfile,
+            name: str = "part") -> PunchProgram:
+    """The part's punch program (the IR a punch post writes): its ``nibbled`` lines
+    (:class:`.nibbling.Nibbling`, already moved onto the sheet by ``where.offset``) punched by turret
+    ``station`` from a sheet ``thickness`` mm thick, with the profile's sheet origin, and notes saying
+    where the part's hits lie, the clamps and the micro-joints."""
+    return PunchProgram(name, [nibbled.operation(station, thickness)], origin=profile.sheet_origin,
+                        notes=describe(where) + nibbled.describe())

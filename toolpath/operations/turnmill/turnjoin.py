@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from ...ir import kinematics
-from ...ir.program import TurnMillError
+from .errors import TurnMillError
 
 MAX_BALL_POSITIONS = 5_000_000     # roughing copies of the passes: past this the memory runs out first
 CHORD_DIP = 5e-4    # mm: how far a chord between ball centres may dip towards the part (the gate reports 1e-3)

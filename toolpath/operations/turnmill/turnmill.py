@@ -72,7 +72,9 @@ from . import turnskip
 from ...engines.facets import planning_mesh
 from ...ir.kinematics import machine_to_part  # noqa: F401  (callers of turnmill.machine_to_part)
 from ...engines.meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEngine, check_mesh, face_normals, face_samples)
-from ...ir.program import FEED, RAPID, Program, Tool, TurnMillError, TurnMillOperation, merge_short_moves
+from ...ir.program import FEED, RAPID, Program, Tool, merge_short_moves
+from ...ir.xzc import TurnMillOperation
+from .errors import TurnMillError
 from .turnreach import AXIAL, BOTH, DIRECTIONS, LABEL_NAMES, NEITHER, RADIAL, classify_faces, path_faces
 from .turnjoin import (CHORD_DIP, MAX_BALL_POSITIONS, TurnMillCancelled, _counted, _join, _join_layers, _link_clear, _short_segments, _subdivide, merged_move_clear)
 
