@@ -170,3 +170,28 @@ def test_rows_in_worker_processes_write_what_one_process_writes(tmp_path):
         assert open(os.path.join(here, folder, "plate.nc")).read() == open(os.path.join(workers, folder, "plate.nc")).read()
         row = json.loads(open(os.path.join(workers, folder, "report.json")).read())
         assert row["files"] == [os.path.join(workers, folder, "plate.nc")]
+
+
+def header_named(text: str, name: str) -> str:
+    """The program with its header's name line put back to ``name`` (the job's name is the only
+    difference between a job of one operation and its workflow's command)."""
+    first, rest = text.split("\n", 2)[:2], text.split("\n", 2)[2]
+    return "\n".join([first[0], re.sub(r"KEZURI CAM - .*\)", f"KEZURI CAM - {name})", first[1]), rest])
+
+
+@pytest.mark.parametrize("job, command, program, direct", [
+    ("bento-pockets.toml", ("rotary", "--post", "linuxcnc"), "bento.ngc", "rotary.ngc"),
+    ("ex1-workplan.toml", ("stepnc", "--input", os.path.join(ROOT, "tests", "fixtures", "iso14649", "ex1.stp"),
+                           "--post", "linuxcnc"), "ex1.ngc", "stepnc.ngc"),
+    ("turned-part.toml", ("turnmill",), "bar.ngc", "turnmill.ngc"),
+])
+def test_each_sample_job_writes_its_workflows_program(job, command, program, direct):
+    """A job file of one operation writes what the workflow's own command writes, but for the name
+    in the header (NC text compared line by line)."""
+    status, message, out = run("job", os.path.join(JOBS, job))
+    assert status == 0, message[-2000:]
+    status, message, reference = run(*command)
+    assert status == 0, message[-2000:]
+    mine = open(os.path.join(out, program)).read()
+    theirs = open(os.path.join(reference, direct)).read()
+    assert header_named(mine, "SCENE") == theirs
