@@ -1851,6 +1851,17 @@ MESSAGE_TEMPLATES = {
     'hole {} has a coordinate that is not a number: {}': '穴 {0} の座標に数値でないものがあります：{1}',
     'holes {} and {} are the same point {}': '穴 {0} と {1} は同じ点 {2} です',
     'operation {}: {}': '加工 {0}：{1}',
+    '{}: objects.{}: a carving takes objects.design (the mesh)': '{0}：objects.{1}：彫り込みは objects.design（メッシュ）を取ります',
+    "{}: its work zero ({}) is not the job's ({}): the operations of one job share one work zero":
+        '{0}：そのワーク原点（{1}）はジョブのもの（{2}）と違います。1つのジョブの加工は1つのワーク原点を共有します',
+    '{}: objects.{}: rotary pockets take objects.block (the board)': '{0}：objects.{1}：回転テーブルのポケットは objects.block（板）を取ります',
+    '{}: a STEP-NC workplan comes from its file = "...", not objects':
+        '{0}：STEP-NC のワークプランはオブジェクトではなく file = "..." から読みます',
+    '{}: no file: give file = "part.stp" (an ISO 14649 Part 21 file)':
+        '{0}：ファイルがありません：file = "part.stp"（ISO 14649 Part 21 ファイル）を指定してください',
+    '{}: settings.{} is not a STEP-NC setting; they are order, enabled': '{0}：settings.{1} は STEP-NC の設定ではありません（設定は order、enabled）',
+    '{}: settings.{} = {} is not a list of instance ids': '{0}：settings.{1} = {2} はインスタンス ID のリストではありません',
+    '{}: objects.{}: a turn-mill operation takes objects.part': '{0}：objects.{1}：複合旋盤加工は objects.part を取ります',
     'sheet thickness must be a finite number > 0 (mm), got {}': '板厚は 0 より大きい有限の数（mm）でなければなりません（指定値 {0}）',
     'nibbling pitch {} mm: the flat pattern takes {} hits, more than the {} one program may have; raise the pitch':
         'ニブリングピッチ {0} mm：展開図は {1} 回の打ち抜きになり、1つのプログラムに入る {2} 回を超えます。ピッチを大きくしてください',
