@@ -145,8 +145,8 @@ def test_face_pass_gives_the_closed_form_volume_and_areas_of_a_box():
 
 
 def test_a_mesh_changed_in_place_after_its_check_is_checked_again():
-    """check_mesh remembers the last mesh that passed (the planner checks it at each stage); the
-    caller's arrays changed in place must not ride on that: flipped faces are refused."""
+    """check_mesh keeps nothing between calls: the caller's arrays changed in place after one check
+    are checked afresh (flipped faces and a NaN vertex are refused)."""
     v, f = box_mesh(30.0, 20.0, 12.5)
     check_mesh(v, f)
     f[:] = f[:, ::-1]                        # every face flipped: the normals now point inward
