@@ -1,7 +1,8 @@
 """Triangle meshes for the turn-mill workflow: the checks a mesh must pass, and ray and
 nearest-point queries against its triangles.
 
-:func:`check_mesh` validates vertices and faces; :func:`face_samples` spreads points over them.
+:func:`check_mesh` validates vertices and faces (:func:`checked_mesh` also hands on what it found,
+a :class:`CheckedMesh`); :func:`face_samples` spreads points over them.
 :class:`Triangles` answers "does this ray hit the mesh?" (Moller-Trumbore) and "how far is the
 nearest surface point?" (Ericson's region test) in numpy, culling with bounding boxes a chunk of
 queries at a time.  :class:`TrimeshRayEngine` is the default :class:`RayEngine` for
