@@ -56,7 +56,6 @@ def run_planning():
     cylinder (before the grid join: over 5 minutes; 8 sides took 40 s)."""
     import trimesh
 
-    from kezuri.toolpath.engines import meshrays
     from kezuri.toolpath.operations.turnmill import turnmill
 
     vertices, faces, stock = turnmill.sample_part()
@@ -65,14 +64,10 @@ def run_planning():
         dense_v, dense_f = trimesh.remesh.subdivide(dense_v, dense_f)
     turnmill.plan(vertices, faces, stock)                 # kernels loaded, trimesh's first ray scene built
     base = seconds = float("inf")
-    for _ in range(3):              # back to back, the fastest of three, the meshes' caches cleared each time
-        for cache in (meshrays._LAST_CHECKED, meshrays._LAST_SURFACE, meshrays._LAST_REVERSE):
-            cache.clear()
+    for _ in range(3):              # back to back, the fastest of three (nothing is kept between plans)
         started = time.perf_counter()
         plain = turnmill.plan(vertices, faces, stock)
         base = min(base, time.perf_counter() - started)
-        for cache in (meshrays._LAST_CHECKED, meshrays._LAST_SURFACE, meshrays._LAST_REVERSE):
-            cache.clear()
         started = time.perf_counter()
         dense = turnmill.plan(dense_v, dense_f, stock)
         seconds = min(seconds, time.perf_counter() - started)

@@ -124,16 +124,24 @@ def test_collinear_points_go_every_other_so_no_two_neighbours_leave():
     assert kept == [0, 2, 3, 4, 6]
 
 
-def test_the_design_envelope_repeated_is_the_same_and_a_copy():
-    """The export gate and the measured scallop ask for the design's envelope over the same grid;
-    the second answer comes from the first: equal to a fresh one, and changing it changes nothing."""
-    from kezuri.toolpath.simulate import checks
-    from kezuri.toolpath.simulate.heightfield import _grid
+def test_the_design_envelope_keeps_nothing_between_calls():
+    """The export gate and the measured scallop ask for the design's envelope over the same grid:
+    each call computes it afresh (no module memo), so an answer its caller changed changes nothing;
+    and on one tilted triangle it is the triangle's plane at the cell centres inside it."""
+    from kezuri.toolpath.simulate.heightfield import stock_grid
+    from kezuri.toolpath.simulate.meshtop import mesh_top
 
     v, f = carve_samples.wave_relief(4.0)
-    hf = _grid(sim.BoxStock(-60, -40, -15, 60, 40, -1), 0.5)
-    first = checks._mesh_top(hf, v, f)
+    hf = stock_grid(sim.BoxStock(-60, -40, -15, 60, 40, -1), 0.5)
+    first = mesh_top(hf, v, f)
+    kept = first.copy()
     first[:] = 0.0
-    again = checks._mesh_top(hf, v.copy(), f.copy())
-    assert np.array_equal(again, checks._envelope(hf, v, f))
+    again = mesh_top(hf, v.copy(), f.copy())
+    assert np.array_equal(again, kept)
+    ramp = mesh_top(stock_grid(sim.BoxStock(0, 0, -15, 10, 10, 12), 1.0), np.array([(0.0, 0, 0), (10, 0, 10), (0, 10, 0)]),
+                    np.array([(0, 1, 2)]))
+    centres = np.arange(10) + 0.5
+    inside = centres[:, None] + centres[None, :] < 10 - 1e-6
+    assert np.allclose(ramp[inside], np.broadcast_to(centres[:, None], ramp.shape)[inside])     # z = x
+    assert np.all(np.isneginf(ramp[~inside]))
     assert np.isfinite(again).sum() > 0.8 * again.size and again.max() <= v[:, 2].max()     # edge centres: -inf

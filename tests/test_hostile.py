@@ -18,6 +18,7 @@ from kezuri.post import output
 from kezuri.toolpath.simulate import ncread
 from kezuri.toolpath.operations.sheetmetal import punch, unfold
 from kezuri.toolpath import simulate as sim
+from kezuri.toolpath.operations.turnmill import turnjoin
 from kezuri.toolpath.operations.turnmill import turnmill as tm
 from kezuri.toolpath.engines.meshdata import MeshInputError
 from kezuri.toolpath.engines.meshfile import MeshFileError
@@ -317,7 +318,7 @@ def _join_all_pairs(runs, surface, settings):
         run = remaining.pop(i)
         if to_end[i] < to_start[i]:
             run = run[::-1]
-        if min(to_start[i], to_end[i]) <= 4 * settings.pick_feed and tm._link_clear(end, run[0], surface, settings):
+        if min(to_start[i], to_end[i]) <= 4 * settings.pick_feed and turnjoin.link_clear(end, run[0], surface, settings):
             passes[-1] = np.vstack([passes[-1], run])
         else:
             passes.append(run)
@@ -331,7 +332,7 @@ def test_the_grid_join_orders_runs_exactly_as_the_all_pairs_one():
     starts = np.vstack([rng.uniform(-30, 30, (300, 3)), rng.uniform(-300, 300, (20, 3))])   # some far away
     runs = [np.vstack([s, s + rng.normal(0, 2, 3), s + rng.normal(0, 4, 3)]) for s in starts]
     with time_limit(60):
-        new = tm._join(runs, far, settings)
+        new = turnjoin.join_runs(runs, far, settings)
     old = _join_all_pairs(runs, far, settings)
     assert len(new) == len(old) and all(np.array_equal(a, b) for a, b in zip(new, old))
 
@@ -340,7 +341,7 @@ def test_join_progress_can_cancel():
     runs = [np.array([[float(i), 0, 0], [i + 0.5, 0, 0]]) for i in range(600)]
     far = tm.Triangles(np.array([[[500.0, 500, 500], [501, 500, 500], [500, 501, 500]]]))
     with pytest.raises(tm.TurnMillCancelled):
-        tm._join(runs, far, tm.TurnMillSettings(), lambda fraction: False)
+        turnjoin.join_runs(runs, far, tm.TurnMillSettings(), lambda fraction: False)
 
 
 def test_turn_mill_on_a_plain_64_sided_cylinder_finishes():
@@ -385,12 +386,12 @@ def test_a_finishing_layer_too_fine_to_hold_is_blamed_on_the_fineness_not_the_st
     from kezuri.toolpath.operations.turnmill import turnjoin
     v = np.array([[0.0, 0.0, -10.0], [10.0, 0.0, 0.0], [0.0, 10.0, 0.0]])
     with pytest.raises(InputError, match="the radial finishing alone would need more than 5000000 tool positions"):
-        turnjoin._counted([4_000_000, 0], 1_500_000, "radial", 0, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
+        turnjoin.count_positions([4_000_000, 0], 1_500_000, "radial", 0, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
     total = [0, 4_000_000]
-    turnjoin._counted(total, 900_000, "axial", 3, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
+    turnjoin.count_positions(total, 900_000, "axial", 3, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
     assert total == [0, 4_900_000]
     with pytest.raises(InputError, match=r"axial roughing .* \(4 layers of 1 mm so far\): the stock's end face Z 0"):
-        turnjoin._counted(total, 200_000, "axial", 4, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
+        turnjoin.count_positions(total, 200_000, "axial", 4, 1.0, tm.Stock(42.5, -60.0, 0.0), v)
 
 
 def test_carving_through_a_metre_of_stock_at_the_finest_step_down_is_refused_not_out_of_memory():

@@ -316,9 +316,9 @@ def test_stepnc_pocket_links_are_marked_and_drawn_as_links():
     (a link, not a cut).  It is marked in the IR and drawn green; the passes stay blue."""
     from manifold3d import CrossSection
 
-    from kezuri.toolpath.operations.stepnc.motion import _Motion
+    from kezuri.toolpath.operations.stepnc.motion import Motion
     region = CrossSection.square((80.0, 40.0)).translate((10.0, 10.0))
-    motion = _Motion(clearance_z=10.0, feed=400.0, region=region, radius=3.0)
+    motion = Motion(clearance_z=10.0, feed=400.0, region=region, radius=3.0)
     first, second = np.array([(20.0, 20.0), (80.0, 20.0)]), np.array([(80.0, 40.0), (20.0, 40.0)])
     motion.cut([first, second], z=-2.0, cleared_z=0.0)
     op = motion.operation("pocket", Tool(1, "flat", 6.0), 8000, True, 20.0, False, "")

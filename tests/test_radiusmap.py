@@ -103,8 +103,8 @@ def cylinder_design(radius, z_min=-30.0, z_max=0.0):
 
 
 def _kernels(kernel):
-    from kezuri.toolpath.simulate.heightfield import _compiled_kernels
-    return _compiled_kernels(kernel)
+    from kezuri.toolpath.simulate.heightfield import compiled_kernels
+    return compiled_kernels(kernel)
 
 
 @pytest.mark.parametrize("kernel", ["numba", "numpy"])
@@ -240,7 +240,7 @@ def test_turned_mesh_joins_the_untouched_bar_to_the_cut_end():
     a 10 x 10 mm pocket 3 mm deep in its end face: the bar below the pocket joins the boolean's
     result at a ring, and the mesh is closed, its volume the bar's mesh alone (no boolean) less
     the pocket's (walls sloped between cell centres), its triangles below the pocket the bar's own."""
-    from kezuri.toolpath.simulate.meshes import _turned_mesh
+    from kezuri.toolpath.simulate.meshes import turned_mesh
     from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
 
     n_theta, n_z = 64, 60
@@ -252,7 +252,7 @@ def test_turned_mesh_joins_the_untouched_bar_to_the_cut_end():
     xy = (np.arange(80) + 0.5) - 40.0
     inside = np.hypot(xy[:, None], xy[None, :]) < 20.0
     hf = HeightField(-40.0, -40.0, 1.0, 1.0, heights, inside, 0.0, -30.0)
-    vertices, faces = _turned_mesh(rm, hf, CylinderStock(20.0, 30.0), None)
+    vertices, faces = turned_mesh(rm, hf, CylinderStock(20.0, 30.0), None)
     mesh = trimesh.Trimesh(vertices, faces, process=True)
     assert mesh.is_watertight and mesh.is_winding_consistent
     plain_bar = trimesh.Trimesh(*radiusmap.mesh(rm, -30.0, 0.0), process=True)   # no boolean
@@ -295,7 +295,7 @@ def test_turned_surface_looks_like_the_closed_mesh():
     height but on the pocket's walls (the mesh's walls start at the end face 3/4 of the way from
     the floor's outer cell centres to the next ones, the surface's at those: at most 0.75 mm
     apart); seen from the side, nearly all pixels alike."""
-    from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
+    from kezuri.toolpath.simulate.meshes import turned_mesh, turned_surface
     from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
 
     n_theta, n_z = 64, 60
@@ -307,7 +307,7 @@ def test_turned_surface_looks_like_the_closed_mesh():
     xy = (np.arange(80) + 0.5) - 40.0
     hf = HeightField(-40.0, -40.0, 1.0, 1.0, heights, np.hypot(xy[:, None], xy[None, :]) < 20.0, 0.0, -30.0)
     stock = CylinderStock(20.0, 30.0)
-    meshes = _turned_mesh(rm, hf, stock, None), _turned_surface(rm, hf, stock, None)
+    meshes = turned_mesh(rm, hf, stock, None), turned_surface(rm, hf, stock, None)
     for tilt in (0.0, 72.0):
         view, depths = _depth_pictures(meshes, tilt)
         covered = np.isfinite(depths[0])
@@ -332,7 +332,7 @@ def test_turned_surface_of_a_faced_bar_keeps_its_edge():
     face, and seen from above the face covers the bar to its edge; the closed mesh is the bar
     1 mm shorter (its volume that of the radius map's 2513-gon prism)."""
     from kezuri.toolpath.pictures.picture import Picture, View
-    from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
+    from kezuri.toolpath.simulate.meshes import turned_mesh, turned_surface
     from kezuri.toolpath.simulate.stock import CylinderStock, HeightField
 
     rm = radiusmap.grid(20.0, -30.0, 0.0, 0.25)
@@ -340,7 +340,7 @@ def test_turned_surface_of_a_faced_bar_keeps_its_edge():
     inside = np.hypot(xy[:, None], xy[None, :]) <= 20.0
     heights = np.where(inside, -1.0, -np.inf).astype(np.float32)
     hf = HeightField(-20.0, -20.0, 0.25, 0.25, heights, inside, 0.0, -30.0)
-    vertices, faces = _turned_surface(rm, hf, CylinderStock(20.0, 30.0), None)
+    vertices, faces = turned_surface(rm, hf, CylinderStock(20.0, 30.0), None)
     assert vertices[:, 2].max() <= -1.0 + 1e-9
     assert len(faces) < len(radiusmap.mesh(rm, -30.0, 0.0)[1]) * 1.2     # the flat face in few tiles
     view = View(np.array([[-20.0, -20, -30], [20, 20, 0]]), (0, 0, 400, 400), 0.0)
@@ -350,7 +350,7 @@ def test_turned_surface_of_a_faced_bar_keeps_its_edge():
     y = -(np.arange(400) + 0.5 - view.py) / view.scale + view.cy
     within = np.hypot(x[None, :], y[:, None]) < 20.0 - 0.02
     assert np.allclose(picture.depth[within], -1.0)
-    closed = trimesh.Trimesh(*_turned_mesh(rm, hf, CylinderStock(20.0, 30.0), None), process=True)
+    closed = trimesh.Trimesh(*turned_mesh(rm, hf, CylinderStock(20.0, 30.0), None), process=True)
     assert closed.is_watertight and closed.vertices[:, 2].max() <= -1.0 + 1e-5
     n = rm.shape[0]
     assert closed.volume == pytest.approx(n / 2 * 20.0 ** 2 * math.sin(2 * math.pi / n) * 29.0, rel=1e-5)
@@ -360,12 +360,12 @@ def test_turned_surface_merges_the_untouched_side():
     """A bar with a groove on part of its turn and no axial cut: the picture's surface draws the
     same pixels at the same depths as the closed mesh from above, at 72 degrees and from the side,
     with the untouched strips of its side one quad each (far fewer triangles)."""
-    from kezuri.toolpath.simulate.meshes import _turned_mesh, _turned_surface
+    from kezuri.toolpath.simulate.meshes import turned_mesh, turned_surface
     from kezuri.toolpath.simulate.stock import CylinderStock
 
     rm = radiusmap.grid(20.0, -30.0, 0.0, 0.25)
     rm.radii[:100, 40:60] = 17.0
-    meshes = _turned_mesh(rm, None, CylinderStock(20.0, 30.0), None), _turned_surface(rm, None, CylinderStock(20.0, 30.0),
+    meshes = turned_mesh(rm, None, CylinderStock(20.0, 30.0), None), turned_surface(rm, None, CylinderStock(20.0, 30.0),
                                                                                        None)
     assert len(meshes[1][1]) < len(meshes[0][1]) / 10
     for tilt in (0.0, 72.0, 90.0):

@@ -15,7 +15,7 @@ from kezuri.post.gcode import PostError
 from kezuri.post import rotary_post
 from kezuri.post.rotary_cxz import FanucRotaryPost, LinuxCNCRotaryPost
 from kezuri.toolpath.engines import region as rg
-from kezuri.toolpath.operations.rotary import rotary
+from kezuri.toolpath.operations.rotary import rotary, rotary_curves, rotary_pocket
 from kezuri.toolpath.ir.program import RAPID, Operation, Program, Tool
 from kezuri.toolpath.operations.rotary.rotary import Block, Pocket, RotaryError, RotarySettings
 
@@ -395,7 +395,7 @@ def test_gouge_check_bounds_a_wall_gouge(turn, move):
 def test_outline_distance_is_exact(outline):
     loop = rg.validate_loop(outline, "test")
     region = rg.from_loops([loop])
-    distance = rotary._OutlineDistance(loop, region, cap=4.0)
+    distance = rotary_pocket.OutlineDistance(loop, region, cap=4.0)
     pts = np.random.default_rng(7).uniform(loop.min(axis=0) - 5, loop.max(axis=0) + 5, (4000, 2))
     exact = polygon_distance(loop, pts) * np.where(rg.contains_points(region, pts), 1, -1)
     got = distance(pts)
@@ -409,10 +409,10 @@ def test_curve_clipping_agrees_with_region(outline):
     region = rg.offset(rg.from_loops([outline]), -3.5)
     centre = np.array(rg.centroid(region))
     region = region.translate(tuple(-centre))
-    boundary = rotary._Boundary(region)
+    boundary = rotary_curves.Boundary(region)
     phi = np.linspace(0, 2 * np.pi * 25, 20000)
-    spiral = rotary._by_arc_length(np.column_stack([phi * np.cos(phi), phi * np.sin(phi)]) / (2 * np.pi), 1.0)
-    for curve in [rotary._circle(radius, 1.0) for radius in (2.0, 6.5, 11.0, 17.0)] + [spiral]:
+    spiral = rotary_curves.by_arc_length(np.column_stack([phi * np.cos(phi), phi * np.sin(phi)]) / (2 * np.pi), 1.0)
+    for curve in [rotary_curves.circle_points(radius, 1.0) for radius in (2.0, 6.5, 11.0, 17.0)] + [spiral]:
         ours, theirs = boundary.clip(curve), rg.clip_polyline(curve, region)
         assert len(ours) == len(theirs)
         assert all(a.shape == b.shape and np.allclose(a, b, rtol=0, atol=1e-12) for a, b in zip(ours, theirs))

@@ -8,8 +8,8 @@ from manifold3d import Manifold, OpType
 
 from kezuri.toolpath import simulate as sim
 from kezuri.toolpath.simulate import sweep
-from kezuri.toolpath.simulate.paths import _Chain
-from kezuri.toolpath.simulate.stock import _stock_solid
+from kezuri.toolpath.simulate.paths import Chain
+from kezuri.toolpath.simulate.stock import stock_solid
 from kezuri.toolpath.ir.program import FEED, Operation, Tool
 
 BALL6 = Tool(2, "ball", 6.0)
@@ -18,7 +18,7 @@ BOX = (-30, -30, -20, 30, 30, 0)
 
 
 def chain(tool, points, radial=False):
-    return _Chain(0, tool, np.asarray(points, float), np.zeros(len(points) - 1, int),
+    return Chain(0, tool, np.asarray(points, float), np.zeros(len(points) - 1, int),
                       np.zeros(len(points) - 1, bool), np.zeros(len(points) - 1, bool), radial)
 
 
@@ -35,8 +35,8 @@ def circle(radius, z, n=400, turns=1.0):
 
 def pieces_of(tool, points, tolerance=0.01, stock=None, radial=False):
     """The solids one chain is cut as, its level runs included."""
-    stock = stock or _stock_solid(sim.as_stock(BOX), tolerance)
-    repeats = sweep._Repeats()
+    stock = stock or stock_solid(sim.as_stock(BOX), tolerance)
+    repeats = sweep.Repeats()
     makers = sweep._chain_pieces(chain(tool, points, radial=radial), tolerance, stock.bounding_box(),
                                  sweep._Floors([], tolerance), repeats)
     return [make() for make in makers + [m for made in repeats.kept() for m in made]]
@@ -104,7 +104,7 @@ def test_every_piece_of_a_level_run_lies_within_its_bound_of_the_true_sweep():
     vertices = np.vstack([np.asarray(p.to_mesh().vert_properties)[:, :3] for p in pieces])
     assert depth_outside_ball_sweep(vertices, tips, 3.0).max() < sweep.outside(BALL6, 0.01) + 1e-6
     # and together they fill it: the removed volume is the height field's (an independent method)
-    stock = _stock_solid(sim.as_stock(BOX), 0.01)
+    stock = stock_solid(sim.as_stock(BOX), 0.01)
     removed = stock.volume() - (stock - Manifold.batch_boolean(pieces, OpType.Add)).volume()
     field = sim.simulate(level_op(BALL6, tips), BOX, cell=0.05)
     assert removed <= field.removed_volume_mm3 * 1.002
@@ -132,7 +132,7 @@ def test_a_level_path_with_bends_corners_and_a_reversal_is_within_the_tolerance_
     shrunk = sweep.tool_points(BALL6, 0.005, 5.0, inset=tolerance)
     inner = Manifold.batch_boolean([Manifold.hull_points(sweep.placed(shrunk, tips[k:k + 2], None))
                                     for k in range(len(tips) - 1)], OpType.Add)
-    stock = _stock_solid(sim.as_stock(BOX), tolerance)
+    stock = stock_solid(sim.as_stock(BOX), tolerance)
     assert ((inner ^ stock) - swept).volume() < 1e-6
 
 
@@ -181,7 +181,7 @@ def test_a_level_staircase_on_a_grid_is_cut_along_its_rows():
     assert len(pieces) < (len(tips) - 1) / 3
     for piece in pieces:
         assert depth_outside_ball_sweep(surface_samples(piece), tips, 3.0).max() < sweep.outside(BALL6, 0.05) + 1e-6
-    stock = _stock_solid(sim.as_stock(BOX), 0.05)
+    stock = stock_solid(sim.as_stock(BOX), 0.05)
     removed = stock.volume() - (stock - Manifold.batch_boolean(pieces, OpType.Add)).volume()
     # a cut 1 mm deep is mostly surface: bound it between the height fields of the true ball and
     # of the ball shrunk by the tolerance (its sweep is the true sweep shrunk by the tolerance)
@@ -224,7 +224,7 @@ def test_a_staircase_that_runs_back_along_its_wall_cuts_the_wall_once():
     samples = surface_samples(swept, per_triangle=1)
     beyond = depth_outside_ball_sweep(samples[samples[:, 2] < BOX[5]], doubled, 3.0).max()   # in the stock
     assert beyond < sweep.outside(BALL6, 0.05) + 1e-6
-    stock = _stock_solid(sim.as_stock(BOX), 0.05)
+    stock = stock_solid(sim.as_stock(BOX), 0.05)
     removed = stock.volume() - (stock - swept).volume()
     field = sim.simulate(level_op(BALL6, doubled), BOX, cell=0.05)
     shrunk = sim.simulate(level_op(Tool(2, "ball", 6.0 - 2 * 0.05), doubled + [0, 0, 0.05]), BOX, cell=0.05)
@@ -256,7 +256,7 @@ def test_a_radial_ball_turning_about_c_is_pappus_of_its_section():
     r, tip, bar = 3.0, 20.0, 25.0
     angle = np.linspace(0, 2 * math.pi, 721)
     tips = np.column_stack([tip * np.cos(angle), tip * np.sin(angle), np.full(721, -10.0)])
-    stock = _stock_solid(sim.CylinderStock(radius=bar, height=30), 0.05)
+    stock = stock_solid(sim.CylinderStock(radius=bar, height=30), 0.05)
     pieces = pieces_of(BALL6, tips, 0.05, stock, radial=True)
     assert len(pieces) <= 4                    # one tube and the tool at its ends
     removed = stock.volume() - (stock - Manifold.batch_boolean(pieces, OpType.Add)).volume()
@@ -275,9 +275,9 @@ def test_a_ring_repeated_farther_from_the_c_axis_is_left_out():
         a = angle * turns
         return np.column_stack([tip * np.cos(a), tip * np.sin(a), np.full(len(a), z)])
 
-    stock = _stock_solid(sim.CylinderStock(radius=25.0, height=30), 0.05)
+    stock = stock_solid(sim.CylinderStock(radius=25.0, height=30), 0.05)
     rings = [ring(24.0), ring(22.0, turns=0.5), ring(22.0), ring(20.0)]
-    repeats = sweep._Repeats()
+    repeats = sweep.Repeats()
     for tips in rings + [ring(18.0, turns=0.5)]:
         assert sweep._chain_pieces(chain(BALL6, tips, radial=True), 0.05, stock.bounding_box(),
                                    sweep._Floors([], 0.05), repeats) == []
@@ -294,8 +294,8 @@ def test_a_slot_repeated_at_every_depth_is_cut_once_at_the_bottom():
     # (L D + pi D^2 / 4) * depth
     line = np.column_stack([np.linspace(-10, 10, 5), np.zeros(5), np.zeros(5)])
     passes = [line + [0, 0, -depth] for depth in (1.0, 2.0, 3.0)]
-    stock = _stock_solid(sim.as_stock(BOX), 0.01)
-    repeats = sweep._Repeats()
+    stock = stock_solid(sim.as_stock(BOX), 0.01)
+    repeats = sweep.Repeats()
     for tips in passes:
         sweep._chain_pieces(chain(FLAT6, tips), 0.01, stock.bounding_box(), sweep._Floors([], 0.01), repeats)
     assert len(repeats.kept()) == 1
@@ -319,8 +319,8 @@ def test_pocket_layers_on_the_side_of_a_bar_leave_out_the_ones_a_deeper_layer_co
         return np.column_stack([np.full(n + 1, x), y, np.full(n + 1, -15.0)])
 
     chords = [chord(22.0, 8.0), chord(21.0, 6.0), chord(20.0, 7.0)]
-    repeats = sweep._Repeats()
-    stock = _stock_solid(sim.CylinderStock(radius=25.0, height=30), 0.05)
+    repeats = sweep.Repeats()
+    stock = stock_solid(sim.CylinderStock(radius=25.0, height=30), 0.05)
     for tips in chords:
         assert sweep._chain_pieces(chain(BALL6, tips, radial=True), 0.05, stock.bounding_box(),
                                    sweep._Floors([], 0.05), repeats) == []

@@ -16,6 +16,7 @@ from kezuri.post import cldata, turnmill_xzc
 from kezuri.post.gcode import PostError
 from kezuri.toolpath.operations.turnmill import turnmill as tm
 from kezuri.toolpath.engines.meshdata import MeshInputError
+from kezuri.toolpath.ir import kinematics
 from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Program, ProgramError, Tool
 
 needs_rs274 = pytest.mark.skipif(not rs274.available(), reason="LinuxCNC rs274 is not installed (.ci/run installs it)")
@@ -286,9 +287,9 @@ def test_c_is_continuous_and_polar_interpolation_stays_within_tolerance(sample):
         start = np.vstack([op.start, op.xyz[:-1]])
         c_start = np.r_[c[0], c[:-1]]
         cutting = op.kind == FEED
-        a = tm.machine_to_part(start[cutting], c_start[cutting])
-        b = tm.machine_to_part(op.xyz[cutting], c[cutting])
-        middle = tm.machine_to_part(0.5 * (start[cutting] + op.xyz[cutting]), 0.5 * (c_start[cutting] + c[cutting]))
+        a = kinematics.machine_to_part(start[cutting], c_start[cutting])
+        b = kinematics.machine_to_part(op.xyz[cutting], c[cutting])
+        middle = kinematics.machine_to_part(0.5 * (start[cutting] + op.xyz[cutting]), 0.5 * (c_start[cutting] + c[cutting]))
         ab = b - a
         t = np.clip(np.einsum("ij,ij->i", middle - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab), 1e-300), 0, 1)
         off = np.linalg.norm(middle - (a + t[:, None] * ab), axis=1)

@@ -146,8 +146,8 @@ def test_face_pass_gives_the_closed_form_volume_and_areas_of_a_box():
 
 
 def test_a_mesh_changed_in_place_after_its_check_is_checked_again():
-    """check_mesh remembers the last mesh that passed (the planner checks it at each stage); the
-    caller's arrays changed in place must not ride on that: flipped faces are refused."""
+    """check_mesh keeps nothing between calls: the caller's arrays changed in place after one check
+    are checked afresh (flipped faces and a NaN vertex are refused)."""
     v, f = box_mesh(30.0, 20.0, 12.5)
     check_mesh(v, f)
     f[:] = f[:, ::-1]                        # every face flipped: the normals now point inward
@@ -157,3 +157,32 @@ def test_a_mesh_changed_in_place_after_its_check_is_checked_again():
     v[0] = np.nan
     with pytest.raises(MeshInputError, match="NaN"):
         check_mesh(v, f)
+
+
+def test_what_the_check_found_is_handed_on_not_remembered():
+    """checked_mesh keeps what the mesh check found on the object it returns: each directed edge's
+    reverse edge row and the face normals and areas (here checked edge by edge and against the
+    box's closed forms); the planning mesh given them plans the same as it does finding them
+    itself, and a second check of another mesh leaves the first object as it was."""
+    pytest.importorskip("numba")
+    from kezuri.toolpath.engines.meshrays import checked_mesh
+
+    a, b, c = 30.0, 20.0, 12.5
+    v, f = subdivided(*box_mesh(a, b, c), 1)
+    mesh = checked_mesh(v, f)
+    if mesh.reverse is None:
+        pytest.skip("the numpy path keeps no edges (KEZURI_NO_NUMBA=1)")
+    directed = mesh.faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    assert np.array_equal(directed[mesh.reverse], directed[:, ::-1])          # closed: every edge has its twin
+    normals, areas = mesh.normals
+    assert areas.sum() == pytest.approx(2 * (a * b + b * c + c * a), rel=1e-12)
+    tri = v[f]
+    cross = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    assert np.allclose(normals, cross / np.linalg.norm(cross, axis=1)[:, None], atol=1e-12)
+    kept = mesh.reverse.copy()
+    checked_mesh(*cylinder_mesh(5.0, 8.0, 16))
+    assert np.array_equal(mesh.reverse, kept)
+    given = facets.planning_mesh(v, f, None, mesh.reverse, mesh.normals)
+    found = facets.planning_mesh(v, f)
+    assert given.merged == found.merged and np.array_equal(given.faces, found.faces)
+    assert np.array_equal(given.vertices, found.vertices) and len(given.faces) == 12

@@ -99,21 +99,13 @@ class Part:
 
 class OperationKind:
     """An operation kind: subclass with ``key``, ``label``, ``families`` (the machine families
-    whose posts write it) and ``settings_type``, and implement :meth:`plan`."""
+    whose posts write it) and ``settings_type``, and implement :meth:`plan`; declaring the
+    subclass in ``operations/<kind>/kind.py`` is all it takes (:func:`kinds`)."""
 
     key = ""
     label = ""
     families: tuple = ()
     settings_type: type = object
-
-    _registry: dict = {}
-
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        if cls.key:
-            if cls.key in OperationKind._registry and OperationKind._registry[cls.key].__qualname__ != cls.__qualname__:
-                raise JobError(f"operation kind {cls.key!r} is declared twice")
-            OperationKind._registry[cls.key] = cls
 
     def plan(self, setup: Setup, settings, geometry, progress=None) -> Part:
         raise NotImplementedError
@@ -121,12 +113,23 @@ class OperationKind:
 
 def kinds() -> dict:
     """Every declared operation kind by key: each package under ``operations/`` declares its kind
-    in its ``kind`` module, imported here (the folder is the list)."""
+    in its ``kind`` module, imported here (the folder is the list; nothing is registered anywhere:
+    the kinds are the subclasses of :class:`OperationKind` that name a key)."""
     from . import operations
     for package in pkgutil.iter_modules(operations.__path__):
         if package.ispkg and importlib.util.find_spec(f"{operations.__name__}.{package.name}.kind") is not None:
             importlib.import_module(f"{operations.__name__}.{package.name}.kind")
-    return dict(OperationKind._registry)
+    found, pending = {}, list(OperationKind.__subclasses__())
+    while pending:
+        cls = pending.pop()
+        pending += cls.__subclasses__()
+        if not cls.key:
+            continue
+        known = found.get(cls.key)
+        if known is not None and (known.__module__, known.__qualname__) != (cls.__module__, cls.__qualname__):
+            raise JobError(f"operation kind {cls.key!r} is declared twice")
+        found[cls.key] = cls
+    return found
 
 
 def kind_of(key: str) -> OperationKind:

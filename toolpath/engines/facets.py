@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .compiled import kernel_module
-from .meshrays import checked_normals, checked_reverse, face_normals
+from .meshrays import face_normals
 from .meshdata import MeshInputError
 
 PLANE_TOLERANCE = 1e-9       # normals and plane offsets (relative to the part's size) this close are one plane
@@ -66,9 +66,6 @@ def connected(count: int, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def _reverse(faces: np.ndarray, vertex_count: int) -> np.ndarray:
     """For directed edge 3i+k (faces[i, k] -> faces[i, k+1]): the row of the edge running back,
     or its own row when there is none."""
-    reverse = checked_reverse(faces)
-    if reverse is not None:
-        return reverse
     compiled = _compiled()
     if compiled is not None:
         return compiled.edge_check(faces, vertex_count)[0]
@@ -140,16 +137,17 @@ def _pinned_loops(edges, splits, pinned, vertex_count):
     return np.array(flat, np.int64), np.array(lengths, np.int64), counts, failed
 
 
-def planning_mesh(vertices, faces, labels=None) -> PlanningMesh:
+def planning_mesh(vertices, faces, labels=None, reverse=None, normals=None) -> PlanningMesh:
     """Merge coplanar, edge-connected faces (with equal ``labels`` when given) back into the
     fewest triangles their outlines need; see the module notes.  ``vertices``/``faces`` must
-    have passed ``check_mesh``."""
+    have passed ``check_mesh``; ``reverse`` and ``normals``: what the check found for them
+    (:class:`meshrays.CheckedMesh`), or None to compute them here."""
     from manifold3d import triangulate
 
     v, f = vertices, faces
     labels = None if labels is None else np.asarray(labels)
-    normals = checked_normals(f) or face_normals(v[f])
-    reverse = _reverse(f, len(v))
+    normals = face_normals(v[f]) if normals is None else normals
+    reverse = _reverse(f, len(v)) if reverse is None else reverse
     facet = facet_ids(v, f, labels, reverse, normals)
     members = np.bincount(facet, minlength=len(f))     # facet ids are their smallest face: no sort needed
     roots = np.flatnonzero(members)

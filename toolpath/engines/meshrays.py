@@ -1,16 +1,17 @@
 """Triangle meshes for the turn-mill workflow: the checks a mesh must pass, and ray and
 nearest-point queries against its triangles.
 
-:func:`check_mesh` validates vertices and faces; :func:`face_samples` spreads points over them.
+:func:`check_mesh` validates vertices and faces (:func:`checked_mesh` also hands on what it found,
+a :class:`CheckedMesh`); :func:`face_samples` spreads points over them.
 :class:`Triangles` answers "does this ray hit the mesh?" (Moller-Trumbore) and "how far is the
 nearest surface point?" (Ericson's region test) in numpy, culling with bounding boxes a chunk of
 queries at a time.  :class:`TrimeshRayEngine` is the default :class:`RayEngine` for
-classification: Embree through trimesh when embreex is installed, otherwise :class:`Triangles`.  Errors are
-:class:`meshdata.MeshInputError`.
+classification: Embree through trimesh when embreex is installed, otherwise :class:`Triangles`.  Errors are the turn-mill workflow's
+(:class:`meshdata.MeshInputError`).
 """
 from __future__ import annotations
 
-import hashlib
+from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
@@ -21,16 +22,32 @@ from .meshdata import MeshInputError
 PAIR_BUDGET = 1 << 20    # (query, triangle) pairs handled at once: bounds the memory
 QUERY_CHUNK = 256        # at most this many nearby queries are culled against the triangles together
 MAX_SUBDIVISION = 16     # at most 16 x 16 samples per face (face_samples)
-_LAST_CHECKED: list = []  # [vertices, faces]: copies of the last mesh that passed check_mesh
-_LAST_SURFACE: list = []  # [content key, Triangles] of the last Triangles.shared
-_LAST_REVERSE: list = []  # [faces array check_mesh returned, each directed edge's reverse edge row,
-                          #  (normals, areas) of its faces or None]
+
+
+@dataclass(frozen=True, eq=False)
+class CheckedMesh:
+    """A mesh that passed :func:`checked_mesh`, with what the check found on the way so the
+    planning mesh (:func:`facets.planning_mesh`) need not find it again: ``reverse``, each directed
+    edge's reverse edge row, and ``normals``, (unit normals, areas) of the faces; None where the
+    check did not compute them (the numpy path).  The caller keeps it and passes it on: nothing is
+    remembered between calls."""
+
+    vertices: np.ndarray
+    faces: np.ndarray
+    reverse: np.ndarray | None = None
+    normals: tuple | None = None
 
 
 def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
     """(vertices (n, 3) float, faces (m, 3) int) after the checks the workflow relies on:
     finite coordinates, valid indices, no edge shared by more than two faces (slicing chains
     sections edge to edge), consistent winding, and outward normals when the mesh is closed."""
+    mesh = checked_mesh(vertices, faces)
+    return mesh.vertices, mesh.faces
+
+
+def checked_mesh(vertices, faces) -> CheckedMesh:
+    """:func:`check_mesh`, keeping what the check found (see :class:`CheckedMesh`)."""
     try:
         v = np.asarray(vertices, dtype=float)
         f = np.asarray(faces)
@@ -49,10 +66,6 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
     if f.min() < 0 or f.max() >= len(v):
         raise MeshInputError(f"face indices must lie in 0..{len(v) - 1}")
     f = f.astype(np.int64)
-    if _LAST_CHECKED and _same(_LAST_CHECKED[0], v) and _same(_LAST_CHECKED[1], f):
-        if _LAST_REVERSE:                            # what was found for it holds for this copy too
-            _LAST_REVERSE[0] = f
-        return v, f                                  # the planner checks the same mesh at each stage
     if np.any((f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])):
         raise MeshInputError("a face uses the same vertex twice")
     compiled = kernel_module("auto", f"{__package__}.facets_kernel", MeshInputError, "facet kernel")
@@ -62,10 +75,7 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
             normals, areas, volume = compiled.face_pass(v, f)
             if closed and volume < 0:
                 raise MeshInputError(INWARD)
-            _LAST_REVERSE[:] = [f, reverse, (normals, areas)]
-            _remember(v, f)
-            return v, f
-    _LAST_REVERSE.clear()
+            return CheckedMesh(v, f, reverse, (normals, areas))
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     _, counts = np.unique(directed.min(axis=1) * len(v) + directed.max(axis=1), return_counts=True)
     if np.any(counts > 2):
@@ -75,20 +85,10 @@ def check_mesh(vertices, faces) -> tuple[np.ndarray, np.ndarray]:
         raise MeshInputError("the faces are wound inconsistently (some normals are flipped): recalculate normals")
     if np.all(counts == 2):
         _check_outward(v, f)
-    _remember(v, f)
-    return v, f
+    return CheckedMesh(v, f)
 
 
 INWARD = "the face normals point inward: flip them so they point out of the part"
-
-
-def _same(kept: np.ndarray, given: np.ndarray) -> bool:
-    return kept is given or (kept.shape == given.shape and np.array_equal(kept, given))
-
-
-def _remember(v: np.ndarray, f: np.ndarray) -> None:
-    """Keep copies (not the caller's arrays, which it may change) of the mesh that passed."""
-    _LAST_CHECKED[:] = [v.copy(), f.copy()]
 
 
 def _check_outward(v: np.ndarray, f: np.ndarray) -> None:
@@ -96,16 +96,6 @@ def _check_outward(v: np.ndarray, f: np.ndarray) -> None:
     volume = np.einsum("ij,ij->i", tri[:, 0], np.cross(tri[:, 1], tri[:, 2])).sum() / 6.0
     if volume < 0:
         raise MeshInputError(INWARD)
-
-
-def checked_reverse(faces: np.ndarray):
-    """The reverse edge rows check_mesh found for this very faces array (it returned it), or None."""
-    return _LAST_REVERSE[1] if _LAST_REVERSE and _LAST_REVERSE[0] is faces else None
-
-
-def checked_normals(faces: np.ndarray):
-    """(normals, areas) of this very faces array if check_mesh computed them, or None."""
-    return _LAST_REVERSE[2] if _LAST_REVERSE and _LAST_REVERSE[0] is faces else None
 
 
 def face_normals(triangles: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -216,16 +206,6 @@ class Triangles:
         self.box_lo = self.lo.min(axis=0) - pad
         self.box_hi = self.hi.max(axis=0) + pad
         self._grid = None           # built on the first numpy query (the compiled one uses a tree)
-
-    @classmethod
-    def shared(cls, triangles: np.ndarray) -> "Triangles":
-        """The Triangles of these triangles, reused while the same mesh is asked for again (the
-        radial and the axial layers query one part: one tree for both)."""
-        triangles = np.ascontiguousarray(triangles, dtype=float)
-        key = (triangles.shape, hashlib.blake2b(triangles.tobytes(), digest_size=16).digest())
-        if not (_LAST_SURFACE and _LAST_SURFACE[0] == key):
-            _LAST_SURFACE[:] = [key, cls(triangles)]
-        return _LAST_SURFACE[1]
 
     @property
     def grid(self):

@@ -49,10 +49,11 @@ stopped.  :func:`blocking` picks those that stop an export (the export gate).  E
 Coordinates are millimetres, Z is the tool tip.  Stock: a box, or a cylinder about the Z
 axis with its top face at z = 0 (a board on a rotary table).
 
-Layout: stock.py (settings, stocks, findings, results), paths.py (moves -> chains of points),
+Layout: stock.py (settings, stocks, findings, the height field), paths.py (moves -> chains of points),
 families.py (the height field's regions), heightfield.py (the grid and its evaluation),
-kernel.py (the compiled kernels), checks.py (design heights and findings), meshes.py (preview
-meshes), radiusmap.py (radial turn-mill work), sweep.py and repeats.py (the manifold engine's
+kernel.py (the compiled kernels), meshtop.py (a mesh's upper envelope over the grid), checks.py
+(design heights and findings), meshes.py (preview meshes, solids <-> arrays), result.py (what a
+simulation returns), radiusmap.py (radial turn-mill work), sweep.py and repeats.py (the manifold engine's
 swept solids), api.py (:func:`simulate` and :func:`check`).
 """
 from __future__ import annotations
@@ -60,7 +61,8 @@ from __future__ import annotations
 from .api import check, simulate
 from .checks import BLOCKING_KINDS, blocking
 from .paths import can_plunge
-from .stock import (CHORD_TOLERANCE, ENGINES, GOUGE_TOLERANCE, KERNELS, MAX_CELLS, TOUCH_TOLERANCE, BoxStock, SurfaceStock, CellError, CellTooFine, CylinderStock, Finding, HeightField, SimulationCancelled, SimulationError, SimulationResult, as_stock)
+from .stock import (CHORD_TOLERANCE, ENGINES, GOUGE_TOLERANCE, KERNELS, MAX_CELLS, TOUCH_TOLERANCE, BoxStock, SurfaceStock, CellError, CellTooFine, CylinderStock, Finding, HeightField, SimulationCancelled, SimulationError, as_stock)
+from .result import SimulationResult
 
 __all__ = ["simulate", "check", "blocking", "BLOCKING_KINDS", "can_plunge", "as_stock", "BoxStock", "SurfaceStock", "CylinderStock", "Finding", "HeightField",
            "SimulationResult", "SimulationError", "CellError", "CellTooFine", "SimulationCancelled", "ENGINES", "KERNELS", "CHORD_TOLERANCE",

@@ -12,10 +12,12 @@ from manifold3d import Error, Manifold
 from ..ir.program import FEED, RAPID
 from . import radiusmap as rmap
 from . import sweep
-from .checks import (_design_heights, _findings, _floor_findings, _spindle_findings, _travel_findings, check_design_mesh)
-from .heightfield import _compiled_kernels, _grid, _Simulation
-from .paths import _chains, _operations, can_plunge
-from .stock import (ENGINES, GOUGE_TOLERANCE, MAX_CELLS, TOUCH_TOLERANCE, CylinderStock, Finding, HeightField, CellError, CellTooFine, SimulationCancelled, SimulationError, SimulationResult, _solid_of, _stock_box, _stock_solid, as_stock)
+from .checks import (design_heights, cut_findings, floor_findings, spindle_findings, travel_findings, check_design_mesh)
+from .heightfield import Simulation, compiled_kernels, stock_grid
+from .meshes import solid_of
+from .result import SimulationResult
+from .paths import chains_of, operations_of, can_plunge
+from .stock import (ENGINES, GOUGE_TOLERANCE, MAX_CELLS, TOUCH_TOLERANCE, CylinderStock, Finding, HeightField, CellError, CellTooFine, SimulationCancelled, SimulationError, stock_box, stock_solid, as_stock)
 
 MIN_CELLS_ACROSS = 4       # a cell coarser than a quarter of the stock's smaller side means nothing
 
@@ -68,28 +70,28 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
             raise SimulationError(f"{name} must be a positive number of mm, got {value!r}")
     if not (isinstance(chunk, int) and chunk > 0):
         raise SimulationError(f"chunk must be a positive number of triangles, got {chunk!r}")
-    kernels = _compiled_kernels(kernel)
+    kernels = compiled_kernels(kernel)
     stock = as_stock(stock)
     _check_cell(stock, float(cell))
     warnings = []
     if design is not None and hasattr(design, "vertices") and hasattr(design, "faces"):
         design, warnings = check_design_mesh(design, stock, design_name, _cancelling(_part_of(progress, 0.0, 0.0)))
-    ops = _operations(program_or_operations)
+    ops = operations_of(program_or_operations)
     radial = [getattr(op, "direction", None) == "radial" for op in ops]
     if any(radial) and not isinstance(stock, CylinderStock):
         raise SimulationError("radial turn-mill operations cut a bar: give a cylinder stock about the C axis")
-    all_chains = _chains(ops, no_plunge_tools)
+    all_chains = chains_of(ops, no_plunge_tools)
     chains = [chain for chain in all_chains if not radial[chain.op_index]]
-    hf = _grid(stock, float(cell))
-    design_z = _design_heights(hf, design, keep_regions)
-    findings = _travel_findings(ops, travel) if travel else []
-    findings += _spindle_findings(ops) + _floor_findings(ops, stock, float(fixture_clearance))
+    hf = stock_grid(stock, float(cell))
+    design_z = design_heights(hf, design, keep_regions)
+    findings = travel_findings(ops, travel) if travel else []
+    findings += spindle_findings(ops) + floor_findings(ops, stock, float(fixture_clearance))
     solid = None
     if engine == "manifold" and getattr(stock, "surface", None):
         raise SimulationError("a plate with a curved top is simulated on the height field only (engine "
                               "\"heightfield\")")
     if engine == "manifold":
-        solid = sweep.cut(_stock_solid(stock, tolerance), all_chains, tolerance, chunk,
+        solid = sweep.cut(stock_solid(stock, tolerance), all_chains, tolerance, chunk,
                           _cancelling(_part_of(progress, 0.0, 0.8)))
         progress = _part_of(progress, 0.8, 1.0)      # the safety checks still run on the maps
     rm = None
@@ -100,16 +102,16 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
         findings += radial_findings
         progress = _part_of(progress, share, 1.0)
     if chains:
-        sim = _Simulation(hf, tolerance, progress, kernels)
+        sim = Simulation(hf, tolerance, progress, kernels)
         sim.run(chains)
-        findings += _findings(sim, chains, ops, design_z)
+        findings += cut_findings(sim, chains, ops, design_z)
     result = _result(stock, tolerance, findings, kernels, solid, design, hf, rm, chains, started)
     result.warnings = warnings
     return result
 
 
 def _check_cell(stock, cell: float) -> None:
-    (x0, y0, _), (x1, y1, _) = _stock_box(stock)
+    (x0, y0, _), (x1, y1, _) = stock_box(stock)
     side = min(x1 - x0, y1 - y0)
     coarsest = side / MIN_CELLS_ACROSS
     if cell > coarsest:
@@ -122,7 +124,7 @@ def _result(stock, tolerance, findings, kernels, solid, design, hf, rm, chains, 
     seconds = time.perf_counter() - started
     ran = "numpy" if kernels is None else "numba"
     if solid is not None:
-        removed = _stock_solid(stock, tolerance).volume() - solid.volume()
+        removed = stock_solid(stock, tolerance).volume() - solid.volume()
         return SimulationResult("manifold", float(removed), seconds, None, tolerance, findings, stock, solid=solid,
                                 kernel=ran, radiusmap=rm, axial_cut=bool(chains),
                                 gouge_volume_mm3=_gouge_volume(solid, design))
@@ -142,7 +144,7 @@ def _gouge_volume(solid: Manifold, design) -> float | None:
     the design is not a closed mesh."""
     if not (hasattr(design, "vertices") and hasattr(design, "faces")):
         return None
-    part = _solid_of(np.asarray(design.vertices)[:, :3], np.asarray(design.faces))
+    part = solid_of(np.asarray(design.vertices)[:, :3], np.asarray(design.faces))
     if part.status() != Error.NoError or part.is_empty():
         return None
     return float((part - solid).volume())

@@ -9,17 +9,16 @@ from manifold3d import CrossSection
 
 from ..engines import region as rg
 from ..engines.selfcross import self_crossing
-from .families import _halfline
-from .heightfield import _lowest_move, _Simulation
-from .paths import _machine_samples
-from .stock import GOUGE_TOLERANCE, Finding, HeightField, SimulationError
+from .heightfield import Simulation, lowest_move
+from .meshtop import mesh_top
+from .paths import machine_samples
+from .stock import GOUGE_TOLERANCE, Finding, HeightField, SimulationError, stock_box
 
-_ITEM_BATCH = 2048         # triangles per numpy batch when rasterising a design mesh
 
 
 # ----- design surface ---------------------------------------------------------------------------
 
-def _design_heights(hf: HeightField, design, keep_regions) -> np.ndarray | None:
+def design_heights(hf: HeightField, design, keep_regions) -> np.ndarray | None:
     """Lowest Z the finished part allows per cell (-inf: anything may be cut), or None."""
     if design is None and not keep_regions:
         return None
@@ -30,7 +29,7 @@ def _design_heights(hf: HeightField, design, keep_regions) -> np.ndarray | None:
             values = np.asarray(design(gx, gy), float)
             allowed = np.broadcast_to(values, hf.shape).copy()
         elif hasattr(design, "vertices") and hasattr(design, "faces"):
-            allowed = _mesh_top(hf, np.asarray(design.vertices, float), np.asarray(design.faces, np.int64))
+            allowed = mesh_top(hf, np.asarray(design.vertices, float), np.asarray(design.faces, np.int64))
         else:
             try:
                 allowed[:] = float(design)
@@ -68,80 +67,9 @@ def _index_range(origin, cell, n, lo, hi):
             int(np.clip(math.floor((hi - origin) / cell - 0.5) + 1, 0, n)))
 
 
-_last_top: list = []        # [(grid, vertices, faces, envelope)]: the last _mesh_top, kept for its repeat
-_KEEP_CELLS = 4_000_000    # ... when its grid has at most this many cells (32 MB)
-
-
-def _mesh_top(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    """Upper envelope of a triangle mesh over the grid (a z-buffer seen from above); cell
-    centres on a triangle's edge belong to neither side (-inf there: nothing to check).
-    The same mesh over the same grid again (the export gate, then the scallop measured on its
-    simulation) is answered from the last call, as a copy."""
-    grid = (float(hf.x0), float(hf.y0), float(hf.cell_x), float(hf.cell_y), tuple(hf.shape))
-    if _last_top:
-        last_grid, last_vertices, last_faces, envelope = _last_top[0]
-        if last_grid == grid and np.array_equal(last_vertices, vertices) and np.array_equal(last_faces, faces):
-            return envelope.copy()
-    top = _envelope(hf, vertices, faces)
-    _last_top.clear()
-    if top.size <= _KEEP_CELLS:
-        _last_top.append((grid, np.array(vertices, float), np.array(faces, np.int64), top.copy()))
-    return top
-
-
-def _envelope(hf: HeightField, vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
-    top = np.full(hf.shape, -np.inf)
-    flat = top.reshape(-1)
-    nx, ny = hf.shape
-    tri = vertices[faces]
-    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
-    area2 = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
-    keep = np.abs(area2) > 1e-12
-    tri, area2 = tri[keep], area2[keep]
-    for start in range(0, len(tri), _ITEM_BATCH):
-        t = tri[start:start + _ITEM_BATCH]
-        sign = np.sign(area2[start:start + _ITEM_BATCH])
-        c0 = np.clip(np.ceil((t[:, :, 0].min(1) - hf.x0) / hf.cell_x - 0.5), 0, nx).astype(np.int64)
-        c1 = np.clip(np.floor((t[:, :, 0].max(1) - hf.x0) / hf.cell_x - 0.5), -1, nx - 1).astype(np.int64)
-        ncol = np.maximum(c1 - c0 + 1, 0)
-        k = np.repeat(np.arange(len(t)), ncol)
-        col = np.arange(len(k)) - np.repeat(np.cumsum(ncol) - ncol, ncol) + c0[k]
-        x = hf.x0 + (col + 0.5) * hf.cell_x
-        lo = np.full(len(k), -np.inf)
-        hi = np.full(len(k), np.inf)
-        for e in range(3):
-            # per triangle, then per column (the same numbers as gathering the corners per column)
-            px, py = t[:, e, 0], t[:, e, 1]
-            ex, ey = t[:, (e + 1) % 3, 0] - px, t[:, (e + 1) % 3, 1] - py
-            # inside: sign * cross(q - p, X - p) >= 0, linear in y
-            # Shrunk by a hair: a cell centre on a vertical wall's top edge is not held to the
-            # top of the wall (it may as well be the floor's), and is left unchecked.
-            e_lo, e_hi = _halfline(sign[k] * (ex[k] * (-py[k]) - ey[k] * (x - px[k])) - 1e-7, (sign * ex)[k])
-            lo, hi = np.maximum(lo, e_lo), np.minimum(hi, e_hi)
-        r0 = np.clip(np.ceil((lo - hf.y0) / hf.cell_y - 0.5), 0, ny).astype(np.int64)
-        r1 = np.clip(np.floor((hi - hf.y0) / hf.cell_y - 0.5), -1, ny - 1).astype(np.int64)
-        cnt = np.maximum(r1 - r0 + 1, 0)
-        total = int(cnt.sum())
-        if not total:
-            continue
-        j = np.arange(total) - np.repeat(np.cumsum(cnt) - cnt, cnt)
-        row = np.repeat(r0, cnt) + j
-        ke = np.repeat(k, cnt)
-        xe = np.repeat(x, cnt)
-        ye = hf.y0 + (row + 0.5) * hf.cell_y
-        # z on the triangle's plane (its normal once per triangle, then per cell centre)
-        normal = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
-        p0 = t[:, 0]
-        n0, n1, n2 = (np.ascontiguousarray(normal[:, axis]) for axis in range(3))
-        x0, y0, z0 = (np.ascontiguousarray(p0[:, axis]) for axis in range(3))
-        z = z0[ke] - (n0[ke] * (xe - x0[ke]) + n1[ke] * (ye - y0[ke])) / n2[ke]
-        np.maximum.at(flat, np.repeat(col, cnt) * ny + row, z)
-    return top
-
-
 # ----- safety checks ------------------------------------------------------------------------------
 
-def _travel_findings(ops: list, travel: dict) -> list:
+def travel_findings(ops: list, travel: dict) -> list:
     limits = {}
     for axis, bounds in travel.items():
         name = str(axis).lower()
@@ -155,7 +83,7 @@ def _travel_findings(ops: list, travel: dict) -> list:
     for index, op in enumerate(ops):
         if not len(op):
             continue
-        xyz, c, move = _machine_samples(op)
+        xyz, c, move = machine_samples(op)
         values = {"x": xyz[:, 0], "y": xyz[:, 1], "z": xyz[:, 2], "c": c}
         for axis, (lo, hi) in limits.items():
             if axis == "c" and "c" not in op.rotary:
@@ -173,7 +101,7 @@ def _travel_findings(ops: list, travel: dict) -> list:
     return findings
 
 
-def _findings(sim: _Simulation, chains: list, ops: list, design_z) -> list:
+def cut_findings(sim: Simulation, chains: list, ops: list, design_z) -> list:
     findings = []
     for chain, segment, depth, xy in sim.touches:
         op = ops[chain.op_index]
@@ -194,7 +122,7 @@ def _findings(sim: _Simulation, chains: list, ops: list, design_z) -> list:
             i, j = np.unravel_index(int(np.argmax(depth)), hf.shape)
             worst = float(depth[i, j])
             xy = (float(hf.x()[i]), float(hf.y()[j]))
-            chain, segment, _ = _lowest_move(chains, hf, int(i), int(j), sim.tolerance)
+            chain, segment, _ = lowest_move(chains, hf, int(i), int(j), sim.tolerance)
             move = int(chain.move[segment])
             area = float(gouged.sum() * hf.cell_x * hf.cell_y)
             findings.append(Finding("gouge", f"{ops[chain.op_index].name}: move {move} cuts {worst:.3f} mm below the "
@@ -205,7 +133,7 @@ def _findings(sim: _Simulation, chains: list, ops: list, design_z) -> list:
 
 # ----- the stock's floor and the spindle ---------------------------------------------------------
 
-def _floor_findings(ops: list, stock, fixture_clearance: float) -> list:
+def floor_findings(ops: list, stock, fixture_clearance: float) -> list:
     """A tool tip below the stock's bottom by more than ``fixture_clearance`` (a drill breaking
     through onto a spoil board) cuts the fixture or the machine table: one finding per operation."""
     if not (math.isfinite(fixture_clearance) and fixture_clearance >= 0):
@@ -217,7 +145,7 @@ def _floor_findings(ops: list, stock, fixture_clearance: float) -> list:
     for index, op in enumerate(ops):
         if not len(op):
             continue
-        xyz, _, move = _machine_samples(op)
+        xyz, _, move = machine_samples(op)
         depth = bottom - xyz[:, 2]
         bad = depth > fixture_clearance + GOUGE_TOLERANCE
         if bad.any():
@@ -230,7 +158,7 @@ def _floor_findings(ops: list, stock, fixture_clearance: float) -> list:
     return findings
 
 
-def _spindle_findings(ops: list) -> list:
+def spindle_findings(ops: list) -> list:
     """Feeding with the spindle stopped breaks the tool: every operation with cutting moves needs
     a spindle speed above zero."""
     findings = []
@@ -268,8 +196,6 @@ def check_design_mesh(design, stock, name: str = "design", progress=None) -> tup
     Returns a plain ``SimpleNamespace(vertices, faces)`` when it repaired, else ``design`` itself.
     ``progress``: optional callable(fraction), a cancel point during the self-crossing search."""
     from types import SimpleNamespace
-
-    from .stock import _stock_box
 
     try:
         vertices = np.asarray(design.vertices, dtype=float)
@@ -318,7 +244,7 @@ def check_design_mesh(design, stock, name: str = "design", progress=None) -> tup
         warnings.append(f"design {name}: the mesh was inside out (its normals pointed inward); its faces were "
                         "flipped")
         design = SimpleNamespace(vertices=vertices, faces=faces[:, ::-1].copy())
-    (sx0, sy0, sz0), (sx1, sy1, sz1) = _stock_box(stock)
+    (sx0, sy0, sz0), (sx1, sy1, sz1) = stock_box(stock)
     low, high = vertices.min(axis=0), vertices.max(axis=0)
     if np.any(high <= (sx0, sy0, sz0)) or np.any(low >= (sx1, sy1, sz1)):
         raise SimulationError(f"design {name}: the part ({low[0]:.3f}, {low[1]:.3f}, {low[2]:.3f})..({high[0]:.3f}, "

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from .paths import _Chain
+from .paths import Chain
 from .stock import HeightField
 
 # A move shorter than this in XY is taken as vertical: its ends are stamped whole instead.
@@ -28,7 +28,7 @@ def _ring_count(flat_radius: float, corner_radius: float, tolerance: float) -> i
 
 # ----- height field: cells of a region, column by column -----------------------------------
 
-def _halfline(a, b):
+def halfline(a, b):
     """Where a + b*y >= 0: (lo, hi), possibly everything or nothing."""
     with np.errstate(divide="ignore", invalid="ignore"):
         root = -a / b
@@ -46,7 +46,7 @@ def _sqrt_condition(a, b, c, q, p, g, dlo, dhi):
     The answer is an interval minus an open hole: (lo, hi, hole_lo, hole_hi).  With c <= 0
     the set is a single interval, with c > 0 it is the half-line a + b*y >= 0 outside the
     roots of (a + b*y)^2 = c^2 (q - (p + g*y)^2)."""
-    h_lo, h_hi = _halfline(a, b)
+    h_lo, h_hi = halfline(a, b)
     h_lo = np.maximum(h_lo, dlo)
     h_hi = np.minimum(h_hi, dhi)
     c2 = c * c
@@ -98,7 +98,7 @@ def _disk_span(dx, r):
     return np.where(inside, -half, np.inf), np.where(inside, half, -np.inf)
 
 
-class _Family:
+class Family:
     """Items of one kind (bands or tool positions): their reference point (ox, oy), the
     segment each belongs to, and named per-item arrays.
 
@@ -122,7 +122,7 @@ class _Family:
         except KeyError:
             raise AttributeError(name)
 
-    def take(self, sel) -> "_Family":
+    def take(self, sel) -> "Family":
         clone = object.__new__(type(self))
         clone.__dict__.update(self.__dict__)
         clone.segment = self.segment[sel]
@@ -137,7 +137,7 @@ def _row(values):
     return np.asarray(values, np.float32)[None, :]
 
 
-class _Bands(_Family):
+class _Bands(Family):
     """Cells beside a move whose lowest value lies strictly inside it, where
 
         value = z + a*q - b*sqrt(r^2 - e^2)
@@ -174,11 +174,11 @@ class _Bands(_Family):
         out -= tmp
 
     def cut(self, kernels, flat, hf):
-        kernels.cut_bands(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.ux, self.uy,
+        kernels.cut_bands(flat, _kernel_grid(hf), _EPS, *family_columns(hf, self), self.ox, self.oy, self.ux, self.uy,
                           self.length, self.s, self.z, self.a, self.b, self.r)
 
 
-class _Profiled(_Family):
+class _Profiled(Family):
     """Items whose value is the tool's profile at a distance from its axis, above the tip z."""
 
     def __init__(self, segment, ox, oy, tool, **arrays):
@@ -194,7 +194,7 @@ class _Profiled(_Family):
         out += _row(self.z[k])
 
 
-class _ConeBands(_Family):
+class _ConeBands(Family):
     """Cells beside a move of a pointed tool (V-bit, drill) whose lowest value lies on the
     cone's flank strictly inside the move.  With q the distance along the move from its start
     and e across it (both in XY), the tip climbing a = dz/l per mm and the flank rising k per mm
@@ -231,7 +231,7 @@ class _ConeBands(_Family):
         out += tmp
 
     def cut(self, kernels, flat, hf):
-        kernels.cut_cone_bands(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.ux,
+        kernels.cut_cone_bands(flat, _kernel_grid(hf), _EPS, *family_columns(hf, self), self.ox, self.oy, self.ux,
                                self.uy, self.length, self.z, self.a, self.g, self.mu, self.w)
 
 
@@ -262,7 +262,7 @@ class _LevelBands(_Profiled):
         self.profile_at(k, tmp, out)
 
     def cut(self, kernels, flat, hf):
-        kernels.cut_level_bands(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.ux,
+        kernels.cut_level_bands(flat, _kernel_grid(hf), _EPS, *family_columns(hf, self), self.ox, self.oy, self.ux,
                                 self.uy, self.length, self.z, self.r, *self.shape.profile())
 
 
@@ -275,7 +275,7 @@ def _band_side_interval(dx, ux, uy, length, mu, w, side):
     slant = uy - side * mu * ux
     for a, b in ((-side * dx * uy, side * ux), (w + side * dx * uy, -side * ux), (start, slant),
                  (length - start, -slant)):
-        side_lo, side_hi = _halfline(a, b)
+        side_lo, side_hi = halfline(a, b)
         lo, hi = np.maximum(lo, side_lo), np.minimum(hi, side_hi)
     return lo - _EPS, hi + _EPS
 
@@ -314,7 +314,7 @@ def _band_intervals(dx, ux, uy, length, s, r):
     return _pieces(dlo, dhi, [start, end])
 
 
-class _SphereVertices(_Family):
+class _SphereVertices(Family):
     """Ball (or torus-ring sphere) centres at the chain's points, only where the lowest value of
     the chain can sit there: the incoming move still falls towards the cell (d1 . D >= dz1 w)
     and the outgoing one rises (-d2 . D >= -dz2 w), w = sqrt(r^2 - |D|^2), D = cell - point.
@@ -343,7 +343,7 @@ class _SphereVertices(_Family):
         np.subtract(_row(self.z[k]), out, out=out)
 
     def cut(self, kernels, flat, hf):
-        kernels.cut_sphere_vertices(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.d1x,
+        kernels.cut_sphere_vertices(flat, _kernel_grid(hf), _EPS, *family_columns(hf, self), self.ox, self.oy, self.d1x,
                                     self.d1y, self.dz1, self.d2x, self.d2y, self.dz2, self.z, self.r)
 
 
@@ -405,13 +405,13 @@ class _Stamps(_Profiled):
         self.profile_at(k, tmp, out)
 
     def cut(self, kernels, flat, hf):
-        kernels.cut_stamps(flat, _kernel_grid(hf), _EPS, *_columns(hf, self), self.ox, self.oy, self.z,
+        kernels.cut_stamps(flat, _kernel_grid(hf), _EPS, *family_columns(hf, self), self.ox, self.oy, self.z,
                            self.r, *self.shape.profile())
 
 
 # ----- height field: which items a chain needs ------------------------------------------------
 
-def _families(chain: _Chain, top: float, tolerance: float) -> list:
+def families_of(chain: Chain, top: float, tolerance: float) -> list:
     """The bands, vertex spheres and whole-tool stamps whose union is the chain's envelope."""
     tool = chain.tool
     shape = tool.shape
@@ -519,7 +519,7 @@ def _disc_bands(p, delta, length, bands, r, lift=0.0):
                   z=start[:, 2] + lift, a=d[:, 2] / l, b=-d[:, 2] / l, r=np.full(len(s), r))
 
 
-def _columns(hf: HeightField, family: _Family):
+def family_columns(hf: HeightField, family: Family):
     """(first grid column, number of columns) of every item of the family."""
     nx, ny = hf.shape
     xlo, xhi = family.xrange()

@@ -8,8 +8,9 @@ import numpy as np
 
 from ..engines.compiled import kernel_module
 
-from .families import _columns, _Family, _families
-from .paths import _Chain
+from .families import Family, families_of, family_columns
+from .meshtop import mesh_top
+from .paths import Chain
 from .stock import (MAX_CELLS, TOUCH_TOLERANCE, BoxStock, CylinderStock, HeightField, CellTooFine, SimulationCancelled, SimulationError)
 
 _PAIR_BATCH = 32768        # (item, grid column) pairs per numpy batch
@@ -17,7 +18,9 @@ _CELL_CHUNK = 1 << 17      # cells per evaluation chunk, in reused buffers
 _COMMON_RUNS = 1024        # runs of one length this many get a chunk without padding
 
 
-def _grid(stock, cell: float) -> HeightField:
+def stock_grid(stock, cell: float) -> HeightField:
+    """The uncut stock as a height field of ``cell`` mm columns (a curved plate's top read from its
+    surface mesh; outside a bar's circle no material)."""
     if isinstance(stock, BoxStock):
         x0, y0, x1, y1 = stock.x0, stock.y0, stock.x1, stock.y1
     else:
@@ -31,10 +34,8 @@ def _grid(stock, cell: float) -> HeightField:
     hf = HeightField(x0, y0, (x1 - x0) / nx, (y1 - y0) / ny, np.full((nx, ny), stock.top, np.float32),
                      np.ones((nx, ny), bool), stock.top, stock.bottom)
     if getattr(stock, "surface", None):
-        from .checks import _mesh_top
-
         vertices, faces = np.asarray(stock.surface[0], float), np.asarray(stock.surface[1], np.int64)
-        top = _mesh_top(hf, vertices, faces)
+        top = mesh_top(hf, vertices, faces)
         gaps = ~np.isfinite(top)
         if gaps.any():      # cell centres on a triangle's edge: drop a point there
             from ..engines.dropcutter import DropCutter
@@ -53,7 +54,7 @@ def _grid(stock, cell: float) -> HeightField:
     return hf
 
 
-def _compiled_kernels(kernel: str):
+def compiled_kernels(kernel: str):
     """The compiled kernels module for ``kernel`` ("auto", "numba", "numpy"), or None for numpy
     (see :mod:`toolpath.engines.compiled`)."""
     return kernel_module(kernel, f"{__package__}.kernel", SimulationError, "numba kernel")
@@ -82,7 +83,7 @@ class _Scratch:
         return out, tmp, self.index[:need].reshape(width, runs), self.pad[:need].reshape(width, runs)
 
 
-def _cells(hf: HeightField, family: _Family, scratch: _Scratch):
+def _cells(hf: HeightField, family: Family, scratch: _Scratch):
     """Yield (family batch, item index per run, cell index, values) for every cell of every
     item, chunk by chunk.
 
@@ -91,7 +92,7 @@ def _cells(hf: HeightField, family: _Family, scratch: _Scratch):
     and an index up to ``ny + 8`` past the run's start (possibly past the grid: index a buffer
     with that margin).  The arrays live in ``scratch`` and are overwritten by the next chunk."""
     ny = hf.shape[1]
-    c0, ncol = _columns(hf, family)
+    c0, ncol = family_columns(hf, family)
     items = np.flatnonzero(ncol)
     if not len(items):
         return
@@ -138,7 +139,7 @@ def _cells(hf: HeightField, family: _Family, scratch: _Scratch):
                 yield batch, k[runs], index.reshape(-1), out.reshape(-1)
 
 
-def _runs(chain: _Chain, families: list, longest: int = 5000):
+def _runs(chain: Chain, families: list, longest: int = 5000):
     """Split the chain into runs of segments applied together (at most ``longest``, so progress
     is reported); every checked segment that reaches below the stock top is a run of its own,
     tested against the material before it is applied."""
@@ -152,7 +153,7 @@ def _runs(chain: _Chain, families: list, longest: int = 5000):
             for a, b in zip(edges[:-1], edges[1:])]
 
 
-class _Simulation:
+class Simulation:
     """The height field engine: runs the chains in order and records what it finds.
 
     ``kernels``: the compiled kernels module, or None for the numpy kernel.  Checked moves
@@ -175,7 +176,7 @@ class _Simulation:
         operation = np.full(nx * ny, -1, np.int16)
         for chain in chains:
             before = flat[:nx * ny].copy()
-            families = _families(chain, self.hf.top, self.tolerance)
+            families = families_of(chain, self.hf.top, self.tolerance)
             for a, b, checked in _runs(chain, families):
                 parts = [fam.take(slice(*np.searchsorted(fam.segment, [a, b]))) for fam in families]
                 if checked:
@@ -212,14 +213,14 @@ class _Simulation:
         np.minimum.at(flat, index, values)
 
 
-def _lowest_move(chains: list, hf: HeightField, i: int, j: int, tolerance: float):
+def lowest_move(chains: list, hf: HeightField, i: int, j: int, tolerance: float):
     """(chain, segment, value) of the move that went lowest over cell (i, j)."""
     probe = HeightField(hf.x0 + i * hf.cell_x, hf.y0 + j * hf.cell_y, hf.cell_x, hf.cell_y,
                         np.zeros((1, 1), np.float32), np.ones((1, 1), bool), hf.top, hf.bottom)
     scratch = _Scratch()
     best = (None, -1, np.inf)
     for chain in chains:
-        for fam in _families(chain, hf.top, tolerance):
+        for fam in families_of(chain, hf.top, tolerance):
             for batch, k, index, values in _cells(probe, fam, scratch):
                 w = int(np.argmin(values))
                 if values[w] < best[2]:

@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from manifold3d import Manifold
+from manifold3d import Manifold, Mesh
 
 from . import radiusmap as rmap
-from .stock import CylinderStock, HeightField, _manifold_arrays, _solid_of, _stock_box, _stock_solid
+from .stock import CylinderStock, HeightField, stock_box, stock_solid
 
 # ----- height field -> mesh -------------------------------------------------------------------------
 
@@ -48,14 +48,14 @@ def _relief_mesh(heights: np.ndarray, x0, y0, x1, y1, cx, cy, bottom):
     return vertices, np.vstack([top_faces, walls, fan])
 
 
-def _heightfield_mesh(hf: HeightField, stock, max_cells):
+def heightfield_mesh(hf: HeightField, stock, max_cells):
     heights = np.where(hf.inside, hf.heights, hf.top)
     heights, block = _pooled(np.clip(heights, hf.bottom + 1e-3, hf.top).astype(float), max_cells)
-    (x0, y0, _), (x1, y1, _) = _stock_box(stock)
+    (x0, y0, _), (x1, y1, _) = stock_box(stock)
     cx, cy = block * hf.cell_x, block * hf.cell_y
     vertices, faces = _relief_mesh(heights, x0, y0, x1, y1, cx, cy, hf.bottom)
     if isinstance(stock, CylinderStock):
-        return _manifold_arrays(_solid_of(vertices, faces) ^ _stock_solid(stock, max(cx, cy) / 4))
+        return manifold_arrays(solid_of(vertices, faces) ^ stock_solid(stock, max(cx, cy) / 4))
     return vertices, faces
 
 
@@ -76,7 +76,7 @@ def _filled_heights(hf: HeightField, cut: np.ndarray, stock: CylinderStock) -> n
     return heights
 
 
-def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStock, max_cells):
+def turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStock, max_cells):
     """The bar of the radius map, less the air the height field's cuts opened above it.
 
     The air is a box over the cut cells minus their columns (uncut cells stand above the box;
@@ -102,7 +102,7 @@ def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStoc
     x1, y1 = x0 + heights.shape[0] * cx, y0 + heights.shape[1] * cy
     # one more cell all round (uncut but where the cut reaches the square's edge), so that the
     # relief's vertices stay at the cells' centres and the box reaches past the bar's edge there
-    columns = _solid_of(*_relief_mesh(np.pad(heights, 1, mode="edge"), x0 - cx, y0 - cy,
+    columns = solid_of(*_relief_mesh(np.pad(heights, 1, mode="edge"), x0 - cx, y0 - cy,
                                       x1 + cx, y1 + cy, cx, cy, hf.bottom - 2.0))
     box_bottom = max(float(heights.min()) - 1.0, hf.bottom - 1.0)
     box = Manifold.cube([x1 - x0 + cx, y1 - y0 + cy, hf.top + 0.5 - box_bottom]).translate(
@@ -110,8 +110,8 @@ def _turned_mesh(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStoc
     zs = grid[0, :, 2]
     split = int(np.searchsorted(zs, box_bottom - 0.5, side="right")) - 1   # last ring 0.5 mm under the box
     if split < 1:
-        return _manifold_arrays(_solid_of(*rmap.grid_mesh(grid)) - (box - columns))
-    top_vertices, top_faces = _manifold_arrays(_solid_of(*rmap.grid_mesh(grid[:, split:])) - (box - columns))
+        return manifold_arrays(solid_of(*rmap.grid_mesh(grid)) - (box - columns))
+    top_vertices, top_faces = manifold_arrays(solid_of(*rmap.grid_mesh(grid[:, split:])) - (box - columns))
     return _joined(grid[:, :split + 1], top_vertices, top_faces)
 
 
@@ -142,8 +142,8 @@ TILE_OF_RADIUS = 1 / 32     # ... and at most this share of the bar's radius: un
                             # quad, and the end face's edge (pulled onto the bar) is a polygon this fine
 
 
-def _turned_surface(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStock, max_cells):
-    """A triangle surface that looks like :func:`_turned_mesh` (its side and bottom are the same
+def turned_surface(rm: rmap.RadiusMap, hf: HeightField | None, stock: CylinderStock, max_cells):
+    """A triangle surface that looks like :func:`turned_mesh` (its side and bottom are the same
     grid) without a boolean: for pictures, not a closed solid.
 
     The bar's side is pressed down onto the height field where the axial cuts opened it, and the
@@ -247,3 +247,15 @@ def _pull_in(vertices: np.ndarray, grid: np.ndarray) -> None:
     limit = radii[i, k]
     outside = r > limit
     vertices[outside, :2] *= (limit[outside] / r[outside])[:, None]
+
+
+# ----- solids <-> triangle arrays ---------------------------------------------------------------------
+
+def solid_of(vertices, faces) -> Manifold:
+    return Manifold(Mesh(vert_properties=np.ascontiguousarray(vertices, np.float32),
+                         tri_verts=np.ascontiguousarray(faces, np.uint32)))
+
+
+def manifold_arrays(solid: Manifold):
+    mesh = solid.to_mesh()
+    return np.asarray(mesh.vert_properties[:, :3], float), np.asarray(mesh.tri_verts, np.int64)

@@ -19,7 +19,7 @@ def can_plunge(tool: Tool, no_plunge_tools=()) -> bool:
     return tool.shape.plunges and tool.number not in set(no_plunge_tools)
 
 
-def _operations(program_or_operations) -> list:
+def operations_of(program_or_operations) -> list:
     if isinstance(program_or_operations, Program):
         ops = list(program_or_operations.operations)
     elif isinstance(program_or_operations, Operation):
@@ -47,7 +47,7 @@ def _operations(program_or_operations) -> list:
 # ----- the path as the simulation sees it ---------------------------------------------------
 
 @dataclass
-class _Chain:
+class Chain:
     """One operation's tool tip path in part coordinates: points[s] -> points[s + 1] is
     segment s, cut by move ``move[s]``; ``checked`` segments are tested against the material
     before they are applied (rapids, plunges of tools that cannot plunge)."""
@@ -61,7 +61,7 @@ class _Chain:
     radial: bool = False       # a turn-mill radial tool: its axis points from the C axis to the tip
 
 
-def _machine_samples(op: Operation):
+def machine_samples(op: Operation):
     """Points along every move in machine coordinates: (xyz (k, 3), c (k,), move (k,)), ending
     at each move's end point.
 
@@ -110,12 +110,12 @@ def _chords(angle: np.ndarray, radius: np.ndarray) -> np.ndarray:
     return np.maximum(1, np.ceil(angle / np.maximum(step, 1e-9) - 1e-9)).astype(np.int64)
 
 
-def _chains(ops: list, no_plunge_tools) -> list:
+def chains_of(ops: list, no_plunge_tools) -> list:
     chains = []
     for index, op in enumerate(ops):
         if not len(op):
             continue
-        xyz, c, move = _machine_samples(op)
+        xyz, c, move = machine_samples(op)
         start_c = op.rotary["c"][0] if "c" in op.rotary else 0.0
         machine = np.vstack([op.start[None, :], xyz])
         c_all = np.concatenate([[start_c], c])
@@ -138,6 +138,6 @@ def _chains(ops: list, no_plunge_tools) -> list:
                 c_end = op.rotary["c"]
                 straight_down &= np.abs(c_end - np.concatenate([[c_end[0]], c_end[:-1]])) < 1e-9
             checked |= straight_down[seg_move]
-        chains.append(_Chain(index, op.tool, points, seg_move, rapid, checked,
+        chains.append(Chain(index, op.tool, points, seg_move, rapid, checked,
                              getattr(op, "direction", None) == "radial"))
     return chains

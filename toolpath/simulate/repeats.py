@@ -8,21 +8,21 @@ import math
 import numpy as np
 
 
-class _Repeats:
+class Repeats:
     """Level runs grouped by what they repeat; a run is left out when another run in its group
     covers its whole path deeper down.
 
     Each tool grows no narrower from its tip to its shank and its shank reaches out of the
     stock, so the tool contains itself moved away from its tip along its axis: an upright tool
     lower on the same vertical line, a radial tool nearer the C axis on the same ray.  Groups
-    are an upright tool along one path (see :class:`_Level`) and a radial tool at one height
-    (see :class:`_RadialLevel`)."""
+    are an upright tool along one path (see :class:`Level`) and a radial tool at one height
+    (see :class:`RadialLevel`)."""
 
     def __init__(self):
         self.groups = {}
 
     def add(self, key, run, make) -> None:
-        """``run`` (a _Level or _RadialLevel) in group ``key``, with ``make()`` returning its pieces."""
+        """``run`` (a Level or RadialLevel) in group ``key``, with ``make()`` returning its pieces."""
         self.groups.setdefault(key, []).append((run, make))
 
     def kept(self) -> list:
@@ -37,17 +37,17 @@ class _Repeats:
         return made
 
 
-class _Level:
+class Level:
     """An upright tool's level run, grouped with runs along the same path: the lower covers the higher."""
 
     def __init__(self, points: np.ndarray):
         self.low, self.high = float(points[:, 2].min()), float(points[:, 2].max())
 
-    def covers(self, other: "_Level") -> bool:
+    def covers(self, other: "Level") -> bool:
         return self.high <= other.low
 
 
-class _RadialLevel:
+class RadialLevel:
     """A radial tool's run at one height, as its reach from the C axis along each angle, grouped
     with the same tool's runs at that height."""
 
@@ -66,7 +66,7 @@ class _RadialLevel:
         a, d = self.xy[k], self.xy[k + 1] - self.xy[k]
         return (a[:, 0] * d[:, 1] - a[:, 1] * d[:, 0]) / (np.cos(angles) * d[:, 1] - np.sin(angles) * d[:, 0])
 
-    def covers(self, other: "_RadialLevel") -> bool:
+    def covers(self, other: "RadialLevel") -> bool:
         """Whether this run passes nearer the C axis than ``other`` at every angle ``other``
         passes.  Both paths turn one way about C, so comparing them at the vertices of either is
         enough: two straight moves between the same two rays cross at most once."""

@@ -33,7 +33,7 @@ along runs wherever the geometry allows, instead of one hull per move:
 Runs that add nothing are left out: a level run that another run along the same path covers
 from deeper down (an upright tool lower on the same vertical lines: the layers of a pocket with
 vertical walls; a radial tool nearer the C axis on the same rays: roughing rings and pocket
-layers on the side of a bar; see :class:`_Repeats`), and any stretch lying wholly over ground
+layers on the side of a bar; see :class:`Repeats`), and any stretch lying wholly over ground
 that deeper level runs have cleared to the top (see :class:`_Floors`).
 
 Budget of a tube: the section's facets a quarter of the tolerance (either side), the
@@ -56,7 +56,7 @@ import numpy as np
 from manifold3d import CrossSection, Error, FillRule, JoinType, Manifold, Mesh64, OpType
 
 from ..ir.program import Tool
-from .repeats import _Level, _RadialLevel, _Repeats
+from .repeats import Level, RadialLevel, Repeats
 
 MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
 MAX_STRETCH_TURN = math.pi / 3   # a tube turns at most this much in all (it cannot fold back onto itself)
@@ -211,7 +211,7 @@ def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = CHUNK_TRIA
     to cancel)."""
     bounds = stock.bounding_box()
     floors = _Floors([chain for chain in chains if not chain.radial], tolerance)
-    repeats = _Repeats()
+    repeats = Repeats()
     pieces = []
     for chain in chains:
         pieces += _chain_pieces(chain, tolerance, bounds, floors, repeats)
@@ -266,13 +266,13 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats) -> list:
             if level:
                 # roughing rings or pocket layers at one height: the same tool nearer the C axis
                 # at the same angle contains it
-                repeats.add((chain.tool, round(float(run[0, 2]), 6)), _RadialLevel(run), make)
+                repeats.add((chain.tool, round(float(run[0, 2]), 6)), RadialLevel(run), make)
             else:
                 pieces += make()
         elif level:
             # a pocket with vertical walls repeats its path at every depth: the same tool lower
             # down contains it
-            repeats.add((chain.tool, np.round(run[:, :2], 6).tobytes()), _Level(run),
+            repeats.add((chain.tool, np.round(run[:, :2], 6).tobytes()), Level(run),
                         lambda run=run, closed=closed: _axial_run(chain, run, whole, height, tolerance, bounds,
                                                                   floors, closed))
         else:

@@ -698,9 +698,9 @@ def measured_scallop(heightfield, vertices, faces) -> dict:
     height of material above the design measured along the surface normal (the vertical
     excess times the cosine of the design's slope there, from the design's heights on the
     grid), the largest vertical excess, where the first is, and the deepest cut below the design."""
-    from ...simulate.checks import _mesh_top
+    from ...simulate.meshtop import mesh_top
 
-    top = _mesh_top(heightfield, np.asarray(vertices, float), np.asarray(faces, np.int64))
+    top = mesh_top(heightfield, np.asarray(vertices, float), np.asarray(faces, np.int64))
     known = np.isfinite(top) & heightfield.inside
     if not known.any():
         raise CarveError("the design does not lie over the simulated stock")

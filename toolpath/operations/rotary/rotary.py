@@ -76,8 +76,9 @@ from ...ir import kinematics
 from ...engines import region as rg
 from ...ir.kinematics import (DEFAULT_MAX_TABLE_RPM, cycle_time, from_cylindrical, inverse_time_feed, move_times, part_points, to_cylindrical, unwrap_c)
 from ...ir.program import RAPID, Operation, PathBuilder, Program, merge_short_moves
-from .rotary_curves import _Boundary, _by_arc_length, _circle, _closed_loops, _densify, _inner_point, follow_inside
-from .rotary_pocket import (_BLOCK, BOTTOMS, MAX_WALL_ANGLE, Block, Pocket, RotaryError, RotarySettings, _Geometry, _is_number, _norms, _OutlineDistance, _same_point, scallop_height)
+from .rotary_curves import Boundary, by_arc_length, circle_points, closed_loops, densify, follow_inside, inner_point
+from .rotary_pocket import (BLOCK, BOTTOMS, MAX_WALL_ANGLE, Block, Pocket, PocketGeometry, RotaryError, RotarySettings,
+                            is_finite_number, row_norms, same_point, scallop_height)
 
 
 @dataclass
@@ -136,7 +137,7 @@ def _to_machine(kind, xyz, feed, tolerance, start_c):
             on_machine = kinematics.interpolate(x_word[a], c[a], xyz[a, 2], x_word[b], c[b], xyz[b, 2],
                                                 np.full(len(a), t))
             chord = xyz[a] + (xyz[b] - xyz[a]) * t
-            worst = np.maximum(worst, _norms(on_machine - chord))
+            worst = np.maximum(worst, row_norms(on_machine - chord))
         split = check[worst > tolerance]
         if not len(split):
             return kind, np.column_stack([x_word, np.zeros(len(x_word)), xyz[:, 2]]), feed, c
@@ -153,7 +154,7 @@ def _to_machine(kind, xyz, feed, tolerance, start_c):
 # Passes (local frame, ball centres)
 # ----------------------------------------------------------------------------------------
 
-def _roughing(geo: _Geometry, settings: RotarySettings) -> list:
+def _roughing(geo: PocketGeometry, settings: RotarySettings) -> list:
     """[(z, chain (k, 3)), ...]: per layer, each piece's centre, then circles out to its outline."""
     extra = settings.allowance + settings.standoff
     # The deepest layer: on a flat floor the ball keeps the standoff too, or that layer's region
@@ -166,7 +167,7 @@ def _roughing(geo: _Geometry, settings: RotarySettings) -> list:
         above = region
         region = geo.region_at(z, extra)
         if region is not above:     # (geo.inset hands vertical walls over a flat floor one region)
-            chains = [_densify(c, settings.spacing) for c in _layer(region, settings)]
+            chains = [densify(c, settings.spacing) for c in _layer(region, settings)]
         passes += [(z, _lift(c, z)) for c in chains]
     return passes
 
@@ -176,17 +177,17 @@ def _layer(region: CrossSection, settings: RotarySettings) -> list:
     outline, then the outline."""
     chains = []
     for piece in rg.components(region):
-        centre = _inner_point(piece)
-        boundary = _Boundary(piece.translate(tuple(-centre)))
+        centre = inner_point(piece)
+        boundary = Boundary(piece.translate(tuple(-centre)))
         chains.append(centre[None, :])
         radius = settings.roughing_stepover
         while radius < boundary.far:
-            circle = _circle(radius, settings.spacing)
+            circle = circle_points(radius, settings.spacing)
             # Nearer the (inner) centre than the outline is, the circle is inside as a whole.
             inside = [circle] if radius < boundary.near else follow_inside(circle, boundary, True)
             chains += [c + centre for c in inside]
             radius += settings.roughing_stepover
-        chains += _closed_loops(piece)
+        chains += closed_loops(piece)
     return chains
 
 
@@ -194,7 +195,7 @@ def _lift(chain: np.ndarray, z) -> np.ndarray:
     return np.column_stack([chain, np.broadcast_to(z, len(chain))])
 
 
-def _wall_levels(geo: _Geometry, settings: RotarySettings) -> np.ndarray:
+def _wall_levels(geo: PocketGeometry, settings: RotarySettings) -> np.ndarray:
     step = settings.wall_stepover * math.cos(geo.theta)
     if geo.bottom == "flat":
         top, bottom = geo.r * math.sin(geo.theta), geo.floor_z(settings.standoff)
@@ -209,15 +210,15 @@ def _wall_levels(geo: _Geometry, settings: RotarySettings) -> np.ndarray:
     return top - (top - bottom) * np.arange(1, count + 1) / count
 
 
-def _wall_finishing(geo: _Geometry, settings: RotarySettings) -> list:
+def _wall_finishing(geo: PocketGeometry, settings: RotarySettings) -> list:
     passes = []
     for z in _wall_levels(geo, settings):
-        for loop in _closed_loops(geo.region_at(z, settings.standoff)):
-            passes.append((z, _lift(_densify(loop, settings.spacing), z)))
+        for loop in closed_loops(geo.region_at(z, settings.standoff)):
+            passes.append((z, _lift(densify(loop, settings.spacing), z)))
     return passes
 
 
-def _floor_spiral(geo: _Geometry, settings: RotarySettings) -> list:
+def _floor_spiral(geo: PocketGeometry, settings: RotarySettings) -> list:
     """One Archimedean spiral per piece of the floor (the pocket centre when it is on the
     floor), pitch ``stepover``, clipped to the floor's tool-centre region.  The ball runs on
     the floor itself (no stand-off): its Z is constant, so neither the rotary interpolation
@@ -226,18 +227,18 @@ def _floor_spiral(geo: _Geometry, settings: RotarySettings) -> list:
     b = settings.stepover / (2 * math.pi)
     chains = []
     for piece in rg.components(geo.bottom_region()):
-        centre = _inner_point(piece)
-        boundary = _Boundary(piece.translate(tuple(-centre)))
+        centre = inner_point(piece)
+        boundary = Boundary(piece.translate(tuple(-centre)))
         far = boundary.far
         turns = far / settings.stepover + 1
         phi = np.linspace(0, 2 * math.pi * turns, max(2000, math.ceil(40 * turns * far / settings.spacing)))
-        spiral = _by_arc_length(np.column_stack([b * phi * np.cos(phi), b * phi * np.sin(phi)]), settings.spacing)
-        chains += [_lift(_densify(c + centre, settings.spacing), z) for c in follow_inside(spiral, boundary, False)]
+        spiral = by_arc_length(np.column_stack([b * phi * np.cos(phi), b * phi * np.sin(phi)]), settings.spacing)
+        chains += [_lift(densify(c + centre, settings.spacing), z) for c in follow_inside(spiral, boundary, False)]
     return chains
 
 
-def _bowl_spiral(geo: _Geometry, settings: RotarySettings) -> list:
-    boundary = _Boundary(geo.bottom_region())
+def _bowl_spiral(geo: PocketGeometry, settings: RotarySettings) -> list:
+    boundary = Boundary(geo.bottom_region())
     rho = geo.locus_radius(settings.standoff)
     far = boundary.far
     psi_end = math.asin(min(1.0, far / rho + settings.stepover / geo.sphere_radius))
@@ -246,10 +247,10 @@ def _bowl_spiral(geo: _Geometry, settings: RotarySettings) -> list:
     psi = phi / (2 * math.pi) * settings.stepover / geo.sphere_radius
     helix = np.column_stack([rho * np.sin(psi) * np.cos(phi), rho * np.sin(psi) * np.sin(phi),
                              geo.sphere_centre_z - rho * np.cos(psi)])
-    helix = _by_arc_length(helix, settings.spacing)
+    helix = by_arc_length(helix, settings.spacing)
     chains = []
     for c in follow_inside(helix[:, :2], boundary, False):
-        chains.append(_densify(np.column_stack([c, geo.sphere_z(c, settings.standoff)]), settings.spacing))
+        chains.append(densify(np.column_stack([c, geo.sphere_z(c, settings.standoff)]), settings.spacing))
     return chains
 
 
@@ -257,12 +258,12 @@ def _bowl_spiral(geo: _Geometry, settings: RotarySettings) -> list:
 # Planning
 # ----------------------------------------------------------------------------------------
 
-def _safe_links(geo: _Geometry, a: np.ndarray, b: np.ndarray, margin: float) -> np.ndarray:
+def _safe_links(geo: PocketGeometry, a: np.ndarray, b: np.ndarray, margin: float) -> np.ndarray:
     """Which balls can feed straight from centre a to centre b (rows, local) and stay
     ``margin`` off the design surface all the way?"""
     def at(links, t):
         return a[links] + (b[links] - a[links]) * t[:, None]
-    plan_length = _norms((b - a)[:, :2])
+    plan_length = row_norms((b - a)[:, :2])
     top = geo.highest(at, np.arange(len(a)), geo.probe(a), geo.probe(b), plan_length, np.zeros(len(a)), -margin)
     return top <= -margin
 
@@ -270,7 +271,7 @@ def _safe_links(geo: _Geometry, a: np.ndarray, b: np.ndarray, margin: float) -> 
 MAX_PATH_POINTS = 5_000_000   # a pocket's path past this runs out of memory in the C unwrapping
 
 
-def _pocket_operation(geo: _Geometry, settings: RotarySettings, start_c):
+def _pocket_operation(geo: PocketGeometry, settings: RotarySettings, start_c):
     """Build one pocket's moves in the part frame, then convert them to C-X-Z."""
     rough = _roughing(geo, settings)
     wall = _wall_finishing(geo, settings)
@@ -316,13 +317,13 @@ def _pocket_operation(geo: _Geometry, settings: RotarySettings, start_c):
 
 
 def _is_closed(chain: np.ndarray) -> bool:
-    return len(chain) > 2 and _same_point(chain[0], chain[-1])
+    return len(chain) > 2 and same_point(chain[0], chain[-1])
 
 
 def _start_nearest(chain: np.ndarray, here: np.ndarray) -> np.ndarray:
     if not _is_closed(chain):
         return chain
-    index = int(np.argmin(_norms(chain[:-1] - here)))
+    index = int(np.argmin(row_norms(chain[:-1] - here)))
     return np.vstack([chain[index:-1], chain[:index + 1]])       # the closed chain from index round
 
 
@@ -332,11 +333,11 @@ def max_gouge(pocket: Pocket, op: Operation, block: Block = Block(),
     as the machine interpolates it (X, C, Z linear).
 
     Not a sample but a bound: never below the true depth, and above it by at most
-    1e-7 mm + 0.1 % (:meth:`_Geometry.highest`).  So 0 means the ball never cuts in."""
-    return _max_gouge(_Geometry(pocket, block, settings), op)
+    1e-7 mm + 0.1 % (:meth:`PocketGeometry.highest`).  So 0 means the ball never cuts in."""
+    return _max_gouge(PocketGeometry(pocket, block, settings), op)
 
 
-def _max_gouge(geo: _Geometry, op: Operation) -> float:
+def _max_gouge(geo: PocketGeometry, op: Operation) -> float:
     x0, c0, z0, x1, c1, z1 = _endpoints(op)
     offset = np.array([geo.centre[0], geo.centre[1], -geo.r])
 
@@ -344,7 +345,7 @@ def _max_gouge(geo: _Geometry, op: Operation) -> float:
         return kinematics.interpolate(x0[moves], c0[moves], z0[moves], x1[moves], c1[moves], z1[moves], t) - offset
     speed, bend = kinematics.speed_and_bend(x0, c0, x1, c1)
     deepest, before = 0.0, geo.probe(at(np.zeros(1, int), np.zeros(1)))
-    for moves in np.array_split(np.arange(len(op)), len(op) // _BLOCK + 1):
+    for moves in np.array_split(np.arange(len(op)), len(op) // BLOCK + 1):
         ends = geo.probe(at(moves, np.ones(len(moves))))
         starts = np.vstack([before, ends[:-1]])
         before = ends[-1:]
@@ -367,14 +368,14 @@ def plan(block: Block, pockets: list, settings: RotarySettings = RotarySettings(
     settings.validate()
     report = progress or (lambda fraction, text: None)
     for value in (block.size_x, block.size_y, block.thickness):
-        if not (_is_number(value) and value > 0):
+        if not (is_finite_number(value) and value > 0):
             raise RotaryError(f"board sizes must be positive numbers, got {block}")
     if not pockets:
         raise RotaryError("no pockets to cut")
     names = [p.name for p in pockets]
     if len(set(names)) != len(names):
         raise RotaryError(f"pocket names must be unique, got {names}")
-    geometries = [_Geometry(p, block, settings) for p in pockets]
+    geometries = [PocketGeometry(p, block, settings) for p in pockets]
     for i, a in enumerate(geometries):
         for b in geometries[i + 1:]:
             overlap = rg.area(a.region.translate(tuple(a.centre)) ^ b.region.translate(tuple(b.centre)))

@@ -1,7 +1,7 @@
 """W2 rotary pockets: curves for the passes, and joining them along outlines.
 
 Circles and resampled curves at the point spacing, and :func:`follow_inside`: where a curve
-leaves a tool-centre region it follows that region's outline (:class:`_Boundary`) instead, then
+leaves a tool-centre region it follows that region's outline (:class:`Boundary`) instead, then
 rejoins the curve.
 """
 from __future__ import annotations
@@ -12,18 +12,18 @@ import numpy as np
 from manifold3d import CrossSection
 
 from ...engines import region as rg
-from .rotary_pocket import _norms, _same_point, _squared_distance
+from .rotary_pocket import row_norms, same_point, squared_distance
 
 
-def _densify(points: np.ndarray, spacing: float) -> np.ndarray:
+def densify(points: np.ndarray, spacing: float) -> np.ndarray:
     """Keep every vertex, split segments longer than ``spacing``; drop repeated points."""
     points = np.asarray(points, float)
     seg = np.diff(points, axis=0)
-    length = _norms(seg)
+    length = row_norms(seg)
     if not np.all(length > 1e-6):
         points = points[np.concatenate([[True], length > 1e-6])]
         seg = np.diff(points, axis=0)
-        length = _norms(seg)
+        length = row_norms(seg)
     count = np.maximum(1, np.ceil(length / spacing - 1e-9).astype(int))
     if len(points) < 2 or count.max() == 1:
         return points
@@ -33,7 +33,7 @@ def _densify(points: np.ndarray, spacing: float) -> np.ndarray:
     return np.vstack([starts + steps * k[:, None], points[-1:]])
 
 
-def _circle(radius: float, spacing: float) -> np.ndarray:
+def circle_points(radius: float, spacing: float) -> np.ndarray:
     """Closed circle about the origin, counter-clockwise, points ``spacing`` apart (at most)."""
     n = max(12, math.ceil(2 * math.pi * radius / spacing))
     a = np.linspace(0, 2 * np.pi, n + 1)
@@ -42,14 +42,14 @@ def _circle(radius: float, spacing: float) -> np.ndarray:
     return pts
 
 
-def _by_arc_length(curve: np.ndarray, spacing: float) -> np.ndarray:
+def by_arc_length(curve: np.ndarray, spacing: float) -> np.ndarray:
     """Points ``spacing`` apart along a densely sampled curve (k, d)."""
-    s = np.concatenate([[0.0], np.cumsum(_norms(np.diff(curve, axis=0)))])
+    s = np.concatenate([[0.0], np.cumsum(row_norms(np.diff(curve, axis=0)))])
     targets = np.append(np.arange(0.0, s[-1], spacing), s[-1])
     return np.column_stack([np.interp(targets, s, curve[:, j]) for j in range(curve.shape[1])])
 
 
-class _Boundary:
+class Boundary:
     """A region's outline, prepared once for clipping curves to it and walking along it.
 
     Edges are numbered loop after loop; edge k runs from ``start[k]`` by ``vector[k]``."""
@@ -64,9 +64,9 @@ class _Boundary:
         self.vector = np.vstack([np.roll(loop, -1, axis=0) for loop in self.loops]) - self.start
         ends = self.start[:, 1] + self.vector[:, 1]
         self.y_low, self.y_high = np.minimum(self.start[:, 1], ends), np.maximum(self.start[:, 1], ends)
-        self.far = float(_norms(self.start).max())            # from the origin to the farthest vertex
+        self.far = float(row_norms(self.start).max())            # from the origin to the farthest vertex
         vx, vy = self.vector[:, 0], self.vector[:, 1]            # and to the nearest point of the outline
-        self.near = float(np.sqrt(_squared_distance(0.0, 0.0, self.start[:, 0], self.start[:, 1], vx, vy,
+        self.near = float(np.sqrt(squared_distance(0.0, 0.0, self.start[:, 0], self.start[:, 1], vx, vy,
                                                     1.0 / np.maximum(vx * vx + vy * vy, 1e-300)).min()))
         # Per loop, over two rounds so any run of edges is one slice: the angle each edge turns
         # about the origin and its length, summed from the loop's first vertex.
@@ -74,7 +74,7 @@ class _Boundary:
         for loop in self.loops:
             angle = np.arctan2(loop[:, 1], loop[:, 0])
             step = np.tile(_short(np.roll(angle, -1) - angle), 2)
-            length = np.tile(_norms(np.roll(loop, -1, axis=0) - loop), 2)
+            length = np.tile(row_norms(np.roll(loop, -1, axis=0) - loop), 2)
             self.angles.append(angle)
             self.turned.append(np.concatenate([[0.0], np.cumsum(step)]))
             self.walked.append(np.concatenate([[0.0], np.cumsum(length)]))
@@ -111,7 +111,7 @@ class _Boundary:
         keep = rg.contains_points(self.region, (refined[:-1] + refined[1:]) / 2)
         change = np.flatnonzero(np.diff(np.concatenate([[False], keep, [False]])))
         pieces = [refined[a:b + 1] for a, b in zip(change[::2], change[1::2])]
-        if _same_point(points[0], points[-1]) and len(pieces) > 1 and keep[0] and keep[-1]:
+        if same_point(points[0], points[-1]) and len(pieces) > 1 and keep[0] and keep[-1]:
             pieces[0] = np.vstack([pieces.pop()[:-1], pieces[0]])
         return [p for p in pieces if len(p) >= 2]
 
@@ -181,14 +181,14 @@ def _walk(loop: np.ndarray, a, ea, ta, b, eb, tb, forward: bool) -> np.ndarray:
     return np.vstack([a, loop[vertices], b])
 
 
-def follow_inside(curve: np.ndarray, boundary: _Boundary, closed: bool) -> list:
+def follow_inside(curve: np.ndarray, boundary: Boundary, closed: bool) -> list:
     """A counter-clockwise curve about the origin (circle or spiral, (k, 2)) kept inside
     the region: where it would leave, it follows the region's outline to where it comes back.
     Returns chains (k, 2); pieces that cannot be joined (another outline loop) stay apart."""
     pieces = boundary.clip(curve)
     if not pieces:
         return []
-    if closed and len(pieces) == 1 and _same_point(pieces[0][0], pieces[0][-1]):
+    if closed and len(pieces) == 1 and same_point(pieces[0][0], pieces[0][-1]):
         return pieces
     where = boundary.locate(np.array([p[0] for p in pieces] + [p[-1] for p in pieces]))
     begins, ends = where[:len(pieces)], where[len(pieces):]
@@ -209,11 +209,11 @@ def follow_inside(curve: np.ndarray, boundary: _Boundary, closed: bool) -> list:
     return chains
 
 
-def _closed_loops(region: CrossSection) -> list:
+def closed_loops(region: CrossSection) -> list:
     return [np.vstack([loop, loop[:1]]) for loop in rg.loops(region)]
 
 
-def _inner_point(piece: CrossSection) -> np.ndarray:
+def inner_point(piece: CrossSection) -> np.ndarray:
     """The origin when it is inside the piece, else a point well inside it."""
     for candidate in (np.zeros(2), np.array(rg.centroid(piece))):
         if rg.contains_points(piece, candidate[None, :])[0]:

@@ -1,7 +1,7 @@
 """W2 rotary pockets: the job's inputs and a pocket's tool-centre geometry.
 
 :class:`Block`, :class:`Pocket` and :class:`RotarySettings` are what :func:`rotary.plan` takes.
-:class:`_Geometry` checks one pocket against them and answers, in the pocket's local frame
+:class:`PocketGeometry` checks one pocket against them and answers, in the pocket's local frame
 (centre at the origin, ball-centre heights), where the ball centre may go: the regions at each
 height, the outline offsets of slanted walls, the bowl's sphere, and the signed distance to the
 design surface that the gouge check uses.  :mod:`rotary` has the frames and the sequence of
@@ -24,24 +24,24 @@ BOTTOMS = ("flat", "sphere")
 MAX_WALL_ANGLE = 75.0          # degrees from vertical
 # Elements per block where work on long arrays is cut into blocks: numpy temporaries beyond
 # ~128 kB come fresh from the OS (page faults) each time and cost several times the arithmetic.
-_BLOCK = 4096
+BLOCK = 4096
 
 
 class RotaryError(InputError):
     """Input the rotary-pocket workflow cannot use; the message names what is wrong."""
 
 
-def _is_number(value) -> bool:
+def is_finite_number(value) -> bool:
     return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool) \
         and math.isfinite(value)
 
 
-def _norms(v: np.ndarray) -> np.ndarray:
+def row_norms(v: np.ndarray) -> np.ndarray:
     """Lengths of the rows of (n, 2) or (n, 3) vectors (np.linalg.norm is slow on short rows)."""
     return np.sqrt(sum(v[:, k] * v[:, k] for k in range(v.shape[1])))
 
 
-def _same_point(a: np.ndarray, b: np.ndarray) -> bool:
+def same_point(a: np.ndarray, b: np.ndarray) -> bool:
     """np.allclose for two points, without its overhead (it runs once per chain)."""
     return bool(np.all(np.abs(a - b) <= 1e-8 + 1e-5 * np.abs(b)))
 
@@ -107,7 +107,7 @@ class RotarySettings:
                  "approach_gap", "rapid_rate", "max_table_rpm")
         for name in names:
             value = getattr(self, name)
-            if not _is_number(value):
+            if not is_finite_number(value):
                 raise RotaryError(f"{name.replace('_', ' ')} must be a finite number, got {value!r}")
         for name in names:
             if name != "allowance" and getattr(self, name) <= 0:
@@ -135,7 +135,7 @@ def _disk(radius: float) -> CrossSection:
     return CrossSection([np.column_stack([radius * np.cos(a), radius * np.sin(a)])])
 
 
-def _squared_distance(px, py, ax, ay, dx, dy, inverse) -> np.ndarray:
+def squared_distance(px, py, ax, ay, dx, dy, inverse) -> np.ndarray:
     """Squared distance from points (px, py) to segments from (ax, ay) by (dx, dy), with
     ``inverse`` = 1 / (dx^2 + dy^2); arrays that broadcast."""
     rx, ry = px - ax, py - ay
@@ -144,7 +144,7 @@ def _squared_distance(px, py, ax, ay, dx, dy, inverse) -> np.ndarray:
     return rx * rx + ry * ry
 
 
-class _OutlineDistance:
+class OutlineDistance:
     """Signed distance from plan points (n, 2) to a polygon, positive inside: exact, but each
     point is measured against the few edges that can be nearest to it, not against all.
 
@@ -169,8 +169,8 @@ class _OutlineDistance:
         half = self.size * math.sqrt(0.5)
         inside = rg.contains_points(region, np.column_stack([cx, cy]))
         nearest, count, edges = [], [], []
-        for block in np.array_split(np.arange(len(cx)), len(cx) * len(loop) // _BLOCK + 1):
-            dist = np.sqrt(_squared_distance(cx[block, None], cy[block, None], self.ax, self.ay, self.dx, self.dy,
+        for block in np.array_split(np.arange(len(cx)), len(cx) * len(loop) // BLOCK + 1):
+            dist = np.sqrt(squared_distance(cx[block, None], cy[block, None], self.ax, self.ay, self.dx, self.dy,
                                              self.inverse))
             nearest.append(dist.min(axis=1))
             listed = ~inside[block] | (nearest[-1] - half < cap)
@@ -184,7 +184,7 @@ class _OutlineDistance:
 
     def to_all(self, px: np.ndarray, py: np.ndarray) -> np.ndarray:
         """Unsigned distance of points to the polygon, against every edge."""
-        return np.sqrt(_squared_distance(px[:, None], py[:, None], self.ax, self.ay, self.dx, self.dy,
+        return np.sqrt(squared_distance(px[:, None], py[:, None], self.ax, self.ay, self.dx, self.dy,
                                          self.inverse).min(axis=1))
 
     def __call__(self, points: np.ndarray) -> np.ndarray:
@@ -195,12 +195,12 @@ class _OutlineDistance:
         on_grid = (ix >= 0) & (iy >= 0) & (ix < self.shape[0]) & (iy < self.shape[1])
         cell = np.where(on_grid, iy * self.shape[0] + ix, 0).astype(int)
         rows = np.flatnonzero(on_grid & (self.count[cell] > 0))
-        for block in np.array_split(rows, int(self.count[cell[rows]].sum()) // _BLOCK + 1):
+        for block in np.array_split(rows, int(self.count[cell[rows]].sum()) // BLOCK + 1):
             count = self.count[cell[block]]
             group = np.cumsum(count) - count
             edge = self.edges[np.repeat(self.first[cell[block]] - group, count) + np.arange(count.sum())]
             point = np.repeat(block, count)
-            square = _squared_distance(px[point], py[point], self.ax[edge], self.ay[edge], self.dx[edge],
+            square = squared_distance(px[point], py[point], self.ax[edge], self.ay[edge], self.dx[edge],
                                        self.dy[edge], self.inverse[edge])
             out[block] = np.sqrt(np.minimum.reduceat(square, group))
         off = np.flatnonzero(~on_grid)
@@ -213,7 +213,7 @@ class _OutlineDistance:
         return out * side
 
 
-class _Geometry:
+class PocketGeometry:
     """A validated pocket in its local frame, with the ball radius and stand-off."""
 
     def __init__(self, pocket: Pocket, block: Block, settings: RotarySettings):
@@ -230,7 +230,7 @@ class _Geometry:
             raise RotaryError(f"{what}: the outline crosses itself")
         for name in ("depth", "wall_angle_deg"):
             value = getattr(pocket, name)
-            if not _is_number(value):
+            if not is_finite_number(value):
                 raise RotaryError(f"{what}: {name.replace('_', ' ')} must be a finite number, got {value!r}")
         if pocket.centre is None:
             centre = np.array(rg.centroid(absolute), float)
@@ -262,11 +262,11 @@ class _Geometry:
         self.theta = math.radians(pocket.wall_angle_deg)
         self.bottom = pocket.bottom
         self.standoff = settings.standoff
-        self.far = float(_norms(self.loop).max())
+        self.far = float(row_norms(self.loop).max())
         self.sphere_radius = None
         if self.bottom == "sphere":
             rs = pocket.sphere_radius
-            if not _is_number(rs):
+            if not is_finite_number(rs):
                 raise RotaryError(f"{what}: a spherical bowl needs a finite sphere radius, got {rs!r}")
             if pocket.wall_angle_deg != 0:
                 raise RotaryError(f"{what}: a spherical bowl has a vertical rim; set the wall angle to 0")
@@ -282,7 +282,7 @@ class _Geometry:
             raise RotaryError(f"{what}: the {settings.tool.diameter:g} mm bit does not fit in the pocket"
                               + (" at its floor (the slanted walls close it in)" if self.theta else ""))
         # No ball centre needs to be farther from the outline than at the floor.
-        self.walls = _OutlineDistance(self.loop, self.region, self.wall_offset(self.floor_z(0.0)) + 1.0)
+        self.walls = OutlineDistance(self.loop, self.region, self.wall_offset(self.floor_z(0.0)) + 1.0)
         self.centre_to_outline = float(self.walls.to_all(np.zeros(1), np.zeros(1))[0])
 
     # ----- where the ball centre may go ------------------------------------------------
@@ -361,7 +361,7 @@ class _Geometry:
         if self.bottom == "flat":
             bottom = -self.depth - (z - r)
         else:
-            bottom = _norms(centres - np.array([0.0, 0.0, self.sphere_centre_z])) - (self.sphere_radius - r)
+            bottom = row_norms(centres - np.array([0.0, 0.0, self.sphere_centre_z])) - (self.sphere_radius - r)
         return np.column_stack([z, d, bottom, np.maximum(wall, bottom)])
 
     def bound(self, span, v0, v1, speed, bend) -> np.ndarray:

@@ -13,10 +13,16 @@ sits at the feature's zero point), so it is never composed twice.
 """
 from __future__ import annotations
 
-from .ap238 import HOLE_BOTTOMS, POCKET_BOTTOMS, SLOT_ENDS, _at, _item_name, _kind, _measure, _placeholder_name
+from .ap238_aim import attribute, kind_of, measure_of, name_of, placeholder_name
 from .model import CURVE_TYPES, StepNcError
 from .part21 import UNSET, Ref
 
+HOLE_BOTTOMS = {"through": "THROUGH_BOTTOM_CONDITION", "flat": "FLAT_HOLE_BOTTOM",
+                "conical": "CONICAL_HOLE_BOTTOM", "spherical": "SPHERICAL_HOLE_BOTTOM",
+                "flat with radius": "FLAT_WITH_RADIUS_HOLE_BOTTOM"}
+POCKET_BOTTOMS = {"planar": "PLANAR_POCKET_BOTTOM_CONDITION", "through": "THROUGH_POCKET_BOTTOM_CONDITION"}
+SLOT_ENDS = {"open": "OPEN_SLOT_END_TYPE", "radiused": "RADIUSED_SLOT_END_TYPE", "flat": "FLAT_SLOT_END_TYPE",
+             "woodruff": "WOODRUFF_SLOT_END_TYPE", "loop": "LOOP_SLOT_END_TYPE"}
 KINDS = ("ROUND_HOLE", "POCKET", "FLAT_FACE", "PLANAR_FACE", "SLOT")
 
 
@@ -25,7 +31,7 @@ def feature_to_arm(aim, feature) -> Ref:
     if kind is None or "SHAPE_ASPECT" not in feature.type_names:
         own = [t for t in feature.type_names if t not in ("CHARACTERIZED_OBJECT", "FEATURE_DEFINITION",
                                                            "INSTANCED_FEATURE", "SHAPE_ASPECT")]
-        return aim.put(feature.id, own[0] if own else _kind(feature), [])
+        return aim.put(feature.id, own[0] if own else kind_of(feature), [])
     aspect = feature.params_of("SHAPE_ASPECT")
     its_id = str(aspect[0])
     workpiece = _workpiece(aim, feature, aspect)
@@ -34,11 +40,11 @@ def feature_to_arm(aim, feature) -> Ref:
         raise StepNcError(f"#{feature.id} {kind} '{its_id}': no PRODUCT_DEFINITION_SHAPE refers to it")
     placement, depth, measures = None, None, {}
     for rep, item, _ in aim.shape_items(feature):
-        name = _item_name(item).lower()
+        name = name_of(item).lower()
         if "AXIS2_PLACEMENT_3D" in item.type_names and name in ("orientation", "") and placement is None:
             placement = item
         elif item.type_names[0] in ("PLANE", "ELEMENTARY_SURFACE") and \
-                str(_at(rep, 0)).lower() == "maximum feature limit":
+                str(attribute(rep, 0)).lower() == "maximum feature limit":
             depth = item
         elif "MEASURE_WITH_UNIT" in item.type_names or item.type_names[0] == "MEASURE_REPRESENTATION_ITEM":
             measures[name] = aim.length(item)
@@ -58,7 +64,7 @@ def feature_to_arm(aim, feature) -> Ref:
         path = _linear_path(aim, _required(parts, "course of travel", feature, its_id), placement)
         profile = _required(parts, "removal boundary", feature, its_id)
         if profile.type_names[0] != "LINEAR_PROFILE":
-            boundary = aim.put(profile.id, _placeholder_name(profile.type_names[0]), [])
+            boundary = aim.put(profile.id, placeholder_name(profile.type_names[0]), [])
         else:
             length = _first_length(aim, profile)
             boundary = aim.put(profile.id, "LINEAR_PROFILE", [_own_placement(aim, profile, placement), length])
@@ -67,13 +73,13 @@ def feature_to_arm(aim, feature) -> Ref:
         path = _linear_path(aim, _required(parts, "course of travel", feature, its_id), placement)
         shape = _required(parts, "swept shape", feature, its_id)
         if shape.type_names[0] != "SQUARE_U_PROFILE":
-            swept = aim.put(shape.id, _placeholder_name(shape.type_names[0]), [])
+            swept = aim.put(shape.id, placeholder_name(shape.type_names[0]), [])
         else:
             values = _lengths(aim, shape)
             swept = aim.put(shape.id, "SQUARE_U_PROFILE", [UNSET, values.get("width", UNSET),
                                                            values.get("first radius", UNSET), UNSET,
                                                            values.get("second radius", UNSET), UNSET])
-        ends = [aim.put(end.id, SLOT_ENDS.get(str(_at(end, 1)).lower(), _placeholder_name(f"{_at(end, 1)} slot end")),
+        ends = [aim.put(end.id, SLOT_ENDS.get(str(attribute(end, 1)).lower(), placeholder_name(f"{attribute(end, 1)} slot end")),
                         []) for end in _slot_ends(aim, shapes)]
         return aim.put(feature.id, "SLOT", head + [path, swept, ends])
     # POCKET: closed when its boundary is a closed profile
@@ -90,7 +96,7 @@ def feature_to_arm(aim, feature) -> Ref:
 def _workpiece(aim, feature, aspect):
     shape = aim.part21.instances.get(getattr(aspect[2], "id", None))
     if shape is not None and "PRODUCT_DEFINITION_SHAPE" in shape.type_names:
-        definition = aim.part21.instances.get(getattr(_at(shape, 2), "id", None))
+        definition = aim.part21.instances.get(getattr(attribute(shape, 2), "id", None))
         if definition is not None and "PRODUCT_DEFINITION" in definition.type_names:
             return aim.workpiece(definition)
     return UNSET
@@ -101,11 +107,11 @@ def _components(aim, shapes) -> dict:
     found = {}
     for shape in shapes:
         for occurrence in aim.referrers(shape, "SHAPE_ASPECT", 2):
-            role = str(_at(occurrence, 1)).lower()
+            role = str(attribute(occurrence, 1)).lower()
             role = role[:-len(" occurrence")] if role.endswith(" occurrence") else role
             for link in ("SHAPE_DEFINING_RELATIONSHIP", "FEATURE_COMPONENT_RELATIONSHIP"):
                 for rel in aim.referrers(occurrence, link, 3):
-                    found.setdefault(role, []).append(aim.get(_at(rel, 2), "relating_shape_aspect", rel))
+                    found.setdefault(role, []).append(aim.get(attribute(rel, 2), "relating_shape_aspect", rel))
     return found
 
 
@@ -114,31 +120,31 @@ def _slot_ends(aim, shapes) -> list:
     found = []
     for shape in shapes:
         for occurrence in aim.referrers(shape, "SHAPE_ASPECT", 2):
-            if str(_at(occurrence, 1)).lower() != "end condition occurrence":
+            if str(attribute(occurrence, 1)).lower() != "end condition occurrence":
                 continue
             for rel in aim.referrers(occurrence, "FEATURE_COMPONENT_RELATIONSHIP", 3):
-                order = {"course of travel start": 0, "course of travel end": 1}.get(str(_at(rel, 0)).lower(), 2)
-                found.append((order, rel.id, aim.get(_at(rel, 2), "relating_shape_aspect", rel)))
+                order = {"course of travel start": 0, "course of travel end": 1}.get(str(attribute(rel, 0)).lower(), 2)
+                found.append((order, rel.id, aim.get(attribute(rel, 2), "relating_shape_aspect", rel)))
     return [end for _, _, end in sorted(found, key=lambda item: item[:2])]
 
 
 def _required(parts, role, feature, its_id):
     if not parts.get(role):
-        kind = next((t for t in feature.type_names if t in KINDS), _kind(feature))
+        kind = next((t for t in feature.type_names if t in KINDS), kind_of(feature))
         raise StepNcError(f"#{feature.id} {kind} '{its_id}': no {role} (a feature component through a "
                           f"SHAPE_ASPECT '{role} occurrence')")
     return parts[role][0]
 
 
 def _lengths(aim, component) -> dict:
-    return {_item_name(item).lower(): aim.length(item) for rep, item, _ in aim.shape_items(component)
+    return {name_of(item).lower(): aim.length(item) for rep, item, _ in aim.shape_items(component)
             if "MEASURE_WITH_UNIT" in item.type_names or item.type_names[0] == "MEASURE_REPRESENTATION_ITEM"}
 
 
 def _first_length(aim, component):
     values = [v for v in _lengths(aim, component).values() if v is not None]
     if not values:
-        raise StepNcError(f"#{component.id} {_kind(component)}: no length item in its representation")
+        raise StepNcError(f"#{component.id} {kind_of(component)}: no length item in its representation")
     return values[0]
 
 
@@ -148,7 +154,7 @@ def _component_length(aim, parts, role, feature, its_id, names):
     for name in names:
         if values.get(name) is not None:
             return values[name]
-    raise StepNcError(f"#{component.id} {_kind(component)}: no '{names[0]}' item in its representation")
+    raise StepNcError(f"#{component.id} {kind_of(component)}: no '{names[0]}' item in its representation")
 
 
 def _own_placement(aim, component, feature_placement):
@@ -163,7 +169,7 @@ def _linear_path(aim, path, feature_placement) -> Ref:
     """A PATH_FEATURE_COMPONENT: 'linear' (a 'distance' and a DIRECTION), 'partial circular' ('radius',
     'sweep angle'), 'complete circular' ('radius') or 'complex' (a curve in a PATH_SHAPE_REPRESENTATION
     'sweep path'), each placed by its own 'orientation' if it has one."""
-    kind = str(_at(path, 1)).lower()
+    kind = str(attribute(path, 1)).lower()
     own = _own_placement(aim, path, feature_placement)
     if kind in ("partial circular", "complete circular"):
         values = _lengths(aim, path)
@@ -172,7 +178,7 @@ def _linear_path(aim, path, feature_placement) -> Ref:
         if kind == "complete circular":
             return aim.put(path.id, "COMPLETE_CIRCULAR_PATH", [own, values["radius"]])
         sweep = next((_angle(aim, item) for _, item, _ in aim.shape_items(path)
-                      if _item_name(item).lower() == "sweep angle"), None)
+                      if name_of(item).lower() == "sweep angle"), None)
         if sweep is None:
             raise StepNcError(f"#{path.id} PATH_FEATURE_COMPONENT: a partial circular path needs a 'sweep angle'")
         return aim.put(path.id, "PARTIAL_CIRCULAR_PATH", [own, values["radius"], sweep])
@@ -182,7 +188,7 @@ def _linear_path(aim, path, feature_placement) -> Ref:
             raise StepNcError(f"#{path.id} PATH_FEATURE_COMPONENT: a complex path needs a curve ('sweep path')")
         return aim.put(path.id, "GENERAL_PATH", [own, Ref(curves[0].id)])
     if kind != "linear":
-        return aim.put(path.id, _placeholder_name(f"{_at(path, 1)} path"), [])
+        return aim.put(path.id, placeholder_name(f"{attribute(path, 1)} path"), [])
     direction = next((Ref(item.id) for rep, item, _ in aim.shape_items(path) if "DIRECTION" in item.type_names), None)
     values = _lengths(aim, path)
     if direction is None or values.get("distance") is None:
@@ -198,7 +204,7 @@ def _curves(aim, owner) -> list:
 
 def _angle(aim, item) -> float | None:
     """Degrees of a plane angle measure (its unit degrees or radians)."""
-    value, unit = _measure(item)
+    value, unit = measure_of(item)
     if value is None:
         return None
     target = aim.part21.instances.get(getattr(unit, "id", None))
@@ -211,8 +217,8 @@ def _bottom(aim, parts, names) -> Ref:
     bottom = parts.get("bottom condition", [None])[0]
     if bottom is None:
         return UNSET
-    words = str(_at(bottom, 1)).lower()
-    return aim.put(bottom.id, names.get(words, _placeholder_name(f"{words} {bottom.type_names[0]}")), [])
+    words = str(attribute(bottom, 1)).lower()
+    return aim.put(bottom.id, names.get(words, placeholder_name(f"{words} {bottom.type_names[0]}")), [])
 
 
 def _closed_profile(aim, profile, feature_placement) -> Ref:
@@ -228,4 +234,4 @@ def _closed_profile(aim, profile, feature_placement) -> Ref:
         if not curves:
             raise StepNcError(f"#{profile.id} CLOSED_PATH_PROFILE: no curve in its PATH_SHAPE_REPRESENTATION")
         return aim.put(profile.id, "GENERAL_CLOSED_PROFILE", [own, Ref(curves[0].id)])
-    return aim.put(profile.id, _placeholder_name(kind), [])
+    return aim.put(profile.id, placeholder_name(kind), [])

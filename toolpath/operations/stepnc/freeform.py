@@ -21,7 +21,7 @@ import numpy as np
 
 from ...ir.program import ARC_CCW, ARC_CW, FEED, RAPID
 from .model import BSplineCurve, CompositeCurve, Helix, Line, Polyline, StepNcError, TrimmedCurve, UnsupportedEntity
-from .motion import _Motion
+from .motion import Motion
 from .technology import MissingTechnology, feed_and_speed
 
 # A helix or circle is cut in arcs of at most this sweep (degrees); every post writes them as G2/G3.
@@ -124,10 +124,10 @@ def trajectory_moves(trajectory) -> tuple:
 
 
 def plan_freeform(step, tool, clearance_z, stock=None):
-    """A _Motion with the explicit toolpaths of a FREEFORM_OPERATION workingstep and the RAPID_MOVEMENTs
+    """A Motion with the explicit toolpaths of a FREEFORM_OPERATION workingstep and the RAPID_MOVEMENTs
     after it."""
     operation, frame = step.its_operation, step.its_feature.feature_placement
-    motion = _Motion(clearance_z, None, stock=stock, radius=tool.radius)
+    motion = Motion(clearance_z, None, stock=stock, radius=tool.radius)
     notes_of_step = motion.notes.append
     path = motion.path
     rpm = feed_and_speed(operation, tool, [], need_feed=False)[1]

@@ -25,7 +25,7 @@ DEFAULT_STEPOVER_RATIO = 0.5
 LINK_TOLERANCE = 0.01
 
 
-class _Motion:
+class Motion:
     """The moves of one operation.
 
     Between cuts the tool rapids at the clearance (retract) plane, rapids down to
@@ -48,7 +48,7 @@ class _Motion:
         self.clearance_z = clearance_z
         self.approach = approach
         self.retract_strategy = retract
-        self.region = None if region is None else _offset(region, LINK_TOLERANCE)  # None: never link
+        self.region = None if region is None else round_offset(region, LINK_TOLERANCE)  # None: never link
         self.notes: list = []
         self.entry_z = clearance_z     # where the last approach started (the retract ends there)
         self.previous_xy = None        # the point before the current one along the cut (retract ramp)
@@ -204,10 +204,10 @@ def _segment_inside(region: CrossSection | None, a, b) -> bool:
     return bool(rg.contains_points(region, np.linspace(a, b, count)).all())
 
 
-def _split_outside(chains: list, region: CrossSection) -> list:
+def split_outside(chains: list, region: CrossSection) -> list:
     """Cut the chains where a step between rows leaves the region (a chord across a rounded
     inside corner), so the tool goes round instead of through the allowance."""
-    grown = _offset(region, LINK_TOLERANCE)
+    grown = round_offset(region, LINK_TOLERANCE)
     pieces = []
     for chain in chains:
         start = 0
@@ -236,7 +236,7 @@ def _reversed(moves, before) -> list:
     return [(flipped.get(kind, kind), points[i], centre) for i, (kind, _, centre) in reversed(list(enumerate(moves)))]
 
 
-def _levels(top: float, floor: float, step: float | None) -> list:
+def cut_levels(top: float, floor: float, step: float | None) -> list:
     """Cutting levels below ``top`` down to ``floor``, evenly spaced and at most ``step`` apart."""
     height = top - floor
     if height <= 1e-9:
@@ -248,18 +248,18 @@ def _levels(top: float, floor: float, step: float | None) -> list:
     return [top - height * k / count for k in range(1, count + 1)]
 
 
-def _ratio(value: float) -> float:
+def iso_ratio(value: float) -> float:
     """ISO 14649 ratios run 0..1; values above 1 are read as percent, as older files (the
     original Example 1) wrote them."""
     return value / 100 if value > 1 else value
 
 
-def _stepover(diameter: float, overlap: float | None, radial: float | None) -> float:
+def stepover_of(diameter: float, overlap: float | None, radial: float | None) -> float:
     """From the overlap (a ratio of the diameter) and the radial cutting depth: the smaller
     when both are given."""
     candidates = []
     if overlap is not None:
-        candidates.append(diameter * (1 - _ratio(overlap)))
+        candidates.append(diameter * (1 - iso_ratio(overlap)))
     if radial:
         candidates.append(radial)
     stepover = min(candidates) if candidates else diameter * DEFAULT_STEPOVER_RATIO
@@ -269,7 +269,7 @@ def _stepover(diameter: float, overlap: float | None, radial: float | None) -> f
     return stepover
 
 
-def _offset(region: CrossSection, delta: float) -> CrossSection:
+def round_offset(region: CrossSection, delta: float) -> CrossSection:
     """Round-join offset with arcs within CHORD_TOLERANCE (finer than region.offset, so finishing
     passes keep the tool edge on the wall to a few microns)."""
     if delta == 0:
@@ -280,5 +280,5 @@ def _offset(region: CrossSection, delta: float) -> CrossSection:
     return region.offset(delta, JoinType.Round, 2.0, segments)
 
 
-def _empty(region: CrossSection) -> bool:
+def is_empty(region: CrossSection) -> bool:
     return region.area() < rg.MIN_AREA

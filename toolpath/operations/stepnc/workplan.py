@@ -36,7 +36,8 @@ from .hole_bottoms import DEFAULT_TOOL_TOP_ANGLE, flat_bottom_notes  # noqa: F40
 from .inprocess import InProcessStock
 from .model import (Bidirectional, BottomAndSideMilling, ClosedPocket, ContourBidirectional, ContourParallel, CuttingTool, DrillingOperation, FreeformOperation, PlanarFace, PlaneMilling, PlungeHelix, PlungeRamp, Project, RoundHole, Slot, StepNcError, Unidirectional, Workingstep)
 from .reader import read_project
-from .motion import (APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, _empty, _levels, _Motion, _offset, _ratio, _split_outside, _stepover, helix_moves, helix_pitch)
+from .motion import (APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, Motion, cut_levels, helix_moves,
+                     helix_pitch, is_empty, iso_ratio, round_offset, split_outside, stepover_of)
 from .part21 import parse_part21, read_part21
 from .pockets import PocketSpec, pockets_to_part21  # noqa: F401 (re-exported)
 from .technology import MissingTechnology, feed_and_speed  # noqa: F401 (re-exported)
@@ -345,8 +346,8 @@ def centre_region(pocket: ClosedPocket, distance: float) -> CrossSection:
         rg.from_loops([pocket.outline()], f"pocket #{pocket.id} '{pocket.its_id}'")
     radius = pocket.orthogonal_radius or 0.0
     if distance >= radius:
-        return _offset(region, -distance)
-    return _offset(_offset(region, -radius), radius - distance)
+        return round_offset(region, -distance)
+    return round_offset(round_offset(region, -radius), radius - distance)
 
 
 def pocket_region(pocket: ClosedPocket) -> CrossSection:
@@ -358,7 +359,7 @@ def roughing_reach(pocket: ClosedPocket, roughing: BottomAndSideMilling) -> Cros
     """What a roughing operation's tool reaches: the pocket less allowance_side, and less the
     round corners a tool of that radius leaves."""
     radius = roughing.its_tool.its_tool_body.dimension.diameter / 2
-    return _offset(centre_region(pocket, radius + (roughing.allowance_side or 0.0)), radius)
+    return round_offset(centre_region(pocket, radius + (roughing.allowance_side or 0.0)), radius)
 
 
 def finishing_leftover(pocket: ClosedPocket, roughings: list) -> CrossSection:
@@ -376,7 +377,7 @@ def _rings(region: CrossSection, distances, counter_clockwise: bool, start_xy) -
     rings = []
     here = np.asarray(start_xy, float)
     for distance in distances:
-        loops = [np.vstack([loop, loop[:1]]) for loop in rg.loops(_offset(region, -distance))]
+        loops = [np.vstack([loop, loop[:1]]) for loop in rg.loops(round_offset(region, -distance))]
         for loop, index in rg.order_loops_nearest(loops, here):
             loop = rg.rotate_closed(loop, index)
             ccw = rg.signed_area(loop[:-1]) > 0
@@ -388,7 +389,7 @@ def _rings(region: CrossSection, distances, counter_clockwise: bool, start_xy) -
 def _ring_distances(region: CrossSection, stepover: float) -> list:
     """0, stepover, 2 stepover, ... while the region offset inward by it is not empty."""
     distances = []
-    while not _empty(_offset(region, -len(distances) * stepover)):
+    while not is_empty(round_offset(region, -len(distances) * stepover)):
         distances.append(len(distances) * stepover)
         if len(distances) > MAX_PASSES:
             raise StepNcError(f"more than {MAX_PASSES} contour passes at a {stepover:g} mm stepover")
@@ -425,10 +426,10 @@ def _fill(region: CrossSection, strategy, stepover: float, radius: float, pocket
     if isinstance(strategy, ContourBidirectional) and strategy.contour_first:     # the contour, then the zigzag
         ring = _rings(region, [0.0], ccw, rg.centroid(region))
         turn = 180.0 if strategy.stepover_direction == "RIGHT" else 0.0
-        return ring + _split_outside(rg.zigzag(region, stepover, angle + turn), region)
+        return ring + split_outside(rg.zigzag(region, stepover, angle + turn), region)
     if isinstance(strategy, Bidirectional):
         turn = 180.0 if strategy.stepover_direction == "RIGHT" else 0.0
-        chains = _split_outside(rg.zigzag(region, stepover, angle + turn), region)
+        chains = split_outside(rg.zigzag(region, stepover, angle + turn), region)
     else:
         feed = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
         chains = []
@@ -447,7 +448,7 @@ def _face(operation: PlaneMilling, face: PlanarFace, tool: Tool, clearance_z, fe
     if isinstance(strategy, ContourParallel):
         skip("CONTOUR_PARALLEL facing of a PLANAR_FACE is not supported")
         return None
-    stepover = _stepover(tool.diameter, strategy.overlap, None)
+    stepover = stepover_of(tool.diameter, strategy.overlap, None)
     floor = face.bottom_z + (operation.allowance_bottom or 0.0)
     start = face.top_z
     if roughings:
@@ -457,12 +458,12 @@ def _face(operation: PlaneMilling, face: PlanarFace, tool: Tool, clearance_z, fe
         paths = [np.vstack([s if k % 2 == 0 else s[::-1] for k, s in enumerate(strokes)])]
     else:
         paths = strokes
-    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
+    motion = Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
     if isinstance(strategy, ContourBidirectional):
         motion.notes.append(f"{'CONTOUR_BIDIRECTIONAL' if strategy.contour_first else 'BIDIRECTIONAL_CONTOUR'}: no "
                             f"contour pass on planar face #{face.id}, its strokes run out past the face's edges")
     cleared = start
-    for z in _levels(start, floor, operation.axial_cutting_depth or tool.flute_length):
+    for z in cut_levels(start, floor, operation.axial_cutting_depth or tool.flute_length):
         motion.cut(paths, z, cleared)
         cleared = z
     return motion
@@ -498,16 +499,16 @@ def _pocket_roughing(operation, pocket, tool, clearance_z, feed, spindle_clockwi
     """The pocket less the allowances, cleared layer by layer."""
     strategy = operation.its_machining_strategy or Bidirectional(None, None, None, None, None)
     centres = centre_region(pocket, tool.radius + (operation.allowance_side or 0.0))
-    if _empty(centres):
+    if is_empty(centres):
         skip(f"the {tool.diameter:g} mm tool with allowance {operation.allowance_side or 0:g} mm does not fit "
              f"in pocket #{pocket.id}")
         return None
-    stepover = _stepover(tool.diameter, strategy.overlap, operation.radial_cutting_depth)
+    stepover = stepover_of(tool.diameter, strategy.overlap, operation.radial_cutting_depth)
     paths = _fill(centres, strategy, stepover, tool.radius, pocket, spindle_clockwise)
-    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres, stock, tool.radius)
+    motion = Motion(clearance_z, feed, operation.approach, operation.retract, centres, stock, tool.radius)
     floor = pocket.bottom_z + (operation.allowance_bottom or 0.0)
     cleared = pocket.top_z
-    for z in _levels(pocket.top_z, floor, operation.axial_cutting_depth or tool.flute_length):
+    for z in cut_levels(pocket.top_z, floor, operation.axial_cutting_depth or tool.flute_length):
         motion.cut(paths, z, cleared, link=not isinstance(strategy, Unidirectional))
         cleared = z
     return motion
@@ -518,10 +519,10 @@ def _pocket_finishing(operation, pocket, tool, clearance_z, feed, spindle_clockw
     rough floor (everything at every layer when nothing roughs the pocket)."""
     strategy = operation.its_machining_strategy or ContourParallel(None, None, "CCW", None)
     centres = centre_region(pocket, tool.radius + (operation.allowance_side or 0.0))
-    if _empty(centres):
+    if is_empty(centres):
         skip(f"the {tool.diameter:g} mm tool does not fit in pocket #{pocket.id}")
         return None
-    stepover = _stepover(tool.diameter, strategy.overlap, operation.radial_cutting_depth)
+    stepover = stepover_of(tool.diameter, strategy.overlap, operation.radial_cutting_depth)
     floor_paths = _fill(centres, strategy, stepover, tool.radius, pocket, spindle_clockwise)
     rough_floor = pocket.bottom_z
     wall_paths = floor_paths
@@ -535,13 +536,13 @@ def _pocket_finishing(operation, pocket, tool, clearance_z, feed, spindle_clockw
                 raise StepNcError(f"more than {MAX_PASSES} finishing passes at a {stepover:g} mm stepover")
         ccw = _counter_clockwise(strategy, spindle_clockwise)
         wall_paths = _rings(centres, (distances or [0.0])[::-1], ccw, rg.centroid(centres))
-    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, centres, stock, tool.radius)
+    motion = Motion(clearance_z, feed, operation.approach, operation.retract, centres, stock, tool.radius)
     if (pocket.planar_radius or 0.0) > tool.corner_radius + 1e-9:
         motion.notes.append(f"the floor fillet R{pocket.planar_radius:g} is cut with the tool's corner "
                             f"radius R{tool.corner_radius:g}")
     floor = pocket.bottom_z + (operation.allowance_bottom or 0.0)
     cleared = pocket.top_z
-    for z in _levels(pocket.top_z, floor, operation.axial_cutting_depth or tool.flute_length):
+    for z in cut_levels(pocket.top_z, floor, operation.axial_cutting_depth or tool.flute_length):
         below_rough_floor = z < rough_floor - 1e-9
         motion.cut(floor_paths if below_rough_floor else wall_paths, z, cleared,
                    link=not (below_rough_floor and isinstance(strategy, Unidirectional)))
@@ -551,10 +552,10 @@ def _pocket_finishing(operation, pocket, tool, clearance_z, feed, spindle_clockw
 
 def _sweeps(centres: CrossSection, distance: float, radius: float, leftover: CrossSection) -> bool:
     """Does the ring ``distance`` inside the centre region sweep over any of ``leftover``?"""
-    ring_region = _offset(centres, -distance)
-    if _empty(ring_region):
+    ring_region = round_offset(centres, -distance)
+    if is_empty(ring_region):
         return False
-    swept = _offset(ring_region, radius) - _offset(ring_region, -radius)
+    swept = round_offset(ring_region, radius) - round_offset(ring_region, -radius)
     return (swept ^ leftover).area() > rg.MIN_AREA
 
 
@@ -587,14 +588,14 @@ def _slot_centreline(operation: BottomAndSideMilling, slot: Slot, tool: Tool, cl
     if line is None:
         skip(f"slot #{slot.id} is shorter than the {tool.diameter:g} mm tool")
         return None
-    motion = _Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
+    motion = Motion(clearance_z, feed, operation.approach, operation.retract, stock=stock, radius=tool.radius)
     if "FLAT_SLOT_END_TYPE" in slot.ends:
         motion.notes.append(f"the flat end of slot #{slot.id} keeps the tool's radius R{tool.radius:g} in its corners")
     floor = slot.bottom_z + (operation.allowance_bottom or 0.0)
     forward = [line]
     backward = forward if slot.closed else [line[::-1]]     # round a closed slot always the same way
     cleared = slot.top_z
-    for index, z in enumerate(_levels(slot.top_z, floor, operation.axial_cutting_depth or tool.radius)):
+    for index, z in enumerate(cut_levels(slot.top_z, floor, operation.axial_cutting_depth or tool.radius)):
         paths, other = (forward, backward) if index % 2 == 0 else (backward, forward)
         motion.cut(paths, z, cleared)
         motion.levels[(id(other), 0)] = z     # the next layer starts where this one ended, cut to z
@@ -657,7 +658,7 @@ def _hole_milling(operation: BottomAndSideMilling, hole: RoundHole, tool: Tool, 
         return None
     strategy = operation.its_machining_strategy
     overlap = getattr(strategy, "overlap", None)
-    stepover = min(_stepover(tool.diameter, overlap, operation.radial_cutting_depth), tool.radius)
+    stepover = min(stepover_of(tool.diameter, overlap, operation.radial_cutting_depth), tool.radius)
     count = max(0, math.ceil((outer - tool.radius) / stepover - 1e-9))
     radii = [outer - k * stepover for k in range(count, -1, -1)] if count else [outer]   # innermost first
     ccw = strategy.rotation_direction == "CCW" if isinstance(strategy, ContourParallel) else spindle_clockwise
@@ -671,14 +672,14 @@ def _hole_milling(operation: BottomAndSideMilling, hole: RoundHole, tool: Tool, 
     cx, cy = hole.centre
     approach = operation.approach
     angle = approach.angle if isinstance(approach, (PlungeHelix, PlungeRamp)) and 0 < approach.angle < 90 else None
-    motion = _Motion(clearance_z, feed, stock=stock, radius=tool.radius)
+    motion = Motion(clearance_z, feed, stock=stock, radius=tool.radius)
     if angle is not None:
         motion.notes.append(f"hole #{hole.id}: helical entry at the file's {angle:g} degrees (pitch = pi x circle "
                             f"diameter x tan {angle:g}: {helix_pitch(radii[0], angle):.3f} mm a turn on the "
                             f"{2 * radii[0]:g} mm circle)")
     path = motion.path
     step = operation.axial_cutting_depth or tool.radius
-    levels = _levels(hole.top_z, floor, step)
+    levels = cut_levels(hole.top_z, floor, step)
     rings = radii
     for index, z in enumerate(levels):
         rings = radii if z < rough_floor - 1e-9 else radii[-1:]
@@ -743,7 +744,7 @@ def _hole(operation: DrillingOperation, hole: RoundHole, tool: Tool, clearance_z
             breakthrough = drill_breakthrough(operation.its_tool)
             why = f"point length + {BREAKTHROUGH_CLEARANCE:g} mm"
         bottom -= breakthrough
-    motion = _Motion(clearance_z, feed, stock=stock, radius=tool.radius)
+    motion = Motion(clearance_z, feed, stock=stock, radius=tool.radius)
     if breakthrough:
         motion.notes.append(f"through hole: the drill goes {breakthrough:.3f} mm below the hole bottom "
                             f"({why}) to Z {bottom:.3f}")
@@ -755,9 +756,9 @@ def _hole(operation: DrillingOperation, hole: RoundHole, tool: Tool, clearance_z
     strategy = operation.its_machining_strategy
     if strategy is not None:
         if strategy.depth_of_end and strategy.reduced_feed_at_end:
-            stops = [(bottom + strategy.depth_of_end, feed), (bottom, feed * _ratio(strategy.reduced_feed_at_end))]
+            stops = [(bottom + strategy.depth_of_end, feed), (bottom, feed * iso_ratio(strategy.reduced_feed_at_end))]
         if strategy.depth_of_start and strategy.reduced_feed_at_start:
-            stops.insert(0, (max(top - strategy.depth_of_start, bottom), feed * _ratio(strategy.reduced_feed_at_start)))
+            stops.insert(0, (max(top - strategy.depth_of_start, bottom), feed * iso_ratio(strategy.reduced_feed_at_start)))
         if strategy.reduced_cut_at_start or strategy.reduced_cut_at_end:
             motion.notes.append("the reduced spindle speeds of DRILLING_TYPE_STRATEGY are not written "
                                 "(one spindle speed per operation)")

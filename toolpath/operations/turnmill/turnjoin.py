@@ -1,8 +1,8 @@
-"""Turn-mill passes: runs of ball centres kept a stepover apart (:func:`_short_segments`), and
+"""Turn-mill passes: runs of ball centres kept a stepover apart (:func:`short_segments`), and
 joining the runs of a layer into passes, nearest first; whether a merged move keeps the ball clear
 (:func:`merged_move_clear`).
 
-:func:`_join` orders the runs of one layer nearest first and joins neighbours into passes; the
+:func:`join_runs` orders the runs of one layer nearest first and joins neighbours into passes; the
 nearest run end is found on a grid (:class:`_RunEnds`), so the time follows the number of runs,
 not its square (comparing every run with every other took over 5 minutes on a plain 64-sided
 cylinder)."""
@@ -20,7 +20,7 @@ MAX_BALL_POSITIONS = 5_000_000     # roughing copies of the passes: past this th
 CHORD_DIP = 5e-4    # mm: how far a chord between ball centres may dip towards the part (the gate reports 1e-3)
 
 
-def _counted(total: list, more: int, direction: str, layers: int, step: float, stock, vertices) -> None:
+def count_positions(total: list, more: int, direction: str, layers: int, step: float, stock, vertices) -> None:
     """Count ``more`` tool positions into ``total`` ([finishing, roughing]: layer 0 is finishing),
     refused past :data:`MAX_BALL_POSITIONS` naming the cause: the stock's excess over the part for
     roughing (a bar 10 m above the part: 24 GB, then killed), the fineness for finishing."""
@@ -44,7 +44,7 @@ class TurnMillCancelled(Exception):
     """The progress callback asked to stop."""
 
 
-def _subdivide(points: np.ndarray, counts: np.ndarray, normals: np.ndarray | None = None):
+def subdivide(points: np.ndarray, counts: np.ndarray, normals: np.ndarray | None = None):
     """Split segment i of the polyline into counts[i] equal parts (normals interpolated)."""
     idx = np.repeat(np.arange(len(counts)), counts)
     starts = np.repeat(np.cumsum(counts) - counts, counts)
@@ -56,7 +56,7 @@ def _subdivide(points: np.ndarray, counts: np.ndarray, normals: np.ndarray | Non
     return out, n / np.maximum(np.linalg.norm(n, axis=1), 1e-12)[:, None]
 
 
-def _short_segments(runs: list, spacing: float, rounds: int, push) -> list:
+def short_segments(runs: list, spacing: float, rounds: int, push) -> list:
     """Each run of clear ball centres with centres inserted until no two neighbours are more than
     ``spacing`` (the stepover) apart; ``push(centres)`` -> (centres pushed clear, clear?) fits the
     inserted ones.  For each run, the list of runs it became: it is split where an inserted centre
@@ -81,7 +81,7 @@ def _short_segments(runs: list, spacing: float, rounds: int, push) -> list:
             if np.any(c > 1):
                 added[:] = True                    # segment k's first point is the original one
                 added[np.r_[np.cumsum(c) - c, c.sum()]] = False
-                piece = _subdivide(piece, c)
+                piece = subdivide(piece, c)
             dense.append(piece)
             inserted.append(added)
         points, mask = np.vstack(dense), np.concatenate(inserted)
@@ -167,7 +167,7 @@ def _tight_chords(groups: list, rounds: int, push) -> list:
     return regrouped
 
 
-def _link_clear(a: np.ndarray, b: np.ndarray, surface, settings) -> bool:
+def link_clear(a: np.ndarray, b: np.ndarray, surface, settings) -> bool:
     """Can the ball feed straight from centre a to centre b?  Points along the link, ``s`` apart,
     must each be clear by r - :data:`CHORD_DIP` / 2; between two of them the ball then dips by at
     most s^2 / 8r = :data:`CHORD_DIP` / 2 more.  Points a stepover apart are tried first: most
@@ -249,20 +249,20 @@ def _ring_keys(centre: np.ndarray, ring: int):
                 yield (cx + dx, cy + dy, cz + ring)
 
 
-def _join_layers(layers: dict, surface, settings, progress=None) -> list:
-    """:func:`_join` on every layer, outermost first; ``progress(fraction)`` over all of them."""
+def join_layers(layers: dict, surface, settings, progress=None) -> list:
+    """:func:`join_runs` on every layer, outermost first; ``progress(fraction)`` over all of them."""
     total = max(1, sum(len(runs) for runs in layers.values()))
     done, joined = 0, []
     for k in range(max(layers), -1, -1):
         runs = layers.get(k, [])
         report = None if progress is None else \
             (lambda fraction, base=done, size=len(runs): progress((base + fraction * size) / total))
-        joined.append(_join(runs, surface, settings, report))
+        joined.append(join_runs(runs, surface, settings, report))
         done += len(runs)
     return joined
 
 
-def _join(runs: list, surface, settings, progress=None) -> list:
+def join_runs(runs: list, surface, settings, progress=None) -> list:
     """Order the runs of one layer nearest first (a run may be reversed), and join a run to the
     one before it into a pass when the gap is at most four stepovers and the straight link is clear.
 
@@ -284,7 +284,7 @@ def _join(runs: list, surface, settings, progress=None) -> list:
         to_start, to_end = np.linalg.norm(run[0] - end), np.linalg.norm(run[-1] - end)
         if to_end < to_start:
             run = run[::-1]
-        if min(to_start, to_end) <= 4 * settings.pick_feed and _link_clear(end, run[0], surface, settings):
+        if min(to_start, to_end) <= 4 * settings.pick_feed and link_clear(end, run[0], surface, settings):
             passes[-1] = np.vstack([passes[-1], run])
         else:
             passes.append(run)
@@ -293,7 +293,7 @@ def _join(runs: list, surface, settings, progress=None) -> list:
 
 def merged_move_clear(direction: str, surface, settings):
     """``accept`` for :func:`program.merge_short_moves`: along each merged X-Z-C move (the curve the
-    machine traces), ball centres the chord spacing of :func:`_link_clear` apart each stay clear of
+    machine traces), ball centres the chord spacing of :func:`link_clear` apart each stay clear of
     the part by r - CHORD_DIP / 2, so between them the ball dips no deeper than a planned chord.
     All the moves asked about at once are checked in one nearest-point query."""
     r = settings.radius

@@ -70,13 +70,14 @@ import numpy as np
 from ...ir import kinematics
 from . import turnskip
 from ...engines.facets import planning_mesh
-from ...ir.kinematics import machine_to_part  # noqa: F401  (callers of turnmill.machine_to_part)
-from ...engines.meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEngine, check_mesh, face_normals, face_samples)
+from ...engines.meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEngine, check_mesh, checked_mesh,
+                                 face_normals, face_samples)
 from ...ir.program import FEED, RAPID, Program, Tool, merge_short_moves
 from ...ir.xzc import TurnMillOperation
 from .errors import TurnMillError
 from .turnreach import AXIAL, BOTH, DIRECTIONS, LABEL_NAMES, NEITHER, RADIAL, classify_faces, path_faces
-from .turnjoin import (CHORD_DIP, MAX_BALL_POSITIONS, TurnMillCancelled, _counted, _join, _join_layers, _link_clear, _short_segments, _subdivide, merged_move_clear)
+from .turnjoin import (CHORD_DIP, MAX_BALL_POSITIONS, TurnMillCancelled, count_positions, join_layers, merged_move_clear,
+                       short_segments, subdivide)
 
 PUSH_ITERATIONS = 8      # rounds of pushing a ball centre clear of the surface (corners need 2-3)
 
@@ -199,7 +200,7 @@ def _dedupe(points: np.ndarray, *others: np.ndarray):
 def _densify(points: np.ndarray, spacing: float, normals: np.ndarray):
     """Points at most ``spacing`` apart along the polyline (normals interpolated)."""
     counts = np.maximum(1, np.ceil(np.linalg.norm(np.diff(points, axis=0), axis=1) / spacing)).astype(int)
-    return _subdivide(points, counts, normals)
+    return subdivide(points, counts, normals)
 
 
 def densify_polar(points: np.ndarray, tolerance: float) -> np.ndarray:
@@ -207,7 +208,7 @@ def densify_polar(points: np.ndarray, tolerance: float) -> np.ndarray:
     from the straight segment by at most ``tolerance`` (:func:`kinematics.polar_split_counts`)."""
     if len(points) < 2:
         return points
-    return _subdivide(points, kinematics.polar_split_counts(points, tolerance))
+    return subdivide(points, kinematics.polar_split_counts(points, tolerance))
 
 
 def _clear_ball(surface: Triangles, centres: np.ndarray, r: float, allowance: float):
@@ -262,7 +263,7 @@ def _fit_runs(polylines: list, closed: list, surface, stock, settings, max_z_shi
         runs.append([_dedupe(fitted[part][run]) for run in _run_indices(keep[part], is_closed)])
         start += len(polyline)
     # no two centres of a run more than a stepover apart, so no segment cuts a convex edge's corner
-    pieces = iter(_short_segments([run for group in runs for run in group], settings.pick_feed, PUSH_ITERATIONS,
+    pieces = iter(short_segments([run for group in runs for run in group], settings.pick_feed, PUSH_ITERATIONS,
                                   lambda centres: _clear_ball(surface, centres, r, tol / 10)))
     return [[piece for _ in group for piece in next(pieces)] for group in runs]
 
@@ -346,7 +347,8 @@ def _offset_section(points, normals, closed, r, max_turn):
     return _dedupe(np.vstack(centres), np.vstack(centre_normals))
 
 
-def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings, progress=None) -> list:
+def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings, progress=None,
+                  surface: Triangles | None = None) -> list:
     """Ball-centre passes (part coordinates, (k, 3) arrays) for the radial tool, one list per
     layer: the outermost roughing layer first, the finishing layer (on the surface) last.
 
@@ -361,6 +363,9 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
     Near a shoulder, centres are pushed off their slice.  Those pushed in Z by a slice spacing or
     more are dropped: they belong to the slice nearest the shoulder, which is always within a
     spacing.  So each shoulder gets one pass at exactly the right height.
+
+    ``surface``: the part's :class:`Triangles` when the caller has them (:func:`plan` builds them
+    once for every stage); None builds them here.
     """
     v, f = check_mesh(vertices, faces)
     ids = _face_ids(face_ids, len(f))
@@ -389,18 +394,18 @@ def radial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSet
                 layer = centres + k * step * outward
                 if not np.any(stock.distance(layer) < r - tol):
                     break
-                _counted(total, len(layer), "radial", k, step, stock, v)
+                count_positions(total, len(layer), "radial", k, step, stock, v)
                 layer_of.append(k)
                 polylines.append(layer)
                 closed_flags.append(closed)
                 shifts.append((1 if k == 0 else every) * spacing - 1e-9)
     if not polylines:
         return []
-    surface = Triangles.shared(v[f])
+    surface = Triangles(v[f]) if surface is None else surface
     layers: dict = {}
     for k, runs in zip(layer_of, _fit_runs(polylines, closed_flags, surface, stock, settings, shifts)):
         layers.setdefault(k, []).extend(runs)
-    return _join_layers(layers, surface, settings, progress)
+    return join_layers(layers, surface, settings, progress)
 
 
 # ----- axial paths ----------------------------------------------------------------------------
@@ -530,12 +535,13 @@ def _grid_passes(v, faces, surface, stock, settings) -> list:
     grid = centres.reshape(ns, nw, 3)
     paths = [_dedupe(np.array([grid[c] for c in path])) for path in chain_cells(occupied.reshape(ns, nw))]
     # cells a stepover apart across lie further apart along a slope: chords cut convex edges (a sphere's)
-    pieces = _short_segments(paths, settings.pick_feed, PUSH_ITERATIONS,
+    pieces = short_segments(paths, settings.pick_feed, PUSH_ITERATIONS,
                              lambda points: _clear_ball(surface, points, r, tol / 10))
     return [piece for group in pieces for piece in group]
 
 
-def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings, progress=None) -> list:
+def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSettings, progress=None,
+                 surface: Triangles | None = None) -> list:
     """Ball-centre passes for the axial tool, one list per layer: the highest roughing copy first,
     the finishing layer (on the faces) last.
 
@@ -543,12 +549,13 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
     feature's direction from the axis, so "outward" is a grid axis.  The finishing passes are
     copied up by ``roughing_step`` at a time until no copy reaches the stock (the paper: until
     the path's lowest Z clears the tool radius above the end face).  Copies are pushed clear like
-    the finishing passes, so the walls above a floor are respected."""
+    the finishing passes, so the walls above a floor are respected.  ``surface``: as for
+    :func:`radial_layers`."""
     v, f = check_mesh(vertices, faces)
     ids = _face_ids(face_ids, len(f))
     if not len(ids):
         return []
-    surface = Triangles.shared(v[f])
+    surface = Triangles(v[f]) if surface is None else surface
     r, tol = settings.radius, settings.tolerance
     finishing = [p for group in _components(f, ids) for p in _grid_passes(v, f[group], surface, stock, settings)]
     if not finishing:
@@ -559,14 +566,14 @@ def axial_layers(vertices, faces, face_ids, stock: Stock, settings: TurnMillSett
         touching = [c for c in lifted if np.any(stock.distance(c) < r - tol)]
         if not touching:
             break
-        _counted(total, sum(len(c) for c in touching), "axial", k, settings.roughing_step, stock, v)
+        count_positions(total, sum(len(c) for c in touching), "axial", k, settings.roughing_step, stock, v)
         layer_of += [k] * len(touching)
         copies += touching
     layers: dict = {0: finishing}
     if copies:
         for k, runs in zip(layer_of, _fit_runs(copies, [False] * len(copies), surface, stock, settings)):
             layers.setdefault(k, []).extend(runs)
-    return _join_layers(layers, surface, settings, progress)
+    return join_layers(layers, surface, settings, progress)
 
 
 # ----- machine coordinates and operations ------------------------------------------------------
@@ -663,7 +670,8 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
     settings = TurnMillSettings() if settings is None else settings
     if not isinstance(stock, Stock):
         raise TurnMillError(f"stock must be a Stock, got {type(stock).__name__}")
-    v, f = check_mesh(vertices, faces)
+    checked = checked_mesh(vertices, faces)
+    v, f = checked.vertices, checked.faces
     given_v, given_f = v, f
     outside = (np.hypot(v[:, 0], v[:, 1]) > stock.radius + settings.tolerance) | \
               (v[:, 2] < stock.z_min - settings.tolerance) | (v[:, 2] > stock.z_max + settings.tolerance)
@@ -675,7 +683,7 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
         if labels.shape != (len(f),) or not np.all(np.isin(labels, (NEITHER, RADIAL, AXIAL, BOTH))):
             raise TurnMillError(f"labels must be {len(f)} values from NEITHER, RADIAL, AXIAL, BOTH")
     # plan on the planning mesh: coplanar faces split into many merged back (the same surface)
-    planning = planning_mesh(v, f, labels)
+    planning = planning_mesh(v, f, labels, checked.reverse, checked.normals)
     face_count = len(f)
     if planning.merged:
         v, f = check_mesh(planning.vertices, planning.faces)
@@ -685,14 +693,14 @@ def plan(vertices, faces, stock: Stock, settings: TurnMillSettings | None = None
     else:
         labels = labels[planning.source]
     radial_ids, axial_ids = path_faces(v, f, labels)
+    surface = Triangles(v[f])            # one nearest-point structure for every stage below
     report(0.5, "radial layers")
     radial = radial_layers(v, f, radial_ids, stock, settings,
-                           lambda fraction: report(0.5 + 0.3 * fraction, "radial layers"))
+                           lambda fraction: report(0.5 + 0.3 * fraction, "radial layers"), surface)
     report(0.8, "axial layers")
     axial = axial_layers(v, f, axial_ids, stock, settings,
-                         lambda fraction: report(0.8 + 0.15 * fraction, "axial layers"))
+                         lambda fraction: report(0.8 + 0.15 * fraction, "axial layers"), surface)
     report(0.95, "operations")
-    surface = Triangles.shared(v[f])
     operations = []
     for direction, layers in (("radial", radial), ("axial", axial)):
         for label, part in (("roughing", layers[:-1]), ("finishing", layers[-1:])):
