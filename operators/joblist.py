@@ -25,7 +25,9 @@ from ..toolpath.job import fingerprint, plan_job
 from . import convert, simview
 from .common import SteppedOperator, run_reported
 from .exporting import NCExport, machine_post, write_program
-from .jobentry import JobEntry, JobFileError, apply_settings, settings_of
+from .jobentry import JobFileError
+from .jobrows import (active_row, job_list, read_back, row_by_uid, row_entry, select_row, show_row,
+                      shown_state, snapshot)
 from .preferences import scene_post
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -52,83 +54,7 @@ def kind_items(self=None, context=None) -> list:
 _KIND_ITEMS = [(w.kind, w.label, w.description) for w in adapters().values()]
 
 
-def group_of(scene, kind: str):
-    """The kind's panel group (``scene.kezuri.<kind>``), None for a kind without one (drill)."""
-    group = getattr(scene.kezuri, kind, None)
-    return group if isinstance(group, bpy.types.PropertyGroup) else None
-
-
-def job_list(scene):
-    return scene.kezuri.job_list
-
-
-def active_row(scene):
-    rows = job_list(scene).rows
-    index = job_list(scene).active
-    return rows[index] if 0 <= index < len(rows) else None
-
-
-def row_by_uid(scene, uid: int):
-    return next((row for row in job_list(scene).rows if row.uid == uid), None)
-
-
-# ----- the selected row and its kind's panel ---------------------------------------------------------
-
-def read_back(scene) -> None:
-    """The panel group's settings back into the row shown in it (editing the panel edits the row)."""
-    row = row_by_uid(scene, job_list(scene).shown)
-    group = None if row is None else group_of(scene, row.kind)
-    if group is not None:
-        settings = json.dumps(settings_of(group), sort_keys=True)
-        if settings != row.settings:
-            row.settings = settings
-
-
-def show_row(scene, row) -> None:
-    """The row's settings into its kind's panel group (checked as a job file's are)."""
-    group = group_of(scene, row.kind)
-    if group is not None:
-        apply_settings(group, row_entry(row, 0))
-    job_list(scene).shown = row.uid
-
-
-def select_row(scene) -> None:
-    """The list's selection changed: keep what the panel holds, then show the new row's settings."""
-    read_back(scene)
-    row = active_row(scene)
-    if row is None:
-        job_list(scene).shown = -1
-        return
-    try:
-        show_row(scene, row)
-    except InputError as error:     # a row edited by hand into a bad value: say so, keep the panel
-        print(f"Kezuri: {error}")
-        job_list(scene).shown = -1
-
-
 # ----- rows as job-file entries -----------------------------------------------------------------------
-
-def parsed(row, field: str, where: str) -> dict:
-    try:
-        value = json.loads(getattr(row, field) or "{}")
-    except json.JSONDecodeError as error:
-        raise JobFileError(f"{where}: {field} is not JSON ({error})") from None
-    if not isinstance(value, dict):
-        raise JobFileError(f"{where}: {field} must be a table of names and values")
-    return value
-
-
-def row_entry(row, index: int) -> JobEntry:
-    """The row as a job file's entry (``index``: its place in the list, from 1, for messages)."""
-    where = f"job list: operation {index} ({row.name!r})" if index else f"job list: {row.name!r}"
-    objects = {}
-    for item in row.objects:
-        if item.object is not None:
-            objects[item.slot] = item.object
-    extra = parsed(row, "extra", where)
-    table = {"kind": row.kind, "name": row.name, "enabled": row.enabled, **extra}
-    return JobEntry(row.name, row.kind, row.enabled, objects, parsed(row, "settings", where), table, where)
-
 
 def rows_upto(scene, upto: int | None = None) -> list:
     rows = list(job_list(scene).rows)
@@ -163,15 +89,6 @@ def keep_only(scene, planned) -> None:
     used = {item.fingerprint for item in planned.planned}
     for key in [k for k in cache if k not in used]:
         del cache[key]
-
-
-def snapshot(scene, row) -> str:
-    """What the list compares to say "stale" cheaply: the row as it would be saved."""
-    settings = row.settings
-    if job_list(scene).shown == row.uid and group_of(scene, row.kind) is not None:
-        settings = json.dumps(settings_of(group_of(scene, row.kind)), sort_keys=True)
-    objects = sorted((item.slot, item.object.name if item.object else "") for item in row.objects)
-    return json.dumps([row.kind, row.name, row.enabled, objects, settings, row.extra])
 
 
 def stale_names(scene, job) -> list:
@@ -299,8 +216,9 @@ def job_file_text(scene, path: str) -> str:
         entry = row_entry(row, index)
         lines += ["", "[[operations]]", f"kind = {toml_value(row.kind)}", f"name = {toml_value(row.name)}",
                   f"enabled = {toml_value(row.enabled)}"]
-        if entry.objects:
-            lines.append(f"objects = {toml_value({slot: obj.name for slot, obj in entry.objects.items()})}")
+        objects = {slot: obj.name for slot, obj in entry.objects.items() if obj is not None}
+        if objects:
+            lines.append(f"objects = {toml_value(objects)}")
         lines.append(f"settings = {toml_value(entry.settings)}")
         for key, value in entry.table.items():
             if key not in ROW_KEYS:
@@ -461,7 +379,11 @@ class KEZURI_OT_job_generate(SteppedOperator, bpy.types.Operator):
         return JobListOperator.poll.__func__(cls, context)
 
     def prepare(self, context):
-        job, frame, _ = build(context.scene)
+        try:
+            job, frame, _ = build(context.scene)
+        except InputError as error:
+            mark_failed(context.scene, error)
+            raise
         cache = cache_of(context.scene)
         return lambda progress=None: (plan_job(job, cache, progress), frame)
 
@@ -602,11 +524,11 @@ class KEZURI_OT_job_load(bpy.types.Operator, ImportHelper):
 STATE_ICONS = {"NEW": "DOT", "PLANNED": "CHECKMARK", "STALE": "TIME", "FINDINGS": "ERROR", "FAILED": "CANCEL"}
 
 
-def shown_state(scene, row) -> str:
-    """The row's state for the list: a planned row whose inputs changed since reads "stale"."""
-    if row.state in {"PLANNED", "FINDINGS"} and row.snapshot and row.snapshot != snapshot(scene, row):
-        return "STALE"
-    return row.state
+def mark_failed(scene, error) -> None:
+    """The rows the error names (as "job list: operation 2 ('holes')") are marked as failed."""
+    for index, row in enumerate(job_list(scene).rows, 1):
+        if f"job list: operation {index} ({row.name!r})" in str(error):
+            row.state = "FAILED"
 
 
 class KEZURI_UL_job(bpy.types.UIList):

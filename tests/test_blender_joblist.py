@@ -170,6 +170,7 @@ def test_errors_are_reported_not_raised_out_of_the_operators(plate_job):
     scene.kezuri.job_list.rows[1].extra = json.dumps({"holes": []})
     with pytest.raises(RuntimeError, match="holes"):       # bpy.ops turns an ERROR report into RuntimeError
         bpy.ops.kezuri.job_generate()
+    assert [r.state for r in scene.kezuri.job_list.rows] == ["NEW", "FAILED"]
     scene.kezuri.job_list.rows[1].settings = "{depth: 3"
     with pytest.raises(RuntimeError, match="settings is not JSON"):
         bpy.ops.kezuri.job_generate()
