@@ -168,13 +168,13 @@ def changed(scene, row) -> bool:
 
 def shown_state(scene, row) -> str:
     """The row's state for the list: a planned row whose inputs changed since it was planned, or
-    after a switched-on row that changed (it starts from that row's stock), reads "stale"."""
+    after a row that changed (it starts from that row's stock), reads "stale"."""
     if row.state not in {"PLANNED", "FINDINGS"}:
         return row.state
     for earlier in job_list(scene).rows:
         if earlier == row:
             break
-        if earlier.enabled and changed(scene, earlier):
+        if changed(scene, earlier):       # switched on or off, or edited: the stock after it differs
             return "STALE"
     return "STALE" if changed(scene, row) else row.state
 

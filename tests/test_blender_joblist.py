@@ -84,6 +84,11 @@ def test_changing_the_drill_stales_only_it_and_export_replans_only_it_as_batch_w
     scene.kezuri.job_list.active = 1
     rows[1].settings = json.dumps({**DRILL, "depth": 10.0})
     assert [joblist.shown_state(scene, r) for r in rows] == ["PLANNED", "STALE"]
+    scene.kezuri.job_list.active = 0
+    scene.kezuri.engrave.seed = 8               # the engraving edited in its panel: both stale (the chain)
+    assert [joblist.shown_state(scene, r) for r in rows] == ["STALE", "STALE"]
+    scene.kezuri.engrave.seed = 7
+    assert [joblist.shown_state(scene, r) for r in rows] == ["PLANNED", "STALE"]
     job, _, _ = joblist.build(scene)
     assert joblist.stale_names(scene, job) == ["holes"]
     text, said = export(scene, tmp_path / "plate.ngc", capfd)
@@ -165,8 +170,12 @@ def test_simulate_up_to_the_first_row_cuts_only_its_operations(plate_job):
     assert whole in {"PLANNED", "FINDINGS"}
 
 
-def test_errors_are_reported_not_raised_out_of_the_operators(plate_job):
+def test_errors_are_reported_not_raised_out_of_the_operators(plate_job, tmp_path):
     scene = plate_job
+    if not bpy.data.filepath:            # (once a test has saved a .blend this session, it is saved)
+        with pytest.raises(RuntimeError, match="save the .blend first"):
+            bpy.ops.kezuri.job_save(filepath=str(tmp_path / "unsaved.toml"))
+        assert not (tmp_path / "unsaved.toml").exists()
     scene.kezuri.job_list.rows[1].extra = json.dumps({"holes": []})
     with pytest.raises(RuntimeError, match="holes"):       # bpy.ops turns an ERROR report into RuntimeError
         bpy.ops.kezuri.job_generate()
@@ -174,6 +183,12 @@ def test_errors_are_reported_not_raised_out_of_the_operators(plate_job):
     scene.kezuri.job_list.rows[1].settings = "{depth: 3"
     with pytest.raises(RuntimeError, match="settings is not JSON"):
         bpy.ops.kezuri.job_generate()
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[[operations]]\nkind = "engrave"\nname = "a"\nobjects = { plate = "Plate" }\n\n'
+                   '[[operations]]\nkind = "engrave"\nname = "b"\nobjects = { plate = "No Such Plate" }\n')
+    with pytest.raises(RuntimeError, match="No Such Plate"):
+        bpy.ops.kezuri.job_load(filepath=str(bad))
+    assert [r.name for r in scene.kezuri.job_list.rows] == ["engraving", "holes"]     # the list as it was
     scene.kezuri.job_list.rows.clear()
     assert not bpy.ops.kezuri.job_generate.poll()
 
