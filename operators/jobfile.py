@@ -18,6 +18,9 @@ A job file (TOML)::
     objects = { plate = "Plate", letters = "Letters" }   # the kind's object slots
     settings = { seed = 7 }     # the kind's panel settings by property name, checked like the panel's
 
+The CAM tab's job list plans its rows through :func:`job_of` too, and saves them as such a file
+(naming the saved .blend), so a file saved from the panel writes the same program in batch.
+
 Every value is checked before any work: an unknown key, kind, object or setting, or a value the
 setting's range refuses, is an error naming the file, the operation and the key as typed.
 """

@@ -1,5 +1,5 @@
-"""View3D > Sidebar > CAM: the job picker, the picked workflow's panels, Simulate & Check and
-Machine & Stock.
+"""View3D > Sidebar > CAM: the job picker, Machine & Stock, the job list (the scene's operations as
+one job, :mod:`.joblist`), the picked workflow's panels and Simulate & Check.
 
 The job (``scene.kezuri.job``, one entry per workflow of the table with panels) decides which
 workflow panels show: a panel with ``job = "ENGRAVE"`` shows only while Engraving is picked
