@@ -3,11 +3,11 @@ from __future__ import annotations
 
 import bpy
 
-from . import panels, preferences, properties, simulate, translations
+from . import joblist, panels, preferences, properties, simulate, translations
 from .workflows import WORKFLOWS, job_items
 
 CLASSES = (*preferences.CLASSES, *(cls for workflow in WORKFLOWS for cls in workflow.classes), *simulate.CLASSES,
-           *panels.CLASSES)
+           *joblist.CLASSES, *panels.CLASSES)
 MENUS = tuple(menu for workflow in WORKFLOWS for menu in workflow.menus)
 
 

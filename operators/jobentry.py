@@ -27,12 +27,26 @@ class JobEntry:
     base_dir: str = "."      # where the job file's relative paths start
 
 
+VALUE_TYPES = {"BOOLEAN", "INT", "FLOAT", "STRING", "ENUM"}
+
+
+def setting_names(group) -> list:
+    """The settings of a panel's property group: its values (not its object pointers)."""
+    return [prop.identifier for prop in group.bl_rna.properties
+            if prop.identifier not in ("rna_type", "name") and prop.type in VALUE_TYPES]
+
+
 def apply_settings(group, entry: JobEntry, skip=()) -> None:
     """The entry's settings into a panel's property group, each checked: an unknown name or a
-    value the property does not hold as given is an error naming it."""
+    value the property does not hold as given is an error naming it.  A setting the entry does
+    not name is set back to its default first (what another operation or the .blend left there
+    does not leak in), so an entry means the same in a fresh scene and in the panel's."""
     from .batchio import set_exactly
     from .limits import check_group
 
+    for key in setting_names(group):
+        if key not in skip and key not in entry.settings:
+            group.property_unset(key)
     for key, value in entry.settings.items():
         if key in skip:
             continue
@@ -40,3 +54,25 @@ def apply_settings(group, entry: JobEntry, skip=()) -> None:
             raise JobFileError(f"{entry.where}: settings.{key} is not a setting of {entry.kind}")
         set_exactly(group, key, value, f"{entry.where}: settings.{key}")
     check_group(group, entry.kind)
+
+
+def settings_of(group, skip=()) -> dict:
+    """The group's settings that differ from their defaults, by property name (what
+    :func:`apply_settings` puts back): floats as the shortest text their single-precision
+    property holds (0.3, not 0.30000001192092896)."""
+    import numpy as np
+
+    found = {}
+    for key in setting_names(group):
+        prop = group.bl_rna.properties[key]
+        if key in skip or getattr(prop, "is_array", False) or prop.is_hidden:
+            continue
+        value = getattr(group, key)
+        if prop.type == "FLOAT":
+            value = float(str(np.float32(value)))
+            if value == float(str(np.float32(prop.default))):
+                continue
+        elif value == prop.default:
+            continue
+        found[key] = value
+    return found

@@ -18,6 +18,9 @@ A job file (TOML)::
     objects = { plate = "Plate", letters = "Letters" }   # the kind's object slots
     settings = { seed = 7 }     # the kind's panel settings by property name, checked like the panel's
 
+The CAM tab's job list plans its rows through :func:`job_of` too, and saves them as such a file
+(naming the saved .blend), so a file saved from the panel writes the same program in batch.
+
 Every value is checked before any work: an unknown key, kind, object or setting, or a value the
 setting's range refuses, is an error naming the file, the operation and the key as typed.
 """
@@ -152,21 +155,8 @@ def describe_frame(frame) -> str:
     return "X {:g} Y {:g} Z {:g} in the scene".format(*(float(v) for v in frame.origin_mm))
 
 
-def plan_file(path: str, post_name: str | None = None, progress=None, text: str | None = None,
-              base_dir: str | None = None):
-    """Read the job file (``text``: its contents, already read) and plan it: (the planned job, the
-    work frame, the post families, the scene).  ``base_dir``: where the file's relative paths start
-    (default: the file's folder)."""
-    import bpy
-
-    from .preferences import scene_post
-    from .workflows import WORKFLOWS
-
-    data = read(path, text)
-    setup_table = data.get("setup", {})
-    scene = scene_for(setup_table, path, base_dir)
-    adapters = {w.kind: w for w in WORKFLOWS if w.kind and w.job_operation is not None}
-    post_name = post_name or setup_table.get("post") or scene_post(scene)
+def apply_setup(scene, setup_table: dict, path: str) -> None:
+    """The [setup] table's machine preset and work offset into the scene's Machine & Stock."""
     if "machine" in setup_table:
         from . import machines
         scene.kezuri.machine.preset = str(setup_table["machine"])
@@ -174,9 +164,20 @@ def plan_file(path: str, post_name: str | None = None, progress=None, text: str 
     if "work_offset" in setup_table:
         from .batchio import set_exactly
         set_exactly(scene.kezuri.machine, "work_offset", setup_table["work_offset"], f"job file {path}: work_offset")
+
+
+def job_of(scene, entries: list, name: str, post_name: str, where: str):
+    """The job of the entries (read from a job file or the panel's job list), their objects and
+    settings read from the scene: (the Job, the work frame, the post families).  One function for
+    the file and the panel, so both plan and write the same program."""
+    import bpy
+
+    from .workflows import WORKFLOWS
+
+    adapters = {w.kind: w for w in WORKFLOWS if w.kind and w.job_operation is not None}
     depsgraph = bpy.context.evaluated_depsgraph_get()
     operations, setup, frame, families = [], None, None, []
-    for entry in entries(data, scene, path, base_dir):
+    for entry in entries:
         if entry.kind not in adapters:
             raise JobFileError(f"{entry.where}: kind {entry.kind!r} is not one of {', '.join(sorted(adapters))}")
         workflow = adapters[entry.kind]
@@ -189,13 +190,28 @@ def plan_file(path: str, post_name: str | None = None, progress=None, text: str 
             raise JobFileError(f"{entry.where}: its work zero ({describe_frame(op_frame)}) is not the job's "
                                f"({describe_frame(frame)}): the operations of one job share one work zero")
     if setup is None:
-        raise JobFileError(f"job file {path}: no operation gives the stock: begin with one that works on a "
+        raise JobFileError(f"{where}: no operation gives the stock: begin with one that works on a "
                            "plate or a part (engrave, carve)")
-    name = str(setup_table.get("name") or os.path.splitext(os.path.basename(path))[0])
     setup = Setup(name=name, post=post_name, machine=setup.machine, work_offset=setup.work_offset,
                   rapid_rate=setup.rapid_rate, stock=setup.stock)
-    planned = plan_job(Job(setup, tuple(operations)), progress=progress)
-    return planned, frame, tuple(families), scene
+    return Job(setup, tuple(operations)), frame, tuple(families)
+
+
+def plan_file(path: str, post_name: str | None = None, progress=None, text: str | None = None,
+              base_dir: str | None = None):
+    """Read the job file (``text``: its contents, already read) and plan it: (the planned job, the
+    work frame, the post families, the scene).  ``base_dir``: where the file's relative paths start
+    (default: the file's folder)."""
+    from .preferences import scene_post
+
+    data = read(path, text)
+    setup_table = data.get("setup", {})
+    scene = scene_for(setup_table, path, base_dir)
+    post_name = post_name or setup_table.get("post") or scene_post(scene)
+    apply_setup(scene, setup_table, path)
+    name = str(setup_table.get("name") or os.path.splitext(os.path.basename(path))[0])
+    job, frame, families = job_of(scene, entries(data, scene, path, base_dir), name, post_name, f"job file {path}")
+    return plan_job(job, progress=progress), frame, families, scene
 
 
 def write_job(path: str, out: str, post_name: str | None = None, allow_findings: bool = False,

@@ -1,5 +1,5 @@
-"""View3D > Sidebar > CAM: the job picker, the picked workflow's panels, Simulate & Check and
-Machine & Stock.
+"""View3D > Sidebar > CAM: the job picker, Machine & Stock, the job list (the scene's operations as
+one job, :mod:`.joblist`), the picked workflow's panels and Simulate & Check.
 
 The job (``scene.kezuri.job``, one entry per workflow of the table with panels) decides which
 workflow panels show: a panel with ``job = "ENGRAVE"`` shows only while Engraving is picked
@@ -308,6 +308,73 @@ class KEZURI_PT_simulate(KezuriPanel, bpy.types.Panel):
             layout.label(text="No findings", icon="CHECKMARK")
 
 
+class KEZURI_PT_joblist(KezuriPanel, bpy.types.Panel):
+    # the scene's operations as one job (operators/joblist.py): the list, the selected one below
+    bl_idname = "KEZURI_PT_joblist"
+    bl_label = "Job"
+
+    def draw(self, context):
+        from .joblist import STATE_ICONS, kind_items
+
+        layout = self.layout
+        listed = context.scene.kezuri.job_list
+        layout.template_list("KEZURI_UL_job", "", listed, "rows", listed, "active", rows=4)
+        row = layout.row(align=True)
+        row.menu("KEZURI_MT_job_add", icon="ADD", text="")
+        row.operator("kezuri.job_duplicate", icon="DUPLICATE", text="")
+        row.operator("kezuri.job_remove", icon="REMOVE", text="")
+        row.operator("kezuri.job_move", icon="TRIA_UP", text="").direction = "UP"
+        row.operator("kezuri.job_move", icon="TRIA_DOWN", text="").direction = "DOWN"
+        row.operator("kezuri.job_load", icon="FILEBROWSER", text="")
+        row.operator("kezuri.job_save", icon="FILE_TICK", text="")
+        selected = listed.rows[listed.active] if 0 <= listed.active < len(listed.rows) else None
+        if selected is not None:
+            box = layout.box()
+            label = next((label for key, label, _ in kind_items() if key == selected.kind), selected.kind)
+            box.label(text=f"{iface(label)}: {selected.name}", icon=STATE_ICONS.get(selected.state, "DOT"),
+                      translate=False)
+            for item in selected.objects:
+                field(box, item, "object", text=iface(item.slot.capitalize()))
+            if getattr(context.scene.kezuri, selected.kind, None) is None:     # no panel of its own: as in the file
+                box.prop(selected, "settings", text="")
+                box.prop(selected, "extra", text="")
+        big_button(layout, "kezuri.job_generate", "FILE_REFRESH")
+        column = layout.column(align=True)
+        column.operator("kezuri.job_simulate", icon="MOD_BOOLEAN", text="Simulate Job").upto = False
+        column.operator("kezuri.job_simulate", icon="TRIA_DOWN_BAR", text="Simulate up to Selected").upto = True
+        layout.operator("kezuri.job_export", icon="EXPORT")
+        field(layout, context.scene.kezuri, "show_rapids")
+
+
+def joblist_subpanels(classes) -> tuple:
+    """The settings sub-panels of each job kind's workflow panel, again under the Job panel, shown
+    while a row of that kind is selected (they draw the kind's group, which holds the row's settings)."""
+    from .joblist import adapters
+
+    made = []
+    for kind, workflow in adapters().items():
+        mains = {cls.bl_idname for cls in classes if cls.job == workflow.key and not getattr(cls, "bl_parent_id", "")}
+        for cls in classes:
+            if getattr(cls, "bl_parent_id", "") in mains:
+                idname = "KEZURI_PT_joblist_" + cls.bl_idname.removeprefix("KEZURI_PT_")
+                poll = classmethod(_kind_poll(kind))
+                made.append(type(idname, (KezuriPanel, bpy.types.Panel),
+                                 {"bl_idname": idname, "bl_label": cls.bl_label, "bl_parent_id": "KEZURI_PT_joblist",
+                                  "bl_options": {"DEFAULT_CLOSED"}, "draw": cls.draw, "poll": poll}))
+    return tuple(made)
+
+
+def _kind_poll(kind: str):
+    def poll(cls, context):
+        return _selected_kind(context) == kind
+    return poll
+
+
+def _selected_kind(context) -> str:
+    listed = context.scene.kezuri.job_list
+    return listed.rows[listed.active].kind if 0 <= listed.active < len(listed.rows) else ""
+
+
 KEZURI_PT_engrave_finish = property_subpanel(
     "KEZURI_PT_engrave_finish", "Band & Burr Finishing", "KEZURI_PT_engrave", "engrave",
     ("finish_diameter", "finish_tool_number", "band_width", "band_depth", "band_stepover", "band_step_down",
@@ -330,8 +397,11 @@ KEZURI_PT_carve_settings = property_subpanel(
     ("finish_tool_number", "max_slope", "steep_cleanup", "wall_pass", "sample_spacing", "rough_rpm", "finish_rpm", "rough_feed",
      "finish_feed", "plunge_feed", "clearance", "safe_z"))
 
-CLASSES = (KEZURI_PT_job, KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
+WORKFLOW_PANELS = (KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engrave_finish,
            KEZURI_PT_engrave_feeds, KEZURI_PT_rotary, KEZURI_PT_rotary_settings, KEZURI_PT_stepnc,
            KEZURI_PT_stepnc_write, KEZURI_PT_turnmill, KEZURI_PT_turnmill_settings, KEZURI_PT_carve,
            KEZURI_PT_carve_roughing, KEZURI_PT_carve_settings, KEZURI_PT_sheet,
-           KEZURI_PT_sheet_setup, KEZURI_PT_sheet_elbow, KEZURI_PT_simulate, KEZURI_PT_machine)
+           KEZURI_PT_sheet_setup, KEZURI_PT_sheet_elbow, KEZURI_PT_simulate)
+# Machine & Stock on top, the job list below it, then the picked workflow's panels
+CLASSES = (KEZURI_PT_job, KEZURI_PT_machine, KEZURI_PT_joblist, *joblist_subpanels(WORKFLOW_PANELS),
+           *WORKFLOW_PANELS)

@@ -15,7 +15,8 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
 from .. import post as posts
 from ..toolpath.ir import machine as machine_presets
 from ..toolpath.operations.sheetmetal import nibbling
-from . import limits, machines, pathview
+from . import jobrows, limits, machines, pathview
+from .jobrows import KezuriJobList
 
 _ENUM_ITEMS: dict = {}   # Blender reads dynamic enum strings after the callback returns: keep them alive
 
@@ -436,6 +437,7 @@ class KezuriSettings(bpy.types.PropertyGroup):
     simulation: PointerProperty(type=KezuriSimulation)
     show_rapids: BoolProperty(name="Show Rapids", default=True, update=pathview.show_rapids,
                               description="Show the rapid moves in the preview")
+    job_list: PointerProperty(type=KezuriJobList)       # the CAM tab's job list (operators/joblist.py)
 
 
 for _cls, _group in ((KezuriMachine, "machine"), (KezuriEngrave, "engrave"), (KezuriPocket, "pocket"),
@@ -444,7 +446,8 @@ for _cls, _group in ((KezuriMachine, "machine"), (KezuriEngrave, "engrave"), (Ke
     limited(_cls, _group)
 
 CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriPocket, KezuriRotary, KezuriWorkingstep,
-           KezuriStepNC, KezuriTurnMill, KezuriCarve, KezuriFinding, KezuriSimulation, KezuriSettings)
+           KezuriStepNC, KezuriTurnMill, KezuriCarve, KezuriFinding, KezuriSimulation, *jobrows.CLASSES,
+           KezuriSettings)
 
 
 def register(jobs: list):

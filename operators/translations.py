@@ -1803,8 +1803,8 @@ MESSAGE_TEMPLATES = {
     '{}: objects.{} = {} is not an object of the scene': '{0}：objects.{1} = {2} はシーンのオブジェクトではありません',
     '{}: settings.{} is not a setting of {}': '{0}：settings.{1} は {2} の設定ではありません',
     '{}: kind {} is not one of {}': '{0}：種類 {1} は {2} のいずれでもありません',
-    'job file {}: no operation gives the stock: begin with one that works on a plate or a part (engrave, carve)':
-        'ジョブファイル {0}：素材を決める加工がありません。板や部品を加工するもの（engrave、carve）から始めてください',
+    '{}: no operation gives the stock: begin with one that works on a plate or a part (engrave, carve)':
+        '{0}：素材を決める加工がありません。板や部品を加工するもの（engrave、carve）から始めてください',
     'job file {}: no such file': 'ジョブファイル {0}：ファイルがありません',
     'job file {}: a folder, not a job file': 'ジョブファイル {0}：ジョブファイルではなくフォルダーです',
     'job file {}: not UTF-8 text': 'ジョブファイル {0}：UTF-8 のテキストではありません',
@@ -1870,18 +1870,86 @@ MESSAGE_TEMPLATES = {
     'setup sheet gate status {}: one of {}': '段取りシートのゲート状態 {0}：{1} のいずれかです',
 }
 
+# ----- the job list (operators/joblist.py, issue 28): added to the tables by _build ---------------------
+JOBLIST_OPERATORS = {
+    "Add Operation": "加工を追加", "Duplicate Operation": "加工を複製", "Remove Operation": "加工を削除",
+    "Move Operation": "加工を移動", "Generate Job": "ジョブを生成", "Simulate Job": "ジョブをシミュレーション",
+    "Simulate up to Selected": "選択までシミュレーション", "Export Job NC": "ジョブNCを書き出し",
+    "Save Job File": "ジョブファイルを保存", "Load Job File": "ジョブファイルを読み込み",
+}
+JOBLIST_TEXTS = {
+    "Add an operation to the end of the job": "ジョブの最後に加工を追加します",
+    "Add a copy of the selected operation after it": "選択した加工の複製をその後ろに追加します",
+    "Remove the selected operation from the job": "選択した加工をジョブから削除します",
+    "Move the selected operation up or down the job (the order it is cut in)":
+        "選択した加工をジョブの中で上下に移動します（削る順序）",
+    "Plan the job's operations that changed (and those after them) and show every toolpath":
+        "変更されたジョブの加工（とその後の加工）を計画し、すべてのツールパスを表示します",
+    "Cut the stock with the whole job, or with the operations up to the selected one, and check it":
+        "ジョブ全体、または選択した加工までで素材を削り、検査します",
+    "Write the job as one NC program: what Generate planned, re-planning only what changed":
+        "ジョブを1本のNCプログラムとして書き出します（生成した計画を使い、変更された加工だけを再計画）",
+    "Save the job list as a job file (TOML) for batch.py job": "ジョブリストを batch.py job 用のジョブファイル（TOML）に保存します",
+    "Load a job file's operations into the job list (its objects by name from this scene)":
+        "ジョブファイルの加工をジョブリストに読み込みます（オブジェクトはこのシーンから名前で探します）",
+    "Direction": "方向", "Cut it earlier": "先に削る", "Cut it later": "後で削る",
+    "Up to Selected": "選択まで",
+    "Cut only the operations up to the selected one (the stock as it is then)":
+        "選択した加工までだけを削ります（その時点の素材）",
+    "Show the rapid moves in the job's toolpath preview": "ジョブのツールパス表示に早送りを表示します",
+    "Slot": "枠", "Which of the operation's objects this is": "加工のどのオブジェクトか",
+    "Object": "オブジェクト", "The scene object the operation reads for this slot": "この枠で加工が読むシーンのオブジェクト",
+    "Enabled": "有効", "Plan and cut this operation (switched off: left out of the program)":
+        "この加工を計画して削ります（オフ：プログラムから外します）",
+    "Settings": "設定", "The operation's settings by property name (JSON), as a job file keeps them":
+        "加工の設定（プロパティ名ごと、JSON）。ジョブファイルと同じ形です",
+    "More": "その他", "The operation's other keys (JSON), e.g. a drilling's holes in work mm":
+        "加工のその他のキー（JSON）。例：穴あけの穴（ワーク座標 mm）",
+    "Kind": "種類", "The operation's kind (engrave, drill ...)": "加工の種類（engrave、drill など）",
+    "Tools": "工具", "The tool numbers the operation uses": "加工が使う工具番号",
+    "Time": "時間", "Estimated cutting time (min)": "推定加工時間（分）",
+    "Warnings of its plan and findings of the last simulation": "計画の警告と最後のシミュレーションの指摘",
+    "State": "状態", "Not Planned": "未計画", "Not planned yet: Generate plans it": "まだ計画されていません：生成で計画します",
+    "Planned": "計画済み", "Planned: its toolpaths are what Export writes": "計画済み：そのツールパスが書き出されます",
+    "Stale": "要再計画", "Changed since it was planned: Generate or Export plans it again":
+        "計画後に変更されました：生成または書き出しで再計画します",
+    "Planned, with warnings or simulation findings": "計画済み（警告またはシミュレーションの指摘あり）",
+    "Failed": "失敗", "Planning it failed: see the report": "計画に失敗しました：レポートを見てください",
+    "Surface": "曲面", "Drilling": "穴あけ", "Pecked holes at given centres (job files)": "指定した中心にステップ送りの穴（ジョブファイル）",
+    "the job list is empty: add an operation first": "ジョブリストが空です。先に加工を追加してください",
+    "save the .blend first: a job file names the .blend its objects come from":
+        "先に .blend を保存してください。ジョブファイルはオブジェクトを読む .blend を名前で指定します",
+    "Add an operation to the job list first": "先にジョブリストに加工を追加してください",
+    "The .blend has unsaved changes: batch reads the saved .blend, save it too":
+        ".blend に未保存の変更があります。バッチは保存された .blend を読むので、それも保存してください",
+    "nothing re-planned": "再計画なし",
+}
+JOBLIST_TEMPLATES = {
+    "{}: {} is not JSON ({})": "{0}：{1} が JSON ではありません（{2}）",
+    "{}: {} must be a table of names and values": "{0}：{1} は名前と値の表にしてください",
+    "the value {} cannot be written to a job file": "値 {0} はジョブファイルに書けません",
+    "job file {}: operation {} ({}): kind {} is not one of {}":
+        "ジョブファイル {0}：加工 {1}（{2}）：種類 {3} は {4} のいずれでもありません",
+    "Added {}": "{0} を追加しました",
+    "Job planned: about {} min": "ジョブを計画しました：約 {0} 分",
+    "Loaded {} operation(s)": "{0} 件の加工を読み込みました",
+    "re-planned: {}": "再計画：{0}",
+}
+
 
 def _build() -> dict:
     messages: dict = {}
     for table in (PROPERTY_TEXTS, PANEL_TEXTS, OPERATOR_DESCRIPTIONS, MESSAGES):
         for english, japanese in table.items():
             messages[(DEFAULT, english)] = japanese
+    for english, japanese in JOBLIST_TEXTS.items():
+        messages.setdefault((DEFAULT, english), japanese)
     from .. import post
     for cls in post.posts():     # each post declares its own Japanese label and description
         for english, japanese in ((cls.label, cls.label_ja), (cls.description, cls.description_ja)):
             if japanese:
                 messages.setdefault((DEFAULT, english), japanese)
-    for table in (OPERATOR_LABELS, OPERATOR_TEXTS):
+    for table in (OPERATOR_LABELS, OPERATOR_TEXTS, JOBLIST_OPERATORS):
         for english, japanese in table.items():
             messages[(OPERATOR, english)] = japanese
             # A panel may share an operator's label ("Pipe Elbow"): the panel's wording wins in "*".
@@ -1889,6 +1957,7 @@ def _build() -> dict:
     return {LOCALE: messages}
 
 
+MESSAGE_TEMPLATES.update(JOBLIST_TEMPLATES)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 
