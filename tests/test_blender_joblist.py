@@ -72,8 +72,8 @@ def test_generate_plans_every_row_with_its_tools(plate_job):
     shown = sorted(o.name for o in scene.objects if o.name.startswith(joblist.PREFIX)
                    and not o.name.endswith((" plunges", " links", " rapids")))     # the cuts, one per operation
     assert shown == ["Kezuri Job engraving: band finishing", "Kezuri Job engraving: burr contour",
-                     "Kezuri Job engraving: roughing (gouge texture)", "Kezuri Job holes: drill"]
-    drill = scene.objects["Kezuri Job holes: drill"]
+                     "Kezuri Job engraving: roughing (gouge texture)"]
+    drill = scene.objects["Kezuri Job holes: drill plunges"]      # a drill only plunges: no cut object
     xs = sorted({round(p.co.x) for spline in drill.data.splines for p in spline.points})
     assert xs[0] == -90 and xs[-1] == 90          # the holes where they were given (work = world here)
 
