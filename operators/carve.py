@@ -30,6 +30,7 @@ from .common import SteppedOperator, run_reported
 from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
+from .plancache import cache_of, keep
 from .preferences import scene_post
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -47,6 +48,7 @@ class CarveJob:
     faces: np.ndarray             # its triangles
     frame: convert.WorkFrame
     seconds: float
+    replanned: tuple = ()         # the operations planned by this call (the rest were Generate's)
 
 
 def settings_from(props) -> core.CarveSettings:
@@ -77,13 +79,17 @@ def design_mesh(scene, depsgraph) -> tuple:
 
 
 def run_on_mesh(vertices, faces, settings: core.CarveSettings, frame, stock_above: float = 0.0, name="carve",
-                work_offset="G54", rapid_rate=5000.0, progress=None) -> CarveJob:
-    """Plan (timed) without touching Blender data: a job of one carving operation."""
+                work_offset="G54", rapid_rate=5000.0, progress=None, cache: dict | None = None) -> CarveJob:
+    """Plan (timed) without touching Blender data: a job of one carving operation; ``cache``: the
+    scene's plans (:mod:`.plancache`), None to plan afresh."""
     setup = Setup(name=name, work_offset=work_offset, rapid_rate=rapid_rate)
     geometry = CarveGeometry(np.asarray(vertices), np.asarray(faces), float(stock_above))
-    planned = plan_job(Job(setup, (JobOperation("carve", "carve", settings, geometry),)), progress=progress)
+    planned = plan_job(Job(setup, (JobOperation("carve", "carve", settings, geometry),)), cache, progress=progress)
+    if cache is not None:
+        keep(cache, planned)
     part = planned.parts[0]
-    return CarveJob(part.result.result, part.result.vertices, part.result.faces, frame, part.seconds)
+    return CarveJob(part.result.result, part.result.vertices, part.result.faces, frame, part.seconds,
+                    tuple(planned.replanned()))
 
 
 def job_operation(scene, depsgraph, entry, post_name: str):
@@ -114,7 +120,9 @@ def carve_request(scene, depsgraph):
     machine = scene.kezuri.machine
     check_group(machine, "machine")
     offset, rate = machine.work_offset, machine.rapid_rate
-    return lambda progress=None: run_on_mesh(vertices, faces, settings, frame, above, name, offset, rate, progress)
+    cache = cache_of(scene)
+    return lambda progress=None: run_on_mesh(vertices, faces, settings, frame, above, name, offset, rate, progress,
+                                             cache)
 
 
 def run_carve(scene, depsgraph, progress=None) -> CarveJob:
@@ -257,6 +265,7 @@ class KEZURI_OT_carve_export(NCExport, bpy.types.Operator):
 
     def write(self, context) -> str:
         job = run_carve(context.scene, context.evaluated_depsgraph_get())
+        self.replanned = job.replanned
         machine = context.scene.kezuri.machine
         return export_carve(job, self.post, self.filepath, machine.work_offset,
                             allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle,

@@ -27,6 +27,7 @@ from .common import SteppedOperator
 from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import SettingError, check_group
+from .plancache import cache_of, keep
 from .preferences import scene_post
 from .properties import post_items, post_number
 from .translations import translate_message
@@ -46,6 +47,7 @@ class EngraveJob:
     letter_loops: list              # the letters' outlines, (k, 2) arrays in work mm
     settings: core.EngraveSettings
     surface: object = None          # surface_engrave.SurfaceJob on a curved plate, else None
+    replanned: tuple = ()           # the operations planned by this call (the rest were Generate's)
 
 
 def settings_from(props, machine=None) -> core.EngraveSettings:
@@ -122,11 +124,14 @@ def engrave_request(scene, depsgraph, post_name: str | None = None):
     """Read the scene (:func:`engrave_operation`); return ``compute(progress)``, which plans the job
     without touching Blender data (so it can run in steps)."""
     operation, setup, plate = engrave_operation(scene, depsgraph, post_name)
+    cache = cache_of(scene)
 
     def compute(progress=None) -> EngraveJob:
-        outcome = plan_job(Job(setup, (operation,)), progress=progress).parts[0].result
+        planned = plan_job(Job(setup, (operation,)), cache, progress=progress)
+        keep(cache, planned)
+        outcome = planned.parts[0].result
         return EngraveJob(outcome.result, outcome.baked, outcome.depths, plate, operation.geometry.letter_loops,
-                          operation.settings, outcome.surface)
+                          operation.settings, outcome.surface, tuple(planned.replanned()))
     return compute
 
 
@@ -250,6 +255,7 @@ class KEZURI_OT_engrave_export(NCExport, bpy.types.Operator):
 
     def write(self, context) -> str:
         job = run_engrave(context.scene, context.evaluated_depsgraph_get(), post_name=self.post)
+        self.replanned = job.replanned
         machine = context.scene.kezuri.machine
         return export_engrave(job, self.post, self.filepath, machine.work_offset,
                               allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle,

@@ -15,6 +15,7 @@ from ..post.capacity import program_findings
 from ..post.output import write_atomic
 from .common import run_reported
 from .preferences import scene_output_dir, scene_post
+from .plancache import replanned_message
 from .translations import translate_message
 
 
@@ -117,8 +118,11 @@ class NCExport(ExportHelper):
                 if preferred is not None:
                     self.post = preferred
             self.findings = []       # what the machine cannot take of the program (write_program)
+            self.replanned = None    # set by a write() that plans through the scene's plans (plancache)
             path = self.write(context)
             self.report({"INFO"}, translate_message(f"Wrote {path}"))
+            if self.replanned is not None:
+                self.report({"INFO"}, translate_message(replanned_message(list(self.replanned))))
             report_findings(self, self.findings)
             return {"FINISHED"}
         return run_reported(self, work)

@@ -26,6 +26,7 @@ from . import convert, pathview, simview
 from .common import SteppedOperator, run_reported
 from .exporting import NCExport, machine_post, write_program
 from .jobentry import JobFileError
+from .plancache import cache_of, keep, replanned_message
 from .jobrows import (active_row, job_list, read_back, row_by_uid, row_entry, select_row, show_row,
                       shown_state, snapshot)
 from .preferences import scene_post
@@ -38,7 +39,6 @@ DEFAULT_SLOTS = {"engrave": (("plate", "stock", "plate"), ("letters", "engrave",
                              ("surface", "engrave", "surface"))}
 DEFAULT_EXTRA = {"drill": {"holes": []}}
 ROW_KEYS = ("kind", "name", "enabled", "objects", "settings")      # a job file's keys a row keeps apart
-_CACHES: dict = {}       # scene.session_uid -> {fingerprint: Part}: the plans kept for each scene
 
 
 def adapters() -> dict:
@@ -77,18 +77,6 @@ def build(scene, post_name: str | None = None, upto: int | None = None):
         shown = row_by_uid(scene, job_list(scene).shown)     # the groups now hold the last rows': put back
         if shown is not None:
             show_row(scene, shown)
-
-
-def cache_of(scene) -> dict:
-    return _CACHES.setdefault(scene.session_uid, {})
-
-
-def keep_only(scene, planned) -> None:
-    """Keep the plans this job uses (the cache would grow with every edit otherwise)."""
-    cache = cache_of(scene)
-    used = {item.fingerprint for item in planned.planned}
-    for key in [k for k in cache if k not in used]:
-        del cache[key]
 
 
 def stale_names(scene, job) -> list:
@@ -149,7 +137,7 @@ def export_job(scene, path: str, post_name: str, allow=False, findings: list | N
 
     job, frame, families = build(scene, post_name)
     planned = plan_job(job, cache_of(scene), progress)
-    keep_only(scene, planned)
+    keep(cache_of(scene), planned)
     record(scene, planned)
     setup = job.setup
     post_class = posts.find(families, setup.post)
@@ -159,10 +147,6 @@ def export_job(scene, path: str, post_name: str, allow=False, findings: list | N
     machine = scene.kezuri.machine
     post = machine_post(families, setup.post, setup.work_offset, machine.orient_spindle, setup.machine)
     return write_program(path, post.to_text(program), post, findings), planned.replanned()
-
-
-def replanned_message(names: list) -> str:
-    return f"re-planned: {', '.join(names)}" if names else "nothing re-planned"
 
 
 # ----- job files ----------------------------------------------------------------------------------------
@@ -383,7 +367,7 @@ class KEZURI_OT_job_generate(SteppedOperator, bpy.types.Operator):
     def finish(self, context, result):
         planned, frame = result
         scene = context.scene
-        keep_only(scene, planned)
+        keep(cache_of(scene), planned)
         record(scene, planned)
         show_toolpaths(scene, planned, frame)
         for warning in planned.warnings:
