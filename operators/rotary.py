@@ -28,6 +28,7 @@ from .common import SteppedOperator
 from .exporting import NCExport, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
+from .plancache import cache_of, keep
 from .properties import post_items, post_number
 from .translations import translate_message
 from .workflow import BatchCommand, SimulationSetup, Workflow
@@ -43,6 +44,7 @@ class RotaryJob:
     frame: convert.WorkFrame
     block: core.Block
     stock: object               # the job's part's stock: the block, its top centre on the axis
+    replanned: tuple = ()       # the operations planned by this call (the rest were Generate's)
 
 
 def settings_from(props) -> core.RotarySettings:
@@ -93,10 +95,13 @@ def rotary_request(scene, depsgraph):
     without touching Blender data (so it can run in steps)."""
     operation, setup, frame, block = rotary_operation(scene, depsgraph)
     job = Job(setup, (operation,))
+    cache = cache_of(scene)
 
     def compute(progress=None) -> RotaryJob:
-        part = plan_job(job, progress=progress).parts[0]
-        return RotaryJob(part.result, operation.settings, frame, block, part.stock)
+        planned = plan_job(job, cache, progress=progress)
+        keep(cache, planned)
+        part = planned.parts[0]
+        return RotaryJob(part.result, operation.settings, frame, block, part.stock, tuple(planned.replanned()))
     return compute
 
 
@@ -195,6 +200,7 @@ class KEZURI_OT_rotary_export(NCExport, bpy.types.Operator):
 
     def write(self, context) -> str:
         job = run_rotary(context.scene, context.evaluated_depsgraph_get())
+        self.replanned = job.replanned
         return export_rotary(job, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged,
                              machine=scene_machine(context.scene.kezuri.machine, POST_FAMILIES, self.post),
                              findings=self.findings)

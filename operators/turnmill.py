@@ -31,6 +31,7 @@ from . import pathview
 from .common import SteppedOperator
 from .exporting import NCExport, report_findings
 from .limits import check_group
+from .plancache import cache_of, keep
 from .properties import post_items, post_number
 from .translations import translate_message
 from .workflow import BatchCommand, SimulationSetup, Workflow
@@ -76,6 +77,7 @@ class TurnMillJob:
     engine: str
     stock: core.Stock
     profile: machine.MachineProfile = machine.PRESETS[machine.DEFAULT_FOR_FAMILY["xzc"]]
+    replanned: tuple = ()      # the operations planned by this call (the rest were Generate's)
 
 
 def machine_profile(name: str | None = None, given_as: str = "--machine") -> machine.MachineProfile:
@@ -100,7 +102,7 @@ def settings_from(props, profile: machine.MachineProfile | None = None) -> core.
 
 def run_on_mesh(vertices, faces, stock: core.Stock, settings: core.TurnMillSettings, engine_name: str,
                 frame: convert.WorkFrame, owner=None, selected=None, name="turn-mill", progress=None,
-                profile: machine.MachineProfile | None = None) -> TurnMillJob:
+                profile: machine.MachineProfile | None = None, cache: dict | None = None) -> TurnMillJob:
     """Classify (timed), then plan: a job of one turn-mill operation.  ``selected``: a face mask;
     unselected faces still block rays but get no paths (nor are they reported as not machined).
     Touches no Blender data (the BVH engine is mathutils only)."""
@@ -108,11 +110,14 @@ def run_on_mesh(vertices, faces, stock: core.Stock, settings: core.TurnMillSetti
     setup = Setup(name=name, machine=profile)
     geometry = turnmill_kind.TurnMillGeometry(vertices, faces, stock, selected,
                                               BVHRayEngine if engine_name == "BVH" else core.TrimeshRayEngine)
-    planned = plan_job(Job(setup, (JobOperation("turnmill", "turn-mill", settings, geometry),)), progress=progress)
+    planned = plan_job(Job(setup, (JobOperation("turnmill", "turn-mill", settings, geometry),)), cache,
+                       progress=progress)
+    if cache is not None:
+        keep(cache, planned)
     outcome = planned.parts[0].result
     owner = np.arange(len(outcome.faces)) if owner is None else owner
     return TurnMillJob(outcome.plan, outcome.vertices, outcome.faces, owner, frame, outcome.rays,
-                       outcome.classification_seconds, engine_name, stock, profile)
+                       outcome.classification_seconds, engine_name, stock, profile, tuple(planned.replanned()))
 
 
 def part_mesh(scene, depsgraph) -> tuple:
@@ -146,8 +151,9 @@ def turnmill_request(scene, depsgraph, profile: machine.MachineProfile | None = 
     stock = core.Stock(props.stock_radius, props.stock_z_min, props.stock_z_max)
     profile = machine_profile() if profile is None else profile
     settings, engine, name = settings_from(props, profile), props.engine, scene.name
+    cache = cache_of(scene)
     return lambda progress=None: run_on_mesh(vertices, faces, stock, settings, engine, frame, owner, selected,
-                                             name=name, progress=progress, profile=profile)
+                                             name=name, progress=progress, profile=profile, cache=cache)
 
 
 def job_operation(scene, depsgraph, entry, post_name: str):
@@ -332,6 +338,7 @@ class KEZURI_OT_turnmill_export(NCExport, bpy.types.Operator):
 
     def write(self, context) -> str:
         job = run_turnmill(context.scene, context.evaluated_depsgraph_get())
+        self.replanned = job.replanned
         path, findings = export_turnmill(job, self.post, self.filepath,
                                          allow=context.scene.kezuri.simulation.acknowledged)
         report_findings(self, unmachined_warnings(job) + findings)

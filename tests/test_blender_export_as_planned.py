@@ -51,3 +51,20 @@ def test_a_changed_plate_is_planned_again(plate, tmp_path, capfd):
     assert bpy.ops.kezuri.engrave_export(filepath=str(path), post="linuxcnc") == {"FINISHED"}
     assert "re-planned: engrave" in messages(capfd)
     assert os.path.getsize(path) > 1000
+
+
+@pytest.mark.parametrize("sample, generate, export, post", [
+    ("rotary_block", "rotary_generate", "rotary_export", "linuxcnc"),
+    ("turnmill_part", "turnmill_generate", "turnmill_export", "linuxcnc"),
+])
+def test_rotary_and_turnmill_exports_write_the_generated_plan(empty_scene, tmp_path, capfd, sample, generate, export,
+                                                              post):
+    from kezuri.operators import samples
+    samples.SCENES[sample](empty_scene)
+    assert getattr(bpy.ops.kezuri, generate)() == {"FINISHED"}
+    messages(capfd)
+    path = tmp_path / "a.nc"
+    assert getattr(bpy.ops.kezuri, export)(filepath=str(path), post=post) == {"FINISHED"}
+    said = messages(capfd)
+    assert "nothing re-planned" in said and "re-planned:" not in said
+    assert path.stat().st_size > 1000
