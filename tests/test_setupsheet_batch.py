@@ -2,7 +2,6 @@
 this process (as tests/test_batch_stop.py does), the sheet read back with html.parser and checked
 against the NC program's own text and report.json."""
 import contextlib
-import importlib.util
 import io
 import json
 import os
@@ -12,18 +11,7 @@ import pytest
 
 pytest.importorskip("bpy")
 from sheet_reader import read_sheet, seconds  # noqa: E402
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-
-
-def load_batch():
-    spec = importlib.util.spec_from_file_location("kezuri_batch_sheet", os.path.join(ROOT, "batch.py"))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-BATCH = load_batch()
+from test_hostile_batch import BATCH  # noqa: E402  (batch.py loaded once for the in-process suites)
 
 
 def run(*argv) -> tuple:
