@@ -97,6 +97,14 @@ class FanucPost(GcodePost):
 
     default_machine = "fanuc-vmc"
     states_machine = True
+    # Fanuc 0i-M operator's manual, canned cycles: G98/G99 return to the initial level / the R point,
+    # G81 drilling, G82 with a dwell P at the bottom (as G04 P: milliseconds, no decimal point), G83
+    # peck drilling with Q the cut per peck (positive, incremental), Z and R absolute under G90, G80
+    # cancel; the hole positions follow as X Y blocks while the cycle is modal.
+    canned_cycles = True
+
+    def dwell_word(self, seconds):
+        return f"P{int(round(seconds * 1000))}"
     # The frames: G91 G28 Z0. (reference return), G90 G53 Z.. (machine coordinates) or G00 Z.. (the
     # clearance height); the tool change itself is always at the reference position.  A machining
     # centre's M06 runs the changer, so a manual change is refused rather than written as M06.

@@ -267,8 +267,38 @@ class GcodePost(Post):
         body = "\n".join(fitted(lines, self.limits.max_line_length, self.name)) + "\n"
         return f"%\n{body}%\n" if self.percent_wrapped else body
 
+    # Canned drilling cycles (G81/G82/G83, G98/G99, G80): posts whose controls have them set this;
+    # the others write a drilling operation's expanded moves.
+    canned_cycles = False
+
     def operation_moves(self, op: Operation) -> list:
+        if op.cycle is not None and self.canned_cycles:
+            return self.cycle_moves(op)
         return self.moves(op, op.start)
+
+    def dwell_word(self, seconds: float) -> str:
+        """The P word of a G82 dwell (LinuxCNC: seconds; Fanuc overrides: milliseconds)."""
+        return f"P{self.n(seconds)}"
+
+    def cycle_moves(self, op: Operation) -> list:
+        """The operation's drilling cycle as one canned cycle: Z to the initial level, the cycle's
+        block at the first hole (G98/G99 return level, G81 drill, G82 with the dwell P, G83 with the
+        peck Q; Z the hole's bottom and R the R plane, absolute under G90), the next holes' X Y,
+        then G80 and Z back to the clearance plane.  The moves the cycle makes are the operation's
+        expanded moves (:mod:`..toolpath.ir.cycles`)."""
+        cycle = op.cycle
+        code = {"drill": "G81", "dwell": "G82", "peck": "G83"}[cycle.kind]
+        back = "G98" if cycle.retract == "initial" else "G99"
+        (x, y), *rest = cycle.holes
+        words = [f"{back} {code} X{self.n(x)} Y{self.n(y)} Z{self.n(cycle.bottom_z)} R{self.n(cycle.r_z)}"]
+        if cycle.kind == "peck":
+            words.append(f"Q{self.n(cycle.peck)}")
+        if cycle.kind == "dwell":
+            words.append(self.dwell_word(cycle.dwell))
+        words.append(f"F{fmt(cycle.feed, 1)}")
+        lines = [f"G00 Z{self.n(cycle.initial_z)}", " ".join(words)]
+        lines += [f"X{self.n(hx)} Y{self.n(hy)}" for hx, hy in rest]
+        return lines + ["G80", f"G00 Z{self.n(op.clearance_z)}"]
 
     def moves(self, op: Operation, start) -> list:
         """Modal motion blocks for the operation's moves; zero-length moves are dropped.

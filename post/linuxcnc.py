@@ -35,6 +35,10 @@ class LinuxCNCPost(GcodePost):
     decimals = 4
     limits = LINUXCNC_LIMITS
 
+    # LinuxCNC G-code reference, "G81 Drilling Cycle", "G82 Drilling Cycle, Dwell" (P in seconds),
+    # "G83 Peck Drilling Cycle" (Q the increment, > 0), "G98/G99 Canned Cycle Return Level", "G80".
+    canned_cycles = True
+
     default_machine = "linuxcnc-manual"
     states_machine = True
 

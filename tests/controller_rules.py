@@ -58,6 +58,16 @@ to (``G28 Z0.`` and no Z move since) leaves Z there, at the top (B-64604EN: the 
 where a machining centre changes tools).  At the program end the same: after the last feed move,
 an X/Y/C move before Z is raised is a violation.
 
+Canned drilling cycles (milling controls but Grbl, which has none: Grbl v1.1 "Commands" lists no
+G80-G89): G81 drilling, G82 drilling with a dwell, G83 peck drilling, modal until G80 (or a G00-G03)
+cancels them (LinuxCNC G-code reference "G80-G89 Canned Cycles"; Fanuc 0i-M operator's manual,
+canned cycles); while one is in force each block with X/Y drills a hole there.  The cycle block
+needs Z (the bottom) and R (the R plane) above it; G82 needs P (LinuxCNC: seconds; Fanuc: the dwell
+in milliseconds, written without a decimal point as G04 P); G83 needs Q > 0 (the peck); G81-G83
+with G91 are refused as anywhere.  Where the tool is after a hole (rule ``safe-z``): with G98 at
+the initial level (the Z the cycle started from, or R if R is higher), with G99 at the R plane; a
+hole drilled counts as a feed move.
+
 Tool changes (milling controls with a changer): the spindle stopped (M05), for Fanuc Z sent to the
 change position (``G91 G28 Z0.``) and back to G90, the length offset cancelled (G49), never a change
 to the tool already in the spindle, and the offset re-applied (G43 H) before the first cut.  Every
@@ -94,6 +104,25 @@ SAFE_Z_CONTROLS = {"fanuc-mill", "fanuc-cxz", "linuxcnc", "linuxcnc-cxz", "grbl"
 DEFAULT_CLEARANCE = 10.0      # mm above the work zero: the least absolute G00 Z counted as a raise
 
 
+CYCLES = (81, 82, 83)        # the canned drilling cycles read here (G80 cancels)
+
+
+def cycle_words(letters: dict, gnum: list, frame: str) -> list:
+    """What a block starting a canned cycle lacks or has wrong (messages)."""
+    code = [int(g) for g in gnum if g in CYCLES][0]
+    wrong = [f"G{code} needs {w}" for w in "ZR" if w not in letters]
+    if not wrong and float(letters["R"]) <= float(letters["Z"]):
+        wrong.append(f"G{code}: R{letters['R']} is not above the bottom Z{letters['Z']}")
+    if code == 82:
+        if "P" not in letters:
+            wrong.append("G82 needs the dwell P")
+        elif frame == "fanuc" and "." in letters["P"]:
+            wrong.append(f"G82 P{letters['P']}: Fanuc's dwell is milliseconds without a decimal point")
+    if code == 83 and not ("Q" in letters and float(letters["Q"]) > 0):
+        wrong.append("G83 needs the peck Q > 0")
+    return wrong
+
+
 def _blocks(text: str):
     """(line number, stripped line, words [(letter, text)]) for every line."""
     for number, line in enumerate(text.splitlines(), start=1):
@@ -119,12 +148,33 @@ def check_safe_z(text: str, control: str, clearance: float) -> list:
     unknown, low, distance, motion, at_reference = True, False, 90, None, False
     reason = "the program start"
     after_last_feed = []          # XY moves with the tool not raised since the last feed move
+    cycle, level, z_now, r_plane = None, 98, float("inf"), None     # canned cycle state; Z (inf: unknown/top)
     for number, raw, bare, words in _blocks(text):
         if not bare or bare == "%" or re.match(r"^O\d+", bare):
             continue              # the frame and the program number (subprograms follow M30)
         letters = dict((letter, value) for letter, value in reversed(words))
         gnum = [float(value) for letter, value in words if letter == "G"]
         ms = [int(float(value)) for letter, value in words if letter == "M"]
+        for g in gnum:
+            if g in (98, 99):
+                level = int(g)
+            if g in (0, 1, 2, 3, 80):
+                cycle = None
+        started = [int(g) for g in gnum if g in CYCLES]
+        if started:
+            cycle, cycle_from = started[0], z_now
+        if cycle is not None:
+            if "R" in letters:
+                r_plane = float(letters["R"])
+            if started or any(a in letters for a in "XY"):      # a hole drilled
+                if unknown:
+                    found.append(("safe-z", number, f"canned cycle after {reason} before Z is raised: {bare!r}"))
+                    unknown = False
+                top = max(cycle_from, r_plane) if level == 98 else r_plane
+                z_now = top
+                after_last_feed = []
+                low = not (z_now >= clearance - 1e-9)
+            continue
         for g in gnum:
             if g in (90, 91):
                 distance = int(g)
@@ -139,6 +189,10 @@ def check_safe_z(text: str, control: str, clearance: float) -> list:
         xy = [axis for axis in "XYC" if axis in letters]
         if raised:
             unknown, low = False, False
+        if machine_move and "Z" in letters:
+            z_now = float("inf")
+        elif "Z" in letters and distance == 90:
+            z_now = float(letters["Z"])
         if xy and (motion is not None or machine_move):
             if unknown:
                 found.append(("safe-z", number, f"{'/'.join(xy)} move after {reason} before Z is raised "
@@ -190,7 +244,7 @@ def check_blocks(text: str, control: str) -> list:
         bad("frame", 1, "Grbl does not take % lines")
 
     feed_mode, motion, spindle, tool, offset, at_change, ended = 94, None, False, None, False, False, False
-    need_offset, in_sub = False, False
+    need_offset, in_sub, cycle = False, False, None
     modal_call = None                       # line of the G66.1 in force (Fanuc)
     for number, raw, bare, words in _blocks(text):
         if rules.get("line") is not None and len(raw) > rules["line"]:
@@ -266,6 +320,15 @@ def check_blocks(text: str, control: str) -> list:
                 feed_mode = 94
             if g in (0, 1, 2, 3):
                 motion = int(g)
+                cycle = None
+            if g == 80:
+                cycle, motion = None, 80
+            if g in CYCLES:
+                if control == "grbl":
+                    bad("cycle", number, f"Grbl has no canned cycle G{g:g}")
+                cycle = int(g)
+                for message in cycle_words(letters, gnum, frame):
+                    bad("cycle", number, message)
         if any(g == 28 for g in gnum) and "Z" in letters and float(letters["Z"]) == 0:
             at_change = True
         elif "Z" in letters:
@@ -278,7 +341,9 @@ def check_blocks(text: str, control: str) -> list:
             if feed_mode == 93 and rules["point"] and "." not in letters["F"]:
                 bad("decimal", number, f"F{letters['F']} under G93 needs a decimal point")
         moves = any(a in letters for a in "XYZCUW")
-        cutting = moves and motion in (1, 2, 3) and not any(g in (28, 53) for g in gnum)
+        cutting = moves and (motion in (1, 2, 3) or cycle is not None) and not any(g in (28, 53) for g in gnum)
+        if moves and motion == 80 and cycle is None and not any(g in (28, 30, 53) for g in gnum):
+            bad("word", number, f"axis words with no motion mode in force (after G80): {bare!r}")
         if cutting and feed_mode == 93 and "F" not in letters:
             bad("g93", number, "G93: every G1/G2/G3 block carries its own F")
         # --- spindle ---------------------------------------------------------------------------

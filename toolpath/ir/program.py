@@ -17,6 +17,7 @@ import numpy as np
 
 from . import kinematics, tools
 from .errors import InputError
+from .cycles import DrillCycle
 from .texture import GougeTexture
 from .tools import KINDS as TOOL_KINDS, TIP_ANGLE_DEG  # noqa: F401 (re-exported)
 
@@ -98,6 +99,8 @@ class Operation:
     ``links`` (n,) bool, or None when the planner did not say: True on a feed move the planner made
     to go from one cut to the next at depth (a link inside a pocket), not to cut.  Posts write a
     link as any feed move; pictures draw it as a link.
+    ``cycle``: a :class:`~.cycles.DrillCycle` when the moves are a drilling cycle's, expanded (a
+    post whose control has canned cycles may write the cycle instead of the moves); None otherwise.
     """
 
     name: str
@@ -118,6 +121,7 @@ class Operation:
     comment: str = ""
     source_id: int | None = None   # what the operation was made from (a STEP-NC workingstep's instance id)
     links: np.ndarray | None = None
+    cycle: DrillCycle | None = None
 
     def __post_init__(self):
         self.kind = np.ascontiguousarray(self.kind, dtype=np.int8)
@@ -166,6 +170,14 @@ class Operation:
                                    "pair per move")
         if self.links is not None and (self.links.shape != (n,) or np.any(self.links & (self.kind == RAPID))):
             raise ProgramError(f"operation {self.name!r}: links must mark feed moves, one flag per move")
+        if self.cycle is not None:
+            if not isinstance(self.cycle, DrillCycle):
+                raise ProgramError(f"operation {self.name!r}: cycle must be a DrillCycle or None, "
+                                   f"got {type(self.cycle).__name__}")
+            self.cycle.validate()
+            if np.any((self.kind == ARC_CW) | (self.kind == ARC_CCW)) or self.rotary:
+                raise ProgramError(f"operation {self.name!r}: a drilling cycle's moves are straight, without rotary axes")
+            self.cycle.check_moves(self.xyz, self.kind, FEED)
         if self.texture is not None and not isinstance(self.texture, GougeTexture):
             raise ProgramError(f"operation {self.name!r}: texture must be a GougeTexture or None, "
                                f"got {type(self.texture).__name__}")

@@ -1,12 +1,15 @@
-"""Drilling: pecked holes at given centres, straight down with a drill (G0/G1 moves, no canned
-cycle, so every post and every simulation reads them the same way).
+"""Drilling: holes straight down with a drill, as G0/G1 moves and, said alongside, as the drilling
+cycle those moves are (:class:`..ir.cycles.DrillCycle`), so a post whose control has canned cycles
+writes G81/G82/G83 and every other post and the simulation read the moves.
 
-A hole: rapid to the clearance plane above it, rapid to the approach gap above the stock's top,
-then pecks: feed down by at most ``peck`` mm, rapid back up to the approach gap to clear the
-chips, rapid down to ``peck_gap`` above the last depth reached, feed the next peck; at the full
-depth the drill dwells no time and rapids out to the clearance plane.  ``depth`` is to the drill's
-tip; a through hole needs the point's length more than the stock (``Tool`` kind "drill": its point
-angle is the shape's, :mod:`..ir.tools`).
+A hole (the canned cycles' motion, :mod:`..ir.cycles`): rapid in XY at the clearance plane (the
+cycle's initial Z), rapid down to the R plane ``approach_gap`` above the stock's top, feed to the
+full depth (``peck`` 0), or peck: feed ``peck`` mm at a time from the R plane, rapid back to the R
+plane after each peck to clear the chips and rapid down again to ``peck_gap`` above the depth
+reached; at the full depth dwell ``dwell`` seconds (0: none), then rapid up to the clearance plane
+(``retract`` "initial", G98) or to the R plane (``retract`` "r", G99: the next hole's XY move is
+made there).  ``depth`` is to the drill's tip; a through hole needs the point's length more than
+the stock (``Tool`` kind "drill": its point angle is the shape's, :mod:`..ir.tools`).
 """
 from __future__ import annotations
 
@@ -15,6 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...ir.cycles import DrillCycle
 from ...ir.errors import InputError
 from ...ir.program import Operation, PathBuilder, Tool
 
@@ -23,17 +27,34 @@ class DrillError(InputError):
     """Holes or settings that cannot be drilled; the message names the hole or the setting."""
 
 
+RETRACTS = ("initial", "r")
+
+
 @dataclass(frozen=True)
 class DrillSettings:
     tool: Tool = field(default_factory=lambda: Tool(4, "drill", 5.0, flute_length=40.0, name="5 mm drill"))
-    depth: float = 10.0          # below the stock's top, to the tip (mm)
+    depth: float = 10.0          # below the stock's top, to the tip (mm); holes found in a mesh bring their own
     peck: float = 3.0            # deepest feed of one peck (mm); 0: no pecking
     peck_gap: float = 0.5        # how far above the last depth the next peck starts feeding (mm)
+    dwell: float = 0.0           # seconds at the bottom (a drill without pecks: G82)
+    retract: str = "initial"     # between holes: "initial" (the clearance plane, G98) or "r" (the R plane, G99)
     rpm: float = 3000.0
     feed: float = 150.0          # mm/min down the hole
-    approach_gap: float = 2.0    # above the stock's top where feeding starts (mm)
+    approach_gap: float = 2.0    # above the stock's top where feeding starts: the R plane (mm)
     clearance_z: float = 20.0
     safe_z: float = 20.0
+    breakthrough: float = 0.5    # below a through hole's bottom, beyond the drill's point (mm)
+    order: str = "shortest"      # "shortest" (nearest neighbour + 2-opt) or "given"
+    min_diameter: float = 0.0    # holes found in the model: only those at least this wide (mm)
+    max_diameter: float = 0.0    # ... and at most this wide (0: no limit)
+    helix: bool = False          # mill holes wider than the drill with a helix of an end mill
+    mill: Tool = field(default_factory=lambda: Tool(5, "flat", 6.0, flute_length=25.0, name="6 mm end mill"))
+    mill_rpm: float = 12000.0
+    mill_feed: float = 800.0
+    helix_pitch: float = 1.0     # mm down per turn of the helix
+    spot: bool = False           # a spot drill (or chamfer) pass at every hole first
+    spot_tool: Tool = field(default_factory=lambda: Tool(6, "vbit", 6.0, flute_length=10.0, name="90 deg spot drill"))
+    spot_depth: float = 1.0      # to the spot tool's tip (mm)
 
     def check(self) -> None:
         if self.tool.shape.kind != "drill":
@@ -42,16 +63,40 @@ class DrillSettings:
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
                 raise DrillError(f"drilling: {name} must be a positive number, got {value!r}")
-        for name in ("peck", "peck_gap", "approach_gap"):
+        for name in ("peck", "peck_gap", "approach_gap", "dwell", "breakthrough", "min_diameter", "max_diameter"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value >= 0):
                 raise DrillError(f"drilling: {name} must be 0 or more, got {value!r}")
+        if self.peck > 0 and self.dwell > 0:
+            raise DrillError("drilling: dwell is for holes drilled without pecks (peck = 0); "
+                             f"got peck {self.peck:g} mm and dwell {self.dwell:g} s")
+        if self.retract not in RETRACTS:
+            raise DrillError(f"drilling: retract must be one of {', '.join(RETRACTS)}, got {self.retract!r}")
+        if self.order not in ("shortest", "given"):
+            raise DrillError(f"drilling: order must be 'shortest' or 'given', got {self.order!r}")
+        if self.max_diameter and self.max_diameter < self.min_diameter:
+            raise DrillError(f"drilling: max_diameter {self.max_diameter:g} mm is below min_diameter "
+                             f"{self.min_diameter:g} mm")
         if self.depth > self.tool.flute_length:
             raise DrillError(f"drilling: depth {self.depth:g} mm is deeper than the {self.tool.describe()}'s "
                              f"{self.tool.flute_length:g} mm flutes")
         if not self.approach_gap < self.clearance_z <= self.safe_z:
             raise DrillError(f"drilling: the approach gap {self.approach_gap:g} mm, clearance plane "
                              f"{self.clearance_z:g} mm and safe Z {self.safe_z:g} mm must rise in that order")
+        if self.helix:
+            if self.mill.shape.kind != "flat":
+                raise DrillError(f"helix milling needs a flat end mill, not a {self.mill.describe()}")
+            for name in ("mill_rpm", "mill_feed", "helix_pitch"):
+                value = getattr(self, name)
+                if not (math.isfinite(value) and value > 0):
+                    raise DrillError(f"helix milling: {name} must be a positive number, got {value!r}")
+        if self.spot and not (math.isfinite(self.spot_depth) and self.spot_depth > 0):
+            raise DrillError(f"spot drilling: spot_depth must be a positive number, got {self.spot_depth!r}")
+
+    def point_length(self) -> float:
+        """How far the drill's point reaches below its full diameter: r / tan(half point angle)."""
+        half = math.radians(self.tool.shape.tip_angle_deg) / 2
+        return self.tool.radius / math.tan(half)
 
 
 def check_holes(holes) -> np.ndarray:
@@ -72,29 +117,50 @@ def check_holes(holes) -> np.ndarray:
     return points
 
 
-def plan(holes, settings: DrillSettings = DrillSettings(), name: str = "drill", top: float = 0.0) -> Operation:
-    """One operation drilling every hole in the given order; ``top``: the stock's top Z."""
+def cycle_kind(peck: float, dwell: float) -> str:
+    return "peck" if peck > 0 else ("dwell" if dwell > 0 else "drill")
+
+
+def plan(holes, settings: DrillSettings = DrillSettings(), name: str = "drill", top: float = 0.0,
+         depth: float | None = None, tool: Tool | None = None, rpm: float | None = None) -> Operation:
+    """One operation drilling every hole in the given order to ``depth`` below ``top`` (the stock's
+    top Z; None: the settings' depth), with ``tool`` (None: the settings' drill)."""
     settings.check()
     points = check_holes(holes)
-    bottom = top - settings.depth
+    tool = tool or settings.tool
+    depth = settings.depth if depth is None else depth
+    if not (math.isfinite(depth) and depth > 0):
+        raise DrillError(f"drilling: depth must be a positive number, got {depth!r}")
+    if depth > tool.flute_length:
+        raise DrillError(f"drilling: depth {depth:g} mm is deeper than the {tool.describe()}'s "
+                         f"{tool.flute_length:g} mm flutes")
+    bottom = top - depth
+    r_z = top + settings.approach_gap
+    peck = settings.peck if tool is settings.tool else 0.0
+    dwell = settings.dwell if tool is settings.tool else 0.0
+    between = settings.clearance_z if settings.retract == "initial" else r_z
     path = PathBuilder(settings.clearance_z, settings.feed, settings.feed, settings.approach_gap, top)
-    start = top + settings.approach_gap
-    for x, y in points:
-        path.retract()
-        path.rapid(x, y, settings.clearance_z)
-        path.rapid(x, y, start)
-        reached = start
+    path.rapid(points[0][0], points[0][1], settings.clearance_z)
+    for index, (x, y) in enumerate(points):
+        if index:
+            path.rapid(x, y, between)
+        path.rapid(x, y, r_z)
+        reached = r_z
         while reached > bottom + 1e-9:
-            target = bottom if settings.peck <= 0 else max(bottom, min(reached, top) - settings.peck)
-            if reached < start:                  # back down to just above the last depth
-                path.rapid(x, y, min(start, reached + settings.peck_gap))
+            target = bottom if peck <= 0 else max(bottom, reached - peck)
+            if reached < r_z:                    # back down to just above the last depth
+                path.rapid(x, y, min(r_z, reached + settings.peck_gap))
             path.line(x, y, target)
             reached = target
             if reached > bottom + 1e-9:
-                path.rapid(x, y, start)          # out to clear the chips
-        path.rapid(x, y, settings.clearance_z)
+                path.rapid(x, y, r_z)            # out to clear the chips
+        path.rapid(x, y, between)
+    if between < settings.clearance_z:
+        path.rapid(points[-1][0], points[-1][1], settings.clearance_z)
     arrays = path.arrays()
-    return Operation(name, settings.tool, settings.rpm, arrays["kind"], arrays["xyz"], arrays["feed"],
-                     clearance_z=settings.clearance_z, safe_z=settings.safe_z,
+    cycle = DrillCycle(cycle_kind(peck, dwell), tuple(map(tuple, points.tolist())), settings.clearance_z, r_z,
+                       bottom, settings.feed, peck, dwell, settings.retract)
+    return Operation(name, tool, settings.rpm if rpm is None else rpm, arrays["kind"], arrays["xyz"],
+                     arrays["feed"], clearance_z=settings.clearance_z, safe_z=settings.safe_z,
                      start=np.array([points[0][0], points[0][1], settings.safe_z]),
-                     comment=f"drill {len(points)} holes {settings.depth:g} mm deep")
+                     comment=f"drill {len(points)} holes {depth:g} mm deep", cycle=cycle)
