@@ -64,7 +64,9 @@ def union_of_faces(faces, what: str = "faces") -> CrossSection:
     for face in faces:
         pts = np.asarray(face, dtype=float)[:, :2]
         if len(pts) >= 3 and np.all(np.isfinite(pts)) and abs(signed_area(pts)) > 1e-12:
-            polygons.append(pts)
+            # each face counter-clockwise: a closed mesh's bottom faces, clockwise from above, would
+            # otherwise cancel its top faces under the non-zero rule
+            polygons.append(pts if signed_area(pts) > 0 else pts[::-1])
     if not polygons:
         raise RegionError(f"{what}: no faces with an area when seen from above")
     return CrossSection(polygons, FillRule.NonZero)

@@ -33,12 +33,13 @@ class ChamferKind(OperationKind):
         width, depth, offset, tip = settings.geometry()
         material = region.from_loops(geometry.loops, "chamfer outline")
         reach = offset + width + MARGIN
-        # the band the chamfer cuts: from the material's edge grown by the bit's reach at the top
-        # to the edge shrunk by the chamfer's width; nothing in it below the tip's depth
-        band = region.loops(region.offset(material, reach) - region.offset(material, -(width + MARGIN)))
+        # the layer speaks for the waste beside the edges, where the tip runs (nothing to keep there);
+        # the flank's cut into the material, within the width of the edges, is judged by the layers
+        # of the operations before (a chamfer deeper than what they leave there is a finding)
+        waste = region.loops(region.offset(material, reach) - material)
         points = np.vstack([np.asarray(loop, float)[:, :2] for loop in geometry.loops])
         (x0, y0), (x1, y1) = points.min(axis=0) - reach - 5.0, points.max(axis=0) + reach + 5.0
         stock = setup.stock or BoxStock(float(x0), float(y0), geometry.top - tip - 5.0, float(x1), float(y1),
                                         geometry.top)
-        design = DesignLayer(geometry.top - tip - 0.01, (), tuple(band))
+        design = DesignLayer(None, (), tuple(waste))
         return Part((op,), stock, design, (), (), None, op)

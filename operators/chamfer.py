@@ -1,0 +1,72 @@
+"""Chamfer / deburr in the shell: an operation of job files.  ``objects = { edges = "Outline" }``
+names a curve, Text or mesh whose closed outlines (seen from above, in the stock plate's work
+frame) have their top edges chamfered with a V-bit; settings by name (:data:`SETTINGS`)."""
+from __future__ import annotations
+
+import math
+
+from ..toolpath.ir.program import ProgramError, Tool
+from ..toolpath.job import JobOperation
+from ..toolpath.operations.chamfer import chamfer as core
+from ..toolpath.operations.chamfer.kind import ChamferGeometry
+from .workflow import Workflow
+
+POST_FAMILIES = ("milling",)
+SETTINGS = {"tool_number": "the V-bit's tool number", "diameter": "the V-bit's diameter (mm)",
+            "flute_length": "the V-bit's flute length (mm)", "width": "across the top (mm)",
+            "depth": "down the wall (mm)", "tip_gap": "the tip below the chamfer (mm)", "rpm": "spindle speed",
+            "feed": "feed (mm/min)", "plunge_feed": "feed down the entry ramp (mm/min)"}
+
+
+def settings_from(entry) -> core.ChamferSettings:
+    from .jobentry import JobFileError
+
+    given = dict(entry.settings)
+    for key, value in given.items():
+        if key not in SETTINGS:
+            raise JobFileError(f"{entry.where}: settings.{key} is not a chamfer setting; they are "
+                               f"{', '.join(SETTINGS)}")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise JobFileError(f"{entry.where}: settings.{key} = {value!r} is not a number")
+    if "tool_number" in given and not isinstance(given["tool_number"], int):
+        raise JobFileError(f"{entry.where}: settings.tool_number = {given['tool_number']!r} is not a whole number")
+    default = core.ChamferSettings()
+    try:
+        diameter = float(given.get("diameter", default.tool.diameter))
+        tool = Tool(given.get("tool_number", default.tool.number), "vbit", diameter,
+                    flute_length=float(given.get("flute_length", default.tool.flute_length)),
+                    name=f"{diameter:g} mm V-bit")
+    except ProgramError as error:
+        raise JobFileError(f"{entry.where}: the V-bit: {error}") from None
+    numbers = {key: float(given[key]) for key in ("width", "depth", "tip_gap", "rpm", "feed", "plunge_feed")
+               if key in given}
+    if "depth" in numbers and "width" not in numbers:
+        numbers["width"] = 0.0                  # the depth given: the width follows from it
+    return core.ChamferSettings(tool=tool, **numbers)
+
+
+def job_operation(scene, depsgraph, entry, post_name: str):
+    """A job file's chamfer: ``objects = { edges = "<curve, Text or mesh>" }``."""
+    from . import convert
+    from .jobentry import JobFileError
+
+    unknown = [slot for slot in entry.objects if slot != "edges"]
+    if unknown:
+        raise JobFileError(f"{entry.where}: objects.{unknown[0]}: a chamfer takes objects.edges (a curve, Text "
+                           "or mesh)")
+    if "edges" not in entry.objects:
+        raise JobFileError(f"{entry.where}: no edges: give objects = {{ edges = \"<curve, Text or mesh>\" }}")
+    try:
+        settings = settings_from(entry)
+        settings.check()
+        plate = convert.plate_from_object(scene.kezuri.stock.plate, depsgraph, scene, scene.kezuri.stock.origin)
+        loops = convert.outlines_in_work(entry.objects["edges"], depsgraph, plate.frame)
+        core.tool_paths(loops, settings)
+    except core.ChamferError as error:
+        raise JobFileError(f"{entry.where}: the edges or the V-bit: {error}") from None
+    geometry = ChamferGeometry(tuple(loops), 0.0)
+    return JobOperation("chamfer", entry.name, settings, geometry, entry.enabled), None, None
+
+
+WORKFLOW = Workflow("CHAMFER", "Chamfer", "V-bit chamfer along the top edges of closed outlines (job files)",
+                    post_families=POST_FAMILIES, kind="chamfer", job_operation=job_operation)
