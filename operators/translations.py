@@ -1850,6 +1850,71 @@ MESSAGE_TEMPLATES = {
     'holes must be a list of (x, y) pairs in mm, got shape {}': '穴は mm の (x, y) の組のリストでなければなりません（形 {0}）',
     'hole {} has a coordinate that is not a number: {}': '穴 {0} の座標に数値でないものがあります：{1}',
     'holes {} and {} are the same point {}': '穴 {0} と {1} は同じ点 {2} です',
+    # drilling, cycles and chamfers (issue 29)
+    '{}: settings.{} is not a chamfer setting; they are {}': '{0}：settings.{1} は面取りの設定ではありません（設定は {2}）',
+    '{}: the V-bit: {}': '{0}：V ビット：{1}',
+    '{}: objects.{}: a chamfer takes objects.edges (a curve, Text or mesh)':
+        '{0}：objects.{1}：面取りは objects.edges（カーブ、テキストまたはメッシュ）を取ります',
+    '{}: no edges: give objects = {{ edges = "<curve, Text or mesh>" }}':
+        '{0}：縁がありません：objects = {{ edges = "<カーブ、テキストまたはメッシュ>" }} を指定してください',
+    '{}: the edges or the V-bit: {}': '{0}：縁または V ビット：{1}',
+    '{}: objects.{}: drilling takes objects.holes (a curve or a mesh)':
+        '{0}：objects.{1}：穴あけは objects.holes（カーブまたはメッシュ）を取ります',
+    '{}: give the holes as holes = [[x, y], ...] or as objects.holes, not both':
+        '{0}：穴は holes = [[x, y], ...] か objects.holes のどちらか一方で指定してください（両方は不可）',
+    '{}: settings.{} = {} is not true or false': '{0}：settings.{1} = {2} は true でも false でもありません',
+    '{}: settings.{} = {} is not one of {}': '{0}：settings.{1} = {2} は {3} のいずれでもありません',
+    '{}: settings.{} = {} is not a whole number': '{0}：settings.{1} = {2} は整数ではありません',
+    '{}: objects.holes = {} has no closed curve that is a circle (within {} mm)':
+        '{0}：objects.holes = {1} に円である閉じたカーブがありません（許容差 {2} mm）',
+    '{}: objects.holes = {} has no vertical cylindrical hole (within {} mm)':
+        '{0}：objects.holes = {1} に垂直な円筒の穴がありません（許容差 {2} mm）',
+    '{}: objects.holes = {} is a {}; use a curve or a mesh': '{0}：objects.holes = {1} は {2} です。カーブかメッシュを使ってください',
+    'drilling cycle kind must be one of {}, got {}': '穴あけサイクルの種類は {0} のいずれかです（指定値 {1}）',
+    'drilling cycle retract must be one of {}, got {}': '穴あけサイクルの戻り位置は {0} のいずれかです（指定値 {1}）',
+    'drilling cycle: {} is not a number: {}': '穴あけサイクル：{0} が数値ではありません：{1}',
+    'drilling cycle: the bottom Z {}, R plane {} and initial Z {} must rise in that order':
+        '穴あけサイクル：穴底 Z {0}、R 点 {1}、イニシャル Z {2} はこの順に高くなければなりません',
+    'drilling cycle: feed must be positive, got {}': '穴あけサイクル：送りは正でなければなりません（指定値 {0}）',
+    "drilling cycle: a peck of {} mm does not fit a {} cycle (peck > 0 with 'peck' alone)":
+        "穴あけサイクル：ペック {0} mm は {1} サイクルに合いません（ペック > 0 は 'peck' のときだけ）",
+    "drilling cycle: a dwell of {} s does not fit a {} cycle (dwell > 0 with 'dwell' alone)":
+        "穴あけサイクル：ドウェル {0} 秒は {1} サイクルに合いません（ドウェル > 0 は 'dwell' のときだけ）",
+    'drilling cycle: holes must be finite (x, y) pairs, got shape {}': '穴あけサイクル：穴は有限の (x, y) の組でなければなりません（形 {0}）',
+    "drilling cycle: hole {} at X{} Y{} is not fed to Z{} by the operation's moves":
+        '穴あけサイクル：X{1} Y{2} の穴 {0} は加工の移動で Z{3} まで送られていません',
+    'drilling cycle: a feed move at {} is at none of its holes': '穴あけサイクル：{0} の切削送りはどの穴の位置でもありません',
+    'operation {}: cycle must be a DrillCycle or None, got {}': '加工 {0}：cycle は DrillCycle か None でなければなりません（指定は {1}）',
+    "operation {}: a drilling cycle's moves are straight, without rotary axes":
+        '加工 {0}：穴あけサイクルの移動は直線で、回転軸を動かしません',
+    'chamfering needs a V-bit, not a {}': '面取りには V ビットが必要です（{0} ではなく）',
+    'chamfer: {} must be 0 or more, got {}': '面取り：{0} は 0 以上でなければなりません（指定値 {1}）',
+    'chamfer: give the width or the depth, one of them (width {}, depth {})':
+        '面取り：幅か深さのどちらか一方を指定してください（幅 {0}、深さ {1}）',
+    'chamfer: {} must be a positive number, got {}': '面取り：{0} は正の数でなければなりません（指定値 {1}）',
+    'chamfer: the approach gap {} mm, clearance plane {} mm and safe Z {} mm must rise in that order':
+        '面取り：アプローチ隙間 {0} mm、クリアランス面 {1} mm、安全 Z {2} mm はこの順に高くなければなりません',
+    'chamfer: a {} mm chamfer with the tip {} mm below it needs the V-bit {} mm wide at the top; the {} is {} mm':
+        '面取り：幅 {0} mm の面取りを先端 {1} mm 下で削るには上端で {2} mm 幅の V ビットが必要ですが、{3} は {4} mm です',
+    "chamfer: the tip {} mm deep is beyond the {}'s {} mm flutes": '面取り：先端の深さ {0} mm は {1} の刃長 {2} mm を超えています',
+    'drilling: depth must be a positive number, got {}': '穴あけ：深さは正の数でなければなりません（指定値 {0}）',
+    'drilling: dwell is for holes drilled without pecks (peck = 0); got peck {} mm and dwell {} s':
+        '穴あけ：ドウェルはステップ送りなし（peck = 0）の穴用です（ペック {0} mm、ドウェル {1} 秒）',
+    'drilling: retract must be one of {}, got {}': '穴あけ：retract は {0} のいずれかです（指定値 {1}）',
+    "drilling: order must be 'shortest' or 'given', got {}": "穴あけ：order は 'shortest' か 'given' です（指定値 {0}）",
+    'drilling: max_diameter {} mm is below min_diameter {} mm': '穴あけ：max_diameter {0} mm が min_diameter {1} mm より小さいです',
+    'helix milling needs a flat end mill, not a {}': 'ヘリカル加工にはフラットエンドミルが必要です（{0} ではなく）',
+    'helix milling: {} must be a positive number, got {}': 'ヘリカル加工：{0} は正の数でなければなりません（指定値 {1}）',
+    'spot drilling: spot_depth must be a positive number, got {}': 'もみつけ：spot_depth は正の数でなければなりません（指定値 {0}）',
+    'hole {} at X{} Y{}: {} mm is not wider than the {}; drill it instead':
+        'X{1} Y{2} の穴 {0}：{3} mm は {4} より広くありません。ドリルで開けてください',
+    "hole {} at X{} Y{}: {} mm deep is more than the {}'s {} mm flutes":
+        'X{1} Y{2} の穴 {0}：深さ {3} mm は {4} の刃長 {5} mm を超えています',
+    '{} holes but {} diameters, {} bottoms, {} through flags': '穴は {0} 個ですが、直径 {1} 個、穴底 {2} 個、貫通の印 {3} 個です',
+    'no hole is between min_diameter {} mm and max_diameter {} mm; the holes are {} mm':
+        'min_diameter {0} mm と max_diameter {1} mm の間の穴がありません（穴は {2} mm）',
+    "hole at X{} Y{} is {} mm wide, the drill {} mm: drilled at the drill's size (turn helix milling on)":
+        'X{0} Y{1} の穴は幅 {2} mm、ドリルは {3} mm です：ドリルの径で開けます（ヘリカル加工をオンにしてください）',
     'operation {}: {}': '加工 {0}：{1}',
     '{}: objects.{}: a carving takes objects.design (the mesh)': '{0}：objects.{1}：彫り込みは objects.design（メッシュ）を取ります',
     "{}: its work zero ({}) is not the job's ({}): the operations of one job share one work zero":
@@ -1916,6 +1981,10 @@ JOBLIST_TEXTS = {
     "Planned, with warnings or simulation findings": "計画済み（警告またはシミュレーションの指摘あり）",
     "Failed": "失敗", "Planning it failed: see the report": "計画に失敗しました：レポートを見てください",
     "Surface": "曲面", "Drilling": "穴あけ", "Pecked holes at given centres (job files)": "指定した中心にステップ送りの穴（ジョブファイル）",
+    "Holes at given centres or found in curves and meshes (job files)":
+        "指定した中心、またはカーブやメッシュで見つけた穴（ジョブファイル）",
+    "Chamfer": "面取り", "V-bit chamfer along the top edges of closed outlines (job files)":
+        "閉じた輪郭の上端を V ビットで面取り（ジョブファイル）",
     "the job list is empty: add an operation first": "ジョブリストが空です。先に加工を追加してください",
     "save the .blend first: a job file names the .blend its objects come from":
         "先に .blend を保存してください。ジョブファイルはオブジェクトを読む .blend を名前で指定します",
