@@ -1905,6 +1905,7 @@ MESSAGE_TEMPLATES = {
     'drilling: max_diameter {} mm is below min_diameter {} mm': '穴あけ：max_diameter {0} mm が min_diameter {1} mm より小さいです',
     'helix milling needs a flat end mill, not a {}': 'ヘリカル加工にはフラットエンドミルが必要です（{0} ではなく）',
     'helix milling: {} must be a positive number, got {}': 'ヘリカル加工：{0} は正の数でなければなりません（指定値 {1}）',
+    'spot drilling needs a pointed drill that plunges, not a {}': 'もみつけには突っ込めるとがったドリルが必要です（{0} ではなく）',
     'spot drilling: spot_depth must be a positive number, got {}': 'もみつけ：spot_depth は正の数でなければなりません（指定値 {0}）',
     'hole {} at X{} Y{}: {} mm is not wider than the {}; drill it instead':
         'X{1} Y{2} の穴 {0}：{3} mm は {4} より広くありません。ドリルで開けてください',

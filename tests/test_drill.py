@@ -218,8 +218,14 @@ def test_spot_pass_and_diameter_filter():
     geometry = DrillGeometry(tuple(HOLES), 0.0, (2.0, 5.0, 5.0, 8.0))
     part = jobs.kind_of("drill").plan(jobs.Setup(), settings, geometry)
     spot, drilled = part.operations
-    assert spot.tool.kind == "vbit" and spot.cycle.bottom_z == pytest.approx(-1.0)
-    assert sorted(drilled.cycle.holes) == [(30.0, 10.0), (30.0, 25.0)]
+    assert spot.tool.label == "spot drill" and spot.cycle.bottom_z == pytest.approx(-1.0)
+    assert sorted(spot.cycle.holes) == sorted(drilled.cycle.holes) == [(30.0, 10.0), (30.0, 25.0)]
+    result = simulate([spot, drilled], BoxStock(0, 0, -15, 40, 35, 0), cell=0.025)
+    assert result.findings == []
+    # the spot's 118 deg cone 1 mm deep is 2 x 1 x tan(59 deg) = 3.33 mm wide at the top, inside the 5 mm hole
+    spot_only = simulate([spot], BoxStock(0, 0, -15, 40, 35, 0), cell=0.025)
+    width = 2 * 1.0 * math.tan(math.radians(59))
+    assert cut_diameter(spot_only, -1e-6) == pytest.approx(math.sqrt(2) * width, abs=0.03)     # two cones
     with pytest.raises(drill.DrillError, match="no hole is between"):
         jobs.kind_of("drill").plan(jobs.Setup(), drill.DrillSettings(min_diameter=9.0), geometry)
 

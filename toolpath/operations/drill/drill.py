@@ -53,7 +53,8 @@ class DrillSettings:
     mill_feed: float = 800.0
     helix_pitch: float = 1.0     # mm down per turn of the helix
     spot: bool = False           # a spot drill (or chamfer) pass at every hole first
-    spot_tool: Tool = field(default_factory=lambda: Tool(6, "vbit", 6.0, flute_length=10.0, name="90 deg spot drill"))
+    spot_tool: Tool = field(default_factory=lambda: Tool(6, "drill", 10.0, flute_length=20.0, name="10 mm spot drill",
+                                                         label="spot drill"))
     spot_depth: float = 1.0      # to the spot tool's tip (mm)
 
     def check(self) -> None:
@@ -90,6 +91,8 @@ class DrillSettings:
                 value = getattr(self, name)
                 if not (math.isfinite(value) and value > 0):
                     raise DrillError(f"helix milling: {name} must be a positive number, got {value!r}")
+        if self.spot and self.spot_tool.shape.kind != "drill":
+            raise DrillError(f"spot drilling needs a pointed drill that plunges, not a {self.spot_tool.describe()}")
         if self.spot and not (math.isfinite(self.spot_depth) and self.spot_depth > 0):
             raise DrillError(f"spot drilling: spot_depth must be a positive number, got {self.spot_depth!r}")
 
