@@ -63,7 +63,8 @@ G80-G89): G81 drilling, G82 drilling with a dwell, G83 peck drilling, modal unti
 cancels them (LinuxCNC G-code reference "G80-G89 Canned Cycles"; Fanuc 0i-M operator's manual,
 canned cycles); while one is in force each block with X/Y drills a hole there.  The cycle block
 needs Z (the bottom) and R (the R plane) above it; G82 needs P (LinuxCNC: seconds; Fanuc: the dwell
-in milliseconds, written without a decimal point as G04 P); G83 needs Q > 0 (the peck); G81-G83
+in milliseconds, written without a decimal point as G04 P); G83 needs Q > 0 (the peck; on a Fanuc
+with a decimal point, as the axis words: ``Q3`` is 3 microns); G81-G83
 with G91 are refused as anywhere.  Where the tool is after a hole (rule ``safe-z``): with G98 at
 the initial level (the Z the cycle started from, or R if R is higher), with G99 at the R plane; a
 hole drilled counts as a feed move.
@@ -120,6 +121,8 @@ def cycle_words(letters: dict, gnum: list, frame: str) -> list:
             wrong.append(f"G82 P{letters['P']}: Fanuc's dwell is milliseconds without a decimal point")
     if code == 83 and not ("Q" in letters and float(letters["Q"]) > 0):
         wrong.append("G83 needs the peck Q > 0")
+    elif code == 83 and frame == "fanuc" and "." not in letters["Q"]:
+        wrong.append(f"G83 Q{letters['Q']}: Fanuc reads a Q without a point in microns")
     return wrong
 
 

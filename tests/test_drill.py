@@ -132,6 +132,11 @@ def test_the_rules_know_the_cycles():
     assert [r for r, _, _ in controller_rules.check(text, "linuxcnc")] == ["safe-z"]
     assert controller_rules.check(text.replace("G99", "G98"), "linuxcnc") == []   # G98: back at Z20
     assert {r for r, _, _ in controller_rules.check(base.format("G98 G81 X1. Y1. Z-5. R2. F100."), "grbl")} >= {"cycle"}
+    fanuc = FanucPost().to_text(Program("holes", [drill.plan(HOLES, drill.DrillSettings(peck=2.0))]))
+    assert controller_rules.check(fanuc, "fanuc-mill") == []
+    assert [r for r, _, _ in controller_rules.check(fanuc.replace("Q2.", "Q2"), "fanuc-mill")] == ["cycle"]
+    dwell = FanucPost().to_text(Program("holes", [drill.plan(HOLES, drill.DrillSettings(peck=0.0, dwell=0.5))]))
+    assert [r for r, _, _ in controller_rules.check(dwell.replace("P500", "P0.5"), "fanuc-mill")] == ["cycle"]
 
 
 def test_the_cycle_must_say_what_the_moves_do():
