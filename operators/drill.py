@@ -27,11 +27,12 @@ NUMBERS = {"tool_number": "the drill's tool number", "diameter": "the drill's di
            "mill_tool_number": "the end mill's tool number", "mill_diameter": "the end mill's diameter (mm)",
            "mill_flute_length": "the end mill's flute length (mm)", "mill_rpm": "end mill speed",
            "mill_feed": "end mill feed (mm/min)", "helix_pitch": "helix: down per turn (mm)",
-           "spot_depth": "spot pass depth (mm)"}
+           "spot_depth": "spot pass depth (mm)", "spot_tool_number": "the spot drill's tool number",
+           "spot_diameter": "the spot drill's diameter (mm)"}
 SWITCHES = {"helix": "mill holes wider than the drill", "spot": "a spot drill pass first"}
 CHOICES = {"retract": core.RETRACTS, "order": ("shortest", "given")}
 SETTINGS = {**NUMBERS, **SWITCHES, **{key: "/".join(values) for key, values in CHOICES.items()}}
-WHOLE = ("tool_number", "mill_tool_number")
+WHOLE = ("tool_number", "mill_tool_number", "spot_tool_number")
 
 
 def settings_from(entry) -> tuple:
@@ -65,13 +66,17 @@ def settings_from(entry) -> tuple:
         mill = Tool(given.get("mill_tool_number", default.mill.number), "flat", mill_diameter,
                     flute_length=float(given.get("mill_flute_length", default.mill.flute_length)),
                     name=f"{mill_diameter:g} mm end mill")
+        spot_diameter = float(given.get("spot_diameter", default.spot_tool.diameter))
+        spot = Tool(given.get("spot_tool_number", default.spot_tool.number), "drill", spot_diameter,
+                    flute_length=default.spot_tool.flute_length, name=f"{spot_diameter:g} mm spot drill",
+                    label="spot drill")
     except ProgramError as error:
         raise JobFileError(f"{entry.where}: the drill: {error}") from None
     numbers = {key: float(given[key]) for key in ("depth", "peck", "dwell", "rpm", "feed", "breakthrough",
                                                    "min_diameter", "max_diameter", "mill_rpm", "mill_feed",
                                                    "helix_pitch", "spot_depth") if key in given}
     others = {key: given[key] for key in (*SWITCHES, *CHOICES) if key in given}
-    return (core.DrillSettings(tool=tool, mill=mill, **numbers, **others),
+    return (core.DrillSettings(tool=tool, mill=mill, spot_tool=spot, **numbers, **others),
             float(given.get("tolerance", 0.01)))
 
 

@@ -38,7 +38,7 @@ settings = { tool_number = 4, diameter = 5.0, depth = 12.0, peck = 4.0, helix = 
 kind = "drill"
 name = "bracket hole"
 objects = { holes = "Bracket" }
-settings = { tool_number = 6, diameter = 6.0, peck = 0.0, retract = "r" }
+settings = { tool_number = 6, diameter = 6.0, peck = 0.0, retract = "r", spot = true, spot_tool_number = 8, spot_depth = 1.5 }
 
 [[operations]]
 kind = "chamfer"
@@ -91,8 +91,9 @@ def test_holes_found_in_the_scene_are_drilled_and_milled(found_job):
     # the curve's three 5 mm holes pecked 12 mm deep with G83 (a curve gives no depth: the setting's);
     # its 8 mm one helix-milled with the 6 mm end mill; the bracket's 6 mm hole through the 20 mm
     # plate (the mesh's hole reaches its bottom) with G81 G99: 0.5 mm beyond, and the point's length
-    assert "G98 G83" in text and "G99 G81" in text and text.count("\nG80\n") == 2
-    calls = rs274.run(text, tools=(2, 3, 4, 5, 6, 7))
+    assert "G98 G83" in text and "G99 G81" in text and text.count("\nG80\n") == 3     # and the spot pass's
+    assert "G99 G81 X0. Y-38. Z-1.5 R2." in text
+    calls = rs274.run(text, tools=(2, 3, 4, 5, 6, 7, 8))
     kinds, points, _ = rs274.motion_endpoints(calls)
     feeds = points[[k == "feed" for k in kinds]]
     for (x, y), d, _ in CIRCLES:
