@@ -80,8 +80,13 @@ START = "G21 G90\nG0 X0 Y0 Z5 F300\n"        # F set before any cutting move, as
     ("G92 X0 Y0", "G92 sets a coordinate offset"),
     ("G68 X0 Y0 R30", "G68 rotates the coordinate system"),
     ("G38.2 Z-10 F50", "G38.2 probing moves are not simulated"),
-    ("G81 X10 Y10 Z-5 R1 F100", "G81 canned cycles are not simulated"),
-    ("G83 X10 Y10 Z-5 R1 Q1 F100", "G83 canned cycles are not simulated"),
+    ("G84 X10 Y10 Z-5 R1 F100", "G84 canned cycles other than G81, G82 and G83 are not simulated"),
+    ("G73 X10 Y10 Z-5 R1 Q1 F100", "G73 canned cycles other than G81, G82 and G83 are not simulated"),
+    ("G83 X10 Y10 Z-5 R1 F100", "G83 needs a peck Q greater than 0"),
+    ("G81 X10 Y10 Z-5 F100", "G81 needs its Z"),
+    ("G81 X10 Y10 Z5 R1 F100", "the cycle's bottom Z5 lies above its R plane R1"),
+    ("G91 G81 X10 Y10 Z-5 R1 F100", "a drilling cycle in incremental mode"),
+    ("G81 X10 Y10 Z-5 R1 L3 F100", "the L word is not supported here"),
     ("G41 D1 X10", "G41 cutter radius compensation"),
     ("G18", "G18 selects another plane; only the XY plane"),
     ("G66.1 P7023", "G66.1 macro calls"),
@@ -146,10 +151,13 @@ def test_a_refused_megabyte_line_is_quoted_short():
     assert "line 3: F is given twice in 'G1 F100" in str(error.value) and len(str(error.value)) < 200
 
 
-def test_a_canned_cycle_is_refused_not_run_as_a_straight_feed():
-    # Before: G81 was ignored and its X, Y, Z cut as a G1 (1,651 mm^3 instead of a 132 mm^3 hole).
-    with pytest.raises(ncread.NCReadError, match="line 4: G81 canned cycles"):
-        read(START + "G1 Z1 F100\nG81 X10 Y10 Z-4 R1 F100\nG80\n")
+def test_a_canned_cycle_is_drilled_not_run_as_a_straight_feed():
+    # Before 2026-11-27: G81 was ignored and its X, Y, Z cut as a G1 (1,651 mm^3 instead of a 132 mm^3
+    # hole); then refused; now drilled as LinuxCNC drills it: over the hole, down to R, fed to Z, out.
+    op, lines = read(START + "G1 Z1 F100\nG81 X10 Y10 Z-4 R1 F100\nG80\n")
+    feeds = op.xyz[op.kind == 1]
+    assert feeds.tolist() == [[0.0, 0.0, 1.0], [10.0, 10.0, -4.0]]      # the G1 Z1, then the hole alone
+    assert op.xyz[-1].tolist() == [10.0, 10.0, 1.0] and lines[-1] == 4
 
 
 @pytest.mark.parametrize("radius, error, refused", [
@@ -548,10 +556,11 @@ def test_batch_simulate_reports_what_it_ignored_and_repaired(tmp_path):
                                   "were flipped"]
     assert report["max_gouge_mm"] == pytest.approx(1.0, abs=1e-3)      # the block's top is z = -1, the slot 2 deep
     bad = tmp_path / "bad.ngc"
-    bad.write_text("G21 G90\nG0 X5 Y20 Z5\nG81 X10 Y10 Z-4 R1 F100\n")
+    bad.write_text("G21 G90\nG0 X5 Y20 Z5\nG84 X10 Y10 Z-4 R1 F100\n")
     done = run_batch("simulate", "--nc", str(bad), "--tool", "flat:6", "--stock", "box:0,0,-10,40,40,0",
                      "--out", str(tmp_path / "out2"), timeout=300)
-    assert done.returncode == 2 and "line 3: G81 canned cycles are not simulated" in done.stderr
+    assert done.returncode == 2 and "line 3: G84 canned cycles other than G81, G82 and G83 are not simulated" \
+        in done.stderr
     assert "Traceback" not in done.stderr
 
 

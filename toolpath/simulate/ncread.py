@@ -3,7 +3,8 @@
 Strict like a control: a line it cannot follow stops the reading with the line number, the
 line and the reason, never a guess.
 
-What it follows: G0 G1 G2 G3 with X Y Z C I J (R is refused), G90/G91, G20/G21, G17,
+What it follows: G0 G1 G2 G3 with X Y Z C I J (R is refused), the drilling cycles G81, G82 and
+G83 with G98/G99 and G80 as LinuxCNC runs them (:data:`CYCLES`), G90/G91, G20/G21, G17,
 N numbers, ``%`` and ``O`` lines (a ``%`` after the program's first block ends it, as on
 LinuxCNC and a Fanuc tape), comments in parentheses (a ``;`` inside is comment text) or after
 ``;``, spaces anywhere in a block (``X 1 0 . 5`` is ``X10.5``, as controls read it), lines
@@ -24,7 +25,7 @@ simulation's "cuts with the spindle at 0 rpm" names the move that does.
 What it deliberately ignores, because it does not change where the tool goes (feeds, coolant,
 pauses, tool length offsets, work offsets, path blending, comments ...), is listed in the
 result's ``ignored`` (:class:`NCRead`), so a report can say so.  Everything else (G92
-offsets, G68 rotation, G38 probing, G81..G89 canned cycles, G41/G42 cutter compensation,
+offsets, G68 rotation, G38 probing, the other canned cycles (G73, G74, G76, G84..G89), G41/G42 cutter compensation,
 other planes, macros, block delete ``/`` (whether the line runs depends on the control's switch),
 two codes of one modal group in a block (G90 G91), unknown M codes, words it does not know, malformed numbers such as
 ``XNAN``, ``X-``, ``X1.2.3``, ``X2E1``) is refused.
@@ -57,7 +58,7 @@ IGNORED_CODES = {
     "G43": "tool length offset (coordinates are read as the tool tip)", "G49": "tool length offset off",
     "G54": "work offset (coordinates are read in the program's frame)", "G55": "work offset",
     "G56": "work offset", "G57": "work offset", "G58": "work offset", "G59": "work offset",
-    "G61": "exact path mode", "G61.1": "exact stop mode", "G64": "path blending", "G80": "canned cycle off",
+    "G61": "exact path mode", "G61.1": "exact stop mode", "G64": "path blending",
     "G91.1": "incremental arc centres (the default)", "G93": "inverse-time feed", "G94": "feed per minute",
     "G97": "spindle rpm mode",
     "M0": "program pause", "M1": "optional pause",
@@ -97,8 +98,15 @@ REFUSED = {
     "M98": "subprogram calls are not simulated", "M99": "subprogram returns are not simulated",
 }
 REFUSED.update({f"G38.{k}": "probing moves are not simulated" for k in range(2, 6)})
-REFUSED.update({f"G{k}": "canned cycles are not simulated" for k in (73, 74, 76, 81, 82, 83, 84, 85, 86, 87,
-                                                                      88, 89)})
+REFUSED.update({f"G{k}": "canned cycles other than G81, G82 and G83 are not simulated"
+                for k in (73, 74, 76, 84, 85, 86, 87, 88, 89)})
+# The drilling cycles followed, as LinuxCNC runs them (its G-code reference, G81-G83, G98/G99):
+# rapid to the hole's XY (after rising to R if below it), rapid to R, feed to Z (G83: in pecks of
+# Q, each followed by a rapid out to R and a rapid back down to PECK_CLEARANCE above the depth
+# reached), then rapid out to R (G99) or to the Z the cycle started from (G98, when above R).
+CYCLES = ("G81", "G82", "G83")
+RETRACTS = ("G98", "G99")
+PECK_CLEARANCE_MM = 0.254      # LinuxCNC's G83 rapid back down: 0.010 inch above the last depth
 AXES = ("X", "Y", "Z", "C")
 # Words that go with a code it reads or ignores; any other address is refused.
 WORD_USE = {"F": "feed", "T": "tool number", "H": "tool length offset number"}
@@ -227,6 +235,7 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
     position = {"X": 0.0, "Y": 0.0, "Z": 0.0, "C": 0.0}
     known = set()
     mode, absolute, scale = None, True, 1.0
+    retract, cycle_start_z, cycle = "G98", None, {}      # G98/G99; the Z a cycle started from; its R, Z, Q
     kinds, points, centres, c_values, lines = [], [], [], [], []
     speeds, turning = [], []          # per move: the S in effect, the direction (None: stopped)
     speed, direction = 0.0, None
@@ -269,7 +278,7 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
                 raise NCReadError(f"line {number}: {letter} is given twice in {_shown(raw)}")
             else:
                 values[letter] = float(value)
-        motions = [c for c in codes if c in MOTION]
+        motions = [c for c in codes if c in MOTION or c in CYCLES or c == "G80"]
         if len(motions) > 1:
             raise NCReadError(f"line {number}: {' and '.join(motions)} are both motions in {_shown(raw)}")
         spindle = [c for c in codes if c in SPINDLE]
@@ -304,6 +313,14 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
                 raise NCReadError(f"line {number}: {code} {REFUSED[code]}: {_shown(raw)}")
             if code in MOTION:
                 mode = MOTION[code]
+            elif code in CYCLES:
+                if mode not in CYCLES:
+                    cycle_start_z = position["Z"]
+                mode = code
+            elif code == "G80":
+                mode = None
+            elif code in RETRACTS:
+                retract = code
             elif code == "G90":
                 absolute = True
             elif code == "G91":
@@ -329,6 +346,8 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
                 ignore(letter, WORD_USE[letter], number)
             elif letter == "P" and any(c in ("G4", "G64") for c in codes):
                 continue
+            elif letter in "RQP" and mode in CYCLES:
+                continue
             elif letter == "R" and mode in (2, 3) and not home:
                 raise NCReadError(f"line {number}: R-format arcs are not supported; use I and J: {_shown(raw)}")
             else:
@@ -353,6 +372,67 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
                 raise NCReadError(f"line {number}: G53 moves in machine coordinates, which the reader does not "
                                   f"know (only a Z lift is followed): {_shown(raw)}")
             ignore("G53", "lift in machine coordinates (not simulated: the tool is taken to stay put)", number)
+            if ends:
+                break
+            continue
+        if mode in CYCLES and (axes or any(w in values for w in "RQ")):
+            if not absolute:
+                raise NCReadError(f"line {number}: a drilling cycle in incremental mode (G91) is not followed: "
+                                  f"{_shown(raw)}")
+            if "C" in values:
+                raise NCReadError(f"line {number}: a drilling cycle with a C word is not followed: {_shown(raw)}")
+            for word in "ZRQ":
+                if word in values:
+                    cycle[word] = values[word] * scale
+            if "Z" not in cycle or "R" not in cycle:
+                raise NCReadError(f"line {number}: {mode} needs its Z (the bottom) and R (the retract plane) "
+                                  f"words: {_shown(raw)}")
+            if mode == "G83" and not cycle.get("Q", 0) > 0:
+                raise NCReadError(f"line {number}: G83 needs a peck Q greater than 0: {_shown(raw)}")
+            if mode == "G82" and values.get("P", 0) < 0:
+                raise NCReadError(f"line {number}: G82 P{values['P']:g} is a negative dwell: {_shown(raw)}")
+            if cycle["Z"] > cycle["R"]:
+                raise NCReadError(f"line {number}: the cycle's bottom Z{cycle['Z']:g} lies above its R plane "
+                                  f"R{cycle['R']:g}: {_shown(raw)}")
+            if feed_line is None or not feed_rate:
+                raise NCReadError(f"line {number}: {mode} with no feed in effect (a control refuses a cutting move "
+                                  f"without a feed): {_shown(raw)}")
+            if not any(a in values for a in "XY") and not kinds:
+                raise NCReadError(f"line {number}: a drilling cycle before the tool's XY position is known: "
+                                  f"{_shown(raw)}")
+            x = values["X"] * scale if "X" in values else position["X"]
+            y = values["Y"] * scale if "Y" in values else position["Y"]
+            r_plane, bottom = cycle["R"], cycle["Z"]
+
+            def go(kind, z, xy=None):
+                position["X"], position["Y"] = (x, y) if xy is None else xy
+                position["Z"] = z
+                kinds.append(kind)
+                points.append((position["X"], position["Y"], z))
+                centres.append((np.nan, np.nan, np.nan))
+                c_values.append(position["C"])
+                lines.append(number)
+                speeds.append(speed if direction is not None else 0.0)
+                turning.append(direction is not False)
+
+            if position["Z"] < r_plane:          # below R: up to it first (LinuxCNC's preliminary motion)
+                go(RAPID, r_plane, (position["X"], position["Y"]))
+            go(RAPID, position["Z"])              # over the hole at the height it is at
+            go(RAPID, r_plane)
+            if mode == "G83":
+                depth = r_plane
+                while depth > bottom + 1e-9:
+                    if depth < r_plane:
+                        go(RAPID, depth + PECK_CLEARANCE_MM)
+                    depth = max(bottom, depth - cycle["Q"])
+                    go(FEED, depth)
+                    if depth > bottom + 1e-9:
+                        go(RAPID, r_plane)
+            else:
+                go(FEED, bottom)
+            top = r_plane if retract == "G99" else max(r_plane, cycle_start_z if cycle_start_z is not None else r_plane)
+            go(RAPID, top)
+            known.update(("X", "Y", "Z"))
             if ends:
                 break
             continue
