@@ -227,7 +227,7 @@ def bspline(control: np.ndarray, weights: np.ndarray, knots: np.ndarray, degree:
         finite = np.isfinite(d2).all(axis=1)
         bound = float(np.hypot(d2[finite, 0], d2[finite, 1]).max()) if finite.any() else 0.0
         bound *= float(weights.max() / weights.min()) ** 2
-    pieces = [homogeneous_point(homogeneous, knots, p, p, knots[p])[None, :]]
+    pieces = [homogeneous_point(homogeneous, knots, p, p, knots[p])]
     spans = [k for k in range(p, count) if knots[k + 1] > knots[k]]
     for k in spans:
         h = knots[k + 1] - knots[k]
