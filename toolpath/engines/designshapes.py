@@ -74,7 +74,9 @@ def arc_segments(radius: float, sweep: float, tolerance: float) -> int:
     if r <= tolerance or sweep == 0:
         return 1
     step = 2.0 * math.acos(1.0 - tolerance / r)
-    return int(min(max(1, math.ceil(sweep / step)), MAX_SEGMENTS))
+    if step <= 0 or sweep / step >= MAX_SEGMENTS:       # a tolerance below the float's resolution at r
+        return MAX_SEGMENTS
+    return int(max(1, math.ceil(sweep / step)))
 
 
 def arc_points(cx: float, cy: float, rx: float, ry: float, rotation: float, start: float, sweep: float,
@@ -114,15 +116,24 @@ def bulge_points(p0, p1, bulge: float, tolerance: float) -> np.ndarray:
     return points
 
 
+def singular_values(matrix: np.ndarray) -> tuple[float, float]:
+    """(largest, smallest) stretch of the matrix's 2 x 2 part, in closed form: the square roots of
+    (E +- sqrt(E^2 - 4 det^2)) / 2 with E the sum of the squared entries."""
+    a, b, c, d = (float(v) for v in (matrix[0, 0], matrix[0, 1], matrix[1, 0], matrix[1, 1]))
+    energy, det = a * a + b * b + c * c + d * d, a * d - b * c
+    root = math.sqrt(max(0.0, energy * energy - 4 * det * det))
+    return math.sqrt((energy + root) / 2), math.sqrt(max(0.0, (energy - root) / 2))
+
+
 def largest_scale(matrix: np.ndarray) -> float:
-    """How much the matrix stretches a length at most (its largest singular value)."""
-    return float(np.linalg.svd(matrix[:2, :2], compute_uv=False).max())
+    """How much the matrix stretches a length at most."""
+    return singular_values(matrix)[0]
 
 
 def is_similarity(matrix: np.ndarray) -> bool:
     """Whether the matrix keeps circles circles (a rotation, uniform scale, shift, mirror)."""
-    values = np.linalg.svd(matrix[:2, :2], compute_uv=False)
-    return bool(values.max() - values.min() <= 1e-9 * max(1.0, values.max()))
+    big, small = singular_values(matrix)
+    return big - small <= 1e-9 * max(1.0, big)
 
 
 def applied(matrix: np.ndarray, points: np.ndarray) -> np.ndarray:
@@ -192,17 +203,20 @@ def join_open(shapes: list, tolerance: float = JOIN_TOLERANCE) -> tuple[list, li
     used = np.zeros(len(shapes), bool)
 
     def partner(point, exclude):
+        """An unused piece with an end within ``tolerance`` of the point: (index, end) or None.
+        Used ends are dropped from the cells' tails as they are met, so a pile of duplicate lines
+        on one spot (common in laser DXFs) does not make this quadratic."""
         kx, ky = (int(v) for v in np.floor(point / tolerance))
-        best, best_distance = None, tolerance
         for dx in (-1, 0, 1):
             for dy in (-1, 0, 1):
-                for index, end in cells.get((kx + dx, ky + dy), ()):
-                    if used[index] or index == exclude:
-                        continue
-                    distance = math.hypot(*(ends[index, end] - point))
-                    if distance <= best_distance:
-                        best, best_distance = (index, end), distance
-        return best
+                entries = cells.get((kx + dx, ky + dy))
+                while entries and used[entries[-1][0]]:
+                    entries.pop()
+                for index, end in reversed(entries or ()):
+                    if not used[index] and index != exclude and \
+                            math.hypot(*(ends[index, end] - point)) <= tolerance:
+                        return index, end
+        return None
 
     joined = []
     for first in range(len(shapes)):

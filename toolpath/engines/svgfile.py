@@ -47,7 +47,7 @@ CONTAINERS = {"g", "a", "switch", "svg"}
 SHAPES = {"path", "rect", "circle", "ellipse", "line", "polyline", "polygon"}
 NOTED = {"text": "a text (convert it to paths)", "image": "an image", "flowRoot": "a text (convert it to paths)"}
 MAX_DEPTH = 200             # elements nested deeper than this are not a drawing
-MAX_VISITS = 1_000_000    # elements drawn, uses counted each time
+MAX_VISITS = 100_000      # elements drawn, uses counted each time (a sign has 10^3)
 MAX_ENTITIES = 100          # entity declarations (Illustrator declares about ten)
 MAX_ENTITY_CHARS = 1000
 
@@ -261,7 +261,7 @@ class Reader:
 
     def shape(self, node: Node, matrix, layer: str, where: str) -> None:
         scale = largest_scale(matrix)
-        if scale == 0 or abs(np.linalg.det(matrix[:2, :2])) < 1e-300:
+        if scale == 0 or abs(matrix[0, 0] * matrix[1, 1] - matrix[0, 1] * matrix[1, 0]) < 1e-300:
             self.notes.append(f"{where}: its transform flattens it to nothing, skipped")
             return
         tolerance = self.tolerance / scale              # in this element's user units

@@ -182,8 +182,10 @@ def elliptical_arc(start, rx: float, ry: float, rotation_deg: float, large: bool
     if x1 == x2 and y1 == y2:
         return np.empty((0, 2))
     rx, ry = abs(rx), abs(ry)
-    if rx == 0 or ry == 0:
-        return None
+    chord = math.hypot(x2 - x1, y2 - y1)
+    if min(rx, ry) <= 1e-9 * chord or chord <= 1e-12 * max(rx, ry, 1.0):
+        return None          # a zero radius is a line (F.6.6); radii this small or a chord this short draw one
+
     phi = math.radians(rotation_deg % 360.0)
     c, s = math.cos(phi), math.sin(phi)
     dx, dy = (x1 - x2) / 2, (y1 - y2) / 2
@@ -193,6 +195,8 @@ def elliptical_arc(start, rx: float, ry: float, rotation_deg: float, large: bool
         rx, ry = rx * math.sqrt(scale), ry * math.sqrt(scale)
     numerator = (rx * ry) ** 2 - (rx * y1p) ** 2 - (ry * x1p) ** 2
     denominator = (rx * y1p) ** 2 + (ry * x1p) ** 2
+    if not denominator > 0 or not math.isfinite(numerator):
+        return None
     root = math.sqrt(max(0.0, numerator / denominator)) * (-1.0 if large == sweep else 1.0)
     cxp, cyp = root * rx * y1p / ry, -root * ry * x1p / rx
     cx, cy = c * cxp - s * cyp + (x1 + x2) / 2, s * cxp + c * cyp + (y1 + y2) / 2
