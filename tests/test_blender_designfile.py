@@ -175,3 +175,16 @@ def test_batch_job_with_a_design_writes_the_program_and_refuses_a_bad_design_by_
     path.write_text(JOB.format(letters="sign Letters").replace('layer = "Letters", ', "wrong = 1, "))
     status, message = run_batch("job", str(path), "--out", str(tmp_path / "out3"))
     assert status == 2 and "design.wrong is not a key of a design" in message
+
+
+def test_errors_and_notes_come_out_in_japanese_with_their_values(tmp_path):
+    from kezuri.operators import translations
+    from kezuri.toolpath.engines import svgfile
+    bad = tmp_path / "bad.svg"
+    bad.write_text('<svg xmlns="http://www.w3.org/2000/svg"><path id="p" d="M 0 0 L 5"/></svg>')
+    with pytest.raises(DesignFileError) as raised:
+        svgfile.read_svg(str(bad))
+    japanese = translations.japanese_message(str(raised.value))
+    assert japanese == "bad.svg: <path id='p'> (line 1)：パスデータ：10 文字目で 数値がありません（付近 'M 0 0 L 5'）"
+    note = "part.dxf: skipped 2 TEXT (draws no cutting line), first at line 120"
+    assert translations.japanese_message(note) == "part.dxf：TEXT を 2 個読み飛ばしました（削る線を描きません、最初は 120 行目）"

@@ -293,8 +293,9 @@ class Reader:
         self.budget = PointBudget(name)
         self.shapes, self.skipped, self.drawn = [], {}, 0
 
-    def skip(self, entity: Entity, why: str) -> None:
-        self.skipped.setdefault(why, []).append(entity.line)
+    def skip(self, entity: Entity, why: str, detail: str = "") -> None:
+        """Skipped for ``why``: "off" (its layer, ``detail``, is off or frozen), "not cut", "unknown", "mesh"."""
+        self.skipped.setdefault((why, detail or entity.kind), []).append(entity.line)
 
     def draw(self, entities: list, matrix: np.ndarray, layer_0: str | None, inserting: tuple, via: str = "") -> None:
         for entity in entities:
@@ -305,16 +306,16 @@ class Reader:
             if layer == "0" and layer_0 is not None:
                 layer = layer_0
             if self.sections.layers.get(layer, False):
-                self.skip(entity, f"on the layer {layer!r}, which is off or frozen")
+                self.skip(entity, "off", layer)
                 continue
             if entity.kind == "INSERT":
                 self.insert(entity, matrix, layer, inserting, via)
             elif entity.kind in NOT_CUT:
-                self.skip(entity, f"{entity.kind} (draws no cutting line)")
+                self.skip(entity, "not cut")
             elif entity.kind in ("LINE", "CIRCLE", "ARC", "LWPOLYLINE", "POLYLINE", "ELLIPSE", "SPLINE"):
                 self.entity(entity, matrix, layer, via)
             else:
-                self.skip(entity, f"{entity.kind} (an entity this reader does not know)")
+                self.skip(entity, "unknown")
 
     def insert(self, entity: Entity, matrix: np.ndarray, layer: str, inserting: tuple, via: str) -> None:
         block_name = entity.text(2)
@@ -374,7 +375,7 @@ class Reader:
         elif kind == "POLYLINE":
             flags = int(entity.number(70, 0.0))
             if flags & (16 | 64):
-                self.skip(entity, "POLYLINE mesh (a 3-D surface, not a line)")
+                self.skip(entity, "mesh")
                 return
             closed = bool(flags & 1)
             vertices = [(v.number(10), v.number(20), v.number(42, 0.0)) for v in entity.vertices
@@ -407,8 +408,21 @@ class Reader:
         return (points[:-1], True) if full else (points, False)
 
     def notes(self) -> list:
-        return [f"{self.name}: skipped {len(lines)} {why}, first at line {lines[0]}" for why, lines in
-                self.skipped.items()]
+        found = []
+        for (why, detail), lines in self.skipped.items():
+            count, first = len(lines), lines[0]
+            if why == "off":
+                found.append(f"{self.name}: skipped {count} entities on the layer {detail!r}, which is off or "
+                             f"frozen, first at line {first}")
+            elif why == "not cut":
+                found.append(f"{self.name}: skipped {count} {detail} (draws no cutting line), first at line {first}")
+            elif why == "mesh":
+                found.append(f"{self.name}: skipped {count} POLYLINE meshes (3-D surfaces, not lines), first at line "
+                             f"{first}")
+            else:
+                found.append(f"{self.name}: skipped {count} {detail} (an entity this reader does not know), first at "
+                             f"line {first}")
+        return found
 
 
 def read_dxf(path: str, tolerance: float = ARC_TOLERANCE, scale: float | None = None,
@@ -448,5 +462,5 @@ def read_dxf(path: str, tolerance: float = ARC_TOLERANCE, scale: float | None = 
     shapes, joined_notes = joined_by_layer(reader.shapes, join_tolerance)
     notes += reader.notes()
     if not shapes:
-        raise DesignFileError(f"{name}: no lines or curves to cut" + (f" ({'; '.join(notes)})" if notes else ""))
+        raise DesignFileError(f"{name}: no lines or curves to cut ({'; '.join(notes) or 'an empty drawing'})")
     return Design(path, tuple(shapes), tuple(notes + joined_notes))

@@ -45,7 +45,7 @@ MM_PER = {"px": 25.4 / 96, "": 25.4 / 96, "pt": 25.4 / 72, "pc": 25.4 / 6, "mm":
           "q": 0.25}
 CONTAINERS = {"g", "a", "switch", "svg"}
 SHAPES = {"path", "rect", "circle", "ellipse", "line", "polyline", "polygon"}
-NOTED = {"text": "a text (convert it to paths)", "image": "an image", "flowRoot": "a text (convert it to paths)"}
+TEXTS = {"text", "flowRoot"}
 MAX_DEPTH = 200             # elements nested deeper than this are not a drawing
 MAX_VISITS = 100_000      # elements drawn, uses counted each time (a sign has 10^3)
 MAX_ENTITIES = 100          # entity declarations (Illustrator declares about ten)
@@ -71,15 +71,17 @@ def parse_tree(data: bytes, name: str) -> Node:
     stack, roots, entities = [], [], []
 
     def entity(entity_name, is_parameter, value, base, system_id, public_id, notation):
-        where = f"{name}: line {parser.CurrentLineNumber}: entity {entity_name!r}"
+        line = parser.CurrentLineNumber
         if is_parameter or value is None:
-            raise DesignFileError(f"{where}: external and parameter entities are refused")
+            raise DesignFileError(f"{name}: line {line}: entity {entity_name!r}: external and parameter entities "
+                                  "are refused")
         if "&" in value or "<" in value or len(value) > MAX_ENTITY_CHARS:
-            raise DesignFileError(f"{where}: an entity that refers to others or holds markup is refused "
-                                  "(it can expand without end)")
+            raise DesignFileError(f"{name}: line {line}: entity {entity_name!r}: an entity that refers to others or "
+                                  "holds markup is refused (it can expand without end)")
         entities.append(entity_name)
         if len(entities) > MAX_ENTITIES:
-            raise DesignFileError(f"{where}: more than {MAX_ENTITIES} entity declarations are refused")
+            raise DesignFileError(f"{name}: line {line}: entity {entity_name!r}: more than {MAX_ENTITIES} entity "
+                                  "declarations are refused")
 
     def start(tag, attrs):
         if len(stack) >= MAX_DEPTH:
@@ -238,8 +240,10 @@ class Reader:
             self.use(node, matrix, layer, using, where, depth)
         elif node.tag in SHAPES:
             self.shape(node, matrix, layer, where)
-        elif node.tag in NOTED:
-            self.notes.append(f"{where}: {NOTED[node.tag]}, skipped")
+        elif node.tag in TEXTS:
+            self.notes.append(f"{where}: a text, skipped (convert it to paths in the drawing program)")
+        elif node.tag == "image":
+            self.notes.append(f"{where}: an image, skipped")
 
     def use(self, node: Node, matrix, layer: str, using: tuple, where: str, depth: int) -> None:
         reference = node.get("href") or node.get(f"{XLINK_NS} href") or ""
@@ -337,7 +341,8 @@ def read_svg(path: str, tolerance: float = ARC_TOLERANCE, join_tolerance: float 
     reader = Reader(name, root, tolerance)
     reader.walk(root, matrix, "", top=True)
     shapes, notes = joined_by_layer(reader.shapes, join_tolerance)
+    if not shapes and reader.notes:
+        raise DesignFileError(f"{name}: no lines or curves to cut ({'; '.join(reader.notes[:3])})")
     if not shapes:
-        raise DesignFileError(f"{name}: no lines or curves to cut" +
-                              (f" ({'; '.join(reader.notes[:3])})" if reader.notes else ""))
+        raise DesignFileError(f"{name}: no lines or curves to cut")
     return Design(path, tuple(shapes), tuple(reader.notes + notes))
