@@ -169,12 +169,14 @@ class KEZURI_OT_import_design(bpy.types.Operator, ImportHelper):
 
     filename_ext = ".svg"
     filter_glob: StringProperty(default="*.svg;*.dxf;*.SVG;*.DXF", options={"HIDDEN"})
-    scale: FloatProperty(name="DXF Scale", default=1.0, min=1e-6, max=1e6,
+    scale: FloatProperty(name="DXF Scale", default=1.0, soft_min=0.001, soft_max=1000.0,
                          description="Millimetres per drawing unit of a DXF file without units "
                                      "(a file that gives its units is read in them)")
 
     def execute(self, context):
         def work():
+            if not (math.isfinite(self.scale) and self.scale > 0):
+                raise DesignFileError(f"DXF Scale = {self.scale:g}: give a positive number of mm per drawing unit")
             scale = None if self.scale == 1.0 or not self.filepath.lower().endswith(".dxf") else float(self.scale)
             design = read_design(self.filepath, None, scale)
             made = design_objects(context.scene, design, context.collection)

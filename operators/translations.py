@@ -1964,6 +1964,7 @@ DESIGN_TEMPLATES = {
     "--scale {}: a scale is for a DXF file without units; an SVG gives its size":
         "--scale {0}：縮尺は単位のない DXF ファイル用です。SVG は自身の大きさを持ちます",
     "{}: no layer {}; its layers are {}": "{0}：レイヤー {1} はありません（レイヤーは {2}）",
+    "DXF Scale = {}: give a positive number of mm per drawing unit": "DXF の縮尺 = {0}：図面単位あたりの正の mm 数を指定してください",
     "{}: no closed outline in the layers asked for": "{0}：指定したレイヤーに閉じた輪郭がありません",
     # toolpath/engines/designshapes.py
     "{}: a coordinate is not a finite number (NaN or infinity)": "{0}：有限でない座標があります（NaN または無限大）",

@@ -188,3 +188,17 @@ def test_errors_and_notes_come_out_in_japanese_with_their_values(tmp_path):
     assert japanese == "bad.svg: <path id='p'> (line 1)：パスデータ：10 文字目で 数値がありません（付近 'M 0 0 L 5'）"
     note = "part.dxf: skipped 2 TEXT (draws no cutting line), first at line 120"
     assert translations.japanese_message(note) == "part.dxf：TEXT を 2 個読み飛ばしました（削る線を描きません、最初は 120 行目）"
+
+
+@pytest.mark.parametrize("scale", [-1.0, 0.0, float("nan")])
+def test_the_dxf_scale_is_refused_not_clamped(empty_scene, tmp_path, scale):
+    dxf = tmp_path / "part.dxf"
+    dxf.write_text("".join(f"{c:>3}\n{v}\n" for c, v in [
+        (0, "SECTION"), (2, "ENTITIES"), (0, "CIRCLE"), (8, "0"), (10, 0.0), (20, 0.0), (40, 5.0), (0, "ENDSEC"),
+        (0, "EOF")]))
+    with pytest.raises(RuntimeError, match=r"DXF Scale = (-1|0|nan): give a positive number"):
+        bpy.ops.kezuri.import_design(filepath=str(dxf), scale=scale)
+    assert not bpy.data.objects
+    assert bpy.ops.kezuri.import_design(filepath=str(dxf), scale=2.0) == {"FINISHED"}
+    spline = bpy.data.objects["part 0"].data.splines[0]
+    assert np.abs(spline_points(spline)).max() == pytest.approx(10.0)      # r = 5 units of 2 mm, mm scene

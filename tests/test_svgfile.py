@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 
 from kezuri.toolpath.engines import svgfile
-from kezuri.toolpath.engines.designshapes import DesignFileError
 from kezuri.toolpath.engines.region import ARC_TOLERANCE
 
 TOL = ARC_TOLERANCE

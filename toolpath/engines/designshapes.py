@@ -14,7 +14,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..ir.errors import MAX_REACH_MM, InputError
-from .region import ARC_TOLERANCE
 
 # Pieces whose ends lie this close (mm) are one point: a laser shop's LINEs meet to 1e-6 mm, a
 # drawing rounded to 0.01 mm on export still closes.
