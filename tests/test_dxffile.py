@@ -253,3 +253,47 @@ def test_r2000_file_from_ezdxf_with_every_kind(tmp_path):
     assert design.layers() == ["HOLES", "OUTLINE"]
     assert design.shapes[0].circle == pytest.approx((25.4, 25.4, 12.7))
     assert abs(area(design.loops("OUTLINE")[0])) == pytest.approx(8 * 25.4 ** 2)
+
+
+def test_periodic_closed_and_rational_splines_against_ezdxf(tmp_path):
+    doc = ezdxf.new("R2000")
+    doc.header["$INSUNITS"] = 4
+    msp = doc.modelspace()
+    periodic = msp.add_spline(dxfattribs={"layer": "LOOP"})      # a closed cubic: 4 points wrapped round
+    periodic.dxf.degree = 3
+    periodic.control_points = [(0, 0), (20, 0), (20, 20), (0, 20), (0, 0), (20, 0), (20, 20)]
+    periodic.knots = list(range(11))
+    periodic.closed = True
+    rational = msp.add_rational_spline([(0, 0), (10, 10), (20, 0)], [1, 0.7071, 1], degree=2,
+                                       dxfattribs={"layer": "ARC"})
+    doc.saveas(tmp_path / "splines.dxf")
+    design = dxffile.read_dxf(str(tmp_path / "splines.dxf"))
+    (loop,) = design.loops("LOOP")
+    (arc,) = design.open_paths("ARC")
+    for ours, entity in ((np.vstack([loop, loop[:1]]), periodic), (arc, rational)):
+        tool = entity.construction_tool()
+        reference = np.array([(p.x, p.y) for p in tool.approximate(400)])
+        a, b = ours[:-1], ours[1:]
+        ab = b - a
+        for q in reference:
+            t = np.clip(((q - a) * ab).sum(1) / (ab * ab).sum(1), 0, 1)
+            assert np.hypot(*(a + t[:, None] * ab - q).T).min() <= TOL
+    # the closed cubic B-spline of that square's corners runs through (16.667, 3.333) ... (3.333, 16.667)
+    assert np.hypot(loop[:, 0] - 50 / 3, loop[:, 1] - 10 / 3).min() < 1e-6
+
+
+def test_r2000_lwpolyline_written_by_hand_with_handles_and_subclass_markers(tmp_path):
+    """As AutoCAD 2000+ writes it: handle (5), owner (330), subclass markers (100), constant width
+    (43), elevation (38), per-vertex widths (40/41) between the coordinates and the bulge."""
+    groups = [(0, "LWPOLYLINE"), (5, "2F"), (330, "1F"), (100, "AcDbEntity"), (8, "CUT"), (100, "AcDbPolyline"),
+              (90, 4), (70, 1), (43, 0.0), (38, 0.0),
+              (10, 0.0), (20, 0.0), (40, 0.0), (41, 0.0),
+              (10, 30.0), (20, 0.0), (40, 0.0), (41, 0.0), (42, 0.41421356237),     # tan(22.5 deg): a quarter turn
+              (10, 40.0), (20, 10.0),
+              (10, 0.0), (20, 10.0)]
+    (part,) = dxffile.read_dxf(write(tmp_path, dxf_text(groups))).shapes
+    # the 30 x 10 rectangle, the triangle (30,0)-(40,10)-(30,10), and beyond its chord the segment of a
+    # quarter turn of r = 10 about (30, 10): 300 + 50 + r^2 / 2 (pi / 2 - sin(pi / 2))
+    segment = 100 / 2 * (math.pi / 2 - 1)
+    exact = 300 + 50 + segment
+    assert exact - 2 * math.pi * 10 * TOL <= area(part.points) <= exact
