@@ -2059,6 +2059,8 @@ DESIGN_TEMPLATES = {
         "{0}：非表示またはフリーズのレイヤー {2} のエンティティ {1} 個を読み飛ばしました（最初は {3} 行目）",
     "{}: skipped {} {} (draws no cutting line), first at line {}":
         "{0}：{2} を {1} 個読み飛ばしました（削る線を描きません、最初は {3} 行目）",
+    "{}: skipped {} {} in paper space (a sheet's frame or title block), first at line {}":
+        "{0}：ペーパー空間の {2} を {1} 個読み飛ばしました（図枠や表題欄、最初は {3} 行目）",
     "{}: skipped {} POLYLINE meshes (3-D surfaces, not lines), first at line {}":
         "{0}：POLYLINE メッシュ {1} 個を読み飛ばしました（線ではなく3次元の面、最初は {2} 行目）",
     "{}: skipped {} {} (an entity this reader does not know), first at line {}":

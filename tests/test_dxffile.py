@@ -297,3 +297,12 @@ def test_r2000_lwpolyline_written_by_hand_with_handles_and_subclass_markers(tmp_
     segment = 100 / 2 * (math.pi / 2 - 1)
     exact = 300 + 50 + segment
     assert exact - 2 * math.pi * 10 * TOL <= area(part.points) <= exact
+
+
+def test_paper_space_entities_are_left_out(tmp_path):
+    frame = [(0, "LWPOLYLINE"), (67, 1), (8, "CUT"), (90, 4), (70, 1), (10, 0.0), (20, 0.0), (10, 420.0), (20, 0.0),
+             (10, 420.0), (20, 297.0), (10, 0.0), (20, 297.0)]
+    part = [(0, "CIRCLE"), (8, "CUT"), (10, 0.0), (20, 0.0), (40, 4.0)]
+    design = dxffile.read_dxf(write(tmp_path, dxf_text(frame, part)))
+    assert [s.circle for s in design.shapes] == [pytest.approx((0, 0, 4))]
+    assert any("1 LWPOLYLINE in paper space" in note for note in design.notes)

@@ -21,7 +21,8 @@ reference (AutoCAD's "DXF Reference", group codes by entity) describes them:
   extrusion (210/220/230) is (0, 0, -1), as mirrored parts often come: X mirrored (the arbitrary
   axis algorithm); other extrusions are not in the drawing's plane and are refused.
 - Layers (8) from the entities, off (colour < 0) and frozen (70 flag 1) layers of the LAYER table
-  skipped.  Entities that draw no cutting line (TEXT, MTEXT, DIMENSION, HATCH, POINT, ...) and
+  skipped, and so are entities in paper space (67 = 1: a sheet's frame).  Entities that draw no
+  cutting line (TEXT, MTEXT, DIMENSION, HATCH, POINT, ...) and
   unknown ones are skipped and listed in the design's notes with their line.
 
 Open pieces of a layer (LINEs, ARCs, open polylines) are joined end to end into closed loops.
@@ -294,7 +295,8 @@ class Reader:
         self.shapes, self.skipped, self.drawn = [], {}, 0
 
     def skip(self, entity: Entity, why: str, detail: str = "") -> None:
-        """Skipped for ``why``: "off" (its layer, ``detail``, is off or frozen), "not cut", "unknown", "mesh"."""
+        """Skipped for ``why``: "off" (its layer, ``detail``, is off or frozen), "paper", "not cut",
+        "unknown", "mesh"."""
         self.skipped.setdefault((why, detail or entity.kind), []).append(entity.line)
 
     def draw(self, entities: list, matrix: np.ndarray, layer_0: str | None, inserting: tuple, via: str = "") -> None:
@@ -307,6 +309,9 @@ class Reader:
                 layer = layer_0
             if self.sections.layers.get(layer, False):
                 self.skip(entity, "off", layer)
+                continue
+            if entity.text(67, "0").strip() == "1":          # paper space: a title block, a frame
+                self.skip(entity, "paper")
                 continue
             if entity.kind == "INSERT":
                 self.insert(entity, matrix, layer, inserting, via)
@@ -416,6 +421,9 @@ class Reader:
                              f"frozen, first at line {first}")
             elif why == "not cut":
                 found.append(f"{self.name}: skipped {count} {detail} (draws no cutting line), first at line {first}")
+            elif why == "paper":
+                found.append(f"{self.name}: skipped {count} {detail} in paper space (a sheet's frame or title "
+                             f"block), first at line {first}")
             elif why == "mesh":
                 found.append(f"{self.name}: skipped {count} POLYLINE meshes (3-D surfaces, not lines), first at line "
                              f"{first}")
