@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import bpy
 
-from . import joblist, panels, preferences, properties, simulate, translations
+from . import designfile, joblist, panels, preferences, properties, simulate, translations
 from .workflows import WORKFLOWS, job_items
 
 CLASSES = (*preferences.CLASSES, *(cls for workflow in WORKFLOWS for cls in workflow.classes), *simulate.CLASSES,
-           *joblist.CLASSES, *panels.CLASSES)
-MENUS = tuple(menu for workflow in WORKFLOWS for menu in workflow.menus)
+           *joblist.CLASSES, *designfile.CLASSES, *panels.CLASSES)
+MENUS = (*(menu for workflow in WORKFLOWS for menu in workflow.menus), *designfile.MENUS)
 
 
 def register():

@@ -16,6 +16,8 @@ A job file (TOML)::
     name = "name plate"         # unique in the job
     enabled = true
     objects = { plate = "Plate", letters = "Letters" }   # the kind's object slots
+    design = "logo.svg"         # an SVG / DXF beside the job file: its curves made first, one
+                                # object per layer ("logo", "logo Cut"), for objects to name
     settings = { seed = 7 }     # the kind's panel settings by property name, checked like the panel's
 
 The CAM tab's job list plans its rows through :func:`job_of` too, and saves them as such a file
@@ -34,7 +36,7 @@ from ..toolpath.job import Job, Setup, plan_job
 from .jobentry import JobEntry, JobFileError
 
 SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings"}
-OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "file"}
+OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "file", "design"}
 
 
 def read(path: str, text: str | None = None) -> dict:
@@ -112,9 +114,13 @@ def scene_for(setup: dict, path: str, base_dir: str | None = None):
 def entries(data: dict, scene, path: str, base_dir: str | None = None) -> list:
     import bpy
 
-    found = []
+    found, designs = [], set()
     for index, table in enumerate(data["operations"], 1):
         where = f"job file {os.path.basename(path)}: operation {index} ({table['name']!r})"
+        if "design" in table and repr(table["design"]) not in designs:     # a drawing's curves, made once
+            from .designfile import job_design
+            job_design(scene, table["design"], where, base_dir or os.path.dirname(os.path.abspath(path)))
+            designs.add(repr(table["design"]))
         objects = {}
         for slot, name in table.get("objects", {}).items():
             obj = bpy.data.objects.get(name) if isinstance(name, str) else None

@@ -327,6 +327,7 @@ class KEZURI_PT_joblist(KezuriPanel, bpy.types.Panel):
         row.operator("kezuri.job_move", icon="TRIA_DOWN", text="").direction = "DOWN"
         row.operator("kezuri.job_load", icon="FILEBROWSER", text="")
         row.operator("kezuri.job_save", icon="FILE_TICK", text="")
+        row.operator("kezuri.import_design", icon="IMPORT", text="")     # an SVG / DXF drawing as curves
         selected = listed.rows[listed.active] if 0 <= listed.active < len(listed.rows) else None
         if selected is not None:
             box = layout.box()

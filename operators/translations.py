@@ -2007,6 +2007,143 @@ JOBLIST_TEMPLATES = {
 }
 
 
+# ----- designs from drawing programs (operators/designfile.py, toolpath/engines/svgfile.py, dxffile.py,
+# svgpath.py, designshapes.py; issue 29): added to the tables here ------------------------------------
+DESIGN_OPERATORS = {"Import Design": "デザインを読み込み"}
+DESIGN_OPERATOR_TEXTS = {"Kezuri design (.svg/.dxf)": "Kezuri デザイン (.svg/.dxf)"}
+DESIGN_MESSAGES = {
+    "Import an SVG or DXF drawing as curves (one object per layer, in mm at the scene's unit scale)":
+        "SVG または DXF の図面をカーブとして読み込みます（レイヤーごとに1オブジェクト、シーンの単位スケールで mm）",
+    "DXF Scale": "DXF の縮尺",
+    "Millimetres per drawing unit of a DXF file without units (a file that gives its units is read in them)":
+        "単位のない DXF ファイルの図面単位あたりのミリメートル（単位を持つファイルはその単位で読みます）",
+    "no design: give --svg FILE or --dxf FILE": "デザインがありません：--svg FILE または --dxf FILE を指定してください",
+}
+DESIGN_TEMPLATES = {
+    # operators/designfile.py
+    '{}: design must be a file name ("logo.svg") or a table with file = "..."':
+        '{0}：design はファイル名（"logo.svg"）か file = "..." を持つ表にしてください',
+    "{}: design.{} is not a key of a design; they are file, layer, scale, at":
+        "{0}：design.{1} は design のキーではありません（キーは file、layer、scale、at）",
+    "{}: design.layer must be a layer's name": "{0}：design.layer はレイヤー名にしてください",
+    "{}: design.scale = {} is not a number": "{0}：design.scale = {1} は数値ではありません",
+    "{}: design.at = {} is not [x, y] in mm": "{0}：design.at = {1} は mm の [x, y] ではありません",
+    "{}: design: {}": "{0}：デザイン：{1}",
+    "Imported {} closed and {} open path(s) from {}": "{2} から閉じた経路 {0} 本と開いた経路 {1} 本を読み込みました",
+    "{}: not a design file: give an .svg or .dxf file": "{0}：デザインファイルではありません。.svg か .dxf を指定してください",
+    "--scale {}: a scale is for a DXF file without units; an SVG gives its size":
+        "--scale {0}：縮尺は単位のない DXF ファイル用です。SVG は自身の大きさを持ちます",
+    "{}: no layer {}; its layers are {}": "{0}：レイヤー {1} はありません（レイヤーは {2}）",
+    "DXF Scale = {}: give a positive number of mm per drawing unit": "DXF の縮尺 = {0}：図面単位あたりの正の mm 数を指定してください",
+    "{}: no closed outline in the layers asked for": "{0}：指定したレイヤーに閉じた輪郭がありません",
+    # toolpath/engines/designshapes.py
+    "{}: a coordinate is not a finite number (NaN or infinity)": "{0}：有限でない座標があります（NaN または無限大）",
+    "{}: a point lies {} mm from the origin (more than {} mm): are the units right?":
+        "{0}：点が原点から {1} mm にあります（{2} mm を超えています）。単位は正しいですか？",
+    "{}: the design has more than {} points after flattening; simplify it in the drawing program":
+        "{0}：折れ線化したデザインの点が {1} 個を超えます。作図ソフトで簡略化してください",
+    "{}: an open piece (its ends do not meet another's within {} mm)":
+        "{0}：開いた線です（端点が {1} mm 以内で他の線とつながりません）",
+    # toolpath/engines/svgfile.py
+    "{}: line {}: entity {}: external and parameter entities are refused":
+        "{0}：{1} 行目：エンティティ {2}：外部エンティティとパラメータエンティティは受け付けません",
+    "{}: line {}: entity {}: an entity that refers to others or holds markup is refused (it can expand without end)":
+        "{0}：{1} 行目：エンティティ {2}：他を参照する、またはマークアップを含むエンティティは受け付けません（際限なく展開されうるため）",
+    "{}: line {}: entity {}: more than {} entity declarations are refused":
+        "{0}：{1} 行目：エンティティ {2}：{3} 個を超えるエンティティ宣言は受け付けません",
+    "{}: line {}: elements nested more than {} deep": "{0}：{1} 行目：要素の入れ子が {2} 段を超えています",
+    "{}: line {}: an external entity is refused": "{0}：{1} 行目：外部エンティティは受け付けません",
+    "{}: not well-formed XML ({}, line {}){}": "{0}：正しい XML ではありません（{1}、{2} 行目）{3}",
+    "{}: not an SVG drawing (the root element is <{}>)": "{0}：SVG 図面ではありません（ルート要素が <{1}>）",
+    "{}: {} is missing": "{0}：{1} がありません",
+    "{}: {}={} is not a length": "{0}：{1}={2} は長さではありません",
+    "{}: {}={} is not a finite number": "{0}：{1}={2} は有限の数ではありません",
+    "{}: {}={}: a percentage is not a length in a drawing": "{0}：{1}={2}：パーセントは図面の長さになりません",
+    "{}: viewBox={} is not four numbers with a positive width and height":
+        "{0}：viewBox={1} は幅と高さが正の4つの数ではありません",
+    "{}: more than {} elements drawn (uses of uses?)": "{0}：描く要素が {1} 個を超えます（use の入れ子？）",
+    "{}: elements and uses nested more than {} deep": "{0}：要素と use の入れ子が {1} 段を超えています",
+    "{}: href={} names no element of the file": "{0}：href={1} はファイル内のどの要素も指していません",
+    "{}: href={} uses itself (through {})": "{0}：href={1} が自分自身を使っています（経由：{2}）",
+    "{}: points must be pairs of numbers": "{0}：points は数の組にしてください",
+    "{}: a compressed SVG (.svgz): save it as plain SVG": "{0}：圧縮 SVG（.svgz）です。通常の SVG で保存してください",
+    "{}: no such file": "{0}：ファイルがありません",
+    "{}: {} bytes, more than a drawing of {} bytes is refused": "{0}：{1} バイト。{2} バイトを超える図面は受け付けません",
+    "{}: no lines or curves to cut ({})": "{0}：削る線や曲線がありません（{1}）",
+    "{}: no lines or curves to cut": "{0}：削る線や曲線がありません",
+    "{}: a text, skipped (convert it to paths in the drawing program)":
+        "{0}：テキストは読み飛ばしました（作図ソフトでパスに変換してください）",
+    "{}: an image, skipped": "{0}：画像は読み飛ばしました",
+    "{}: its transform flattens it to nothing, skipped": "{0}：変形で大きさがなくなるため読み飛ばしました",
+    # toolpath/engines/svgpath.py (the problems inside "path data: ..." are templates of their own)
+    "{}: path data: {} at character {} (near {})": "{0}：パスデータ：{2} 文字目で {1}（付近 {3}）",
+    "a number is missing": "数値がありません",
+    "{} is not a number": "{0} は数値ではありません",
+    "the number {} is too large": "数値 {0} が大きすぎます",
+    "an arc flag must be 0 or 1": "円弧のフラグは 0 か 1 にしてください",
+    "path data must begin with a moveto (M or m)": "パスデータは moveto（M または m）で始めてください",
+    "a number after Z (a new subpath begins with M)": "Z の後に数値があります（新しいサブパスは M で始めます）",
+    "{} is neither a command nor a number": "{0} はコマンドでも数値でもありません",
+    "{}: transform {}: cannot read it from character {}": "{0}：transform {1}：{2} 文字目から読めません",
+    "{}: transform {}: {}({}) holds something not a number": "{0}：transform {1}：{2}({3}) に数値でないものがあります",
+    "{}: transform {}: a number is too large": "{0}：transform {1}：数値が大きすぎます",
+    "{}: transform {}: {} takes {} numbers, got {}": "{0}：transform {1}：{2} は {3} 個の数値をとります（{4} 個あります）",
+    # toolpath/engines/dxffile.py
+    "{}: {} lines, an odd number: a group code without its value at line {} (is the file cut short?)":
+        "{0}：{1} 行（奇数）：{2} 行目のグループコードに値がありません（ファイルが途中で切れていませんか？）",
+    "{}: line {}: group code {} is not a whole number (not an ASCII DXF file?)":
+        "{0}：{1} 行目：グループコード {2} が整数ではありません（ASCII DXF ファイルではない？）",
+    "{}: line {}: a SECTION without its name": "{0}：{1} 行目：名前のない SECTION です",
+    "{}: the {} section from line {} has no ENDSEC (is the file cut short?)":
+        "{0}：{2} 行目からの {1} セクションに ENDSEC がありません（ファイルが途中で切れていませんか？）",
+    "{}: no ENTITIES section (not a DXF drawing, or cut short?)":
+        "{0}：ENTITIES セクションがありません（DXF 図面ではない、または途中で切れている？）",
+    "{}: its extrusion ({}, {}, {}) is not along Z: it does not lie in the drawing's plane":
+        "{0}：押し出し方向 ({1}, {2}, {3}) が Z 方向ではありません：図面の平面上にありません",
+    "{}: {} control point X values but {} Y values": "{0}：制御点の X が {1} 個、Y が {2} 個です",
+    "{}: neither control points nor two fit points": "{0}：制御点も2つ以上のフィット点もありません",
+    "{}: degree {} with {} control points": "{0}：次数 {1} に制御点が {2} 個です",
+    "{}: {} knots for {} control points of degree {} (needs {}, never decreasing)":
+        "{0}：次数 {3} の制御点 {2} 個にノットが {1} 個です（減少しない {4} 個が必要）",
+    "{}: the weights must be one positive number per control point": "{0}：重みは制御点ごとに1つの正の数にしてください",
+    "{}: a vertex has an X (10) but no Y (20)": "{0}：X (10) があって Y (20) がない頂点があります",
+    "{}: more than {} entities drawn (inserts of inserts?)": "{0}：描くエンティティが {1} 個を超えます（INSERT の入れ子？）",
+    "{}: block {} is not in the BLOCKS section": "{0}：ブロック {1} が BLOCKS セクションにありません",
+    "{}: block {} inserts itself (through {})": "{0}：ブロック {1} が自分自身を挿入しています（経由：{2}）",
+    "{}: a scale of 0 flattens block {} to nothing": "{0}：尺度 0 ではブロック {1} の大きさがなくなります",
+    "{}: {} columns x {} rows of block {}": "{0}：ブロック {3} の {1} 列 x {2} 行",
+    "{}: radius {} must be > 0": "{0}：半径 {1} は 0 より大きくしてください",
+    "{}: the major axis ({}, {}) and ratio {} draw no ellipse": "{0}：長軸 ({1}, {2}) と比率 {3} では楕円になりません",
+    "{}: a binary DXF: save it as ASCII DXF": "{0}：バイナリ DXF です。ASCII DXF で保存してください",
+    "{}: line {}: $INSUNITS = {} is not a whole number": "{0}：{1} 行目：$INSUNITS = {2} が整数ではありません",
+    "{}: $INSUNITS = {}: units this reader does not take (mm, cm, m, inches, feet ...)":
+        "{0}：$INSUNITS = {1}：読めない単位です（mm、cm、m、インチ、フィートなど）",
+    "{}: the file says its units ({}): a scale is only for a file without units":
+        "{0}：ファイルが単位（{1}）を持っています。縮尺は単位のないファイル専用です",
+    "{}: scale {} must be a positive number of mm per drawing unit": "{0}：縮尺 {1} は図面単位あたりの正の mm 数にしてください",
+    "{}: group {} is missing": "{0}：グループ {1} がありません",
+    "{}: line {}: group {} = {} is not a number": "{0}：{1} 行目：グループ {2} = {3} は数値ではありません",
+    "{}: line {}: group {} = {} is not a finite number": "{0}：{1} 行目：グループ {2} = {3} は有限の数ではありません",
+    "{}: no units in the file: read as {} mm per drawing unit": "{0}：ファイルに単位がありません：図面単位あたり {1} mm として読みました",
+    "{}: skipped {} entities on the layer {}, which is off or frozen, first at line {}":
+        "{0}：非表示またはフリーズのレイヤー {2} のエンティティ {1} 個を読み飛ばしました（最初は {3} 行目）",
+    "{}: skipped {} {} (draws no cutting line), first at line {}":
+        "{0}：{2} を {1} 個読み飛ばしました（削る線を描きません、最初は {3} 行目）",
+    "{}: skipped {} {} in paper space (a sheet's frame or title block), first at line {}":
+        "{0}：ペーパー空間の {2} を {1} 個読み飛ばしました（図枠や表題欄、最初は {3} 行目）",
+    "{}: skipped {} POLYLINE meshes (3-D surfaces, not lines), first at line {}":
+        "{0}：POLYLINE メッシュ {1} 個を読み飛ばしました（線ではなく3次元の面、最初は {2} 行目）",
+    "{}: skipped {} {} (an entity this reader does not know), first at line {}":
+        "{0}：{2} を {1} 個読み飛ばしました（このリーダーが知らないエンティティ、最初は {3} 行目）",
+}
+OPERATOR_LABELS.update(DESIGN_OPERATORS)
+OPERATOR_TEXTS.update(DESIGN_OPERATOR_TEXTS)
+MESSAGES.update(DESIGN_MESSAGES)
+MESSAGE_TEMPLATES.update(DESIGN_TEMPLATES)
+NESTED["{}: path data: {} at character {} (near {})"] = (1,)
+NESTED["{}: design: {}"] = (1,)
+
+
 def _build() -> dict:
     messages: dict = {}
     for table in (PROPERTY_TEXTS, PANEL_TEXTS, OPERATOR_DESCRIPTIONS, MESSAGES):
