@@ -1917,6 +1917,16 @@ MESSAGE_TEMPLATES = {
     "hole at X{} Y{} is {} mm wide, the drill {} mm: drilled at the drill's size (turn helix milling on)":
         'X{0} Y{1} の穴は幅 {2} mm、ドリルは {3} mm です：ドリルの径で開けます（ヘリカル加工をオンにしてください）',
     'operation {}: {}': '加工 {0}：{1}',
+    'line {}: a drilling cycle in incremental mode (G91) is not followed: {}': '{0} 行目：インクリメンタル（G91）の穴あけサイクルは追えません：{1}',
+    'line {}: a drilling cycle with a C word is not followed: {}': '{0} 行目：C ワード付きの穴あけサイクルは追えません：{1}',
+    'line {}: {} needs its Z (the bottom) and R (the retract plane) words: {}':
+        '{0} 行目：{1} には Z（穴底）と R（R 点）のワードが必要です：{2}',
+    'line {}: G83 needs a peck Q greater than 0: {}': '{0} 行目：G83 には 0 より大きいペック量 Q が必要です：{1}',
+    'line {}: G82 P{} is a negative dwell: {}': '{0} 行目：G82 P{1} は負のドウェルです：{2}',
+    "line {}: the cycle's bottom Z{} lies above its R plane R{}: {}": '{0} 行目：サイクルの穴底 Z{1} が R 点 R{2} より上にあります：{3}',
+    'line {}: {} with no feed in effect (a control refuses a cutting move without a feed): {}':
+        '{0} 行目：送りが設定されていない {1}（制御装置は送りのない切削移動を受け付けません）：{2}',
+    "line {}: a drilling cycle before the tool's XY position is known: {}": '{0} 行目：工具の XY 位置が分かる前の穴あけサイクル：{1}',
     '{}: objects.{}: a carving takes objects.design (the mesh)': '{0}：objects.{1}：彫り込みは objects.design（メッシュ）を取ります',
     "{}: its work zero ({}) is not the job's ({}): the operations of one job share one work zero":
         '{0}：そのワーク原点（{1}）はジョブのもの（{2}）と違います。1つのジョブの加工は1つのワーク原点を共有します',
