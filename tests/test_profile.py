@@ -287,3 +287,24 @@ def test_hostile_settings_plan_or_are_refused_never_a_traceback(depth, step, wid
     op = plan.operation
     assert np.isfinite(op.xyz).all() and op.xyz[:, 2].min() >= -THICK - 0.3 - 1e-9
     assert (op.kind == RAPID).any()
+
+
+@pytest.mark.parametrize("side, lead, tab_shape, allowance", [
+    ("inside", "arc", "flat", 0.3), ("inside", "line", "triangle", 0.0), ("on", "line", "flat", 0.0),
+    ("outside", "none", "triangle", 0.5), ("outside", "line", "flat", 0.0),
+])
+def test_every_side_and_lead_passes_its_own_design_layer_without_a_plunge(side, lead, tab_shape, allowance):
+    settings = pf.ProfileSettings(side=side, lead=lead, tab_shape=tab_shape, tab_count=2, allowance=allowance,
+                                  climb=side != "on")
+    geometry = ProfileGeometry((tuple(map(tuple, RECT.tolist())),), THICK, 0.0, "object 'Part'", "cut")
+    planned = plan_job(Job(Setup("part"), (JobOperation("profile", "cut", settings, geometry),)))
+    program, stock, limits = planned.simulation()
+    result = sim.simulate(program, stock, cell=0.1, no_plunge_tools=(5,), **limits)
+    assert result.findings == []
+    gx, gy, heights = grid(result)
+    distance = rect_distance(gx, gy)
+    if side == "inside":
+        distance = -distance
+    elif side == "on":
+        distance = distance + D / 2         # the tool's centre on the outline: the part loses a radius
+    assert heights[distance < -0.01].min() >= -1e-9
