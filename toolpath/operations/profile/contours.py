@@ -34,27 +34,31 @@ def offset(shape: CrossSection, delta: float) -> CrossSection:
 
 def check_crossings(loops: list, what: str) -> None:
     """Refuse outlines that cross themselves or each other (an even-odd reading of them would not
-    be the shape drawn)."""
-    starts, ends, owner, index = [], [], [], []
-    for k, loop in enumerate(loops):
-        starts.append(loop)
-        ends.append(np.roll(loop, -1, axis=0))
-        owner.append(np.full(len(loop), k))
-        index.append(np.arange(len(loop)))
-    a, b = np.vstack(starts), np.vstack(ends)
-    owner, index = np.concatenate(owner), np.concatenate(index)
+    be the shape drawn).  Edges sorted by their least X; each chunk is tested against the edges
+    whose X range meets its own, so the work follows the edges near each other."""
+    a = np.vstack(loops)
+    b = np.vstack([np.roll(loop, -1, axis=0) for loop in loops])
+    owner = np.concatenate([np.full(len(loop), k) for k, loop in enumerate(loops)])
+    index = np.concatenate([np.arange(len(loop)) for loop in loops])
     sizes = np.array([len(loop) for loop in loops])[owner]
+    order = np.argsort(np.minimum(a[:, 0], b[:, 0]), kind="stable")
+    a, b, owner, index, sizes = a[order], b[order], owner[order], index[order], sizes[order]
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
     d = b - a
-    for first in range(0, len(a), 512):
-        p, r = a[first:first + 512, None, :], d[first:first + 512, None, :]
-        q, s = a[None, :, :], d[None, :, :]
+    for first in range(0, len(a), 256):
+        rows = np.arange(first, min(first + 256, len(a)))
+        reach = int(np.searchsorted(lo[:, 0], hi[rows, 0].max(), "right"))
+        cols = np.arange(first, reach)
+        cols = cols[hi[cols, 0] >= lo[rows, 0].min()]
+        if not len(cols):
+            continue
+        i, j = rows[:, None], cols[None, :]
+        p, r, q, s = a[i], d[i], a[j], d[j]
         denom = r[..., 0] * s[..., 1] - r[..., 1] * s[..., 0]
         qp = q - p
         with np.errstate(divide="ignore", invalid="ignore"):
             t = (qp[..., 0] * s[..., 1] - qp[..., 1] * s[..., 0]) / denom
             u = (qp[..., 0] * r[..., 1] - qp[..., 1] * r[..., 0]) / denom
-        i = np.arange(first, min(first + 512, len(a)))[:, None]
-        j = np.arange(len(a))[None, :]
         same = owner[i] == owner[j]
         gap = np.abs(index[i] - index[j])
         neighbours = same & ((gap <= 1) | (gap == sizes[i] - 1))
