@@ -52,7 +52,7 @@ def settings_from(entry, tabs) -> core.ProfileSettings:
                                given.pop("diameter", default.tool.diameter),
                                given.pop("flute_length", default.tool.flute_length))
     except core.ProfileError as error:
-        raise JobFileError(f"{entry.where}: the end mill: {error}") from None
+        raise JobFileError(f"{entry.where}: the end mill: {str(error).removeprefix('profile: tool: ')}") from None
     floats = {key: float(value) for key, value in given.items() if key not in WORDS | {"climb", "tab_count"}}
     rest = {key: value for key, value in given.items() if key in WORDS | {"climb", "tab_count"}}
     return core.ProfileSettings(tool=tool, tabs=tabs, **floats, **rest)
@@ -95,7 +95,7 @@ def job_operation(scene, depsgraph, entry, post_name: str):
         settings = settings_from(entry, read_tabs(entry))
         settings.check(float(plate.size[2]))
     except core.ProfileError as error:
-        raise JobFileError(f"{entry.where}: the profile: {error}") from None
+        raise JobFileError(f"{entry.where}: the profile: {str(error).removeprefix('profile: ')}") from None
     geometry = ProfileGeometry(tuple(tuple(map(tuple, loop[:, :2].tolist())) for loop in loops), float(plate.size[2]),
                                0.0, f"object {obj.name!r}", entry.name)
     setup = _setup(scene, post_name, plate)

@@ -163,7 +163,9 @@ class ProfileResult:
 
 def _lead(point, tangent, normal, radius: float, kind: str, into: bool) -> np.ndarray:
     """Lead points (k, 2) ending (``into``) or starting at ``point`` on the contour."""
-    if kind == "line" or radius <= 0:
+    if radius <= 0:
+        return np.array([point])
+    if kind == "line":
         far = point + radius * normal
         return np.array([far, point]) if into else np.array([point, far])
     count = max(4, math.ceil(rg.circle_segments(radius, 0.01) / 4))
