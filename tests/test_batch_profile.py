@@ -70,3 +70,30 @@ def test_bad_profile_entries_are_refused_by_name(tmp_path, table, words):
     assert message.startswith("kezuri: ")
     assert "Traceback" not in message
     assert not os.path.exists(os.path.join(out, "bad.ngc"))
+
+
+def test_the_whole_job_simulated_cuts_no_plunge_of_the_end_mill_and_keeps_the_part(cut_out):
+    """The job planned as batch plans it, cut on the height field with the 6 mm end mill (T5) told
+    it cannot plunge: no finding; inside the outline (8 mm round corners, 190 x 90 mm) the plate
+    keeps its full thickness where nothing but the profile could reach it (within 1 mm of the
+    outline), and the kerf beside it is cut through but at the four tabs.  (``cut_out``: batch has
+    registered the add-on.)"""
+    from kezuri.operators import jobfile
+    from kezuri.toolpath import simulate as sim
+
+    planned, _, _, _ = jobfile.plan_file(os.path.join(JOBS, "nameplate-cut-out.toml"))
+    program, stock, limits = planned.simulation()
+    result = sim.simulate(program, stock, cell=0.2, no_plunge_tools=(5,), **limits)
+    assert result.findings == []
+    hf = result.heightfield
+    gx, gy = np.meshgrid(hf.x(), hf.y(), indexing="ij")
+    qx, qy = np.maximum(np.abs(gx) - 87.0, 0.0), np.maximum(np.abs(gy) - 37.0, 0.0)
+    inside = (np.abs(gx) <= 87.0) | (np.abs(gy) <= 37.0)
+    distance = np.where((np.abs(gx) <= 95.0) & (np.abs(gy) <= 45.0) & inside,
+                        np.maximum(np.abs(gx) - 95.0, np.abs(gy) - 45.0), np.hypot(qx, qy) - 8.0)
+    material = np.clip(hf.heights, hf.bottom, hf.top)
+    edge = (distance < -0.02) & (distance > -1.0)
+    assert material[edge].min() > -3.0             # only the engraving's texture (at most 2.8 mm) is there
+    kerf = (distance > 0.02) & (distance < 5.9) & (np.abs(gx) < 100.0) & (np.abs(gy) < 50.0)
+    through = material[kerf] <= hf.bottom + 1e-6
+    assert 0.8 < through.mean() < 1.0              # cut through but at the tabs
