@@ -1960,6 +1960,8 @@ def _build() -> dict:
 # Profile / cut-out (issue 29): the job files' profile, its settings and refusals
 PROFILE_TEXTS = {
     "Profile": "輪郭加工",
+    "Shape": "形状",                  # the job list row's object slot
+
     "Cut along an outline, inside, outside or on it, with tabs (job files)":
         "輪郭に沿って内側・外側・線上を切削、タブ付き（ジョブファイル）",
     "profile: give tab_count or tab_spacing, not both": "輪郭加工：tab_count か tab_spacing のどちらか一方を指定してください",
