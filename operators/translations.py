@@ -2008,9 +2008,9 @@ PROFILE_TEMPLATES = {
         "輪郭加工：lead_radius {0} mm：{1} のアプローチがタブから離れた捨て側に収まりません。lead_radius を小さくするか lead を none にしてください",
     "profile: the {} does not fit inside every contour of {} for its {} pass: give a smaller tool or a larger outline":
         "輪郭加工：{0} は {2} パスで {1} のすべての輪郭の内側に入りません。小さい工具か大きい輪郭にしてください",
-    "profile: contours of {} lie closer together than the {} can pass between ({} pass): give a smaller tool or move "
-    "them apart":
-        "輪郭加工：{0} の輪郭どうしが近すぎて {1} が間を通れません（{2} パス）。小さい工具にするか輪郭を離してください",
+    "profile: contours of {} lie closer together than the {} can pass between, or a hole of it is narrower ({} "
+    "pass): give a smaller tool or move them apart":
+        "輪郭加工：{0} の輪郭どうしが近すぎるか穴が狭すぎて {1} が通れません（{2} パス）。小さい工具にするか輪郭を離してください",
     "profile: tool: {}": "輪郭加工：工具：{0}",
     "profile: tool: a profile is cut with a flat end mill, not a {}": "輪郭加工：工具：輪郭加工はフラットエンドミルで行います（{0} は不可）",
     "profile: {} must be one of {}, got {}": "輪郭加工：{0} は {1} のいずれかにしてください（指定値 {2}）",

@@ -266,6 +266,8 @@ def test_a_tool_wider_than_an_inside_contour_and_a_crossing_outline_are_refused_
         pf.plan([bow], pf.ProfileSettings(), thickness=THICK, what="object 'Bow'")
     with pytest.raises(pf.ProfileError, match="closer together"):
         pf.plan([RECT, RECT + [62.0, 0.0]], pf.ProfileSettings(), thickness=THICK)
+    with pytest.raises(pf.ProfileError, match="or a hole of it is narrower"):
+        pf.plan([RECT, circle(2.0)], pf.ProfileSettings(), thickness=THICK)       # a 4 mm hole, a 6 mm tool
 
 
 @hsettings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -257,7 +257,8 @@ def plan(loops, settings: ProfileSettings = ProfileSettings(), thickness: float 
                 raise ProfileError(f"profile: the {tool.describe()} does not fit inside every contour of {what} "
                                    f"for its {label} pass: give a smaller tool or a larger outline")
             raise ProfileError(f"profile: contours of {what} lie closer together than the {tool.describe()} can "
-                               f"pass between ({label} pass): give a smaller tool or move them apart")
+                               f"pass between, or a hole of it is narrower ({label} pass): give a smaller tool or "
+                               "move them apart")
     finish_loops = ct.directed(finish, part_left, settings.climb)
     rough_loops = ct.directed(rough, part_left, settings.climb)
     order = ct.nesting_order(finish_loops, (0.0, 0.0))
