@@ -36,7 +36,7 @@ from ..toolpath.job import Job, Setup, plan_job
 from .jobentry import JobEntry, JobFileError
 
 SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings"}
-OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "file", "design"}
+OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "tabs", "file", "design"}
 
 
 def read(path: str, text: str | None = None) -> dict:

@@ -34,10 +34,11 @@ from .properties import post_items, post_number
 from .translations import translate_message
 
 PREFIX = "Kezuri Job"
-# an operation's objects when a row is added: slot -> (group of scene.kezuri, its property)
+# an operation's objects when a row is added: slot -> (group of scene.kezuri, its property; None: empty)
 DEFAULT_SLOTS = {"engrave": (("plate", "stock", "plate"), ("letters", "engrave", "letters"),
-                             ("surface", "engrave", "surface"))}
-DEFAULT_EXTRA = {"drill": {"holes": []}}
+                             ("surface", "engrave", "surface")),
+                 "profile": (("shape", None, None),)}
+DEFAULT_EXTRA = {"drill": {"holes": []}, "profile": {"tabs": []}}
 ROW_KEYS = ("kind", "name", "enabled", "objects", "settings")      # a job file's keys a row keeps apart
 
 
@@ -250,7 +251,7 @@ def new_row(scene, kind: str, name: str | None = None, slots: bool = True):
     if slots:
         for slot, group, prop in DEFAULT_SLOTS.get(kind, ()):
             item = row.objects.add()
-            item.slot, item.object = slot, getattr(getattr(scene.kezuri, group), prop)
+            item.slot, item.object = slot, getattr(getattr(scene.kezuri, group), prop) if group else None
         row.extra = json.dumps(DEFAULT_EXTRA.get(kind, {}))
     return row
 

@@ -62,6 +62,27 @@ def name_plate(scene, word: str = "Kezuri", unit_mm: float = 1.0):
     return plate, letters
 
 
+def name_plate_cut_out(scene, word: str = "Kezuri"):
+    """The name plate with ``Outline``, a closed curve 190 x 90 mm with 8 mm round corners centred
+    on the plate: the sign cut out of the 200 x 100 mm board (the job file nameplate-cut-out.toml)."""
+    import numpy as np
+
+    plate, letters = name_plate(scene, word)
+    corners = ((87.0, 37.0, 0.0), (-87.0, 37.0, 0.5), (-87.0, -37.0, 1.0), (87.0, -37.0, 1.5))
+    points = []
+    for cx, cy, start in corners:
+        angles = np.pi * (start + np.linspace(0.0, 0.5, 13))
+        points += [(cx + 8.0 * np.cos(a), cy + 8.0 * np.sin(a)) for a in angles]
+    curve = bpy.data.curves.new("Outline", type="CURVE")
+    spline = curve.splines.new("POLY")
+    spline.points.add(len(points) - 1)
+    spline.points.foreach_set("co", np.array([(x, y, 0.05, 1.0) for x, y in points]).ravel())
+    spline.use_cyclic_u = True
+    outline = bpy.data.objects.new("Outline", curve)
+    scene.collection.objects.link(outline)
+    return plate, letters, outline
+
+
 def rotary_block(scene):
     """The paper's bento block: 105 x 105 x 30 mm (top at Z = 0, centred on the rotation axis)
     with three non-circular pockets as closed curves: slanted walls, vertical walls, a bowl."""
@@ -114,4 +135,5 @@ def turnmill_part(scene):
 
 
 # The built-in scenes a job file may start from ([setup] sample = ...)
-SCENES = {"name_plate": name_plate, "rotary_block": rotary_block, "turnmill_part": turnmill_part}
+SCENES = {"name_plate": name_plate, "name_plate_cut_out": name_plate_cut_out, "rotary_block": rotary_block,
+          "turnmill_part": turnmill_part}

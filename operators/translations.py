@@ -2174,7 +2174,89 @@ def _build() -> dict:
     return {LOCALE: messages}
 
 
+# Profile / cut-out (issue 29): the job files' profile, its settings and refusals
+PROFILE_TEXTS = {
+    "Profile": "輪郭加工",
+    "Shape": "形状",                  # the job list row's object slot
+
+    "Cut along an outline, inside, outside or on it, with tabs (job files)":
+        "輪郭に沿って内側・外側・線上を切削、タブ付き（ジョブファイル）",
+    "profile: give tab_count or tab_spacing, not both": "輪郭加工：tab_count か tab_spacing のどちらか一方を指定してください",
+    "profile: give tab positions (tabs) or tab_count / tab_spacing, not both":
+        "輪郭加工：タブ位置（tabs）か tab_count / tab_spacing のどちらか一方を指定してください",
+    "profile: allowance leaves material beside the outline: give it with side inside or outside, not on":
+        "輪郭加工：allowance は輪郭の横に取り代を残します。side が inside か outside のときに指定してください（on では不可）",
+}
+PROFILE_TEMPLATES = {
+    "{}: settings.{} is not a profile setting; they are {}": "{0}：settings.{1} は輪郭加工の設定ではありません（設定は {2}）",
+    "{}: settings.{} = {} is not a word": "{0}：settings.{1} = {2} は語（文字列）ではありません",
+    "{}: settings.climb = {} is not true or false": "{0}：settings.climb = {1} は true でも false でもありません",
+    "{}: settings.{} = {} is not a whole number": "{0}：settings.{1} = {2} は整数ではありません",
+    "{}: the end mill: {}": "{0}：エンドミル：{1}",
+    "{}: the profile: {}": "{0}：輪郭加工：{1}",
+    "{}: tabs must be a list of [x, y] points in work mm": "{0}：tabs はワーク座標 mm の [x, y] 点のリストにしてください",
+    "{}: tabs[{}] = {} is not an [x, y] point in mm": "{0}：tabs[{1}] = {2} は mm の [x, y] 点ではありません",
+    "{}: objects.{}: a profile's objects are shape and plate": "{0}：objects.{1}：輪郭加工のオブジェクトは shape と plate です",
+    '{}: no shape: give objects = {{ shape = "..." }} (a closed curve, Text or mesh)':
+        '{0}：形状がありません。objects = {{ shape = "..." }}（閉じたカーブ、テキスト、メッシュ）を指定してください',
+    "{}: the outline crosses itself at ({}, {}): a profile needs closed outlines that do not cross":
+        "{0}：輪郭が ({1}, {2}) で自己交差しています。輪郭加工には交差しない閉じた輪郭が必要です",
+    "{}: no closed outline to profile": "{0}：輪郭加工する閉じた輪郭がありません",
+    "profile: ramp_angle must be more than 0 and at most {} degrees, got {}":
+        "輪郭加工：ramp_angle は 0 より大きく {0} 度以下にしてください（指定値 {1}）",
+    "profile: tab_count must be a whole number 0 or more, got {}": "輪郭加工：tab_count は 0 以上の整数にしてください（指定値 {0}）",
+    "profile: step_down {} mm is more than the {}'s diameter: it would break":
+        "輪郭加工：step_down {0} mm が {1} の直径を超えています。工具が折れます",
+    "profile: the stock's thickness must be more than 0 mm, got {}": "輪郭加工：素材の厚さは 0 mm より大きくしてください（指定値 {0}）",
+    "profile: depth must be more than 0 mm, got {}": "輪郭加工：depth は 0 mm より大きくしてください（指定値 {0}）",
+    "profile: depth {} mm goes deeper than the {} mm stock and its {} mm breakthrough: into the table":
+        "輪郭加工：depth {0} mm は素材厚 {1} mm と突き抜け {2} mm より深く、テーブルを削ります",
+    "profile: step_down {} mm makes more than {} levels down {} mm":
+        "輪郭加工：step_down {0} mm では深さ {2} mm までの段数が {1} を超えます",
+    "profile: depth {} mm is deeper than the {}'s {} mm flutes": "輪郭加工：depth {0} mm が {1} の刃長 {2} mm より深いです",
+    "profile: approach_gap {} mm, clearance_z {} mm and safe_z {} mm must rise in that order":
+        "輪郭加工：approach_gap {0} mm、clearance_z {1} mm、safe_z {2} mm はこの順に高くしてください",
+    "profile: tab_height {} mm reaches the stock's top (the cut is {} mm deep there)":
+        "輪郭加工：tab_height {0} mm が素材上面に達します（そこでの切込みは {1} mm）",
+    "profile: tabs[{}] must be an (x, y) pair in mm, got {}": "輪郭加工：tabs[{0}] は mm の (x, y) の組にしてください（指定値 {1}）",
+    "profile: tabs[{}] has a coordinate that is not a number: {}": "輪郭加工：tabs[{0}] に数値でない座標があります：{1}",
+    "profile: lead_radius {} mm: the {} lead does not fit in the waste beside a contour away from its tabs: make "
+    "lead_radius smaller or lead none":
+        "輪郭加工：lead_radius {0} mm：{1} のアプローチがタブから離れた捨て側に収まりません。lead_radius を小さくするか lead を none にしてください",
+    "profile: the {} does not fit inside every contour of {} for its {} pass: give a smaller tool or a larger outline":
+        "輪郭加工：{0} は {2} パスで {1} のすべての輪郭の内側に入りません。小さい工具か大きい輪郭にしてください",
+    "profile: contours of {} lie closer together than the {} can pass between, or a hole of it is narrower ({} "
+    "pass): give a smaller tool or move them apart":
+        "輪郭加工：{0} の輪郭どうしが近すぎるか穴が狭すぎて {1} が通れません（{2} パス）。小さい工具にするか輪郭を離してください",
+    "profile: tool: {}": "輪郭加工：工具：{0}",
+    "profile: tool: a profile is cut with a flat end mill, not a {}": "輪郭加工：工具：輪郭加工はフラットエンドミルで行います（{0} は不可）",
+    "profile: {} must be one of {}, got {}": "輪郭加工：{0} は {1} のいずれかにしてください（指定値 {2}）",
+    "profile: {} must be a number, got {}": "輪郭加工：{0} は数値にしてください（指定値 {1}）",
+    "profile: {} must be more than 0, got {}": "輪郭加工：{0} は 0 より大きくしてください（指定値 {1}）",
+    "profile: {} must be 0 or more, got {}": "輪郭加工：{0} は 0 以上にしてください（指定値 {1}）",
+    "profile: tab_width and tab_height make each tab {} mm long; {} of them do not fit on {} ({} mm round)":
+        "輪郭加工：tab_width と tab_height ではタブ1つが {0} mm の長さになり、{1} 個は {2}（周長 {3} mm）に収まりません",
+    "profile: {} tab(s) do not fit on {} ({} mm round) a tool radius off its corners: give fewer tabs or a smaller "
+    "tab_width":
+        "輪郭加工：{0} 個のタブが角から工具半径を離して {1}（周長 {2} mm）に収まりません。タブを減らすか tab_width を小さくしてください",
+    "profile: {}: the tab ({} mm long with tab_width and tab_height) is longer than its contour ({} mm round)":
+        "輪郭加工：{0}：タブ（tab_width と tab_height で {1} mm）が輪郭（周長 {2} mm）より長いです",
+    "profile: {} sits within a tool radius of a corner: move it along the contour":
+        "輪郭加工：{0} が角から工具半径以内にあります。輪郭に沿って移動してください",
+    "profile: {} overlaps another tab: move them apart": "輪郭加工：{0} が別のタブと重なっています。離してください",
+    "profile: a triangular tab tab_height {} mm high on tab_width {} mm has flanks steeper than {} degrees: make it at "
+    "least {} mm wide":
+        "輪郭加工：tab_height {0} mm、tab_width {1} mm の三角タブは斜面が {2} 度より急です。幅を {3} mm 以上にしてください",
+    # warnings (Part.warnings)
+    "profile {}: no tabs and cut through: the part comes loose on the last pass":
+        "輪郭加工 {0}：タブがなく貫通します。最後のパスで部品が外れます",
+    "profile {}: contour {} has no tabs and is cut through: its piece comes loose on the last pass":
+        "輪郭加工 {0}：輪郭 {1} にタブがなく貫通します。その部分は最後のパスで外れます",
+}
+
 MESSAGE_TEMPLATES.update(JOBLIST_TEMPLATES)
+MESSAGE_TEMPLATES.update(PROFILE_TEMPLATES)
+MESSAGES.update(PROFILE_TEXTS)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

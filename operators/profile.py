@@ -1,0 +1,115 @@
+"""Profile / cut-out in the shell: for now an operation of job files.  Its object slot ``shape`` is a
+closed curve, a Text or a mesh (its outlines seen from above, in the plate's work frame, so it shares
+the job's work zero); ``tabs = [[x, y], ...]`` in work mm puts tabs where the user wants them; its
+settings by name (:data:`SETTINGS`)."""
+from __future__ import annotations
+
+import math
+
+from ..toolpath.job import JobOperation, Setup
+from ..toolpath.operations.profile import profile as core
+from ..toolpath.operations.profile.kind import ProfileGeometry
+from .workflow import Workflow
+
+POST_FAMILIES = ("milling",)
+# settings key -> what it is (the tool's parts and every ProfileSettings number and word)
+SETTINGS = {
+    "tool_number": "the end mill's tool number", "diameter": "the end mill's diameter (mm)",
+    "flute_length": "the end mill's flute length (mm)", "side": "outside, inside or on",
+    "climb": "true: climb milling, false: conventional", "depth": "depth below the top (mm); default: through",
+    "breakthrough": "how far below the stock a cut through goes (mm)", "step_down": "deepest step (mm)",
+    "allowance": "left for the finishing pass (mm), 0: none", "rpm": "spindle speed", "feed": "cutting feed (mm/min)",
+    "plunge_feed": "feed down into the cleared kerf (mm/min)", "ramp_angle": "ramp entry angle (degrees)",
+    "tab_count": "tabs on every contour", "tab_spacing": "a tab every ... mm round each contour",
+    "tab_width": "tab width (mm)", "tab_height": "tab height (mm)", "tab_shape": "flat or triangle",
+    "lead": "arc, line or none", "lead_radius": "lead-in and lead-out radius or length (mm)",
+}
+WORDS = {"side", "tab_shape", "lead"}
+
+
+def settings_from(entry, tabs) -> core.ProfileSettings:
+    from .jobentry import JobFileError
+
+    given = dict(entry.settings)
+    for key, value in given.items():
+        if key not in SETTINGS:
+            raise JobFileError(f"{entry.where}: settings.{key} is not a profile setting; they are "
+                               f"{', '.join(SETTINGS)}")
+        if key in WORDS:
+            if not isinstance(value, str):
+                raise JobFileError(f"{entry.where}: settings.{key} = {value!r} is not a word")
+        elif key == "climb":
+            if not isinstance(value, bool):
+                raise JobFileError(f"{entry.where}: settings.climb = {value!r} is not true or false")
+        elif isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise JobFileError(f"{entry.where}: settings.{key} = {value!r} is not a number")
+    for key in ("tool_number", "tab_count"):
+        if key in given and not isinstance(given[key], int):
+            raise JobFileError(f"{entry.where}: settings.{key} = {given[key]!r} is not a whole number")
+    default = core.ProfileSettings()
+    try:
+        tool = core.check_tool(given.pop("tool_number", default.tool.number),
+                               given.pop("diameter", default.tool.diameter),
+                               given.pop("flute_length", default.tool.flute_length))
+    except core.ProfileError as error:
+        raise JobFileError(f"{entry.where}: the end mill: {str(error).removeprefix('profile: tool: ')}") from None
+    floats = {key: float(value) for key, value in given.items() if key not in WORDS | {"climb", "tab_count"}}
+    rest = {key: value for key, value in given.items() if key in WORDS | {"climb", "tab_count"}}
+    return core.ProfileSettings(tool=tool, tabs=tabs, **floats, **rest)
+
+
+def read_tabs(entry) -> tuple:
+    from .jobentry import JobFileError
+
+    tabs = entry.table.get("tabs", [])
+    if not isinstance(tabs, list):
+        raise JobFileError(f"{entry.where}: tabs must be a list of [x, y] points in work mm")
+    found = []
+    for index, point in enumerate(tabs):
+        if (not isinstance(point, list) or len(point) != 2 or
+                any(isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) for v in point)):
+            raise JobFileError(f"{entry.where}: tabs[{index}] = {point!r} is not an [x, y] point in mm")
+        found.append((float(point[0]), float(point[1])))
+    return tuple(found)
+
+
+def job_operation(scene, depsgraph, entry, post_name: str):
+    """A job file's profile: objects ``shape`` (and ``plate``: the stock, default the scene's),
+    ``tabs`` and settings by name.  The work frame is the plate's, as the engraving's."""
+    from . import convert
+    from .jobentry import JobFileError
+
+    slots = {"shape", "plate"}
+    for slot in entry.objects:
+        if slot not in slots:
+            raise JobFileError(f"{entry.where}: objects.{slot}: a profile's objects are shape and plate")
+    if "shape" not in entry.objects:
+        raise JobFileError(f"{entry.where}: no shape: give objects = {{ shape = \"...\" }} (a closed curve, Text "
+                           "or mesh)")
+    if "plate" in entry.objects:
+        scene.kezuri.stock.plate = entry.objects["plate"]
+    obj = entry.objects["shape"]
+    try:
+        plate = convert.plate_from_object(scene.kezuri.stock.plate, depsgraph, scene, scene.kezuri.stock.origin)
+        loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
+        settings = settings_from(entry, read_tabs(entry))
+        settings.check(float(plate.size[2]))
+    except core.ProfileError as error:
+        raise JobFileError(f"{entry.where}: the profile: {str(error).removeprefix('profile: ')}") from None
+    geometry = ProfileGeometry(tuple(tuple(map(tuple, loop[:, :2].tolist())) for loop in loops), float(plate.size[2]),
+                               0.0, f"object {obj.name!r}", entry.name)
+    setup = _setup(scene, post_name, plate)
+    return JobOperation("profile", entry.name, settings, geometry, entry.enabled), setup, plate.frame
+
+
+def _setup(scene, post_name: str, plate) -> Setup:
+    from ..toolpath.operations.engrave import engrave
+    from .machines import scene_machine
+
+    machine = scene_machine(scene.kezuri.machine, POST_FAMILIES, post_name)
+    return Setup(name=scene.name, post=post_name, machine=machine, work_offset=scene.kezuri.machine.work_offset,
+                 rapid_rate=scene.kezuri.machine.rapid_rate, stock=engrave.plate_stock(plate.outline, plate.size[2]))
+
+
+WORKFLOW = Workflow("PROFILE", "Profile", "Cut along an outline, inside, outside or on it, with tabs (job files)",
+                    post_families=POST_FAMILIES, kind="profile", job_operation=job_operation)
