@@ -296,6 +296,11 @@ PROPERTY_TEXTS = {
     "without it refuses the export)":
         "Fanucポスト：工具交換の前ごとに M19 を書きます（主軸キーの位置合わせが要る交換装置向け。"
         "M19 のないポストでは書き出しを中止します）",
+    "Arcs (G2/G3)": "円弧 (G2/G3)",
+    "Milling posts write polylines that follow circles as G2/G3 arcs (within 0.01 mm, within the control's arc end "
+    "check); off: every move as planned":
+        "フライス用ポストは円に沿う折れ線を G2/G3 の円弧で書きます（0.01 mm 以内、制御装置の円弧終点チェックの範囲内）。"
+        "オフ：すべての移動を計画どおりに書きます",
     # Stock
     "Plate": "板材",
     "The stock: a mesh whose top face is machined": "素材：上面を加工するメッシュ",
@@ -1717,7 +1722,7 @@ MESSAGE_TEMPLATES = {
         '{0} を書き込めません：同じ名前のフォルダーがあります',
     'cannot move the files into {}: {}':
         'ファイルを {0} に移せません：{1}',
-    # toolpath/engines/arcfit.py
+    # toolpath/ir/arcfit.py
     'arc tolerance must lie in 0..1 mm, got {}':
         '円弧の許容差は 0～1 mm にしてください（指定値 {0}）',
     'an arc must replace at least 2 chords, got {}':
