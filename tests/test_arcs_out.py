@@ -196,3 +196,15 @@ def test_the_simulated_cut_stays_the_same(sample, engraved, stepnc_program, wall
     assert arcs > before
     plain, arced = removed(program, stock), removed(fitted, stock)
     assert arced == pytest.approx(plain, rel=1e-3)
+
+
+@pytest.mark.parametrize("control, mismatch, alarms", [
+    ("linuxcnc", 0.004, False), ("linuxcnc", 0.006, True), ("grbl", 0.006, True), ("grbl", 0.004, False),
+    ("fanuc-mill", 0.0009, False), ("fanuc-mill", 0.002, True)])
+def test_the_rules_reader_catches_a_radius_mismatch(control, mismatch, alarms):
+    """An arc from (5, 0) about the origin ending at radius 5 + mismatch, and one without I/J."""
+    end = 5.0 + mismatch
+    text = f"G00 X5. Y0.\nG01 Z-1. F100.\nG03 X0. Y{end:.4f} I-5. J0.\nG03 X5. Y0.\nM30\n"
+    found = [v for v in controller_rules.check_arcs(text, control)]
+    assert [v[1] for v in found if "differ" in v[2]] == ([3] if alarms else [])
+    assert [v[1] for v in found if "without I or J" in v[2]] == [4]
