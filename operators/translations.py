@@ -1727,6 +1727,10 @@ MESSAGE_TEMPLATES = {
         '円弧の許容差は 0～1 mm にしてください（指定値 {0}）',
     'an arc must replace at least 2 chords, got {}':
         '円弧は少なくとも 2 本の弦を置き換えます（指定値 {0}）',
+    'arc end tolerance must be a positive length in mm, got {}':
+        '円弧終点の許容差は正の長さ (mm) にしてください（指定値 {0}）',
+    "the number format's least increment must lie in 0..0.1 mm, got {}":
+        '数値書式の最小設定単位は 0～0.1 mm にしてください（指定値 {0}）',
     # toolpath/ir/machine.py
     'unknown machine {}: the presets are {}':
         '機械 {0} はありません。プリセットは {1} です',
@@ -1805,6 +1809,7 @@ MESSAGE_TEMPLATES = {
     'job file {}: [setup] gives both blend and sample; give one': 'ジョブファイル {0}：[setup] に blend と sample の両方があります。どちらか一方にしてください',
     'job file {}: [setup] sample {} is not one of {}': 'ジョブファイル {0}：[setup] の sample {1} は {2} のいずれでもありません',
     'job file {}: [setup] text is for the name_plate sample': 'ジョブファイル {0}：[setup] の text は name_plate サンプル用です',
+    'job file {}: [setup] arcs must be true or false, got {}': 'ジョブファイル {0}：[setup] の arcs は true か false にしてください（指定値 {1}）',
     '{}: objects.{} = {} is not an object of the scene': '{0}：objects.{1} = {2} はシーンのオブジェクトではありません',
     '{}: settings.{} is not a setting of {}': '{0}：settings.{1} は {2} の設定ではありません',
     '{}: kind {} is not one of {}': '{0}：種類 {1} は {2} のいずれでもありません',
