@@ -208,3 +208,33 @@ def test_the_rules_reader_catches_a_radius_mismatch(control, mismatch, alarms):
     found = [v for v in controller_rules.check_arcs(text, control)]
     assert [v[1] for v in found if "differ" in v[2]] == ([3] if alarms else [])
     assert [v[1] for v in found if "without I or J" in v[2]] == [4]
+
+
+def test_batch_no_arcs_writes_the_straight_moves(tmp_path):
+    """``batch.py stepnc --no-arcs``: no G02/G03 (the sample's pocket corners stay polylines) and
+    the same moves as rs274 reads the fitted program's, every arc's end among them."""
+    import contextlib
+    import importlib.util
+    import io
+    import json
+    import os
+
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    spec = importlib.util.spec_from_file_location("kezuri_batch_arcs", os.path.join(root, "batch.py"))
+    batch = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(batch)
+    texts = {}
+    for label, extra in (("arcs", ()), ("plain", ("--no-arcs",))):
+        out = str(tmp_path / label)
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            assert batch.main(["batch.py", "stepnc", "--post", "linuxcnc", *extra, "--out", out]) == 0
+        report = json.loads(open(os.path.join(out, "report.json")).read())
+        texts[label] = open(next(f for f in report["files"] if f.endswith(".ngc"))).read()
+    assert "G02" not in texts["plain"] and "G03" not in texts["plain"]
+    assert texts["arcs"].count("G02") + texts["arcs"].count("G03") >= 4
+    if rs274.available():
+        kinds, ends, _ = rs274.motion_endpoints(rs274.run(texts["arcs"]))
+        _, plain_ends, _ = rs274.motion_endpoints(rs274.run(texts["plain"]))
+        for kind, end in zip(kinds, ends):
+            if kind in ("cw", "ccw"):
+                assert np.abs(plain_ends - end).max(axis=1).min() <= 1e-9
