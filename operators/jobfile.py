@@ -10,6 +10,7 @@ A job file (TOML)::
     text = "Kezuri"             # the name_plate sample's word
     post = "linuxcnc"           # default: the scene's
     machine = "linuxcnc-manual" # a machine preset (default: the post's own machine)
+    arcs = false                # milling posts write every move as planned (default true: G2/G3 fitted)
 
     [[operations]]              # in the order they are cut
     kind = "engrave"            # an operation kind (toolpath/operations/<kind>)
@@ -35,7 +36,7 @@ import tomllib
 from ..toolpath.job import Job, Setup, plan_job
 from .jobentry import JobEntry, JobFileError
 
-SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings"}
+SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings", "arcs"}
 OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "tabs", "file", "design"}
 
 
@@ -167,6 +168,10 @@ def apply_setup(scene, setup_table: dict, path: str) -> None:
         from . import machines
         scene.kezuri.machine.preset = str(setup_table["machine"])
         machines.fill_machine(scene.kezuri.machine, str(setup_table["machine"]))
+    if "arcs" in setup_table:
+        if not isinstance(setup_table["arcs"], bool):
+            raise JobFileError(f"job file {path}: [setup] arcs must be true or false, got {setup_table['arcs']!r}")
+        scene.kezuri.machine.arcs = setup_table["arcs"]
     if "work_offset" in setup_table:
         from .batchio import set_exactly
         set_exactly(scene.kezuri.machine, "work_offset", setup_table["work_offset"], f"job file {path}: work_offset")

@@ -31,7 +31,7 @@ def scene_machine(props, families, post_name: str):
     post_class = posts.find(families, post_name)
     if props.preset == POST_MACHINE:
         profile = posts.registry.default_machine(post_class)
-        return None if profile is None else profile.replace(rapid_rate=float(props.rapid_rate))
+        return None if profile is None else profile.replace(rapid_rate=float(props.rapid_rate), arcs=bool(props.arcs))
     check_group(props, "machine")
     base = machines.preset(props.preset)
     if base.family != post_class.family:
@@ -44,6 +44,7 @@ def scene_machine(props, families, post_name: str):
             f"{props.z_reach:g} mm")
     changes = {field_name: getattr(props, setting) for setting, field_name in PROFILE_FIELDS.items()}
     changes["m6_retracts"] = bool(changes["m6_retracts"])
+    changes["arcs"] = bool(props.arcs)
     return base.replace(travel=(float(props.travel_x), float(props.travel_y), float(props.travel_z)), **changes)
 
 
@@ -62,6 +63,13 @@ def machine_arguments(parser) -> None:
                         type=number("--travel", limit=table["travel_x"]), help="axis travel (mm)")
     parser.add_argument("--retract", choices=machines.RETRACTS, help="how the frames lift Z")
     parser.add_argument("--tool-change", choices=machines.TOOL_CHANGES, help="a changer (atc) or by hand (manual)")
+    no_arcs_argument(parser)
+
+
+def no_arcs_argument(parser) -> None:
+    """Batch's ``--no-arcs`` (Machine & Stock > Arcs (G2/G3) off)."""
+    parser.add_argument("--no-arcs", action="store_true",
+                        help="milling posts write every move as planned: no polyline fitted as G2/G3 arcs")
 
 
 def batch_machine(args, scene, families, post_name: str):
@@ -69,6 +77,8 @@ def batch_machine(args, scene, families, post_name: str):
     (an override alone starts from the post's own machine), then the profile for ``post_name``."""
     from .batchio import set_exactly
     props = scene.kezuri.machine
+    if getattr(args, "no_arcs", False):
+        props.arcs = False
     overrides = {("z_reach", "--clearance-max"): args.clearance_max,
                  ("clearance_height", "--clearance-height"): args.clearance_height,
                  ("retract", "--retract"): args.retract, ("tool_change", "--tool-change"): args.tool_change}

@@ -98,7 +98,7 @@ class KEZURI_PT_machine(KezuriPanel, bpy.types.Panel):
             fields(layout, settings.machine, ("travel_x", "travel_y", "travel_z", "z_reach", "clearance_height"))
             field(layout, settings.machine, "retract", wide=True)
             fields(layout, settings.machine, ("machine_top_z", "tool_change", "m6_lifts_z", "max_spindle", "max_feed"))
-        fields(layout, settings.machine, ("work_offset", "rapid_rate", "output_dir", "orient_spindle"))
+        fields(layout, settings.machine, ("work_offset", "rapid_rate", "output_dir", "orient_spindle", "arcs"))
         layout.separator()
         field(layout, settings.stock, "plate")
         field(layout, settings.stock, "origin", wide=True)

@@ -139,6 +139,9 @@ class KezuriMachine(bpy.types.PropertyGroup):
     orient_spindle: BoolProperty(name="Orient Spindle (M19)", default=False,
                                  description="Fanuc posts: M19 before each tool change, for a changer that needs "
                                              "the spindle keys aligned (a post without it refuses the export)")
+    arcs: BoolProperty(name="Arcs (G2/G3)", default=True,
+                       description="Milling posts write polylines that follow circles as G2/G3 arcs (within 0.01 mm, "
+                                   "within the control's arc end check); off: every move as planned")
 
 
 class KezuriStock(bpy.types.PropertyGroup):

@@ -296,6 +296,11 @@ PROPERTY_TEXTS = {
     "without it refuses the export)":
         "Fanucポスト：工具交換の前ごとに M19 を書きます（主軸キーの位置合わせが要る交換装置向け。"
         "M19 のないポストでは書き出しを中止します）",
+    "Arcs (G2/G3)": "円弧 (G2/G3)",
+    "Milling posts write polylines that follow circles as G2/G3 arcs (within 0.01 mm, within the control's arc end "
+    "check); off: every move as planned":
+        "フライス用ポストは円に沿う折れ線を G2/G3 の円弧で書きます（0.01 mm 以内、制御装置の円弧終点チェックの範囲内）。"
+        "オフ：すべての移動を計画どおりに書きます",
     # Stock
     "Plate": "板材",
     "The stock: a mesh whose top face is machined": "素材：上面を加工するメッシュ",
@@ -1717,11 +1722,15 @@ MESSAGE_TEMPLATES = {
         '{0} を書き込めません：同じ名前のフォルダーがあります',
     'cannot move the files into {}: {}':
         'ファイルを {0} に移せません：{1}',
-    # toolpath/engines/arcfit.py
+    # toolpath/ir/arcfit.py
     'arc tolerance must lie in 0..1 mm, got {}':
         '円弧の許容差は 0～1 mm にしてください（指定値 {0}）',
     'an arc must replace at least 2 chords, got {}':
         '円弧は少なくとも 2 本の弦を置き換えます（指定値 {0}）',
+    'arc end tolerance must be a positive length in mm, got {}':
+        '円弧終点の許容差は正の長さ (mm) にしてください（指定値 {0}）',
+    "the number format's least increment must lie in 0..0.1 mm, got {}":
+        '数値書式の最小設定単位は 0～0.1 mm にしてください（指定値 {0}）',
     # toolpath/ir/machine.py
     'unknown machine {}: the presets are {}':
         '機械 {0} はありません。プリセットは {1} です',
@@ -1800,6 +1809,7 @@ MESSAGE_TEMPLATES = {
     'job file {}: [setup] gives both blend and sample; give one': 'ジョブファイル {0}：[setup] に blend と sample の両方があります。どちらか一方にしてください',
     'job file {}: [setup] sample {} is not one of {}': 'ジョブファイル {0}：[setup] の sample {1} は {2} のいずれでもありません',
     'job file {}: [setup] text is for the name_plate sample': 'ジョブファイル {0}：[setup] の text は name_plate サンプル用です',
+    'job file {}: [setup] arcs must be true or false, got {}': 'ジョブファイル {0}：[setup] の arcs は true か false にしてください（指定値 {1}）',
     '{}: objects.{} = {} is not an object of the scene': '{0}：objects.{1} = {2} はシーンのオブジェクトではありません',
     '{}: settings.{} is not a setting of {}': '{0}：settings.{1} は {2} の設定ではありません',
     '{}: kind {} is not one of {}': '{0}：種類 {1} は {2} のいずれでもありません',

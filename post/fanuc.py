@@ -71,7 +71,12 @@ FANUC_MILL_LIMITS = ControllerLimits(
     source=FANUC_MILL_SOURCE, max_line_length=252,
     line_length_source=("B-62764EN and the 16i/18i manual B-63684EN (13. Program configuration) state no longest block; "
                         "they count a comment's characters in its block (TV check).  252 characters, the longest line "
-                        "LinuxCNC reads, is our choice for Fanuc, not a limit from its manuals"))
+                        "LinuxCNC reads, is our choice for Fanuc, not a limit from its manuals"),
+    arc_end_tolerance=0.001,
+    arc_source=("FANUC Series 0i-MODEL F operator's manual B-64604EN, alarm PS0020 OVER TOLERANCE OF RADIUS: in circular "
+                "interpolation (G02/G03) the start point's and the end point's distances from the centre differ by "
+                "more than parameter No. 3410 (the machine builder's setting, in IS-B units of 0.001 "
+                "mm).  0.001 mm, the least nonzero value it holds, so the arcs pass whatever the builder set"))
 
 MACRO_PROGRAM = 7023
 SURFACE_MACRO_PROGRAM = 7024     # the same texture on a curved plate (surface_macro_program)

@@ -247,8 +247,27 @@ class GcodePost(Post):
             if len(bad):
                 limits.check_word(word, float(values[bad[0]]), f"{what}, move {int(bad[0]) + 1}")
 
+    def arcs_out(self, program: Program) -> Program:
+        """The program as this post writes it: on a milling control that takes arcs
+        (``limits.arc_end_tolerance``) and a machine whose profile has Arcs on, every polyline
+        that follows a circle as a G2/G3 arc (:func:`toolpath.ir.arcfit.fit_program`, whose
+        docstring says why the filter runs here), each arc's centre words chosen so the control's
+        start/end radius check passes; else the program as planned."""
+        limits = self.limits
+        if self.family != "milling" or limits.arc_end_tolerance is None or not getattr(self.machine, "arcs", True):
+            return program
+        from ..toolpath.ir import arcfit           # numba is loaded when a program is written, not with the posts
+        return arcfit.fit_program(program, end_tolerance=limits.arc_end_tolerance, written=self.written,
+                                  step=10.0 ** -self.decimals)
+
+    def written(self, values) -> np.ndarray:
+        """The numbers ``values`` read as once written in this post's format."""
+        return np.array([float(text) for text in self.many(np.asarray(values, float).reshape(-1).tolist())],
+                        float)
+
     def to_text(self, program: Program) -> str:
         work_offset = self.frame_offset = self.work_offset or program.work_offset
+        program = self.arcs_out(program)
         lines = self.opening(program)
         tool = None
         for index, op in enumerate(program.operations):
@@ -307,7 +326,8 @@ class GcodePost(Post):
         previous move's (a dropped move reads the same as the one before it, so "previous move"
         and "previous written block" agree), on arcs X and Y always; G00/G01/G02/G03 when the
         mode changes and on every arc; F (one decimal) when its text differs from the last
-        written cutting block's; I/J from the last written block's end point."""
+        written cutting block's; I/J from the last written block's end point as written (the
+        point the control measures them from)."""
         n = len(op)
         if not n:
             return []
@@ -329,6 +349,7 @@ class GcodePost(Post):
         arcs = np.flatnonzero(arc & emitted)
         if len(arcs):
             position = np.where((previous[arcs] < 0)[:, None], start[None, :2], op.xyz[np.maximum(previous[arcs], 0), :2])
+            position = self.written(position).reshape(-1, 2)
             for letter, axis in (("I", 0), ("J", 1)):
                 texts, ids = words.column(op.center[arcs, axis] - position[:, axis], self.n, self.many)
                 column = np.full(n, "", dtype=object)

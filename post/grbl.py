@@ -22,7 +22,13 @@ GRBL_LIMITS = ControllerLimits(
     line_length_source=("grbl/protocol.h LINE_BUFFER_SIZE 80 and protocol.c: a line keeps at most LINE_BUFFER_SIZE - 1 "
                         "= 79 characters once spaces and comments are dropped, else 'error:11 Max characters per line "
                         "exceeded'; comments are kept to 79 characters too, so every line also fits the 128-byte serial "
-                        "buffer (serial.h RX_BUFFER_SIZE) that character-counting senders fill"))
+                        "buffer (serial.h RX_BUFFER_SIZE) that character-counting senders fill"),
+    arc_end_tolerance=0.005,
+    arc_source=("grbl/gcode.c (v1.1), center-format arcs: the start and end radii differing by more than 0.005 mm "
+                "and by more than 0.1 % of the radius, or by more than 0.5 mm, fail with STATUS_GCODE_INVALID_TARGET, "
+                "'error:33' (Grbl v1.1 wiki, Interface: 'The motion command has an invalid target. G2, G3 ... if the "
+                "arc is impossible to generate'): 0.005 mm passes at any radius.  Grbl then cuts the arc in chords "
+                "within $12 'Arc tolerance, mm' (default 0.002 mm, Grbl v1.1 wiki, Configuration) of it"))
 
 
 class GrblPost(GcodePost):

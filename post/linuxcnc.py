@@ -20,7 +20,11 @@ LINUXCNC_LIMITS = ControllerLimits(
     line_length_source=("rs274ngc reads a line into a buffer of LINELEN = 255 bytes (the G-code overview: 'a maximum "
                         "(currently 256) to the number of characters allowed on a line'); a line that fills it with "
                         "its newline and end mark is 'Command too long': 252 characters is the longest LinuxCNC's own "
-                        "rs274 accepts (tests/test_line_length.py)"))
+                        "rs274 accepts (tests/test_line_length.py)"),
+    arc_end_tolerance=0.005,
+    arc_source=("LinuxCNC 2.9 G-Codes, G2/G3 Arc, center format: 'It is an error if ... the distance from the current "
+                "point to the center differs from the distance from the end point to the center by more than "
+                "(.05 inch/.5 mm) OR ((.0005 inch/.005mm) AND .1% of radius)': 0.005 mm passes at any radius"))
 
 
 class LinuxCNCPost(GcodePost):

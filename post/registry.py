@@ -76,6 +76,9 @@ class ControllerLimits:
     source: str = ""
     max_line_length: int | None = None          # characters a line may hold (None: no limit we know of)
     line_length_source: str = ""                # where that number comes from
+    arc_end_tolerance: float | None = None      # mm: the most an arc's start and end radii may differ before the
+                                                # control alarms (None: the post writes no fitted arcs)
+    arc_source: str = ""                        # where that number comes from
 
     def check_word(self, word: str, value: float, where: str) -> None:
         """Raise :class:`PostError` when ``value`` of ``word`` (a field name above) is outside the

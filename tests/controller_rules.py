@@ -69,6 +69,16 @@ with G91 are refused as anywhere.  Where the tool is after a hole (rule ``safe-z
 the initial level (the Z the cycle started from, or R if R is higher), with G99 at the R plane; a
 hole drilled counts as a feed move.
 
+Arcs (rule ``arc``; G02/G03 in the XY plane, G17, the centre as I/J offsets from the start): the
+block needs I or J and a known start point, and the start's and the end's distances from the centre
+may differ by no more than the control accepts.  LinuxCNC (G-Codes, "G2, G3 Arc", center format:
+an error when they differ "by more than (.05 inch/.5 mm) OR ((.0005 inch/.005mm) AND .1% of
+radius)"), and Grbl the same (grbl/gcode.c v1.1: STATUS_GCODE_INVALID_TARGET, ``error:33``, when
+delta_r > 0.005 and delta_r > 0.001 r, or delta_r > 0.5 mm).  Fanuc (0i-MF B-64604EN alarm PS0020
+OVER TOLERANCE OF RADIUS: the difference exceeds parameter No. 3410, the machine builder's
+setting): held here to 0.001 mm, the least nonzero value the parameter holds in IS-B, so a program
+that passes runs whatever the builder set.
+
 Tool changes (milling controls with a changer): the spindle stopped (M05), for Fanuc Z sent to the
 change position (``G91 G28 Z0.``) and back to G90, the length offset cancelled (G49), never a change
 to the tool already in the spindle, and the offset re-applied (G43 H) before the first cut.  Every
@@ -139,6 +149,7 @@ def check(text: str, control: str, clearance: float = DEFAULT_CLEARANCE) -> list
     if control == "amada-04p":
         return check_punch(text)
     found = check_blocks(text, control)
+    found += check_arcs(text, control)
     if control in SAFE_Z_CONTROLS:
         found += check_safe_z(text, control, clearance)
     return sorted(found, key=lambda violation: violation[1])
@@ -220,6 +231,69 @@ def check_safe_z(text: str, control: str, clearance: float) -> list:
             for line, block in after_last_feed:
                 found.append(("safe-z", line, f"X/Y/C move at the program end before Z is raised: {block!r}"))
             break
+    return found
+
+
+ARC_RULES = {"fanuc-mill": "fanuc", "fanuc-cxz": "fanuc", "linuxcnc": "linuxcnc", "linuxcnc-cxz": "linuxcnc",
+             "turnmill-linuxcnc": "linuxcnc", "grbl": "linuxcnc"}
+FANUC_RADIUS_TOLERANCE = 0.001      # mm: parameter 3410 at its least nonzero IS-B value (see the docstring)
+
+
+def arc_radius_error(rule: str, start_r: float, end_r: float) -> bool:
+    """Whether the control alarms on an arc whose start and end radii are these (mm)."""
+    delta = abs(end_r - start_r)
+    if rule == "fanuc":
+        return delta > FANUC_RADIUS_TOLERANCE + 1e-9
+    return delta > 0.5 or (delta > 0.005 and delta > 0.001 * start_r)
+
+
+def arc_blocks(text: str) -> list:
+    """(line number, clockwise, start xy, end xy, centre xy or None) of every G02/G03 block in the
+    XY plane, read from the words (absolute coordinates, I/J from the start); start None where the
+    program has not yet put X and Y anywhere."""
+    found = []
+    x = y = None
+    motion, plane = None, 17
+    for number, raw, bare, words in _blocks(text):
+        letters = dict((letter, value) for letter, value in reversed(words))
+        gnum = [float(value) for letter, value in words if letter == "G"]
+        for g in gnum:
+            if g in (0, 1, 2, 3):
+                motion = int(g)
+            if g in (17, 18, 19):
+                plane = int(g)
+        if any(g in (28, 30, 53, 91) for g in gnum):      # machine moves (Z only in our programs) and G91 G28
+            continue
+        new_x = float(letters["X"]) if "X" in letters else x
+        new_y = float(letters["Y"]) if "Y" in letters else y
+        if motion in (2, 3) and plane == 17 and any(a in letters for a in "XYZ"):
+            centre = None
+            if ("I" in letters or "J" in letters) and x is not None and y is not None:
+                centre = (x + float(letters.get("I", "0")), y + float(letters.get("J", "0")))
+            found.append((number, motion == 2, None if x is None or y is None else (x, y), (new_x, new_y), centre,
+                          "I" in letters or "J" in letters, bare))
+        x, y = new_x, new_y
+    return found
+
+
+def check_arcs(text: str, control: str) -> list:
+    """Rule ``arc`` (see the module's docstring)."""
+    import math
+    rule = ARC_RULES.get(control)
+    if rule is None:
+        return []
+    found = []
+    for number, _, start, end, centre, has_centre, bare in arc_blocks(text):
+        if not has_centre:
+            found.append(("arc", number, f"arc without I or J (centre format expected): {bare!r}"))
+        elif start is None or end[0] is None or end[1] is None:
+            found.append(("arc", number, f"arc from a point the program has not set: {bare!r}"))
+        else:
+            start_r = math.hypot(start[0] - centre[0], start[1] - centre[1])
+            end_r = math.hypot(end[0] - centre[0], end[1] - centre[1])
+            if arc_radius_error(rule, start_r, end_r):
+                found.append(("arc", number, f"the arc's start radius {start_r:.4f} and end radius {end_r:.4f} differ "
+                                             f"by {abs(end_r - start_r):.4f} mm, more than the control accepts: {bare!r}"))
     return found
 
 

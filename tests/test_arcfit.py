@@ -1,4 +1,4 @@
-"""Arcs out (toolpath/engines/arcfit.py): polylines that follow circles become G2/G3 arcs.
+"""Arcs out (toolpath/ir/arcfit.py): polylines that follow circles become G2/G3 arcs.
 
 Checked without the filter's own geometry: distances are measured here by brute force (point to
 segment, point to arc by angle), the program is read back by LinuxCNC's rs274 (its ARC_FEED
@@ -10,7 +10,8 @@ import pytest
 
 import rs274
 from kezuri.post import create
-from kezuri.toolpath.engines import arcfit, region
+from kezuri.toolpath.engines import region
+from kezuri.toolpath.ir import arcfit
 from kezuri.toolpath.ir.program import ARC_CCW, ARC_CW, FEED, RAPID, GougeTexture, Operation, Program, Tool
 
 TOL = arcfit.DEFAULT_TOLERANCE

@@ -34,7 +34,10 @@ BEFORE_MM3 = {"program": 36693.57, "band": 2472.40}
 def flat_tool_moves(settings) -> np.ndarray:
     """(kind, x0, y0, z0, x1, y1, z1) per STRAIGHT_FEED/TRAVERSE of tool FLAT, from rs274."""
     baked, _ = engrave.bake(engrave.plan(PLATE, LETTERS, settings).program)
-    calls = rs274.run(post.milling_post("linuxcnc").to_text(baked))
+    # every move as planned (Arcs off): the closed forms below are the straight moves' (the level
+    # passes' arcs are checked in tests/test_arcs_out.py; the ramps change Z and stay lines)
+    default = post.milling_post("linuxcnc").machine
+    calls = rs274.run(post.milling_post("linuxcnc", machine=default.replace(arcs=False)).to_text(baked))
     tool, here, rows = None, None, []
     for name, args in calls:
         if name == "CHANGE_TOOL":

@@ -140,9 +140,13 @@ def test_the_simulation_finds_no_gouge_and_rs274_runs_it(block):
     simulated = sim.simulate(result.program, result.stock, design=design, cell=0.1)
     assert [x.message for x in simulated.findings] == []
     if rs274.available():
-        text = posts.create(("milling",), "linuxcnc").to_text(result.program)
+        writer = posts.create(("milling",), "linuxcnc")
+        text = writer.to_text(result.program)
         kinds, points, _ = rs274.motion_endpoints(rs274.run(text))
-        walls = result.program.operations[1]
+        # the wall pass as the post writes it: its rounded stretches as arcs (tests/test_arcs_out.py
+        # checks them against the polylines), every arc's end one of the planned points
+        walls = writer.arcs_out(result.program).operations[1]
+        assert "cw" in kinds or "ccw" in kinds
         found = 0
         for p in walls.xyz[::11]:
             while found < len(points) and not np.allclose(points[found], p, atol=6e-4):

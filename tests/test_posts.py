@@ -38,14 +38,20 @@ def expected_endpoints(program: Program, decimals=4):
 @needs_rs274
 def test_linuxcnc_engraving_passes_rs274_and_matches_the_ir():
     baked, depths = engrave.bake(sample_job().program)
-    text = post.milling_post("linuxcnc").to_text(baked)
+    writer = post.milling_post("linuxcnc")
+    text = writer.to_text(baked)
     kinds, points, _ = rs274.motion_endpoints(rs274.run(text))
-    want_kinds, want_points = expected_endpoints(baked)
+    # the program as the post writes it: the letters' outlines as arcs (tests/test_arcs_out.py
+    # checks them against the polylines), every other move as planned
+    written = writer.arcs_out(baked)
+    assert sum(int(np.isin(op.kind, (ARC_CW, ARC_CCW)).sum()) for op in written.operations) > 100
+    want_kinds, want_points = expected_endpoints(written)
     # rs274 also reports the moves the post adds around each operation (safe Z, the start
     # position): the IR's moves must appear in order, each within 1e-3 mm.
-    cutting = [i for i, k in enumerate(kinds) if k == "feed"]
-    want_cutting = [i for i, k in enumerate(want_kinds) if k == "feed"]
+    cutting = [i for i, k in enumerate(kinds) if k != "rapid"]
+    want_cutting = [i for i, k in enumerate(want_kinds) if k != "rapid"]
     assert len(cutting) == len(want_cutting)
+    assert [kinds[i] for i in cutting] == [want_kinds[i] for i in want_cutting]
     assert np.max(np.abs(points[cutting] - want_points[want_cutting])) < 1e-3
     feed_z = points[cutting][:, 2]
     assert feed_z.min() == pytest.approx(-2.8, abs=1e-3)

@@ -760,9 +760,12 @@ def program_variants():
 @pytest.mark.parametrize("name", ["ex1", "ex1 reordered", "two pockets", "two pockets, paper order", "ex1 helix",
                                   "obround", "ex1 unidirectional"])
 def test_linuxcnc_program_passes_rs274_and_matches_the_ir(name):
+    writer = post.milling_post("linuxcnc")
     program = program_variants()[name]
-    kinds, points, _ = rs274.motion_endpoints(rs274.run(post.milling_post("linuxcnc").to_text(program)))
+    kinds, points, _ = rs274.motion_endpoints(rs274.run(writer.to_text(program)))
     cutting = [i for i, kind in enumerate(kinds) if kind != "rapid"]
-    want_kinds, want_points = expected_cutting_endpoints(program)
+    # the program as the post writes it: the pockets' rounded corners as arcs (test_arcs_out.py
+    # checks those against the polylines), every other move as planned
+    want_kinds, want_points = expected_cutting_endpoints(writer.arcs_out(program))
     assert [kinds[i] for i in cutting] == want_kinds
     assert np.max(np.abs(points[cutting] - want_points)) < 1e-3

@@ -13,7 +13,7 @@ import pytest
 import rs274
 from kezuri import post
 from kezuri.toolpath.engines import region as rg
-from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Program, Tool
+from kezuri.toolpath.ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool
 from kezuri.toolpath.simulate import BoxStock, simulate
 from kezuri.toolpath.operations.stepnc.inprocess import InProcessStock
 from kezuri.toolpath.operations.stepnc.workplan import APPROACH_GAP, load_workplan, pockets_to_part21, to_program
@@ -76,15 +76,19 @@ def test_the_issue_order_on_the_sample(sample):
 @pytest.mark.skipif(not rs274.available(), reason="LinuxCNC rs274 is not installed (.ci/run installs it)")
 def test_issue_order_as_rs274_runs_it(sample, post_name):
     """The G-code itself: rs274's moves rebuilt into one operation of the 6 mm end mill and
-    simulated (the sample has no arcs: ramps and polylines)."""
+    simulated (ramps, polylines and the rounded corners' arcs, with the centres rs274 reads)."""
     text, loaded = sample
     r1, f1, r2, f2 = (step.id for step in loaded.workingsteps)
     program = to_program(loaded, order=[f1, r1, f2, r2])
-    kinds, points, _ = rs274.motion_endpoints(rs274.run(post.milling_post(post_name).to_text(program)))
-    assert set(kinds) == {"rapid", "feed"}
-    kind = np.array([RAPID if k == "rapid" else FEED for k in kinds])
+    calls = rs274.run(post.milling_post(post_name).to_text(program))
+    kinds, points, _ = rs274.motion_endpoints(calls)
+    assert {"rapid", "feed"} <= set(kinds) <= {"rapid", "feed", "cw", "ccw"} and {"cw", "ccw"} & set(kinds)
+    centres = [[float(a) for a in args[2:4]] + [float(args[5])] for name, args in calls if name == "ARC_FEED"]
+    centre = np.full((len(kinds), 3), np.nan)
+    centre[[k in ("cw", "ccw") for k in kinds]] = centres
+    kind = np.array([{"rapid": RAPID, "feed": FEED, "cw": ARC_CW, "ccw": ARC_CCW}[k] for k in kinds])
     feed = np.where(kind == RAPID, np.nan, 500.0)
-    replay = Operation("rs274", SAMPLE_TOOL, 10000.0, kind, points, feed, start=points[0])
+    replay = Operation("rs274", SAMPLE_TOOL, 10000.0, kind, points, feed, center=centre, start=points[0])
     assert rapid_findings(Program("rs274", [replay]), block_from_text(text), 0.25) == ([], [])
 
 

@@ -79,6 +79,8 @@ class MachineProfile:
     sheet_max: tuple | None = None             # largest sheet (X, Y) the table holds (mm)
     sheet_margin: float = 10.0                 # skeleton kept between the part's hits and the sheet's
                                                # edges and the clamps' dead zones (mm)
+    arcs: bool = True                          # milling posts write polylines that follow circles as G2/G3
+                                               # arcs (toolpath.ir.arcfit); False: every move as planned
     source: str = ""                           # where the preset's numbers come from
 
     def __post_init__(self):
@@ -122,6 +124,8 @@ class MachineProfile:
         if self.sheet_max is not None and (len(self.sheet_max) != 2
                                            or not all(_finite(v) and v > 0 for v in self.sheet_max)):
             bad("sheet max", self.sheet_max, "must be two positive lengths (X, Y)")
+        if not isinstance(self.arcs, bool):
+            bad("arcs", self.arcs, "must be true or false")
         if not (_finite(self.sheet_margin) and self.sheet_margin >= 0):
             bad("sheet margin", self.sheet_margin, "must be a length >= 0")
         for clamp in self.clamps:
@@ -144,7 +148,7 @@ class MachineProfile:
                 "z_reach_mm": self.clearance_max, "clearance_height_mm": self.clearance_z, "retract": self.retract,
                 "machine_top_z": self.machine_top_z, "tool_change": self.tool_change,
                 "m6_retracts": self.m6_retracts, "max_spindle_rpm": self.max_spindle_rpm,
-                "max_feed": self.max_feed, "rapid_rate": self.rapid_rate}
+                "max_feed": self.max_feed, "rapid_rate": self.rapid_rate, "arcs": self.arcs}
 
     @property
     def manual_change(self) -> bool:
