@@ -5,10 +5,10 @@ the demo loop over :data:`WORKFLOWS`; nothing else lists the workflows.
 """
 from __future__ import annotations
 
-from . import carve, drill, engrave, ncfile, rotary, sheetmetal, stepnc, turnmill
+from . import carve, drill, engrave, ncfile, pocket, rotary, sheetmetal, stepnc, turnmill
 
 WORKFLOWS = (engrave.WORKFLOW, rotary.WORKFLOW, stepnc.WORKFLOW, turnmill.WORKFLOW, sheetmetal.WORKFLOW,
-             carve.WORKFLOW, drill.WORKFLOW, ncfile.WORKFLOW)
+             carve.WORKFLOW, drill.WORKFLOW, pocket.WORKFLOW, ncfile.WORKFLOW)
 
 
 def simulated() -> list:
