@@ -174,6 +174,8 @@ def region_of(loops, what: str = "pocket") -> CrossSection:
     for number, loop in enumerate(loops, 1):
         try:
             points = rg.validate_loop(loop, f"{what}: loop {number}")
+        except rg.RegionError as error:
+            raise PocketError(str(error)) from None
         except (TypeError, ValueError):
             raise PocketError(f"{what}: loop {number} is not a list of (x, y) points") from None
         alone = CrossSection([points], FillRule.EvenOdd).area()
