@@ -81,7 +81,7 @@ def job_operation(scene, depsgraph, entry, post_name: str):
         pocket_settings.check(f"pocket {entry.name!r}")
         core.region_of(loops, f"pocket {entry.name!r} (object {obj.name!r})")
     except core.PocketError as error:
-        raise JobFileError(f"{entry.where}: {error}") from None
+        raise JobFileError(f"{entry.where}: the pocket: {error}") from None
     geometry = PocketGeometry(tuple(loops), entry.name, 0.0, tuple(plate.outline), float(plate.size[2]))
     stock = PocketKind.stock(geometry, None, pocket_settings)
     setup = Setup(name=scene.name, post=post_name, machine=scene_machine(settings.machine, POST_FAMILIES, post_name),

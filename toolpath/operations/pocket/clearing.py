@@ -69,7 +69,8 @@ class Cutter:
     the helix and of the ramp; ``what``: words naming the pocket and tool in errors."""
 
     def __init__(self, centres, clearance_z: float, feed: float, entry_feed: float, helix_radius: float,
-                 ramp_angle: float, min_ramp: float, what: str, entry_words: str, skip: bool = False):
+                 ramp_angle: float, min_ramp: float, what: str, diameter: float, helix_diameter: float,
+                 skip: bool = False):
         self.path = PathBuilder(clearance_z, feed, entry_feed)
         self.clearance_z = clearance_z
         self.entry_feed = entry_feed
@@ -78,7 +79,8 @@ class Cutter:
         self.ramp_angle = ramp_angle
         self.min_ramp = min_ramp
         self.what = what
-        self.entry_words = entry_words      # "the 6 mm end mill's 4 mm helix"
+        self.diameter = diameter            # the tool's and the helix's, for the messages
+        self.helix_diameter = helix_diameter
         self.skip = skip                    # leave a path no entry fits uncut (with a note), not refuse
         self.notes: list = []
 
@@ -113,16 +115,22 @@ class Cutter:
             moves = np.vstack([moves, np.column_stack([chain[1:], np.full(len(chain) - 1, z)])])
         else:
             length = path_length(chain)
+            d, h = self.diameter, self.helix_diameter
+            if length < self.min_ramp and not self.skip:
+                if self.helix_radius > 0:
+                    raise ClearingError(f"{self.what}: the {d:g} mm end mill's {h:g} mm helix does not fit in the region "
+                                        f"at X{x:.3f} Y{y:.3f}, nor a ramp along the path there ({length:.2f} mm "
+                                        f"long, less than {self.min_ramp:g} mm)")
+                raise ClearingError(f"{self.what}: the {d:g} mm end mill's ramp does not fit in the region at "
+                                    f"X{x:.3f} Y{y:.3f}: the path there is {length:.2f} mm long, less than "
+                                    f"{self.min_ramp:g} mm")
             if length < self.min_ramp:
-                if not self.skip:
-                    raise ClearingError(f"{self.what}: {self.entry_words} does not fit in the region at X{x:.3f} "
-                                        f"Y{y:.3f}, nor a ramp along the path there ({length:.2f} mm long, less "
-                                        f"than {self.min_ramp:g} mm)")
-                self.note(f"{self.what}: {self.entry_words} does not fit at X{x:.3f} Y{y:.3f} (a {length:.2f} mm "
+                self.note(f"{self.what}: the {d:g} mm end mill cannot enter at X{x:.3f} Y{y:.3f} (a {length:.2f} mm "
                           "path): left uncut there")
                 return
             if self.helix_radius > 0:
-                self.note(f"{self.what}: {self.entry_words} does not fit at X{x:.3f} Y{y:.3f}; ramped along the path")
+                self.note(f"{self.what}: the {d:g} mm end mill's {h:g} mm helix does not fit at X{x:.3f} Y{y:.3f}; "
+                          "ramped along the path")
             moves = ramp.ramped_passes(chain, [z], self.ramp_angle, top)[1:]
         self.path.retract()
         self.path.rapid(x, y, self.clearance_z)

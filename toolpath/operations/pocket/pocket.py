@@ -181,8 +181,10 @@ def region_of(loops, what: str = "pocket") -> CrossSection:
         alone = CrossSection([points], FillRule.EvenOdd).area()
         if abs(alone - abs(rg.signed_area(points))) > 1e-6 * alone + 1e-9:
             place = crossing_point(points)
-            at = f" at X{place[0]:.3f} Y{place[1]:.3f}" if place is not None else ""
-            raise PocketError(f"{what}: loop {number} crosses itself{at}: draw it as separate closed loops")
+            if place is None:
+                raise PocketError(f"{what}: loop {number} crosses itself: draw it as separate closed loops")
+            raise PocketError(f"{what}: loop {number} crosses itself at X{place[0]:.3f} Y{place[1]:.3f}: draw it as "
+                              "separate closed loops")
         clean.append(points)
     region = CrossSection(clean, FillRule.EvenOdd)
     if region.area() < rg.MIN_AREA:
@@ -202,13 +204,6 @@ def _chains(centres: CrossSection, strategy: str, stepover: float, radius: float
     return offset_rings(centres, spacing)
 
 
-def _does_not_fit(what: str, tool: Tool, region: CrossSection, allowance: float) -> PocketError:
-    (x0, y0), (x1, y1) = region.bounds()[:2], region.bounds()[2:]
-    extra = f" with the {allowance:g} mm wall allowance" if allowance > 0 else ""
-    return PocketError(f"{what}: the {tool.diameter:g} mm end mill{extra} does not fit in the region "
-                       f"(X{x0:.2f}..{x1:.2f} Y{y0:.2f}..{y1:.2f})")
-
-
 def _operation(name, tool, rpm, arrays, cutter, settings, comment) -> Operation:
     first = arrays["xyz"][0]
     return Operation(name, tool, rpm, arrays["kind"], arrays["xyz"], arrays["feed"],
@@ -225,14 +220,18 @@ def plan(loops, settings: PocketSettings = PocketSettings(), name: str = "pocket
     settings.check(what)
     region = region_of(loops, what)
     tool, radius, warnings = settings.tool, settings.tool.radius, []
-    tool_words = f"{tool.diameter:g} mm end mill"
     floor = top - settings.depth
     centres = round_offset(region, -(radius + settings.wall_allowance))
     if centres.area() < rg.MIN_AREA:
-        raise _does_not_fit(what, tool, region, settings.wall_allowance)
+        (x0, y0), (x1, y1) = region.bounds()[:2], region.bounds()[2:]
+        if settings.wall_allowance > 0:
+            raise PocketError(f"{what}: the {tool.diameter:g} mm end mill with the {settings.wall_allowance:g} mm wall "
+                              f"allowance does not fit in the region (X{x0:.2f}..{x1:.2f} Y{y0:.2f}..{y1:.2f})")
+        raise PocketError(f"{what}: the {tool.diameter:g} mm end mill does not fit in the region "
+                          f"(X{x0:.2f}..{x1:.2f} Y{y0:.2f}..{y1:.2f})")
     helix = settings.helix_diameter / 2 if settings.entry == "helix" else 0.0
     cutter = Cutter(centres, settings.clearance_z, settings.feed, settings.entry_feed, helix, settings.ramp_angle,
-                    radius, what, f"the {tool_words}'s {settings.helix_diameter:g} mm helix")
+                    radius, what, tool.diameter, settings.helix_diameter)
     chains = _chains(centres, settings.strategy, settings.stepover, radius, settings.angle, what, warnings)
     rough_floor = floor + settings.floor_allowance
     try:
@@ -268,7 +267,7 @@ def _rest(region, covered, settings: PocketSettings, name: str, top: float, warn
                         f"{settings.tool.diameter:g} mm one left")
         return rest
     cutter = Cutter(centres, settings.clearance_z, settings.rest_feed, settings.entry_feed, 0.0, settings.ramp_angle,
-                    tool.radius, f"{what} (rest machining)", f"the {tool.diameter:g} mm end mill's ramp", skip=True)
+                    tool.radius, f"{what} (rest machining)", tool.diameter, 0.0, skip=True)
     chains = _chains(centres, settings.strategy, settings.rest_stepover, tool.radius, settings.angle, what, warnings)
     try:
         cutter.cut(chains, ramp.levels(top - settings.depth, settings.rest_step_down, top), top)
