@@ -1993,6 +1993,7 @@ POCKET_TEMPLATES = {
         "{0}：clearance_z {1} mm と safe_z {2} mm は素材上面より上で、この順に高くしてください",
     "{}: the region must be a list of closed loops of (x, y) points": "{0}：領域は (x, y) 点の閉じたループのリストにしてください",
     "{}: the region has no closed loop": "{0}：領域に閉じたループがありません",
+    "{}: loop {} encloses no area (less than {} mm^2)": "{0}：ループ {1} は面積を囲んでいません（{2} mm^2 未満）",
     "{}: loop {} is not a list of (x, y) points": "{0}：ループ {1} は (x, y) 点のリストではありません",
     "{}: loop {} crosses itself: draw it as separate closed loops":
         "{0}：ループ {1} が自己交差しています。別々の閉じたループに描いてください",

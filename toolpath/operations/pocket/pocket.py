@@ -179,6 +179,8 @@ def region_of(loops, what: str = "pocket") -> CrossSection:
         except (TypeError, ValueError):
             raise PocketError(f"{what}: loop {number} is not a list of (x, y) points") from None
         alone = CrossSection([points], FillRule.EvenOdd).area()
+        if max(alone, abs(rg.signed_area(points))) < rg.MIN_AREA:
+            raise PocketError(f"{what}: loop {number} encloses no area (less than {rg.MIN_AREA:g} mm^2)")
         if abs(alone - abs(rg.signed_area(points))) > 1e-6 * alone + 1e-9:
             place = crossing_point(points)
             if place is None:
