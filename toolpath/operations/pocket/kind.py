@@ -8,7 +8,6 @@ import numpy as np
 from ...engines import region as rg
 from ...job import DesignLayer, OperationKind, Part
 from ...simulate import BoxStock
-from ..stepnc.motion import round_offset
 from . import pocket
 
 KEEP_MARGIN = 0.02       # mm: the walls may stand this far from the outline (the offsets' chord error)
@@ -34,8 +33,8 @@ def design_layer(region, floor: float) -> DesignLayer:
     operation of the job, which may cut elsewhere)."""
     outers = [loop for loop in rg.loops(region) if rg.signed_area(loop) > 0]
     filled = rg.from_loops(outers, "pocket") if len(outers) == 1 else rg.union_of_faces(outers, "pocket")
-    keep = round_offset(filled, KEEP_BAND) - round_offset(region, KEEP_MARGIN)
-    area = round_offset(region, 2 * KEEP_MARGIN)
+    keep = rg.offset(filled, KEEP_BAND) - rg.offset(region, KEEP_MARGIN)
+    area = rg.offset(region, 2 * KEEP_MARGIN)
     return DesignLayer(floor, (list(rg.loops(keep)),) if keep.area() > 0 else (), tuple(rg.loops(area)))
 
 

@@ -132,7 +132,7 @@ class PocketSettings:
 class PocketResult:
     operations: list            # the main tool's Operation, then the rest tool's (if any)
     region: CrossSection        # the pocket
-    covered: CrossSection       # what the main tool clears
+    covered: CrossSection | None    # what the main tool clears (with rest machining)
     rest: CrossSection | None   # the region less what the main tool covered (rest machining's target)
     warnings: list
 
@@ -247,13 +247,15 @@ def plan(loops, settings: PocketSettings = PocketSettings(), name: str = "pocket
             cutter.walls(walls, ramp.levels(floor, settings.step_down, top), top)
     except ClearingError as error:
         raise PocketError(str(error)) from None
+    if cutter.cut_nothing():
+        raise PocketError(cutter.refusal)
     warnings += cutter.notes
     arrays = cutter.finish(settings.safe_z)
     operations = [_operation(name, tool, settings.rpm, arrays, cutter, settings,
                              f"pocket {settings.depth:g} mm deep, {settings.strategy}")]
-    covered = round_offset(round_offset(region, -radius), radius)
-    rest = None
+    covered, rest = None, None
     if settings.rest_tool is not None:
+        covered = round_offset(round_offset(region, -radius), radius)
         rest = _rest(region, covered, settings, name, top, warnings, operations)
     return PocketResult(operations, region, covered, rest, warnings)
 
@@ -269,13 +271,15 @@ def _rest(region, covered, settings: PocketSettings, name: str, top: float, warn
                         f"{settings.tool.diameter:g} mm one left")
         return rest
     cutter = Cutter(centres, settings.clearance_z, settings.rest_feed, settings.entry_feed, 0.0, settings.ramp_angle,
-                    tool.radius, f"{what} (rest machining)", tool.diameter, 0.0, skip=True)
+                    tool.radius, f"{what} (rest machining)", tool.diameter, 0.0)
     chains = _chains(centres, settings.strategy, settings.rest_stepover, tool.radius, settings.angle, what, warnings)
     try:
         cutter.cut(chains, ramp.levels(top - settings.depth, settings.rest_step_down, top), top)
     except ClearingError as error:
         raise PocketError(str(error)) from None
     warnings += cutter.notes
+    if cutter.cut_nothing():
+        return rest
     arrays = cutter.finish(settings.safe_z)
     operations.append(_operation(f"{name} rest", tool, settings.rest_rpm, arrays, cutter, settings,
                                  f"rest machining after the {settings.tool.diameter:g} mm end mill"))
