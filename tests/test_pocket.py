@@ -2,6 +2,7 @@
 closed forms worked out here by hand (areas of rectangles, circles and L shapes, the corners a
 round tool leaves), never with the planner's own regions."""
 import math
+import re
 
 import numpy as np
 import pytest
@@ -190,3 +191,15 @@ def test_where_neither_a_helix_nor_a_ramp_fits_the_pocket_is_refused_by_name():
 def test_bad_regions_and_settings_are_refused_by_name(loops, settings, message):
     with pytest.raises(pk.PocketError, match=message):
         pk.plan(loops, settings, "p")
+
+
+def test_a_piece_no_entry_fits_is_left_uncut_with_a_note_while_the_rest_is_cut():
+    """A rectangle and, apart from it, a circle only 0.3 mm wider than the tool's radius: the
+    rectangle is pocketed, the circle's 1.9 mm path is too short to ramp on and is named."""
+    loops = [RECT, circle(100, 0, 3.3)]
+    result = pk.plan(loops, pk.PocketSettings(depth=2.0), "two")
+    op = result.operations[0]
+    assert op.xyz[:, 2].min() == pytest.approx(-2.0)
+    assert np.all(op.xyz[op.xyz[:, 2] < 0, 0] < 61)                   # nothing cut in the circle
+    assert any(re.search(r"cannot enter at X99\.[67]\d+ Y-?0\.\d+ \(a 1\.8\d mm path\): left uncut there", w)
+               for w in result.warnings), result.warnings
