@@ -203,3 +203,15 @@ def test_a_piece_no_entry_fits_is_left_uncut_with_a_note_while_the_rest_is_cut()
     assert np.all(op.xyz[op.xyz[:, 2] < 0, 0] < 61)                   # nothing cut in the circle
     assert any(re.search(r"cannot enter at X99\.[67]\d+ Y-?0\.\d+ \(a 1\.8\d mm path\): left uncut there", w)
                for w in result.warnings), result.warnings
+
+
+@pytest.mark.parametrize("angle", [0.0, 45.0, 90.0, 137.5, -30.0])
+def test_zigzag_at_any_angle_clears_the_rectangle_round_its_island(angle):
+    loops = [RECT, circle(30, 20, 8)]
+    _, program, sim = simulated(f"zigzag {angle:g}", loops, pk.PocketSettings(strategy="zigzag", angle=angle,
+                                                                            stepover=4.0))
+    assert sim.findings == [], [f.message for f in sim.findings[:3]]
+    hf = sim.heightfield
+    removed = float(((hf.top - hf.heights) * hf.inside).sum() * hf.cell_x * hf.cell_y)
+    area = 60 * 40 - 4 * CORNER * R6 ** 2 - math.pi * 64
+    assert removed == pytest.approx(area * DEPTH, abs=(200 + 2 * math.pi * 8) * CELL / 2 * DEPTH)
