@@ -36,7 +36,8 @@ from .translations import translate_message
 PREFIX = "Kezuri Job"
 # an operation's objects when a row is added: slot -> (group of scene.kezuri, its property)
 DEFAULT_SLOTS = {"engrave": (("plate", "stock", "plate"), ("letters", "engrave", "letters"),
-                             ("surface", "engrave", "surface"))}
+                             ("surface", "engrave", "surface")),
+                 "pocket": (("region", "engrave", "letters"), ("plate", "stock", "plate"))}
 DEFAULT_EXTRA = {"drill": {"holes": []}}
 ROW_KEYS = ("kind", "name", "enabled", "objects", "settings")      # a job file's keys a row keeps apart
 

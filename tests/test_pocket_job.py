@@ -87,3 +87,22 @@ def test_an_open_curve_is_refused_by_name(empty_scene):
     entry = JobEntry("logo", "pocket", True, {"region": obj}, {}, {}, "job file x: operation 1 ('logo')")
     with pytest.raises(InputError, match=r"'Open'.*open"):
         pocket.job_operation(empty_scene, bpy.context.evaluated_depsgraph_get(), entry, "linuxcnc")
+
+
+def test_a_pocket_row_of_the_job_list_plans_the_letters_from_the_panels_objects(empty_scene):
+    """The CAM tab's job list: a pocket row added in the name-plate scene takes the letters and the
+    plate as its region and stock, and plans with its settings (JSON, as a job file keeps them)."""
+    import bpy
+
+    from kezuri.operators import samples
+
+    samples.name_plate(empty_scene)
+    empty_scene.kezuri.machine.post = "linuxcnc"
+    assert bpy.ops.kezuri.job_add(kind="pocket") == {"FINISHED"}
+    row = empty_scene.kezuri.job_list.rows[0]
+    assert {item.slot: item.object.name for item in row.objects} == {"region": "Letters", "plate": "Plate"}
+    row.settings = json.dumps({"diameter": 3.0, "depth": 1.5, "step_down": 1.5, "stepover": 1.2,
+                               "helix_diameter": 1.5})
+    assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
+    assert row.tools == "T5" and row.state in {"PLANNED", "FINDINGS"}      # FINDINGS: the helix notes
+    assert row.minutes > 0
