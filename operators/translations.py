@@ -1975,8 +1975,13 @@ POCKET_TEMPLATES = {
     "{}: {} must be 0 or more, got {}": "{0}：{1} は 0 以上にしてください（指定値 {2}）",
     "{}: strategy must be one of {}, got {}": "{0}：strategy は {1} のいずれかにしてください（指定値 {2}）",
     "{}: entry must be one of {}, got {}": "{0}：entry は {1} のいずれかにしてください（指定値 {2}）",
-    "{}: ramp_angle must be more than 0 and at most {} degrees, got {}":
-        "{0}：ramp_angle は 0 より大きく {1} 度以下にしてください（指定値 {2}）",
+    "{}: ramp_angle must be from {} to {} degrees, got {}": "{0}：ramp_angle は {1}〜{2} 度にしてください（指定値 {3}）",
+    "{}: a stepover of {} mm over {} levels cuts more than {} km: raise the stepover or the step-down":
+        "{0}：ステップオーバー {1} mm で {2} 段を削ると {3} km を超えます。ステップオーバーかステップダウンを大きくしてください",
+    "{}: {} must be at least {} mm, got {}": "{0}：{1} は {2} mm 以上にしてください（指定値 {3}）",
+    "{}: depth {} mm at a {} of {} mm makes more than {} levels": "{0}：深さ {1} mm を {2} {3} mm で削ると {4} 段を超えます",
+    "{}: helix_diameter must be 0 (no helix) or from {} to {} mm, got {}":
+        "{0}：helix_diameter は 0（ヘリカルなし）か {1}〜{2} mm にしてください（指定値 {3}）",
     "{}: stepover {} mm is more than the {}'s diameter: material would stand between the paths":
         "{0}：stepover {1} mm は {2} の直径より大きいです：経路の間に材料が残ります",
     "{}: rest_stepover {} mm is more than the {}'s diameter": "{0}：rest_stepover {1} mm は {2} の直径より大きいです",

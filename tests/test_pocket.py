@@ -184,7 +184,7 @@ def test_where_neither_a_helix_nor_a_ramp_fits_the_pocket_is_refused_by_name():
      r"loop 1 crosses itself at X6\.667 Y6\.667"),
     ([RECT], pk.PocketSettings(wall_allowance=0.3), r"wall_allowance 0.3 mm is left by roughing but finish_walls is off"),
     ([RECT], pk.PocketSettings(strategy="spiral"), r"strategy must be one of offset, zigzag"),
-    ([RECT], pk.PocketSettings(ramp_angle=90.0), r"ramp_angle must be"),
+    ([RECT], pk.PocketSettings(ramp_angle=90.0), r"ramp_angle must be from 0.5 to 45 degrees"),
     ([RECT], pk.PocketSettings(rest_tool=pk.end_mill(6, 8.0)), r"rest_tool .* must be smaller"),
     ([np.array([[0, 0], [np.nan, 0], [1, 1]], float)], pk.PocketSettings(), r"non-finite"),
 ])

@@ -23,7 +23,7 @@ from manifold3d import CrossSection, FillRule
 
 from ...engines import ramp
 from ...engines import region as rg
-from ...ir.errors import InputError
+from ...ir.errors import MAX_REACH_MM, InputError
 from ...ir.program import Operation, Tool
 from ..stepnc.motion import round_offset
 from .clearing import ClearingError, Cutter, offset_rings, zigzag_chains
@@ -32,6 +32,11 @@ STRATEGIES = ("offset", "zigzag")
 ENTRIES = ("helix", "ramp")
 REST_DUST = 0.01          # mm: slivers of the rest narrower than this are the offsets' chord error
 MAX_CROSSING_POINTS = 20000
+MIN_STEP = 0.01           # mm: the finest stepover and step-down (finer is a typing slip, and runs for hours)
+MAX_LEVELS = 1000         # step-down levels in one pocket
+MIN_RAMP_ANGLE = 0.5      # degrees: a shallower ramp travels over 100 mm per mm of depth
+MIN_HELIX = 0.1           # mm: the smallest helix diameter (0: no helix)
+MAX_TRAVEL = 5.0e6        # mm of cutting in one operation (5 km: days at any feed) is a typing slip
 
 
 class PocketError(InputError):
@@ -92,9 +97,19 @@ class PocketSettings:
             raise PocketError(f"{what}: strategy must be one of {', '.join(STRATEGIES)}, got {self.strategy!r}")
         if self.entry not in ENTRIES:
             raise PocketError(f"{what}: entry must be one of {', '.join(ENTRIES)}, got {self.entry!r}")
-        if not 0 < self.ramp_angle <= ramp.MAX_ANGLE:
-            raise PocketError(f"{what}: ramp_angle must be more than 0 and at most {ramp.MAX_ANGLE:g} degrees, "
+        if not MIN_RAMP_ANGLE <= self.ramp_angle <= ramp.MAX_ANGLE:
+            raise PocketError(f"{what}: ramp_angle must be from {MIN_RAMP_ANGLE:g} to {ramp.MAX_ANGLE:g} degrees, "
                               f"got {self.ramp_angle!r}")
+        for name in ("stepover", "step_down", "rest_stepover", "rest_step_down"):
+            if getattr(self, name) < MIN_STEP:
+                raise PocketError(f"{what}: {name} must be at least {MIN_STEP:g} mm, got {getattr(self, name)!r}")
+        for name, step in (("step_down", self.step_down), ("rest_step_down", self.rest_step_down)):
+            if self.depth / step > MAX_LEVELS:
+                raise PocketError(f"{what}: depth {self.depth:g} mm at a {name} of {step:g} mm makes more than "
+                                  f"{MAX_LEVELS} levels")
+        if self.helix_diameter and not MIN_HELIX <= self.helix_diameter <= MAX_REACH_MM:
+            raise PocketError(f"{what}: helix_diameter must be 0 (no helix) or from {MIN_HELIX:g} to "
+                              f"{MAX_REACH_MM:g} mm, got {self.helix_diameter!r}")
         if self.stepover > self.tool.diameter:
             raise PocketError(f"{what}: stepover {self.stepover:g} mm is more than the {self.tool.describe()}'s "
                               f"diameter: material would stand between the paths")
@@ -195,7 +210,12 @@ def region_of(loops, what: str = "pocket") -> CrossSection:
 
 
 def _chains(centres: CrossSection, strategy: str, stepover: float, radius: float, angle: float, what: str,
-            warnings: list) -> list:
+            warnings: list, levels: int) -> list:
+    """The clearing paths, refused when the operation would cut more than MAX_TRAVEL mm."""
+    rows = (centres.bounds()[3] - centres.bounds()[1] + centres.bounds()[2] - centres.bounds()[0]) / stepover
+    if centres.area() / stepover * levels > MAX_TRAVEL or rows > rg.MAX_ROWS:
+        raise PocketError(f"{what}: a stepover of {stepover:g} mm over {levels} levels cuts more than "
+                          f"{MAX_TRAVEL / 1e6:g} km: raise the stepover or the step-down")
     if strategy == "zigzag":
         return zigzag_chains(centres, stepover, angle)
     spacing = stepover
@@ -234,10 +254,12 @@ def plan(loops, settings: PocketSettings = PocketSettings(), name: str = "pocket
     helix = settings.helix_diameter / 2 if settings.entry == "helix" else 0.0
     cutter = Cutter(centres, settings.clearance_z, settings.feed, settings.entry_feed, helix, settings.ramp_angle,
                     radius, what, tool.diameter, settings.helix_diameter)
-    chains = _chains(centres, settings.strategy, settings.stepover, radius, settings.angle, what, warnings)
     rough_floor = floor + settings.floor_allowance
+    levels = ramp.levels(rough_floor, settings.step_down, top)
+    chains = _chains(centres, settings.strategy, settings.stepover, radius, settings.angle, what, warnings,
+                     len(levels) + 2)
     try:
-        cutter.cut(chains, ramp.levels(rough_floor, settings.step_down, top), top)
+        cutter.cut(chains, levels, top)
         if progress is not None:
             progress(0.4)
         if settings.finish_floor:
@@ -272,9 +294,11 @@ def _rest(region, covered, settings: PocketSettings, name: str, top: float, warn
         return rest
     cutter = Cutter(centres, settings.clearance_z, settings.rest_feed, settings.entry_feed, 0.0, settings.ramp_angle,
                     tool.radius, f"{what} (rest machining)", tool.diameter, 0.0)
-    chains = _chains(centres, settings.strategy, settings.rest_stepover, tool.radius, settings.angle, what, warnings)
+    levels = ramp.levels(top - settings.depth, settings.rest_step_down, top)
+    chains = _chains(centres, settings.strategy, settings.rest_stepover, tool.radius, settings.angle, what, warnings,
+                     len(levels))
     try:
-        cutter.cut(chains, ramp.levels(top - settings.depth, settings.rest_step_down, top), top)
+        cutter.cut(chains, levels, top)
     except ClearingError as error:
         raise PocketError(str(error)) from None
     warnings += cutter.notes
