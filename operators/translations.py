@@ -2162,6 +2162,80 @@ MESSAGES.update(DESIGN_MESSAGES)
 MESSAGE_TEMPLATES.update(DESIGN_TEMPLATES)
 NESTED["{}: path data: {} at character {} (near {})"] = (1,)
 NESTED["{}: design: {}"] = (1,)
+# pocketing (issue 29)
+POCKET_TEXTS = {"Pocket": "ポケット", "Clear closed regions with islands to a flat floor (job files)":
+                "島のある閉じた領域を平らな底まで削ります（ジョブファイル）"}
+POCKET_NESTED = {"{}: the pocket: {}": (1,), "{}: the end mill: {}": (1,)}
+POCKET_TEMPLATES = {
+    "{}: the pocket: {}": "{0}：ポケット：{1}",
+    "{}: the end mill: {}": "{0}：エンドミル：{1}",
+    "{}: settings.{} is not a pocket setting; they are {}": "{0}：settings.{1} はポケットの設定ではありません（設定は {2}）",
+    "{}: settings.{} = {} is not a word": "{0}：settings.{1} = {2} は語ではありません",
+    "{}: settings.{} = {} is not true or false": "{0}：settings.{1} = {2} は true でも false でもありません",
+    "{}: settings.{} = {} is not a whole number": "{0}：settings.{1} = {2} は整数ではありません",
+    "{}: rest machining needs settings.rest_diameter": "{0}：残り削りには settings.rest_diameter が必要です",
+    "{}: objects.{}: a pocket's objects are {}": "{0}：objects.{1}：ポケットのオブジェクトは {2} です",
+    '{}: no region: give objects = {{ region = "<curve, Text or mesh>" }}':
+        '{0}：領域がありません：objects = {{ region = "<カーブ、テキストまたはメッシュ>" }} を指定してください',
+    "{}: the {} mm end mill's {} mm helix does not fit in the region at X{} Y{}, nor a ramp along the path there "
+    "({} mm long, less than {} mm)":
+        "{0}：{1} mm エンドミルの {2} mm のヘリカルが X{3} Y{4} で領域に収まらず、そこの経路に沿うランプも入りません"
+        "（長さ {5} mm、{6} mm 未満）",
+    "{}: the {} mm end mill's ramp does not fit in the region at X{} Y{}: the path there is {} mm long, less than {} mm":
+        "{0}：{1} mm エンドミルのランプが X{2} Y{3} で領域に入りません：そこの経路は {4} mm で、{5} mm 未満です",
+    "{}: the {} mm end mill cannot enter at X{} Y{} (a {} mm path): left uncut there":
+        "{0}：{1} mm エンドミルは X{2} Y{3} に入れません（経路 {4} mm）：そこは削り残します",
+    "{}: the {} mm end mill's {} mm helix does not fit at X{} Y{}; ramped along the path":
+        "{0}：{1} mm エンドミルの {2} mm のヘリカルが X{3} Y{4} に収まりません。経路に沿ってランプで入ります",
+    "more than {} rings at a {} mm stepover": "ステップオーバー {1} mm ではリングが {0} 本を超えます",
+    "{}: offset rings {} mm apart (the tool's radius), not the stepover {} mm: rings further apart leave material "
+    "between them":
+        "{0}：オフセットのリングはステップオーバー {2} mm ではなく {1} mm（工具半径）間隔です。間隔が広いとリングの間に"
+        "材料が残ります",
+    "{}: rest machining: the {} mm end mill finds nothing the {} mm one left":
+        "{0}：残り削り：{2} mm エンドミルの削り残しで {1} mm エンドミルが削れる所はありません",
+    "{}: {} must be a flat end mill, not a {}": "{0}：{1} はフラットエンドミルにしてください（{2} ではなく）",
+    "{}: {} must be a number, got {}": "{0}：{1} は数値にしてください（指定値 {2}）",
+    "{}: {} must be more than 0, got {}": "{0}：{1} は 0 より大きくしてください（指定値 {2}）",
+    "{}: {} must be 0 or more, got {}": "{0}：{1} は 0 以上にしてください（指定値 {2}）",
+    "{}: strategy must be one of {}, got {}": "{0}：strategy は {1} のいずれかにしてください（指定値 {2}）",
+    "{}: entry must be one of {}, got {}": "{0}：entry は {1} のいずれかにしてください（指定値 {2}）",
+    "{}: ramp_angle must be from {} to {} degrees, got {}": "{0}：ramp_angle は {1}〜{2} 度にしてください（指定値 {3}）",
+    "{}: a stepover of {} mm over {} levels cuts more than {} km: raise the stepover or the step-down":
+        "{0}：ステップオーバー {1} mm で {2} 段を削ると {3} km を超えます。ステップオーバーかステップダウンを大きくしてください",
+    "{}: {} must be at least {} mm, got {}": "{0}：{1} は {2} mm 以上にしてください（指定値 {3}）",
+    "{}: depth {} mm at a {} of {} mm makes more than {} levels": "{0}：深さ {1} mm を {2} {3} mm で削ると {4} 段を超えます",
+    "{}: helix_diameter must be 0 (no helix) or from {} to {} mm, got {}":
+        "{0}：helix_diameter は 0（ヘリカルなし）か {1}〜{2} mm にしてください（指定値 {3}）",
+    "{}: stepover {} mm is more than the {}'s diameter: material would stand between the paths":
+        "{0}：stepover {1} mm は {2} の直径より大きいです：経路の間に材料が残ります",
+    "{}: rest_stepover {} mm is more than the {}'s diameter": "{0}：rest_stepover {1} mm は {2} の直径より大きいです",
+    "{}: depth {} mm is deeper than the {}'s {} mm flutes": "{0}：深さ {1} mm は {2} の刃長 {3} mm より深いです",
+    "{}: rest_tool ({}) must be smaller than the tool ({})": "{0}：rest_tool（{1}）は tool（{2}）より小さくしてください",
+    "{}: depth {} mm is deeper than the rest tool's {} mm flutes": "{0}：深さ {1} mm は残り削り工具の刃長 {2} mm より深いです",
+    "{}: rest_tool and tool have the same tool number {}": "{0}：rest_tool と tool の工具番号 {1} が同じです",
+    "{}: {} {} mm is left by roughing but {} is off: no pass would take it":
+        "{0}：荒削りが {1} {2} mm を残しますが {3} がオフです：それを削るパスがありません",
+    "{}: wall_allowance {} mm must be less than the tool's radius {} mm (one finishing ring takes it)":
+        "{0}：wall_allowance {1} mm は工具半径 {2} mm より小さくしてください（仕上げのリング1周で削ります）",
+    "{}: floor_allowance {} mm must be less than the depth {} mm": "{0}：floor_allowance {1} mm は深さ {2} mm より小さくしてください",
+    "{}: clearance_z {} mm and safe_z {} mm must be above the stock's top and rise in that order":
+        "{0}：clearance_z {1} mm と safe_z {2} mm は素材上面より上で、この順に高くしてください",
+    "{}: the region must be a list of closed loops of (x, y) points": "{0}：領域は (x, y) 点の閉じたループのリストにしてください",
+    "{}: the region has no closed loop": "{0}：領域に閉じたループがありません",
+    "{}: loop {} encloses no area (less than {} mm^2)": "{0}：ループ {1} は面積を囲んでいません（{2} mm^2 未満）",
+    "{}: loop {} is not a list of (x, y) points": "{0}：ループ {1} は (x, y) 点のリストではありません",
+    "{}: loop {} crosses itself: draw it as separate closed loops":
+        "{0}：ループ {1} が自己交差しています。別々の閉じたループに描いてください",
+    "{}: loop {} crosses itself at X{} Y{}: draw it as separate closed loops":
+        "{0}：ループ {1} が X{2} Y{3} で自己交差しています。別々の閉じたループに描いてください",
+    "{}: the loops enclose no area (even-odd: each loop inside another is an island)":
+        "{0}：ループが面積を囲んでいません（偶奇規則：他のループの内側のループは島です）",
+    "{}: the {} mm end mill with the {} mm wall allowance does not fit in the region (X{}..{} Y{}..{})":
+        "{0}：壁の取り代 {2} mm を付けた {1} mm エンドミルは領域（X{3}〜{4} Y{5}〜{6}）に入りません",
+    "{}: the {} mm end mill does not fit in the region (X{}..{} Y{}..{})":
+        "{0}：{1} mm エンドミルは領域（X{2}〜{3} Y{4}〜{5}）に入りません",
+}
 
 
 def _build() -> dict:
@@ -2169,7 +2243,7 @@ def _build() -> dict:
     for table in (PROPERTY_TEXTS, PANEL_TEXTS, OPERATOR_DESCRIPTIONS, MESSAGES):
         for english, japanese in table.items():
             messages[(DEFAULT, english)] = japanese
-    for english, japanese in JOBLIST_TEXTS.items():
+    for english, japanese in (*JOBLIST_TEXTS.items(), *POCKET_TEXTS.items()):
         messages.setdefault((DEFAULT, english), japanese)
     from .. import post
     for cls in post.posts():     # each post declares its own Japanese label and description
@@ -2267,6 +2341,8 @@ PROFILE_TEMPLATES = {
 MESSAGE_TEMPLATES.update(JOBLIST_TEMPLATES)
 MESSAGE_TEMPLATES.update(PROFILE_TEMPLATES)
 MESSAGES.update(PROFILE_TEXTS)
+MESSAGE_TEMPLATES.update(POCKET_TEMPLATES)
+NESTED.update(POCKET_NESTED)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

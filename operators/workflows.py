@@ -5,10 +5,10 @@ the demo loop over :data:`WORKFLOWS`; nothing else lists the workflows.
 """
 from __future__ import annotations
 
-from . import carve, chamfer, drill, engrave, ncfile, profile, rotary, sheetmetal, stepnc, turnmill
+from . import carve, chamfer, drill, engrave, ncfile, pocket, profile, rotary, sheetmetal, stepnc, turnmill
 
 WORKFLOWS = (engrave.WORKFLOW, rotary.WORKFLOW, stepnc.WORKFLOW, turnmill.WORKFLOW, sheetmetal.WORKFLOW,
-             carve.WORKFLOW, drill.WORKFLOW, profile.WORKFLOW, chamfer.WORKFLOW, ncfile.WORKFLOW)
+             carve.WORKFLOW, drill.WORKFLOW, pocket.WORKFLOW, profile.WORKFLOW, chamfer.WORKFLOW, ncfile.WORKFLOW)
 
 
 def simulated() -> list:

@@ -36,7 +36,7 @@ def levels(depth: float, step: float, top: float = 0.0) -> list:
         raise RampError(f"step down must be a number > 0 mm, got {step!r}")
     if not (math.isfinite(depth) and depth < top):
         raise RampError(f"depth {depth!r} must lie below the top Z {top:g}")
-    count = math.ceil((top - depth) / step - 1e-9)
+    count = max(1, math.ceil((top - depth) / step - 1e-9))      # a step deeper than the cut: one level
     return [top + (depth - top) * k / count for k in range(1, count + 1)]
 
 
