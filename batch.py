@@ -11,6 +11,7 @@ Commands (``python batch.py <command> --help`` for the options):
     unfold    twisted quad -> flat pattern, turret-punch NC, DXF, SVG (W5)
     elbow     segmented pipe elbow -> flat patterns, DXF, SVG (W5)
     simulate  material removal and safety checks of any NC file we can read (W6)
+    profile, pocket, drill, chamfer   one router operation on an SVG or DXF drawing (--svg / --dxf)
     job       a job file (TOML): several operations on one stock, one program, one check;
               --each rows.csv runs it as a template once per row (--jobs N side by side)
     demo      every workflow on its built-in sample part, each into a sub-folder of --out
@@ -70,9 +71,10 @@ def write_report(out_dir: str, report: dict) -> str:
 
 def commands() -> dict:
     """Every workflow's batch commands, from the shell's workflow table, and ``job`` (job files)."""
-    from kezuri.operators import jobbatch
+    from kezuri.operators import jobbatch, shorthand
     from kezuri.operators.workflows import commands as table_commands
-    return {**table_commands(), jobbatch.COMMAND.name: jobbatch.COMMAND}
+    return {**table_commands(), jobbatch.COMMAND.name: jobbatch.COMMAND,
+            **{command.name: command for command in shorthand.COMMANDS}}
 
 
 def finished(command, args) -> dict:

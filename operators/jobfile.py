@@ -36,7 +36,8 @@ import tomllib
 from ..toolpath.job import Job, Setup, plan_job
 from .jobentry import JobEntry, JobFileError
 
-SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings", "arcs"}
+SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings", "arcs", "stock",
+              "work_zero"}
 OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "tabs", "file", "design"}
 
 
@@ -95,8 +96,10 @@ def scene_for(setup: dict, path: str, base_dir: str | None = None):
     else a built-in sample scene."""
     from . import batchio, samples
 
-    if "blend" in setup and "sample" in setup:
-        raise JobFileError(f"job file {path}: [setup] gives both blend and sample; give one")
+    if sum(key in setup for key in ("blend", "sample", "stock")) > 1:
+        raise JobFileError(f"job file {path}: [setup] gives more than one of blend, sample and stock; give one")
+    if "stock" in setup:
+        return stock_scene(setup, path)
     if "blend" in setup:
         blend = os.path.join(base_dir or os.path.dirname(os.path.abspath(path)), str(setup["blend"]))
         return batchio.open_blend(blend)
@@ -109,6 +112,35 @@ def scene_for(setup: dict, path: str, base_dir: str | None = None):
     if options and sample != "name_plate":
         raise JobFileError(f"job file {path}: [setup] text is for the name_plate sample")
     samples.SCENES[sample](scene, **options)
+    return scene
+
+
+def stock_scene(setup: dict, path: str):
+    """An empty scene with the [setup] ``stock = [x0, y0, z0, x1, y1, z1]`` (mm) as its plate, work
+    zero at its top ``work_zero`` ("CORNER": the front-left corner, the default; "CENTER")."""
+    import math
+
+    from . import batchio, convert, samples
+
+    box = setup["stock"]
+    if not (isinstance(box, list) and len(box) == 6 and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                             and math.isfinite(v) for v in box)):
+        raise JobFileError(f"job file {path}: [setup] stock = {box!r} is not [x0, y0, z0, x1, y1, z1] in mm")
+    x0, y0, z0, x1, y1, z1 = (float(v) for v in box)
+    if not (x0 < x1 and y0 < y1 and z0 < z1):
+        raise JobFileError(f"job file {path}: [setup] stock = {box!r}: each lower corner value must lie below the "
+                           "upper one")
+    zero = setup.get("work_zero", "CORNER")
+    if zero not in ("CORNER", "CENTER"):
+        raise JobFileError(f"job file {path}: [setup] work_zero = {zero!r} is not CORNER or CENTER")
+    import bpy
+
+    scene = batchio.open_blend(None)
+    s = 1.0 / convert.mm_per_unit(scene)
+    plate = bpy.data.objects.new("Stock", samples.box_mesh("Stock", x0 * s, y0 * s, z0 * s, x1 * s, y1 * s, z1 * s))
+    scene.collection.objects.link(plate)
+    scene.kezuri.stock.plate = plate
+    scene.kezuri.stock.origin = zero
     return scene
 
 
@@ -177,6 +209,25 @@ def apply_setup(scene, setup_table: dict, path: str) -> None:
         set_exactly(scene.kezuri.machine, "work_offset", setup_table["work_offset"], f"job file {path}: work_offset")
 
 
+def plate_setup(scene, depsgraph, families, post_name: str):
+    """The setup of a job whose operations do not give one (drilling, chamfers): the scene's plate
+    (Machine & Stock) as the stock, its work zero, the machine for the post: (Setup, WorkFrame)."""
+    from ..toolpath.simulate import BoxStock
+    from . import convert
+    from .limits import check_group
+    from .machines import scene_machine
+
+    settings = scene.kezuri
+    check_group(settings.machine, "machine")
+    plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, settings.stock.origin)
+    points = [p for loop in plate.outline for p in loop]
+    xs, ys = [p[0] for p in points], [p[1] for p in points]
+    stock = BoxStock(float(min(xs)), float(min(ys)), -float(plate.size[2]), float(max(xs)), float(max(ys)), 0.0)
+    machine = scene_machine(settings.machine, families, post_name)
+    return Setup(name=scene.name, post=post_name, machine=machine, work_offset=settings.machine.work_offset,
+                 rapid_rate=settings.machine.rapid_rate, stock=stock), plate.frame
+
+
 def job_of(scene, entries: list, name: str, post_name: str, where: str):
     """The job of the entries (read from a job file or the panel's job list), their objects and
     settings read from the scene: (the Job, the work frame, the post families).  One function for
@@ -200,6 +251,8 @@ def job_of(scene, entries: list, name: str, post_name: str, where: str):
         elif op_frame is not None and frame is not None and not same_frame(op_frame, frame):
             raise JobFileError(f"{entry.where}: its work zero ({describe_frame(op_frame)}) is not the job's "
                                f"({describe_frame(frame)}): the operations of one job share one work zero")
+    if setup is None and scene.kezuri.stock.plate is not None and operations:
+        setup, frame = plate_setup(scene, depsgraph, families, post_name)
     if setup is None:
         raise JobFileError(f"{where}: no operation gives the stock: begin with one that works on a "
                            "plate or a part (engrave, carve)")

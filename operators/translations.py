@@ -1927,6 +1927,16 @@ MESSAGE_TEMPLATES = {
     "hole at X{} Y{} is {} mm wide, the drill {} mm: drilled at the drill's size (turn helix milling on)":
         'X{0} Y{1} の穴は幅 {2} mm、ドリルは {3} mm です：ドリルの径で開けます（ヘリカル加工をオンにしてください）',
     'operation {}: {}': '加工 {0}：{1}',
+    'job file {}: [setup] gives more than one of blend, sample and stock; give one':
+        'ジョブファイル {0}：[setup] に blend、sample、stock のうち複数があります。1つにしてください',
+    'job file {}: [setup] stock = {} is not [x0, y0, z0, x1, y1, z1] in mm':
+        'ジョブファイル {0}：[setup] の stock = {1} は mm の [x0, y0, z0, x1, y1, z1] ではありません',
+    'job file {}: [setup] stock = {}: each lower corner value must lie below the upper one':
+        'ジョブファイル {0}：[setup] の stock = {1}：下側の角の値はそれぞれ上側より小さくなければなりません',
+    'job file {}: [setup] work_zero = {} is not CORNER or CENTER': 'ジョブファイル {0}：[setup] の work_zero = {1} は CORNER でも CENTER でもありません',
+    '--set {}: give KEY=VALUE, e.g. --set depth=3': '--set {0}：KEY=VALUE の形で指定してください（例 --set depth=3）',
+    '--{}: the drawing has closed outlines on several layers ({}): pick one with --layer':
+        '--{0}：図面の複数のレイヤー（{1}）に閉じた輪郭があります。--layer で1つ選んでください',
     'line {}: a drilling cycle in incremental mode (G91) is not followed: {}': '{0} 行目：インクリメンタル（G91）の穴あけサイクルは追えません：{1}',
     'line {}: a drilling cycle with a C word is not followed: {}': '{0} 行目：C ワード付きの穴あけサイクルは追えません：{1}',
     'line {}: {} needs its Z (the bottom) and R (the retract plane) words: {}':

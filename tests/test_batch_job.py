@@ -130,7 +130,10 @@ BAD_JOBS = {
     "drill deeper than its flutes": ('[[operations]]\nkind = "engrave"\nname = "a"\n[[operations]]\nkind = "drill"\n'
                                      'name = "b"\nholes = [[0.0, 0.0]]\nsettings = { depth = 80.0 }\n',
                                      "deeper than"),
-    "drill first": ('[[operations]]\nkind = "drill"\nname = "b"\nholes = [[0.0, 0.0]]\n', "no operation gives the stock"),
+    "stock and sample": ('[setup]\nsample = "name_plate"\nstock = [0.0, 0.0, -5.0, 10.0, 10.0, 0.0]\n[[operations]]\n'
+                         'kind = "drill"\nname = "b"\nholes = [[5.0, 5.0]]\n', "more than one of blend, sample and stock"),
+    "stock upside down": ('[setup]\nstock = [0.0, 0.0, 5.0, 10.0, 10.0, 0.0]\n[[operations]]\nkind = "drill"\nname = "b"\n'
+                          'holes = [[5.0, 5.0]]\n', "each lower corner value must lie below the upper one"),
 }
 
 
@@ -195,3 +198,16 @@ def test_each_sample_job_writes_its_workflows_program(job, command, program, dir
     mine = open(os.path.join(out, program)).read()
     theirs = open(os.path.join(reference, direct)).read()
     assert header_named(mine, "SCENE") == theirs
+
+
+def test_a_drilling_alone_drills_the_stock_the_setup_gives(tmp_path):
+    """No operation gives the stock: the setup's (a box, work zero at its front-left top corner)."""
+    job = tmp_path / "holes.toml"
+    job.write_text('[setup]\nname = "holes"\nstock = [0.0, 0.0, -12.0, 100.0, 50.0, 0.0]\npost = "linuxcnc"\n\n'
+                   '[[operations]]\nkind = "drill"\nname = "holes"\nholes = [[10.0, 10.0], [90.0, 40.0]]\n'
+                   'settings = { depth = 8.0 }\n', encoding="utf-8")
+    status, message, out = run("job", str(job))
+    assert status == 0, message[-2000:]
+    report = json.loads(open(os.path.join(out, "report.json")).read())
+    assert report["gate"]["findings"] == []
+    assert report["simulation"]["removed_volume_mm3"] > 0

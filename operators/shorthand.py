@@ -1,0 +1,123 @@
+"""The router operations' batch shorthands: ``batch.py profile|pocket|drill|chamfer --svg FILE``
+(or ``--dxf FILE``), a job of one operation on a board around the drawing.
+
+Each is a job file written for the user (:mod:`.jobfile`): ``[setup] stock`` is the drawing's
+bounding box grown by ``--margin`` and ``--thickness`` deep below Z 0, work zero at its front-left
+top corner (``--work-zero CENTER``: the centre); the operation's object is the drawing's layer
+(``--layer`` picks one when the file has several with closed outlines); ``--set KEY=VALUE`` sets
+one of the kind's settings by its job-file name (the value read as TOML: ``--set depth=3``,
+``--set side=\"inside\"`` or ``--set side=inside``).  ``report.json`` keeps the job file's text.
+"""
+from __future__ import annotations
+
+import os
+import tomllib
+
+from .jobentry import JobFileError
+
+# the kind's object slot that takes the drawing, and what the command does
+KINDS = {
+    "profile": ("shape", "cut along (or out) a drawing's outlines, with tabs (SVG, DXF)"),
+    "pocket": ("region", "clear a drawing's closed outlines to a depth, islands kept (SVG, DXF)"),
+    "drill": ("holes", "drill the circles of a drawing (SVG, DXF)"),
+    "chamfer": ("edges", "chamfer a drawing's outlines with a V-bit (SVG, DXF)"),
+}
+
+
+def arguments(p) -> None:
+    from . import gate
+    from .batchio import number
+    from .designfile import design_arguments
+
+    design_arguments(p)
+    p.add_argument("--thickness", type=number("--thickness", 0.0, 1000.0, lo_open=True, unit="mm"), default=18.0,
+                   help="the board's thickness in mm (default 18)")
+    p.add_argument("--margin", type=number("--margin", 0.0, 1000.0, unit="mm"), default=10.0,
+                   help="board around the drawing in mm (default 10)")
+    p.add_argument("--work-zero", choices=("CORNER", "CENTER"), default="CORNER",
+                   help="work zero at the board's top front-left corner (default) or its top centre")
+    p.add_argument("--post", help="the post (default: the preferences')")
+    p.add_argument("--machine", help="a machine preset (default: the post's own machine)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="one of the operation's settings by its job-file name (repeat for several)")
+    gate.allow_findings_argument(p)
+
+
+def settings(pairs: list) -> dict:
+    """``--set`` pairs as a settings table: the value as TOML (a number, true/false, a list, a
+    quoted string), else as text."""
+    found = {}
+    for pair in pairs:
+        key, sep, value = pair.partition("=")
+        key = key.strip()
+        if not sep or not key or not key.replace("_", "").isalnum():
+            raise JobFileError(f"--set {pair!r}: give KEY=VALUE, e.g. --set depth=3")
+        try:
+            found[key] = tomllib.loads(f"v = {value.strip()}")["v"]
+        except tomllib.TOMLDecodeError:
+            found[key] = value.strip()
+    return found
+
+
+def job_text(kind: str, args) -> str:
+    """The job file the shorthand runs (see the module docstring)."""
+    import json
+
+    import numpy as np
+
+    from .designfile import design_loops
+
+    found = design_loops(args)
+    if len(found) > 1:
+        names = ", ".join(repr(name) for name, _ in found)
+        raise JobFileError(f"--{'svg' if args.svg else 'dxf'}: the drawing has closed outlines on several layers "
+                           f"({names}): pick one with --layer")
+    name, loops = found[0]
+    points = np.vstack(loops)
+    (x0, y0), (x1, y1) = points.min(axis=0) - args.margin, points.max(axis=0) + args.margin
+    path = os.path.abspath(args.svg or args.dxf)
+    design = {"file": path}
+    if args.layer:
+        design["layer"] = args.layer[0]
+    if getattr(args, "scale", None) is not None:
+        design["scale"] = float(args.scale)
+    setup = {"name": kind, "stock": [float(x0), float(y0), -float(args.thickness), float(x1), float(y1), 0.0],
+             "work_zero": args.work_zero}
+    if args.post:
+        setup["post"] = args.post
+    if args.machine:
+        setup["machine"] = args.machine
+    operation = {"kind": kind, "name": kind, "design": design, "objects": {KINDS[kind][0]: name},
+                 "settings": settings(args.set)}
+    return f"[setup]\n{toml_table(setup)}\n[[operations]]\n{toml_table(operation)}"
+
+
+def toml_table(table: dict) -> str:
+    """A flat TOML table: values as JSON (valid TOML for strings, numbers, booleans and lists), nested
+    tables inline."""
+    import json
+
+    def value(item):
+        if isinstance(item, dict):
+            return "{ " + ", ".join(f"{key} = {value(v)}" for key, v in item.items()) + " }"
+        if isinstance(item, bool):
+            return "true" if item else "false"
+        if isinstance(item, list):
+            return "[" + ", ".join(value(v) for v in item) + "]"
+        return json.dumps(item, ensure_ascii=False)
+    return "".join(f"{key} = {value(item)}\n" for key, item in table.items())
+
+
+def command(kind: str):
+    from .workflow import BatchCommand
+
+    def run(args) -> dict:
+        from . import jobfile
+        text = job_text(kind, args)
+        report = jobfile.write_job(f"batch.py {kind}", args.out, args.post, args.allow_findings, text=text,
+                                   base_dir=os.getcwd())
+        return {**report, "workflow": kind, "job_file_text": text}
+    return BatchCommand(kind, KINDS[kind][1], arguments, run, demo=None)
+
+
+COMMANDS = tuple(command(kind) for kind in KINDS)
