@@ -108,6 +108,7 @@ def _setup(scene, post_name: str, plate) -> Setup:
     from .machines import scene_machine
 
     machine = scene_machine(scene.kezuri.machine, POST_FAMILIES, post_name)
+    from . import convert
     convert.check_fits(plate, scene, machine)
     return Setup(name=scene.name, post=post_name, machine=machine, work_offset=scene.kezuri.machine.work_offset,
                  rapid_rate=scene.kezuri.machine.rapid_rate, stock=engrave.plate_stock(plate.outline, plate.size[2]))
