@@ -153,6 +153,21 @@ def shown_instances(obj, depsgraph) -> list:
     return list(shown.values())
 
 
+def instanced_mesh_arrays(obj, depsgraph) -> tuple:
+    """World vertices (Blender units) and polygons of the mesh objects the collection instance
+    ``obj`` shows, joined as one mesh, where it shows them."""
+    shown = [(o, m) for o, m in shown_instances(obj, depsgraph) if o.type == "MESH"]
+    if not shown:
+        raise SceneInputError(f"collection instance {obj.name!r} shows no mesh object")
+    vertices, polygons, count = [], [], 0
+    for shown_obj, matrix in shown:
+        world, faces, _ = evaluated_mesh_arrays(shown_obj, depsgraph, matrix)
+        vertices.append(world)
+        polygons += [face + count for face in faces]
+        count += len(world)
+    return np.concatenate(vertices), polygons
+
+
 def outlines_in_work(obj, depsgraph, frame: "WorkFrame") -> list:
     """Closed outlines (work mm, (k, 2) arrays) of a Text, curve or mesh object, seen from above;
     of a collection instance, those of the Text, curve and mesh objects it shows, where it shows them.
@@ -199,6 +214,19 @@ class Plate:
 def largest_travel() -> tuple:
     from ..toolpath.ir import machine as machines
     return tuple(max(p.travel[axis] for p in machines.PRESETS.values()) for axis in range(3))
+
+
+def check_design_fits(name: str, size_mm, scene) -> None:
+    """A design larger than any machine preset's travel (a unit-scale mistake), refused by name
+    before any planning."""
+    travel = largest_travel()
+    size = f"{size_mm[0]:.6g} x {size_mm[1]:.6g} x {size_mm[2]:.6g}"
+    for axis, letter in enumerate("XYZ"):
+        if travel[axis] > 0 and size_mm[axis] > travel[axis] + 1e-6:
+            raise SceneInputError(
+                f"design {name!r} is {size} mm at the scene's unit "
+                f"scale of {scene.unit_settings.scale_length:g} m per unit, larger than the {travel[axis]:g} mm "
+                f"{letter} travel of any machine preset: check Scene > Units (Unit Scale) or the design's size")
 
 
 def check_fits(plate: Plate, scene, machine) -> None:

@@ -957,6 +957,10 @@ MESSAGE_TEMPLATES = {
     "plate {} is {} mm at the scene's unit scale of {} m per unit, larger than the {} mm {} travel of the machine {}: check Scene > Units (Unit Scale), the plate's size or Machine & Stock's Travel":
         "板材 {0} はシーンの単位スケール（1単位 {2} m）で {1} mm あり、機械 {5} の {4} 軸ストローク {3} mm "
         "より大きいです。シーン > 単位（単位スケール）、板材の大きさ、または「機械と素材」のストロークを確認してください",
+    "collection instance {} shows no mesh object": "コレクションインスタンス {0} はメッシュオブジェクトを表示していません",
+    "design {} is {} mm at the scene's unit scale of {} m per unit, larger than the {} mm {} travel of any machine preset: check Scene > Units (Unit Scale) or the design's size":
+        "デザイン {0} はシーンの単位スケール（1単位 {2} m）で {1} mm あり、どの機械プリセットの {4} 軸ストローク {3} mm "
+        "よりも大きいです。シーン > 単位（単位スケール）かデザインの大きさを確認してください",
     "--tool {}: {} {} mm is outside the allowed range {}": "--tool {0}：{1} {2} mm が許容範囲 {3} の外です",
     "{} {}: the mesh reaches {} mm from the origin (more than {} mm): is it in other units?":
         "{0} {1}：メッシュが原点から {2} mm まで達しています（{3} mm 超）。単位が違っていませんか",

@@ -145,3 +145,47 @@ def test_a_plate_larger_than_the_machine_travel_is_refused_naming_the_machine(sc
         shell.engrave_operation(scene, depsgraph(), "grbl")
     assert "larger than the 150 mm X travel of the machine" in str(error.value)
 
+
+
+@pytest.fixture
+def carve_scene(empty_scene):
+    assert bpy.ops.kezuri.carve_sample(sample="wave") == {"FINISHED"}
+    yield empty_scene
+    for name in ("Design source", "Shown design"):
+        collection = bpy.data.collections.get(name)
+        if collection is not None:
+            for obj in list(collection.objects):
+                bpy.data.objects.remove(obj)
+            bpy.data.collections.remove(collection)
+
+
+def test_a_design_mesh_shown_through_a_collection_instance_is_read_where_it_is_shown(carve_scene):
+    from kezuri.operators import carve
+    plain, plain_faces, _ = carve.design_mesh(carve_scene, depsgraph())
+    design = carve_scene.kezuri.carve.design
+    for collection in list(design.users_collection):
+        collection.objects.unlink(design)
+    source = bpy.data.collections.new("Design source")
+    source.objects.link(design)
+    empty = bpy.data.objects.new("Design shown", None)
+    empty.instance_type = "COLLECTION"
+    empty.instance_collection = source
+    empty.location = (0.0, 0.0, -3.0 / 1000 / carve_scene.unit_settings.scale_length)      # 3 mm lower
+    shown = bpy.data.collections.new("Shown design")
+    carve_scene.collection.children.link(shown)
+    shown.objects.link(empty)
+    carve_scene.kezuri.carve.design = empty
+    vertices, faces, _ = carve.design_mesh(carve_scene, depsgraph())
+    assert np.array_equal(faces, plain_faces)
+    assert np.abs(vertices - (plain - [0.0, 0.0, 3.0])).max() < 1e-4
+
+
+def test_a_design_far_larger_than_any_machine_is_refused_before_planning(carve_scene):
+    from kezuri.operators import carve
+    carve_scene.unit_settings.scale_length = 1.0          # the 120 mm wave read as 120 m
+    start = time.monotonic()
+    with pytest.raises(convert.SceneInputError) as error:
+        carve.carve_request(carve_scene, depsgraph())
+    assert time.monotonic() - start < 1.0
+    assert str(error.value).startswith(f"design {carve_scene.kezuri.carve.design.name!r} is 120000 x 80000 x ")
+    assert "at the scene's unit scale of 1 m per unit, larger than the 1270 mm X travel" in str(error.value)
