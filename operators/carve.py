@@ -68,14 +68,20 @@ def settings_from(props) -> core.CarveSettings:
 def design_mesh(scene, depsgraph) -> tuple:
     """The Carve panel's design as triangles in work mm: (vertices, faces, frame)."""
     obj = scene.kezuri.carve.design
-    if obj is None or obj.type != "MESH":
+    if obj is not None and convert.is_instancer(obj):
+        world, polygons = convert.instanced_mesh_arrays(obj, depsgraph)
+    elif obj is None or obj.type != "MESH":
         raise convert.SceneInputError("pick the design (a mesh) in the Carve panel")
-    world, polygons, _ = convert.evaluated_mesh_arrays(obj, depsgraph)
+    else:
+        world, polygons, _ = convert.evaluated_mesh_arrays(obj, depsgraph)
     if not polygons:
         raise convert.SceneInputError(f"design {obj.name!r} has no faces")
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    work = frame.to_work(world)
+    if np.isfinite(work).all():
+        convert.check_design_fits(obj.name, np.ptp(work, axis=0), scene)
     faces, _ = meshdata.triangulated(polygons)
-    return frame.to_work(world), faces, frame
+    return work, faces, frame
 
 
 def run_on_mesh(vertices, faces, settings: core.CarveSettings, frame, stock_above: float = 0.0, name="carve",

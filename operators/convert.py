@@ -67,8 +67,47 @@ def placed(co: np.ndarray, matrix) -> np.ndarray:
     return np.einsum("ij,kj->ik", co, m[:3, :3]) + m[:3, 3]
 
 
-def evaluated_mesh_arrays(obj, depsgraph):
-    """World-space vertices (Blender units), polygons and edges of the evaluated object."""
+# A plate's top or a letter's plane tilted by less than this (degrees) is taken as level: over a
+# 1 m plate it moves the top by 0.017 mm, and it is far above single precision's 1e-5 deg noise.
+TILT_LIMIT_DEG = 0.001
+
+
+def tilt_of(matrix) -> tuple:
+    """How far the local XY plane of a 4 x 4 (or 3 x 3) object matrix is tilted out of the
+    world's XY plane: (degrees, "X" / "Y" / "X and Y").  A turn about Z alone or a flip upside
+    down (the plane stays level) is no tilt."""
+    m = np.asarray(matrix, float)[:3, :3]
+    normal = np.cross(m[:, 0], m[:, 1])
+    length = float(np.linalg.norm(normal))
+    if not length > 0:
+        return 0.0, ""
+    normal = normal / length
+    degrees = float(np.degrees(np.arccos(min(1.0, abs(normal[2])))))
+    largest = max(abs(normal[0]), abs(normal[1]))
+    about_x, about_y = abs(normal[1]) >= 0.05 * largest, abs(normal[0]) >= 0.05 * largest
+    axis = "X and Y" if about_x and about_y else "X" if about_x else "Y"
+    return degrees, axis
+
+
+def check_level(obj, what: str, matrix=None) -> None:
+    """Refuse an object whose plane is tilted (an unapplied rotation about X or Y): the plate and
+    the letters are read as seen from above, so a tilted top would be cut as if it were flat."""
+    degrees, axis = tilt_of(obj.matrix_world if matrix is None else matrix)
+    if not degrees > TILT_LIMIT_DEG:
+        return
+    if what == "plate":
+        raise SceneInputError(f"plate {obj.name!r} is tilted {degrees:.3g} deg about {axis}: apply or clear its "
+                              f"rotation (Ctrl-A)")
+    if what == "collection instance":
+        raise SceneInputError(f"collection instance {obj.name!r} is tilted {degrees:.3g} deg about {axis}: clear its "
+                              f"rotation about X and Y")
+    raise SceneInputError(f"object {obj.name!r} is tilted {degrees:.3g} deg about {axis} out of the plate's top: "
+                          f"apply or clear its rotation (Ctrl-A)")
+
+
+def evaluated_mesh_arrays(obj, depsgraph, matrix=None):
+    """World-space vertices (Blender units), polygons and edges of the evaluated object
+    (``matrix``: its world matrix when it is shown through an instance; default its own)."""
     evaluated = obj.evaluated_get(depsgraph)
     try:
         mesh = evaluated.to_mesh()
@@ -81,8 +120,7 @@ def evaluated_mesh_arrays(obj, depsgraph):
         co = np.empty(count * 3)
         mesh.vertices.foreach_get("co", co)
         co = co.reshape(count, 3)
-        matrix = np.array(obj.matrix_world)
-        world = placed(co, matrix)
+        world = placed(co, np.array(obj.matrix_world if matrix is None else matrix))
         edges = np.empty(len(mesh.edges) * 2, dtype=np.int64)
         mesh.edges.foreach_get("vertices", edges)
         loop_starts = np.empty(len(mesh.polygons), dtype=np.int64)
@@ -97,15 +135,62 @@ def evaluated_mesh_arrays(obj, depsgraph):
     return world, polygons, edges.reshape(-1, 2)
 
 
+def is_instancer(obj) -> bool:
+    """An Empty showing a collection (Add > Collection Instance)."""
+    return obj.type == "EMPTY" and obj.instance_type == "COLLECTION" and obj.instance_collection is not None
+
+
+def shown_instances(obj, depsgraph) -> list:
+    """(original object, world matrix) of every object the collection instance ``obj`` shows, as
+    the evaluated depsgraph has them (nested instances and the collection's offset included)."""
+    shown = {}
+    for instance in depsgraph.object_instances:
+        if instance.is_instance and instance.parent is not None and instance.parent.original == obj:
+            # a Text or curve is listed once per geometry component (curve and mesh): one key each
+            matrix = np.array(instance.matrix_world)
+            shown.setdefault((instance.object.original.name, matrix.round(9).tobytes()),
+                             (instance.object.original, matrix))
+    return list(shown.values())
+
+
+def instanced_mesh_arrays(obj, depsgraph) -> tuple:
+    """World vertices (Blender units) and polygons of the mesh objects the collection instance
+    ``obj`` shows, joined as one mesh, where it shows them."""
+    shown = [(o, m) for o, m in shown_instances(obj, depsgraph) if o.type == "MESH"]
+    if not shown:
+        raise SceneInputError(f"collection instance {obj.name!r} shows no mesh object")
+    vertices, polygons, count = [], [], 0
+    for shown_obj, matrix in shown:
+        world, faces, _ = evaluated_mesh_arrays(shown_obj, depsgraph, matrix)
+        vertices.append(world)
+        polygons += [face + count for face in faces]
+        count += len(world)
+    return np.concatenate(vertices), polygons
+
+
 def outlines_in_work(obj, depsgraph, frame: "WorkFrame") -> list:
-    """Closed outlines (work mm, (k, 2) arrays) of a Text, curve or mesh object, seen from above.
+    """Closed outlines (work mm, (k, 2) arrays) of a Text, curve or mesh object, seen from above;
+    of a collection instance, those of the Text, curve and mesh objects it shows, where it shows them.
 
     Faces (a Text object, a filled curve, mesh faces) are merged into one region, so T-junctions
     and faces of either winding are fine; a wire must form closed loops.
     """
+    if is_instancer(obj):
+        check_level(obj, "collection instance")
+        shown = [(o, m) for o, m in shown_instances(obj, depsgraph) if o.type in {"MESH", "CURVE", "FONT", "SURFACE"}]
+        if not shown:
+            raise SceneInputError(f"collection instance {obj.name!r} shows no Text, curve or mesh object")
+        return [loop for shown_obj, matrix in shown for loop in object_outlines(shown_obj, depsgraph, frame, matrix)]
+    return object_outlines(obj, depsgraph, frame)
+
+
+def object_outlines(obj, depsgraph, frame: "WorkFrame", matrix=None) -> list:
+    """:func:`outlines_in_work` of one Text, curve or mesh object (``matrix``: its world matrix
+    when shown through an instance)."""
     if obj.type not in {"MESH", "CURVE", "FONT", "SURFACE"}:
         raise SceneInputError(f"object {obj.name!r} is a {obj.type.lower()}; use a Text, curve or mesh")
-    vertices, polygons, edges = evaluated_mesh_arrays(obj, depsgraph)
+    check_level(obj, "object", matrix)
+    vertices, polygons, edges = evaluated_mesh_arrays(obj, depsgraph, matrix)
     if not np.all(np.isfinite(vertices)):
         raise SceneInputError(f"object {obj.name!r} has a vertex with a non-finite coordinate")
     work = frame.to_work(vertices)
@@ -121,6 +206,49 @@ class Plate:
     outline: list      # [(k, 2) arrays] in work mm
     size: tuple        # (x, y, z) bounding-box size in mm
     frame: WorkFrame
+    name: str = ""     # the plate object's name, for messages
+
+
+# The largest travel (mm) of any machine the presets know, for a program written for a post with
+# no machine of its own: a plate larger than this is no plate any machine here cuts.
+def largest_travel() -> tuple:
+    from ..toolpath.ir import machine as machines
+    return tuple(max(p.travel[axis] for p in machines.PRESETS.values()) for axis in range(3))
+
+
+def check_design_fits(name: str, size_mm, scene) -> None:
+    """A design larger than any machine preset's travel (a unit-scale mistake), refused by name
+    before any planning."""
+    travel = largest_travel()
+    size = f"{size_mm[0]:.6g} x {size_mm[1]:.6g} x {size_mm[2]:.6g}"
+    for axis, letter in enumerate("XYZ"):
+        if travel[axis] > 0 and size_mm[axis] > travel[axis] + 1e-6:
+            raise SceneInputError(
+                f"design {name!r} is {size} mm at the scene's unit "
+                f"scale of {scene.unit_settings.scale_length:g} m per unit, larger than the {travel[axis]:g} mm "
+                f"{letter} travel of any machine preset: check Scene > Units (Unit Scale) or the design's size")
+
+
+def check_fits(plate: Plate, scene, machine) -> None:
+    """Plausibility before any planning: a plate larger than the machine's travel (X, Y; the
+    thickness against Z) is most often a unit-scale mistake (200 units in a metre scene is 200 m),
+    which would otherwise be planned for minutes.  ``machine``: the setup's MachineProfile, or None
+    (the presets' largest travel)."""
+    travel = largest_travel() if machine is None else tuple(machine.travel)
+    for axis, letter in enumerate("XYZ"):
+        if not (travel[axis] > 0 and plate.size[axis] > travel[axis] + 1e-6):
+            continue
+        size = f"{plate.size[0]:.6g} x {plate.size[1]:.6g} x {plate.size[2]:.6g}"
+        scale = f"{scene.unit_settings.scale_length:g}"
+        if machine is None:
+            raise SceneInputError(
+                f"plate {plate.name!r} is {size} mm at the scene's unit scale of {scale} m per unit, larger than the "
+                f"{travel[axis]:g} mm {letter} travel of any machine preset: check Scene > Units (Unit Scale) or the "
+                f"plate's size")
+        raise SceneInputError(
+            f"plate {plate.name!r} is {size} mm at the scene's unit scale of {scale} m per unit, larger than the "
+            f"{travel[axis]:g} mm {letter} travel of the machine {machine.label!r}: check Scene > Units (Unit Scale), "
+            f"the plate's size or Machine & Stock's Travel")
 
 
 def plate_from_object(obj, depsgraph, scene, origin: str = "CENTER") -> Plate:
@@ -133,6 +261,7 @@ def plate_from_object(obj, depsgraph, scene, origin: str = "CENTER") -> Plate:
         raise SceneInputError("no plate: pick the stock object (a mesh) in the CAM panel")
     if obj.type != "MESH":
         raise SceneInputError(f"plate {obj.name!r} must be a mesh object, not a {obj.type.lower()}")
+    check_level(obj, "plate")
     vertices, polygons, edges = evaluated_mesh_arrays(obj, depsgraph)
     if len(vertices) < 3 or not polygons:
         raise SceneInputError(f"plate {obj.name!r} has no faces")
@@ -158,7 +287,7 @@ def plate_from_object(obj, depsgraph, scene, origin: str = "CENTER") -> Plate:
         outline = region.loops(region.union_of_faces([work[p, :2] for p in top_faces], f"plate {obj.name!r}"))
     else:
         outline = [np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]]) - origin_mm[:2]]
-    return Plate(outline, tuple(hi - lo), frame)
+    return Plate(outline, tuple(float(v) for v in hi - lo), frame, obj.name)
 
 
 # ----------------------------------------------------------------------------------------

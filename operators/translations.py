@@ -622,6 +622,8 @@ PROPERTY_TEXTS = {
 
 # Fixed messages: poll messages, reports and the errors the operators show (run_reported).
 MESSAGES = {
+    "the design mesh was inside out (its normals pointed inward); its faces were flipped":
+        "デザインメッシュが裏返しでした（法線が内向き）。面を反転しました",
     # turret punch on the sheet (issue 26)
     "a line has a non-finite coordinate (NaN or infinity)": "線に有限でない座標（NaN または無限大）があります",
     "the contour has fewer than 3 corners once collinear points are merged":
@@ -941,6 +943,24 @@ MESSAGE_TEMPLATES = {
     "{} is empty: give the folder to write into": "{0} が空です。書き出すフォルダーを指定してください",
     "plate {} reaches {} mm from the world origin (more than {} mm) at the scene's unit scale of {} m per unit: is the unit scale right?":
         "板材 {0} がワールド原点から {1} mm まで達しています（{2} mm 超、シーンの単位スケールは1単位 {3} m）。単位スケールは正しいですか",
+    "plate {} is tilted {} deg about {}: apply or clear its rotation (Ctrl-A)":
+        "板材 {0} が {2} 軸まわりに {1} 度傾いています。回転を適用するか解除してください（Ctrl-A）",
+    "object {} is tilted {} deg about {} out of the plate's top: apply or clear its rotation (Ctrl-A)":
+        "オブジェクト {0} が {2} 軸まわりに {1} 度、板材の上面から傾いています。回転を適用するか解除してください（Ctrl-A）",
+    "collection instance {} is tilted {} deg about {}: clear its rotation about X and Y":
+        "コレクションインスタンス {0} が {2} 軸まわりに {1} 度傾いています。X と Y まわりの回転を解除してください",
+    "collection instance {} shows no Text, curve or mesh object":
+        "コレクションインスタンス {0} はテキスト・カーブ・メッシュのオブジェクトを表示していません",
+    "plate {} is {} mm at the scene's unit scale of {} m per unit, larger than the {} mm {} travel of any machine preset: check Scene > Units (Unit Scale) or the plate's size":
+        "板材 {0} はシーンの単位スケール（1単位 {2} m）で {1} mm あり、どの機械プリセットの {4} 軸ストローク {3} mm "
+        "よりも大きいです。シーン > 単位（単位スケール）か板材の大きさを確認してください",
+    "plate {} is {} mm at the scene's unit scale of {} m per unit, larger than the {} mm {} travel of the machine {}: check Scene > Units (Unit Scale), the plate's size or Machine & Stock's Travel":
+        "板材 {0} はシーンの単位スケール（1単位 {2} m）で {1} mm あり、機械 {5} の {4} 軸ストローク {3} mm "
+        "より大きいです。シーン > 単位（単位スケール）、板材の大きさ、または「機械と素材」のストロークを確認してください",
+    "collection instance {} shows no mesh object": "コレクションインスタンス {0} はメッシュオブジェクトを表示していません",
+    "design {} is {} mm at the scene's unit scale of {} m per unit, larger than the {} mm {} travel of any machine preset: check Scene > Units (Unit Scale) or the design's size":
+        "デザイン {0} はシーンの単位スケール（1単位 {2} m）で {1} mm あり、どの機械プリセットの {4} 軸ストローク {3} mm "
+        "よりも大きいです。シーン > 単位（単位スケール）かデザインの大きさを確認してください",
     "--tool {}: {} {} mm is outside the allowed range {}": "--tool {0}：{1} {2} mm が許容範囲 {3} の外です",
     "{} {}: the mesh reaches {} mm from the origin (more than {} mm): is it in other units?":
         "{0} {1}：メッシュが原点から {2} mm まで達しています（{3} mm 超）。単位が違っていませんか",

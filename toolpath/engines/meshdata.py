@@ -85,3 +85,34 @@ def prism(outline: np.ndarray, top: float, bottom: float) -> tuple:
     faces = [list(range(k))[::-1], list(range(k, 2 * k))]
     faces += [[i, (i + 1) % k, k + (i + 1) % k, k + i] for i in range(k)]
     return vertices, faces
+
+
+def signed_volume(vertices: np.ndarray, faces: np.ndarray) -> float:
+    """The volume a closed triangle mesh encloses, negative when it is inside out (its faces wound
+    clockwise seen from outside, so its normals point inward)."""
+    tri = np.asarray(vertices, float)[np.asarray(faces, np.int64)]
+    centre = np.asarray(vertices, float).mean(axis=0)
+    return float(np.einsum("ij,ij->i", tri[:, 0] - centre, np.cross(tri[:, 1] - centre, tri[:, 2] - centre)).sum()
+                 / 6.0)
+
+
+def is_closed(faces: np.ndarray, count: int) -> bool:
+    """Every edge of the triangles shared by exactly two of them (``count``: the vertex count)."""
+    directed = np.asarray(faces, np.int64)[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    _, counts = np.unique(directed.min(axis=1) * count + directed.max(axis=1), return_counts=True)
+    return bool(len(counts)) and bool(np.all(counts == 2))
+
+
+def inside_out(vertices: np.ndarray, faces: np.ndarray) -> bool:
+    """Whether a design mesh's normals point inward.  A closed mesh: its enclosed volume is negative
+    (the rule the gate's design check uses).  An open surface (a relief without a bottom): its
+    faces, weighted by area, look down rather than up (their projected area is negative)."""
+    vertices, faces = np.asarray(vertices, float), np.asarray(faces, np.int64)
+    if not len(faces):
+        return False
+    if is_closed(faces, len(vertices)):
+        return signed_volume(vertices, faces) < 0
+    tri = vertices[faces]
+    normal_z = ((tri[:, 1, 0] - tri[:, 0, 0]) * (tri[:, 2, 1] - tri[:, 0, 1])
+                - (tri[:, 1, 1] - tri[:, 0, 1]) * (tri[:, 2, 0] - tri[:, 0, 0]))
+    return float(normal_z.sum()) < 0

@@ -8,6 +8,7 @@ import numpy as np
 from manifold3d import CrossSection
 
 from ..engines import region as rg
+from ..engines.meshdata import signed_volume
 from ..engines.selfcross import self_crossing
 from .heightfield import Simulation, lowest_move
 from .meshtop import mesh_top
@@ -232,10 +233,7 @@ def check_design_mesh(design, stock, name: str = "design", progress=None) -> tup
                               f"cross, the first faces {i} and {j} at ({x:.3f}, {y:.3f}, {z:.3f}) mm), so its inside "
                               "is ambiguous: join the pieces with a boolean union (Blender: Boolean modifier, or "
                               "3D-Print Toolbox > Intersections to find them)")
-    tri = vertices[faces]
-    centre = vertices.mean(axis=0)
-    volume = float(np.einsum("ij,ij->i", tri[:, 0] - centre, np.cross(tri[:, 1] - centre, tri[:, 2] - centre)).sum()
-                   / 6.0)
+    volume = signed_volume(vertices, faces)     # the sign is the rule carve planning flips by too
     size = float(np.ptp(vertices, axis=0).max())
     if not abs(volume) > 1e-9 * max(size, 1.0) ** 3:
         raise SimulationError(f"design {name}: the mesh encloses no volume")

@@ -8,6 +8,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ...job import DesignLayer, OperationKind, Part
+from ...engines.meshdata import inside_out
 from ...simulate import BoxStock
 from . import carve
 
@@ -30,8 +31,15 @@ class CarveKind(OperationKind):
 
     def plan(self, setup, settings, geometry: CarveGeometry, progress=None) -> Part:
         vertices, faces = carve.check_mesh(geometry.vertices, geometry.faces)
+        flipped = inside_out(vertices, faces)      # the gate's rule (simulate.checks.check_design_mesh)
+        if flipped:
+            faces = faces[:, ::-1].copy()
         result = carve.plan(vertices, faces, settings, name=setup.name,
                             stock_top=float(vertices[:, 2].max()) + float(geometry.stock_above), progress=progress)
+        if flipped:
+            warning = "the design mesh was inside out (its normals pointed inward); its faces were flipped"
+            result.warnings.insert(0, warning)
+            result.program.notes.insert(0, warning)
         result.program.work_offset = setup.work_offset
         result.program.rapid_rate = setup.rapid_rate
         design = DesignLayer(SimpleNamespace(vertices=vertices, faces=faces))
