@@ -622,7 +622,7 @@ class _Reader:
                                  self.number(t, 11, "dwell_time_bottom", optional=True),
                                  self.number(t, 12, "feed_on_retract", optional=True),
                                  self.drilling_strategy(t, 13, "its_machining_strategy"))
-            overcut = self.length(t, 8, "overcut_length", optional=True)
+            overcut = self.length(t, 8, "overcut_length", optional=True, sign="0 or more")
             if t.type_name == "REAMING":
                 return DrillingOperation(*drilling, self.boolean(t, 14, "spindle_stop_at_bottom"),
                                          overcut_length=overcut)

@@ -235,8 +235,12 @@ def check_depth(step: Workingstep, bottom: float, source: str):
     if isinstance(operation, DrillingOperation) and operation.cutting_depth is not None:
         depth, what = feature.top_z - operation.cutting_depth, f"cutting_depth {operation.cutting_depth:g}"
         if getattr(feature, "bottom_condition", None) in THROUGH_CONDITIONS:
-            # the file asks for breakthrough: up to what the drill needs to clear the stock bottom
-            bottom, source = bottom - drill_breakthrough(operation.its_tool), source + " and the breakthrough"
+            # the file asks for breakthrough: up to what a drill's point needs to clear the stock bottom
+            # (other tools: the clearance alone), the fixture's clearance under a through hole
+            pointed = operation.type_name == "DRILLING" and \
+                operation.its_tool.its_tool_body.type_name in POINTED_DRILL_BODIES
+            bottom -= drill_breakthrough(operation.its_tool) if pointed else BREAKTHROUGH_CLEARANCE
+            source += " and the breakthrough"
     if depth < bottom - DEPTH_TOLERANCE:
         raise StepNcError(f"{type(feature).__name__} #{feature.id} '{feature.its_id}': its {what} reaches Z "
                           f"{depth:g}, {bottom - depth:g} mm below the stock bottom (Z {bottom:g}, {source}); "
