@@ -200,3 +200,29 @@ def test_the_sample_plate_s_allowance_and_depth_attributes_are_checked_too():
     broken = text.replace(rough.group(0), f"{rough.group(1)}=BOTTOM_AND_SIDE_ROUGH_MILLING({','.join(attributes)});")
     message = refusal(broken)
     assert f"{rough.group(1)} BOTTOM_AND_SIDE_ROUGH_MILLING: allowance_bottom -0.125 mm must be 0 or more" in message
+
+
+def test_the_new_messages_have_japanese_and_the_batch_refuses_by_name(tmp_path):
+    import subprocess
+    import sys
+    cases = [edit(ROUGH, "$,$,$,#51,6.500,5.000,1.000,-0.750);"), edit(ROUGH, "$,$,$,#51,-1.,5.000,1.000,0.500);"),
+             edit("#53= CONTOUR_PARALLEL(0.05,", "#53= CONTOUR_PARALLEL(2.5,"),
+             edit("#32= MILLING_TOOL_DIMENSION(20.000,", "#32= MILLING_TOOL_DIMENSION(30.,"),
+             edit("#30= MILLING_TOOL_DIMENSION(18.000,", "#30= MILLING_TOOL_DIMENSION(51.,")]
+    messages = [refusal(text) for text in cases]
+    messages += [w for w in load_workplan(edit("#13= MACHINING_WORKINGSTEP('WS ROUGH POCKET1',",
+                                               f"#13= MACHINING_WORKINGSTEP('{'W' * 900}',")).warnings]
+    bpy = pytest.importorskip("bpy")
+    assert bpy
+    from kezuri.operators import translations
+    for message in messages:
+        japanese = translations.japanese_message(message)
+        assert japanese is not None and re.search(r"[\u3040-\u30ff\u4e00-\u9fff]", japanese), message
+    source = tmp_path / "negative.stp"
+    source.write_text(cases[0], encoding="latin-1")
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    done = subprocess.run([sys.executable, os.path.join(root, "batch.py"), "stepnc", "--input", str(source),
+                           "--out", str(tmp_path / "out")], capture_output=True, text=True, timeout=300, cwd=root)
+    assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr[-2000:]
+    assert "#22 BOTTOM_AND_SIDE_ROUGH_MILLING: allowance_bottom -0.75 mm must be 0 or more" in done.stderr
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
