@@ -226,3 +226,17 @@ def test_the_new_messages_have_japanese_and_the_batch_refuses_by_name(tmp_path):
     assert done.returncode == 2 and "Traceback" not in done.stderr, done.stderr[-2000:]
     assert "#22 BOTTOM_AND_SIDE_ROUGH_MILLING: allowance_bottom -0.75 mm must be 0 or more" in done.stderr
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
+@pytest.mark.parametrize("width, refused", [("8.5", True), ("9.99", True), ("10.000", False), ("14.", False)])
+def test_an_end_mill_wider_than_its_slot_is_refused(width, refused):
+    from test_stepnc_slot import slot_file
+    text = slot_file().replace("#38= TOLERANCED_LENGTH_MEASURE(10.000,", f"#38= TOLERANCED_LENGTH_MEASURE({width},")
+    if not refused:
+        program = to_program(load_workplan(text))
+        assert [op.name for op in program.operations][0] == "WS SLOT1"
+        return
+    message = refusal(text)
+    assert "workingstep #60 'WS SLOT1'" in message
+    assert (f"MILLING_CUTTING_TOOL #22 'ENDMILL 10MM': diameter 10 mm is larger than the width {float(width):g} mm "
+            "of Slot #30 'SLOT1'") in message
