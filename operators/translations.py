@@ -1192,6 +1192,16 @@ MESSAGE_TEMPLATES = {
     '#{} TRIMMED_CURVE: attribute {} has neither a CARTESIAN_POINT nor a PARAMETER_VALUE: {}':
         '#{0} TRIMMED_CURVE：属性 {1} に CARTESIAN_POINT も PARAMETER_VALUE もありません：{2}',
     '#{} {}: diameter must be positive, found {}': '#{0} {1}：直径は正の値にしてください（{2}）',
+    '#{} {}: {} {} mm must be above 0': '#{0} {1}：{2} {3} mm は0より大きくしてください（ISO 14649 の意味）',
+    '#{} {}: {} {} mm must be 0 or more': '#{0} {1}：{2} {3} mm は0以上にしてください（取り代は負にできません）',
+    '#{} {}: overlap {} must be above 0 and at most 1 (a ratio of the tool diameter)':
+        '#{0} {1}：overlap {2} は0より大きく1以下にしてください（工具径に対する比）',
+    'workingstep #{}: its name is {} characters; the first {} are used, followed by ...':
+        'ワーキングステップ #{0}：名前が {1} 文字あります。先頭の {2} 文字に ... を付けて使います',
+    "{}: diameter {} mm is larger than the diameter {} mm of {}; use a tool that fits the feature":
+        "{0}：直径 {1} mm が {3} の直径 {2} mm より大きいです。フィーチャに入る工具を使ってください",
+    "{}: diameter {} mm is larger than the width {} mm of {}; use a tool that fits the feature":
+        "{0}：直径 {1} mm が {3} の幅 {2} mm より大きいです。フィーチャに入る工具を使ってください",
     '#{} WORKPLAN contains itself (through #{})': '#{0} WORKPLAN が（#{1} を通して）自分自身を含んでいます',
     '#{} DIRECTION: direction_ratios are all zero': '#{0} DIRECTION：direction_ratios がすべて0です',
     '#{} TRIMMED_CURVE: attribute {} must hold a CARTESIAN_POINT or a PARAMETER_VALUE, found #{} {}':

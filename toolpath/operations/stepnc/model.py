@@ -884,6 +884,7 @@ class Project:
 
 PLANE_TYPES = ("PLANE", "ELEMENTARY_SURFACE")
 CURVE_TYPES = ("POLYLINE", "TRIMMED_CURVE", "COMPOSITE_CURVE", "CIRCLE", "B_SPLINE_CURVE_WITH_KNOTS")
+MAX_NAME = 200    # characters of a workingstep name written (as a comment); a longer one is cut, with a note
 MAX_LENGTH = MAX_REACH_MM    # mm: 100 m, larger than any machine (errors.MAX_REACH_MM)
 DIMENSION_TYPES = ("MILLING_TOOL_DIMENSION", "TOOL_DIMENSION")
 MILLING_TOOL_BODIES = ("ENDMILL", "TAPERED_ENDMILL", "BALL_ENDMILL", "BULLNOSE_ENDMILL", "FACEMILL")

@@ -10,7 +10,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...engines import region as rg
-from .model import (ApproachRetract, BSplineCurve, Bidirectional, Block, BottomAndSideMilling, Circle, CircularPath, ClosedPocket, ClosedProfile, CompositeCurve, CompositeCurveSegment, CURVE_TYPES, ContourBidirectional, ContourParallel, CuttingTool, DIMENSION_TYPES, DRILLING_TOOL_BODIES, DrillingOperation, DrillingTypeStrategy, Feature, FreeformOperation, GeneralClosedProfile, GeneralPath, Helix, LENGTH_TYPES, Line, LinearPath, LinearProfile, MAX_LENGTH, MILLING_TOOL_BODIES, MachineFunctions, MachiningOperation, MillingStrategy, MillingTechnology, PLANE_TYPES, Placement, PlanarFace, Plane, PlaneMilling, PlungeHelix, PlungeRamp, PlungeToolaxis, Polyline, Project, RapidMovement, RectangularClosedProfile, RoundHole, SLOT_ENDS, Setup, Slot, StepNcError, TAPERED_BODIES, ToolBody, ToolDimension, Trajectory, TrimmedCurve, Unidirectional, UnsupportedEntity, Vec3, Workingstep, Workpiece, Workplan)
+from .model import (MAX_NAME, ApproachRetract, BSplineCurve, Bidirectional, Block, BottomAndSideMilling, Circle, CircularPath, ClosedPocket, ClosedProfile, CompositeCurve, CompositeCurveSegment, CURVE_TYPES, ContourBidirectional, ContourParallel, CuttingTool, DIMENSION_TYPES, DRILLING_TOOL_BODIES, DrillingOperation, DrillingTypeStrategy, Feature, FreeformOperation, GeneralClosedProfile, GeneralPath, Helix, LENGTH_TYPES, Line, LinearPath, LinearProfile, MAX_LENGTH, MILLING_TOOL_BODIES, MachineFunctions, MachiningOperation, MillingStrategy, MillingTechnology, PLANE_TYPES, Placement, PlanarFace, Plane, PlaneMilling, PlungeHelix, PlungeRamp, PlungeToolaxis, Polyline, Project, RapidMovement, RectangularClosedProfile, RoundHole, SLOT_ENDS, Setup, Slot, StepNcError, TAPERED_BODIES, ToolBody, ToolDimension, Trajectory, TrimmedCurve, Unidirectional, UnsupportedEntity, Vec3, Workingstep, Workpiece, Workplan)
 from .part21 import UNKNOWN, UNSET, Enum, Instance, Part21File, Ref, Typed
 
 
@@ -96,9 +96,10 @@ class _Reader:
                               f"{'positive' if positive else 'finite'} number, found {value!r}")
         return float(value)
 
-    def length(self, inst, index, name, optional=False) -> float | None:
+    def length(self, inst, index, name, optional=False, sign=None) -> float | None:
         """A number, or a TOLERANCED_LENGTH_MEASURE / NUMERIC_PARAMETER holding one; at most
-        MAX_LENGTH mm, so a mistyped exponent is an error rather than an hours-long toolpath."""
+        MAX_LENGTH mm, so a mistyped exponent is an error rather than an hours-long toolpath.
+        ``sign``: "above 0" (a depth, a diameter) or "0 or more" (an allowance), as ISO 14649 means it."""
         value = self.value(inst, index, name, optional)
         if not isinstance(value, Ref):
             size, holder = self.number(inst, index, name, optional), inst
@@ -108,6 +109,10 @@ class _Reader:
                 else self.number(holder, 1, "its_parameter_value")
         if size is not None and abs(size) > MAX_LENGTH:
             raise StepNcError(f"#{holder.id} {holder.type_name}: {name} {size:g} mm is larger than {MAX_LENGTH:g} mm")
+        if size is not None and sign == "above 0" and size <= 0:
+            raise StepNcError(f"#{holder.id} {holder.type_name}: {name} {size:g} mm must be above 0")
+        if size is not None and sign == "0 or more" and size < 0:
+            raise StepNcError(f"#{holder.id} {holder.type_name}: {name} {size:g} mm must be 0 or more")
         return size
 
     def text(self, inst, index, name) -> str:
@@ -348,7 +353,7 @@ class _Reader:
             raise UnsupportedEntity(t.type_name, t.id, "a tapered hole (change_in_diameter)")
         bottom = self.value(t, 7, "bottom_condition")
         bottom_name = _type_name(self.part21.get(bottom)) if isinstance(bottom, Ref) else ""
-        return RoundHole(t.id, its_id, placement, depth, self.length(t, 5, "diameter"), bottom_name)
+        return RoundHole(t.id, its_id, placement, depth, self.length(t, 5, "diameter", sign="above 0"), bottom_name)
 
     def _slot(self, t, its_id, placement, depth) -> Slot:
         """SLOT(its_id, its_workpiece, its_operations, feature_placement, depth, course_of_travel,
@@ -541,6 +546,9 @@ class _Reader:
 
         def convert(t):
             overlap = self.number(t, 0, "overlap", optional=True)
+            if overlap is not None and not 0 < overlap <= 1:     # a ratio of the tool diameter
+                raise StepNcError(f"#{t.id} {t.type_name}: overlap {overlap:g} must be above 0 and at most 1 "
+                                  "(a ratio of the tool diameter)")
             multiple = self.boolean(t, 1, "allow_multiple_passes", optional=True)
             if t.type_name in ("CONTOUR_BIDIRECTIONAL", "BIDIRECTIONAL_CONTOUR"):
                 return ContourBidirectional(overlap, multiple, self.direction(t, 2, "feed_direction", optional=True),
@@ -609,24 +617,24 @@ class _Reader:
                                         f"strategy{'' if strategy is None else ' ' + repr(strategy)} is not planned")
             return FreeformOperation(*common, self.toolpaths(t, 0, "its_toolpath"))
         if t.type_name in ("DRILLING", "CENTER_DRILLING", "REAMING"):
-            drilling = common + (self.length(t, 9, "cutting_depth", optional=True),
+            drilling = common + (self.length(t, 9, "cutting_depth", optional=True, sign="above 0"),
                                  self.length(t, 10, "previous_diameter", optional=True),
                                  self.number(t, 11, "dwell_time_bottom", optional=True),
                                  self.number(t, 12, "feed_on_retract", optional=True),
                                  self.drilling_strategy(t, 13, "its_machining_strategy"))
-            overcut = self.length(t, 8, "overcut_length", optional=True)
+            overcut = self.length(t, 8, "overcut_length", optional=True, sign="0 or more")
             if t.type_name == "REAMING":
                 return DrillingOperation(*drilling, self.boolean(t, 14, "spindle_stop_at_bottom"),
                                          overcut_length=overcut)
             return DrillingOperation(*drilling, overcut_length=overcut)
         milling = common + (self.approach_retract(t, 9, "approach"), self.approach_retract(t, 10, "retract"),
                             self.milling_strategy(t, 11, "its_machining_strategy"),
-                            self.length(t, 12, "axial_cutting_depth", optional=True))
+                            self.length(t, 12, "axial_cutting_depth", optional=True, sign="above 0"))
         if t.type_name.startswith("PLANE_"):
-            return PlaneMilling(*milling, self.length(t, 13, "allowance_bottom", optional=True))
-        return BottomAndSideMilling(*milling, self.length(t, 13, "radial_cutting_depth", optional=True),
-                                    self.length(t, 14, "allowance_side", optional=True),
-                                    self.length(t, 15, "allowance_bottom", optional=True))
+            return PlaneMilling(*milling, self.length(t, 13, "allowance_bottom", optional=True, sign="0 or more"))
+        return BottomAndSideMilling(*milling, self.length(t, 13, "radial_cutting_depth", optional=True, sign="above 0"),
+                                    self.length(t, 14, "allowance_side", optional=True, sign="0 or more"),
+                                    self.length(t, 15, "allowance_bottom", optional=True, sign="0 or more"))
 
     def toolpaths(self, inst, index, name) -> tuple:
         """The CUTTER_LOCATION_TRAJECTORYs of a TOOLPATH_LIST."""
@@ -653,8 +661,18 @@ class _Reader:
 
     # ---- executables
 
+    def step_name(self, t, warn=True) -> str:
+        """A workingstep's its_id, at most MAX_NAME characters and "..." (it is written as a comment)."""
+        name = self.text(t, 0, "its_id")
+        if len(name) <= MAX_NAME:
+            return name
+        if warn:
+            self.warnings.append(f"workingstep #{t.id}: its name is {len(name)} characters; the first {MAX_NAME} "
+                                 "are used, followed by ...")
+        return name[:MAX_NAME] + "..."
+
     def workingstep(self, t) -> Workingstep:
-        return Workingstep(t.id, self.text(t, 0, "its_id"), self.plane(t, 1, "its_secplane"),
+        return Workingstep(t.id, self.step_name(t), self.plane(t, 1, "its_secplane"),
                            self.feature(t, 2, "its_feature"), self.operation(t, 3, "its_operation"))
 
     def workplan(self, t, seen=()) -> Workplan:
@@ -668,7 +686,7 @@ class _Reader:
                 try:
                     elements.append(self.workingstep(element))
                 except UnsupportedEntity as error:
-                    self.warnings.append(f"workingstep #{element.id} '{self.text(element, 0, 'its_id')}' "
+                    self.warnings.append(f"workingstep #{element.id} '{self.step_name(element, warn=False)}' "
                                          f"skipped: {error}")
             elif _type_name(element) == "RAPID_MOVEMENT":
                 try:

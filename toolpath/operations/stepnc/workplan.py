@@ -38,6 +38,7 @@ from .model import (Bidirectional, BottomAndSideMilling, ClosedPocket, ContourBi
 from .reader import read_project
 from .motion import (APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, Motion, cut_levels, helix_moves,
                      helix_pitch, is_empty, iso_ratio, round_offset, split_outside, stepover_of)
+from .fit import check_fit
 from .part21 import parse_part21, read_part21
 from .pockets import PocketSpec, pockets_to_part21  # noqa: F401 (re-exported)
 from .technology import MissingTechnology, feed_and_speed  # noqa: F401 (re-exported)
@@ -137,6 +138,7 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
                 notes.append(f"workingstep #{step.id} '{step.its_id}' assumes roughing #{rough.id} "
                              f"'{rough.its_id}' was done before it")
         try:
+            check_fit(step)
             if bottom is not None:
                 check_depth(step, bottom, source)
             tool = tool_for(step.its_operation.its_tool, numbers[step.its_operation.its_tool.id])
@@ -233,7 +235,12 @@ def check_depth(step: Workingstep, bottom: float, source: str):
     if isinstance(operation, DrillingOperation) and operation.cutting_depth is not None:
         depth, what = feature.top_z - operation.cutting_depth, f"cutting_depth {operation.cutting_depth:g}"
         if getattr(feature, "bottom_condition", None) in THROUGH_CONDITIONS:
-            return   # the file asks for this much breakthrough
+            # the file asks for breakthrough: up to what a drill's point needs to clear the stock bottom
+            # (other tools: the clearance alone), the fixture's clearance under a through hole
+            pointed = operation.type_name == "DRILLING" and \
+                operation.its_tool.its_tool_body.type_name in POINTED_DRILL_BODIES
+            bottom -= drill_breakthrough(operation.its_tool) if pointed else BREAKTHROUGH_CLEARANCE
+            source += " and the breakthrough"
     if depth < bottom - DEPTH_TOLERANCE:
         raise StepNcError(f"{type(feature).__name__} #{feature.id} '{feature.its_id}': its {what} reaches Z "
                           f"{depth:g}, {bottom - depth:g} mm below the stock bottom (Z {bottom:g}, {source}); "
