@@ -229,26 +229,22 @@ def check_design_fits(name: str, size_mm, scene) -> None:
                 f"{letter} travel of any machine preset: check Scene > Units (Unit Scale) or the design's size")
 
 
-def check_fits(plate: Plate, scene, machine) -> None:
-    """Plausibility before any planning: a plate larger than the machine's travel (X, Y; the
-    thickness against Z) is most often a unit-scale mistake (200 units in a metre scene is 200 m),
-    which would otherwise be planned for minutes.  ``machine``: the setup's MachineProfile, or None
-    (the presets' largest travel)."""
-    travel = largest_travel() if machine is None else tuple(machine.travel)
+def check_fits(plate: Plate, scene) -> None:
+    """Plausibility before any planning: a plate larger than any machine preset's travel (X, Y; the
+    thickness against Z) is a unit-scale mistake (200 units in a metre scene is 200 m), which would
+    otherwise be planned for minutes.  A plate within that but larger than the job's own machine is
+    not refused here: a small engraving on a big board fits the machine; the export gate measures
+    what the program spans against the machine's travel."""
+    travel = largest_travel()
     for axis, letter in enumerate("XYZ"):
         if not (travel[axis] > 0 and plate.size[axis] > travel[axis] + 1e-6):
             continue
         size = f"{plate.size[0]:.6g} x {plate.size[1]:.6g} x {plate.size[2]:.6g}"
         scale = f"{scene.unit_settings.scale_length:g}"
-        if machine is None:
-            raise SceneInputError(
-                f"plate {plate.name!r} is {size} mm at the scene's unit scale of {scale} m per unit, larger than the "
-                f"{travel[axis]:g} mm {letter} travel of any machine preset: check Scene > Units (Unit Scale) or the "
-                f"plate's size")
         raise SceneInputError(
             f"plate {plate.name!r} is {size} mm at the scene's unit scale of {scale} m per unit, larger than the "
-            f"{travel[axis]:g} mm {letter} travel of the machine {machine.label!r}: check Scene > Units (Unit Scale), "
-            f"the plate's size or Machine & Stock's Travel")
+            f"{travel[axis]:g} mm {letter} travel of any machine preset: check Scene > Units (Unit Scale) or the "
+            f"plate's size")
 
 
 def plate_from_object(obj, depsgraph, scene, origin: str = "CENTER") -> Plate:

@@ -105,7 +105,7 @@ def engrave_operation(scene, depsgraph, post_name: str | None = None, name: str 
     check_group(settings.machine, "machine")
     check_group(props, "engrave")
     plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, settings.stock.origin)
-    convert.check_fits(plate, scene, None)
+    convert.check_fits(plate, scene)
     objects = [o for o in letter_objects(props) if o != settings.stock.plate]
     if not objects:
         raise convert.SceneInputError("no letters: pick a Text, curve or mesh object as Letters in the Engrave panel")
@@ -114,7 +114,6 @@ def engrave_operation(scene, depsgraph, post_name: str | None = None, name: str 
     surface = surface_of(scene, depsgraph, plate.frame)
     post_name = post_name or scene_post(scene)
     machine = scene_machine(settings.machine, POST_FAMILIES, post_name)
-    convert.check_fits(plate, scene, machine)
     geometry = EngraveGeometry(tuple(plate.outline), float(plate.size[2]),
                                tuple((obj, tuple(loops)) for obj, loops in letters), tuple(texts.items()), surface)
     setup = Setup(name=scene.name, post=post_name, machine=machine, work_offset=settings.machine.work_offset,

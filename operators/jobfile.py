@@ -220,11 +220,11 @@ def plate_setup(scene, depsgraph, families, post_name: str):
     settings = scene.kezuri
     check_group(settings.machine, "machine")
     plate = convert.plate_from_object(settings.stock.plate, depsgraph, scene, settings.stock.origin)
+    convert.check_fits(plate, scene)
     points = [p for loop in plate.outline for p in loop]
     xs, ys = [p[0] for p in points], [p[1] for p in points]
     stock = BoxStock(float(min(xs)), float(min(ys)), -float(plate.size[2]), float(max(xs)), float(max(ys)), 0.0)
     machine = scene_machine(settings.machine, families, post_name)
-    convert.check_fits(plate, scene, machine)
     return Setup(name=scene.name, post=post_name, machine=machine, work_offset=settings.machine.work_offset,
                  rapid_rate=settings.machine.rapid_rate, stock=stock), plate.frame
 

@@ -74,7 +74,7 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     settings = scene.kezuri
     plate = convert.plate_from_object(entry.objects.get("plate", settings.stock.plate), depsgraph, scene,
                                       settings.stock.origin)
-    convert.check_fits(plate, scene, None)
+    convert.check_fits(plate, scene)
     obj = entry.objects["region"]
     loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
     pocket_settings = settings_from(entry)
@@ -86,7 +86,6 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     geometry = PocketGeometry(tuple(loops), entry.name, 0.0, tuple(plate.outline), float(plate.size[2]))
     stock = PocketKind.stock(geometry, None, pocket_settings)
     machine = scene_machine(settings.machine, POST_FAMILIES, post_name)
-    convert.check_fits(plate, scene, machine)
     setup = Setup(name=scene.name, post=post_name, machine=machine,
                   work_offset=settings.machine.work_offset, rapid_rate=settings.machine.rapid_rate, stock=stock)
     return JobOperation("pocket", entry.name, pocket_settings, geometry, entry.enabled), setup, plate.frame

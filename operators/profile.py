@@ -91,7 +91,7 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     obj = entry.objects["shape"]
     try:
         plate = convert.plate_from_object(scene.kezuri.stock.plate, depsgraph, scene, scene.kezuri.stock.origin)
-        convert.check_fits(plate, scene, None)
+        convert.check_fits(plate, scene)
         loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
         settings = settings_from(entry, read_tabs(entry))
         settings.check(float(plate.size[2]))
@@ -109,7 +109,6 @@ def _setup(scene, post_name: str, plate) -> Setup:
 
     machine = scene_machine(scene.kezuri.machine, POST_FAMILIES, post_name)
     from . import convert
-    convert.check_fits(plate, scene, machine)
     return Setup(name=scene.name, post=post_name, machine=machine, work_offset=scene.kezuri.machine.work_offset,
                  rapid_rate=scene.kezuri.machine.rapid_rate, stock=engrave.plate_stock(plate.outline, plate.size[2]))
 

@@ -136,14 +136,15 @@ def test_a_plate_modelled_in_mm_in_a_metre_scene_is_refused_within_a_second(scen
     assert "Scene > Units" in message
 
 
-def test_a_plate_larger_than_the_machine_travel_is_refused_naming_the_machine(scene):
+def test_a_plate_larger_than_the_machine_but_not_than_any_machine_is_left_to_the_gate(scene):
+    """A small engraving on a big board fits the machine: the board is not refused for its size;
+    the export gate measures what the program spans (tests/test_batch.py: exit 3, naming the axis)."""
     scene.kezuri.machine.preset = "grbl-router"
     from kezuri.operators import machines
     machines.fill_machine(scene.kezuri.machine, "grbl-router")
     scene.kezuri.machine.travel_x = 150.0
-    with pytest.raises(convert.SceneInputError) as error:
-        shell.engrave_operation(scene, depsgraph(), "grbl")
-    assert "larger than the 150 mm X travel of the machine" in str(error.value)
+    operation, setup, plate = shell.engrave_operation(scene, depsgraph(), "grbl")
+    assert plate.size[0] == pytest.approx(200.0) and setup.machine.travel[0] == pytest.approx(150.0)
 
 
 
