@@ -61,8 +61,6 @@ def settings(pairs: list) -> dict:
 
 def job_text(kind: str, args) -> str:
     """The job file the shorthand runs (see the module docstring)."""
-    import json
-
     import numpy as np
 
     from .designfile import design_loops
