@@ -114,6 +114,9 @@ def parser() -> argparse.ArgumentParser:
         p.add_argument("--out", required=True, help="output folder")
     p = subparsers.add_parser("demo", help="every workflow on its built-in sample")
     p.add_argument("--out", required=True, help="output folder")
+    from kezuri.operators import feedsbatch
+    p = subparsers.add_parser(feedsbatch.NAME, help=feedsbatch.HELP)      # prints; writes nothing (no --out)
+    feedsbatch.arguments(p)
     return main
 
 
@@ -162,8 +165,22 @@ def stoppable():
             signal.signal(number, handler)
 
 
+def feeds(args) -> int:
+    """``batch.py feeds``: the calculator's values as JSON on stdout; bad input exits 2."""
+    from kezuri.operators import feedsbatch
+    from kezuri.toolpath.ir.errors import InputError
+    try:
+        print(json.dumps(feedsbatch.run(args), indent=2, ensure_ascii=False))
+    except InputError as error:
+        print(f"kezuri: {error}", file=sys.stderr)
+        return 2
+    return 0
+
+
 def main(argv: list) -> int:
     args = parse(script_arguments(argv))
+    if args.command == "feeds":
+        return feeds(args)
     with stoppable():
         try:
             load_extension()

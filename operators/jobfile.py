@@ -11,6 +11,8 @@ A job file (TOML)::
     post = "linuxcnc"           # default: the scene's
     machine = "linuxcnc-manual" # a machine preset (default: the post's own machine)
     arcs = false                # milling posts write every move as planned (default true: G2/G3 fitted)
+    material = "hardwood"       # the stock's material: each operation's feeds checked against it
+                                # (report.json's ``feeds``; default: the scene's, none = not checked)
 
     [[operations]]              # in the order they are cut
     kind = "engrave"            # an operation kind (toolpath/operations/<kind>)
@@ -33,11 +35,12 @@ import os
 import time
 import tomllib
 
+from ..toolpath.feeds import programcheck
 from ..toolpath.job import Job, Setup, plan_job
 from .jobentry import JobEntry, JobFileError
 
 SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings", "arcs", "stock",
-              "work_zero"}
+              "work_zero", "material"}
 OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "tabs", "file", "design"}
 
 
@@ -207,6 +210,13 @@ def apply_setup(scene, setup_table: dict, path: str) -> None:
     if "work_offset" in setup_table:
         from .batchio import set_exactly
         set_exactly(scene.kezuri.machine, "work_offset", setup_table["work_offset"], f"job file {path}: work_offset")
+    if "material" in setup_table:
+        from ..toolpath.feeds import materials
+        value = setup_table["material"]
+        try:
+            scene.kezuri.stock.material = "NONE" if value in ("", "none") else materials.material(value).key
+        except materials.MaterialError as error:
+            raise JobFileError(f"job file {path}: [setup] material: {error}") from None
 
 
 def plate_setup(scene, depsgraph, families, post_name: str):
@@ -257,8 +267,9 @@ def job_of(scene, entries: list, name: str, post_name: str, where: str):
     if setup is None:
         raise JobFileError(f"{where}: no operation gives the stock: begin with one that works on a "
                            "plate or a part (engrave, carve)")
+    material = scene.kezuri.stock.material
     setup = Setup(name=name, post=post_name, machine=setup.machine, work_offset=setup.work_offset,
-                  rapid_rate=setup.rapid_rate, stock=setup.stock)
+                  rapid_rate=setup.rapid_rate, stock=setup.stock, material="" if material == "NONE" else material)
     return Job(setup, tuple(operations)), frame, tuple(families)
 
 
@@ -277,6 +288,15 @@ def plan_file(path: str, post_name: str | None = None, progress=None, text: str 
     name = str(setup_table.get("name") or os.path.splitext(os.path.basename(path))[0])
     job, frame, families = job_of(scene, entries(data, scene, path, base_dir), name, post_name, f"job file {path}")
     return plan_job(job, progress=progress), frame, families, scene
+
+
+def feeds_check(planned, program) -> list:
+    """The check before export (report.json's ``feeds``): each operation of the program against the
+    job's material and machine; [] when the job has no material."""
+    setup = planned.job.setup
+    if not setup.material:
+        return []
+    return programcheck.check_program(program, setup.material, setup.machine)
 
 
 def write_job(path: str, out: str, post_name: str | None = None, allow_findings: bool = False,
@@ -301,6 +321,8 @@ def write_job(path: str, out: str, post_name: str | None = None, allow_findings:
     nc_path = os.path.join(out, f"{setup.name}{post_class.extension}")
     findings = []
     write_program(nc_path, post.to_text(program), post, findings)
+    feeds = feeds_check(planned, program)
+    findings += programcheck.warnings(feeds)
     toolpaths_png = preview.toolpath_png(os.path.join(out, "job-toolpaths.png"), cut.operations, stock, [],
                                          f"JOB {setup.name.upper()}: TOOLPATHS")
     simulation_report, png = simview.batch_simulation(scene, simulation, out, "job", checked)
@@ -323,6 +345,8 @@ def write_job(path: str, out: str, post_name: str | None = None, allow_findings:
         "tools": [tool.describe() for tool in program.tools()],
         "cycle_time_s": round(cut.cycle_time(), 1),
         "warnings": planned.warnings,
+        "material": setup.material or None,
+        "feeds": feeds,
     }
     warn(findings, report)
     return report

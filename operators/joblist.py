@@ -123,6 +123,20 @@ def show_toolpaths(scene, planned, frame) -> list:
     return pathview.show_toolpaths(scene, PREFIX, operations, planned.stock, frame, names=names)
 
 
+def feeds_findings(planned) -> tuple:
+    """The feeds check of the planned job (Machine & Stock's material): (warnings, {row name: how
+    many}); nothing when the material is None."""
+    from ..toolpath.feeds import programcheck
+    from .jobfile import feeds_check
+
+    entries = feeds_check(planned, planned.program())
+    owners, counts = operation_rows(planned), {}
+    for index, entry in enumerate(entries):
+        if entry.get("flags") and index < len(owners):
+            counts[owners[index]] = counts.get(owners[index], 0) + len(entry["flags"])
+    return programcheck.warnings(entries), counts
+
+
 def operation_rows(planned) -> list:
     """The operation's name of each of the program's operations, in order."""
     return [item.operation.name for item in planned.planned for _ in item.part.operations]
@@ -148,7 +162,12 @@ def export_job(scene, path: str, post_name: str, allow=False, findings: list | N
     gate.check(SimulationSetup(cut, stock, limits, frame, setup.name), allow, machine=setup.machine)
     machine = scene.kezuri.machine
     post = machine_post(families, setup.post, setup.work_offset, machine.orient_spindle, setup.machine)
-    return write_program(path, post.to_text(program), post, findings), planned.replanned()
+    written = write_program(path, post.to_text(program), post, findings)
+    if findings is not None:        # the feeds against the material: warnings, never a refusal
+        from ..toolpath.feeds import programcheck
+        from .jobfile import feeds_check
+        findings += programcheck.warnings(feeds_check(planned, program))
+    return written, planned.replanned()
 
 
 # ----- job files ----------------------------------------------------------------------------------------
@@ -191,6 +210,8 @@ def job_file_text(scene, path: str) -> str:
     lines = ["# Saved from Kezuri's job list: the objects come from the .blend, the settings are the panel's",
              "[setup]", f"name = {toml_value(scene.name)}", f"blend = {toml_value(blend)}",
              f"post = {toml_value(scene_post(scene))}", f"work_offset = {toml_value(machine.work_offset)}"]
+    if scene.kezuri.stock.material != "NONE":
+        lines.append(f"material = {toml_value(scene.kezuri.stock.material)}")
     for index, row in enumerate(rows, 1):
         entry = row_entry(row, index)
         lines += ["", "[[operations]]", f"kind = {toml_value(row.kind)}", f"name = {toml_value(row.name)}",
@@ -370,9 +391,10 @@ class KEZURI_OT_job_generate(SteppedOperator, bpy.types.Operator):
         planned, frame = result
         scene = context.scene
         keep(cache_of(scene), planned)
-        record(scene, planned)
+        feeds, counts = feeds_findings(planned)
+        record(scene, planned, counts)
         show_toolpaths(scene, planned, frame)
-        for warning in planned.warnings:
+        for warning in planned.warnings + feeds:
             self.report({"WARNING"}, translate_message(warning))
         minutes = sum(row.minutes for row in job_list(scene).rows if row.enabled)
         self.report({"INFO"}, translate_message(replanned_message(planned.replanned())))

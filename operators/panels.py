@@ -102,6 +102,7 @@ class KEZURI_PT_machine(KezuriPanel, bpy.types.Panel):
         layout.separator()
         field(layout, settings.stock, "plate")
         field(layout, settings.stock, "origin", wide=True)
+        field(layout, settings.stock, "material", wide=True)
 
 
 class KEZURI_PT_engrave(KezuriPanel, bpy.types.Panel):

@@ -13,6 +13,7 @@ from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProp
                        IntProperty, PointerProperty, StringProperty)
 
 from .. import post as posts
+from ..toolpath.feeds import materials as feed_materials
 from ..toolpath.ir import machine as machine_presets
 from ..toolpath.operations.sheetmetal import nibbling
 from . import jobrows, limits, machines, pathview
@@ -37,6 +38,8 @@ def post_number(choice: str) -> int:
 
 DEFAULT_POST = ("DEFAULT", "Preferences Default", "The default post of the extension preferences")
 
+MATERIAL_ITEMS = [("NONE", "None", "No material: the feeds are not checked")] + [
+    (m.key, m.label, m.examples) for m in feed_materials.MATERIALS.values()]
 WORK_OFFSET_ITEMS = [(f"G{n}", f"G{n}", f"Work coordinate system G{n}") for n in range(54, 60)]
 
 ORIGIN_ITEMS = [
@@ -149,6 +152,9 @@ class KezuriStock(bpy.types.PropertyGroup):
                            description="The stock: a mesh whose top face is machined")
     origin: EnumProperty(name="Work Zero", items=ORIGIN_ITEMS, default="CENTER",
                          description="Where the program's X0 Y0 Z0 is on the plate")
+    material: EnumProperty(name="Material", items=MATERIAL_ITEMS, default="NONE",
+                           description="What the stock is: each operation's spindle speed and feed are checked "
+                                       "against its tool's chip-load band in it before export (None: not checked)")
 
 
 class KezuriEngrave(bpy.types.PropertyGroup):

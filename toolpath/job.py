@@ -41,8 +41,10 @@ class JobError(InputError):
 @dataclass(frozen=True)
 class Setup:
     """Where the job runs: ``machine`` (a MachineProfile or None: the post's own), ``post`` (its
-    name), the work offset, the rapid rate for time estimates, and the stock (a BoxStock or
-    CylinderStock in work mm; None: the first operation's own stock)."""
+    name), the work offset, the rapid rate for time estimates, the stock (a BoxStock or
+    CylinderStock in work mm; None: the first operation's own stock) and its ``material`` (a key
+    of ``feeds.materials.MATERIALS``, "" for none: the feeds are then not checked; it does not
+    change a plan, so it is not part of the fingerprints)."""
 
     name: str = "job"
     post: str = ""
@@ -50,6 +52,7 @@ class Setup:
     work_offset: str = "G54"
     rapid_rate: float = 5000.0
     stock: object = None
+    material: str = ""
 
 
 @dataclass(frozen=True)
@@ -192,6 +195,7 @@ def fingerprint(setup: Setup, operation: JobOperation, before: str = "") -> str:
     """A hash of everything the operation's plan depends on: the setup, the operation (kind,
     name, settings, geometry) and ``before``, the fingerprint of the operation before it."""
     digest = hashlib.sha256()
+    setup = dataclasses.replace(setup, material="")      # the material checks the feeds, it plans nothing
     for value in (before, setup, operation.kind, operation.name, operation.settings, operation.geometry):
         _feed(digest, value)
     return digest.hexdigest()

@@ -180,10 +180,13 @@ MATERIALS = {m.key: m for m in (
 PAPER_MATERIAL = "hardwood"
 
 
+ALIASES = {"aluminum": "aluminium"}       # the American spelling
+
+
 def material(key) -> Material:
     """The material called ``key``; an unknown one is refused listing those there are."""
-    if isinstance(key, str) and key.strip().lower() in MATERIALS:
-        return MATERIALS[key.strip().lower()]
+    if isinstance(key, str) and ALIASES.get(key.strip().lower(), key.strip().lower()) in MATERIALS:
+        return MATERIALS[ALIASES.get(key.strip().lower(), key.strip().lower())]
     raise MaterialError(f"unknown material {key!r}: the materials are {', '.join(MATERIALS)}")
 
 

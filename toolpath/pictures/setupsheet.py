@@ -38,6 +38,7 @@ class SheetTool:
     flute_length: float | None = None
     stick_out: float | None = None      # how far the tool stands out of the holder (None: not known)
     description: str = ""
+    chip_loads: tuple = ()              # the chip loads (mm per tooth) it runs at: report.json's ``feeds``
 
 
 @dataclass(frozen=True)
@@ -129,6 +130,12 @@ def rate(value: float | None) -> str:
     if value is None or not math.isfinite(value):
         return DASH
     return f"{value:.1f}".rstrip("0").rstrip(".")
+
+
+def chip_text(values) -> str:
+    """The chip loads a tool runs at (mm per tooth, 4 decimals), each once; a dash when not checked."""
+    shown = list(dict.fromkeys(f"{float(v):.4f}" for v in values if _number(v) is not None))
+    return ", ".join(shown) if shown else DASH
 
 
 # ----- stock and work zero -----------------------------------------------------------------------
@@ -281,11 +288,11 @@ def _head(names, numeric=()) -> str:
 def _tools_table(tools) -> str:
     if not tools:
         return "<p>No tools in this job.</p>"
-    numeric = (0, 2, 3, 4, 5)
+    numeric = (0, 2, 3, 4, 5, 6)
     rows = [_row((f"T{t.number}", t.kind, mm(t.diameter), mm(t.corner_radius), mm(t.flute_length), mm(t.stick_out),
-                  t.description), numeric) for t in tools]
+                  chip_text(t.chip_loads), t.description), numeric) for t in tools]
     return ('<table id="tools">' + _head(("Tool", "Kind", "Diameter (mm)", "Corner R (mm)", "Flute length (mm)",
-                                          "Stick-out (mm)", "Description"), numeric)
+                                          "Stick-out (mm)", "Chip load (mm/tooth)", "Description"), numeric)
             + "<tbody>" + "".join(rows) + "</tbody></table>")
 
 
@@ -436,6 +443,13 @@ def sheet_from(program, report: dict | None = None, machine=None, post=None, pic
     if stick_out:
         tools = tuple(SheetTool(t.number, t.kind, t.diameter, t.corner_radius, t.flute_length,
                                 stick_out.get(t.number, t.stick_out), t.description) for t in tools)
+    chips = {}
+    for entry in report.get("feeds") or ():       # the check before export: each operation's chip load
+        if isinstance(entry, dict) and entry.get("checked") and entry.get("tool_number") is not None:
+            chips.setdefault(entry["tool_number"], []).append(entry.get("chip_load_mm"))
+    if chips:
+        tools = tuple(SheetTool(t.number, t.kind, t.diameter, t.corner_radius, t.flute_length, t.stick_out,
+                                t.description, tuple(chips.get(t.number, ()))) for t in tools)
     if stock is None:
         stock = (gate or {}).get("stock")
         sheet_entry = report.get("sheet")
