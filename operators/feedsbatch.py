@@ -33,7 +33,7 @@ def tool_spec(text: str) -> tuple:
     """(kind, diameter, flutes or None) of ``--tool KIND:DIAMETER[:FLUTES]``."""
     parts = str(text).split(":")
     if len(parts) not in (2, 3):
-        raise FeedsOptionError(f"--tool {text!r}: give KIND:DIAMETER or KIND:DIAMETER:FLUTES, e.g. flat:6:2")
+        raise FeedsOptionError(f"batch.py feeds --tool {text!r}: give KIND:DIAMETER or KIND:DIAMETER:FLUTES, e.g. flat:6:2")
     try:
         kind = calculator.tool_kind(parts[0])
         diameter = calculator.positive(_number(parts[1], "diameter"), "tool diameter")
@@ -45,7 +45,7 @@ def tool_spec(text: str) -> tuple:
                 raise calculator.FeedsError(f"flutes = {parts[2]!r}: must be a whole number 1..12") from None
             calculator.flute_count(flutes)
     except InputError as error:
-        raise FeedsOptionError(f"--tool {text!r}: {error}") from None
+        raise FeedsOptionError(f"batch.py feeds --tool {text!r}: {error}") from None
     return kind, diameter, flutes
 
 
@@ -60,7 +60,7 @@ def _option(option: str, value, read):
     try:
         return read(value)
     except InputError as error:
-        raise FeedsOptionError(f"{option} {value!r}: {error}") from None
+        raise FeedsOptionError(f"batch.py feeds {option} {value!r}: {error}") from None
 
 
 def run(args) -> dict:

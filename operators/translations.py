@@ -2378,6 +2378,64 @@ PROFILE_TEMPLATES = {
         "輪郭加工 {0}：輪郭 {1} にタブがなく貫通します。その部分は最後のパスで外れます",
 }
 
+# Materials, feeds and speeds (issue 31): Machine & Stock's material, the check before export, batch.py feeds
+FEEDS_TEXTS = {
+    "Material": "材料",
+    "What the stock is: each operation's spindle speed and feed are checked against its tool's chip-load band in "
+    "it before export (None: not checked)":
+        "素材の材質：書き出し前に各工程の主軸回転数と送りを、この材料での工具の1刃送り（チップロード）の範囲と照合します"
+        "（なし：照合しない）",
+    "None": "なし",
+    "No material: the feeds are not checked": "材料なし：送りを照合しません",
+    "Softwood": "針葉樹",
+    "pine, spruce, cedar, Japanese cedar (sugi), cypress (hinoki)": "松、スプルース、シダー、杉、檜",
+    "Hardwood": "広葉樹",
+    "Japanese magnolia (hoonoki: the gouge-texture paper's name plate), oak, maple, walnut, cherry, beech":
+        "朴（ホオノキ：彫刻刀跡の論文の表札）、オーク、メープル、ウォールナット、チェリー、ブナ",
+    "MDF": "MDF（中質繊維板）",
+    "medium-density fibreboard, particle board": "中質繊維板、パーティクルボード",
+    "Plywood": "合板",
+    "birch, lauan and softwood plywood": "バーチ合板、ラワン合板、針葉樹合板",
+    "Acrylic": "アクリル",
+    "cast acrylic (PMMA), polycarbonate: the chart's hard plastics": "キャストアクリル（PMMA）、ポリカーボネート：表の硬質樹脂",
+    "HDPE": "HDPE（高密度ポリエチレン）",
+    "HDPE, UHMW, polypropylene: the chart's soft plastics": "HDPE、超高分子量ポリエチレン、ポリプロピレン：表の軟質樹脂",
+    "Aluminium": "アルミニウム",
+    "6061 and similar wrought alloys": "A6061 などの展伸材",
+    "Brass": "真鍮",
+    "yellow brass, free-cutting brass, soft bronze": "黄銅、快削黄銅、軟質青銅",
+}
+FEEDS_NESTED = {"feeds: operation {} ({}) in {}: {}": (3,), "batch.py feeds --tool {}: {}": (1,), "batch.py feeds {} {}: {}": (2,),
+                "job file {}: [setup] material: {}": (1,)}
+FEEDS_TEMPLATES = {
+    "feeds: operation {} ({}) in {}: {}": "送り：工程 {0}（{1}）、材料 {2}：{3}",
+    "chip load {} mm per tooth is below the safe band {} - {} mm: the tool rubs (heat, burning, a dull edge); raise "
+    "the feed or lower the spindle speed":
+        "1刃送り {0} mm が安全範囲 {1}〜{2} mm を下回っています：工具がこすれます（発熱、焦げ、刃先の摩耗）。送りを上げるか"
+        "主軸回転数を下げてください",
+    "chip load {} mm per tooth is above the safe band {} - {} mm: the tool is overloaded (breakage risk); lower the "
+    "feed or raise the spindle speed":
+        "1刃送り {0} mm が安全範囲 {1}〜{2} mm を超えています：工具に過負荷（折損のおそれ）。送りを下げるか主軸回転数を"
+        "上げてください",
+    "spindle {} rpm is beyond the machine {}: {} - {} rpm": "主軸 {0} rpm は機械 {1} の範囲 {2}〜{3} rpm を超えています",
+    "spindle {} rpm is below the machine {}: {} - {} rpm": "主軸 {0} rpm は機械 {1} の範囲 {2}〜{3} rpm を下回っています",
+    "feed {} mm/min is beyond the machine {}: 0 - {} mm/min": "送り {0} mm/min は機械 {1} の範囲 0〜{2} mm/min を超えています",
+    "batch.py feeds --tool {}: give KIND:DIAMETER or KIND:DIAMETER:FLUTES, e.g. flat:6:2":
+        "batch.py feeds の --tool {0}：種類:直径 または 種類:直径:刃数 で指定してください（例 flat:6:2）",
+    "batch.py feeds --tool {}: {}": "batch.py feeds の --tool {0}：{1}",
+    "{} = {}: must be a number": "{0} = {1}：数値にしてください",
+    "batch.py feeds {} {}: {}": "batch.py feeds のオプション {0} {1}：{2}",
+    "job file {}: [setup] material: {}": "ジョブファイル {0}：[setup] material：{1}",
+    "{} = {}: must be a positive number": "{0} = {1}：正の数にしてください",
+    "unknown tool kind {}: the kinds are {}": "工具の種類 {0} は不明です（種類は {1}）",
+    "flutes = {}: must be a whole number 1..12": "刃数 = {0}：1〜12 の整数にしてください",
+    "unknown operation kind {}: the kinds are {}": "加工の種類 {0} は不明です（種類は {1}）",
+    "unknown material {}: the materials are {}": "材料 {0} は不明です（材料は {1}）",
+    "unknown tool material {}: the tool materials are {}": "工具材質 {0} は不明です（工具材質は {1}）",
+}
+PROPERTY_TEXTS.update(FEEDS_TEXTS)
+MESSAGE_TEMPLATES.update(FEEDS_TEMPLATES)
+NESTED.update(FEEDS_NESTED)
 MESSAGE_TEMPLATES.update(JOBLIST_TEMPLATES)
 MESSAGE_TEMPLATES.update(PROFILE_TEMPLATES)
 MESSAGES.update(PROFILE_TEXTS)
