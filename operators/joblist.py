@@ -129,6 +129,8 @@ def feeds_findings(planned) -> tuple:
     from ..toolpath.feeds import programcheck
     from .jobfile import feeds_check
 
+    if not planned.job.setup.material:
+        return [], {}
     entries = feeds_check(planned, planned.program())
     owners, counts = operation_rows(planned), {}
     for index, entry in enumerate(entries):

@@ -221,3 +221,35 @@ def test_the_job_panel_fits_the_sidebar(plate_job, language):
         texts = fit.all_texts(classes, context, table)
         assert len(texts) > (20 if active == 0 else 5)
         assert not fit.too_wide(texts), "\n".join(fit.too_wide(texts))
+
+
+def test_the_scene_material_flags_the_feeds_in_the_job_list_and_goes_into_the_saved_file(plate_job, tmp_path, capfd):
+    """Machine & Stock's Material: Generate counts each row's feeds flags and reports them; the
+    drill's 150 mm/min at 3000 rpm (0.025 mm per tooth) rubs in hardwood; the saved job file names the
+    material; Export writes the program and reports the same warnings."""
+    scene = plate_job
+    scene.kezuri.stock.material = "hardwood"
+    capfd.readouterr()
+    assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
+    said = capfd.readouterr().out
+    rows = scene.kezuri.job_list.rows
+    assert rows[1].state == "FINDINGS" and rows[1].findings >= 1
+    assert "feeds: operation" in said and "below the safe band" in said
+    text, said = export(scene, tmp_path / "plate.ngc", capfd)
+    assert tool_changes(text) and "below the safe band" in said
+    scene.kezuri.stock.material = "NONE"
+    capfd.readouterr()
+    assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
+    assert "feeds: operation" not in capfd.readouterr().out and rows[1].findings == 0
+
+
+def test_a_saved_job_file_names_the_material_and_loads_it_back(plate_job, tmp_path):
+    scene = plate_job
+    scene.kezuri.stock.material = "mdf"
+    blend, toml = tmp_path / "plate.blend", tmp_path / "plate.toml"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+    assert bpy.ops.kezuri.job_save(filepath=str(toml)) == {"FINISHED"}
+    assert 'material = "mdf"' in toml.read_text(encoding="utf-8").splitlines()
+    scene.kezuri.stock.material = "NONE"
+    assert bpy.ops.kezuri.job_load(filepath=str(toml)) == {"FINISHED"}
+    assert scene.kezuri.stock.material == "mdf"
