@@ -57,6 +57,12 @@ def test_between_rows_the_band_is_interpolated_and_below_the_smallest_it_scales_
     assert (low, high) == pytest.approx((0.017 * IN, 0.019 * IN)) and "largest" in note
 
 
+def test_brass_reads_the_iti_chart_as_it_is_printed_up_to_a_diameter():
+    """ITI: brass / soft bronze, end mills up to 1/4 in .0005 - .002, up to 1/2 in .002 - .003 in."""
+    for inch, low, high in ((0.125, 0.0005, 0.002), (0.25, 0.0005, 0.002), (0.3, 0.002, 0.003), (0.5, 0.002, 0.003)):
+        assert calculator.band("brass", "flat", inch * IN)[:2] == pytest.approx((low * IN, high * IN))
+
+
 def test_aluminium_carbide_rpm_from_the_hit_surface_speed_and_hss_from_the_grizzly_table():
     """HIT: aluminium 6061 800 - 2200 sfm (aim: 1500); Grizzly / Machinery's Handbook: HSS in aluminium
     300 sfm.  rpm = sfm x 12 / (pi x D in)."""

@@ -38,7 +38,7 @@ AST = ("AST Tooling, Speeds and Feeds - Spiral Router Bits, Recommended Feeds & 
 HIT = ("HIT Tooling Parameter Sheet, End Mills CLPT, Aluminum (6061), "
        "https://cdn.shopify.com/s/files/1/0612/0733/files/HIT_Tooling_Parameter_Sheet.pdf")
 ITI = ("ITI Carbide Cutting Tools catalog 14, Speeds and Feeds for Carbide Endmills, Brass / Soft Bronze "
-       "(feed per tooth up to 1/4 in and up to 1/2 in), "
+       "(feed per tooth for end mills up to 1/4 in and up to 1/2 in), "
        "https://cdn.shopify.com/s/files/1/0612/0733/files/Internal_Tool_Parameters.pdf")
 AMANA_V = ("Amana Tool, Carbide Tipped V-Groove Router Bits speed chart v2 (18,000 rpm), "
            "https://cdn.shopify.com/s/files/1/1558/5651/files/Carbide-Tipped-V-Groove-Speed-Chart-v2.pdf")
@@ -60,6 +60,7 @@ class ChipChart:
 
     rows: tuple
     source: str
+    up_to: bool = False         # the chart's rows are "up to" a diameter: a cutter takes the first row it fits
 
     def band_mm(self, diameter_mm: float) -> tuple:
         """(low, high, note) in mm per tooth for a cutter of ``diameter_mm``; ``note`` says how
@@ -67,6 +68,11 @@ class ChipChart:
         d = diameter_mm / MM_PER_INCH
         rows = sorted(self.rows)
         first, last = rows[0], rows[-1]
+        if self.up_to:
+            row = next((r for r in rows if d <= r[0] + 1e-12), last)
+            note = (f"the chart's row up to {row[0] * MM_PER_INCH:.3g} mm" if d <= row[0] + 1e-12 else
+                    f"above the chart's largest diameter ({last[0] * MM_PER_INCH:.3g} mm): its band used")
+            return row[1] * MM_PER_INCH, row[2] * MM_PER_INCH, note
         if d < first[0]:
             scale = d / first[0]
             return (first[1] * scale * MM_PER_INCH, first[2] * scale * MM_PER_INCH,
@@ -172,7 +178,7 @@ MATERIALS = {m.key: m for m in (
              {"hss": SurfaceSpeed(300, 300, GRIZZLY + ": aluminum & alloys 300 sfm"),
               "carbide": SurfaceSpeed(800, 2200, HIT + ": 800 - 2200 sfm")}),
     Material("brass", "Brass", "yellow brass, free-cutting brass, soft bronze",
-             ChipChart(((0.25, 0.0005, 0.002), (0.5, 0.002, 0.003)), ITI),
+             ChipChart(((0.25, 0.0005, 0.002), (0.5, 0.002, 0.003)), ITI, up_to=True),
              {"hss": SurfaceSpeed(150, 150, GRIZZLY + ": brass & bronze 150 sfm"),
               "carbide": SurfaceSpeed(800, 1500, TORBIDE)}),
 )}
