@@ -50,17 +50,18 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     from . import convert
     from .jobentry import JobFileError
 
-    unknown = [slot for slot in entry.objects if slot != "edges"]
+    objects = {slot: obj for slot, obj in entry.objects.items() if obj is not None}     # a row's empty slot
+    unknown = [slot for slot in objects if slot != "edges"]
     if unknown:
         raise JobFileError(f"{entry.where}: objects.{unknown[0]}: a chamfer takes objects.edges (a curve, Text "
                            "or mesh)")
-    if "edges" not in entry.objects:
+    if "edges" not in objects:
         raise JobFileError(f"{entry.where}: no edges: give objects = {{ edges = \"<curve, Text or mesh>\" }}")
     try:
         settings = settings_from(entry)
         settings.check()
         plate = convert.plate_from_object(scene.kezuri.stock.plate, depsgraph, scene, scene.kezuri.stock.origin)
-        loops = convert.outlines_in_work(entry.objects["edges"], depsgraph, plate.frame)
+        loops = convert.outlines_in_work(objects["edges"], depsgraph, plate.frame)
         core.tool_paths(loops, settings)
     except core.ChamferError as error:
         raise JobFileError(f"{entry.where}: the edges or the V-bit: {error}") from None
@@ -68,5 +69,27 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     return JobOperation("chamfer", entry.name, settings, geometry, entry.enabled), None, None
 
 
+def settings_group() -> type:
+    """The chamfer's settings as panel properties (names, units and defaults of ChamferSettings)."""
+    from . import kindsettings as ks
+
+    d = core.ChamferSettings()
+    return ks.settings_group("KezuriChamferSettings", {
+        "tool_number": ks.whole("Tool Number", d.tool.number, "The V-bit's tool number (T word)"),
+        "diameter": ks.length("Diameter", d.tool.diameter, "The V-bit's diameter"),
+        "flute_length": ks.length("Flute Length", d.tool.flute_length, "The V-bit's flute length"),
+        "width": ks.length("Width", d.width, "Across the top, from the edge into the material; 0: from the depth"),
+        "depth": ks.length("Depth", d.depth, "Down the wall; 0: from the width"),
+        "tip_gap": ks.length("Tip Gap", d.tip_gap, "The tip below the chamfer, in the waste"),
+        "rpm": ks.number("Spindle", d.rpm, "Spindle speed", "rpm", 0),
+        "feed": ks.number("Feed", d.feed, "Cutting feed", "mm/min", 0),
+        "plunge_feed": ks.number("Plunge Feed", d.plunge_feed, "Feed down the ramps", "mm/min", 0),
+    })
+
+
+PANELS = (("Chamfer", ("width", "depth", "tip_gap")),
+          ("Tool & Feeds", ("tool_number", "diameter", "flute_length", "rpm", "feed", "plunge_feed")))
+
 WORKFLOW = Workflow("CHAMFER", "Chamfer", "V-bit chamfer along the top edges of closed outlines (job files)",
-                    post_families=POST_FAMILIES, kind="chamfer", job_operation=job_operation)
+                    post_families=POST_FAMILIES, kind="chamfer", job_operation=job_operation,
+                    settings_group=settings_group(), settings_panels=PANELS)

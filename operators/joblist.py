@@ -37,9 +37,10 @@ PREFIX = "Kezuri Job"
 # an operation's objects when a row is added: slot -> (group of scene.kezuri, its property; None: empty)
 DEFAULT_SLOTS = {"engrave": (("plate", "stock", "plate"), ("letters", "engrave", "letters"),
                              ("surface", "engrave", "surface")),
-                 "profile": (("shape", None, None),),
-                 "pocket": (("region", "engrave", "letters"), ("plate", "stock", "plate"))}
-DEFAULT_EXTRA = {"drill": {"holes": []}, "profile": {"tabs": []}}
+                 "profile": (("shape", None, None),),      # no shape: the plate's outline
+                 "pocket": (("region", "engrave", "letters"), ("plate", "stock", "plate")),
+                 "drill": (("holes", None, None),), "chamfer": (("edges", None, None), ("holes", None, None))}
+DEFAULT_EXTRA = {"profile": {"tabs": []}}
 ROW_KEYS = ("kind", "name", "enabled", "objects", "settings")      # a job file's keys a row keeps apart
 
 

@@ -1,0 +1,177 @@
+"""The router kinds' panels (issue 29): profile, pocket, drill and chamfer rows of the job list edited
+with real properties (``scene.kezuri.<kind>``), planned with Generate Job, read back as job-file
+settings; the planned moves checked against closed forms worked out here by hand."""
+import json
+import math
+import re
+
+import numpy as np
+import pytest
+
+bpy = pytest.importorskip("bpy")
+
+from blender_helpers import empty_scene  # noqa: E402,F401  (fixture)
+from kezuri.operators import joblist, samples  # noqa: E402
+from kezuri.toolpath.job import plan_job  # noqa: E402
+
+
+def planned_ops(scene):
+    """The planned job's operations by the row's name: {row name: [Operation, ...]}."""
+    planned = plan_job(joblist.build(scene)[0])
+    found = {}
+    for item in planned.planned:
+        found.setdefault(item.operation.name, []).extend(item.part.operations)
+    return found
+
+
+def feed_points(op):
+    kinds = np.asarray(op.kind)
+    return np.asarray(op.xyz)[kinds != 0]      # every move's end but the rapids
+
+
+def rounded_rect_distance(xy, hx, hy, r):
+    """Signed distance (outside > 0) of points to a rectangle of half sizes hx, hy centred on the
+    origin with corners rounded to radius r."""
+    dx = np.maximum(np.abs(xy[:, 0]) - (hx - r), 0.0)
+    dy = np.maximum(np.abs(xy[:, 1]) - (hy - r), 0.0)
+    return np.hypot(dx, dy) - r
+
+
+def add_row(scene, kind, name):
+    assert bpy.ops.kezuri.job_add(kind=kind) == {"FINISHED"}
+    listed = scene.kezuri.job_list
+    row = listed.rows[listed.active]
+    row.name = name
+    return row
+
+
+def slot(row, name, obj):
+    item = next(i for i in row.objects if i.slot == name)
+    item.object = obj
+
+
+def test_profile_set_in_the_panel_plans_the_outline_offset_by_the_radius_with_its_tabs(empty_scene):
+    scene = empty_scene
+    _, _, outline = samples.name_plate_cut_out(scene)
+    scene.kezuri.machine.post = "linuxcnc"
+    row = add_row(scene, "profile", "cut out")
+    slot(row, "shape", outline)
+    props = scene.kezuri.profile                    # the selected row's settings, as the panel edits them
+    props.diameter, props.tool_number, props.flute_length = 6.0, 5, 25.0
+    props.tab_count, props.tab_width, props.tab_height, props.lead = 4, 8.0, 3.0, "none"
+    props.step_down = 4.0
+    assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
+    assert row.state in {"PLANNED", "FINDINGS"} and row.tools == "T5"
+    assert json.loads(row.settings) == {"lead": "none", "step_down": 4.0, "tab_count": 4}   # the defaults left out
+    (op,) = planned_ops(scene)["cut out"]
+    points = feed_points(op)
+    floor = points[:, 2].min()
+    assert floor == pytest.approx(-20.0 - 0.3, abs=1e-6)         # the 20 mm plate and the 0.3 mm breakthrough
+    # the outline: 190 x 90 mm, corners 8 mm round; the 6 mm end mill's centre 3 mm outside it
+    at_depth = points[points[:, 2] < floor + 1e-6]
+    assert np.abs(rounded_rect_distance(at_depth[:, :2], 95.0, 45.0, 8.0) - 3.0).max() < 0.01
+    # four tabs: where the tool stays at the tab's top, 3 mm above the stock's bottom (Z -20 + 3)
+    tab_top = points[np.abs(points[:, 2] - (-20.0 + 3.0)) < 1e-6]
+    angles = np.degrees(np.arctan2(tab_top[:, 1], tab_top[:, 0]))
+    assert len(tab_top) >= 8 and len(set(np.floor((angles + 45.0) / 90.0).astype(int) % 4)) == 4   # on all 4 sides
+    assert np.abs(rounded_rect_distance(tab_top[:, :2], 95.0, 45.0, 8.0) - 3.0).max() < 0.01
+    # levels: 20.3 mm in 4 mm steps = 6 levels (20.3 / 4 = 5.075, rounded up), every step at most 4 mm
+    assert math.ceil(20.3 / 4.0) == 6
+    assert op.tool.diameter == 6.0 and op.tool.number == 5
+
+
+def test_pocket_drill_and_chamfer_rows_take_their_settings_from_the_panel(empty_scene):
+    scene = empty_scene
+    plate, letters = samples.name_plate(scene)
+    scene.kezuri.machine.post = "linuxcnc"
+    pocket = add_row(scene, "pocket", "letters")          # its slots: the Engrave panel's letters, the plate
+    assert {i.slot: i.object for i in pocket.objects} == {"region": letters, "plate": plate}
+    props = scene.kezuri.pocket
+    props.depth, props.diameter, props.stepover, props.step_down = 2.0, 3.0, 1.2, 2.0
+    props.rest_diameter = 1.0           # rest machining; its tool number left at 0: the next one (T6)
+    drill = add_row(scene, "drill", "holes")
+    drill.extra = json.dumps({"holes": [[-90.0, -40.0], [90.0, 40.0]]})
+    props = scene.kezuri.drill
+    props.depth, props.peck, props.dwell, props.tool_number = 8.0, 0.0, 0.5, 4
+    chamfer = add_row(scene, "chamfer", "edge")
+    slot(chamfer, "edges", plate)
+    scene.kezuri.chamfer.width = 1.5
+    assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
+    rows = scene.kezuri.job_list.rows
+    assert [(r.name, r.tools) for r in rows] == [("letters", "T5 T6"), ("holes", "T4"), ("edge", "T7")]
+    assert json.loads(rows[0].settings) == {"depth": 2.0, "diameter": 3.0, "rest_diameter": 1.0, "stepover": 1.2}
+    assert json.loads(rows[1].settings) == {"depth": 8.0, "dwell": 0.5, "peck": 0.0}
+    assert json.loads(rows[2].settings) == {"width": 1.5}
+    ops = planned_ops(scene)
+    rough, rest = ops["letters"]
+    assert (rough.tool.diameter, rough.tool.number, rest.tool.diameter, rest.tool.number) == (3.0, 5, 1.0, 6)
+    assert feed_points(rough)[:, 2].min() == pytest.approx(-2.0, abs=1e-9)
+    (drilled,) = ops["holes"]
+    bottoms = feed_points(drilled)
+    assert bottoms[:, 2].min() == pytest.approx(-8.0, abs=1e-9)
+    deepest = bottoms[np.abs(bottoms[:, 2] + 8.0) < 1e-9][:, :2]
+    assert sorted(map(tuple, np.round(deepest, 6))) == [(-90.0, -40.0), (90.0, 40.0)]
+    (edge,) = ops["edge"]
+    # a 90 deg V-bit: depth = width / tan(45 deg) = 1.5 mm, the tip 0.2 mm (tip_gap) lower, its axis
+    # 0.2 x tan(45 deg) = 0.2 mm outside the plate's 200 x 100 mm top edge
+    points = feed_points(edge)
+    tip = points[np.abs(points[:, 2] + 1.7) < 1e-9]
+    assert points[:, 2].min() == pytest.approx(-1.7, abs=1e-9) and len(tip) > 4
+    assert np.abs(rounded_rect_distance(tip[:, :2], 100.0, 50.0, 0.0) - 0.2).max() < 0.01
+
+
+def test_a_row_shows_its_settings_in_the_panel_and_keeps_them_when_another_is_selected(empty_scene, tmp_path):
+    scene = empty_scene
+    samples.name_plate(scene)
+    first = add_row(scene, "drill", "a")
+    scene.kezuri.drill.depth = 6.0
+    scene.kezuri.drill.retract = "r"
+    second = add_row(scene, "drill", "b")             # selecting it reads "a" back, shows b's defaults
+    assert json.loads(first.settings) == {"depth": 6.0, "retract": "r"}
+    assert (scene.kezuri.drill.depth, scene.kezuri.drill.retract) == (10.0, "initial")
+    scene.kezuri.drill.helix = True
+    scene.kezuri.job_list.active = 0
+    assert json.loads(second.settings) == {"helix": True}
+    assert (scene.kezuri.drill.depth, scene.kezuri.drill.retract, scene.kezuri.drill.helix) == (6.0, "r", False)
+    scene.kezuri.job_list.active = 1
+    first.settings = json.dumps({"retract": "sideways"})      # typed by hand: refused by name on showing it
+    with pytest.raises(joblist.JobFileError, match=r"job list: 'a': settings.retract = 'sideways'"):
+        joblist.show_row(scene, first)
+
+
+def test_the_router_panels_show_for_their_rows_only(empty_scene):
+    from kezuri.operators import panels
+
+    scene = empty_scene
+    samples.name_plate(scene)
+    import types
+    context = types.SimpleNamespace(scene=scene, active_object=None)
+    for kind in ("profile", "pocket", "drill", "chamfer"):
+        add_row(scene, kind, kind)
+        shown = {c.bl_idname for c in panels.CLASSES if c.bl_idname.startswith("KEZURI_PT_joblist_")
+                 and c.poll(context)}
+        assert shown and all(name.startswith(f"KEZURI_PT_joblist_{kind}_") for name in shown), (kind, shown)
+
+
+@pytest.mark.parametrize("language", ["en", "ja"])
+def test_the_router_panels_fit_the_sidebar(empty_scene, language):
+    """Every label, value and menu item of the four kinds' panels (all sub-panels open), in English
+    and in Japanese, at Blender's default sidebar width (tests/sidebar_fit.py)."""
+    import types
+
+    import sidebar_fit as fit
+    from kezuri.operators import panels, translations
+
+    scene = empty_scene
+    samples.name_plate(scene)
+    context = types.SimpleNamespace(scene=scene, active_object=None)
+    table = translations.TRANSLATIONS["ja_JP"] if language == "ja" else None
+    for kind in ("profile", "pocket", "drill", "chamfer"):
+        add_row(scene, kind, kind)
+        classes = [c for c in panels.CLASSES if c.bl_idname.startswith("KEZURI_PT_joblist")]
+        texts = fit.all_texts(classes, context, table)
+        words = {t.text for t in texts}
+        ja = translations.TRANSLATIONS["ja_JP"]
+        tool = "Tool Number" if language == "en" else ja[("*", "Tool Number")]
+        assert tool in words, kind                    # the kind's sub-panels were drawn
+        assert not fit.too_wide(texts), "\n".join(fit.too_wide(texts))
