@@ -41,6 +41,7 @@ DEFAULT_SLOTS = {"engrave": (("plate", "stock", "plate"), ("letters", "engrave",
                  "pocket": (("region", "engrave", "letters"), ("plate", "stock", "plate")),
                  "drill": (("holes", None, None),), "chamfer": (("edges", None, None), ("holes", None, None))}
 DEFAULT_EXTRA = {"profile": {"tabs": []}}
+DEFAULT_SETTINGS = {"profile": {"tab_count": 4}}     # a new cut-out holds its part (a job file says so itself)
 ROW_KEYS = ("kind", "name", "enabled", "objects", "settings")      # a job file's keys a row keeps apart
 
 
@@ -255,6 +256,7 @@ def new_row(scene, kind: str, name: str | None = None, slots: bool = True):
             item = row.objects.add()
             item.slot, item.object = slot, getattr(getattr(scene.kezuri, group), prop) if group else None
         row.extra = json.dumps(DEFAULT_EXTRA.get(kind, {}))
+        row.settings = json.dumps(DEFAULT_SETTINGS.get(kind, {}))
     return row
 
 

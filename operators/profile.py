@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..toolpath.job import JobOperation, Setup
 from ..toolpath.operations.profile import profile as core
 from ..toolpath.operations.profile.kind import ProfileGeometry
@@ -77,30 +79,41 @@ def read_tabs(entry) -> tuple:
 
 def job_operation(scene, depsgraph, entry, post_name: str):
     """A job file's profile: objects ``shape`` (and ``plate``: the stock, default the scene's),
-    ``tabs`` and settings by name.  The work frame is the plate's, as the engraving's."""
+    ``tabs`` and settings by name.  No shape (or ``outline = "plate"``): the plate's own outline, the
+    sign cut out of its board.  The work frame is the plate's, as the engraving's."""
     from . import convert
     from .jobentry import JobFileError
 
+    objects = {slot: obj for slot, obj in entry.objects.items() if obj is not None}     # a row's empty slot
     slots = {"shape", "plate"}
-    for slot in entry.objects:
+    for slot in objects:
         if slot not in slots:
             raise JobFileError(f"{entry.where}: objects.{slot}: a profile's objects are shape and plate")
-    if "shape" not in entry.objects:
-        raise JobFileError(f"{entry.where}: no shape: give objects = {{ shape = \"...\" }} (a closed curve, Text "
-                           "or mesh)")
-    if "plate" in entry.objects:
-        scene.kezuri.stock.plate = entry.objects["plate"]
-    obj = entry.objects["shape"]
+    outline = entry.table.get("outline")
+    if outline is not None and outline != "plate":
+        raise JobFileError(f"{entry.where}: outline = {outline!r}: the only outline a profile takes by name is "
+                           "\"plate\" (the plate's own); give other shapes as objects.shape")
+    if outline is not None and "shape" in objects:
+        raise JobFileError(f"{entry.where}: give objects.shape or outline = \"plate\", not both")
+    if "plate" in objects:
+        scene.kezuri.stock.plate = objects["plate"]
+    if scene.kezuri.stock.plate is None and "shape" not in objects:
+        raise JobFileError(f"{entry.where}: no shape and no plate: give objects = {{ shape = \"...\" }} (a closed "
+                           "curve, Text or mesh), or pick the plate to cut out its outline")
     try:
         plate = convert.plate_from_object(scene.kezuri.stock.plate, depsgraph, scene, scene.kezuri.stock.origin)
         convert.check_fits(plate, scene)
-        loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
+        if "shape" in objects:
+            loops, what = convert.outlines_in_work(objects["shape"], depsgraph, plate.frame), \
+                f"object {objects['shape'].name!r}"
+        else:
+            loops, what = [np.asarray(loop, float) for loop in plate.outline], f"the plate {plate.name!r}'s outline"
         settings = settings_from(entry, read_tabs(entry))
         settings.check(float(plate.size[2]))
     except core.ProfileError as error:
         raise JobFileError(f"{entry.where}: the profile: {str(error).removeprefix('profile: ')}") from None
     geometry = ProfileGeometry(tuple(tuple(map(tuple, loop[:, :2].tolist())) for loop in loops), float(plate.size[2]),
-                               0.0, f"object {obj.name!r}", entry.name)
+                               0.0, what, entry.name)
     setup = _setup(scene, post_name, plate)
     return JobOperation("profile", entry.name, settings, geometry, entry.enabled), setup, plate.frame
 

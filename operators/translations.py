@@ -2495,6 +2495,15 @@ MESSAGE_TEMPLATES.update(POCKET_TEMPLATES)
 # the router kinds' panels and chamfered holes (issue 29)
 ROUTER_TEMPLATES = {
     "{}: settings.{} = {}: {}": "{0}：settings.{1} = {2} は設定できません：{3}",
+    '{}: no shape and no plate: give objects = {{ shape = "..." }} (a closed curve, Text or mesh), or pick the plate '
+    'to cut out its outline':
+        '{0}：形状も素材もありません。objects = {{ shape = "..." }}（閉じたカーブ、テキスト、メッシュ）を指定するか、'
+        '素材を選んでその輪郭を切り抜いてください',
+    '{}: outline = {}: the only outline a profile takes by name is "plate" (the plate\'s own); give other shapes as '
+    'objects.shape':
+        '{0}：outline = {1}：輪郭加工が名前で受け付ける輪郭は "plate"（素材自身の輪郭）だけです。ほかの形状は objects.shape で'
+        '指定してください',
+    '{}: give objects.shape or outline = "plate", not both': '{0}：objects.shape か outline = "plate" のどちらか一方を指定してください',
 }
 MESSAGE_TEMPLATES.update(ROUTER_TEMPLATES)
 NESTED.update(POCKET_NESTED)

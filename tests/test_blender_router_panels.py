@@ -37,6 +37,16 @@ def rounded_rect_distance(xy, hx, hy, r):
     return np.hypot(dx, dy) - r
 
 
+def clusters(points, gap):
+    """Groups of the points, a point joining a group when within ``gap`` mm of one of its points."""
+    groups = []
+    for p in points:
+        near = [g for g in groups if np.hypot(*(np.asarray(g) - p).T).min() <= gap]
+        merged = [p] + [q for g in near for q in g]
+        groups = [g for g in groups if not any(g is n for n in near)] + [merged]
+    return groups
+
+
 def add_row(scene, kind, name):
     assert bpy.ops.kezuri.job_add(kind=kind) == {"FINISHED"}
     listed = scene.kezuri.job_list
@@ -175,3 +185,78 @@ def test_the_router_panels_fit_the_sidebar(empty_scene, language):
         tool = "Tool Number" if language == "en" else ja[("*", "Tool Number")]
         assert tool in words, kind                    # the kind's sub-panels were drawn
         assert not fit.too_wide(texts), "\n".join(fit.too_wide(texts))
+
+
+# ----- the plate's own outline (no shape given) --------------------------------------------------------
+
+SAMPLE = __import__("os").path.join(__import__("os").path.dirname(__import__("os").path.dirname(
+    __import__("os").path.abspath(__file__))), "samples", "jobs", "nameplate-with-holes.toml")
+CUT_OUT = '''
+[[operations]]
+kind = "profile"
+name = "cut out"
+{outline}
+settings = {{ tool_number = 5, diameter = 6.0, flute_length = 25.0, tab_count = 4, lead = "none" }}
+'''
+
+
+def plate_cut(text, tmp_path):
+    """The sample name-plate job with a profile appended, planned as batch plans it: the profile's
+    feed points (x, y, z)."""
+    from kezuri.operators import jobfile
+
+    path = tmp_path / "job.toml"
+    path.write_text(text)
+    planned, _, _, _ = jobfile.plan_file(str(path))
+    item = next(i for i in planned.planned if i.operation.name == "cut out")
+    (op,) = item.part.operations
+    return feed_points(op), planned
+
+
+@pytest.mark.parametrize("outline", ["", 'outline = "plate"'])
+def test_a_profile_without_a_shape_cuts_the_plate_out_offset_by_the_tool_radius_with_tabs(empty_scene, tmp_path,
+                                                                                         outline):
+    text = open(SAMPLE).read() + CUT_OUT.format(outline=outline)
+    points, planned = plate_cut(text, tmp_path)
+    # the sample's plate: 200 x 100 x 20 mm, work zero at its top centre; the 6 mm end mill's centre
+    # runs 3 mm outside its rectangle (round corners of 3 mm), through to -20 - 0.3 (breakthrough)
+    floor = points[:, 2].min()
+    assert floor == pytest.approx(-20.3, abs=1e-6)
+    at_depth = points[points[:, 2] < floor + 1e-6]
+    assert len(at_depth) > 8
+    assert np.abs(rounded_rect_distance(at_depth[:, :2], 100.0, 50.0, 0.0) - 3.0).max() < 0.01
+    assert at_depth[:, 0].max() == pytest.approx(103.0, abs=0.01) and at_depth[:, 1].min() == pytest.approx(-53.0,
+                                                                                                          abs=0.01)
+    tabs = points[np.abs(points[:, 2] - (-20.0 + 3.0)) < 1e-6]      # the tabs' top: 3 mm above the bottom
+    assert np.abs(rounded_rect_distance(tabs[:, :2], 100.0, 50.0, 0.0) - 3.0).max() < 0.01
+    assert len(clusters(tabs[:, :2], 20.0)) == 4          # four tabs (each 8 mm + the 6 mm tool long)
+    assert not [w for w in planned.warnings if "comes loose" in w]
+
+
+def test_outline_takes_only_the_plate_and_not_beside_a_shape(empty_scene, tmp_path):
+    from kezuri.operators.jobentry import JobFileError
+
+    with pytest.raises(JobFileError, match=r"outline = 'Outline': the only outline a profile takes by name is "
+                                           r"\"plate\""):
+        plate_cut(open(SAMPLE).read() + CUT_OUT.format(outline='outline = "Outline"'), tmp_path)
+    with pytest.raises(JobFileError, match="give objects.shape or outline = \"plate\", not both"):
+        plate_cut(open(SAMPLE).read() + CUT_OUT.format(outline='outline = "plate"\nobjects = { shape = "Plate" }'),
+                  tmp_path)
+
+
+def test_a_new_profile_row_cuts_the_plate_out_with_four_tabs(empty_scene, tmp_path):
+    scene = empty_scene
+    samples.name_plate(scene)
+    scene.kezuri.machine.post = "linuxcnc"
+    row = add_row(scene, "profile", "cut out")
+    assert scene.kezuri.profile.tab_count == 4 and row.objects[0].object is None
+    scene.kezuri.profile.lead = "none"
+    assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
+    (op,) = planned_ops(scene)["cut out"]
+    points = feed_points(op)
+    at_depth = points[points[:, 2] < points[:, 2].min() + 1e-6]
+    assert np.abs(rounded_rect_distance(at_depth[:, :2], 100.0, 50.0, 0.0) - 3.0).max() < 0.01
+    path = tmp_path / "cut.ngc"
+    assert bpy.ops.kezuri.job_export(filepath=str(path), post="linuxcnc") == {"FINISHED"}
+    text = path.read_text()
+    assert "Z-20.3" in text and "Z-17." in text           # through, and over the tabs
