@@ -176,6 +176,6 @@ PANELS = (("Holes", ("depth", "peck", "dwell", "retract", "order", "breakthrough
           ("Helix & Spot", ("helix", "mill_tool_number", "mill_diameter", "mill_flute_length", "mill_rpm", "mill_feed",
                             "helix_pitch", "spot", "spot_depth", "spot_tool_number", "spot_diameter")))
 
-WORKFLOW = Workflow("DRILL", "Drilling", "Holes at given centres or found in curves and meshes (job files)",
+WORKFLOW = Workflow("DRILL", "Drilling", "Holes at given centres or found in curves and meshes",
                     post_families=POST_FAMILIES, kind="drill", job_operation=job_operation,
                     settings_group=settings_group(), settings_panels=PANELS)

@@ -144,6 +144,6 @@ PANELS = (("Clearing", ("depth", "step_down", "stepover", "strategy", "angle", "
           ("Rest Machining", ("rest_diameter", "rest_tool_number", "rest_flute_length", "rest_stepover",
                               "rest_step_down", "rest_rpm", "rest_feed")))
 
-WORKFLOW = Workflow("POCKET", "Pocket", "Clear closed regions with islands to a flat floor (job files)",
+WORKFLOW = Workflow("POCKET", "Pocket", "Clear closed regions with islands to a flat floor",
                     post_families=POST_FAMILIES, kind="pocket", job_operation=job_operation,
                     settings_group=settings_group(), settings_panels=PANELS)

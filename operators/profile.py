@@ -169,6 +169,6 @@ PANELS = (("Cut", ("side", "climb", "depth", "breakthrough", "step_down", "allow
           ("Tool & Feeds", ("tool_number", "diameter", "flute_length", "rpm", "feed", "plunge_feed", "ramp_angle")),
           ("Lead-In & Out", ("lead", "lead_radius")))
 
-WORKFLOW = Workflow("PROFILE", "Profile", "Cut along an outline, inside, outside or on it, with tabs (job files)",
+WORKFLOW = Workflow("PROFILE", "Profile", "Cut along an outline, inside, outside or on it, with tabs",
                     post_families=POST_FAMILIES, kind="profile", job_operation=job_operation,
                     settings_group=settings_group(), settings_panels=PANELS)

@@ -2385,6 +2385,15 @@ ROUTER_PANEL_TEXTS = {
         "上面でエッジから材料側への幅。0：深さから決める (mm)",
     "Down the wall; 0: from the width (mm)": "壁に沿った深さ。0：幅から決める (mm)",
     "The tip below the chamfer, in the waste (mm)": "面取りの下、捨て側での先端の位置 (mm)",
+    "chamfer: no holes: give holes = [[x, y, diameter], ...] in work mm":
+        "面取り：穴がありません。holes = [[x, y, 直径], ...] をワーク座標 mm で指定してください",
+    "chamfer: no edges and no holes to chamfer": "面取り：面取りするエッジも穴もありません",
+    # the kinds' descriptions (the job list's Add menu)
+    "Cut along an outline, inside, outside or on it, with tabs": "輪郭に沿って内側・外側・線上を切削、タブ付き",
+    "Clear closed regions with islands to a flat floor": "島のある閉じた領域を平らな底まで削ります",
+    "Holes at given centres or found in curves and meshes": "指定した中心、またはカーブやメッシュで見つけた穴",
+    "V-bit chamfer along the top edges of closed outlines and round holes":
+        "閉じた輪郭と丸穴の上端を V ビットで面取り",
 }
 
 
@@ -2503,6 +2512,24 @@ ROUTER_TEMPLATES = {
     'objects.shape':
         '{0}：outline = {1}：輪郭加工が名前で受け付ける輪郭は "plate"（素材自身の輪郭）だけです。ほかの形状は objects.shape で'
         '指定してください',
+    "{}: objects.{}: a chamfer takes objects.edges (a curve, Text or mesh) and objects.holes (a curve or mesh with "
+    "round holes)":
+        "{0}：objects.{1}：面取りは objects.edges（カーブ、テキスト、メッシュ）と objects.holes（丸穴のあるカーブかメッシュ）を取ります",
+    "{}: give the holes as holes = [[x, y, diameter], ...] or as objects.holes, not both":
+        "{0}：穴は holes = [[x, y, 直径], ...] か objects.holes のどちらか一方で指定してください",
+    '{}: no edges: give objects = {{ edges = "<curve, Text or mesh>" }} or holes = [[x, y, diameter], ...]':
+        '{0}：エッジがありません。objects = {{ edges = "<カーブ、テキスト、メッシュ>" }} か holes = [[x, y, 直径], ...] を指定してください',
+    "{}: holes must be a list of [x, y, diameter] in work mm": "{0}：holes はワーク座標 mm の [x, y, 直径] のリストにしてください",
+    "chamfer: holes[{}] = {} is not [x, y, diameter] in mm": "面取り：holes[{0}] = {1} は mm の [x, y, 直径] ではありません",
+    "chamfer: holes[{}]: the diameter must be more than 0 mm, got {}":
+        "面取り：holes[{0}]：直径は 0 mm より大きくしてください（指定値 {1}）",
+    "chamfer: {} is {} mm: with the tip {} mm below the chamfer the V-bit's axis would run {} mm in from its edge, "
+    "past the centre; make tip_gap smaller":
+        "面取り：{0} は {1} mm です。先端を面取りの {2} mm 下にすると V ビットの軸がエッジから {3} mm 内側、中心を越えて"
+        "通ります。tip_gap を小さくしてください",
+    "chamfer: {} is {} mm, narrower than the {} mm chamfer's V-bit ({} mm across the hole at the top): it would cut "
+    "the far side":
+        "面取り：{0} は {1} mm で、{2} mm の面取りの V ビット（上面で穴を横切る幅 {3} mm）より狭く、反対側を削ります",
     '{}: give objects.shape or outline = "plate", not both': '{0}：objects.shape か outline = "plate" のどちらか一方を指定してください',
 }
 MESSAGE_TEMPLATES.update(ROUTER_TEMPLATES)

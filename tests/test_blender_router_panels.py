@@ -260,3 +260,72 @@ def test_a_new_profile_row_cuts_the_plate_out_with_four_tabs(empty_scene, tmp_pa
     assert bpy.ops.kezuri.job_export(filepath=str(path), post="linuxcnc") == {"FINISHED"}
     text = path.read_text()
     assert "Z-20.3" in text and "Z-17." in text           # through, and over the tabs
+
+
+def test_the_sample_plates_drilled_holes_chamfered_pass_the_gate_as_g3_arcs(empty_scene, tmp_path):
+    """The name-plate job (engraving, four 5 mm holes drilled 12 mm deep) with the holes' edges
+    chamfered 0.8 mm wide by the 90 deg V-bit: batch writes it (the gate clean over the whole job),
+    the chamfer's moves are G3 circles of radius 2.5 - 0.2 tan(45 deg) = 2.3 mm, its tip at
+    -(0.8 / tan(45 deg) + 0.2) = -1.0."""
+    import contextlib
+    import io
+    import os
+
+    import controller_rules
+    import rs274
+    from test_hostile_batch import BATCH
+
+    holes = [[-90.0, -40.0, 5.0], [90.0, -40.0, 5.0], [90.0, 40.0, 5.0], [-90.0, 40.0, 5.0]]
+    job = tmp_path / "chamfered.toml"
+    job.write_text(open(SAMPLE).read() + '\n[[operations]]\nkind = "chamfer"\nname = "hole edges"\n'
+                   f"holes = {json.dumps(holes)}\nsettings = {{ width = 0.8 }}\n")
+    out = tmp_path / "out"
+    with contextlib.redirect_stderr(io.StringIO()) as err, contextlib.redirect_stdout(io.StringIO()):
+        try:
+            status = BATCH.main(["batch.py", "job", str(job), "--out", str(out)])
+        except SystemExit as exit_:
+            status = exit_.code
+    assert status == 0, err.getvalue()[-2000:]
+    text = open(json.loads(open(out / "report.json").read())["files"][0]).read()
+    assert controller_rules.check(text, "linuxcnc") == []
+    part = text[re.search(r"^T7 M0?6", text, re.M).start():]
+    circles = re.findall(r"^G0?3 X(-?[\d.]+) Y(-?[\d.]+) Z(-?[\d.]+) I(-?[\d.]+) J(-?[\d.]+)", part, re.M) + \
+        [(x, y, None, i, j) for x, y, i, j in re.findall(r"^G0?3 X(-?[\d.]+) Y(-?[\d.]+) I(-?[\d.]+) J(-?[\d.]+)",
+                                                         part, re.M)]
+    assert len(circles) >= 8
+    for x, y, _, i, j in circles:
+        assert math.hypot(float(i), float(j)) == pytest.approx(2.3, abs=1e-3)
+        centre = (float(x) + float(i), float(y) + float(j))
+        assert min(math.hypot(centre[0] - hx, centre[1] - hy) for hx, hy, _ in holes) < 1e-3
+    if rs274.available():
+        kinds, points, _ = rs274.motion_endpoints(rs274.run("G21 G90 G17\n" + part, tools=(7,)))
+        assert points[:, 2].min() == pytest.approx(-1.0, abs=1e-4)
+    assert os.path.exists(out / "setup-sheet.html")
+
+
+def test_a_chamfer_row_chamfers_the_holes_of_a_curve_picked_in_its_holes_slot(empty_scene):
+    """Circles of a curve (found as the drilling finds them: 6 mm across at X30 Y20 and X-30 Y20)."""
+    scene = empty_scene
+    samples.name_plate(scene)
+    curve = bpy.data.curves.new("Holes", type="CURVE")
+    for cx in (30.0, -30.0):
+        spline = curve.splines.new("POLY")
+        t = np.linspace(0.0, 2 * np.pi, 48, endpoint=False)
+        spline.points.add(len(t) - 1)
+        spline.points.foreach_set("co", np.column_stack([cx + 3.0 * np.cos(t), 20.0 + 3.0 * np.sin(t),
+                                                         np.zeros_like(t), np.ones_like(t)]).ravel())
+        spline.use_cyclic_u = True
+    holes = bpy.data.objects.new("Holes", curve)
+    scene.collection.objects.link(holes)
+    row = add_row(scene, "chamfer", "hole edges")
+    slot(row, "holes", holes)
+    scene.kezuri.chamfer.width = 0.5
+    assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
+    (op,) = planned_ops(scene)["hole edges"]
+    arcs = np.isin(op.kind, (2, 3))
+    centres = {(round(x, 3), round(y, 3)) for x, y in op.center[arcs, :2]}
+    assert centres == {(30.0, 20.0), (-30.0, 20.0)}
+    radii = np.hypot(op.xyz[arcs, 0] - op.center[arcs, 0], op.xyz[arcs, 1] - op.center[arcs, 1])
+    # the circles' 48-gon fits a circle of radius ~3 mm; the axis 0.2 x tan(45 deg) inside it
+    assert np.allclose(radii, radii[0]) and radii[0] == pytest.approx(3.0 - 0.2, abs=0.02)
+    assert op.xyz[:, 2].min() == pytest.approx(-(0.5 + 0.2))
