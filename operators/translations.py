@@ -2530,6 +2530,10 @@ ROUTER_TEMPLATES = {
     "chamfer: {} is {} mm, narrower than the {} mm chamfer's V-bit ({} mm across the hole at the top): it would cut "
     "the far side":
         "面取り：{0} は {1} mm で、{2} mm の面取りの V ビット（上面で穴を横切る幅 {3} mm）より狭く、反対側を削ります",
+    "#{} {}: {} {} is above 1: it is a ratio of the programmed value (0.5 for half), not a percentage; write {} for {} %":
+        "#{0} {1}：{2} {3} が 1 を超えています。指令値に対する比（半分なら 0.5）で、百分率ではありません。{5} % なら {4} と書いてください",
+    "an ISO 14649 ratio must be above 0 and at most 1, got {} (the reader checks it)":
+        "ISO 14649 の比は 0 より大きく 1 以下にしてください（指定値 {0}、リーダーが確認します）",
     '{}: give objects.shape or outline = "plate", not both': '{0}：objects.shape か outline = "plate" のどちらか一方を指定してください',
 }
 MESSAGE_TEMPLATES.update(ROUTER_TEMPLATES)
