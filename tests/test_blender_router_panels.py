@@ -3,6 +3,7 @@ with real properties (``scene.kezuri.<kind>``), planned with Generate Job, read 
 settings; the planned moves checked against closed forms worked out here by hand."""
 import json
 import math
+import os
 import re
 
 import numpy as np
@@ -189,8 +190,8 @@ def test_the_router_panels_fit_the_sidebar(empty_scene, language):
 
 # ----- the plate's own outline (no shape given) --------------------------------------------------------
 
-SAMPLE = __import__("os").path.join(__import__("os").path.dirname(__import__("os").path.dirname(
-    __import__("os").path.abspath(__file__))), "samples", "jobs", "nameplate-with-holes.toml")
+SAMPLE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "samples", "jobs",
+                      "nameplate-with-holes.toml")
 CUT_OUT = '''
 [[operations]]
 kind = "profile"
@@ -269,7 +270,6 @@ def test_the_sample_plates_drilled_holes_chamfered_pass_the_gate_as_g3_arcs(empt
     -(0.8 / tan(45 deg) + 0.2) = -1.0."""
     import contextlib
     import io
-    import os
 
     import controller_rules
     import rs274
@@ -329,3 +329,20 @@ def test_a_chamfer_row_chamfers_the_holes_of_a_curve_picked_in_its_holes_slot(em
     # the circles' 48-gon fits a circle of radius ~3 mm; the axis 0.2 x tan(45 deg) inside it
     assert np.allclose(radii, radii[0]) and radii[0] == pytest.approx(3.0 - 0.2, abs=0.02)
     assert op.xyz[:, 2].min() == pytest.approx(-(0.5 + 0.2))
+
+
+def test_the_panels_zero_values_mean_the_same_in_a_job_file(empty_scene, tmp_path):
+    """depth = 0 is a cut through (as no depth), rest_diameter = 0 no rest machining: what the
+    panel's default values write is what a job file means by them."""
+    base = open(SAMPLE).read() + CUT_OUT.format(outline="")
+    through, _ = plate_cut(base, tmp_path)
+    zero, _ = plate_cut(base.replace("tab_count = 4,", "tab_count = 4, depth = 0,"), tmp_path)
+    assert np.array_equal(through, zero)
+    pocket = ('\n[[operations]]\nkind = "pocket"\nname = "letters"\nobjects = { region = "Letters" }\n'
+              "settings = { depth = 1.0, diameter = 3.0, stepover = 1.2, rest_diameter = 0.0, rest_tool_number = 0 }\n")
+    from kezuri.operators import jobfile
+    path = tmp_path / "pocket.toml"
+    path.write_text(open(SAMPLE).read() + pocket)
+    planned, _, _, _ = jobfile.plan_file(str(path))
+    item = next(i for i in planned.planned if i.operation.name == "letters")
+    assert [op.tool.number for op in item.part.operations] == [5]          # no rest machining operation
