@@ -4,7 +4,7 @@ from __future__ import annotations
 import bpy
 
 from . import designfile, joblist, panels, preferences, properties, simulate, translations
-from .workflows import WORKFLOWS, job_items
+from .workflows import WORKFLOWS, job_items, settings_groups
 
 CLASSES = (*preferences.CLASSES, *(cls for workflow in WORKFLOWS for cls in workflow.classes), *simulate.CLASSES,
            *joblist.CLASSES, *designfile.CLASSES, *panels.CLASSES)
@@ -12,7 +12,7 @@ MENUS = (*(menu for workflow in WORKFLOWS for menu in workflow.menus), *designfi
 
 
 def register():
-    properties.register(job_items())
+    properties.register(job_items(), settings_groups())
     for cls in CLASSES:
         bpy.utils.register_class(cls)
     for menu, draw in MENUS:

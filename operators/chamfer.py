@@ -1,6 +1,7 @@
-"""Chamfer / deburr in the shell: an operation of job files.  ``objects = { edges = "Outline" }``
-names a curve, Text or mesh whose closed outlines (seen from above, in the stock plate's work
-frame) have their top edges chamfered with a V-bit; settings by name (:data:`SETTINGS`)."""
+"""Chamfer / deburr in the shell: an operation of job files and the job list.  ``objects = { edges =
+"Outline" }`` names a curve, Text or mesh whose closed outlines (seen from above, in the stock
+plate's work frame) have their top edges chamfered with a V-bit; round holes (``holes = [[x, y,
+diameter], ...]`` or ``objects.holes``) are chamfered along circles; settings by name (:data:`SETTINGS`)."""
 from __future__ import annotations
 
 import math
@@ -8,6 +9,7 @@ import math
 from ..toolpath.ir.program import ProgramError, Tool
 from ..toolpath.job import JobOperation
 from ..toolpath.operations.chamfer import chamfer as core
+from ..toolpath.operations.chamfer import holes as hole_circles
 from ..toolpath.operations.chamfer.kind import ChamferGeometry
 from .workflow import Workflow
 
@@ -46,27 +48,68 @@ def settings_from(entry) -> core.ChamferSettings:
 
 
 def job_operation(scene, depsgraph, entry, post_name: str):
-    """A job file's chamfer: ``objects = { edges = "<curve, Text or mesh>" }``."""
+    """A job file's chamfer: ``objects = { edges = "<curve, Text or mesh>" }`` (its outlines' top
+    edges), and/or round holes: ``holes = [[x, y, diameter], ...]`` in work mm or ``objects = { holes =
+    "<curve or mesh>" }`` (its circles or cylindrical holes, found as the drilling finds them)."""
     from . import convert
+    from .drill import holes_of
     from .jobentry import JobFileError
 
-    unknown = [slot for slot in entry.objects if slot != "edges"]
+    objects = {slot: obj for slot, obj in entry.objects.items() if obj is not None}     # a row's empty slot
+    unknown = [slot for slot in objects if slot not in ("edges", "holes")]
     if unknown:
         raise JobFileError(f"{entry.where}: objects.{unknown[0]}: a chamfer takes objects.edges (a curve, Text "
-                           "or mesh)")
-    if "edges" not in entry.objects:
-        raise JobFileError(f"{entry.where}: no edges: give objects = {{ edges = \"<curve, Text or mesh>\" }}")
+                           "or mesh) and objects.holes (a curve or mesh with round holes)")
+    if "holes" in objects and "holes" in entry.table:
+        raise JobFileError(f"{entry.where}: give the holes as holes = [[x, y, diameter], ...] or as objects.holes, "
+                           "not both")
+    if "edges" not in objects and "holes" not in objects and "holes" not in entry.table:
+        raise JobFileError(f"{entry.where}: no edges: give objects = {{ edges = \"<curve, Text or mesh>\" }} or "
+                           "holes = [[x, y, diameter], ...]")
     try:
         settings = settings_from(entry)
         settings.check()
-        plate = convert.plate_from_object(scene.kezuri.stock.plate, depsgraph, scene, scene.kezuri.stock.origin)
-        loops = convert.outlines_in_work(entry.objects["edges"], depsgraph, plate.frame)
-        core.tool_paths(loops, settings)
+        loops, holes = [], ()
+        if "edges" in objects:
+            plate = convert.plate_from_object(scene.kezuri.stock.plate, depsgraph, scene, scene.kezuri.stock.origin)
+            loops = convert.outlines_in_work(objects["edges"], depsgraph, plate.frame)
+            core.tool_paths(loops, settings)
+        if "holes" in objects:
+            found = holes_of(objects["holes"], depsgraph, scene, 0.01, entry.where)
+            holes = tuple((float(x), float(y), float(d)) for (x, y), d in zip(found.holes, found.diameters))
+        elif "holes" in entry.table:
+            if not isinstance(entry.table["holes"], list):
+                raise JobFileError(f"{entry.where}: holes must be a list of [x, y, diameter] in work mm")
+            holes = tuple(map(tuple, hole_circles.check_holes(entry.table["holes"]).tolist()))
+        for x, y, diameter in holes:
+            hole_circles.circle_radius(diameter, settings, f"the hole at X{x:g} Y{y:g}")
     except core.ChamferError as error:
         raise JobFileError(f"{entry.where}: the edges or the V-bit: {error}") from None
-    geometry = ChamferGeometry(tuple(loops), 0.0)
+    geometry = ChamferGeometry(tuple(loops), 0.0, holes)
     return JobOperation("chamfer", entry.name, settings, geometry, entry.enabled), None, None
 
 
-WORKFLOW = Workflow("CHAMFER", "Chamfer", "V-bit chamfer along the top edges of closed outlines (job files)",
-                    post_families=POST_FAMILIES, kind="chamfer", job_operation=job_operation)
+def settings_group() -> type:
+    """The chamfer's settings as panel properties (names, units and defaults of ChamferSettings)."""
+    from . import kindsettings as ks
+
+    d = core.ChamferSettings()
+    return ks.settings_group("KezuriChamferSettings", {
+        "tool_number": ks.whole("Tool Number", d.tool.number, "The V-bit's tool number (T word)"),
+        "diameter": ks.length("Diameter", d.tool.diameter, "The V-bit's diameter"),
+        "flute_length": ks.length("Flute Length", d.tool.flute_length, "The V-bit's flute length"),
+        "width": ks.length("Width", d.width, "Across the top, from the edge into the material; 0: from the depth"),
+        "depth": ks.length("Depth", d.depth, "Down the wall; 0: from the width"),
+        "tip_gap": ks.length("Tip Gap", d.tip_gap, "The tip below the chamfer, in the waste"),
+        "rpm": ks.number("Spindle", d.rpm, "Spindle speed", "rpm", 0),
+        "feed": ks.number("Feed", d.feed, "Cutting feed", "mm/min", 0),
+        "plunge_feed": ks.number("Plunge Feed", d.plunge_feed, "Feed down the ramps", "mm/min", 0),
+    })
+
+
+PANELS = (("Chamfer", ("width", "depth", "tip_gap")),
+          ("Tool & Feeds", ("tool_number", "diameter", "flute_length", "rpm", "feed", "plunge_feed")))
+
+WORKFLOW = Workflow("CHAMFER", "Chamfer", "V-bit chamfer along the top edges of closed outlines and round holes",
+                    post_families=POST_FAMILIES, kind="chamfer", job_operation=job_operation,
+                    settings_group=settings_group(), settings_panels=PANELS)

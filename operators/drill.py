@@ -112,18 +112,19 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     ``objects = { holes = "<curve or mesh>" }``."""
     from .jobentry import JobFileError
 
-    unknown = [slot for slot in entry.objects if slot != "holes"]
+    objects = {slot: obj for slot, obj in entry.objects.items() if obj is not None}     # a row's empty slot
+    unknown = [slot for slot in objects if slot != "holes"]
     if unknown:
         raise JobFileError(f"{entry.where}: objects.{unknown[0]}: drilling takes objects.holes (a curve or a mesh)")
-    if "holes" in entry.objects and "holes" in entry.table:
+    if "holes" in objects and "holes" in entry.table:
         raise JobFileError(f"{entry.where}: give the holes as holes = [[x, y], ...] or as objects.holes, not both")
-    if "holes" not in entry.objects and "holes" not in entry.table:
+    if "holes" not in objects and "holes" not in entry.table:
         raise JobFileError(f"{entry.where}: no holes: give holes = [[x, y], ...] in work mm")
     try:
         settings, tolerance = settings_from(entry)
         settings.check()
-        if "holes" in entry.objects:
-            geometry = holes_of(entry.objects["holes"], depsgraph, scene, tolerance, entry.where)
+        if "holes" in objects:
+            geometry = holes_of(objects["holes"], depsgraph, scene, tolerance, entry.where)
         else:
             points = core.check_holes(entry.table["holes"])
             geometry = DrillGeometry(tuple(map(tuple, points.tolist())), 0.0)
@@ -132,5 +133,49 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     return JobOperation("drill", entry.name, settings, geometry, entry.enabled), None, None
 
 
-WORKFLOW = Workflow("DRILL", "Drilling", "Holes at given centres or found in curves and meshes (job files)",
-                    post_families=POST_FAMILIES, kind="drill", job_operation=job_operation)
+def settings_group() -> type:
+    """The drilling's settings as panel properties (names, units and defaults of DrillSettings)."""
+    from . import kindsettings as ks
+
+    d = core.DrillSettings()
+    return ks.settings_group("KezuriDrillSettings", {
+        "tool_number": ks.whole("Tool Number", d.tool.number, "The drill's tool number (T word)"),
+        "diameter": ks.length("Diameter", d.tool.diameter, "The drill's diameter"),
+        "flute_length": ks.length("Flute Length", d.tool.flute_length, "The drill's flute length"),
+        "depth": ks.length("Depth", d.depth, "Depth to the tip below the top (holes found in a mesh bring their own)"),
+        "peck": ks.length("Peck", d.peck, "Deepest feed of one peck; 0: no pecking"),
+        "dwell": ks.number("Dwell", d.dwell, "Time at the bottom of a hole drilled without pecks", "s", 2),
+        "retract": ks.choice("Retract", d.retract, "Where the drill goes between holes", (
+            ("initial", "Initial Level", "The clearance plane (G98)"), ("r", "R Plane", "The R plane (G99)"))),
+        "order": ks.choice("Order", d.order, "The order the holes are drilled in", (
+            ("shortest", "Shortest", "Nearest neighbour, then 2-opt"), ("given", "As Given", "As listed"))),
+        "rpm": ks.number("Spindle", d.rpm, "Spindle speed", "rpm", 0),
+        "feed": ks.number("Feed", d.feed, "Feed down the hole", "mm/min", 0),
+        "breakthrough": ks.length("Breakthrough", d.breakthrough, "Below a through hole, beyond the drill's point"),
+        "min_diameter": ks.length("Min Diameter", d.min_diameter, "Holes found in the model: only those this wide"),
+        "max_diameter": ks.length("Max Diameter", d.max_diameter, "Holes found in the model: at most this wide; "
+                                                                  "0: any"),
+        "tolerance": ks.length("Tolerance", 0.01, "How far a found circle's points may lie off the circle"),
+        "helix": ks.switch("Helix Milling", d.helix, "Mill holes wider than the drill along a helix"),
+        "mill_tool_number": ks.whole("Mill Tool", d.mill.number, "The end mill's tool number (T word)"),
+        "mill_diameter": ks.length("Mill Diameter", d.mill.diameter, "The end mill's diameter"),
+        "mill_flute_length": ks.length("Mill Flutes", d.mill.flute_length, "The end mill's flute length"),
+        "mill_rpm": ks.number("Mill Spindle", d.mill_rpm, "The end mill's spindle speed", "rpm", 0),
+        "mill_feed": ks.number("Mill Feed", d.mill_feed, "The end mill's feed", "mm/min", 0),
+        "helix_pitch": ks.length("Helix Pitch", d.helix_pitch, "Down per turn of the helix"),
+        "spot": ks.switch("Spot Drill", d.spot, "A spot drill pass at every hole first"),
+        "spot_depth": ks.length("Spot Depth", d.spot_depth, "To the spot drill's tip"),
+        "spot_tool_number": ks.whole("Spot Tool", d.spot_tool.number, "The spot drill's tool number (T word)"),
+        "spot_diameter": ks.length("Spot Diameter", d.spot_tool.diameter, "The spot drill's diameter"),
+    })
+
+
+PANELS = (("Holes", ("depth", "peck", "dwell", "retract", "order", "breakthrough", "min_diameter", "max_diameter",
+                     "tolerance")),
+          ("Drill & Feeds", ("tool_number", "diameter", "flute_length", "rpm", "feed")),
+          ("Helix & Spot", ("helix", "mill_tool_number", "mill_diameter", "mill_flute_length", "mill_rpm", "mill_feed",
+                            "helix_pitch", "spot", "spot_depth", "spot_tool_number", "spot_diameter")))
+
+WORKFLOW = Workflow("DRILL", "Drilling", "Holes at given centres or found in curves and meshes",
+                    post_families=POST_FAMILIES, kind="drill", job_operation=job_operation,
+                    settings_group=settings_group(), settings_panels=PANELS)

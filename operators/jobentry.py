@@ -52,8 +52,15 @@ def apply_settings(group, entry: JobEntry, skip=()) -> None:
             continue
         if key not in group.bl_rna.properties or key == "rna_type":
             raise JobFileError(f"{entry.where}: settings.{key} is not a setting of {entry.kind}")
-        set_exactly(group, key, value, f"{entry.where}: settings.{key}")
-    check_group(group, entry.kind)
+        try:
+            if group.bl_rna.properties[key].type == "BOOLEAN" and isinstance(value, bool):
+                setattr(group, key, value)              # a switch (set_exactly takes numbers and words)
+            else:
+                set_exactly(group, key, value, f"{entry.where}: settings.{key}")
+        except (TypeError, ValueError) as error:       # a word a menu does not hold, a text for a number
+            raise JobFileError(f"{entry.where}: settings.{key} = {value!r}: {error}") from None
+    if not getattr(group, "checked_by_kind", False):     # a router kind's own checks refuse its values
+        check_group(group, entry.kind)
 
 
 def settings_of(group, skip=()) -> dict:

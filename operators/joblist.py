@@ -37,9 +37,11 @@ PREFIX = "Kezuri Job"
 # an operation's objects when a row is added: slot -> (group of scene.kezuri, its property; None: empty)
 DEFAULT_SLOTS = {"engrave": (("plate", "stock", "plate"), ("letters", "engrave", "letters"),
                              ("surface", "engrave", "surface")),
-                 "profile": (("shape", None, None),),
-                 "pocket": (("region", "engrave", "letters"), ("plate", "stock", "plate"))}
-DEFAULT_EXTRA = {"drill": {"holes": []}, "profile": {"tabs": []}}
+                 "profile": (("shape", None, None),),      # no shape: the plate's outline
+                 "pocket": (("region", "engrave", "letters"), ("plate", "stock", "plate")),
+                 "drill": (("holes", None, None),), "chamfer": (("edges", None, None), ("holes", None, None))}
+DEFAULT_EXTRA = {"profile": {"tabs": []}}
+DEFAULT_SETTINGS = {"profile": {"tab_count": 4}}     # a new cut-out holds its part (a job file says so itself)
 ROW_KEYS = ("kind", "name", "enabled", "objects", "settings")      # a job file's keys a row keeps apart
 
 
@@ -277,6 +279,7 @@ def new_row(scene, kind: str, name: str | None = None, slots: bool = True):
             item = row.objects.add()
             item.slot, item.object = slot, getattr(getattr(scene.kezuri, group), prop) if group else None
         row.extra = json.dumps(DEFAULT_EXTRA.get(kind, {}))
+        row.settings = json.dumps(DEFAULT_SETTINGS.get(kind, {}))
     return row
 
 

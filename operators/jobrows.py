@@ -25,6 +25,23 @@ def mark_changed(row, context=None):
         row.state = "STALE"
 
 
+def settings_changed(row, context=None):
+    """A row's settings text changed: stale, and if its kind's panel group shows this row, the group
+    takes the new settings (else the next read-back would put the panel's old ones over them); a
+    text that does not read is left for Generate to refuse by name."""
+    mark_changed(row)
+    scene = row.id_data
+    group = group_of(scene, row.kind)
+    if group is None or job_list(scene).shown != row.uid:
+        return
+    try:
+        if json.loads(row.settings or "{}") != settings_of(group):
+            show_row(scene, row)
+    except (ValueError, InputError) as error:
+        print(f"Kezuri: {error}")
+        job_list(scene).shown = -1          # the panel no longer shows the row: its text stays as typed
+
+
 def selected(listed, context=None):
     """The list's selection changed: the panel shows the newly selected row's settings."""
     select_row(listed.id_data)
@@ -46,7 +63,7 @@ class KezuriJobRow(bpy.types.PropertyGroup):
     enabled: BoolProperty(name="Enabled", default=True, update=mark_changed,
                           description="Plan and cut this operation (switched off: left out of the program)")
     objects: CollectionProperty(type=KezuriJobObject)
-    settings: StringProperty(name="Settings", default="{}", update=mark_changed,
+    settings: StringProperty(name="Settings", default="{}", update=settings_changed,
                              description="The operation's settings by property name (JSON), as a job file keeps them")
     extra: StringProperty(name="More", default="{}", update=mark_changed,
                           description="The operation's other keys (JSON), e.g. a drilling's holes in work mm")

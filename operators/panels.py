@@ -340,6 +340,8 @@ class KEZURI_PT_joblist(KezuriPanel, bpy.types.Panel):
             if getattr(context.scene.kezuri, selected.kind, None) is None:     # no panel of its own: as in the file
                 box.prop(selected, "settings", text="")
                 box.prop(selected, "extra", text="")
+            elif _has_settings_panels(selected.kind):     # its settings below; holes, tabs as in the file
+                field(box, selected, "extra")
         big_button(layout, "kezuri.job_generate", "FILE_REFRESH")
         column = layout.column(align=True)
         column.operator("kezuri.job_simulate", icon="MOD_BOOLEAN", text="Simulate Job").upto = False
@@ -364,6 +366,34 @@ def joblist_subpanels(classes) -> tuple:
                                  {"bl_idname": idname, "bl_label": cls.bl_label, "bl_parent_id": "KEZURI_PT_joblist",
                                   "bl_options": {"DEFAULT_CLOSED"}, "draw": cls.draw, "poll": poll}))
     return tuple(made)
+
+
+def kind_settings_subpanels() -> tuple:
+    """The settings sub-panels of the operation kinds whose settings are panel properties
+    (``Workflow.settings_panels``: profile, pocket, drill, chamfer), under the Job panel, shown while
+    a row of that kind is selected; they draw ``scene.kezuri.<kind>``, which holds the row's settings."""
+    from .joblist import adapters
+
+    made = []
+    for kind, workflow in adapters().items():
+        for index, (label, names) in enumerate(workflow.settings_panels):
+            idname = f"KEZURI_PT_joblist_{kind}_{index}"
+            made.append(type(idname, (KezuriPanel, bpy.types.Panel),
+                             {"bl_idname": idname, "bl_label": label, "bl_parent_id": "KEZURI_PT_joblist",
+                              "bl_options": set() if index == 0 else {"DEFAULT_CLOSED"},
+                              "draw": _settings_drawer(kind, names), "poll": classmethod(_kind_poll(kind))}))
+    return tuple(made)
+
+
+def _settings_drawer(kind: str, names: tuple):
+    def draw(self, context):
+        fields(self.layout, getattr(context.scene.kezuri, kind), names)
+    return draw
+
+
+def _has_settings_panels(kind: str) -> bool:
+    from .joblist import adapters
+    return bool(getattr(adapters().get(kind), "settings_panels", ()))
 
 
 def _kind_poll(kind: str):
@@ -406,4 +436,4 @@ WORKFLOW_PANELS = (KEZURI_PT_engrave, KEZURI_PT_engrave_texture, KEZURI_PT_engra
            KEZURI_PT_sheet_setup, KEZURI_PT_sheet_elbow, KEZURI_PT_simulate)
 # Machine & Stock on top, the job list below it, then the picked workflow's panels
 CLASSES = (KEZURI_PT_job, KEZURI_PT_machine, KEZURI_PT_joblist, *joblist_subpanels(WORKFLOW_PANELS),
-           *WORKFLOW_PANELS)
+           *kind_settings_subpanels(), *WORKFLOW_PANELS)

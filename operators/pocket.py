@@ -47,6 +47,9 @@ def settings_from(entry) -> core.PocketSettings:
                              float(given.get("diameter", default.tool.diameter)),
                              float(given.get("flute_length", default.tool.flute_length)))
         rest = None
+        for key in ("rest_diameter", "rest_tool_number", "rest_flute_length"):
+            if given.get(key) == 0:
+                del given[key]          # 0: no rest machining / the next tool number / the main tool's flutes
         if "rest_diameter" in given:
             rest = core.end_mill(given.get("rest_tool_number", tool.number + 1), float(given["rest_diameter"]),
                                  float(given.get("rest_flute_length", tool.flute_length)))
@@ -66,16 +69,17 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     from .machines import scene_machine
 
     slots = ("region", "plate")
-    for slot in entry.objects:
+    objects = {slot: obj for slot, obj in entry.objects.items() if obj is not None}     # a row's empty slot
+    for slot in objects:
         if slot not in slots:
             raise JobFileError(f"{entry.where}: objects.{slot}: a pocket's objects are {', '.join(slots)}")
-    if "region" not in entry.objects:
+    if "region" not in objects:
         raise JobFileError(f"{entry.where}: no region: give objects = {{ region = \"<curve, Text or mesh>\" }}")
     settings = scene.kezuri
-    plate = convert.plate_from_object(entry.objects.get("plate", settings.stock.plate), depsgraph, scene,
+    plate = convert.plate_from_object(objects.get("plate", settings.stock.plate), depsgraph, scene,
                                       settings.stock.origin)
     convert.check_fits(plate, scene)
-    obj = entry.objects["region"]
+    obj = objects["region"]
     loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
     pocket_settings = settings_from(entry)
     try:
@@ -91,5 +95,55 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     return JobOperation("pocket", entry.name, pocket_settings, geometry, entry.enabled), setup, plate.frame
 
 
-WORKFLOW = Workflow("POCKET", "Pocket", "Clear closed regions with islands to a flat floor (job files)",
-                    post_families=POST_FAMILIES, kind="pocket", job_operation=job_operation)
+def settings_group() -> type:
+    """The pocket's settings as panel properties (names, units and defaults of PocketSettings)."""
+    from . import kindsettings as ks
+
+    d = core.PocketSettings()
+    return ks.settings_group("KezuriPocketSettings", {
+        "tool_number": ks.whole("Tool Number", d.tool.number, "The end mill's tool number (T word)"),
+        "diameter": ks.length("Diameter", d.tool.diameter, "The end mill's diameter"),
+        "flute_length": ks.length("Flute Length", d.tool.flute_length, "The end mill's flute length"),
+        "depth": ks.length("Depth", d.depth, "Depth of the floor below the top"),
+        "step_down": ks.length("Step Down", d.step_down, "Deepest cut of one level"),
+        "stepover": ks.length("Stepover", d.stepover, "Between neighbouring paths, at most the diameter"),
+        "strategy": ks.choice("Strategy", d.strategy, "How the region is cleared", (
+            ("offset", "Offset", "Rings from the inside out along the walls"),
+            ("zigzag", "Zigzag", "A raster at the angle, then a ring along the walls"))),
+        "angle": ks.number("Angle", d.angle, "Zigzag: direction of the raster from +X", "degrees"),
+        "entry": ks.choice("Entry", d.entry, "How each level is entered", (
+            ("helix", "Helix", "A helix inside the region (a ramp where none fits)"),
+            ("ramp", "Ramp", "A ramp along the path"))),
+        "helix_diameter": ks.length("Helix Diameter", d.helix_diameter, "Of the helix the tool's centre follows"),
+        "ramp_angle": ks.number("Ramp Angle", d.ramp_angle, "Slope of the helix and the ramps", "degrees"),
+        "finish_walls": ks.switch("Finish Walls", d.finish_walls, "A ring along every wall at the end"),
+        "wall_allowance": ks.length("Wall Allowance", d.wall_allowance, "Left on the walls by roughing"),
+        "finish_floor": ks.switch("Finish Floor", d.finish_floor, "A pass over the floor at the full depth"),
+        "floor_allowance": ks.length("Floor Allowance", d.floor_allowance, "Left on the floor by roughing"),
+        "rpm": ks.number("Spindle", d.rpm, "Spindle speed", "rpm", 0),
+        "feed": ks.number("Feed", d.feed, "Cutting feed", "mm/min", 0),
+        "entry_feed": ks.number("Entry Feed", d.entry_feed, "Feed down the helices and ramps", "mm/min", 0),
+        "clearance_z": ks.length("Clearance Plane", d.clearance_z, "Height of rapid moves between cuts"),
+        "safe_z": ks.length("Safe Z", d.safe_z, "Height where the operation starts and ends"),
+        "rest_diameter": ks.length("Rest Diameter", 0.0, "A smaller end mill for what the tool cannot reach; "
+                                                         "0: no rest machining"),
+        "rest_tool_number": ks.whole("Rest Tool", 0, "The rest end mill's tool number; 0: the next after the tool's"),
+        "rest_flute_length": ks.length("Rest Flutes", 0.0, "The rest end mill's flute length; 0: the tool's"),
+        "rest_stepover": ks.length("Rest Stepover", d.rest_stepover, "Between the rest end mill's paths"),
+        "rest_step_down": ks.length("Rest Step Down", d.rest_step_down, "The rest end mill's deepest cut"),
+        "rest_rpm": ks.number("Rest Spindle", d.rest_rpm, "The rest end mill's spindle speed", "rpm", 0),
+        "rest_feed": ks.number("Rest Feed", d.rest_feed, "The rest end mill's feed", "mm/min", 0),
+    })
+
+
+PANELS = (("Clearing", ("depth", "step_down", "stepover", "strategy", "angle", "entry", "helix_diameter",
+                        "ramp_angle")),
+          ("Finishing", ("finish_walls", "wall_allowance", "finish_floor", "floor_allowance")),
+          ("Tool & Feeds", ("tool_number", "diameter", "flute_length", "rpm", "feed", "entry_feed", "clearance_z",
+                            "safe_z")),
+          ("Rest Machining", ("rest_diameter", "rest_tool_number", "rest_flute_length", "rest_stepover",
+                              "rest_step_down", "rest_rpm", "rest_feed")))
+
+WORKFLOW = Workflow("POCKET", "Pocket", "Clear closed regions with islands to a flat floor",
+                    post_families=POST_FAMILIES, kind="pocket", job_operation=job_operation,
+                    settings_group=settings_group(), settings_panels=PANELS)

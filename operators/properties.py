@@ -459,12 +459,20 @@ CLASSES = (KezuriMachine, KezuriStock, KezuriEngrave, KezuriSheet, KezuriPocket,
            KezuriSettings)
 
 
-def register(jobs: list):
+_KIND_GROUPS: list = []     # the operation kinds' settings groups registered with KezuriSettings
+
+
+def register(jobs: list, groups: list = ()):
     """``jobs``: the job picker's items, (key, label, description) per workflow with panels
-    (:func:`.workflows.job_items`)."""
+    (:func:`.workflows.job_items`); ``groups``: (kind, PropertyGroup class) of the operation kinds
+    whose settings have panel properties (:func:`.workflows.settings_groups`): ``scene.kezuri.<kind>``."""
     KezuriSettings.__annotations__["job"] = EnumProperty(
         name="Job", items=jobs, default=jobs[0][0],
         description="The job the CAM tab shows: its panels, and Machine & Stock")
+    for kind, cls in groups:
+        bpy.utils.register_class(cls)
+        _KIND_GROUPS.append(cls)
+        KezuriSettings.__annotations__[kind] = PointerProperty(type=cls)
     for cls in CLASSES:
         bpy.utils.register_class(cls)
     bpy.types.Scene.kezuri = PointerProperty(type=KezuriSettings)
@@ -476,3 +484,5 @@ def unregister():
     del bpy.types.Scene.kezuri
     for cls in reversed(CLASSES):
         bpy.utils.unregister_class(cls)
+    while _KIND_GROUPS:
+        bpy.utils.unregister_class(_KIND_GROUPS.pop())

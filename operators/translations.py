@@ -2278,12 +2278,131 @@ POCKET_TEMPLATES = {
 }
 
 
+# The router kinds' settings panels in the job list (issue 29: profile, pocket, drill, chamfer; kindsettings.py)
+ROUTER_PANEL_TEXTS = {
+    # panel labels
+    "Cut": "切削", "Tabs": "タブ", "Tool & Feeds": "工具と送り", "Lead-In & Out": "アプローチと退避",
+    "Clearing": "除去加工", "Finishing": "仕上げ", "Rest Machining": "残り削り", "Holes": "穴",
+    "Drill & Feeds": "ドリルと送り", "Helix & Spot": "ヘリカルとセンタ穴", "Edges": "エッジ",
+    # property names
+    "Tool Number": "工具番号", "Side": "加工側", "Climb Milling": "ダウンカット", "Breakthrough": "突き抜け量",
+    "Ramp Angle": "ランプ角度", "Tab Spacing": "タブ間隔", "Tab Width": "タブ幅", "Tab Height": "タブ高さ",
+    "Tab Shape": "タブ形状", "Lead": "アプローチ", "Lead Radius": "アプローチ半径", "Stepover": "ステップオーバー",
+    "Strategy": "加工方法", "Angle": "角度", "Entry": "進入", "Helix Diameter": "ヘリカル径",
+    "Finish Walls": "壁の仕上げ", "Wall Allowance": "壁の取り代", "Finish Floor": "底の仕上げ",
+    "Floor Allowance": "底の取り代", "Entry Feed": "進入送り", "Rest Diameter": "残り削り工具径",
+    "Rest Tool": "残り削り工具", "Rest Flutes": "残り削り刃長", "Rest Stepover": "残り削りピッチ",
+    "Rest Step Down": "残り削り切込み", "Rest Spindle": "残り削り回転数", "Rest Feed": "残り削り送り",
+    "Peck": "ペック量", "Dwell": "ドウェル", "Retract": "復帰位置", "Order": "加工順",
+    "Min Diameter": "最小径", "Max Diameter": "最大径", "Tolerance": "許容差", "Helix Milling": "ヘリカル加工",
+    "Mill Tool": "エンドミル番号", "Mill Diameter": "エンドミル径", "Mill Flutes": "エンドミル刃長",
+    "Mill Spindle": "エンドミル回転数", "Mill Feed": "エンドミル送り", "Helix Pitch": "ヘリカルピッチ",
+    "Spot Drill": "センタ穴ドリル", "Spot Depth": "センタ穴深さ", "Spot Tool": "センタ穴工具",
+    "Spot Diameter": "センタ穴ドリル径", "Width": "幅", "Tip Gap": "先端すき間",
+    # enum items
+    "Outside": "外側", "Inside": "内側", "On the Line": "線上", "Flat": "平ら", "Triangle": "三角",
+    "Arc": "円弧", "Line": "直線", "None": "なし", "Offset": "オフセット", "Zigzag": "ジグザグ",
+    "Helix": "ヘリカル", "Ramp": "ランプ", "Initial Level": "イニシャル点", "R Plane": "R点",
+    "Shortest": "最短", "As Given": "指定順",
+    "Cut the part out: the tool runs outside the outline": "部品を切り抜きます：工具は輪郭の外側を通ります",
+    "Cut a hole: the tool runs inside the outline": "穴を切ります：工具は輪郭の内側を通ります",
+    "The tool's centre on the outline": "工具中心を輪郭上に置きます",
+    "A flat top with 45 degree ends": "上面が平らで両端が45度",
+    "A ridge as wide and high as the tab": "タブの幅と高さの山形",
+    "A quarter arc in the waste": "捨て側の1/4円弧", "A line along the normal in the waste": "捨て側の法線方向の直線",
+    "Straight onto the contour": "輪郭へ直接",
+    "Rings from the inside out along the walls": "内側から外側へ壁に沿うリング",
+    "A raster at the angle, then a ring along the walls": "角度方向の往復走査のあと壁に沿うリング",
+    "A helix inside the region (a ramp where none fits)": "領域内のヘリカル（入らない所はランプ）",
+    "A ramp along the path": "経路に沿うランプ",
+    "The clearance plane (G98)": "クリアランス面（G98）", "The R plane (G99)": "R点（G99）",
+    "Nearest neighbour, then 2-opt": "最近傍のあと 2-opt", "As listed": "並べた順",
+    # descriptions
+    "Which side of the outline the tool cuts": "輪郭のどちら側を削るか",
+    "Climb milling (off: conventional)": "ダウンカット（オフ：アップカット）",
+    "Depth below the top; 0: through the stock and the breakthrough (mm)":
+        "上面からの深さ。0：素材を貫通し突き抜け量まで (mm)",
+    "How far below the stock a cut through goes (mm)": "貫通する切削が素材の下へ出る量 (mm)",
+    "Deepest cut of one level (mm)": "1段の最大切込み (mm)",
+    "Left for the finishing pass; 0: no finishing pass (mm)": "仕上げパス用の取り代。0：仕上げパスなし (mm)",
+    "Feed down the ramps (mm/min)": "ランプを下る送り (mm/min)",
+    "Slope of the ramp entry (degrees)": "ランプ進入の傾き (度)",
+    "Tabs on every contour (0: none, or by spacing)": "各輪郭のタブ数（0：なし、または間隔で指定）",
+    "A tab every ... round each contour; 0: by count (mm)": "各輪郭を回るタブの間隔。0：個数で指定 (mm)",
+    "Width of a tab along the contour (mm)": "輪郭に沿ったタブの幅 (mm)",
+    "Height of a tab above the cut's bottom (mm)": "切削底からのタブの高さ (mm)",
+    "The tab's profile along the contour": "輪郭に沿ったタブの形",
+    "How the finishing pass comes onto the contour and leaves it": "仕上げパスが輪郭に入り、離れる方法",
+    "The lead's radius or length (mm)": "アプローチの半径または長さ (mm)",
+    "The end mill's tool number (T word)": "エンドミルの工具番号（T ワード）",
+    "The end mill's diameter (mm)": "エンドミルの直径 (mm)",
+    "The end mill's flute length (mm)": "エンドミルの刃長 (mm)",
+    "The end mill's spindle speed (rpm)": "エンドミルの主軸回転数 (rpm)",
+    "The end mill's feed (mm/min)": "エンドミルの送り (mm/min)",
+    "Depth of the floor below the top (mm)": "上面からの底の深さ (mm)",
+    "Between neighbouring paths, at most the diameter (mm)": "隣り合う経路の間隔、直径以下 (mm)",
+    "How the region is cleared": "領域の削り方",
+    "Zigzag: direction of the raster from +X (degrees)": "ジグザグ：+X からの走査方向 (度)",
+    "How each level is entered": "各段への進入方法",
+    "Of the helix the tool's centre follows (mm)": "工具中心が通るヘリカルの径 (mm)",
+    "Slope of the helix and the ramps (degrees)": "ヘリカルとランプの傾き (度)",
+    "A ring along every wall at the end": "最後にすべての壁に沿うリング",
+    "Left on the walls by roughing (mm)": "荒削りで壁に残す量 (mm)",
+    "A pass over the floor at the full depth": "最終深さで底を削るパス",
+    "Left on the floor by roughing (mm)": "荒削りで底に残す量 (mm)",
+    "Feed down the helices and ramps (mm/min)": "ヘリカルとランプを下る送り (mm/min)",
+    "Height where the operation starts and ends (mm)": "工程の開始と終了の高さ (mm)",
+    "A smaller end mill for what the tool cannot reach; 0: no rest machining (mm)":
+        "工具が届かない所を削る小径エンドミル。0：残り削りなし (mm)",
+    "The rest end mill's tool number; 0: the next after the tool's": "残り削りエンドミルの工具番号。0：工具の次の番号",
+    "The rest end mill's flute length; 0: the tool's (mm)": "残り削りエンドミルの刃長。0：工具と同じ (mm)",
+    "Between the rest end mill's paths (mm)": "残り削りエンドミルの経路間隔 (mm)",
+    "The rest end mill's deepest cut (mm)": "残り削りエンドミルの最大切込み (mm)",
+    "The rest end mill's spindle speed (rpm)": "残り削りエンドミルの主軸回転数 (rpm)",
+    "The rest end mill's feed (mm/min)": "残り削りエンドミルの送り (mm/min)",
+    "The drill's tool number (T word)": "ドリルの工具番号（T ワード）",
+    "The drill's diameter (mm)": "ドリルの直径 (mm)", "The drill's flute length (mm)": "ドリルの刃長 (mm)",
+    "Depth to the tip below the top (holes found in a mesh bring their own) (mm)":
+        "上面から先端までの深さ（メッシュで見つけた穴はその深さ） (mm)",
+    "Deepest feed of one peck; 0: no pecking (mm)": "1回のペックの最大送り量。0：ペックなし (mm)",
+    "Time at the bottom of a hole drilled without pecks (s)": "ペックなしの穴の底での停止時間 (s)",
+    "Where the drill goes between holes": "穴と穴の間でドリルが戻る位置",
+    "The order the holes are drilled in": "穴をあける順序",
+    "Feed down the hole (mm/min)": "穴を下る送り (mm/min)",
+    "Below a through hole, beyond the drill's point (mm)": "通し穴の下、ドリル先端部の先 (mm)",
+    "Holes found in the model: only those this wide (mm)": "モデルで見つけた穴：この径以上のみ (mm)",
+    "Holes found in the model: at most this wide; 0: any (mm)": "モデルで見つけた穴：この径以下。0：制限なし (mm)",
+    "How far a found circle's points may lie off the circle (mm)": "見つけた円の点が円から外れてよい距離 (mm)",
+    "Mill holes wider than the drill along a helix": "ドリルより大きい穴をヘリカルで削る",
+    "Down per turn of the helix (mm)": "ヘリカル1周の下降量 (mm)",
+    "A spot drill pass at every hole first": "最初に各穴へセンタ穴ドリル",
+    "To the spot drill's tip (mm)": "センタ穴ドリルの先端まで (mm)",
+    "The spot drill's tool number (T word)": "センタ穴ドリルの工具番号（T ワード）",
+    "The spot drill's diameter (mm)": "センタ穴ドリルの直径 (mm)",
+    "The V-bit's tool number (T word)": "Vビットの工具番号（T ワード）",
+    "The V-bit's diameter (mm)": "Vビットの直径 (mm)", "The V-bit's flute length (mm)": "Vビットの刃長 (mm)",
+    "Across the top, from the edge into the material; 0: from the depth (mm)":
+        "上面でエッジから材料側への幅。0：深さから決める (mm)",
+    "Down the wall; 0: from the width (mm)": "壁に沿った深さ。0：幅から決める (mm)",
+    "The tip below the chamfer, in the waste (mm)": "面取りの下、捨て側での先端の位置 (mm)",
+    "chamfer: no holes: give holes = [[x, y, diameter], ...] in work mm":
+        "面取り：穴がありません。holes = [[x, y, 直径], ...] をワーク座標 mm で指定してください",
+    "chamfer: no edges and no holes to chamfer": "面取り：面取りするエッジも穴もありません",
+    # the kinds' descriptions (the job list's Add menu)
+    "Cut along an outline, inside, outside or on it, with tabs": "輪郭に沿って内側・外側・線上を切削、タブ付き",
+    "Clear closed regions with islands to a flat floor": "島のある閉じた領域を平らな底まで削ります",
+    "Holes at given centres or found in curves and meshes": "指定した中心、またはカーブやメッシュで見つけた穴",
+    "V-bit chamfer along the top edges of closed outlines and round holes":
+        "閉じた輪郭と丸穴の上端を V ビットで面取り",
+}
+
+
 def _build() -> dict:
     messages: dict = {}
     for table in (PROPERTY_TEXTS, PANEL_TEXTS, OPERATOR_DESCRIPTIONS, MESSAGES):
         for english, japanese in table.items():
             messages[(DEFAULT, english)] = japanese
-    for english, japanese in (*JOBLIST_TEXTS.items(), *POCKET_TEXTS.items()):
+    for english, japanese in (*JOBLIST_TEXTS.items(), *POCKET_TEXTS.items(), *ROUTER_PANEL_TEXTS.items()):
         messages.setdefault((DEFAULT, english), japanese)
     from .. import post
     for cls in post.posts():     # each post declares its own Japanese label and description
@@ -2440,6 +2559,42 @@ MESSAGE_TEMPLATES.update(JOBLIST_TEMPLATES)
 MESSAGE_TEMPLATES.update(PROFILE_TEMPLATES)
 MESSAGES.update(PROFILE_TEXTS)
 MESSAGE_TEMPLATES.update(POCKET_TEMPLATES)
+# the router kinds' panels and chamfered holes (issue 29)
+ROUTER_TEMPLATES = {
+    "{}: settings.{} = {}: {}": "{0}：settings.{1} = {2} は設定できません：{3}",
+    '{}: no shape and no plate: give objects = {{ shape = "..." }} (a closed curve, Text or mesh), or pick the plate '
+    'to cut out its outline':
+        '{0}：形状も素材もありません。objects = {{ shape = "..." }}（閉じたカーブ、テキスト、メッシュ）を指定するか、'
+        '素材を選んでその輪郭を切り抜いてください',
+    '{}: outline = {}: the only outline a profile takes by name is "plate" (the plate\'s own); give other shapes as '
+    'objects.shape':
+        '{0}：outline = {1}：輪郭加工が名前で受け付ける輪郭は "plate"（素材自身の輪郭）だけです。ほかの形状は objects.shape で'
+        '指定してください',
+    "{}: objects.{}: a chamfer takes objects.edges (a curve, Text or mesh) and objects.holes (a curve or mesh with "
+    "round holes)":
+        "{0}：objects.{1}：面取りは objects.edges（カーブ、テキスト、メッシュ）と objects.holes（丸穴のあるカーブかメッシュ）を取ります",
+    "{}: give the holes as holes = [[x, y, diameter], ...] or as objects.holes, not both":
+        "{0}：穴は holes = [[x, y, 直径], ...] か objects.holes のどちらか一方で指定してください",
+    '{}: no edges: give objects = {{ edges = "<curve, Text or mesh>" }} or holes = [[x, y, diameter], ...]':
+        '{0}：エッジがありません。objects = {{ edges = "<カーブ、テキスト、メッシュ>" }} か holes = [[x, y, 直径], ...] を指定してください',
+    "{}: holes must be a list of [x, y, diameter] in work mm": "{0}：holes はワーク座標 mm の [x, y, 直径] のリストにしてください",
+    "chamfer: holes[{}] = {} is not [x, y, diameter] in mm": "面取り：holes[{0}] = {1} は mm の [x, y, 直径] ではありません",
+    "chamfer: holes[{}]: the diameter must be more than 0 mm, got {}":
+        "面取り：holes[{0}]：直径は 0 mm より大きくしてください（指定値 {1}）",
+    "chamfer: {} is {} mm: with the tip {} mm below the chamfer the V-bit's axis would run {} mm in from its edge, "
+    "past the centre; make tip_gap smaller":
+        "面取り：{0} は {1} mm です。先端を面取りの {2} mm 下にすると V ビットの軸がエッジから {3} mm 内側、中心を越えて"
+        "通ります。tip_gap を小さくしてください",
+    "chamfer: {} is {} mm, narrower than the {} mm chamfer's V-bit ({} mm across the hole at the top): it would cut "
+    "the far side":
+        "面取り：{0} は {1} mm で、{2} mm の面取りの V ビット（上面で穴を横切る幅 {3} mm）より狭く、反対側を削ります",
+    "#{} {}: {} {} is above 1: it is a ratio of the programmed value (0.5 for half), not a percentage; write {} for {} %":
+        "#{0} {1}：{2} {3} が 1 を超えています。指令値に対する比（半分なら 0.5）で、百分率ではありません。{5} % なら {4} と書いてください",
+    "an ISO 14649 ratio must be above 0 and at most 1, got {} (the reader checks it)":
+        "ISO 14649 の比は 0 より大きく 1 以下にしてください（指定値 {0}、リーダーが確認します）",
+    '{}: give objects.shape or outline = "plate", not both': '{0}：objects.shape か outline = "plate" のどちらか一方を指定してください',
+}
+MESSAGE_TEMPLATES.update(ROUTER_TEMPLATES)
 NESTED.update(POCKET_NESTED)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()

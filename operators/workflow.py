@@ -53,6 +53,11 @@ class Workflow:
     # (scene, depsgraph, jobfile.JobEntry, post name) -> (JobOperation, Setup or None, WorkFrame or None):
     # one operation of a job file, its objects and settings read from the scene.
     job_operation: Callable | None = None
+    # the kind's settings as panel properties: a PropertyGroup class, registered as scene.kezuri.<kind>
+    # (its property names, units and defaults those of the kind's job-file settings)
+    settings_group: type | None = None
+    # the job list's sub-panels for a row of the kind: ((label, (property names, ...)), ...), the first open
+    settings_panels: tuple = ()
 
     @property
     def short_label(self) -> str:

@@ -28,6 +28,11 @@ def commands() -> dict:
     return {command.name: command for workflow in WORKFLOWS for command in workflow.commands}
 
 
+def settings_groups() -> list:
+    """(kind, PropertyGroup class) of every operation kind whose settings have panel properties."""
+    return [(w.kind, w.settings_group) for w in WORKFLOWS if w.settings_group is not None]
+
+
 def job_items() -> list:
     """The CAM tab's job picker: (key, label, description) of every workflow with panels."""
     return [(w.key, w.label, w.description) for w in WORKFLOWS if w.classes]

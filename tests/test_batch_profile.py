@@ -58,7 +58,7 @@ def test_rs274_reads_the_cut_through_and_the_tabs_where_the_file_put_them(cut_ou
      "does not fit inside every contour of object 'Outline'"),
     ('objects = { shape = "Outline" }\nsettings = { speed = 3 }', "settings.speed is not a profile setting"),
     ('objects = { shape = "Outline" }\ntabs = [[0.0]]', r"tabs\[0\] = \[0.0\] is not an \[x, y\] point"),
-    ('settings = { }', "no shape"),
+    ('outline = "Outline"', 'the only outline a profile takes by name is "plate"'),    # no shape: the plate's
 ])
 def test_bad_profile_entries_are_refused_by_name(tmp_path, table, words):
     job = tmp_path / "bad.toml"

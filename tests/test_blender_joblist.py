@@ -83,7 +83,7 @@ def test_changing_the_drill_stales_only_it_and_export_replans_only_it_as_batch_w
     assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
     rows = scene.kezuri.job_list.rows
     scene.kezuri.job_list.active = 1
-    rows[1].settings = json.dumps({**DRILL, "depth": 10.0})
+    scene.kezuri.drill.depth = 9.0              # edited in the drilling's panel (the shown row's settings)
     assert [joblist.shown_state(scene, r) for r in rows] == ["PLANNED", "STALE"]
     scene.kezuri.job_list.active = 0
     scene.kezuri.engrave.seed = 8               # the engraving edited in its panel: both stale (the chain)
@@ -94,7 +94,7 @@ def test_changing_the_drill_stales_only_it_and_export_replans_only_it_as_batch_w
     assert joblist.stale_names(scene, job) == ["holes"]
     text, said = export(scene, tmp_path / "plate.ngc", capfd)
     assert "re-planned: holes" in said and "engraving" not in said.split("re-planned:")[1].splitlines()[0]
-    assert drill_bottoms(text) == pytest.approx(-10.0)
+    assert drill_bottoms(text) == pytest.approx(-9.0)
     assert tool_changes(text) == [2, 3, 2, 4]
     assert controller_rules.check(text, "linuxcnc") == []
     assert [r.state for r in rows] == ["PLANNED", "PLANNED"]
@@ -106,7 +106,7 @@ def test_changing_the_drill_stales_only_it_and_export_replans_only_it_as_batch_w
     bpy.ops.wm.save_as_mainfile(filepath=str(blend))
     assert bpy.ops.kezuri.job_save(filepath=str(toml)) == {"FINISHED"}
     saved = open(toml, encoding="utf-8").read()
-    assert 'blend = "plate.blend"' in saved and "depth = 10.0" in saved and "seed = 7" in saved
+    assert 'blend = "plate.blend"' in saved and "depth = 9.0" in saved and "seed = 7" in saved
     out = tmp_path / "out"
     with contextlib.redirect_stderr(io.StringIO()) as err, contextlib.redirect_stdout(io.StringIO()):
         try:

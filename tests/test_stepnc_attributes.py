@@ -240,3 +240,27 @@ def test_an_end_mill_wider_than_its_slot_is_refused(width, refused):
     assert "workingstep #60 'WS SLOT1'" in message
     assert (f"MILLING_CUTTING_TOOL #22 'ENDMILL 10MM': diameter 10 mm is larger than the width {float(width):g} mm "
             "of Slot #30 'SLOT1'") in message
+
+
+# ex1's #46: DRILLING_TYPE_STRATEGY(0.75, 0.50, 2.000, 0.50, 0.75, 8.000) (NIST's note 12: ratios, once 0..100)
+STRATEGY = "#46= DRILLING_TYPE_STRATEGY(0.75, 0.50, 2.000, 0.50,0.75, 8.000);"
+
+
+@pytest.mark.parametrize("place, name, value", [(0, "reduced_cut_at_start", "75."), (1, "reduced_feed_at_start", "50."),
+                                                (3, "reduced_cut_at_end", "1.5"), (4, "reduced_feed_at_end", "75.")])
+def test_a_drilling_strategy_ratio_above_one_is_refused_not_read_as_percent(place, name, value):
+    """ISO 14649-11 types the reductions positive_ratio_measure (0.5 for half of the programmed
+    value): 50 is not read as 50 %, nor as a feed 50 times the programmed one."""
+    values = ["0.75", "0.50", "2.000", "0.50", "0.75", "8.000"]
+    values[place] = value
+    message = refusal(edit(STRATEGY, f"#46= DRILLING_TYPE_STRATEGY({', '.join(values)});"))
+    assert (f"#46 DRILLING_TYPE_STRATEGY: {name} {float(value):g} is above 1: it is a ratio of the programmed value "
+            f"(0.5 for half), not a percentage; write {float(value) / 100:g} for {float(value):g} %") in message
+
+
+def test_a_drilling_strategy_of_ratios_halves_the_feed_over_the_first_depth():
+    """1 is allowed (no reduction); 0.5 of ex1's 1800 mm/min drilling feed is 900 over the first 2 mm."""
+    program = plans(edit(STRATEGY, "#46= DRILLING_TYPE_STRATEGY(1., 0.5, 2.000, 1.,1., 8.000);"))
+    drill = next(op for op in program.operations if op.name == "WS DRILL HOLE1")
+    feeds = sorted(set(np.round(drill.feed[drill.kind == 1], 6)))
+    assert feeds == [900.0, 1800.0]

@@ -42,7 +42,9 @@ def registered():
 
 
 def ui_classes():
-    return list(dict.fromkeys([*operators.CLASSES, *properties.CLASSES, *preferences.CLASSES]))
+    from kezuri.operators.workflows import settings_groups
+    groups = [cls for _, cls in settings_groups()]        # the router kinds' settings (scene.kezuri.<kind>)
+    return list(dict.fromkeys([*operators.CLASSES, *properties.CLASSES, *preferences.CLASSES, *groups]))
 
 
 def own_property_names(cls) -> set:

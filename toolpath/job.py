@@ -327,6 +327,8 @@ def _heights(design, gx, gy):
 
 def _inside(loops, gx, gy) -> np.ndarray:
     """Which points of the grid (gx, gy from meshgrid, ij order) lie inside the loops (even-odd)."""
+    if not len(loops):                  # a layer that speaks for nowhere (e.g. a chamfer of holes only)
+        return np.zeros(np.broadcast(gx, gy).shape, bool)
     area = rg.from_loops([np.asarray(loop, float) for loop in loops], "design area")
     if gx.ndim == 2 and gx.shape[0] and gx.shape[1] and np.all(gx == gx[:, :1]) and np.all(gy == gy[:1, :]):
         return rg.grid_inside(area, gx[:, 0], gy[0, :])

@@ -249,9 +249,12 @@ def cut_levels(top: float, floor: float, step: float | None) -> list:
 
 
 def iso_ratio(value: float) -> float:
-    """ISO 14649 ratios run 0..1; values above 1 are read as percent, as older files (the
-    original Example 1) wrote them."""
-    return value / 100 if value > 1 else value
+    """An ISO 14649 ratio (positive_ratio_measure: 0.5 for half), as the reader checked it: the
+    reader refuses one above 1 by name (an overlap, a DRILLING_TYPE_STRATEGY reduction), so no
+    value is read as a percentage here."""
+    if not 0 < value <= 1:
+        raise ValueError(f"an ISO 14649 ratio must be above 0 and at most 1, got {value!r} (the reader checks it)")
+    return value
 
 
 def stepover_of(diameter: float, overlap: float | None, radial: float | None) -> float:

@@ -590,10 +590,23 @@ class _Reader:
         target = self.entity(inst, index, name, ("DRILLING_TYPE_STRATEGY",), optional=True, unsupported=True)
         if target is None:
             return None
-        return self.memoised(target, lambda t: DrillingTypeStrategy(*(
-            self.number(t, i, n, optional=True, positive=True) for i, n in enumerate(
-                ("reduced_cut_at_start", "reduced_feed_at_start", "depth_of_start", "reduced_cut_at_end",
-                 "reduced_feed_at_end", "depth_of_end")))))
+        names = ("reduced_cut_at_start", "reduced_feed_at_start", "depth_of_start", "reduced_cut_at_end",
+                 "reduced_feed_at_end", "depth_of_end")
+
+        def convert(t):
+            values = [self.number(t, i, n, optional=True, positive=True) for i, n in enumerate(names)]
+            # ISO 14649-11's drilling_type_strategy: the reduced cuts and feeds are positive_ratio_measure
+            # (ISO 10303-41: a ratio, 0.5 for half), "reduced" from the programmed value; the standard's
+            # prose calls them "a percentage of the programmed value" and files of the 0..100 kind exist
+            # (NIST's ex1 before its note 12), so a value above 1 is neither read as percent nor as a
+            # faster feed: it is refused by name
+            for name, value in zip(names, values):
+                if name.startswith("reduced") and value is not None and value > 1:
+                    raise StepNcError(f"#{t.id} {t.type_name}: {name} {value:g} is above 1: it is a ratio of the "
+                                      f"programmed value (0.5 for half), not a percentage; write {value / 100:g} "
+                                      f"for {value:g} %")
+            return DrillingTypeStrategy(*values)
+        return self.memoised(target, convert)
 
     # ---- operations
 
