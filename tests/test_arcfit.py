@@ -100,11 +100,62 @@ def test_straight_lines_and_coarse_polygons_stay_lines():
         assert arcfit.fit_arcs(op) is op
 
 
-def test_rapids_ramps_textures_and_other_arcs_are_left_alone():
+def test_an_even_ramp_along_a_circle_comes_back_as_a_helix():
+    """A ramp entry along a rounded outline: Z falls evenly with the angle; the arcs that replace
+    it end at the old heights and every old vertex lies within the tolerance of the helix at its
+    angle (checked here by brute force, Z interpolated by angle as a control does)."""
+    circle = arc_points(3, -2, 10, 0.3, math.pi, 200)
+    ramp = np.column_stack([circle, np.linspace(0, -2, len(circle))])
+    op = operation(ramp[1:], start=ramp[0])
+    fitted = arcfit.fit_arcs(op)
+    assert len(fitted) < 5 and np.isin(fitted.kind, (ARC_CCW,)).all()
+    assert np.allclose(fitted.xyz[-1], ramp[-1])
+    prev = ramp[0]
+    for end, centre in zip(fitted.xyz, fitted.center):
+        assert np.allclose(centre[:2], (3, -2), atol=1e-3)
+        a = math.atan2(prev[1] + 2, prev[0] - 3)
+        sweep = (math.atan2(end[1] + 2, end[0] - 3) - a) % (2 * math.pi)
+        # the old vertices this arc spans: their angle from the start gives the helix's Z
+        angles = (np.arctan2(ramp[:, 1] + 2, ramp[:, 0] - 3) - a) % (2 * math.pi)
+        inside = angles <= sweep + 1e-9
+        helix_z = prev[2] + (end[2] - prev[2]) * angles[inside] / sweep
+        assert np.abs(ramp[inside, 2] - helix_z).max() <= TOL
+        prev = end
+
+
+def test_a_ramp_that_does_not_fall_evenly_stays_lines():
     circle = arc_points(0, 0, 10, 0, math.pi, 200)
-    ramp = np.column_stack([circle, np.linspace(0, -2, len(circle))])     # Z changes: a helix, left as lines
-    op = operation(ramp)
+    uneven = np.column_stack([circle, -2 * np.linspace(0, 1, len(circle)) ** 2])   # the slope changes at every move
+    op = operation(uneven[1:], start=uneven[0])
     assert arcfit.fit_arcs(op) is op
+    # a plunge (Z only) between two level circles splits them; each comes back as arcs, the plunge stays
+    top = np.column_stack([circle, np.zeros(len(circle))])
+    low = np.column_stack([circle[::-1], np.full(len(circle), -1.0)])
+    path = np.vstack([top[1:], [[circle[-1, 0], circle[-1, 1], -1.0]], low[1:]])
+    fitted = arcfit.fit_arcs(operation(path, start=top[0]))
+    plunge = np.flatnonzero((fitted.kind == FEED) & np.isclose(fitted.xyz[:, 2], -1.0)
+                            & np.isclose(fitted.xyz[:, 0], circle[-1, 0]) & np.isclose(fitted.xyz[:, 1], circle[-1, 1]))
+    assert len(plunge) == 1 and np.isin(fitted.kind, (ARC_CW, ARC_CCW)).sum() >= 2
+
+
+@pytest.mark.skipif(not rs274.available(), reason="LinuxCNC rs274 is not installed")
+def test_rs274_cuts_the_helix_down_the_ramp():
+    circle = arc_points(0, 0, 8, 0, 1.5 * math.pi, 300)
+    ramp = np.column_stack([circle, np.linspace(-0.5, -3.5, len(circle))])
+    kinds = np.full(len(ramp), FEED)
+    kinds[0] = RAPID
+    op = Operation("ramp", TOOL, 12000, kinds, ramp, np.where(kinds == RAPID, np.nan, 600.0),
+                   start=np.array([8.0, 0.0, 5.0]), safe_z=5.0, clearance_z=5.0)
+    text = create("milling", "linuxcnc").to_text(Program("helix", [op]))
+    arcs = [args for name, args in rs274.run(text) if name == "ARC_FEED"]
+    assert 1 <= len(arcs) <= 3
+    # ARC_FEED(end1, end2, c1, c2, turn, end3, ...): the last arc ends at the ramp's foot
+    assert float(arcs[-1][5]) == pytest.approx(-3.5, abs=1e-4)
+    assert [float(a[0]) for a in arcs][-1] == pytest.approx(circle[-1, 0], abs=1e-3)
+
+
+def test_rapids_textures_and_other_arcs_are_left_alone():
+    circle = arc_points(0, 0, 10, 0, math.pi, 200)
     textured = operation(circle).replace(texture=GougeTexture())
     assert arcfit.fit_arcs(textured) is textured
     rapids = operation(circle, kinds=np.full(len(circle), RAPID))

@@ -3,11 +3,14 @@
 Planners flatten curves into chords (Clipper's offsets of letters, pocket corners, circles); a
 control runs such a polyline block by block, slower and in more memory than one arc.  This filter
 takes a planned :class:`~.program.Operation` and gives it back with every stretch of at least
-``min_segments`` feed moves at one height, one feed (and one link flag) that an arc reproduces
-within ``tolerance`` replaced by that arc (rules: :mod:`.arcfit_kernel`).  Nothing else changes:
-rapids, plunges, ramps, moves that change Z (a stretch never crosses a plunge or a link boundary),
-arcs already there, and operations with a texture request (the controller macro needs the single
-moves) or rotary axes are left as they are.
+``min_segments`` feed moves at one slope, one feed (and one link flag) that an arc reproduces
+within ``tolerance`` replaced by that arc (rules: :mod:`.arcfit_kernel`).  A stretch at one height
+becomes a plane arc; a stretch that climbs or sinks evenly (a ramp entry along a rounded outline)
+becomes a helical arc (G2/G3 with Z, which every milling control here interpolates linearly in the
+angle), kept only where every old vertex's Z lies within ``tolerance`` of the helix at its angle.
+Nothing else changes: rapids, plunges (no XY), moves whose slope changes (a stretch never crosses a
+plunge or a link boundary), arcs already there, and operations with a texture request (the
+controller macro needs the single moves) or rotary axes are left as they are.
 
 Where it runs, and why here.  The posts write it: :meth:`post.gcode.GcodePost.arcs_out` passes
 every milling program through :func:`fit_program` just before writing, with the control's
@@ -72,7 +75,7 @@ def fit_arcs(op: Operation, tolerance: float = DEFAULT_TOLERANCE, min_segments: 
     n = len(op)
     if n < min_segments or op.rotary or op.texture is not None or op.texture_marks is not None:
         return op
-    runs = _planar_runs(op, min_segments)
+    runs = _even_runs(op, min_segments)
     if not runs:
         return op
     starts = op.start_points()
@@ -93,6 +96,9 @@ def fit_arcs(op: Operation, tolerance: float = DEFAULT_TOLERANCE, min_segments: 
     if written is not None:
         good, centres = _as_written(starts[first_move, :2], op.xyz[last_move, :2], centres, turns < 0,
                                     written, step, end_tolerance)
+        first_move, last_move, centres, turns = first_move[good], last_move[good], centres[good], turns[good]
+    if len(first_move):
+        good = _helix_holds(op, starts, first_move, last_move, centres, turns < 0, tolerance)
         first_move, last_move, centres, turns = first_move[good], last_move[good], centres[good], turns[good]
     if not len(first_move):
         return op
@@ -144,16 +150,27 @@ def _as_written(start: np.ndarray, end: np.ndarray, centre: np.ndarray, clockwis
     return good, chosen
 
 
-def _planar_runs(op: Operation, min_segments: int) -> list:
+# slope (dZ per mm of XY) two moves may differ by and still be one stretch: a planner's even ramp
+# gives equal slopes to rounding; the helix check below bounds the Z error of what is fitted
+SLOPE_TOLERANCE = 1e-6
+
+
+def _even_runs(op: Operation, min_segments: int) -> list:
     """(first, last) move indices of every stretch of at least ``min_segments`` feed moves that
-    keep their height, feed and link flag."""
+    keep their slope (0: one height), feed and link flag.  A move with no XY length that changes
+    Z (a plunge) belongs to no stretch."""
     starts = op.start_points()
-    planar = (op.kind == FEED) & (np.abs(op.xyz[:, 2] - starts[:, 2]) <= 1e-9)
+    d = op.xyz - starts
+    length = np.hypot(d[:, 0], d[:, 1])
+    flat = np.abs(d[:, 2]) <= 1e-9
+    usable = (op.kind == FEED) & ((length > 1e-9) | flat)
+    slope = np.where(flat, 0.0, d[:, 2] / np.maximum(length, 1e-300))
     links = op.links if op.links is not None else np.zeros(len(op), bool)
     same = np.zeros(len(op), bool)
-    same[1:] = planar[1:] & planar[:-1] & (op.feed[1:] == op.feed[:-1]) & (links[1:] == links[:-1])
-    # a run starts at a planar move whose predecessor does not continue it
-    begin = np.flatnonzero(planar & ~same)
+    same[1:] = (usable[1:] & usable[:-1] & (op.feed[1:] == op.feed[:-1]) & (links[1:] == links[:-1])
+                & (np.abs(slope[1:] - slope[:-1]) <= SLOPE_TOLERANCE) & (flat[1:] == flat[:-1]))
+    # a run starts at a usable move whose predecessor does not continue it
+    begin = np.flatnonzero(usable & ~same)
     end = np.append(begin[1:], len(op))
     runs = []
     for first, stop in zip(begin.tolist(), end.tolist()):
@@ -163,3 +180,24 @@ def _planar_runs(op: Operation, min_segments: int) -> list:
         if last - first + 1 >= min_segments:
             runs.append((first, last))
     return runs
+
+
+def _helix_holds(op: Operation, starts: np.ndarray, first_move: np.ndarray, last_move: np.ndarray,
+                 centres: np.ndarray, clockwise: np.ndarray, tolerance: float) -> np.ndarray:
+    """Which fitted arcs keep every old vertex's Z within ``tolerance`` of the arc's Z at that
+    vertex's angle (a control moves Z in proportion to the angle swept).  Plane arcs always do."""
+    z0 = starts[first_move, 2]
+    z1 = op.xyz[last_move, 2]
+    good = np.ones(len(first_move), bool)
+    for index in np.flatnonzero(np.abs(z1 - z0) > 1e-9).tolist():
+        first, last = int(first_move[index]), int(last_move[index])
+        points = np.vstack([starts[first], op.xyz[first:last + 1]])
+        angle = np.unwrap(np.arctan2(points[:, 1] - centres[index, 1], points[:, 0] - centres[index, 0]))
+        swept = angle - angle[0]
+        total = swept[-1]
+        if abs(total) < 1e-12 or (total < 0) != bool(clockwise[index]):
+            good[index] = False
+            continue
+        expected = z0[index] + (z1[index] - z0[index]) * swept / total
+        good[index] = bool(np.abs(points[:, 2] - expected).max() <= tolerance)
+    return good
