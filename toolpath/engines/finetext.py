@@ -1,0 +1,250 @@
+"""Text too fine for a tool: per character, the gaps a round tool of diameter D cannot enter, and
+the smallest text height at which it would.
+
+The caller gives the characters (each one's outline in work mm, even-odd, with its place in the
+text) and the region the tool must cut: for raised letters the waste around and inside the strokes
+(engraving's band), for letters cut in (a pocket, a V-carve's flat clearing) the strokes.  What a
+tool of radius r reaches of a region R is R's morphological opening, R eroded by r and dilated by
+r (every point some disk of radius r inside R covers); the rest is missed.  Of the missed part,
+two kinds are told apart:
+
+- **corners**: a round tool never reaches into a sharp convex corner of R, at any size of the
+  text; near a corner of angle a the miss is the cap between the corner and the circle of radius r
+  touching both edges.  Those caps are taken away (engraving sums them into its corner leftover);
+- **gaps**: what is left, a part of R narrower than D (between two strokes, a counter smaller than
+  the tool).  Scaling the text by s widens it s times, so it is reached once s x width >= D.
+
+For each character owning a gap the report gives the area missed, the narrowest width (D / s* with
+s* the smallest scale at which the character's gaps are all reached, found by bisection on the
+scaled geometry) and the smallest text height, the character's height x s* rounded up to
+:data:`HEIGHT_STEP` and checked again at that height (so the height named passes this check).
+
+Tolerances (mm, mm^2): a gap smaller than :data:`MIN_GAP_AREA` (region.MIN_AREA, 0.01 mm^2, the
+pieces the regions call numerical dust) is not reported; offsets are polygons within
+region.ARC_TOLERANCE (0.01 mm) of their arcs, so the corner caps are grown by twice that and gaps
+narrower than :data:`SLIVER` (0.04 mm, four times the arc tolerance) are taken for that chord error,
+not for a gap.  The API takes plain loops and returns frozen dataclasses, for any kind that cuts
+letters with a round tool (engraving's band, a V-carve's clearing tool, pocket and profile).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from manifold3d import CrossSection, FillRule
+
+from . import region as rg
+
+MIN_GAP_AREA = rg.MIN_AREA
+CAP_MARGIN = 2 * rg.ARC_TOLERANCE
+SLIVER = 4 * rg.ARC_TOLERANCE
+HEIGHT_STEP = 0.1           # mm: a text height is typed to a tenth of a millimetre
+MAX_SCALE = 50.0            # a character needing more than 50 x its height is named without a height
+PRECISION = 0.002           # relative precision of the bisection on the scale
+DUST = 1e-4                 # mm^2: pieces of a difference smaller than this are rounding, not area
+TURN_MIN = math.radians(2)  # corners turning less than this leave caps below 1e-5 r^2: not built
+
+
+class FineTextError(rg.RegionError):
+    """Bad input to the check: a tool of no size, a character without an outline."""
+
+
+@dataclass(frozen=True)
+class Character:
+    """One character of a text: ``char`` (the character), ``index`` (its place in the text),
+    ``loops`` ((k, 2) arrays, work mm, even-odd: counters are holes) and ``height`` (mm, the height
+    the report scales; None: the outline's own height)."""
+
+    char: str | None
+    index: int
+    loops: tuple
+    height: float | None = None
+
+
+@dataclass(frozen=True)
+class TooFine:
+    """A character whose gaps the tool cannot enter: ``missed_mm2`` (area left uncut, corners not
+    counted), ``narrowest_mm`` (the narrowest gap's width), ``height_mm`` (the character's height
+    now), ``min_height_mm`` (the smallest height at which every gap is reached; None: more than
+    :data:`MAX_SCALE` times the height) and ``at`` (x, y of its largest gap)."""
+
+    char: str | None
+    index: int
+    missed_mm2: float
+    narrowest_mm: float
+    height_mm: float
+    min_height_mm: float | None
+    at: tuple
+
+    def as_dict(self) -> dict:
+        return {"char": self.char, "index": self.index, "missed_mm2": round(self.missed_mm2, 3),
+                "narrowest_mm": round(self.narrowest_mm, 3), "height_mm": round(self.height_mm, 2),
+                "min_height_mm": None if self.min_height_mm is None else round(self.min_height_mm, 1),
+                "at": [round(self.at[0], 2), round(self.at[1], 2)]}
+
+
+def region_of(shape, what: str) -> CrossSection:
+    """A CrossSection as given, or the region of closed loops (even-odd)."""
+    if isinstance(shape, CrossSection):
+        return shape
+    return rg.from_loops(list(shape), what)
+
+
+def corner_caps(cut: CrossSection, radius: float) -> CrossSection:
+    """The caps a round tool of ``radius`` leaves in the sharp convex corners of ``cut``: between
+    each corner and the circle touching its two edges (grown by :data:`CAP_MARGIN`)."""
+    polygons = []
+    for loop in rg.loops(cut):
+        incoming = loop - np.roll(loop, 1, axis=0)
+        outgoing = np.roll(loop, -1, axis=0) - loop
+        a = incoming / np.maximum(np.hypot(*incoming.T), 1e-300)[:, None]
+        b = outgoing / np.maximum(np.hypot(*outgoing.T), 1e-300)[:, None]
+        cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+        turn = np.arctan2(cross, np.einsum("ij,ij->i", a, b))     # > 0: convex (the region is on the left)
+        for k in np.nonzero(turn > TURN_MIN)[0]:
+            half = (math.pi - turn[k]) / 2                           # half the corner's inside angle
+            reach = radius / math.tan(half)                          # corner to the touching points
+            inward = b[k] - a[k]
+            inward /= np.hypot(*inward)
+            centre = loop[k] + inward * radius / math.sin(half)
+            first, last = loop[k] - a[k] * reach, loop[k] + b[k] * reach
+            start = math.atan2(*(first - centre)[::-1])
+            sweep = turn[k]                                          # the arc the corner's cap spans
+            count = max(2, rg.circle_segments(radius) * sweep / (2 * math.pi))
+            angles = start + np.linspace(0.0, sweep, int(math.ceil(count)) + 1)
+            arc = centre + radius * np.column_stack([np.cos(angles), np.sin(angles)])
+            arc[0], arc[-1] = first, last
+            polygon = np.vstack([loop[k], arc])
+            if rg.signed_area(polygon) < 0:
+                polygon = polygon[::-1]
+            polygons.append(polygon)
+    if not polygons:
+        return CrossSection()
+    return rg.offset(CrossSection(polygons, FillRule.NonZero), CAP_MARGIN)
+
+
+def missed_gaps(cut: CrossSection, radius: float) -> CrossSection:
+    """What a tool of ``radius`` cannot reach of ``cut``, its corner caps and slivers taken away."""
+    reached = rg.offset(rg.offset(cut, -radius), radius)
+    missed = cut - reached
+    if missed.area() < MIN_GAP_AREA:
+        return CrossSection()
+    missed = _solid(missed - corner_caps(cut, radius))
+    return _solid(rg.offset(rg.offset(missed, -SLIVER / 2), SLIVER / 2))
+
+
+def _solid(region: CrossSection) -> CrossSection:
+    """``region`` without its pieces of (nearly) no area: a difference leaves such dust, and an
+    inward offset of a dust polygon comes out as a strip of area (Clipper takes its loops as they
+    wind), which would be reported as a gap."""
+    pieces = [p for p in region.decompose() if p.area() > DUST]
+    return CrossSection.compose(pieces) if pieces else CrossSection()
+
+
+def _boxes(characters) -> np.ndarray:
+    return np.array([[min(float(np.min(np.asarray(loop)[:, 0])) for loop in c.loops),
+                      min(float(np.min(np.asarray(loop)[:, 1])) for loop in c.loops),
+                      max(float(np.max(np.asarray(loop)[:, 0])) for loop in c.loops),
+                      max(float(np.max(np.asarray(loop)[:, 1])) for loop in c.loops)] for c in characters])
+
+
+def owners(boxes: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """For each point, the character whose box is nearest (0 inside it); inside several boxes, the
+    one whose centre is nearest."""
+    points = np.asarray(points, float).reshape(-1, 2)
+    dx = np.maximum(np.maximum(boxes[None, :, 0] - points[:, None, 0], points[:, None, 0] - boxes[None, :, 2]), 0)
+    dy = np.maximum(np.maximum(boxes[None, :, 1] - points[:, None, 1], points[:, None, 1] - boxes[None, :, 3]), 0)
+    outside = np.hypot(dx, dy)
+    centres = (boxes[:, :2] + boxes[:, 2:]) / 2
+    to_centre = np.hypot(points[:, None, 0] - centres[None, :, 0], points[:, None, 1] - centres[None, :, 1])
+    return np.argmin(outside * 1e6 + to_centre, axis=1)
+
+
+def _gaps_of(cut, radius, boxes, which: int, scale: float = 1.0, about=(0.0, 0.0)) -> list:
+    """The gaps (pieces) of ``cut`` scaled by ``scale`` about ``about`` that character ``which``
+    owns, as (area, (x, y) unscaled)."""
+    if scale != 1.0:
+        x0, y0 = about
+        cut = cut.translate((-x0, -y0)).scale((scale, scale)).translate((x0, y0))
+    pieces = rg.components(missed_gaps(cut, radius), MIN_GAP_AREA)
+    if not pieces:
+        return []
+    centres = np.array([rg.centroid(p) for p in pieces])
+    unscaled = (centres - np.asarray(about)) / scale + np.asarray(about)
+    mine = owners(boxes, unscaled) == which
+    return [(rg.area(p), tuple(unscaled[k])) for k, p in enumerate(pieces) if mine[k]]
+
+
+def check(characters, cut, tool_diameter: float) -> list:
+    """The characters (:class:`Character`) with gaps in ``cut`` (loops, even-odd, or a region) that
+    a round tool of ``tool_diameter`` mm cannot enter, as :class:`TooFine`, in text order."""
+    if not (isinstance(tool_diameter, (int, float)) and math.isfinite(tool_diameter) and tool_diameter > 0):
+        raise FineTextError(f"tool diameter must be a positive number of mm, got {tool_diameter!r}")
+    characters = [c for c in characters if c.loops]
+    if not characters:
+        return []
+    cut = region_of(cut, "area to cut")
+    radius = tool_diameter / 2
+    boxes = _boxes(characters)
+    pieces = rg.components(missed_gaps(cut, radius), MIN_GAP_AREA)
+    if not pieces:
+        return []
+    centres = np.array([rg.centroid(p) for p in pieces])
+    owner = owners(boxes, centres)
+    found = []
+    for which in sorted(set(owner.tolist())):
+        character = characters[which]
+        mine = [pieces[k] for k in np.nonzero(owner == which)[0]]
+        missed = sum(rg.area(p) for p in mine)
+        biggest = max(mine, key=rg.area)
+        height = character.height if character.height is not None else float(boxes[which, 3] - boxes[which, 1])
+        window = _window(cut, boxes[which], radius)
+        scale = _smallest_scale(window, radius, boxes, which)
+        min_height = None
+        if scale is not None:
+            min_height = _checked_height(window, radius, boxes, which, height, scale)
+        narrowest = tool_diameter / scale if scale is not None else 0.0
+        found.append(TooFine(character.char, character.index, missed, narrowest, height, min_height,
+                             rg.centroid(biggest)))
+    return sorted(found, key=lambda f: f.index)
+
+
+def _window(cut: CrossSection, box, radius: float) -> CrossSection:
+    """``cut`` near one character: its box grown by the tool's diameter at the largest scale
+    looked at, so the window's own edges lie beyond the gaps it owns."""
+    margin = 2 * radius + 1.0
+    return cut ^ rg.rectangle(box[0] - margin, box[1] - margin, box[2] + margin, box[3] + margin)
+
+
+def _reached_at(window, radius, boxes, which, scale) -> bool:
+    centre = ((boxes[which, 0] + boxes[which, 2]) / 2, (boxes[which, 1] + boxes[which, 3]) / 2)
+    return not _gaps_of(window, radius, boxes, which, scale, centre)
+
+
+def _smallest_scale(window, radius, boxes, which) -> float | None:
+    """The smallest scale (> 1) at which the character owns no gap, to :data:`PRECISION`."""
+    low, high = 1.0, 2.0
+    while not _reached_at(window, radius, boxes, which, high):
+        low, high = high, high * 2
+        if high > MAX_SCALE:
+            return None
+    while high / low > 1 + PRECISION:
+        middle = math.sqrt(low * high)
+        if _reached_at(window, radius, boxes, which, middle):
+            high = middle
+        else:
+            low = middle
+    return high
+
+
+def _checked_height(window, radius, boxes, which, height, scale) -> float | None:
+    """The character's height at ``scale`` rounded up to :data:`HEIGHT_STEP`, raised a step at a
+    time (up to ten) until the check passes there."""
+    steps = math.ceil(height * scale / HEIGHT_STEP - 1e-9)
+    for _ in range(10):
+        candidate = steps * HEIGHT_STEP
+        if _reached_at(window, radius, boxes, which, candidate / height):
+            return round(candidate, 6)
+        steps += 1
+    return None
