@@ -37,13 +37,18 @@ from manifold3d import CrossSection, FillRule
 from . import region as rg
 
 MIN_GAP_AREA = rg.MIN_AREA
+DUST_SHARE = 0.02            # a gap smaller than (2 % of the character's height)^2 is a speck of the font's outline
 CAP_MARGIN = 2 * rg.ARC_TOLERANCE
 SLIVER = 4 * rg.ARC_TOLERANCE
 HEIGHT_STEP = 0.1           # mm: a text height is typed to a tenth of a millimetre
 MAX_SCALE = 50.0            # a character needing more than 50 x its height is named without a height
 PRECISION = 0.002           # relative precision of the bisection on the scale
 DUST = 1e-4                 # mm^2: pieces of a difference smaller than this are rounding, not area
-TURN_MIN = math.radians(2)  # corners turning less than this leave caps below 1e-5 r^2: not built
+TURN_MIN = math.radians(2)
+WALL_NEAR = 0.002             # mm: an edge of a missed piece this near the region's outline runs along a wall (its
+                            # edges are the outline's own, to rounding; the sliver rounding of a tip is farther)
+BRIDGE = 4 * SLIVER           # mm: see _between_walls
+FACING = math.radians(10)   # a run of wall turning through 170 degrees or more has two walls facing each other  # corners turning less than this leave caps below 1e-5 r^2: not built
 
 
 class FineTextError(rg.RegionError):
@@ -130,8 +135,69 @@ def missed_gaps(cut: CrossSection, radius: float) -> CrossSection:
     missed = cut - reached
     if missed.area() < MIN_GAP_AREA:
         return CrossSection()
-    missed = _solid(missed - corner_caps(cut, radius))
-    return _solid(rg.offset(rg.offset(missed, -SLIVER / 2), SLIVER / 2))
+    missed = _solid(rg.offset(rg.offset(_solid(missed), -SLIVER / 2), SLIVER / 2))
+    if missed.is_empty():
+        return missed
+    inner = rg.offset(cut, -WALL_NEAR)
+    gaps = [piece for piece in missed.decompose() if piece.area() > DUST and _between_walls(piece, inner)]
+    return CrossSection.compose(gaps) if gaps else CrossSection()
+
+
+def _between_walls(piece: CrossSection, inner: CrossSection) -> bool:
+    """Is this missed piece a gap (True) or what is left of a corner whose sides curve (False)?
+
+    Its outline runs partly along the walls of the region to cut (edges within
+    :data:`WALL_NEAR` of them: outside ``inner``, the region shrunk by that much) and partly
+    along what the tool reached.  A gap touches two walls facing each other: its outline meets
+    the walls in two runs or more (a slot open at both ends), in one run that turns through half a
+    turn or more, less :data:`FACING` (a slot closed at one end: two walls and its end), or all
+    round (a counter the tool cannot enter).  A corner is one run turning through less: its two
+    sides meet at the corner's angle, and no size of the text makes a round tool reach into it."""
+    loop = max(rg.loops(piece), key=lambda lp: abs(rg.signed_area(lp)))
+    following = np.roll(loop, -1, axis=0)
+    wall = ~rg.contains_points(inner, (loop + following) / 2)
+    if wall.all():
+        return True
+    if not wall.any():
+        return False
+    edges = following - loop
+    lengths = np.hypot(edges[:, 0], edges[:, 1])
+    # start at the longest stretch off the walls (the tool's reach): no run wraps round the start
+    off = np.nonzero(~wall & np.roll(wall, 1))[0]                # where each stretch off the walls starts
+    stretch = [lengths[np.arange(k, k + np.argmax(np.roll(wall, -k))) % len(wall)].sum() for k in off]
+    start = int(off[int(np.argmax(stretch))])
+    wall, edges, lengths = np.roll(wall, -start), np.roll(edges, -start, axis=0), np.roll(lengths, -start)
+    # a short stretch off the walls between two runs is the sliver rounding of a corner of the
+    # region, not the tool's reach: the runs are one
+    k = 0
+    while k < len(wall):
+        if wall[k]:
+            k += 1
+            continue
+        end = k
+        while end < len(wall) and not wall[end]:
+            end += 1
+        if 0 < k and end < len(wall) and lengths[k:end].sum() < BRIDGE:
+            wall[k:end] = True
+        k = end
+    heading = np.arctan2(edges[:, 1], edges[:, 0])
+    turns = (np.diff(heading) + np.pi) % (2 * np.pi) - np.pi     # at the vertex between edge k and k + 1
+    runs, turning = 0, []
+    k = 0
+    while k < len(wall):
+        if not wall[k]:
+            k += 1
+            continue
+        end = k
+        while end < len(wall) and wall[end]:
+            end += 1
+        runs += 1
+        # the run's turning from its first long edge to its last: the short edges at its ends are
+        # the sliver rounding where the wall meets the tool's reach, bent either way
+        long = np.nonzero(lengths[k:end] >= SLIVER)[0]
+        turning.append(float(turns[k + long[0]:k + long[-1]].sum()) if len(long) else 0.0)
+        k = end
+    return runs >= 2 or max(turning) >= math.pi - FACING
 
 
 def _solid(region: CrossSection) -> CrossSection:
@@ -161,13 +227,20 @@ def owners(boxes: np.ndarray, points: np.ndarray) -> np.ndarray:
     return np.argmin(outside * 1e6 + to_centre, axis=1)
 
 
+def dust(height: float) -> float:
+    """The area (mm^2) below which a gap of a character ``height`` mm tall is not reported: the
+    square of :data:`DUST_SHARE` of its height, at least :data:`MIN_GAP_AREA`."""
+    return max(MIN_GAP_AREA, (DUST_SHARE * height) ** 2)
+
+
 def _gaps_of(cut, radius, boxes, which: int, scale: float = 1.0, about=(0.0, 0.0)) -> list:
-    """The gaps (pieces) of ``cut`` scaled by ``scale`` about ``about`` that character ``which``
-    owns, as (area, (x, y) unscaled)."""
+    """The gaps of ``cut`` scaled by ``scale`` about ``about`` that character ``which`` owns and
+    that are not dust at that scale, as (area, (x, y) unscaled)."""
     if scale != 1.0:
         x0, y0 = about
         cut = cut.translate((-x0, -y0)).scale((scale, scale)).translate((x0, y0))
-    pieces = rg.components(missed_gaps(cut, radius), MIN_GAP_AREA)
+    least = dust(float(boxes[which, 3] - boxes[which, 1]) * scale)
+    pieces = rg.components(missed_gaps(cut, radius), least)
     if not pieces:
         return []
     centres = np.array([rg.centroid(p) for p in pieces])
@@ -190,23 +263,21 @@ def check(characters, cut, tool_diameter: float) -> list:
     pieces = rg.components(missed_gaps(cut, radius), MIN_GAP_AREA)
     if not pieces:
         return []
-    centres = np.array([rg.centroid(p) for p in pieces])
-    owner = owners(boxes, centres)
+    owner = owners(boxes, np.array([rg.centroid(p) for p in pieces]))
     found = []
     for which in sorted(set(owner.tolist())):
         character = characters[which]
-        mine = [pieces[k] for k in np.nonzero(owner == which)[0]]
-        missed = sum(rg.area(p) for p in mine)
-        biggest = max(mine, key=rg.area)
+        least = dust(float(boxes[which, 3] - boxes[which, 1]))
+        mine = [pieces[k] for k in np.nonzero(owner == which)[0] if rg.area(pieces[k]) >= least]
+        if not mine:
+            continue
         height = character.height if character.height is not None else float(boxes[which, 3] - boxes[which, 1])
         window = _window(cut, boxes[which], radius)
         scale = _smallest_scale(window, radius, boxes, which)
-        min_height = None
-        if scale is not None:
-            min_height = _checked_height(window, radius, boxes, which, height, scale)
+        min_height = None if scale is None else _checked_height(window, radius, boxes, which, height, scale)
         narrowest = tool_diameter / scale if scale is not None else 0.0
-        found.append(TooFine(character.char, character.index, missed, narrowest, height, min_height,
-                             rg.centroid(biggest)))
+        found.append(TooFine(character.char, character.index, sum(rg.area(p) for p in mine), narrowest, height,
+                             min_height, rg.centroid(max(mine, key=rg.area))))
     return sorted(found, key=lambda f: f.index)
 
 
