@@ -6,25 +6,28 @@ text) and the region the tool must cut: for raised letters the waste around and 
 (engraving's band), for letters cut in (a pocket, a V-carve's flat clearing) the strokes.  What a
 tool of radius r reaches of a region R is R's morphological opening, R eroded by r and dilated by
 r (every point some disk of radius r inside R covers); the rest is missed.  Of the missed part,
-two kinds are told apart:
+two kinds are told apart by the walls of R a missed piece touches (:func:`_between_walls`):
 
 - **corners**: a round tool never reaches into a sharp convex corner of R, at any size of the
-  text; near a corner of angle a the miss is the cap between the corner and the circle of radius r
-  touching both edges.  Those caps are taken away (engraving sums them into its corner leftover);
-- **gaps**: what is left, a part of R narrower than D (between two strokes, a counter smaller than
-  the tool).  Scaling the text by s widens it s times, so it is reached once s x width >= D.
+  text; the piece it leaves touches one run of wall, the corner's two sides, turning through less
+  than half a turn.  Engraving sums those into its corner leftover; they are not named here;
+- **gaps**: a piece between two walls facing each other (a slot between two strokes, a counter
+  smaller than the tool).  Scaling the text by s widens it s times, so it is reached once
+  s x width >= D.
 
-For each character owning a gap the report gives the area missed, the narrowest width (D / s* with
+For each character owning a gap the report gives the area missed, the narrowest width (D / s*,
 s* the smallest scale at which the character's gaps are all reached, found by bisection on the
-scaled geometry) and the smallest text height, the character's height x s* rounded up to
-:data:`HEIGHT_STEP` and checked again at that height (so the height named passes this check).
+scaled geometry) and the smallest text height: the character's height x s* rounded up to
+:data:`HEIGHT_STEP` and checked again at that height, so the height named passes this check.
 
-Tolerances (mm, mm^2): a gap smaller than :data:`MIN_GAP_AREA` (region.MIN_AREA, 0.01 mm^2, the
-pieces the regions call numerical dust) is not reported; offsets are polygons within
-region.ARC_TOLERANCE (0.01 mm) of their arcs, so the corner caps are grown by twice that and gaps
-narrower than :data:`SLIVER` (0.04 mm, four times the arc tolerance) are taken for that chord error,
-not for a gap.  The API takes plain loops and returns frozen dataclasses, for any kind that cuts
-letters with a round tool (engraving's band, a V-carve's clearing tool, pocket and profile).
+Tolerances: a gap smaller than :func:`dust` is not reported: (2 % of the character's height)^2,
+at least region.MIN_AREA (0.01 mm^2, what the regions call numerical dust; 0.01 mm^2 is also
+(2 % of 5 mm)^2).  Being a share of the height, it does not change with scale, so specks of a
+font's outline (a notch 0.04 mm wide where two strokes overlap in a 5 mm kanji) stay specks at
+every height, and the height found passes.  Offsets are polygons within region.ARC_TOLERANCE
+(0.01 mm) of their arcs: missed pieces narrower than :data:`SLIVER` (four times that) are chord
+error, not gaps.  The API takes plain loops and returns frozen dataclasses, for any kind that
+cuts letters with a round tool (engraving's band, a V-carve's clearing tool, pocket, profile).
 """
 from __future__ import annotations
 
@@ -32,23 +35,21 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from manifold3d import CrossSection, FillRule
+from manifold3d import CrossSection
 
 from . import region as rg
 
 MIN_GAP_AREA = rg.MIN_AREA
-DUST_SHARE = 0.02            # a gap smaller than (2 % of the character's height)^2 is a speck of the font's outline
-CAP_MARGIN = 2 * rg.ARC_TOLERANCE
+DUST_SHARE = 0.02           # a gap smaller than (2 % of the character's height)^2 is a speck of the font's outline
 SLIVER = 4 * rg.ARC_TOLERANCE
 HEIGHT_STEP = 0.1           # mm: a text height is typed to a tenth of a millimetre
 MAX_SCALE = 50.0            # a character needing more than 50 x its height is named without a height
 PRECISION = 0.002           # relative precision of the bisection on the scale
 DUST = 1e-4                 # mm^2: pieces of a difference smaller than this are rounding, not area
-TURN_MIN = math.radians(2)
-WALL_NEAR = 0.002             # mm: an edge of a missed piece this near the region's outline runs along a wall (its
+WALL_NEAR = 0.002           # mm: an edge of a missed piece this near the region's outline runs along a wall (its
                             # edges are the outline's own, to rounding; the sliver rounding of a tip is farther)
-BRIDGE = 4 * SLIVER           # mm: see _between_walls
-FACING = math.radians(10)   # a run of wall turning through 170 degrees or more has two walls facing each other  # corners turning less than this leave caps below 1e-5 r^2: not built
+BRIDGE = 4 * SLIVER         # mm: a stretch off the walls shorter than this between two runs joins them
+FACING = math.radians(10)   # a run of wall turning through 170 degrees or more has two walls facing each other
 
 
 class FineTextError(rg.RegionError):
@@ -94,39 +95,6 @@ def region_of(shape, what: str) -> CrossSection:
     if isinstance(shape, CrossSection):
         return shape
     return rg.from_loops(list(shape), what)
-
-
-def corner_caps(cut: CrossSection, radius: float) -> CrossSection:
-    """The caps a round tool of ``radius`` leaves in the sharp convex corners of ``cut``: between
-    each corner and the circle touching its two edges (grown by :data:`CAP_MARGIN`)."""
-    polygons = []
-    for loop in rg.loops(cut):
-        incoming = loop - np.roll(loop, 1, axis=0)
-        outgoing = np.roll(loop, -1, axis=0) - loop
-        a = incoming / np.maximum(np.hypot(*incoming.T), 1e-300)[:, None]
-        b = outgoing / np.maximum(np.hypot(*outgoing.T), 1e-300)[:, None]
-        cross = a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
-        turn = np.arctan2(cross, np.einsum("ij,ij->i", a, b))     # > 0: convex (the region is on the left)
-        for k in np.nonzero(turn > TURN_MIN)[0]:
-            half = (math.pi - turn[k]) / 2                           # half the corner's inside angle
-            reach = radius / math.tan(half)                          # corner to the touching points
-            inward = b[k] - a[k]
-            inward /= np.hypot(*inward)
-            centre = loop[k] + inward * radius / math.sin(half)
-            first, last = loop[k] - a[k] * reach, loop[k] + b[k] * reach
-            start = math.atan2(*(first - centre)[::-1])
-            sweep = turn[k]                                          # the arc the corner's cap spans
-            count = max(2, rg.circle_segments(radius) * sweep / (2 * math.pi))
-            angles = start + np.linspace(0.0, sweep, int(math.ceil(count)) + 1)
-            arc = centre + radius * np.column_stack([np.cos(angles), np.sin(angles)])
-            arc[0], arc[-1] = first, last
-            polygon = np.vstack([loop[k], arc])
-            if rg.signed_area(polygon) < 0:
-                polygon = polygon[::-1]
-            polygons.append(polygon)
-    if not polygons:
-        return CrossSection()
-    return rg.offset(CrossSection(polygons, FillRule.NonZero), CAP_MARGIN)
 
 
 def missed_gaps(cut: CrossSection, radius: float) -> CrossSection:
