@@ -80,3 +80,37 @@ def test_in_a_name_only_the_kanji_that_are_too_fine_are_named():
     characters, band = engraved("鬱山", 5.0, CJK)
     found = ft.check(characters, band, TOOL)
     assert [f.char for f in found] == ["鬱"]
+
+
+def test_engraving_names_the_kanji_its_band_tool_fuses():
+    """The engraving plan (raised letters, band finishing with the 1 mm flat end mill) reports each
+    kanji of a 5 mm name in ``too_fine`` and in a warning that gives its smallest height."""
+    from kezuri.toolpath.operations.engrave import engrave
+
+    characters, _ = engraved("鬱欅", 5.0, CJK)
+    loops = [loop for c in characters for loop in c.loops]
+    plate = [np.array([[-8.0, -8.0], [20.0, -8.0], [20.0, 13.0], [-8.0, 13.0]])]
+    given = [("Name", c.char, c.index, c.loops) for c in characters]
+    result = engrave.plan(plate, [("Name", loops)], characters=given, texts={"Name": "鬱欅"})
+    assert [(t["char"], t["index"], t["letters"], t["operation"]) for t in result.too_fine] == [
+        ("鬱", 0, "Name", "band finishing"), ("欅", 1, "Name", "band finishing")]
+    expected = {f.char: f for f in ft.check(characters, engrave.band_region(
+        rg.from_loops(plate), rg.from_loops(loops), engrave.EngraveSettings()), 1.0)}
+    for item in result.too_fine:
+        assert item["min_height_mm"] == pytest.approx(expected[item["char"]].min_height_mm)
+        assert item["min_height_mm"] > 5.0 and 0 < item["narrowest_mm"] < 1.0
+    lines = [w for w in result.warnings if "too big for '鬱' (U+9B31) of letters 'Name'" in w]
+    assert len(lines) == 1
+    assert f"make it at least {result.too_fine[0]['min_height_mm']:.1f} mm tall (now 5.0 mm)" in lines[0]
+
+
+def test_engraving_a_latin_name_at_20_mm_names_nothing():
+    from kezuri.toolpath.operations.engrave import engrave
+
+    characters, _ = engraved("Watanabe", 20.0)
+    loops = [loop for c in characters for loop in c.loops]
+    x1 = max(float(loop[:, 0].max()) for loop in loops)
+    plate = [np.array([[-8.0, -8.0], [x1 + 8, -8.0], [x1 + 8, 28.0], [-8.0, 28.0]])]
+    result = engrave.plan(plate, [("Name", loops)], texts={"Name": "Watanabe"})
+    assert result.too_fine == []
+    assert not [w for w in result.warnings if "too big for" in w]
