@@ -2396,6 +2396,7 @@ FINE_TEXT_TEMPLATES = {
     "{}: too fine, needs {} mm": "{0}：細かすぎ、{1} mm 以上に",
     "{}: too fine at any size": "{0}：どの大きさでも細かすぎ",
     "and {} more too fine": "ほか {0} 文字も細かすぎ",
+    "tool diameter must be a positive number of mm, got {}": "工具径は正の mm 数値で指定してください（指定値 {0}）",
 }
 MESSAGE_TEMPLATES.update(FINE_TEXT_TEMPLATES)
 TRANSLATIONS = _build()
