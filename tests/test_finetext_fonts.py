@@ -114,3 +114,23 @@ def test_engraving_a_latin_name_at_20_mm_names_nothing():
     result = engrave.plan(plate, [("Name", loops)], texts={"Name": "Watanabe"})
     assert result.too_fine == []
     assert not [w for w in result.warnings if "too big for" in w]
+
+
+def test_the_jobs_part_warnings_carry_the_characters_too_fine():
+    """Through the job model (what the job list shows): the engraving's Part warns of each kanji."""
+    from kezuri.toolpath import job as jobs
+    from kezuri.toolpath.operations.engrave import engrave
+    from kezuri.toolpath.operations.engrave.kind import EngraveGeometry
+
+    characters, _ = engraved("鬱欅", 5.0, CJK)
+    loops = tuple(loop for c in characters for loop in c.loops)
+    plate = (np.array([[-8.0, -8.0], [20.0, -8.0], [20.0, 13.0], [-8.0, 13.0]]),)
+    geometry = EngraveGeometry(plate, 10.0, (("Name", loops),), (("Name", "鬱欅"),),
+                               characters=tuple(("Name", c.char, c.index, c.loops) for c in characters))
+    planned = jobs.plan_job(jobs.Job(jobs.Setup(name="plate", post="linuxcnc"),
+                                     (jobs.JobOperation("engrave", "name", engrave.EngraveSettings(), geometry),)))
+    part = planned.parts[0]
+    assert [t["char"] for t in part.result.result.too_fine] == ["鬱", "欅"]
+    for kanji in ("'鬱' (U+9B31)", "'欅' (U+6B05)"):
+        assert sum(kanji in w and "mm tall (now 5.0 mm)" in w for w in part.warnings) == 1
+        assert sum(kanji in w for w in planned.warnings) == 1
