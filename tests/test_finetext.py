@@ -110,3 +110,26 @@ def test_bad_tool_is_refused():
     for bad in (0, -1, float("nan"), "1"):
         with pytest.raises(ft.FineTextError, match="tool diameter"):
             ft.check([character], waste, bad)
+
+
+def test_a_slot_closed_at_one_end_is_a_gap():
+    """A 'U' whose inside is 0.6 mm wide and 8 mm deep: the walls and the floor of the slot are one
+    run of wall turning half a turn, so it is a gap, with its width and height as for a slot."""
+    u = np.array([[0, 0], [4.6, 0], [4.6, 10], [2.6, 10], [2.6, 2], [2.0, 2], [2.0, 10], [0, 10]], float)
+    region = rg.from_loops([u])
+    waste = rg.offset(region, 4.0) - region
+    found = ft.check([ft.Character("U", 0, (u,))], waste, 1.0)
+    assert len(found) == 1
+    assert found[0].narrowest_mm == pytest.approx(0.6, rel=0.01)
+    assert found[0].missed_mm2 == pytest.approx(0.6 * 8, rel=0.1)
+    assert math.ceil(10 / 0.6 * 10 - 1e-6) / 10 - 1e-9 <= found[0].min_height_mm <= math.ceil(10 / 0.6 * 10) / 10 + 0.2
+
+
+def test_a_wedge_between_strokes_is_a_corner():
+    """A 'V' whose inside is a 40 degree wedge: the tool reaches in until it touches both sides,
+    and what is left at the tip is left at any size: not named."""
+    half = math.tan(math.radians(20)) * 8
+    v = np.array([[0, 0], [6, 0], [6, 8], [3 + half, 8], [3, 0.5], [3 - half, 8], [0, 8]], float)
+    region = rg.from_loops([v])
+    waste = rg.offset(region, 4.0) - region
+    assert ft.check([ft.Character("V", 0, (v,))], waste, 1.0) == []
