@@ -133,3 +133,14 @@ def test_a_wedge_between_strokes_is_a_corner():
     region = rg.from_loops([v])
     waste = rg.offset(region, 4.0) - region
     assert ft.check([ft.Character("V", 0, (v,))], waste, 1.0) == []
+
+
+@pytest.mark.parametrize("gap, named", [(0.08, False), (0.15, True)])
+def test_a_hairline_narrower_than_1_percent_of_the_height_is_not_a_gap(gap, named):
+    """Two contours of a font 0.08 mm apart in a 10 mm character (0.8 % of its height) touch by
+    design; at 0.15 mm (1.5 %) the slot is named, with its width."""
+    character, waste = two_bars(gap)
+    found = ft.check([character], waste, 1.0)
+    assert bool(found) == named
+    if named:
+        assert found[0].narrowest_mm == pytest.approx(gap, rel=0.02)

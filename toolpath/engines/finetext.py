@@ -20,13 +20,14 @@ s* the smallest scale at which the character's gaps are all reached, found by bi
 scaled geometry) and the smallest text height: the character's height x s* rounded up to
 :data:`HEIGHT_STEP` and checked again at that height, so the height named passes this check.
 
-Tolerances: a gap smaller than :func:`dust` is not reported: (2 % of the character's height)^2,
-at least region.MIN_AREA (0.01 mm^2, what the regions call numerical dust; 0.01 mm^2 is also
-(2 % of 5 mm)^2).  Being a share of the height, it does not change with scale, so specks of a
-font's outline (a notch 0.04 mm wide where two strokes overlap in a 5 mm kanji) stay specks at
-every height, and the height found passes.  Offsets are polygons within region.ARC_TOLERANCE
-(0.01 mm) of their arcs: missed pieces narrower than :data:`SLIVER` (four times that) are chord
-error, not gaps.  The API takes plain loops and returns frozen dataclasses, for any kind that
+Tolerances, shares of the character's height so that they do not change with scale (specks of a
+font stay specks at every height, and the height found passes): a gap smaller than :func:`dust`,
+(2 % of the height)^2, is not reported (at least region.MIN_AREA, 0.01 mm^2, what the regions call
+numerical dust, which is (2 % of 5 mm)^2); a missed part narrower than :func:`hairline`, 1 % of the
+height, is where two contours of the font touch by design (a 0.04 mm slit between two strokes of
+a 5 mm 渡 would otherwise ask for a 132 mm character).  Offsets are polygons within
+region.ARC_TOLERANCE (0.01 mm) of their arcs: nothing narrower than :data:`SLIVER` (four times
+that) counts, whatever the height.  The API takes plain loops and returns frozen dataclasses, for any kind that
 cuts letters with a round tool (engraving's band, a V-carve's clearing tool, pocket, profile).
 """
 from __future__ import annotations
@@ -42,13 +43,14 @@ from . import region as rg
 MIN_GAP_AREA = rg.MIN_AREA
 DUST_SHARE = 0.02           # a gap smaller than (2 % of the character's height)^2 is a speck of the font's outline
 SLIVER = 4 * rg.ARC_TOLERANCE
+HAIRLINE_SHARE = 0.01        # a missed part narrower than 1 % of the character's height is a hairline of the font
 HEIGHT_STEP = 0.1           # mm: a text height is typed to a tenth of a millimetre
 MAX_SCALE = 50.0            # a character needing more than 50 x its height is named without a height
 PRECISION = 0.002           # relative precision of the bisection on the scale
 DUST = 1e-4                 # mm^2: pieces of a difference smaller than this are rounding, not area
 WALL_NEAR = 0.002           # mm: an edge of a missed piece this near the region's outline runs along a wall (its
                             # edges are the outline's own, to rounding; the sliver rounding of a tip is farther)
-BRIDGE = 4 * SLIVER         # mm: a stretch off the walls shorter than this between two runs joins them
+BRIDGE = 4                  # x the hairline: a stretch off the walls shorter than this between two runs joins them
 FACING = math.radians(10)   # a run of wall turning through 170 degrees or more has two walls facing each other
 
 
@@ -97,21 +99,23 @@ def region_of(shape, what: str) -> CrossSection:
     return rg.from_loops(list(shape), what)
 
 
-def missed_gaps(cut: CrossSection, radius: float) -> CrossSection:
-    """What a tool of ``radius`` cannot reach of ``cut``, its corner caps and slivers taken away."""
+def missed_gaps(cut: CrossSection, radius: float, hairline: float = SLIVER) -> CrossSection:
+    """The gaps of ``cut`` a tool of ``radius`` cannot reach: its corners' leftovers and the
+    missed parts narrower than ``hairline`` (mm) taken away."""
     reached = rg.offset(rg.offset(cut, -radius), radius)
     missed = cut - reached
     if missed.area() < MIN_GAP_AREA:
         return CrossSection()
-    missed = _solid(rg.offset(rg.offset(_solid(missed), -SLIVER / 2), SLIVER / 2))
+    hairline = max(hairline, SLIVER)
+    missed = _solid(rg.offset(rg.offset(_solid(missed), -hairline / 2), hairline / 2))
     if missed.is_empty():
         return missed
     inner = rg.offset(cut, -WALL_NEAR)
-    gaps = [piece for piece in missed.decompose() if piece.area() > DUST and _between_walls(piece, inner)]
+    gaps = [piece for piece in missed.decompose() if piece.area() > DUST and _between_walls(piece, inner, hairline)]
     return CrossSection.compose(gaps) if gaps else CrossSection()
 
 
-def _between_walls(piece: CrossSection, inner: CrossSection) -> bool:
+def _between_walls(piece: CrossSection, inner: CrossSection, hairline: float) -> bool:
     """Is this missed piece a gap (True) or what is left of a corner whose sides curve (False)?
 
     Its outline runs partly along the walls of the region to cut (edges within
@@ -120,7 +124,8 @@ def _between_walls(piece: CrossSection, inner: CrossSection) -> bool:
     the walls in two runs or more (a slot open at both ends), in one run that turns through half a
     turn or more, less :data:`FACING` (a slot closed at one end: two walls and its end), or all
     round (a counter the tool cannot enter).  A corner is one run turning through less: its two
-    sides meet at the corner's angle, and no size of the text makes a round tool reach into it."""
+    sides meet at the corner's angle, and no size of the text makes a round tool reach into it.
+    ``hairline``: the width the missed part was opened by (its corners are rounded that much)."""
     loop = max(rg.loops(piece), key=lambda lp: abs(rg.signed_area(lp)))
     following = np.roll(loop, -1, axis=0)
     wall = ~rg.contains_points(inner, (loop + following) / 2)
@@ -145,7 +150,7 @@ def _between_walls(piece: CrossSection, inner: CrossSection) -> bool:
         end = k
         while end < len(wall) and not wall[end]:
             end += 1
-        if 0 < k and end < len(wall) and lengths[k:end].sum() < BRIDGE:
+        if 0 < k and end < len(wall) and lengths[k:end].sum() < BRIDGE * hairline:
             wall[k:end] = True
         k = end
     heading = np.arctan2(edges[:, 1], edges[:, 0])
@@ -162,7 +167,7 @@ def _between_walls(piece: CrossSection, inner: CrossSection) -> bool:
         runs += 1
         # the run's turning from its first long edge to its last: the short edges at its ends are
         # the sliver rounding where the wall meets the tool's reach, bent either way
-        long = np.nonzero(lengths[k:end] >= SLIVER)[0]
+        long = np.nonzero(lengths[k:end] >= hairline)[0]
         turning.append(float(turns[k + long[0]:k + long[-1]].sum()) if len(long) else 0.0)
         k = end
     return runs >= 2 or max(turning) >= math.pi - FACING
@@ -195,6 +200,13 @@ def owners(boxes: np.ndarray, points: np.ndarray) -> np.ndarray:
     return np.argmin(outside * 1e6 + to_centre, axis=1)
 
 
+def hairline(height: float) -> float:
+    """The width (mm) below which a missed part of a character ``height`` mm tall is a hairline
+    between two of the font's contours, not a gap: :data:`HAIRLINE_SHARE` of the height, at least
+    :data:`SLIVER`."""
+    return max(SLIVER, HAIRLINE_SHARE * height)
+
+
 def dust(height: float) -> float:
     """The area (mm^2) below which a gap of a character ``height`` mm tall is not reported: the
     square of :data:`DUST_SHARE` of its height, at least :data:`MIN_GAP_AREA`."""
@@ -207,8 +219,8 @@ def _gaps_of(cut, radius, boxes, which: int, scale: float = 1.0, about=(0.0, 0.0
     if scale != 1.0:
         x0, y0 = about
         cut = cut.translate((-x0, -y0)).scale((scale, scale)).translate((x0, y0))
-    least = dust(float(boxes[which, 3] - boxes[which, 1]) * scale)
-    pieces = rg.components(missed_gaps(cut, radius), least)
+    tall = float(boxes[which, 3] - boxes[which, 1]) * scale
+    pieces = rg.components(missed_gaps(cut, radius, hairline(tall)), dust(tall))
     if not pieces:
         return []
     centres = np.array([rg.centroid(p) for p in pieces])
@@ -235,17 +247,16 @@ def check(characters, cut, tool_diameter: float) -> list:
     found = []
     for which in sorted(set(owner.tolist())):
         character = characters[which]
-        least = dust(float(boxes[which, 3] - boxes[which, 1]))
-        mine = [pieces[k] for k in np.nonzero(owner == which)[0] if rg.area(pieces[k]) >= least]
+        window = _window(cut, boxes[which], radius)
+        mine = _gaps_of(window, radius, boxes, which, 1.0, _centre(boxes, which))      # at its own tolerances
         if not mine:
             continue
         height = character.height if character.height is not None else float(boxes[which, 3] - boxes[which, 1])
-        window = _window(cut, boxes[which], radius)
         scale = _smallest_scale(window, radius, boxes, which)
         min_height = None if scale is None else _checked_height(window, radius, boxes, which, height, scale)
         narrowest = tool_diameter / scale if scale is not None else 0.0
-        found.append(TooFine(character.char, character.index, sum(rg.area(p) for p in mine), narrowest, height,
-                             min_height, rg.centroid(max(mine, key=rg.area))))
+        found.append(TooFine(character.char, character.index, sum(area for area, _ in mine), narrowest, height,
+                             min_height, max(mine)[1]))
     return sorted(found, key=lambda f: f.index)
 
 
@@ -256,9 +267,12 @@ def _window(cut: CrossSection, box, radius: float) -> CrossSection:
     return cut ^ rg.rectangle(box[0] - margin, box[1] - margin, box[2] + margin, box[3] + margin)
 
 
+def _centre(boxes, which) -> tuple:
+    return ((boxes[which, 0] + boxes[which, 2]) / 2, (boxes[which, 1] + boxes[which, 3]) / 2)
+
+
 def _reached_at(window, radius, boxes, which, scale) -> bool:
-    centre = ((boxes[which, 0] + boxes[which, 2]) / 2, (boxes[which, 1] + boxes[which, 3]) / 2)
-    return not _gaps_of(window, radius, boxes, which, scale, centre)
+    return not _gaps_of(window, radius, boxes, which, scale, _centre(boxes, which))
 
 
 def _smallest_scale(window, radius, boxes, which) -> float | None:
