@@ -48,14 +48,17 @@ def character_outlines(obj, depsgraph, frame, letter_loops) -> list:
     world = convert.placed(local.reshape(count, 3), np.array(obj.evaluated_get(depsgraph).matrix_world))
     work = frame.to_work(world)[:, :2]
     found = []
-    for slot in sorted(set(materials.tolist()) - {0}):
-        index = slot - 1
-        if index >= len(body):
+    try:
+        for slot in sorted(set(materials.tolist()) - {0}):
+            index = slot - 1
+            if index >= len(body):
+                return []
+            shape = region.union_of_faces([work[faces[k]] for k in np.nonzero(materials == slot)[0]],
+                                          f"character {index + 1} of {obj.name!r}")
+            found.append((body[index], index, tuple(region.loops(shape))))
+        if not found or not _agrees(found, letter_loops):
             return []
-        shape = region.union_of_faces([work[faces[k]] for k in np.nonzero(materials == slot)[0]],
-                                      f"character {index + 1} of {obj.name!r}")
-        found.append((body[index], index, tuple(region.loops(shape))))
-    if not found or not _agrees(found, letter_loops):
+    except region.RegionError:         # a glyph of no area: the characters are not told apart, nothing fails
         return []
     return found
 

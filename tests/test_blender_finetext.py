@@ -15,6 +15,8 @@ import pytest
 
 bpy = pytest.importorskip("bpy")
 
+import controller_rules  # noqa: E402
+import rs274  # noqa: E402
 import sidebar_fit as fit  # noqa: E402
 from blender_helpers import empty_scene  # noqa: E402,F401  (fixture)
 from kezuri.operators import convert, panels, samples, textcells, translations  # noqa: E402
@@ -82,6 +84,13 @@ def test_batch_engrave_names_the_5_mm_kanji_in_the_report(empty_scene, tmp_path)
         assert item["min_height_mm"] > 5.0 and 0 < item["narrowest_mm"] < 1.0 and item["missed_mm2"] > 0.5
         shown = f"'{item['char']}' (U+{ord(item['char']):04X}) of letters 'Name'"
         assert any(shown in w and f"at least {item['min_height_mm']:.1f} mm tall" in w for w in report["warnings"])
+    # the program names them in its header's notes, and stays a program the readers accept
+    text = (out / "engrave.ngc").read_text()
+    notes = [line for line in text.splitlines() if line.startswith("(NOTE:") and "TOO BIG FOR" in line]
+    assert [("U+9B31" in n, "U+6B05" in n) for n in notes] == [(True, False), (False, True)]
+    assert controller_rules.check(text, "linuxcnc") == []
+    if rs274.available():
+        assert rs274.run(text)
     bpy.ops.wm.read_homefile(use_empty=True)
 
 
