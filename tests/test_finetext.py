@@ -144,3 +144,29 @@ def test_a_hairline_narrower_than_1_percent_of_the_height_is_not_a_gap(gap, name
     assert bool(found) == named
     if named:
         assert found[0].narrowest_mm == pytest.approx(gap, rel=0.02)
+
+
+@pytest.mark.parametrize("width, named", [(0.6, True), (1.2, False)])
+def test_letters_cut_in_are_checked_on_their_strokes(width, named):
+    """A pocket or a V-carve's flat clearing cuts the strokes themselves: an 'I' of one stroke
+    ``width`` wide and 10 mm tall is named for the 1 mm tool iff the stroke is narrower."""
+    stroke = box(0, 0, width, 10)
+    found = ft.check([ft.Character("I", 0, (stroke,))], [stroke], 1.0)
+    assert bool(found) == named
+    if named:
+        assert found[0].missed_mm2 == pytest.approx(width * 10, rel=0.01)
+        assert found[0].narrowest_mm == pytest.approx(width, rel=0.01)
+        assert found[0].min_height_mm == pytest.approx(math.ceil(10 / width * 10) / 10, abs=0.11)
+
+
+def test_the_same_character_drawn_larger_asks_for_the_same_height():
+    """The smallest height is a property of the character's shape and the tool, not of the size it
+    is drawn at now: the 0.4 mm slot of a 10 mm character asks for 25 mm drawn at 10 or at 16 mm."""
+    character, _ = two_bars(0.4)
+    asked = []
+    for k in (1.0, 1.6):
+        loops = tuple(loop * k for loop in character.loops)
+        letters = rg.from_loops(list(loops))
+        asked.append(ft.check([ft.Character("H", 0, loops)], rg.offset(letters, 4.0) - letters, 1.0)[0].min_height_mm)
+    assert asked[0] == pytest.approx(25.0, abs=0.2)
+    assert asked[1] == pytest.approx(asked[0], abs=0.2)
