@@ -42,20 +42,20 @@ from . import region as rg
 
 MIN_GAP_AREA = rg.MIN_AREA
 DUST_SHARE = 0.02           # a gap smaller than (2 % of the character's height)^2 is a speck of the font's outline
-SLIVER = 4 * rg.ARC_TOLERANCE
-HAIRLINE_SHARE = 0.01        # a missed part narrower than 1 % of the character's height is a hairline of the font
+SLIVER = 4 * rg.ARC_TOLERANCE  # mm: narrower than this, a missed part is the offsets' chord error
+HAIRLINE_SHARE = 0.01       # a missed part narrower than 1 % of the character's height is a hairline of the font
 HEIGHT_STEP = 0.1           # mm: a text height is typed to a tenth of a millimetre
 MAX_SCALE = 50.0            # a character needing more than 50 x its height is named without a height
 PRECISION = 0.002           # relative precision of the bisection on the scale
 DUST = 1e-4                 # mm^2: pieces of a difference smaller than this are rounding, not area
 WALL_NEAR = 0.002           # mm: an edge of a missed piece this near the region's outline runs along a wall (its
                             # edges are the outline's own, to rounding; the sliver rounding of a tip is farther)
-BRIDGE = 4                  # x the hairline: a stretch off the walls shorter than this between two runs joins them
+BRIDGE = 4                  # x the opening's width: a stretch off the walls shorter than this between two runs joins them
 FACING = math.radians(10)   # a run of wall turning through 170 degrees or more has two walls facing each other
 
 
 class FineTextError(rg.RegionError):
-    """Bad input to the check: a tool of no size, a character without an outline."""
+    """Bad input to the check: a tool of no size."""
 
 
 @dataclass(frozen=True)
@@ -99,23 +99,23 @@ def region_of(shape, what: str) -> CrossSection:
     return rg.from_loops(list(shape), what)
 
 
-def missed_gaps(cut: CrossSection, radius: float, hairline: float = SLIVER) -> CrossSection:
+def missed_gaps(cut: CrossSection, radius: float, narrow: float = SLIVER) -> CrossSection:
     """The gaps of ``cut`` a tool of ``radius`` cannot reach: its corners' leftovers and the
-    missed parts narrower than ``hairline`` (mm) taken away."""
+    missed parts narrower than ``narrow`` (mm, at least :data:`SLIVER`) taken away."""
     reached = rg.offset(rg.offset(cut, -radius), radius)
     missed = cut - reached
     if missed.area() < MIN_GAP_AREA:
         return CrossSection()
-    hairline = max(hairline, SLIVER)
-    missed = _solid(rg.offset(rg.offset(_solid(missed), -hairline / 2), hairline / 2))
+    narrow = max(narrow, SLIVER)
+    missed = _solid(rg.offset(rg.offset(_solid(missed), -narrow / 2), narrow / 2))
     if missed.is_empty():
         return missed
     inner = rg.offset(cut, -WALL_NEAR)
-    gaps = [piece for piece in missed.decompose() if piece.area() > DUST and _between_walls(piece, inner, hairline)]
+    gaps = [piece for piece in missed.decompose() if piece.area() > DUST and _between_walls(piece, inner, narrow)]
     return CrossSection.compose(gaps) if gaps else CrossSection()
 
 
-def _between_walls(piece: CrossSection, inner: CrossSection, hairline: float) -> bool:
+def _between_walls(piece: CrossSection, inner: CrossSection, narrow: float) -> bool:
     """Is this missed piece a gap (True) or what is left of a corner whose sides curve (False)?
 
     Its outline runs partly along the walls of the region to cut (edges within
@@ -125,7 +125,7 @@ def _between_walls(piece: CrossSection, inner: CrossSection, hairline: float) ->
     turn or more, less :data:`FACING` (a slot closed at one end: two walls and its end), or all
     round (a counter the tool cannot enter).  A corner is one run turning through less: its two
     sides meet at the corner's angle, and no size of the text makes a round tool reach into it.
-    ``hairline``: the width the missed part was opened by (its corners are rounded that much)."""
+    ``narrow``: the width the missed part was opened by (its corners are rounded that much)."""
     loop = max(rg.loops(piece), key=lambda lp: abs(rg.signed_area(lp)))
     following = np.roll(loop, -1, axis=0)
     wall = ~rg.contains_points(inner, (loop + following) / 2)
@@ -150,7 +150,7 @@ def _between_walls(piece: CrossSection, inner: CrossSection, hairline: float) ->
         end = k
         while end < len(wall) and not wall[end]:
             end += 1
-        if 0 < k and end < len(wall) and lengths[k:end].sum() < BRIDGE * hairline:
+        if 0 < k and end < len(wall) and lengths[k:end].sum() < BRIDGE * narrow:
             wall[k:end] = True
         k = end
     heading = np.arctan2(edges[:, 1], edges[:, 0])
@@ -167,7 +167,7 @@ def _between_walls(piece: CrossSection, inner: CrossSection, hairline: float) ->
         runs += 1
         # the run's turning from its first long edge to its last: the short edges at its ends are
         # the sliver rounding where the wall meets the tool's reach, bent either way
-        long = np.nonzero(lengths[k:end] >= hairline)[0]
+        long = np.nonzero(lengths[k:end] >= narrow)[0]
         turning.append(float(turns[k + long[0]:k + long[-1]].sum()) if len(long) else 0.0)
         k = end
     return runs >= 2 or max(turning) >= math.pi - FACING
