@@ -5,6 +5,7 @@ it, so the panel, batch and tests cut the same program.
 """
 from __future__ import annotations
 
+import json
 import os
 import time
 from dataclasses import dataclass
@@ -21,6 +22,7 @@ from ..toolpath.ir.program import Tool
 from ..toolpath.job import Job, JobOperation, Setup, plan_job
 from ..toolpath.operations.engrave.kind import EngraveGeometry
 from . import convert
+from . import textcells
 from . import gate
 from . import pathview
 from .common import SteppedOperator
@@ -30,7 +32,7 @@ from .limits import SettingError, check_group
 from .plancache import cache_of, keep
 from .preferences import scene_post
 from .properties import post_items, post_number
-from .translations import translate_message
+from .translations import iface, japanese_message, translate_message
 from .workflow import BatchCommand, SimulationSetup, Workflow
 
 POST_FAMILIES = ("milling",)
@@ -111,11 +113,16 @@ def engrave_operation(scene, depsgraph, post_name: str | None = None, name: str 
         raise convert.SceneInputError("no letters: pick a Text, curve or mesh object as Letters in the Engrave panel")
     letters = [(obj.name, convert.outlines_in_work(obj, depsgraph, plate.frame)) for obj in objects]
     texts = {obj.name: obj.data.body for obj in objects if obj.type == "FONT"}     # to name a glyph left uncut
+    outlines = dict(letters)
+    characters = tuple((obj.name, character, index, loops) for obj in objects
+                       for character, index, loops in textcells.character_outlines(obj, depsgraph, plate.frame,
+                                                                                   outlines[obj.name]))
     surface = surface_of(scene, depsgraph, plate.frame)
     post_name = post_name or scene_post(scene)
     machine = scene_machine(settings.machine, POST_FAMILIES, post_name)
     geometry = EngraveGeometry(tuple(plate.outline), float(plate.size[2]),
-                               tuple((obj, tuple(loops)) for obj, loops in letters), tuple(texts.items()), surface)
+                               tuple((obj, tuple(loops)) for obj, loops in letters), tuple(texts.items()), surface,
+                               characters)
     setup = Setup(name=scene.name, post=post_name, machine=machine, work_offset=settings.machine.work_offset,
                   rapid_rate=settings.machine.rapid_rate)
     return JobOperation("engrave", name, settings_from(props, machine), geometry), setup, plate
@@ -204,6 +211,31 @@ def simulation(job: EngraveJob) -> SimulationSetup:
                            "engrave")
 
 
+PANEL_LINES = 6          # characters named in the panel; the rest are counted on one more line
+
+
+def too_fine_note(too_fine: list) -> str:
+    """What the panel keeps of the characters too fine for the tool: [[shown, height], ...]."""
+    return json.dumps([[f"'{item['char']}'" if item["char"] else f"#{item['index'] + 1}", item["min_height_mm"]]
+                       for item in too_fine], ensure_ascii=False)
+
+
+def too_fine_lines(props, japanese: bool | None = None) -> list:
+    """The Engrave panel's lines for the characters too fine for the band finishing tool, short
+    enough for the sidebar (the report has the whole message), in the interface language."""
+    try:
+        items = json.loads(props.too_fine) if props.too_fine else []
+    except ValueError:
+        return []
+    lines = [f"{shown}: too fine, needs {height:.1f} mm" if height is not None else f"{shown}: too fine at any size"
+             for shown, height in items[:PANEL_LINES]]
+    if len(items) > PANEL_LINES:
+        lines.append(f"and {len(items) - PANEL_LINES} more too fine")
+    if japanese is None:
+        japanese = iface("Engrave") != "Engrave"
+    return [japanese_message(line) or line for line in lines] if japanese else lines
+
+
 class KEZURI_OT_engrave_generate(SteppedOperator, bpy.types.Operator):
     """Plan the gouge-texture roughing, band finishing and burr contour, and show the toolpaths"""
 
@@ -228,6 +260,7 @@ class KEZURI_OT_engrave_generate(SteppedOperator, bpy.types.Operator):
 
     def finish(self, context, job):
         show_engrave(context.scene, job)
+        context.scene.kezuri.engrave.too_fine = too_fine_note(job.result.too_fine)
         for warning in job.result.warnings:
             self.report({"WARNING"}, translate_message(warning))
         minutes = job.baked.cycle_time() / 60
@@ -372,6 +405,7 @@ def batch(args) -> dict:
         "gouge_depths": [round(d, 4) for d in job.depths],
         "warnings": job.result.warnings,
         "skipped": job.result.skipped,
+        "too_fine": job.result.too_fine,
     }
     warn(findings, report)
     return report

@@ -115,6 +115,12 @@ class KEZURI_PT_engrave(KezuriPanel, bpy.types.Panel):
         fields(layout, context.scene.kezuri.engrave, ("letters", "letters_collection", "surface"))
         big_button(layout, "kezuri.engrave_generate", "MOD_NOISE")
         layout.operator("kezuri.engrave_export", icon="EXPORT")
+        from .engrave import too_fine_lines
+        lines = too_fine_lines(context.scene.kezuri.engrave)     # characters the band's tool cannot resolve
+        if lines:
+            box = layout.box()
+            for line in lines:
+                box.label(text=line, icon="ERROR", translate=False)
 
 
 class KEZURI_PT_engrave_texture(KezuriPanel, bpy.types.Panel):

@@ -207,6 +207,8 @@ class KezuriEngrave(bpy.types.PropertyGroup):
     clearance_z: mm("Clearance Plane", 20.0, "Height of rapid moves between cuts", minimum=0.0)
     safe_z: mm("Safe Z", 0.0, "Height where each operation starts and ends; 0: the machine's clearance height "
                               "(tool changes and the program end lift Z as the machine profile says)", minimum=0.0)
+    # the last Generate's characters too fine for the band finishing tool (JSON, operators/engrave.py)
+    too_fine: StringProperty(name="Too Fine", options={"HIDDEN"})
 
 
 # Shared by the Sheet Metal panel (scene settings) and the operators' redo panels.

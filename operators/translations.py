@@ -2596,6 +2596,22 @@ ROUTER_TEMPLATES = {
 }
 MESSAGE_TEMPLATES.update(ROUTER_TEMPLATES)
 NESTED.update(POCKET_NESTED)
+# text too fine for the band finishing tool (issue 30: toolpath/engines/finetext.py, operators/engrave.py)
+FINE_TEXT_TEMPLATES = {
+    "the band finishing's {} mm tool is too big for {} of letters {}: {} mm^2 between its strokes is left uncut "
+    "(gaps {} mm wide); make it at least {} mm tall (now {} mm)":
+        "帯仕上げの {0} mm 工具は文字 {2} の {1} には太すぎます：線の間の {3} mm² が削り残ります"
+        "（隙間の幅 {4} mm）。高さを {5} mm 以上にしてください（現在 {6} mm）",
+    "the band finishing's {} mm tool is too big for {} of letters {}: {} mm^2 between its strokes is left uncut; "
+    "no text up to {} times as tall lets the tool in: use a smaller tool":
+        "帯仕上げの {0} mm 工具は文字 {2} の {1} には太すぎます：線の間の {3} mm² が削り残ります。"
+        "{4} 倍の高さまで大きくしても工具が入りません。小さい工具を使ってください",
+    "{}: too fine, needs {} mm": "{0}：細かすぎ、{1} mm 以上に",
+    "{}: too fine at any size": "{0}：どの大きさでも細かすぎ",
+    "and {} more too fine": "ほか {0} 文字も細かすぎ",
+    "tool diameter must be a positive number of mm, got {}": "工具径は正の mm 数値で指定してください（指定値 {0}）",
+}
+MESSAGE_TEMPLATES.update(FINE_TEXT_TEMPLATES)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import glyphs
-from ...engines import ramp
+from ...engines import finetext, ramp
 from ...engines import region as rg
 from ...ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, PathBuilder, Program, Tool
 from ...ir.texture import GOUGE_MOTIONS, EngraveError, GougeTexture  # noqa: F401  (the texture lives in the IR)
@@ -118,10 +118,14 @@ class EngraveResult:
     corner_leftover_mm2: float = 0.0    # left by round tools in sharp inside corners
     letters: list = field(default_factory=list)   # the letters as planned: [(object name, loops)]
     texts: dict = field(default_factory=dict)     # {object name: text} of the Text objects
+    # the characters too fine for the band finishing tool: [{operation, letters, char, index,
+    # missed_mm2, narrowest_mm, height_mm, min_height_mm, at}] (:mod:`finetext`)
+    too_fine: list = field(default_factory=list)
 
 
 def plan(plate_loops, letters, settings: EngraveSettings = EngraveSettings(), name: str = "engrave",
-         progress=None, plate_thickness: float | None = None, texts: dict | None = None) -> EngraveResult:
+         progress=None, plate_thickness: float | None = None, texts: dict | None = None,
+         characters=None) -> EngraveResult:
     """Plan the three operations.
 
     plate_loops: closed loops (mm, work XY; the plate top is Z = 0) of the plate face.
@@ -132,6 +136,10 @@ def plan(plate_loops, letters, settings: EngraveSettings = EngraveSettings(), na
                  the plate's bottom, Z = -thickness.  None: not checked (the caller does not know).
     texts:       {object_name: its text} for the letters objects that are Text objects, so a region
                  left uncut is named by its character where that can be told (:mod:`glyphs`).
+    characters:  [(object_name, character, index, loops), ...]: each character of a Text object
+                 on its own (its place in the text, its outline), so a character too fine for the
+                 band finishing tool is named (:mod:`finetext`); objects not listed are split
+                 into glyphs by :func:`glyphs.cells`.
     """
     settings.validate()
     if plate_thickness is not None:
@@ -165,6 +173,8 @@ def plan(plate_loops, letters, settings: EngraveSettings = EngraveSettings(), na
     rough = _roughing(plate, glyphs, settings, result)
     report(0.5, "band finishing")
     band = _band_finishing(plate, glyphs, settings, result)
+    report(0.75, "fine text")
+    _report_too_fine(result, band_region(plate, glyphs, settings), settings, characters or [])
     report(0.85, "burr contour")
     burr = _burr_contour(plate, glyphs, settings)
     result.program.operations = [op for op in (rough, band, burr) if op is not None]
@@ -232,10 +242,42 @@ def _roughing(plate, glyphs, settings, result) -> Operation | None:
     return _finish(builder, settings, "roughing (gouge texture)", tool, settings.rough_rpm, texture)
 
 
+def band_region(plate, glyphs, settings):
+    """What the band finishing cuts: ``band_width`` around the letters, on the plate."""
+    return (rg.offset(glyphs, settings.band_width) - glyphs) ^ plate
+
+
+def _report_too_fine(result, band, settings, characters):
+    """Name each character whose gaps the band finishing tool cannot enter (strokes that would
+    come out fused), with the height at which it would (:func:`finetext.check`)."""
+    given = {}
+    for object_name, character, index, loops in characters:
+        given.setdefault(object_name, []).append((character, index, tuple(loops)))
+    owners, cells = [], []
+    for object_name, loops in result.letters:
+        for character, index, outline in given.get(object_name) or glyphs.cells(loops, result.texts.get(object_name)):
+            owners.append((object_name, character, index))
+            cells.append(finetext.Character(character, len(cells), outline))
+    tool = settings.finish_tool
+    for found in finetext.check(cells, band, tool.diameter):
+        object_name, character, index = owners[found.index]
+        result.too_fine.append({"operation": "band finishing", "letters": object_name,
+                                **found.as_dict(), "char": character, "index": index})
+        what = glyphs.describe(character) if character is not None else f"glyph {index + 1}"
+        lost = (f"the band finishing's {tool.diameter:g} mm tool is too big for {what} of letters {object_name!r}: "
+                f"{found.missed_mm2:.2f} mm^2 between its strokes is left uncut")
+        if found.min_height_mm is None:
+            result.warnings.append(f"{lost}; no text up to {finetext.MAX_SCALE:g} times as tall lets the tool in: "
+                                   "use a smaller tool")
+        else:
+            result.warnings.append(f"{lost} (gaps {found.narrowest_mm:.2f} mm wide); make it at least "
+                                   f"{found.min_height_mm:.1f} mm tall (now {found.height_mm:.1f} mm)")
+
+
 def _band_finishing(plate, glyphs, settings, result) -> Operation | None:
     tool = settings.finish_tool
     r = tool.radius
-    band = (rg.offset(glyphs, settings.band_width) - glyphs) ^ plate
+    band = band_region(plate, glyphs, settings)
     result.band_area_mm2 = rg.area(band)
     # Rings from the outside of the band inward, so the last pass finishes the letter walls.
     distances = list(np.arange(settings.band_width - r, r - 1e-9, -settings.band_stepover))

@@ -50,6 +50,21 @@ def character_at(loops, text: str | None, point) -> str | None:
     return None
 
 
+def cells(loops, text: str | None) -> list:
+    """The glyphs of one letters object, left to right, as (character, index, loops): the
+    character of ``text`` and its place in it when the glyphs can be matched to the text's
+    characters that are not spaces (see the module notes), else (None, the glyph's number from 0,
+    loops).  Each glyph's loops are its pieces' outlines with their counters."""
+    columns = _columns(rg.components(rg.from_loops(loops, "letters")))
+    places = [k for k, c in enumerate(text or "") if not c.isspace()]
+    known = bool(text) and "\n" not in text.strip() and len(places) == len(columns)
+    found = []
+    for number, (_, _, pieces) in enumerate(columns):
+        outline = tuple(loop for piece in pieces for loop in rg.loops(piece))
+        found.append((text[places[number]], places[number], outline) if known else (None, number, outline))
+    return found
+
+
 def owner(letters, point) -> str | None:
     """The name of the letters object (``[(name, loops)]``) whose outline, counters filled, holds
     ``point``, else the one nearest to it."""

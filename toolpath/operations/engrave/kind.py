@@ -14,13 +14,15 @@ class EngraveGeometry:
     """The plate and the letters in work mm (the plate's top at Z = 0): ``plate_outline``, the
     plate face's closed loops; ``letters``, ((object name, (loop, ...)), ...); ``texts``, ((object
     name, its text), ...) of the Text objects; ``surface``, a surface_engrave.Surface for a curved
-    plate or None."""
+    plate or None; ``characters``, ((object name, character, index in its text, (loop, ...)), ...):
+    the Text objects' characters one by one, to name those too fine for the tool."""
 
     plate_outline: tuple
     plate_thickness: float
     letters: tuple
     texts: tuple = ()
     surface: object = None
+    characters: tuple = ()
 
     @property
     def letter_loops(self) -> list:
@@ -52,7 +54,8 @@ class EngraveKind(OperationKind):
         thickness = float(geometry.plate_thickness)
         if geometry.surface is not None:
             curved = surface_engrave.plan(outline, letters, geometry.surface, settings, name=setup.name,
-                                          progress=progress, plate_thickness=thickness, texts=texts)
+                                          progress=progress, plate_thickness=thickness, texts=texts,
+                                          characters=list(geometry.characters))
             for program in (curved.result.program, curved.baked, curved.macro):
                 program.work_offset, program.rapid_rate = setup.work_offset, setup.rapid_rate
                 program.notes = list(curved.result.warnings)
@@ -63,7 +66,7 @@ class EngraveKind(OperationKind):
             macro = curved.macro
         else:
             result = engrave.plan(outline, letters, settings, name=setup.name, progress=progress,
-                                  plate_thickness=thickness, texts=texts)
+                                  plate_thickness=thickness, texts=texts, characters=list(geometry.characters))
             result.program.work_offset = setup.work_offset
             result.program.rapid_rate = setup.rapid_rate
             result.program.notes = list(result.warnings)

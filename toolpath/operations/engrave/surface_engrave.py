@@ -337,7 +337,7 @@ class SurfaceJob:
 
 def plan(plate_loops, letters, surface: Surface, settings: flat.EngraveSettings = flat.EngraveSettings(),
          name: str = "engrave", progress=None, plate_thickness: float | None = None,
-         texts: dict | None = None) -> SurfaceJob:
+         texts: dict | None = None, characters=None) -> SurfaceJob:
     """Plan the three operations on a flat top (:func:`engrave.plan`), then follow the surface.
 
     ``surface`` must lie over or under the whole plate outline; its highest point plus the
@@ -346,7 +346,7 @@ def plan(plate_loops, letters, surface: Surface, settings: flat.EngraveSettings 
     report = progress or (lambda fraction, text: None)
     report(0.0, "surface")
     heights = surface.check_covers(plate_loops)
-    result = flat.plan(plate_loops, letters, settings, name=name, texts=texts,
+    result = flat.plan(plate_loops, letters, settings, name=name, texts=texts, characters=characters,
                        progress=lambda f, text: report(0.05 + 0.25 * f, text))
     reach = max(op.tool.radius for op in result.program.operations)
     x0, y0, x1, y1 = _bounds(plate_loops)
