@@ -49,8 +49,7 @@ class VCarveError(InputError):
 
 def vbit(number: int, angle: float, diameter: float, flute_length: float = 15.0) -> Tool:
     try:
-        return Tool(number, "vbit", diameter, flute_length=flute_length, tip_angle=float(angle),
-                    name=f"{angle:g} deg V-bit")
+        return Tool(number, "vbit", diameter, flute_length=flute_length, tip_angle=float(angle))
     except ProgramError as error:
         raise VCarveError(f"the V-bit: {error}") from None
 
