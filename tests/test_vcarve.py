@@ -6,6 +6,7 @@ is); with a maximum depth the floor is flat at it.  Letters (Latin and kanji, fr
 the same way; every program read by LinuxCNC's rs274 and the controller-rules reader on every
 milling post; hostile regions refused by name within a time limit."""
 import math
+import re
 import time
 
 import numpy as np
@@ -109,7 +110,7 @@ def test_max_depth_cuts_a_flat_floor_with_the_end_mill_and_keeps_the_outline():
     assert outline_errors([rect], sim) == (0, 0)
     assert sorted(np.round(result.left, 0).tolist()) == [[2.0, 2.0], [2.0, 18.0], [38.0, 2.0], [38.0, 18.0]]
     # what stands in those corners is lower than the bound the warning gives
-    bound = min(1.5875 / math.tan(math.radians(30)), 2.0)
+    bound = float(re.search(r"ridges up to ([0-9.]+) mm", " ".join(result.warnings)).group(1))
     assert (2.0 - depth[floor & corner]).max() <= bound
 
 

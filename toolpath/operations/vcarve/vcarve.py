@@ -38,6 +38,7 @@ MIN_TOLERANCE = 0.001           # mm: the medial axis's sampling tolerance, fine
 MAX_TOLERANCE = 0.1
 DUST = 0.005                    # mm: floor corners narrower than this are not reported
 LEFT_REPORTED = 5               # floor corners named in the warning
+RIDGE_STEP = 0.05               # mm: the medial axis sampled this finely to bound what stands in them
 ENTRY_SHARE = 0.8               # the entry starts this share of the first point's cone radius away: steeper
 #                                 than the flank, so the cone stays inside the one it enters (a move exactly
 #                                 along the flank is the height field's degenerate case, see the tests)
@@ -211,16 +212,20 @@ def plan(loops, settings: VCarveSettings = VCarveSettings(), name: str = "vcarve
         rest = round_offset(round_offset(flat - cleared, -DUST), DUST)
         if rest.area() > 0:
             keep = rest.offset(settings.tolerance, rg.JoinType.Round, 2.0, 16)
+            ridge = 0.0         # the farthest a point of the rest lies from the flat's edge (traced by the tip)
             for points, radii in above:
                 inside = rg.contains_points(keep, points)
                 if inside.any():
                     pieces.append((points, np.full(len(points), limit)))        # traced at max depth
+                    dense, dense_radii = densified(points, radii, RIDGE_STEP)
+                    within = rg.contains_points(keep, dense)
+                    ridge = max(ridge, float(dense_radii[within].max()) - limit if within.any() else 0.0)
             left = [tuple(map(float, rg.centroid(part))) for part in rg.components(rest, 0.0)]
             shown = ", ".join(f"X{x:.2f} Y{y:.2f}" for x, y in left[:LEFT_REPORTED])
             warnings.append(f"{what}: the {settings.clear_tool.describe()} cannot reach {len(left)} part(s) of "
                             f"the flat floor at max depth ({shown}{', ...' if len(left) > LEFT_REPORTED else ''}); "
                             f"the V-bit's tip traces them, ridges up to "
-                            f"{min(settings.clear_tool.radius / tan, settings.max_depth - shift):.2f} mm high may stand there")
+                            f"{min(settings.clear_tool.radius, ridge) / tan:.2f} mm high may stand there")
     if progress is not None:
         progress(0.6)
     walks = ch.join(pieces)
@@ -232,6 +237,16 @@ def plan(loops, settings: VCarveSettings = VCarveSettings(), name: str = "vcarve
     if progress is not None:
         progress(1.0)
     return VCarveResult(operations, design, carved, flat, deepest, axis, warnings, left)
+
+
+def densified(points: np.ndarray, radii: np.ndarray, step: float) -> tuple:
+    """The path with points put in every ``step`` mm, the radius interpolated linearly."""
+    lengths = np.hypot(*np.diff(points, axis=0).T)
+    counts = np.maximum(1, np.ceil(lengths / step).astype(int))
+    t = np.concatenate([np.arange(n) / n for n in counts] + [[1.0]])
+    index = np.concatenate([np.full(n, i) for i, n in enumerate(counts)] + [[len(points) - 2]])
+    dense = points[index] + t[:, None] * (points[index + 1] - points[index])
+    return dense, radii[index] + t * (radii[index + 1] - radii[index])
 
 
 def opening(region, radius: float):
