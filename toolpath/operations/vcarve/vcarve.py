@@ -80,11 +80,13 @@ class VCarveSettings:
         return self.tool.shape.tip_tan
 
     def shift(self) -> float:
-        """The tip's depth where the radius is 0."""
+        """The tip's depth where the radius is 0: a male plug's start depth plus the glue gap's
+        share, 0 for the female pocket (its start_depth is the plug's, checked against its flat
+        bottom), start_depth for a plain V-carve."""
         if self.inlay == "male":
             half = math.radians(self.tool.shape.tip_angle_deg) / 2
             return self.start_depth + self.glue_gap / math.sin(half)
-        return self.start_depth
+        return 0.0 if self.inlay == "female" else self.start_depth
 
     def check(self, what: str = "V-carve") -> None:
         if not isinstance(self.tool, Tool) or self.tool.kind != "vbit":
@@ -111,7 +113,7 @@ class VCarveSettings:
         if not 0 < self.clearance_z <= self.safe_z:
             raise VCarveError(f"{what}: clearance_z {self.clearance_z:g} mm and safe_z {self.safe_z:g} mm must be "
                               "above the stock's top and rise in that order")
-        if self.max_depth and self.max_depth <= self.shift():
+        if self.max_depth and self.max_depth <= max(self.shift(), self.start_depth):
             if self.inlay == "male":
                 raise VCarveError(f"{what}: max_depth {self.max_depth:g} mm (the plug's height) must be more than "
                                   f"start_depth + glue_gap / sin(half angle) = {self.shift():.3f} mm")
