@@ -26,7 +26,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import pyvoronoi
 
 from ...engines import region as rg
 from ...ir.errors import InputError
@@ -115,6 +114,11 @@ def _parabola(focus, a, b, start, end, tolerance):
 
 def medial_axis(region, tolerance: float = 0.01, what: str = "region") -> MedialAxis:
     """The medial axis of ``region`` (a CrossSection), curves sampled within ``tolerance`` mm."""
+    try:
+        import pyvoronoi        # here, not at the top: the job model loads every kind, V-carve or not
+    except ImportError:
+        raise MedialError(f"{what}: V-carving needs pyvoronoi (Boost.Polygon's Voronoi), which is not installed "
+                          "for this Blender (no wheel for this platform)") from None
     segments = snapped_segments(region, what)
     builder = pyvoronoi.Pyvoronoi(SCALE)
     for segment in segments:

@@ -214,14 +214,17 @@ def plan(loops, settings: VCarveSettings = VCarveSettings(), name: str = "vcarve
         rest = round_offset(round_offset(flat - cleared, -DUST), DUST)
         if rest.area() > 0:
             keep = rest.offset(settings.tolerance, rg.JoinType.Round, 2.0, 16)
-            ridge = 0.0         # the farthest a point of the rest lies from the flat's edge (traced by the tip)
-            for points, radii in above:
-                inside = rg.contains_points(keep, points)
-                if inside.any():
-                    pieces.append((points, np.full(len(points), limit)))        # traced at max depth
-                    dense, dense_radii = densified(points, radii, RIDGE_STEP)
-                    within = rg.contains_points(keep, dense)
-                    ridge = max(ridge, float(dense_radii[within].max()) - limit if within.any() else 0.0)
+            # the pieces of the medial axis over the rest, traced at max depth (one point-in-region
+            # test for all: the pieces densified, so a piece crossing the rest between samples counts);
+            # ridge: the farthest a point of the rest lies from the flat's edge, which the tip traces
+            dense = [densified(points, radii, RIDGE_STEP) for points, radii in above]
+            owner = np.concatenate([np.full(len(d[0]), k) for k, d in enumerate(dense)])
+            within = rg.contains_points(keep, np.vstack([d[0] for d in dense]))
+            radii_all = np.concatenate([d[1] for d in dense])
+            ridge = float(radii_all[within].max()) - limit if within.any() else 0.0
+            for k in np.unique(owner[within]):
+                points = above[k][0]
+                pieces.append((points, np.full(len(points), limit)))
             left = [tuple(map(float, rg.centroid(part))) for part in rg.components(rest, 0.0)]
             shown = ", ".join(f"X{x:.2f} Y{y:.2f}" for x, y in left[:LEFT_REPORTED])
             warnings.append(f"{what}: the {settings.clear_tool.describe()} cannot reach {len(left)} part(s) of "
