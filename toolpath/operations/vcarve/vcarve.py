@@ -60,7 +60,7 @@ class VCarveSettings:
     tool: Tool = field(default_factory=lambda: vbit(3, 60.0, 12.7))
     max_depth: float = 0.0          # mm below the top; 0: no limit (the V-bit's width is then the limit)
     clear_tool: Tool | None = field(default_factory=lambda: pocket.end_mill(4, 3.175))
-    clear_stepover: float = 1.2
+    clear_stepover: float = 0.0     # mm between the end mill's rings; 0: its radius (the widest offset rings clear)
     clear_step_down: float = 1.5
     clear_rpm: float = 18000.0
     clear_feed: float = 1000.0
@@ -102,7 +102,10 @@ class VCarveSettings:
         for name in ("max_depth", "start_depth", "glue_gap", "waste_margin"):
             if getattr(self, name) < 0:
                 raise VCarveError(f"{what}: {name} must be 0 or more, got {getattr(self, name)!r}")
-        for name in ("clear_stepover", "clear_step_down", "clear_rpm", "clear_feed", "rpm", "feed", "entry_feed"):
+        if self.clear_stepover < 0:
+            raise VCarveError(f"{what}: clear_stepover must be 0 (the end mill's radius) or more, got "
+                              f"{self.clear_stepover!r}")
+        for name in ("clear_step_down", "clear_rpm", "clear_feed", "rpm", "feed", "entry_feed"):
             if getattr(self, name) <= 0:
                 raise VCarveError(f"{what}: {name} must be more than 0, got {getattr(self, name)!r}")
         if not MIN_TOLERANCE <= self.tolerance <= MAX_TOLERANCE:
@@ -262,7 +265,7 @@ def opening(region, radius: float):
 def clearing(flat, settings: VCarveSettings, name: str, top: float, warnings: list) -> list:
     """The end mill's operations clearing ``flat`` at max depth (the pocket's planner)."""
     tool = settings.clear_tool
-    stepover = min(settings.clear_stepover, tool.diameter * 0.9)
+    stepover = settings.clear_stepover or tool.radius
     pocket_settings = pocket.PocketSettings(tool=tool, depth=settings.max_depth, step_down=settings.clear_step_down,
                                             stepover=stepover, rpm=settings.clear_rpm, feed=settings.clear_feed,
                                             entry_feed=settings.entry_feed, helix_diameter=0.0, entry="ramp",
