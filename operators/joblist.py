@@ -38,7 +38,8 @@ PREFIX = "Kezuri Job"
 DEFAULT_SLOTS = {"engrave": (("plate", "stock", "plate"), ("letters", "engrave", "letters"),
                              ("surface", "engrave", "surface")),
                  "profile": (("shape", None, None),),
-                 "pocket": (("region", "engrave", "letters"), ("plate", "stock", "plate"))}
+                 "pocket": (("region", "engrave", "letters"), ("plate", "stock", "plate")),
+                 "vcarve": (("region", "engrave", "letters"), ("plate", "stock", "plate"))}
 DEFAULT_EXTRA = {"drill": {"holes": []}, "profile": {"tabs": []}}
 ROW_KEYS = ("kind", "name", "enabled", "objects", "settings")      # a job file's keys a row keeps apart
 

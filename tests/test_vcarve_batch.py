@@ -85,3 +85,57 @@ def test_bad_vcarve_commands_are_refused_by_name(tmp_path, argv, message):
     assert status != 0
     assert re.search(message, stderr), stderr[-2000:]
     assert not os.path.exists(os.path.join(out, "vcarve.ngc"))
+
+
+def test_a_vcarve_row_of_the_job_list_carves_the_panels_letters(empty_scene):
+    """The CAM tab's job list handles the new kind by itself: a V-carve row takes the letters and
+    the plate, plans with its settings (JSON) and passes the gate."""
+    import bpy
+
+    from kezuri.operators import samples
+
+    samples.name_plate(empty_scene)
+    empty_scene.kezuri.machine.post = "linuxcnc"
+    assert bpy.ops.kezuri.job_add(kind="vcarve") == {"FINISHED"}
+    row = empty_scene.kezuri.job_list.rows[0]
+    assert {item.slot: item.object.name for item in row.objects} == {"region": "Letters", "plate": "Plate"}
+    row.settings = json.dumps({"angle": 90.0, "diameter": 12.7})
+    assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
+    assert row.tools.startswith("T") and row.state == "PLANNED"
+
+
+def test_mesh_faces_are_a_region(empty_scene):
+    """A mesh object's faces (seen from above, in the plate's frame) are carved to their outline."""
+    import bpy
+
+    from kezuri.operators import samples
+    from kezuri.operators import vcarve as shell
+    from kezuri.operators.jobentry import JobEntry
+    from kezuri.toolpath.engines import region as rg
+    from kezuri.toolpath.job import Job, plan_job
+    from kezuri.toolpath.simulate import simulate
+
+    samples.name_plate(empty_scene)
+    mesh = bpy.data.meshes.new("Badge")
+    mesh.from_pydata([(-20, -10, 0.05), (20, -10, 0.05), (0, 15, 0.05), (0, -30, 0.05)], [], [(0, 1, 2), (1, 0, 3)])
+    badge = bpy.data.objects.new("Badge", mesh)
+    empty_scene.collection.objects.link(badge)
+    entry = JobEntry("badge", "vcarve", True, {"region": badge}, {"angle": 90.0, "max_depth": 3.0}, {},
+                     "operation 'badge'")
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    operation, setup, _ = shell.job_operation(empty_scene, depsgraph, entry, "linuxcnc")
+    loops = operation.geometry.loops
+    assert len(loops) == 1 and len(loops[0]) == 4                # the two triangles merged: a kite
+    planned = plan_job(Job(setup, (operation,)))
+    program, stock, limits = planned.simulation()
+    sim = simulate(program, stock, cell=0.05, **limits)
+    assert sim.findings == []
+    hf = sim.heightfield
+    x, y = np.meshgrid(hf.x(), hf.y(), indexing="ij")
+    xy = np.column_stack([x.ravel(), y.ravel()])
+    depth = (hf.top - np.maximum(hf.heights, hf.bottom)).ravel()
+    kite = rg.from_loops(loops)
+    inner = rg.contains_points(rg.offset(kite, -0.02), xy)
+    outer = ~rg.contains_points(rg.offset(kite, 0.02), xy)
+    assert not (inner & (depth <= 1e-6)).any() and not (outer & (depth > 1e-6)).any()
+    assert depth.max() == pytest.approx(3.0, abs=1e-3)
