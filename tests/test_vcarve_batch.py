@@ -139,3 +139,15 @@ def test_mesh_faces_are_a_region(empty_scene):
     outer = ~rg.contains_points(rg.offset(kite, 0.02), xy)
     assert not (inner & (depth <= 1e-6)).any() and not (outer & (depth > 1e-6)).any()
     assert depth.max() == pytest.approx(3.0, abs=1e-3)
+
+
+@pytest.mark.parametrize("inlay, operations", [("female", ["vcarve"]), ("male", ["vcarve clearing", "vcarve"])])
+def test_batch_inlay_halves_pass_the_gate(tmp_path, inlay, operations):
+    status, message, out = run("vcarve", "--text", "欅", "--font", "Noto Sans CJK Regular.woff2", "--text-size", "40",
+                               "--set", f"inlay={inlay}", "--set", "max_depth=3.0", "--set", "start_depth=1.5",
+                               "--set", "glue_gap=0.1", "--post", "linuxcnc", out=str(tmp_path / "out"))
+    assert status == 0, message[-2000:]
+    report = report_of(out)
+    assert report["gate"]["findings"] == []
+    assert report["job_operations"][0]["operations"] == operations
+    assert controller_rules.check(open(report["files"][0]).read(), "linuxcnc") == []
