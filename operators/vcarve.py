@@ -42,7 +42,8 @@ def settings_from(entry) -> core.VCarveSettings:
     given = dict(entry.settings)
     for key, value in given.items():
         if key not in SETTINGS:
-            raise JobFileError(f"{entry.where}: settings.{key} is not a V-carve setting; they are {', '.join(SETTINGS)}")
+            raise JobFileError(f"{entry.where}: settings.{key} is not a V-carve setting; they are "
+                               f"{', '.join(SETTINGS)}")
         if key in WORDS:
             if not isinstance(value, str):
                 raise JobFileError(f"{entry.where}: settings.{key} = {value!r} is not a word")
