@@ -41,7 +41,7 @@ from .jobentry import JobEntry, JobFileError
 
 SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings", "arcs", "stock",
               "work_zero", "material"}
-OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "tabs", "file", "design", "outline"}
+OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "tabs", "file", "design", "outline", "text"}
 
 
 def read(path: str, text: str | None = None) -> dict:

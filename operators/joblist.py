@@ -39,7 +39,8 @@ DEFAULT_SLOTS = {"engrave": (("plate", "stock", "plate"), ("letters", "engrave",
                              ("surface", "engrave", "surface")),
                  "profile": (("shape", None, None),),      # no shape: the plate's outline
                  "pocket": (("region", "engrave", "letters"), ("plate", "stock", "plate")),
-                 "drill": (("holes", None, None),), "chamfer": (("edges", None, None), ("holes", None, None))}
+                 "drill": (("holes", None, None),), "chamfer": (("edges", None, None), ("holes", None, None)),
+                 "vcarve": (("region", "engrave", "letters"), ("plate", "stock", "plate"))}
 DEFAULT_EXTRA = {"profile": {"tabs": []}}
 DEFAULT_SETTINGS = {"profile": {"tab_count": 4}}     # a new cut-out holds its part (a job file says so itself)
 ROW_KEYS = ("kind", "name", "enabled", "objects", "settings")      # a job file's keys a row keeps apart

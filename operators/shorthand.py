@@ -1,5 +1,6 @@
-"""The router operations' batch shorthands: ``batch.py profile|pocket|drill|chamfer --svg FILE``
-(or ``--dxf FILE``), a job of one operation on a board around the drawing.
+"""The router operations' batch shorthands: ``batch.py profile|pocket|drill|chamfer|vcarve --svg FILE``
+(or ``--dxf FILE``; ``batch.py vcarve --text TEXT [--font FILE]`` too), a job of one operation on a
+board around the drawing (or the text, laid out by Blender).
 
 Each is a job file written for the user (:mod:`.jobfile`): ``[setup] stock`` is the drawing's
 bounding box grown by ``--margin`` and ``--thickness`` deep below Z 0, work zero at its front-left
@@ -21,7 +22,20 @@ KINDS = {
     "pocket": ("region", "clear a drawing's closed outlines to a depth, islands kept (SVG, DXF)"),
     "drill": ("holes", "drill the circles of a drawing (SVG, DXF)"),
     "chamfer": ("edges", "chamfer a drawing's outlines with a V-bit (SVG, DXF)"),
+    "vcarve": ("region", "V-carve a drawing's closed outlines or a text with a V-bit (SVG, DXF, --text)"),
 }
+TEXT_SIZE = 20.0        # mm: --text-size's default
+
+
+def text_arguments(p) -> None:
+    """``batch.py vcarve``'s text options: ``--text TEXT [--font FILE] [--text-size MM]``."""
+    from .batchio import number
+
+    p.add_argument("--text", help="the text to carve (instead of --svg/--dxf); Japanese needs a font that has it")
+    p.add_argument("--font", metavar="FILE", help="the text's font: a font file, or one of Blender's bundled "
+                   "fonts by name, e.g. \"Noto Sans CJK Regular.woff2\" (default: Blender's own font)")
+    p.add_argument("--text-size", type=number("--text-size", 0.5, 2000.0, unit="mm"), default=TEXT_SIZE,
+                   help=f"the text's size in mm (default {TEXT_SIZE:g})")
 
 
 def arguments(p) -> None:
@@ -65,6 +79,10 @@ def job_text(kind: str, args) -> str:
 
     from .designfile import design_loops
 
+    if getattr(args, "text", None) is not None:
+        return text_job(kind, args)
+    if getattr(args, "font", None) is not None:
+        raise JobFileError("--font is for --text")
     found = design_loops(args)
     if len(found) > 1:
         names = ", ".join(repr(name) for name, _ in found)
@@ -87,6 +105,36 @@ def job_text(kind: str, args) -> str:
         setup["machine"] = args.machine
     operation = {"kind": kind, "name": kind, "design": design, "objects": {KINDS[kind][0]: name},
                  "settings": settings(args.set)}
+    return f"[setup]\n{toml_table(setup)}\n[[operations]]\n{toml_table(operation)}"
+
+
+def text_job(kind: str, args) -> str:
+    """The job file of ``batch.py vcarve --text``: the text laid out (as the job will lay it out) to
+    size the board round it, the text's centre at the board's middle."""
+    import numpy as np
+
+    from . import vcarve
+
+    if args.svg or args.dxf:
+        raise JobFileError("give --text or --svg/--dxf, not both")
+    text = {"body": args.text, "size": float(args.text_size)}
+    if args.font:
+        text["font"] = os.path.abspath(args.font) if os.path.isfile(args.font) else args.font
+    spec = vcarve.text_spec(text, "--text")
+    points = np.vstack(vcarve.text_loops(spec, os.getcwd(), "--text"))
+    (x0, y0), (x1, y1) = points.min(axis=0) - args.margin, points.max(axis=0) + args.margin
+    # the board in the scene's mm round the text laid out at the origin; the text's origin in work mm
+    if args.work_zero == "CENTER":
+        text["at"] = [-float(x0 + x1) / 2, -float(y0 + y1) / 2]
+    else:
+        text["at"] = [-float(x0), -float(y0)]
+    setup = {"name": kind, "stock": [float(x0), float(y0), -float(args.thickness), float(x1), float(y1), 0.0],
+             "work_zero": args.work_zero}
+    if args.post:
+        setup["post"] = args.post
+    if args.machine:
+        setup["machine"] = args.machine
+    operation = {"kind": kind, "name": kind, "text": text, "settings": settings(args.set)}
     return f"[setup]\n{toml_table(setup)}\n[[operations]]\n{toml_table(operation)}"
 
 
@@ -115,7 +163,11 @@ def command(kind: str):
         report = jobfile.write_job(f"batch.py {kind}", args.out, args.post, args.allow_findings, text=text,
                                    base_dir=os.getcwd())
         return {**report, "workflow": kind, "job_file_text": text}
-    return BatchCommand(kind, KINDS[kind][1], arguments, run, demo=None)
+    def options(p) -> None:
+        arguments(p)
+        if kind == "vcarve":
+            text_arguments(p)
+    return BatchCommand(kind, KINDS[kind][1], options, run, demo=None)
 
 
 COMMANDS = tuple(command(kind) for kind in KINDS)

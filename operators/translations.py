@@ -773,6 +773,8 @@ MESSAGES = {
     "no pattern to draw": "描く展開図がありません",
     # jobs (issue 28)
     "--jobs is for the rows of --each": "--jobs は --each の行のためのものです",
+    "--font is for --text": "--font は --text のためのものです",
+    "give --text or --svg/--dxf, not both": "--text か --svg/--dxf のどちらか一方を指定してください",
     "the job has no operation switched on": "ジョブに有効な加工がありません",
     "a design mesh can only be the job's one design layer for now":
         "設計メッシュは、現在ジョブの唯一の設計レイヤーとしてのみ使えます",
@@ -2612,6 +2614,67 @@ FINE_TEXT_TEMPLATES = {
     "tool diameter must be a positive number of mm, got {}": "工具径は正の mm 数値で指定してください（指定値 {0}）",
 }
 MESSAGE_TEMPLATES.update(FINE_TEXT_TEMPLATES)
+
+# V-carving (issue 30)
+VCARVE_NESTED = {"{}: the V-carve: {}": (1,), "{}: the tools: {}": (1,), "the V-bit: {}": (0,)}
+VCARVE_TEMPLATES = {
+    "{}: the V-carve: {}": "{0}：V 彫り：{1}",
+    "{}: the tools: {}": "{0}：工具：{1}",
+    "the V-bit: {}": "V ビット：{0}",
+    "{}: text.body has {} characters, more than {}": "{0}：text.body が {1} 文字あり、{2} 文字を超えています",
+    "{}: text.size = {} must be a number of mm from {} to {}": "{0}：text.size = {1} は {2}〜{3} mm の数値にしてください",
+    "{}: text.at = {} must be [x, y] in work mm": "{0}：text.at = {1} はワーク座標 mm の [x, y] にしてください",
+    "{}: text.font = {} is not a file name": "{0}：text.font = {1} はファイル名ではありません",
+    "{}: text.font = {}: Blender cannot read it ({})": "{0}：text.font = {1}：Blender が読めません（{2}）",
+    "{}: text {} has no glyph outlines in its font (is the font missing these characters?)":
+        "{0}：テキスト {1} のフォントに字形の輪郭がありません（フォントにこの文字がないのでは？）",
+    "{}: objects.{}: a V-carve's objects are {}": "{0}：objects.{1}：V 彫りのオブジェクトは {2} です",
+    '{}: give the region as objects = {{ region = "<curve, Text or mesh>" }} or as text = "...", one of them':
+        '{0}：領域は objects = {{ region = "<カーブ、テキストまたはメッシュ>" }} か text = "..." のどちらか一方で指定してください',
+    "{}: settings.{} is not a V-carve setting; they are {}": "{0}：settings.{1} は V 彫りの設定ではありません（設定は {2}）",
+    "{}: text.font = {}: no such font file (beside the job file, or among Blender's fonts)":
+        "{0}：text.font = {1}：そのフォントファイルがありません（ジョブファイルの隣にも Blender のフォントにも）",
+    "{}: text = {} is neither a string nor a table": "{0}：text = {1} は文字列でも表でもありません",
+    "{}: text.{} is not a text key; they are {}": "{0}：text.{1} はテキストのキーではありません（キーは {2}）",
+    "{}: text.body = {}: give the text to carve": "{0}：text.body = {1}：彫る文字を指定してください",
+    "a tip angle ({} deg) is for a pointed tool, not a {}": "先端角（{0} 度）は先のとがった工具のもので、{1} には使えません",
+    "tip angle must be from 1 to 179 degrees, got {}": "先端角は 1〜179 度にしてください（{0}）",
+    "{}: V-carving needs pyvoronoi (Boost.Polygon's Voronoi), which is not installed for this Blender (no wheel for "
+    "this platform)":
+        "{0}：V 彫りには pyvoronoi（Boost.Polygon のボロノイ図）が必要ですが、この Blender には入っていません"
+        "（このプラットフォーム用の wheel がありません）",
+    "{}: the region has no medial axis (no area?)": "{0}：領域に中心軸がありません（面積がないのでは？）",
+    "{}: no part of the medial axis lies inside the region": "{0}：中心軸のどの部分も領域の内側にありません",
+    "{}: the outline reaches beyond {} m from the origin": "{0}：輪郭が原点から {1} m より遠くまで届いています",
+    "{}: the region has no outline": "{0}：領域に輪郭がありません",
+    "{}: the outline has {} segments, more than {}": "{0}：輪郭の線分が {1} 本あり、{2} 本を超えています",
+    "{}: clear_stepover must be 0 (the end mill's radius) or more, got {}":
+        "{0}：clear_stepover は 0（エンドミルの半径）以上にしてください（{1}）",
+    "{}: tolerance must be from {} to {} mm, got {}": "{0}：tolerance は {1}〜{2} mm にしてください（{3}）",
+    "{}: inlay must be one of {}, got {}": "{0}：inlay は {1} のいずれかにしてください（{2}）",
+    "{}: max_depth {} mm (the plug's height) must be more than start_depth + glue_gap / sin(half angle) = {} mm":
+        "{0}：max_depth {1} mm（プラグの高さ）は start_depth + glue_gap / sin(半角) = {2} mm より大きくしてください",
+    "{}: max_depth {} mm (the pocket's flat bottom) must be more than start_depth {} mm, or the plug bottoms out on it":
+        "{0}：max_depth {1} mm（ポケットの平らな底）は start_depth {2} mm より深くしてください。"
+        "浅いとプラグが底に当たります",
+    "{}: max_depth {} mm must be more than start_depth {} mm": "{0}：max_depth {1} mm は start_depth {2} mm より深くしてください",
+    "{}: a male plug needs max_depth (how far the waste round it is cleared: the plug's height, more than start_depth "
+    "{} mm)":
+        "{0}：雄型プラグには max_depth（周りの捨て部分を削る深さ＝プラグの高さ、start_depth {1} mm より大きい値）が必要です",
+    "{}: max_depth {} mm is deeper than the {}'s {} mm flutes": "{0}：max_depth {1} mm は {2} の刃長 {3} mm より深いです",
+    "{}: at max_depth {} mm the {}'s cone is {} mm wide, more than its diameter: max_depth can be {} mm at most":
+        "{0}：max_depth {1} mm では {2} の円錐の幅が {3} mm になり、直径を超えます。max_depth は最大 {4} mm です",
+    "{}: the region is {} mm wide at X{} Y{}, wider than the {} can carve to a point ({} mm): set max_depth (at most "
+    "{} mm) with a clear_tool for the flat inside":
+        "{0}：領域の幅が X{2} Y{3} で {1} mm あり、{4} が先端まで彫れる幅（{5} mm）を超えています。"
+        "max_depth（最大 {6} mm）と内側の平らな部分を削る clear_tool を指定してください",
+    "{}: at max_depth {} mm a flat floor of {} mm^2 is left: give a clear_tool (a flat end mill) to clear it":
+        "{0}：max_depth {1} mm では {2} mm^2 の平らな底が残ります。削るための clear_tool（平エンドミル）を指定してください",
+    "{}: tool must be a V-bit, not a {}": "{0}：tool は V ビットにしてください（{1} ではなく）",
+    "{}: clear_tool must be a flat end mill": "{0}：clear_tool は平エンドミルにしてください",
+}
+MESSAGE_TEMPLATES.update(VCARVE_TEMPLATES)
+NESTED.update(VCARVE_NESTED)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

@@ -5,10 +5,11 @@ the demo loop over :data:`WORKFLOWS`; nothing else lists the workflows.
 """
 from __future__ import annotations
 
-from . import carve, chamfer, drill, engrave, ncfile, pocket, profile, rotary, sheetmetal, stepnc, turnmill
+from . import carve, chamfer, drill, engrave, ncfile, pocket, profile, rotary, sheetmetal, stepnc, turnmill, vcarve
 
 WORKFLOWS = (engrave.WORKFLOW, rotary.WORKFLOW, stepnc.WORKFLOW, turnmill.WORKFLOW, sheetmetal.WORKFLOW,
-             carve.WORKFLOW, drill.WORKFLOW, pocket.WORKFLOW, profile.WORKFLOW, chamfer.WORKFLOW, ncfile.WORKFLOW)
+             carve.WORKFLOW, drill.WORKFLOW, pocket.WORKFLOW, profile.WORKFLOW, chamfer.WORKFLOW, vcarve.WORKFLOW,
+             ncfile.WORKFLOW)
 
 
 def simulated() -> list:

@@ -27,7 +27,9 @@ PLATFORMS = {  # Blender platform name -> the pip platform tags its wheels may c
 }
 REQUIRED = ("manifold3d==3.5.4", "trimesh==5.2.0",
             "numba==0.61.2", "llvmlite==0.44.0")     # numba: the compiled height-field kernel
-OPTIONAL = ("embreex==4.4.0.post1",)          # faster ray casting for trimesh, not on every platform
+OPTIONAL = ("embreex==4.4.0.post1",          # faster ray casting for trimesh, not on every platform
+            "pyvoronoi==1.2.8")             # V-carving's medial axis; no wheel for Intel macs (1.2.8)
+MISSING = {"embreex": "trimesh falls back to numpy rays", "pyvoronoi": "V-carving says it cannot run there"}
 STAGE_EXCLUDE = {".git", ".venv", "venv", "dist", "build", "tests", "bench", "docs", "scripts", ".ci",
                  "__pycache__", ".pytest_cache", "demo-out"}
 
@@ -87,7 +89,8 @@ def main() -> int:
                 download(requirement, PLATFORMS[p], python, cache, optional=False)
             for requirement in OPTIONAL:
                 if not download(requirement, PLATFORMS[p], python, cache, optional=True):
-                    print(f"note: no {requirement} wheel for {p} cp{python}; trimesh falls back to numpy rays")
+                    print(f"note: no {requirement} wheel for {p} cp{python}; "
+                          f"{MISSING[requirement.split('==')[0]]}")
     wheels = sorted(glob.glob(os.path.join(cache, "*.whl")))
     source = os.path.join(ROOT, "build", "stage", "kezuri")
     stage(source, wheels, platforms)

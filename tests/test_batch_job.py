@@ -112,7 +112,7 @@ BAD_JOBS = {
     "no operations": ('[setup]\nname = "x"\n', "no [[operations]]"),
     "unknown setup key": ('[setup]\nmachin = "grbl-router"\n[[operations]]\nkind = "engrave"\nname = "a"\n',
                           "[setup] has an unknown key 'machin'"),
-    "unknown kind": ('[[operations]]\nkind = "vcarve"\nname = "a"\n', "kind 'vcarve' is not one of"),
+    "unknown kind": ('[[operations]]\nkind = "waterjet"\nname = "a"\n', "kind 'waterjet' is not one of"),
     "missing object": ('[[operations]]\nkind = "engrave"\nname = "a"\nobjects = { letters = "Name" }\n',
                        "objects.letters = 'Name' is not an object of the scene"),
     "unknown setting": ('[[operations]]\nkind = "engrave"\nname = "a"\nsettings = { sead = 3 }\n',

@@ -95,8 +95,8 @@ def test_one_number_one_tool_across_the_job():
 def test_refusals_name_the_operation():
     with pytest.raises(jobs.JobError, match="two operations are named 'plate'"):
         jobs.plan_job(jobs.Job(setup(), (engraving(), dataclasses.replace(drilling(), name="plate"))))
-    with pytest.raises(jobs.JobError, match="unknown operation kind 'vcarve'"):
-        jobs.plan_job(jobs.Job(setup(), (dataclasses.replace(drilling(), kind="vcarve"),)))
+    with pytest.raises(jobs.JobError, match="unknown operation kind 'waterjet'"):
+        jobs.plan_job(jobs.Job(setup(), (dataclasses.replace(drilling(), kind="waterjet"),)))
     with pytest.raises(jobs.JobError, match="operation 'holes': settings must be DrillSettings"):
         jobs.plan_job(jobs.Job(setup(), (dataclasses.replace(drilling(), settings=engrave.EngraveSettings()),)))
     lathe = machines.preset("wood-lathe-cxz")

@@ -120,7 +120,7 @@ def test_the_workflow_table_drives_batch_and_simulate():
     batch = load_batch()
     names = list(batch.commands())
     assert names == ["engrave", "rotary", "stepnc", "turnmill", "unfold", "elbow", "carve", "simulate", "job",
-                     "profile", "pocket", "drill", "chamfer"]
+                     "profile", "pocket", "drill", "chamfer", "vcarve"]
     assert [w.key for w in workflows.simulated()] == ["ENGRAVE", "ROTARY", "STEPNC", "TURNMILL", "CARVE"]
     assert [item[0] for item in simulate._ITEMS] == ["ENGRAVE", "ROTARY", "STEPNC", "TURNMILL", "CARVE"]
     for workflow in workflows.WORKFLOWS:

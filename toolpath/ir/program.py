@@ -46,6 +46,7 @@ class Tool:
     flute_length: float = 20.0
     name: str = ""
     label: str = ""    # what the tool is called in comments when the kind's name is wrong (e.g. "reamer")
+    tip_angle: float = 0.0  # a pointed tool's included angle in degrees (0: its kind's, 90 for a V-bit)
 
     def __post_init__(self):
         try:
@@ -60,6 +61,11 @@ class Tool:
             object.__setattr__(self, "corner_radius", self.diameter / 2)
         if not 0 <= self.corner_radius <= self.diameter / 2 + 1e-9:
             raise ProgramError(f"corner radius {self.corner_radius} does not fit a {self.diameter} mm tool")
+        if self.tip_angle:
+            if not shape.pointed:
+                raise ProgramError(f"a tip angle ({self.tip_angle!r} deg) is for a pointed tool, not a {shape.label}")
+            if not (isinstance(self.tip_angle, (int, float)) and 1.0 <= self.tip_angle <= 179.0):
+                raise ProgramError(f"tip angle must be from 1 to 179 degrees, got {self.tip_angle!r}")
 
     @property
     def radius(self) -> float:
@@ -71,7 +77,10 @@ class Tool:
         return tools.shape_of(self)
 
     def describe(self) -> str:
-        text = f"T{self.number} {self.diameter:g} mm {self.label or self.shape.describe()}"
+        kind = self.label or self.shape.describe()
+        if self.tip_angle and not self.label:
+            kind = f"{self.tip_angle:g} deg {kind}"
+        text = f"T{self.number} {self.diameter:g} mm {kind}"
         return text + (f" ({self.name})" if self.name else "")
 
 

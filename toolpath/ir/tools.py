@@ -38,9 +38,11 @@ class ToolShape:
     corner_is_radius = False    # a corner radius left at 0 means the whole radius (ball)
     corner_given = False        # the corner radius is a dimension of its own (bull nose R)
 
-    def __init__(self, radius: float, corner_radius: float = 0.0):
+    def __init__(self, radius: float, corner_radius: float = 0.0, tip_angle_deg: float | None = None):
         self.radius = radius
         self.given_corner = corner_radius   # as the tool was given it (the swept solids use it)
+        if tip_angle_deg:                   # a pointed tool's own angle (a 60 deg V-bit); None: the kind's
+            self.tip_angle_deg = float(tip_angle_deg)
 
     @property
     def corner_radius(self) -> float:
@@ -130,7 +132,7 @@ class VBit(_Cone):
 
 SHAPES = {cls.kind: cls for cls in (Ball, Flat, Bull, Drill, VBit)}
 KINDS = tuple(SHAPES)
-# included angle of the pointed kinds (a Tool does not carry one yet)
+# included angle of the pointed kinds when a Tool does not give its own (``Tool.tip_angle``)
 TIP_ANGLE_DEG = {kind: cls.tip_angle_deg for kind, cls in SHAPES.items() if cls.pointed}
 
 
@@ -143,5 +145,6 @@ def shape_class(kind: str) -> type:
 
 
 def shape_of(tool) -> ToolShape:
-    """The shape of a tool (anything with ``kind``, ``radius`` and ``corner_radius``)."""
-    return shape_class(tool.kind)(tool.radius, tool.corner_radius)
+    """The shape of a tool (anything with ``kind``, ``radius`` and ``corner_radius``; a pointed
+    tool's ``tip_angle`` where it has one, else its kind's angle)."""
+    return shape_class(tool.kind)(tool.radius, tool.corner_radius, getattr(tool, "tip_angle", 0.0) or None)

@@ -1,0 +1,196 @@
+"""V-carving in the shell: an operation of job files (its panel comes with the router panels).
+
+The region is the object in the ``region`` slot (closed curves, a Text in any font, mesh faces;
+seen from above, read even-odd so counters are islands) in the plate's work frame, or a text laid
+out here: ``text = "Kezuri"`` or ``text = { body = "削り Kezuri", font = "FILE", size = 20,
+at = [x, y] }`` (``font``: a font file beside the job file, or one of Blender's bundled fonts by
+file name, e.g. "Noto Sans CJK Regular.woff2" for Japanese; default Blender's own font;
+``size`` in mm; ``at``: the text's centre in work mm, default the plate's centre).  Settings by
+name (:data:`SETTINGS`); the V-bit's angle is ``angle`` (degrees)."""
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+
+from ..toolpath.engines import region as rg
+from ..toolpath.ir.program import ProgramError
+from ..toolpath.job import JobOperation, Setup
+from ..toolpath.operations.pocket import pocket as pocket_core
+from ..toolpath.operations.vcarve import vcarve as core
+from ..toolpath.operations.vcarve.kind import VCarveGeometry, VCarveKind
+from . import convert
+from .workflow import Workflow
+
+POST_FAMILIES = ("milling",)
+NUMBERS = ("max_depth", "start_depth", "glue_gap", "waste_margin", "tolerance", "rpm", "feed", "entry_feed",
+           "clearance_z", "safe_z", "clear_stepover", "clear_step_down", "clear_rpm", "clear_feed")
+TOOL = ("tool_number", "angle", "diameter", "flute_length", "clear_tool_number", "clear_diameter",
+        "clear_flute_length")
+WORDS = ("inlay",)
+SETTINGS = NUMBERS + TOOL + WORDS
+TEXT_KEYS = ("body", "font", "size", "at")
+MAX_TEXT = 2000             # characters of one text
+TEXT_SIZES = (0.5, 2000.0)  # mm
+
+
+def settings_from(entry) -> core.VCarveSettings:
+    """The V-carve's settings from a job file's ``settings`` table, each checked by name."""
+    from .jobentry import JobFileError
+
+    given = dict(entry.settings)
+    for key, value in given.items():
+        if key not in SETTINGS:
+            raise JobFileError(f"{entry.where}: settings.{key} is not a V-carve setting; they are "
+                               f"{', '.join(SETTINGS)}")
+        if key in WORDS:
+            if not isinstance(value, str):
+                raise JobFileError(f"{entry.where}: settings.{key} = {value!r} is not a word")
+        elif isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise JobFileError(f"{entry.where}: settings.{key} = {value!r} is not a number")
+    for key in ("tool_number", "clear_tool_number"):
+        if key in given and not isinstance(given[key], int):
+            raise JobFileError(f"{entry.where}: settings.{key} = {given[key]!r} is not a whole number")
+    default = core.VCarveSettings()
+    try:
+        tool = core.vbit(given.get("tool_number", default.tool.number),
+                         float(given.get("angle", default.tool.shape.tip_angle_deg)),
+                         float(given.get("diameter", default.tool.diameter)),
+                         float(given.get("flute_length", default.tool.flute_length)))
+        clear = pocket_core.end_mill(given.get("clear_tool_number", default.clear_tool.number),
+                                     float(given.get("clear_diameter", default.clear_tool.diameter)),
+                                     float(given.get("clear_flute_length", default.clear_tool.flute_length)))
+    except (ProgramError, core.VCarveError) as error:
+        raise JobFileError(f"{entry.where}: the tools: {error}") from None
+    values = {key: given[key] for key in WORDS if key in given}
+    values.update({key: float(given[key]) for key in NUMBERS if key in given})
+    return core.VCarveSettings(tool=tool, clear_tool=clear, **values)
+
+
+def font_path(font: str, base_dir: str, where: str) -> str:
+    """A font file beside the job file, else one of Blender's bundled fonts by its file name."""
+    import bpy
+
+    from .jobentry import JobFileError
+
+    given = os.path.join(base_dir, font)
+    if os.path.isfile(given):
+        return given
+    bundled = os.path.join(bpy.utils.system_resource("DATAFILES", path="fonts") or "", os.path.basename(font))
+    if os.path.isfile(bundled):
+        return bundled
+    raise JobFileError(f"{where}: text.font = {font!r}: no such font file (beside the job file, or among "
+                       "Blender's fonts)")
+
+
+def text_spec(text, where: str) -> dict:
+    """The ``text`` entry as a table, each key checked."""
+    from .jobentry import JobFileError
+
+    spec = {"body": text} if isinstance(text, str) else text
+    if not isinstance(spec, dict):
+        raise JobFileError(f"{where}: text = {text!r} is neither a string nor a table")
+    for key in spec:
+        if key not in TEXT_KEYS:
+            raise JobFileError(f"{where}: text.{key} is not a text key; they are {', '.join(TEXT_KEYS)}")
+    body = spec.get("body")
+    if not isinstance(body, str) or not body.strip():
+        raise JobFileError(f"{where}: text.body = {body!r}: give the text to carve")
+    if len(body) > MAX_TEXT:
+        raise JobFileError(f"{where}: text.body has {len(body)} characters, more than {MAX_TEXT}")
+    size = spec.get("size", 20.0)
+    if isinstance(size, bool) or not isinstance(size, (int, float)) or not TEXT_SIZES[0] <= size <= TEXT_SIZES[1]:
+        raise JobFileError(f"{where}: text.size = {size!r} must be a number of mm from {TEXT_SIZES[0]:g} to "
+                           f"{TEXT_SIZES[1]:g}")
+    at = spec.get("at")
+    if at is not None and not (isinstance(at, list) and len(at) == 2 and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) for v in at)):
+        raise JobFileError(f"{where}: text.at = {at!r} must be [x, y] in work mm")
+    font = spec.get("font")
+    if font is not None and not isinstance(font, str):
+        raise JobFileError(f"{where}: text.font = {font!r} is not a file name")
+    return {"body": body, "size": float(size), "at": at, "font": font}
+
+
+def text_loops(spec: dict, base_dir: str, where: str) -> list:
+    """The text's outlines (mm, centred on the origin), laid out by Blender in its font."""
+    import bpy
+
+    from .jobentry import JobFileError
+
+    curve = bpy.data.curves.new("V-carve text", type="FONT")
+    obj = bpy.data.objects.new("V-carve text", curve)
+    try:
+        curve.body = spec["body"]
+        curve.size = spec["size"]
+        curve.align_x = "CENTER"
+        curve.align_y = "CENTER"
+        if spec["font"]:
+            path = font_path(spec["font"], base_dir, where)
+            try:
+                curve.font = bpy.data.fonts.load(path, check_existing=True)
+            except RuntimeError as error:
+                raise JobFileError(f"{where}: text.font = {spec['font']!r}: Blender cannot read it ({error})") from None
+        mesh = obj.to_mesh()
+        count = len(mesh.vertices)
+        vertices = np.empty(count * 3)
+        mesh.vertices.foreach_get("co", vertices)
+        vertices = vertices.reshape(-1, 3)[:, :2]
+        faces = [vertices[list(p.vertices)] for p in mesh.polygons]
+        obj.to_mesh_clear()
+    finally:
+        bpy.data.objects.remove(obj)
+        bpy.data.curves.remove(curve)
+    if not faces:
+        raise JobFileError(f"{where}: text {spec['body']!r} has no glyph outlines in its font (is the font missing "
+                           "these characters?)")
+    return rg.loops(rg.union_of_faces(faces, f"text {spec['body']!r}"))
+
+
+def job_operation(scene, depsgraph, entry, post_name: str):
+    """A job file's V-carve: objects ``region`` (and ``plate``: the stock, default the CAM panel's)
+    or a ``text``; the settings by name; geometry in work mm in the plate's frame (its top at Z = 0)."""
+    from .jobentry import JobFileError
+    from .machines import scene_machine
+
+    slots = ("region", "plate")
+    for slot in entry.objects:
+        if slot not in slots:
+            raise JobFileError(f"{entry.where}: objects.{slot}: a V-carve's objects are {', '.join(slots)}")
+    has_text = "text" in entry.table
+    if has_text == ("region" in entry.objects):
+        raise JobFileError(f"{entry.where}: give the region as objects = {{ region = \"<curve, Text or mesh>\" }} "
+                           "or as text = \"...\", one of them")
+    kezuri = scene.kezuri
+    plate = convert.plate_from_object(entry.objects.get("plate", kezuri.stock.plate), depsgraph, scene,
+                                      kezuri.stock.origin)
+    convert.check_fits(plate, scene)
+    settings = settings_from(entry)
+    what = f"V-carve {entry.name!r}"
+    if has_text:
+        spec = text_spec(entry.table["text"], entry.where)
+        loops = text_loops(spec, entry.base_dir, entry.where)
+        outline = np.vstack(plate.outline)
+        at = spec["at"] if spec["at"] is not None else (outline.min(axis=0) + outline.max(axis=0)) / 2
+        loops = [loop + np.asarray(at, float) for loop in loops]
+        what += f" (text {spec['body']!r})"
+    else:
+        obj = entry.objects["region"]
+        loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
+        what += f" (object {obj.name!r})"
+    try:
+        settings.check(what)
+        core.carved_region(loops, settings, what)
+    except core.VCarveError as error:
+        raise JobFileError(f"{entry.where}: the V-carve: {error}") from None
+    geometry = VCarveGeometry(tuple(loops), entry.name, 0.0, tuple(plate.outline), float(plate.size[2]))
+    stock = VCarveKind.stock(geometry, None, settings)
+    machine = scene_machine(kezuri.machine, POST_FAMILIES, post_name)
+    setup = Setup(name=scene.name, post=post_name, machine=machine,
+                  work_offset=kezuri.machine.work_offset, rapid_rate=kezuri.machine.rapid_rate, stock=stock)
+    return JobOperation("vcarve", entry.name, settings, geometry, entry.enabled), setup, plate.frame
+
+
+WORKFLOW = Workflow("VCARVE", "V-carve", "V-carve closed regions and text with a V-bit; inlays (job files)",
+                    post_families=POST_FAMILIES, kind="vcarve", job_operation=job_operation)
