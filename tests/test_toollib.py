@@ -3,8 +3,10 @@ hand in each format's published conventions (tests/fixtures/tools), round trips 
 and hostile files refused with the file, the line or entry and the field named."""
 import math
 import os
+import re
 
 import pytest
+import rs274
 
 from kezuri.toolpath.tooling import formats, fusion_library, kezuri_format, linuxcnc_table
 from kezuri.toolpath.tooling.library import LibraryTool, ToolLibrary, ToolLibraryError, tool_number
@@ -277,3 +279,23 @@ def test_the_kezuri_writer_escapes_what_toml_must():
                                        vendor="日本の工具")])
     again, _ = kezuri_format.read_text(kezuri_format.write_text(library), "x.toml")
     assert again == library
+
+
+@pytest.mark.skipif(not rs274.available(), reason="LinuxCNC's rs274 is not installed")
+def test_linuxcnc_reads_the_exported_table(tmp_path):
+    """LinuxCNC's own tool-table reader (rs274 -t) loads the export: each tool's diameter, as the
+    controller's #5410 gives it after T.. M6, is the library's."""
+    import subprocess
+
+    library, _ = formats.read_path(fixture("kezuri-tools.toml"))
+    table = tmp_path / "tool.tbl"
+    table.write_text(linuxcnc_table.write_text(library))
+    program = "".join(f"T{t.number} M6\n(DEBUG, T{t.number} D#5410)\n" for t in library) + "M2\n"
+    (tmp_path / "p.ngc").write_text(program)
+    done = subprocess.run([rs274.RS274, "-t", str(table), "-g", str(tmp_path / "p.ngc"), str(tmp_path / "out.txt")],
+                          stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=60,
+                          env=dict(os.environ, HOME=str(tmp_path)))
+    out = (tmp_path / "out.txt").read_text()
+    assert done.returncode == 0, done.stdout + done.stderr
+    said = dict(re.findall(r'MESSAGE\(" T(\d+) D([-0-9.]+)"\)', out))
+    assert {int(k): float(v) for k, v in said.items()} == {2: 6.0, 3: 1.0, 4: 5.0, 7: 12.0, 14: 6.0, 17: 3.175}
