@@ -164,7 +164,10 @@ def tool_from_fields(fields: dict, where: str) -> LibraryTool:
     try:
         return LibraryTool(**fields)
     except ToolLibraryError as error:
-        raise ToolLibraryError(f"{where}: {error}") from None
+        message, named = str(error), f"T{fields['number']}"
+        if named in where:                   # "file: line 2 (T2): diameter ...", not "(T2): T2: ..."
+            message = message.removeprefix(f"{named}: ")
+        raise ToolLibraryError(f"{where}: {message}") from None
 
 
 class ToolLibrary:
