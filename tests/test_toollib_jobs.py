@@ -1,0 +1,70 @@
+"""Job files name their tools from the tool library (``tool = 11``, ``tools = { drill = "T11" }``):
+the program is the one the same tool typed as settings gives, and a tool the library has not, of
+the wrong kind or angle, or given twice, is refused naming the file, the operation and the key."""
+import os
+import re
+
+import pytest
+
+pytest.importorskip("bpy")
+from test_batch_job import run  # noqa: E402
+
+from kezuri.toolpath.tooling import store  # noqa: E402
+from kezuri.toolpath.tooling.library import LibraryTool  # noqa: E402
+
+SETUP = '[setup]\nname = "holes"\nstock = [0, 0, -12, 100, 60, 0]\npost = "linuxcnc"\nmachine = "linuxcnc-manual"\n'
+HOLES = "holes = [[20.0, 20.0], [80.0, 40.0]]\n"
+
+
+@pytest.fixture
+def library(tmp_path, monkeypatch):
+    path = tmp_path / "config" / "tools.toml"
+    store.save(str(path), store.SEEDS.with_tool(LibraryTool(12, "drill", 6.5, angle=135.0, flute_length=60.0))
+               .with_tool(LibraryTool(13, "drill", 4.2, flute_length=33.0, name="tap drill")))
+    monkeypatch.setenv("KEZURI_TOOL_LIBRARY", str(path))
+    return path
+
+
+def job(tmp_path, operation: str, name="job.toml") -> str:
+    path = tmp_path / name
+    path.write_text(SETUP + '\n[[operations]]\nkind = "drill"\nname = "holes"\n' + HOLES + operation)
+    return str(path)
+
+
+def program(out) -> str:
+    return open(os.path.join(out, "holes.ngc")).read()
+
+
+def test_a_library_tool_gives_the_program_its_typed_twin(tmp_path, library):
+    status, message, out = run("job", job(tmp_path, 'tool = "T13"\nsettings = { depth = 10.0, peck = 3.0 }\n'))
+    assert status == 0, message
+    typed = job(tmp_path, "settings = { depth = 10.0, peck = 3.0, tool_number = 13, diameter = 4.2, "
+                          "flute_length = 33.0 }\n", "typed.toml")
+    status, message, out_typed = run("job", typed)
+    assert status == 0, message
+    text = program(out)
+    assert re.findall(r"^T(\d+) M0?6", text, re.M) == ["13"]
+    strip = lambda t: re.sub(r"\(.*?\)", "", t)             # noqa: E731 - comments name the file and time
+    assert strip(text) == strip(program(out_typed))
+
+
+def test_slots_by_name(tmp_path, library):
+    status, message, out = run("job", job(tmp_path, 'tools = { drill = 4 }\nsettings = { depth = 10.0 }\n'))
+    assert status == 0, message
+    assert re.findall(r"^T(\d+) M0?6", program(out), re.M) == ["4"]
+
+
+@pytest.mark.parametrize("operation, words", [
+    ("tool = 40\n", ["operation 1 ('holes')", "tool = 40", "no tool T40 in the tool library", "T1, T2"]),
+    ("tool = 2\n", ["tool = 2 is T2 6 mm ball end mill", "the drill's drill tool must be a drill"]),
+    ("tool = 12\n", ["tool = 12", "135° point", "planned for a 118° one"]),
+    ("tool = 4\nsettings = { diameter = 5.0 }\n", ["settings.diameter and tool = 4 both give the drill tool"]),
+    ("tool = 4\ntools = { mill = 5 }\n", ["give tool or tools, not both"]),
+    ("tools = { router = 5 }\n", ["tools.router is not a tool of a drill; its tools are drill, mill, spot"]),
+    ("tool = 4.5\n", ["tool = 4.5", "not a tool number"]),
+])
+def test_a_tool_that_cannot_be_used_is_refused_by_name(tmp_path, library, operation, words):
+    status, message, _ = run("job", job(tmp_path, operation))
+    assert status == 2
+    for word in words:
+        assert word in message, message
