@@ -72,7 +72,7 @@ def tool_settings(table: dict, kind: str, settings: dict, where: str, library_of
         try:
             tool = library_of().get(tool_number(typed))
         except ToolLibraryError as error:
-            raise JobFileError(f"{where}: {key} = {typed!r}: {error}") from None
+            raise JobFileError(f"{where}: {key} = {typed!r} cannot be used: {error}") from None
         if tool.kind not in kinds:
             raise JobFileError(f"{where}: {key} = {typed!r} is {tool.describe()}; the {kind}'s {slot} tool must "
                                f"be a {' or '.join(KIND_LABELS[k] for k in kinds)}")

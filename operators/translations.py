@@ -2378,11 +2378,114 @@ PROFILE_TEMPLATES = {
         "輪郭加工 {0}：輪郭 {1} にタブがなく貫通します。その部分は最後のパスで外れます",
 }
 
+# the tool library (toolpath/tooling, operators/jobtools.py, operators/toolbatch.py)
+TOOLLIB_NESTED = {"{}: refused: {}": (1,), "T{}: not a tool a program can use: {}": (1,),
+                  "{}: {} = {} cannot be used: {}": (3,), "the tool library cannot be read, and is left as it is: {}{}": (0,)}
+TOOLLIB_TEMPLATES = {
+    "{}: a {} operation does not take its tools from the library; the kinds that do are {}":
+        "{0}：{1} の加工は工具ライブラリから工具を取りません（取る種類は {2}）",
+    "{}: give tool or tools, not both": "{0}：tool と tools はどちらか一方を指定してください",
+    "{}: tools must be a table of slot = tool number, e.g. tools = {{ {} = 3 }}":
+        "{0}：tools は「スロット = 工具番号」の表にしてください（例 tools = {{ {1} = 3 }}）",
+    "{}: tools.{} is not a tool of a {}; its tools are {}": "{0}：tools.{1} は {2} の工具ではありません（工具は {3}）",
+    "{}: {} = {} cannot be used: {}": "{0}：{1} = {2} は使えません：{3}",
+    "{}: {} = {} is {}; the {}'s {} tool must be a {}": "{0}：{1} = {2} は {3} です。{4} の {5} 工具は {6} にしてください",
+    "{}: {} = {} is {} with a {}° point; the {} is planned for a {}° one (a program's tool does not carry its angle "
+    "yet)":
+        "{0}：{1} = {2} は先端角 {4}° の {3} です。{5} は {6}° の工具で計画されます（プログラムの工具はまだ角度を持ちません）",
+    "{}: settings.{} and {} = {} both give the {} tool; give one":
+        "{0}：settings.{1} と {2} = {3} の両方が {4} 工具を指定しています。どちらか一方にしてください",
+    "{} is the tool library itself (or its backup); export to another file":
+        "{0} は工具ライブラリそのもの（またはそのバックアップ）です。別のファイルに書き出してください",
+    "tool library format {} is not one of {}": "工具ライブラリの形式 {0} は {1} のいずれでもありません",
+    "{}: which tool library format is {}? Known: {}; or name the format":
+        "{0}：{1} はどの工具ライブラリ形式ですか？既知の形式：{2}。または形式を指定してください",
+    "{}: units are given by the {} file itself; --units is for tool tables":
+        "{0}：単位は {1} ファイル自身が示します。--units はツールテーブル用です",
+    "a {} file is written in mm; units are for tool tables": "{0} ファイルは mm で書き出します。単位の指定はツールテーブル用です",
+    "{}: {} bytes is not a tool library (at most {})": "{0}：{1} バイトは工具ライブラリではありません（最大 {2}）",
+    "{}: a folder, not a tool library file": "{0}：フォルダーです。工具ライブラリのファイルではありません",
+    "{}: cannot be read ({})": "{0}：読み込めません（{1}）",
+    "{}: line {}: not UTF-8 text": "{0}：{1} 行目：UTF-8 のテキストではありません",
+    "{}: BMC = {} is not one of {}": "{0}：BMC = {1} は {2} のいずれでもありません",
+    "{}: not a Fusion 360 tool library: not JSON ({} at line {}, column {})":
+        "{0}：Fusion 360 の工具ライブラリではありません：JSON ではありません（{2} 行 {3} 列：{1}）",
+    "{}: not a Fusion 360 tool library: no \"data\" list of tools":
+        "{0}：Fusion 360 の工具ライブラリではありません：工具の \"data\" リストがありません",
+    "{}: not an object": "{0}：オブジェクトではありません",
+    "{}: {} = {} is not a number": "{0}：{1} = {2} は数値ではありません",
+    "{}: {} = {} is not text": "{0}：{1} = {2} は文字列ではありません",
+    "{}: post-process and geometry must be objects": "{0}：post-process と geometry はオブジェクトにしてください",
+    "{}: post-process.number (the tool number) is missing": "{0}：post-process.number（工具番号）がありません",
+    "{}: unit = {} is not one of {}": "{0}：unit = {1} は {2} のいずれでもありません",
+    "{}: geometry NOF = {} is not a whole number of flutes": "{0}：geometry NOF = {1} は刃数として整数ではありません",
+    "{}: not a Kezuri tool library: not TOML ({})": "{0}：Kezuri の工具ライブラリではありません：TOML ではありません（{1}）",
+    "{}: unknown key {}; the file has {}": "{0}：不明なキー {1}（ファイルのキーは {2}）",
+    "{}: format = {}, not {}: not a Kezuri tool library": "{0}：format = {1} で {2} ではありません：Kezuri の工具ライブラリではありません",
+    "{}: version = {}; this Kezuri reads version {} (a newer Kezuri wrote it?)":
+        "{0}：version = {1}。この Kezuri が読めるのはバージョン {2} です（新しい Kezuri で書かれましたか？）",
+    "{}: units = {}; a Kezuri tool library is in \"mm\"": "{0}：units = {1}。Kezuri の工具ライブラリは \"mm\" です",
+    "{}: tools must be [[tools]] tables": "{0}：tools は [[tools]] の表にしてください",
+    "{}: not a table": "{0}：表ではありません",
+    "{}: {} = {} is not a single value": "{0}：{1} = {2} は単一の値ではありません",
+    "{}: flutes {} is not a whole number 1..{}": "{0}：刃数 {1} は 1..{2} の整数ではありません",
+    "{}: material {} is not one of {}": "{0}：材質 {1} は {2} のいずれでもありません",
+    "{}: {} {} is not text": "{0}：{1} {2} は文字列ではありません",
+    "{}: a {} has no tip angle (got {})": "{0}：{1} に先端角はありません（指定値 {2}）",
+    "{}: a {} needs its included angle (degrees)": "{0}：{1} には先端角（度）が必要です",
+    "{}: angle {} is not an included angle 1..179 degrees": "{0}：角度 {1} は 1..179 度の先端角ではありません",
+    "T{}: not a tool a program can use: {}": "T{0}：プログラムで使える工具ではありません：{1}",
+    "{}: unknown field {}; the fields are {}": "{0}：不明な項目 {1}（項目は {2}）",
+    "{}: the field {} is missing": "{0}：項目 {1} がありません",
+    "{}: refused: {}": "{0}：受け付けません：{1}",
+    "{}: not a tool": "{0}：工具ではありません",
+    "tool number T{} is given twice: {} ({}) and {} ({})": "工具番号 T{0} が2回あります：{1}（{2}）と {3}（{4}）",
+    "no tool T{} in the tool library (it has {})": "工具ライブラリに T{0} はありません（あるのは {1}）",
+    "T{} is already in the library ({}); refused: {}": "T{0} はすでにライブラリにあります（{1}）。受け付けません：{2}",
+    "{} tool number(s) already in the library: {}; nothing was imported (replace them to overwrite)":
+        "{0} 個の工具番号がすでにライブラリにあります：{1}。何も取り込んでいません（上書きするには置き換えを指定してください）",
+    "tool {} is not a tool number (3 or \"T3\")": "tool {0} は工具番号（3 または \"T3\"）ではありません",
+    "tool number {} is not a whole number 1..{}": "工具番号 {0} は 1..{1} の整数ではありません",
+    "{}: {} {} is not a number (mm)": "{0}：{1} {2} は数値（mm）ではありません",
+    "{}: {} {} must be positive (mm)": "{0}：{1} {2} は正の値（mm）にしてください",
+    "{}: a ball end mill's corner radius is its radius {} mm, not {}":
+        "{0}：ボールエンドミルのコーナー半径は工具半径 {1} mm です（{2} ではありません）",
+    "{}: corner_radius {} mm must be above 0 and at most the radius {} mm":
+        "{0}：corner_radius {1} mm は 0 より大きく工具半径 {2} mm 以下にしてください",
+    "{}: a {} has no corner radius (got {} mm)": "{0}：{1} にコーナー半径はありません（指定値 {2} mm）",
+    "{}: no D word: the tool's diameter is missing": "{0}：D ワードがありません：工具径がありません",
+    "{}: the comment's {}{{...}} repeats number or diameter (the T and D words give them)":
+        "{0}：コメントの {1}{{...}} が番号か径を繰り返しています（T と D ワードで指定されます）",
+    "{}: the comment's {}{{...}} has an unknown field {}": "{0}：コメントの {1}{{...}} に不明な項目 {2} があります",
+    "T{}: its name {} cannot stand in a tool table's comment (line breaks, spaces at the ends or in runs, or "
+    "'kezuri{{'): rename it first":
+        "T{0}：名前 {1} はツールテーブルのコメントに入りません（改行、前後や連続の空白、'kezuri{{'）。先に名前を変えてください",
+    "tool table units {} are not one of {}": "ツールテーブルの単位 {0} は {1} のいずれでもありません",
+    "{}: {} is not a tool table word (T P X Y Z A B C U V W D I J Q)":
+        "{0}：{1} はツールテーブルのワード（T P X Y Z A B C U V W D I J Q）ではありません",
+    "{}: {} is given twice": "{0}：{1} が2回指定されています",
+    "{}: {}: {} is not a number": "{0}：{1}：{2} は数値ではありません",
+    "{}: {} is not a finite number": "{0}：{1} は有限の数ではありません",
+    "{}: {}: {} must be a whole number": "{0}：{1}：{2} は整数にしてください",
+    "{}: the comment's {}{{...}} is not JSON ({} at column {} of the comment)":
+        "{0}：コメントの {1}{{...}} が JSON ではありません（コメントの {3} 列目：{2}）",
+    "{}: the comment's {}{{...}} is not a table of fields": "{0}：コメントの {1}{{...}} は項目の表ではありません",
+    "{}: no T word (tool number)": "{0}：T ワード（工具番号）がありません",
+    "{}: cannot be written ({})": "{0}：書き込めません（{1}）",
+    "the tool library cannot be read, and is left as it is: {}{}": "工具ライブラリを読み込めないため、そのままにしています：{0}{1}",
+    "{}: the library would not read back as it is; nothing was written":
+        "{0}：ライブラリが同じ内容で読み戻せないため、何も書き込んでいません",
+    "{}: the tool library cannot be written ({}); the file is as it was":
+        "{0}：工具ライブラリを書き込めません（{1}）。ファイルは元のままです",
+}
+
 MESSAGE_TEMPLATES.update(JOBLIST_TEMPLATES)
 MESSAGE_TEMPLATES.update(PROFILE_TEMPLATES)
 MESSAGES.update(PROFILE_TEXTS)
 MESSAGE_TEMPLATES.update(POCKET_TEMPLATES)
 NESTED.update(POCKET_NESTED)
+MESSAGE_TEMPLATES.update(TOOLLIB_TEMPLATES)
+NESTED.update(TOOLLIB_NESTED)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

@@ -59,7 +59,7 @@ def test_bad_input_exits_2_with_the_reason(tmp_path):
     bad = tmp_path / "bad.tbl"
     bad.write_text("T1 P1 D6\nT2 P2 D0\n")
     status, out, err = tools(library, "import", str(bad))
-    assert status == 2 and f"{bad}: line 2 (T2): diameter 0.0 must be positive" in err
+    assert status == 2 and f"{bad}: line 2 (T2): refused: diameter 0.0 must be positive" in err
     status, _, err = tools(library, "export", str(tmp_path / "x.csv"))
     assert status == 2 and "which tool library format is .csv" in err
     status, _, err = tools(library, "export", str(tmp_path / "x.txt"), "--format", "csv")

@@ -143,7 +143,7 @@ class LibraryTool:
             return Tool(self.number, kind, self.diameter, corner_radius=self.corner_radius,
                         flute_length=self.flute_length, name=self.name, label=label)
         except ProgramError as error:
-            raise ToolLibraryError(f"T{self.number}: {error}") from None
+            raise ToolLibraryError(f"T{self.number}: not a tool a program can use: {error}") from None
 
     def as_dict(self) -> dict:
         return {key: getattr(self, key) for key in FIELDS}
@@ -167,7 +167,7 @@ def tool_from_fields(fields: dict, where: str) -> LibraryTool:
         message, named = str(error), f"T{fields['number']}"
         if named in where:                   # "file: line 2 (T2): diameter ...", not "(T2): T2: ..."
             message = message.removeprefix(f"{named}: ")
-        raise ToolLibraryError(f"{where}: {message}") from None
+        raise ToolLibraryError(f"{where}: refused: {message}") from None
 
 
 class ToolLibrary:
