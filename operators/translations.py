@@ -2283,14 +2283,14 @@ def _build() -> dict:
     for table in (PROPERTY_TEXTS, PANEL_TEXTS, OPERATOR_DESCRIPTIONS, MESSAGES):
         for english, japanese in table.items():
             messages[(DEFAULT, english)] = japanese
-    for english, japanese in (*JOBLIST_TEXTS.items(), *POCKET_TEXTS.items()):
+    for english, japanese in (*JOBLIST_TEXTS.items(), *POCKET_TEXTS.items(), *TOOLLIB_TEXTS.items()):
         messages.setdefault((DEFAULT, english), japanese)
     from .. import post
     for cls in post.posts():     # each post declares its own Japanese label and description
         for english, japanese in ((cls.label, cls.label_ja), (cls.description, cls.description_ja)):
             if japanese:
                 messages.setdefault((DEFAULT, english), japanese)
-    for table in (OPERATOR_LABELS, OPERATOR_TEXTS, JOBLIST_OPERATORS):
+    for table in (OPERATOR_LABELS, OPERATOR_TEXTS, JOBLIST_OPERATORS, TOOLLIB_OPERATORS):
         for english, japanese in table.items():
             messages[(OPERATOR, english)] = japanese
             # A panel may share an operator's label ("Pipe Elbow"): the panel's wording wins in "*".
@@ -2379,9 +2379,54 @@ PROFILE_TEMPLATES = {
 }
 
 # the tool library (toolpath/tooling, operators/jobtools.py, operators/toolbatch.py)
+TOOLLIB_OPERATORS = {
+    "Load Tool Library": "工具ライブラリを読み込み", "Save Tool Library": "工具ライブラリを保存",
+    "Add Library Tool": "ライブラリに工具を追加", "Remove Library Tool": "ライブラリから工具を削除",
+    "Import Tools": "工具を読み込み", "Export Tools": "工具を書き出し",
+    "Save": "保存", "Import": "読込", "Export": "書出",
+}
+TOOLLIB_TEXTS = {
+    "Add a 6 mm flat end mill under the next free number, and save":
+        "空いている次の番号に 6 mm フラットエンドミルを追加して保存します",
+    "Write the tool library to a file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json)":
+        "工具ライブラリをファイルに書き出します（Kezuri .toml、LinuxCNC .tbl、Fusion 360 .json）",
+    "Merge a tool file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json) into the library":
+        "工具ファイル（Kezuri .toml、LinuxCNC .tbl、Fusion 360 .json）をライブラリに取り込みます",
+    "Read the tool library file (edits not saved are dropped)": "工具ライブラリのファイルを読み込みます（保存していない編集は破棄されます）",
+    "Remove the selected tool from the library, and save": "選択した工具をライブラリから削除して保存します",
+    "Check every row and write the tool library file (the file before is kept as a backup)":
+        "すべての行を確認して工具ライブラリのファイルに書き込みます（以前のファイルはバックアップとして残ります）",
+    "Format": "形式", "From Extension": "拡張子から",
+    "The format the file name's extension says": "ファイル名の拡張子が示す形式",
+    "A Fusion 360 tool library": "Fusion 360 の工具ライブラリ", "Fusion 360 (.json)": "Fusion 360 形式 (.json)",
+    "Kezuri's own tool library file": "Kezuri 独自の工具ライブラリファイル", "Kezuri (.toml)": "Kezuri 形式 (.toml)",
+    "A LinuxCNC tool table": "LinuxCNC のツールテーブル", "LinuxCNC (.tbl)": "LinuxCNC 形式 (.tbl)",
+    "Table Units": "テーブルの単位", "A LinuxCNC tool table's units": "LinuxCNC ツールテーブルの単位",
+    "A LinuxCNC tool table's units (the table does not say)": "LinuxCNC ツールテーブルの単位（テーブルには書かれていません）",
+    "Millimetres": "ミリメートル", "Inches": "インチ",
+    "The tool table is in millimetres": "ツールテーブルはミリメートル単位です",
+    "The tool table is in inches": "ツールテーブルはインチ単位です",
+    "Replace Same Numbers": "同じ番号を置き換え",
+    "Tools of the file replace the library's tools of the same number": "ファイルの工具で同じ番号のライブラリ工具を置き換えます",
+    "V-bit or engraver: included angle; drill: point angle (degrees)":
+        "Vビット・彫刻刃：刃先角、ドリル：先端角（度）",
+    "Angle": "角度", "Bull nose corner radius (mm)": "ラジアスエンドミルのコーナー半径 (mm)",
+    "Number of flutes": "刃の数", "Flutes": "刃数",
+    "The holder's (collet nut's) diameter (mm); 0: not known": "ホルダー（コレットナット）の直径 (mm)。0：不明",
+    "Holder Diameter": "ホルダー径", "Pointed engraving cutter": "先の尖った彫刻刃", "Engraver": "彫刻刃",
+    "Material": "材質", "Solid carbide": "超硬ソリッド", "Carbide": "超硬", "High-speed steel": "ハイス鋼", "HSS": "ハイス",
+    "Tool number, the T word": "工具番号（T ワード）", "The maker's product number": "メーカーの品番", "Product ID": "品番",
+    "How far the tool stands out of the holder (mm); 0: not measured": "ホルダーからの工具の突き出し (mm)。0：未測定",
+    "Stick-Out": "突き出し", "Who makes the tool": "工具のメーカー", "Vendor": "メーカー",
+    "Select a tool in the library first": "先にライブラリの工具を選択してください",
+}
 TOOLLIB_NESTED = {"{}: refused: {}": (1,), "T{}: not a tool a program can use: {}": (1,),
                   "{}: {} = {} cannot be used: {}": (3,), "the tool library cannot be read, and is left as it is: {}{}": (0,)}
 TOOLLIB_TEMPLATES = {
+    "Tool library: {} tools from {}": "工具ライブラリ：{1} から {0} 本の工具",
+    "Saved the tool library to {}": "工具ライブラリを {0} に保存しました",
+    "Imported {} new and {} replaced tools from {}": "{2} から新規 {0} 本、置き換え {1} 本の工具を取り込みました",
+    "Exported {} tools to {}": "{0} 本の工具を {1} に書き出しました",
     "{}: a {} operation does not take its tools from the library; the kinds that do are {}":
         "{0}：{1} の加工は工具ライブラリから工具を取りません（取る種類は {2}）",
     "{}: give tool or tools, not both": "{0}：tool と tools はどちらか一方を指定してください",

@@ -1,0 +1,92 @@
+"""The CAM tab's Tool Library panel: its operators on a library file of the test's own
+(KEZURI_TOOL_LIBRARY), and every text of the panel fitting the default sidebar in English and
+Japanese."""
+import os
+import types
+
+import pytest
+
+bpy = pytest.importorskip("bpy")
+
+import sidebar_fit as fit  # noqa: E402
+from blender_helpers import empty_scene  # noqa: E402,F401  (fixture)
+from kezuri.operators import toollib, translations  # noqa: E402
+from kezuri.toolpath.tooling import formats, store  # noqa: E402
+
+FIXTURES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "fixtures", "tools")
+JA = translations.TRANSLATIONS["ja_JP"]
+
+
+@pytest.fixture
+def library(tmp_path, monkeypatch, empty_scene):
+    path = tmp_path / "tools.toml"
+    monkeypatch.setenv("KEZURI_TOOL_LIBRARY", str(path))
+    bpy.context.window_manager.kezuri_tool_library.loaded = False
+    return path
+
+
+def rows():
+    return bpy.context.window_manager.kezuri_tool_library.tools
+
+
+def test_load_edit_save_add_remove(library):
+    assert bpy.ops.kezuri.toollib_load() == {"FINISHED"}
+    assert [r.number for r in rows()] == list(range(1, 12))
+    state = bpy.context.window_manager.kezuri_tool_library
+    state.index = 1
+    row = rows()[1]
+    assert (row.kind, row.diameter, row.stick_out) == ("ball", 6.0, 30.0)
+    row.diameter, row.stick_out, row.vendor = 6.35, 27.5, "Example Tools"
+    assert bpy.ops.kezuri.toollib_save() == {"FINISHED"}
+    saved, _ = formats.read_path(str(library))
+    t2 = saved.get(2)
+    assert (t2.diameter, t2.corner_radius, t2.stick_out, t2.vendor) == (6.35, 3.175, 27.5, "Example Tools")
+    assert os.path.exists(f"{library}.bak1")
+
+    assert bpy.ops.kezuri.toollib_add() == {"FINISHED"}
+    assert rows()[state.index].number == 12 and formats.read_path(str(library))[0].get(12).kind == "flat"
+    assert bpy.ops.kezuri.toollib_remove() == {"FINISHED"}
+    assert 12 not in formats.read_path(str(library))[0].numbers()
+
+
+def test_a_row_that_is_no_tool_is_refused_and_nothing_written(library):
+    bpy.ops.kezuri.toollib_load()
+    before = library.read_text()
+    row = rows()[0]
+    row.kind, row.corner_radius = "bull", 4.0               # R4 on a 6 mm end mill
+    with pytest.raises(RuntimeError, match=r"T1: corner_radius 4 mm must be above 0 and at most the radius 3"):
+        bpy.ops.kezuri.toollib_save()
+    assert library.read_text() == before
+
+
+def test_import_and_export(library, tmp_path):
+    bpy.ops.kezuri.toollib_load()
+    with pytest.raises(RuntimeError, match="already in the library"):
+        bpy.ops.kezuri.toollib_import(filepath=os.path.join(FIXTURES, "fusion-library.json"))
+    assert bpy.ops.kezuri.toollib_import(filepath=os.path.join(FIXTURES, "fusion-library.json"),
+                                         replace=True) == {"FINISHED"}
+    assert [r.number for r in rows()] == [*range(1, 12), 14, 21]
+    assert rows()[7].angle == pytest.approx(60.0) and rows()[7].name == "60 degree V groove"
+    out = tmp_path / "shop.json"
+    assert bpy.ops.kezuri.toollib_export(filepath=str(out)) == {"FINISHED"}
+    assert formats.read_path(str(out))[0] == store.load(str(library))
+
+
+@pytest.mark.parametrize("language", ["en", "ja"])
+def test_every_text_of_the_panel_fits(library, language):
+    bpy.ops.kezuri.toollib_load()
+    bpy.ops.kezuri.toollib_import(filepath=os.path.join(FIXTURES, "kezuri-tools.toml"), replace=True)
+    state = bpy.context.window_manager.kezuri_tool_library
+    context = types.SimpleNamespace(scene=bpy.context.scene, window_manager=bpy.context.window_manager,
+                                    active_object=None)
+    table = JA if language == "ja" else None
+    measured, failures = 0, []
+    for index, row in enumerate(rows()):                    # every kind's fields (bull: corner, V-bit: angle)
+        state.index = index
+        texts = fit.all_texts([toollib.KEZURI_PT_toollib], context, table)
+        measured += len(texts)
+        failures += fit.too_wide(texts)
+    state.loaded = False
+    failures += fit.too_wide(fit.all_texts([toollib.KEZURI_PT_toollib], context, table))
+    assert measured > 200
+    assert not failures, "\n".join(sorted(set(failures)))
