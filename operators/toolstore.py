@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 
 from ..toolpath.tooling import store
+from ..toolpath.tooling.library import ToolLibraryError
 
 ENV = "KEZURI_TOOL_LIBRARY"
 
@@ -28,3 +29,26 @@ def load():
 
 def save(library) -> str:
     return store.save(library_path(), library)
+
+
+def stick_outs(entries) -> dict:
+    """{tool number: stick-out (mm)} for a report's ``operations`` whose tool the user's library has
+    as the same tool (its number, kind and diameter) with a measured stick-out; for the setup sheet.
+    Nothing when there is no library file yet (nothing is written here) or it cannot be read (the
+    sheet then shows the stick-out as not known, as before)."""
+    path = library_path()
+    if not os.path.isfile(path):
+        return {}
+    try:
+        library = store.load(path)
+    except ToolLibraryError:
+        return {}
+    found = {}
+    for entry in entries or ():
+        number, diameter = entry.get("tool_number"), entry.get("tool_diameter_mm")
+        tool = library.find(number) if isinstance(number, int) and not isinstance(number, bool) else None
+        if tool is None or tool.stick_out is None or not isinstance(diameter, (int, float)):
+            continue
+        if tool.to_ir_tool().kind == entry.get("tool_kind") and abs(tool.diameter - float(diameter)) <= 1e-6:
+            found[number] = tool.stick_out
+    return found

@@ -7,6 +7,7 @@ import re
 import pytest
 
 pytest.importorskip("bpy")
+from sheet_reader import read_sheet  # noqa: E402
 from test_batch_job import run  # noqa: E402
 
 from kezuri.toolpath.tooling import store  # noqa: E402
@@ -20,7 +21,7 @@ HOLES = "holes = [[20.0, 20.0], [80.0, 40.0]]\n"
 def library(tmp_path, monkeypatch):
     path = tmp_path / "config" / "tools.toml"
     store.save(str(path), store.SEEDS.with_tool(LibraryTool(12, "drill", 6.5, angle=135.0, flute_length=60.0))
-               .with_tool(LibraryTool(13, "drill", 4.2, flute_length=33.0, name="tap drill")))
+               .with_tool(LibraryTool(13, "drill", 4.2, flute_length=33.0, stick_out=41.5, name="tap drill")))
     monkeypatch.setenv("KEZURI_TOOL_LIBRARY", str(path))
     return path
 
@@ -46,6 +47,23 @@ def test_a_library_tool_gives_the_program_its_typed_twin(tmp_path, library):
     assert re.findall(r"^T(\d+) M0?6", text, re.M) == ["13"]
     strip = lambda t: re.sub(r"\(.*?\)", "", t)             # noqa: E731 - comments name the file and time
     assert strip(text) == strip(program(out_typed))
+
+
+def stick_out_column(out) -> dict:
+    table = read_sheet(open(os.path.join(out, "setup-sheet.html"), encoding="utf-8").read()).tables["tools"]
+    column = table[0].index("Stick-out (mm)")
+    return {row[0]: row[column] for row in table[1:]}
+
+
+def test_the_setup_sheet_lists_the_library_tools_stick_out(tmp_path, library):
+    status, message, out = run("job", job(tmp_path, 'tool = 13\nsettings = { depth = 10.0 }\n'))
+    assert status == 0, message
+    assert stick_out_column(out) == {"T13": "41.5"}
+    # the same number typed as another tool (a 4.3 mm drill) is not the library's: its stick-out is not known
+    typed = job(tmp_path, "settings = { depth = 10.0, tool_number = 13, diameter = 4.3 }\n", "typed.toml")
+    status, message, out = run("job", typed)
+    assert status == 0, message
+    assert stick_out_column(out) == {"T13": "—"}
 
 
 def test_slots_by_name(tmp_path, library):
