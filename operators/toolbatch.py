@@ -1,13 +1,13 @@
 """``batch.py tools``: the tool library from the command line, every answer printed as JSON.
 
     batch.py tools list
-    batch.py tools import FILE [--format kezuri|tbl|fusion] [--units mm|inch] [--replace]
-    batch.py tools export FILE [--format kezuri|tbl|fusion] [--units mm|inch]
+    batch.py tools import FILE [--format kezuri|tbl|fusion|freecad] [--units mm|inch] [--replace]
+    batch.py tools export FILE [--format kezuri|tbl|fusion|freecad] [--units mm|inch]
 
 The library is the user's (:mod:`.toolstore`; ``KEZURI_TOOL_LIBRARY`` names another file).  An
 import merges the file's tools in; a number the library has already, as another tool, is refused
 naming both unless ``--replace``, and then nothing is imported.  The format comes from ``--format``
-or the file's extension (.toml, .tbl, .json / .tools); ``--units`` is a tool table's (LinuxCNC's
+or the file's extension (.toml, .tbl, .json / .tools, .fctl); ``--units`` is a tool table's (LinuxCNC's
 table does not say).  Exit status 0, or 2 on bad input with the message on stderr.
 """
 from __future__ import annotations
@@ -59,8 +59,8 @@ def run(args) -> dict:
     if target == os.path.abspath(path) or target.startswith(os.path.abspath(path) + ".bak"):
         raise ToolLibraryError(f"{args.file} is the tool library itself (or its backup); export to another file")
     fmt = formats.format_of(args.file, args.format)
-    store.write_export(args.file, formats.render(library, fmt, args.units))
-    return {"library": path, "exported": args.file, "format": fmt, "tools": len(library)}
+    written = [store.write_export(name, text) for name, text in formats.files_for(args.file, library, fmt, args.units)]
+    return {"library": path, "exported": args.file, "format": fmt, "tools": len(library), "files": written}
 
 
 def main(argv: list) -> int:

@@ -22,7 +22,8 @@ MATERIAL_ITEMS = [("carbide", "Carbide", "Solid carbide"), ("hss", "HSS", "High-
 FORMAT_ITEMS = [("AUTO", "From Extension", "The format the file name's extension says"),
                 ("kezuri", "Kezuri (.toml)", "Kezuri's own tool library file"),
                 ("tbl", "LinuxCNC (.tbl)", "A LinuxCNC tool table"),
-                ("fusion", "Fusion 360 (.json)", "A Fusion 360 tool library")]
+                ("fusion", "Fusion 360 (.json)", "A Fusion 360 tool library"),
+                ("freecad", "FreeCAD (.fctl)", "A FreeCAD tool library and its tool bit files")]
 UNIT_ITEMS = [("mm", "Millimetres", "The tool table is in millimetres"),
               ("inch", "Inches", "The tool table is in inches")]
 ANGLED = ("vbit", "engraver", "drill")
@@ -183,13 +184,13 @@ class KEZURI_OT_toollib_remove(ToolLibraryOperator, bpy.types.Operator):
 
 
 class KEZURI_OT_toollib_import(ToolLibraryOperator, bpy.types.Operator):
-    """Merge a tool file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json) into the library"""
+    """Merge a tool file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json, FreeCAD .fctl) into the library"""
 
     bl_idname = "kezuri.toollib_import"
     bl_label = "Import Tools"
 
     filepath: StringProperty(subtype="FILE_PATH")
-    filter_glob: StringProperty(default="*.toml;*.tbl;*.json;*.tools", options={"HIDDEN"})
+    filter_glob: StringProperty(default="*.toml;*.tbl;*.json;*.tools;*.fctl", options={"HIDDEN"})
     file_format: EnumProperty(name="Format", items=FORMAT_ITEMS, default="AUTO")
     units: EnumProperty(name="Table Units", items=UNIT_ITEMS, default="mm",
                         description="A LinuxCNC tool table's units (the table does not say)")
@@ -215,7 +216,7 @@ class KEZURI_OT_toollib_import(ToolLibraryOperator, bpy.types.Operator):
 
 
 class KEZURI_OT_toollib_export(ToolLibraryOperator, bpy.types.Operator):
-    """Write the tool library to a file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json)"""
+    """Write the tool library to a file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json, FreeCAD .fctl)"""
 
     bl_idname = "kezuri.toollib_export"
     bl_label = "Export Tools"
@@ -237,7 +238,8 @@ class KEZURI_OT_toollib_export(ToolLibraryOperator, bpy.types.Operator):
         path = blender_path(self.filepath)
         library = toolstore.load()
         fmt = formats.format_of(path, None if self.file_format == "AUTO" else self.file_format)
-        store.write_export(path, formats.render(library, fmt, self.units))
+        for name, text in formats.files_for(path, library, fmt, self.units):
+            store.write_export(name, text)
         return f"Exported {len(library)} tools to {path}"
 
 

@@ -2388,10 +2388,12 @@ TOOLLIB_OPERATORS = {
 TOOLLIB_TEXTS = {
     "Add a 6 mm flat end mill under the next free number, and save":
         "空いている次の番号に 6 mm フラットエンドミルを追加して保存します",
-    "Write the tool library to a file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json)":
-        "工具ライブラリをファイルに書き出します（Kezuri .toml、LinuxCNC .tbl、Fusion 360 .json）",
-    "Merge a tool file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json) into the library":
-        "工具ファイル（Kezuri .toml、LinuxCNC .tbl、Fusion 360 .json）をライブラリに取り込みます",
+    "Write the tool library to a file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json, FreeCAD .fctl)":
+        "工具ライブラリをファイルに書き出します（Kezuri .toml、LinuxCNC .tbl、Fusion 360 .json、FreeCAD .fctl）",
+    "Merge a tool file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json, FreeCAD .fctl) into the library":
+        "工具ファイル（Kezuri .toml、LinuxCNC .tbl、Fusion 360 .json、FreeCAD .fctl）をライブラリに取り込みます",
+    "FreeCAD (.fctl)": "FreeCAD 形式 (.fctl)", "A FreeCAD tool library and its tool bit files":
+        "FreeCAD の工具ライブラリとその工具ビットファイル",
     "Read the tool library file (edits not saved are dropped)": "工具ライブラリのファイルを読み込みます（保存していない編集は破棄されます）",
     "Remove the selected tool from the library, and save": "選択した工具をライブラリから削除して保存します",
     "Check every row and write the tool library file (the file before is kept as a backup)":
@@ -2419,10 +2421,32 @@ TOOLLIB_TEXTS = {
     "How far the tool stands out of the holder (mm); 0: not measured": "ホルダーからの工具の突き出し (mm)。0：未測定",
     "Stick-Out": "突き出し", "Who makes the tool": "工具のメーカー", "Vendor": "メーカー",
     "Select a tool in the library first": "先にライブラリの工具を選択してください",
+    "a FreeCAD library is several files: export it to a .fctl path":
+        "FreeCAD のライブラリは複数のファイルです。.fctl のパスに書き出してください",
 }
 TOOLLIB_NESTED = {"{}: refused: {}": (1,), "T{}: not a tool a program can use: {}": (1,),
                   "{}: {} = {} cannot be used: {}": (3,), "the tool library cannot be read, and is left as it is: {}{}": (0,)}
 TOOLLIB_TEMPLATES = {
+    "{}: a FreeCAD library is read with its bit files: read it from its path":
+        "{0}：FreeCAD のライブラリは工具ビットファイルと一緒に読みます。そのパスから読み込んでください",
+    "{}: parameter CuttingEdgeAngle is missing (a V-bit's included angle)":
+        "{0}：パラメーター CuttingEdgeAngle（Vビットの刃先角）がありません",
+    "{}: attribute Material = {} is not one of {}": "{0}：属性 Material = {1} は {2} のいずれでもありません",
+    "{}: attribute {} is not Kezuri's JSON": "{0}：属性 {1} が Kezuri の JSON ではありません",
+    "{}: attribute {} has an unknown field {}": "{0}：属性 {1} に不明な項目 {2} があります",
+    "{}: not a FreeCAD tool library: no \"tools\" list": "{0}：FreeCAD の工具ライブラリではありません：\"tools\" リストがありません",
+    "{}: needs \"nr\" (the tool number) and \"path\" (its bit file)":
+        "{0}：\"nr\"（工具番号）と \"path\"（工具ビットファイル）が必要です",
+    "{}: parameter {} = {} is not a quantity (\"6.0 mm\")": "{0}：パラメーター {1} = {2} は量（\"6.0 mm\"）ではありません",
+    "{}: parameter {} = {}: unit {} is not one of {}": "{0}：パラメーター {1} = {2}：単位 {3} は {4} のいずれでもありません",
+    "{}: parameter {} = {} is not a finite number": "{0}：パラメーター {1} = {2} は有限の数ではありません",
+    "{}: not a FreeCAD {}: not JSON ({} at line {}, column {})":
+        "{0}：FreeCAD の {1} ではありません：JSON ではありません（{3} 行 {4} 列：{2}）",
+    "{}: the bit file {} is not there (looked for {})": "{0}：工具ビットファイル {1} がありません（探した場所 {2}）",
+    "{}: not a FreeCAD tool bit (parameter and attribute must be objects)":
+        "{0}：FreeCAD の工具ビットではありません（parameter と attribute はオブジェクトにしてください）",
+    "{}: parameter Diameter is missing": "{0}：パラメーター Diameter がありません",
+    "{}: parameter FlatRadius is missing (a bull nose's flat)": "{0}：パラメーター FlatRadius（ラジアスエンドミルの平らな底）がありません",
     "Tool library: {} tools from {}": "工具ライブラリ：{1} から {0} 本の工具",
     "Saved the tool library to {}": "工具ライブラリを {0} に保存しました",
     "Imported {} new and {} replaced tools from {}": "{2} から新規 {0} 本、置き換え {1} 本の工具を取り込みました",

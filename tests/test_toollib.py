@@ -152,13 +152,16 @@ def test_kezuri_file_reads_field_by_field():
     assert (got[17]["kind"], got[17]["angle"], got[17]["flutes"], got[17]["diameter"]) == ("engraver", 30.0, 1, 3.175)
 
 
-@pytest.mark.parametrize("source", ["kezuri-tools.toml", "fusion-library.json", "shop.tbl"])
+@pytest.mark.parametrize("source", ["kezuri-tools.toml", "fusion-library.json", "shop.tbl",
+                                    "freecad/Library/shop.fctl"])
 @pytest.mark.parametrize("target", formats.NAMES)
 def test_every_format_gives_the_same_library_back_field_by_field(source, target, tmp_path):
     library, _ = formats.read_path(fixture(source))
-    path = str(tmp_path / f"out{formats.EXTENSIONS[target][0]}")
-    with open(path, "w", encoding="utf-8") as stream:
-        stream.write(formats.render(library, target))
+    path = str(tmp_path / "Library" / f"out{formats.EXTENSIONS[target][0]}")
+    for name, text in formats.files_for(path, library):
+        os.makedirs(os.path.dirname(name), exist_ok=True)
+        with open(name, "w", encoding="utf-8") as stream:
+            stream.write(text)
     again, notes = formats.read_path(path)
     assert notes == []
     assert fields(again) == fields(library)
@@ -259,6 +262,61 @@ def test_a_hostile_file_is_refused_naming_file_place_and_field(fmt, text, words)
         assert word in str(error.value), str(error.value)
 
 
+# ---- FreeCAD ------------------------------------------------------------------------------------
+
+def test_a_freecad_library_reads_its_bits():
+    library, notes = formats.read_path(fixture("freecad/Library/shop.fctl"))
+    assert library.numbers() == (1, 2, 4, 5, 6, 7)
+    assert library.get(1).as_dict() == {"number": 1, "kind": "flat", "diameter": 5.0, "corner_radius": 0.0,
+                                         "angle": None, "flutes": 3, "flute_length": 30.0, "stick_out": None,
+                                         "holder_diameter": None, "material": "hss", "vendor": "", "product_id": "",
+                                         "name": "5mm Endmill"}
+    assert (library.get(2).kind, library.get(2).corner_radius, library.get(2).material) == ("ball", 3.0, "carbide")
+    assert (library.get(4).kind, library.get(4).corner_radius) == ("bull", 1.5)      # 3 mm radius - 1.5 mm flat
+    assert (library.get(5).kind, library.get(5).angle, library.get(5).diameter) == ("vbit", 60.0, 10.0)
+    assert (library.get(6).kind, library.get(6).angle) == ("drill", 119.0)
+    assert (library.get(7).diameter, library.get(7).flute_length) == pytest.approx((6.35, 19.05), rel=1e-12)
+    assert len(notes) == 2 and "FlatRadius 0.5 mm" in notes[0] and "'probe.fcstd'" in notes[1]
+
+
+def test_a_freecad_export_keeps_freecads_layout(tmp_path):
+    import json
+    library, _ = formats.read_path(fixture("kezuri-tools.toml"))
+    files = dict(formats.files_for(str(tmp_path / "Tools" / "Library" / "shop.fctl"), library))
+    bit = json.loads(files[str(tmp_path / "Tools" / "Bit" / "shop-T14.fctb")])
+    assert bit["shape"] == "bullnose.fcstd" and bit["parameter"]["FlatRadius"] == "2.0 mm"
+    assert json.loads(files[str(tmp_path / "Tools" / "Library" / "shop.fctl")])["tools"][0] == \
+        {"nr": 2, "path": "shop-T2.fctb"}
+    assert list(files)[-1].endswith("shop.fctl")            # the library last: it never names a bit not written
+
+
+FREECAD_HOSTILE = [
+    ("missing.fctb", None, ["tool 1", "the bit file 'missing.fctb' is not there"]),
+    ("b.fctb", '{"version": 2, "name": "x", "shape": "endmill.fcstd", "parameter": {"Diameter": "6 furlong"}}',
+     ["tool 1 (T3, b.fctb)", "Diameter = '6 furlong'", "unit 'furlong'"]),
+    ("b.fctb", '{"version": 2, "name": "x", "shape": "endmill.fcstd", "parameter": {"Diameter": "nan mm"}}',
+     ["tool 1 (T3, b.fctb)", "not a quantity"]),
+    ("b.fctb", '{"version": 2, "name": "x", "shape": "endmill.fcstd", "parameter": {}}',
+     ["tool 1 (T3, b.fctb)", "Diameter is missing"]),
+    ("b.fctb", '{"version": 2, "shape": "endmill.fcstd", "parameter": {"Diameter": "6 mm"}, '
+               '"attribute": {"Kezuri": "{\\"colour\\": 1}"}}', ["(T3, b.fctb)", "unknown field 'colour'"]),
+    ("b.fctb", '{"version": 2, "shape": "endmill.fcstd", "parameter": {"Diameter": "6 mm"}, '
+               '"attribute": {"Material": "Wood"}}', ["(T3, b.fctb)", "Material = 'Wood'"]),
+    ("b.fctb", '{"version": 2, "shape": "endmill.fcstd", "parameter": {"Diameter": "6 mm"', ["b.fctb", "not JSON"]),
+]
+
+
+@pytest.mark.parametrize("bit, text, words", FREECAD_HOSTILE)
+def test_a_hostile_freecad_library_is_refused_by_name(tmp_path, bit, text, words):
+    (tmp_path / "lib.fctl").write_text('{"version": 1, "tools": [{"nr": 3, "path": "%s"}]}' % bit)
+    if text is not None:
+        (tmp_path / bit).write_text(text)
+    with pytest.raises(ToolLibraryError) as error:
+        formats.read_path(str(tmp_path / "lib.fctl"))
+    for word in words:
+        assert word in str(error.value), str(error.value)
+
+
 def test_files_that_are_not_text_or_not_there(tmp_path):
     with pytest.raises(ToolLibraryError, match="no such file"):
         formats.read_path(str(tmp_path / "none.tbl"))
@@ -268,7 +326,7 @@ def test_files_that_are_not_text_or_not_there(tmp_path):
         formats.read_path(str(binary))
     with pytest.raises(ToolLibraryError, match=r"which tool library format is \.xls"):
         formats.read_path(str(tmp_path / "a.xls"))
-    with pytest.raises(ToolLibraryError, match="'csv' is not one of kezuri, tbl, fusion"):
+    with pytest.raises(ToolLibraryError, match="'csv' is not one of kezuri, tbl, fusion, freecad"):
         formats.format_of("a.tbl", "csv")
     with pytest.raises(ToolLibraryError, match="--units is for tool tables"):
         formats.parse("{}", "a.json", "fusion", "inch")

@@ -69,3 +69,17 @@ def test_bad_input_exits_2_with_the_reason(tmp_path):
     library.write_text(library.read_text()[:-30])
     status, _, err = tools(library, "list")
     assert status == 2 and "cannot be read, and is left as it is" in err
+
+
+def test_a_freecad_library_out_and_back(tmp_path):
+    library = tmp_path / "tools.toml"
+    target = tmp_path / "Tools" / "Library" / "shop.fctl"
+    status, out, err = tools(library, "export", str(target))
+    report = json.loads(out)
+    assert status == 0 and report["format"] == "freecad", err
+    assert len(report["files"]) == 12 and report["files"][-1] == str(target)
+    assert os.path.isfile(tmp_path / "Tools" / "Bit" / "shop-T8.fctb")
+    other = tmp_path / "other.toml"
+    tools(other, "list")
+    status, out, err = tools(other, "import", str(target), "--replace")
+    assert status == 0 and json.loads(out)["unchanged"] == list(range(1, 12)), err   # the same tools came back

@@ -1,16 +1,16 @@
 """The tool library's file formats by name, and which one a file is in (its extension or the
 name given): ``kezuri`` (.toml, Kezuri's own), ``tbl`` (a LinuxCNC tool table), ``fusion`` (a
-Fusion 360 tool library, .json / .tools)."""
+Fusion 360 tool library, .json / .tools), ``freecad`` (a FreeCAD library .fctl and its .fctb bits)."""
 from __future__ import annotations
 
 import os
 
-from . import fusion_library, kezuri_format, linuxcnc_table
+from . import freecad_library, fusion_library, kezuri_format, linuxcnc_table
 from .library import ToolLibrary, ToolLibraryError
+from .textfile import read_text_file
 
-EXTENSIONS = {"kezuri": (".toml",), "tbl": (".tbl",), "fusion": (".json", ".tools")}
+EXTENSIONS = {"kezuri": (".toml",), "tbl": (".tbl",), "fusion": (".json", ".tools"), "freecad": (".fctl",)}
 NAMES = tuple(EXTENSIONS)
-MAX_BYTES = 20_000_000      # a tool library is kilobytes; more is not one
 
 
 def format_of(path: str, given: str | None = None) -> str:
@@ -36,6 +36,8 @@ def parse(text: str, path: str, fmt: str, units: str = "mm") -> tuple:
         raise ToolLibraryError(f"{path}: units are given by the {fmt} file itself; --units is for tool tables")
     if fmt == "fusion":
         return fusion_library.read_text(text, path)
+    if fmt == "freecad":
+        raise ToolLibraryError(f"{path}: a FreeCAD library is read with its bit files: read it from its path")
     return kezuri_format.read_text(text, path)
 
 
@@ -46,31 +48,26 @@ def render(library: ToolLibrary, fmt: str, units: str = "mm") -> str:
         raise ToolLibraryError(f"a {fmt} file is written in mm; units are for tool tables")
     if fmt == "fusion":
         return fusion_library.write_text(library)
+    if fmt == "freecad":
+        raise ToolLibraryError("a FreeCAD library is several files: export it to a .fctl path")
     return kezuri_format.write_text(library)
-
-
-def read_text_file(path: str) -> str:
-    """The file's text; a missing, unreadable, huge or non-UTF-8 file is an error naming it."""
-    try:
-        size = os.path.getsize(path)
-        if size > MAX_BYTES:
-            raise ToolLibraryError(f"{path}: {size} bytes is not a tool library (at most {MAX_BYTES})")
-        with open(path, "rb") as stream:
-            data = stream.read()
-    except FileNotFoundError:
-        raise ToolLibraryError(f"{path}: no such file") from None
-    except IsADirectoryError:
-        raise ToolLibraryError(f"{path}: a folder, not a tool library file") from None
-    except OSError as error:
-        raise ToolLibraryError(f"{path}: cannot be read ({error.strerror})") from None
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError as error:
-        line = data[:error.start].count(b"\n") + 1
-        raise ToolLibraryError(f"{path}: line {line}: not UTF-8 text") from None
 
 
 def read_path(path: str, fmt: str | None = None, units: str = "mm") -> tuple:
     """(ToolLibrary, notes) from a file, its format from ``fmt`` or its extension."""
     fmt = format_of(path, fmt)
+    if fmt == "freecad":
+        if units != "mm":
+            raise ToolLibraryError(f"{path}: units are given by the {fmt} file itself; --units is for tool tables")
+        return freecad_library.read_path(path)
     return parse(read_text_file(path), path, fmt, units)
+
+
+def files_for(path: str, library: ToolLibrary, fmt: str | None = None, units: str = "mm") -> list:
+    """[(file, text)] an export to ``path`` writes (a FreeCAD library writes its bit files too)."""
+    fmt = format_of(path, fmt)
+    if fmt == "freecad":
+        if units != "mm":
+            raise ToolLibraryError(f"a {fmt} file is written in mm; units are for tool tables")
+        return freecad_library.files_of(path, library)
+    return [(path, render(library, fmt, units))]

@@ -15,7 +15,7 @@ import shutil
 import tempfile
 
 from . import kezuri_format
-from .formats import read_text_file
+from .textfile import read_text_file
 from .library import LibraryTool, ToolLibrary, ToolLibraryError
 
 FILE_NAME = "tools.toml"
@@ -102,6 +102,7 @@ def write_export(path: str, text: str) -> str:
     """An exported file, written atomically (no backups: it is the user's copy)."""
     folder = os.path.dirname(os.path.abspath(path))
     try:
+        os.makedirs(folder, exist_ok=True)
         handle, temporary = tempfile.mkstemp(prefix=".kezuri-", suffix=".tmp", dir=folder)
         try:
             with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
