@@ -10,6 +10,7 @@ from __future__ import annotations
 import bpy
 from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
+from ..toolpath.ir.errors import InputError
 from ..toolpath.tooling import formats, store
 from ..toolpath.tooling.library import KINDS, LibraryTool, ToolLibrary, ToolLibraryError
 from . import toolstore
@@ -27,6 +28,7 @@ FORMAT_ITEMS = [("AUTO", "From Extension", "The format the file name's extension
 UNIT_ITEMS = [("mm", "Millimetres", "The tool table is in millimetres"),
               ("inch", "Inches", "The tool table is in inches")]
 ANGLED = ("vbit", "engraver", "drill")
+SLOT_LABELS = {"rough": "Use for Roughing", "finish": "Use for Finishing", "tool": "Use for the Job"}
 assert tuple(item[0] for item in KIND_ITEMS) == KINDS
 
 
@@ -115,7 +117,7 @@ class ToolLibraryOperator:
     def execute(self, context):
         try:
             message = self.run(context)
-        except (ToolLibraryError, OSError) as error:
+        except (InputError, OSError) as error:
             state(context).error = str(error)
             self.report({"ERROR"}, translate_message(str(error)))
             return {"CANCELLED"}
@@ -243,6 +245,41 @@ class KEZURI_OT_toollib_export(ToolLibraryOperator, bpy.types.Operator):
         return f"Exported {len(library)} tools to {path}"
 
 
+PANEL_GROUPS = ("engrave", "carve", "rotary")      # kinds whose panel settings a library tool can fill
+
+
+def panel_kind(context) -> str | None:
+    """The picked job's kind when its panel takes tools from the library."""
+    from .workflows import workflow_of
+
+    kind = workflow_of(context.scene.kezuri.job).kind
+    return kind if kind in PANEL_GROUPS else None
+
+
+class KEZURI_OT_toollib_use(ToolLibraryOperator, bpy.types.Operator):
+    """Put the selected library tool on the picked job (its number, diameter and flute length)"""
+
+    bl_idname = "kezuri.toollib_use"
+    bl_label = "Use Library Tool"
+    bl_options = {"REGISTER", "UNDO"}
+
+    slot: StringProperty(name="Slot", options={"HIDDEN"})
+
+    def run(self, context):
+        from . import jobtools
+
+        kind, tools = panel_kind(context), state(context)
+        if kind is None or not 0 <= tools.index < len(tools.tools):
+            raise ToolLibraryError("Select a tool in the library first")
+        number = tools.tools[tools.index].number
+        values = jobtools.tool_settings({"tools": {self.slot: number}}, kind, {}, "Tool Library",
+                                        toolstore.load)
+        group = getattr(context.scene.kezuri, kind)
+        for key, value in values.items():
+            setattr(group, key, value)
+        return None
+
+
 class KEZURI_UL_library(bpy.types.UIList):
     def draw_item(self, context, layout, data, item, icon, active_data, active_property, index=0, flt_flag=0):
         split = layout.split(factor=0.22, align=True)
@@ -280,6 +317,14 @@ def draw_library(layout, context) -> None:
         field(layout, tool, "angle")
     fields(layout, tool, ("flutes", "flute_length", "stick_out", "holder_diameter", "material", "vendor",
                           "product_id"))
+    kind = panel_kind(context)
+    if kind is not None:
+        from .jobtools import SLOTS
+
+        column = layout.column(align=True)
+        for slot, (*_, kinds, _angled) in SLOTS[kind].items():
+            if tool.kind in kinds:
+                column.operator("kezuri.toollib_use", text=SLOT_LABELS[slot], icon="TOOL_SETTINGS").slot = slot
 
 
 class KEZURI_PT_toollib(bpy.types.Panel):
@@ -297,6 +342,7 @@ class KEZURI_PT_toollib(bpy.types.Panel):
 
 CLASSES = (KezuriToolRow, KezuriToolLibraryState, KEZURI_OT_toollib_load, KEZURI_OT_toollib_save,
            KEZURI_OT_toollib_add, KEZURI_OT_toollib_remove, KEZURI_OT_toollib_import, KEZURI_OT_toollib_export,
+           KEZURI_OT_toollib_use,
            KEZURI_UL_library, KEZURI_PT_toollib)
 
 

@@ -2384,6 +2384,7 @@ TOOLLIB_OPERATORS = {
     "Add Library Tool": "ライブラリに工具を追加", "Remove Library Tool": "ライブラリから工具を削除",
     "Import Tools": "工具を読み込み", "Export Tools": "工具を書き出し",
     "Save": "保存", "Import": "読込", "Export": "書出",
+    "Use for Roughing": "荒加工に使用", "Use for Finishing": "仕上げに使用", "Use for the Job": "この加工に使用",
 }
 TOOLLIB_TEXTS = {
     "Add a 6 mm flat end mill under the next free number, and save":
@@ -2421,6 +2422,8 @@ TOOLLIB_TEXTS = {
     "How far the tool stands out of the holder (mm); 0: not measured": "ホルダーからの工具の突き出し (mm)。0：未測定",
     "Stick-Out": "突き出し", "Who makes the tool": "工具のメーカー", "Vendor": "メーカー",
     "Select a tool in the library first": "先にライブラリの工具を選択してください",
+    "Put the selected library tool on the picked job (its number, diameter and flute length)":
+        "選択したライブラリの工具を選んだ加工に設定します（番号・直径・刃長）",
     "a FreeCAD library is several files: export it to a .fctl path":
         "FreeCAD のライブラリは複数のファイルです。.fctl のパスに書き出してください",
 }

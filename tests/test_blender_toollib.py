@@ -81,6 +81,7 @@ def test_every_text_of_the_panel_fits(library, language):
                                     active_object=None)
     table = JA if language == "ja" else None
     measured, failures = 0, []
+    bpy.context.scene.kezuri.job = "ENGRAVE"              # its "Use for" buttons shown too
     for index, row in enumerate(rows()):                    # every kind's fields (bull: corner, V-bit: angle)
         state.index = index
         texts = fit.all_texts([toollib.KEZURI_PT_toollib], context, table)
@@ -90,3 +91,31 @@ def test_every_text_of_the_panel_fits(library, language):
     failures += fit.too_wide(fit.all_texts([toollib.KEZURI_PT_toollib], context, table))
     assert measured > 200
     assert not failures, "\n".join(sorted(set(failures)))
+
+
+def test_a_library_tool_goes_on_the_picked_jobs_panel(library):
+    scene = bpy.context.scene
+    bpy.ops.kezuri.toollib_load()
+    bpy.ops.kezuri.toollib_import(filepath=os.path.join(FIXTURES, "kezuri-tools.toml"), replace=True)
+    state = bpy.context.window_manager.kezuri_tool_library
+    numbers = [r.number for r in rows()]
+    scene.kezuri.job = "ENGRAVE"
+    state.index = numbers.index(2)                          # 6 mm ball: the engraving's roughing ball
+    assert bpy.ops.kezuri.toollib_use(slot="rough") == {"FINISHED"}
+    state.index = numbers.index(3)                          # 1 mm flat: its band finishing
+    assert bpy.ops.kezuri.toollib_use(slot="finish") == {"FINISHED"}
+    engrave = scene.kezuri.engrave
+    assert (engrave.rough_tool_number, engrave.rough_diameter) == (2, 6.0)
+    assert (engrave.finish_tool_number, engrave.finish_diameter) == (3, 1.0)
+    with pytest.raises(RuntimeError, match="the engrave's rough tool must be a ball end mill"):
+        bpy.ops.kezuri.toollib_use(slot="rough")            # the 1 mm flat is no roughing ball
+    scene.kezuri.job = "CARVE"
+    state.index = numbers.index(14)                         # a bull nose: no carving slot takes it
+    layout = fit.Layout()
+    toollib.draw_library(layout, types.SimpleNamespace(scene=scene, window_manager=bpy.context.window_manager))
+    walk = fit.Walk(fit.Translator(None), None, fit.layout_width())
+    walk.node(layout._node, fit.layout_width(), "panel")
+    assert not any("Use for" in t.text for t in walk.texts)
+    state.index = numbers.index(2)
+    assert bpy.ops.kezuri.toollib_use(slot="finish") == {"FINISHED"}
+    assert (scene.kezuri.carve.finish_tool_number, scene.kezuri.carve.finish_diameter) == (2, 6.0)
