@@ -294,6 +294,8 @@ def draw_library(layout, context) -> None:
 
     tools = state(context)
     if not tools.loaded:
+        if tools.error:
+            layout.label(text="The library file cannot be read", icon="ERROR")
         layout.operator("kezuri.toollib_load", icon="FILE_REFRESH")
         return
     row = layout.row()
@@ -346,8 +348,19 @@ CLASSES = (KezuriToolRow, KezuriToolLibraryState, KEZURI_OT_toollib_load, KEZURI
            KEZURI_UL_library, KEZURI_PT_toollib)
 
 
+def load_when_ready():
+    """Read the library once Blender's window is up (a timer: registering cannot touch data)."""
+    try:
+        reload(bpy.context)
+    except (InputError, OSError) as error:
+        state(bpy.context).error = str(error)
+    return None
+
+
 def register_properties():
     bpy.types.WindowManager.kezuri_tool_library = bpy.props.PointerProperty(type=KezuriToolLibraryState)
+    if not bpy.app.background:          # batch runs and tests read the library when they need it
+        bpy.app.timers.register(load_when_ready, first_interval=0.5)
 
 
 def unregister_properties():

@@ -2422,6 +2422,7 @@ TOOLLIB_TEXTS = {
     "How far the tool stands out of the holder (mm); 0: not measured": "ホルダーからの工具の突き出し (mm)。0：未測定",
     "Stick-Out": "突き出し", "Who makes the tool": "工具のメーカー", "Vendor": "メーカー",
     "Select a tool in the library first": "先にライブラリの工具を選択してください",
+    "The library file cannot be read": "ライブラリのファイルを読み込めません",
     "Put the selected library tool on the picked job (its number, diameter and flute length)":
         "選択したライブラリの工具を選んだ加工に設定します（番号・直径・刃長）",
     "a FreeCAD library is several files: export it to a .fctl path":

@@ -87,8 +87,9 @@ def test_every_text_of_the_panel_fits(library, language):
         texts = fit.all_texts([toollib.KEZURI_PT_toollib], context, table)
         measured += len(texts)
         failures += fit.too_wide(texts)
-    state.loaded = False
+    state.loaded, state.error = False, "x.toml: line 3: not TOML"
     failures += fit.too_wide(fit.all_texts([toollib.KEZURI_PT_toollib], context, table))
+    state.error = ""
     assert measured > 200
     assert not failures, "\n".join(sorted(set(failures)))
 
@@ -119,3 +120,12 @@ def test_a_library_tool_goes_on_the_picked_jobs_panel(library):
     state.index = numbers.index(2)
     assert bpy.ops.kezuri.toollib_use(slot="finish") == {"FINISHED"}
     assert (scene.kezuri.carve.finish_tool_number, scene.kezuri.carve.finish_diameter) == (2, 6.0)
+
+
+def test_the_startup_read_loads_or_says_why(library):
+    state = bpy.context.window_manager.kezuri_tool_library
+    assert toollib.load_when_ready() is None and state.loaded and len(rows()) == 11
+    library.write_text(library.read_text()[:-25])
+    state.loaded = False
+    toollib.load_when_ready()
+    assert not state.loaded and "cannot be read, and is left as it is" in state.error
