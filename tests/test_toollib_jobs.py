@@ -86,3 +86,24 @@ def test_a_tool_that_cannot_be_used_is_refused_by_name(tmp_path, library, operat
     assert status == 2
     for word in words:
         assert word in message, message
+
+
+def test_the_sample_job_with_library_tools_writes_the_same_program(tmp_path, library):
+    """The name plate job naming its tools from the presets (T2 ball, T3 flat, T4 drill) instead of
+    the typed defaults: the same program, move for move, and the sheet has the presets' stick-outs."""
+    sample = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "samples", "jobs",
+                          "nameplate-with-holes.toml")
+    text = open(sample, encoding="utf-8").read()
+    named = text.replace("settings = { seed = 7 }", 'tools = { rough = 2, finish = "T3" }\nsettings = { seed = 7 }')
+    named = named.replace("settings = { tool_number = 4, diameter = 5.0, depth", "tool = 4\nsettings = { depth")
+    assert named.count("tool") >= 2 and named != text
+    (tmp_path / "named.toml").write_text(named, encoding="utf-8")
+    status, message, out_named = run("job", str(tmp_path / "named.toml"))
+    assert status == 0, message
+    status, message, out_typed = run("job", sample)
+    assert status == 0, message
+    strip = lambda t: re.sub(r"\(.*?\)", "", t)             # noqa: E731 - comments name the file and time
+    named_text = open(os.path.join(out_named, "nameplate.ngc")).read()
+    assert strip(named_text) == strip(open(os.path.join(out_typed, "nameplate.ngc")).read())
+    assert len(named_text.splitlines()) > 1000
+    assert stick_out_column(out_named) == {"T2": "30", "T3": "15", "T4": "50"}
