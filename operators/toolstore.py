@@ -18,7 +18,7 @@ def library_path() -> str:
         return os.path.abspath(os.path.expanduser(given))
     import bpy
 
-    folder = bpy.utils.user_resource("CONFIG", path="kezuri", create=True)
+    folder = bpy.utils.user_resource("CONFIG", path="kezuri")      # made when the library is first written
     return os.path.join(folder, store.FILE_NAME)
 
 

@@ -129,3 +129,16 @@ def test_the_startup_read_loads_or_says_why(library):
     state.loaded = False
     toollib.load_when_ready()
     assert not state.loaded and "cannot be read, and is left as it is" in state.error
+
+
+def test_the_library_lives_in_blenders_config_folder(monkeypatch, empty_scene):
+    """Outside the extension's folder (removing the add-on keeps it); asking where it is writes nothing."""
+    from kezuri.operators import toolstore
+
+    monkeypatch.delenv("KEZURI_TOOL_LIBRARY", raising=False)
+    path = toolstore.library_path()
+    assert path == os.path.join(bpy.utils.user_resource("CONFIG"), "kezuri", "tools.toml")
+    assert not os.path.dirname(os.path.abspath(toollib.__file__)) in path
+    existed = os.path.exists(os.path.dirname(path))
+    toolstore.stick_outs([{"tool_number": 2, "tool_kind": "ball", "tool_diameter_mm": 6.0}])
+    assert os.path.exists(os.path.dirname(path)) == existed
