@@ -2431,6 +2431,14 @@ TOOLLIB_TEXTS = {
 TOOLLIB_NESTED = {"{}: refused: {}": (1,), "T{}: not a tool a program can use: {}": (1,),
                   "{}: {} = {} cannot be used: {}": (3,), "the tool library cannot be read, and is left as it is: {}{}": (0,)}
 TOOLLIB_TEMPLATES = {
+    # notes of an import (reported as warnings)
+    "{}: only the number and diameter are in the table: taken as a {} from the comment (angle {}); flutes, lengths "
+    "and material at their defaults":
+        "{0}：テーブルには番号と直径しかありません。コメントから {1}（角度 {2}）とし、刃数・長さ・材質は既定値です",
+    "{}: a {} is not a tool Kezuri cuts with: left out": "{0}：{1} は Kezuri が使う工具ではないため除きました",
+    "{}: a {} bit is not a tool Kezuri cuts with: left out": "{0}：{1} のビットは Kezuri が使う工具ではないため除きました",
+    "{}: its flat tip (FlatRadius {} mm) is not kept: Kezuri's V-bit comes to a point":
+        "{0}：先端の平坦部（FlatRadius {1} mm）は保持しません。Kezuri の Vビットは先端が尖っています",
     "{}: a FreeCAD library is read with its bit files: read it from its path":
         "{0}：FreeCAD のライブラリは工具ビットファイルと一緒に読みます。そのパスから読み込んでください",
     "{}: parameter CuttingEdgeAngle is missing (a V-bit's included angle)":

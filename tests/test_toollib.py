@@ -106,7 +106,8 @@ def test_a_linuxcnc_table_reads_number_diameter_and_kind_from_the_comment():
                    12: ("drill", 5.0, 0.0, 118.0, "5mm jobber drill"),
                    15: ("flat", 3.175, 0.0, None, "")}
     assert len(notes) == 6 and notes[0].startswith(f"{fixture('shop.tbl')}: line 4 (T1)")
-    assert "taken as a vbit from the comment with a 90° angle" in notes[3]
+    assert "taken as a vbit from the comment (angle 90°)" in notes[3]
+    assert "taken as a drill from the comment (angle 118°)" in notes[4] and "(angle -)" in notes[0]
 
 
 def test_an_inch_table_is_read_in_inches_when_told():

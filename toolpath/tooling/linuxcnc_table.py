@@ -111,10 +111,10 @@ def read_text(text: str, path: str, units: str = "mm") -> tuple:
             fields = {"number": words["T"], "kind": kind, "diameter": words["D"] * scale, "name": name}
             if kind in ("vbit", "engraver"):
                 fields["angle"] = 90.0
-            notes.append(f"{where}: only the number and diameter are in the table: taken as a "
-                         f"{kind} from the comment{' with a 90° angle' if kind in ('vbit', 'engraver') else ''}"
-                         f"{f' and a {DRILL_POINT_DEG:g}° point' if kind == 'drill' else ''}; "
-                         "flutes, lengths and material at their defaults")
+            angle = fields.get("angle", DRILL_POINT_DEG if kind == "drill" else None)
+            notes.append(f"{where}: only the number and diameter are in the table: taken as a {kind} from the "
+                         f"comment (angle {'-' if angle is None else f'{angle:g}°'}); flutes, lengths and material "
+                         "at their defaults")
         unknown = sorted(set(fields) - set(FIELDS))
         if unknown:
             raise ToolLibraryError(f"{where}: the comment's {TAG}{{...}} has an unknown field {unknown[0]!r}")
