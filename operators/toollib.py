@@ -2,8 +2,9 @@
 pick from, add to, remove from and edit, and its import and export.
 
 The rows live on the window manager (not in the .blend: the library is the user's, shared by every
-file).  Add, Remove and Import write the file at once; edits to a row are written by Save, which
-checks every row first (a row that is no tool is an error naming it; nothing is written).
+file).  Edits to a row are written by Save, which checks every row first (a row that is no tool is
+an error naming it; nothing is written); Add, Remove and Import write the rows at once (edits
+included, checked the same way), and Export writes the rows as shown.
 """
 from __future__ import annotations
 
@@ -78,10 +79,25 @@ def fill_rows(rows, library: ToolLibrary) -> None:
         row.holder_diameter = tool.holder_diameter or 0.0
 
 
+def shown(value: float) -> float:
+    """A length or angle as a row holds it (a float32 property) and gives it back (6 digits)."""
+    import numpy as np
+
+    return float(f"{float(np.float32(value)):.6g}")
+
+
+def as_shown(tool: LibraryTool) -> LibraryTool:
+    """The tool as its row gives it back: each number through :func:`shown`."""
+    changes = {key: shown(getattr(tool, key)) for key in ("diameter", "corner_radius", "angle", "flute_length",
+                                                          "stick_out", "holder_diameter")
+               if getattr(tool, key) is not None}
+    return tool.replace(**changes)
+
+
 def tool_of_row(row) -> LibraryTool:
     """The row as a library tool (float32 properties read back as the decimals typed)."""
     def mm(value):
-        return float(f"{value:.6g}")
+        return shown(value)
 
     fields = dict(number=row.number, kind=row.kind, diameter=mm(row.diameter), flutes=row.flutes,
                   flute_length=mm(row.flute_length), material=row.material, vendor=row.vendor,
@@ -95,8 +111,18 @@ def tool_of_row(row) -> LibraryTool:
     return LibraryTool(**fields)
 
 
-def library_of_rows(rows) -> ToolLibrary:
-    return ToolLibrary([tool_of_row(row) for row in rows], [f"row {i + 1}" for i in range(len(rows))])
+def shown_library(context) -> ToolLibrary:
+    """The library as the panel shows it (its rows, edits not yet saved included), else the file's.
+    A row not edited gives the file's tool, its numbers as the file has them (a row holds 6 digits)."""
+    tools = state(context)
+    saved = toolstore.load()
+    if not tools.loaded:
+        return saved
+    found = []
+    for row in tools.tools:
+        tool, before = tool_of_row(row), saved.find(row.number)
+        found.append(before if before is not None and as_shown(before) == tool else tool)
+    return ToolLibrary(found, [f"row {i + 1}" for i in range(len(found))])
 
 
 def reload(context) -> ToolLibrary:
@@ -143,7 +169,7 @@ class KEZURI_OT_toollib_save(ToolLibraryOperator, bpy.types.Operator):
     bl_label = "Save Tool Library"
 
     def run(self, context):
-        path = toolstore.save(library_of_rows(state(context).tools))
+        path = toolstore.save(shown_library(context))
         reload(context)
         return f"Saved the tool library to {path}"
 
@@ -155,7 +181,7 @@ class KEZURI_OT_toollib_add(ToolLibraryOperator, bpy.types.Operator):
     bl_label = "Add Library Tool"
 
     def run(self, context):
-        library = library_of_rows(state(context).tools) if state(context).loaded else toolstore.load()
+        library = shown_library(context)
         number = max(library.numbers(), default=0) + 1
         toolstore.save(library.with_tool(LibraryTool(number, "flat", 6.0, name=f"Tool {number}")))
         reload(context)
@@ -179,8 +205,7 @@ class KEZURI_OT_toollib_remove(ToolLibraryOperator, bpy.types.Operator):
 
     def run(self, context):
         tools = state(context)
-        library = library_of_rows(tools.tools)
-        toolstore.save(library.without(tools.tools[tools.index].number))
+        toolstore.save(shown_library(context).without(tools.tools[tools.index].number))
         reload(context)
         return None
 
@@ -209,7 +234,7 @@ class KEZURI_OT_toollib_import(ToolLibraryOperator, bpy.types.Operator):
         path = blender_path(self.filepath)
         incoming, notes = formats.read_path(path, None if self.file_format == "AUTO" else self.file_format,
                                             self.units)
-        merged, added, replaced = toolstore.load().merged(incoming, self.replace, source=path)
+        merged, added, replaced = shown_library(context).merged(incoming, self.replace, source=path)
         toolstore.save(merged)
         reload(context)
         for note in notes:
@@ -238,7 +263,7 @@ class KEZURI_OT_toollib_export(ToolLibraryOperator, bpy.types.Operator):
         from .common import blender_path
 
         path = blender_path(self.filepath)
-        library = toolstore.load()
+        library = shown_library(context)
         fmt = formats.format_of(path, None if self.file_format == "AUTO" else self.file_format)
         for name, text in formats.files_for(path, library, fmt, self.units):
             store.write_export(name, text)
@@ -273,7 +298,7 @@ class KEZURI_OT_toollib_use(ToolLibraryOperator, bpy.types.Operator):
             raise ToolLibraryError("Select a tool in the library first")
         number = tools.tools[tools.index].number
         values = jobtools.tool_settings({"tools": {self.slot: number}}, kind, {}, "Tool Library",
-                                        toolstore.load)
+                                        lambda: shown_library(context))
         group = getattr(context.scene.kezuri, kind)
         for key, value in values.items():
             setattr(group, key, value)

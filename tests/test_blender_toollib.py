@@ -142,3 +142,27 @@ def test_the_library_lives_in_blenders_config_folder(monkeypatch, empty_scene):
     existed = os.path.exists(os.path.dirname(path))
     toolstore.stick_outs([{"tool_number": 2, "tool_kind": "ball", "tool_diameter_mm": 6.0}])
     assert os.path.exists(os.path.dirname(path)) == existed
+
+
+def test_import_and_export_keep_the_edits_on_screen(library, tmp_path):
+    bpy.ops.kezuri.toollib_load()
+    rows()[4].stick_out = 36.0                              # T5 edited, not saved
+    bpy.ops.kezuri.toollib_import(filepath=os.path.join(FIXTURES, "shop-inch.tbl"), units="inch", replace=True)
+    saved = store.load(str(library))
+    assert saved.get(1).diameter == pytest.approx(6.35) and saved.get(2).kind == "ball"    # the table's T1, T2
+    assert saved.get(5).stick_out == 36.0 and rows()[4].stick_out == 36.0                # the edit kept
+    rows()[4].stick_out = 37.5
+    bpy.ops.kezuri.toollib_export(filepath=str(tmp_path / "out.toml"))
+    assert formats.read_path(str(tmp_path / "out.toml"))[0].get(5).stick_out == 37.5    # as shown
+
+
+def test_saving_keeps_the_numbers_of_the_rows_not_edited(library):
+    """A row holds 6 digits (a float32 property): a tool not edited is saved as the file had it."""
+    bpy.ops.kezuri.toollib_load()
+    bpy.ops.kezuri.toollib_import(filepath=os.path.join(FIXTURES, "fusion-library.json"), replace=True)
+    exact = store.load(str(library)).get(21).flute_length           # 0.75 in = 19.049999999999997 mm
+    assert exact != 19.05
+    rows()[0].stick_out = 31.0
+    bpy.ops.kezuri.toollib_save()
+    saved = store.load(str(library))
+    assert saved.get(21).flute_length == exact and saved.get(1).stick_out == 31.0
