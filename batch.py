@@ -15,6 +15,7 @@ Commands (``python batch.py <command> --help`` for the options):
     job       a job file (TOML): several operations on one stock, one program, one check;
               --each rows.csv runs it as a template once per row (--jobs N side by side)
     demo      every workflow on its built-in sample part, each into a sub-folder of --out
+    tools     the tool library: list, import FILE, export FILE (JSON out; no --out)
 
 Each command writes its output files, ``report.json``, a preview PNG and ``setup-sheet.html`` (the
 job's setup sheet for the operator, one self-contained page) into --out.
@@ -178,6 +179,10 @@ def feeds(args) -> int:
 
 
 def main(argv: list) -> int:
+    if script_arguments(argv)[:1] == ["tools"]:         # the tool library: no --out, no staging
+        import_package()
+        from kezuri.operators.toolbatch import main as tools_main
+        return tools_main(script_arguments(argv)[1:])
     args = parse(script_arguments(argv))
     if args.command == "feeds":
         return feeds(args)

@@ -3,11 +3,12 @@ from __future__ import annotations
 
 import bpy
 
-from . import designfile, joblist, panels, preferences, properties, simulate, translations
+from . import designfile, joblist, panels, preferences, properties, simulate, toollib, translations
 from .workflows import WORKFLOWS, job_items, settings_groups
 
 CLASSES = (*preferences.CLASSES, *(cls for workflow in WORKFLOWS for cls in workflow.classes), *simulate.CLASSES,
-           *joblist.CLASSES, *designfile.CLASSES, *panels.CLASSES)
+           *joblist.CLASSES, *designfile.CLASSES, *panels.CLASSES,
+           *toollib.CLASSES)
 MENUS = (*(menu for workflow in WORKFLOWS for menu in workflow.menus), *designfile.MENUS)
 
 
@@ -15,6 +16,7 @@ def register():
     properties.register(job_items(), settings_groups())
     for cls in CLASSES:
         bpy.utils.register_class(cls)
+    toollib.register_properties()
     for menu, draw in MENUS:
         menu.append(draw)
     translations.register()
@@ -68,6 +70,7 @@ def unregister():
     translations.unregister()
     for menu, draw in reversed(MENUS):
         menu.remove(draw)
+    toollib.unregister_properties()
     for cls in reversed(CLASSES):
         bpy.utils.unregister_class(cls)
     properties.unregister()

@@ -162,7 +162,9 @@ def write_setup_sheet(out_dir: str, report: dict) -> dict:
     if program is None and isinstance(report.get("nc"), str):
         program = os.path.basename(report["nc"])
     name = f"{workflow}: {program}" if workflow and program else None
+    from .toolstore import stick_outs
     sheet = setupsheet.sheet_from(None, report, machine_label(report.get("machine")), post_label(report) or None,
-                                  pictures, programs=programs, job_name=name)
+                                  pictures, programs=programs, job_name=name,
+                                  stick_out=stick_outs(report.get("operations")))
     path = write_atomic(os.path.join(out_dir, SHEET_NAME), setupsheet.setup_sheet(sheet).encode("utf-8"))
     return {**report, "setup_sheet": path}

@@ -22,6 +22,8 @@ A job file (TOML)::
     design = "logo.svg"         # an SVG / DXF beside the job file: its curves made first, one
                                 # object per layer ("logo", "logo Cut"), for objects to name
     settings = { seed = 7 }     # the kind's panel settings by property name, checked like the panel's
+    tool = 3                    # or tools = { rough = 2, finish = "T3" }: tools from the tool library
+                                # (operators/jobtools.py), in place of the kind's tool settings
 
 The CAM tab's job list plans its rows through :func:`job_of` too, and saves them as such a file
 (naming the saved .blend), so a file saved from the panel writes the same program in batch.
@@ -41,7 +43,7 @@ from .jobentry import JobEntry, JobFileError
 
 SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings", "arcs", "stock",
               "work_zero", "material"}
-OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "tabs", "file", "design", "outline", "text"}
+OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "tabs", "file", "design", "outline", "text", "tool", "tools"}
 
 
 def read(path: str, text: str | None = None) -> dict:
@@ -150,7 +152,15 @@ def stock_scene(setup: dict, path: str):
 def entries(data: dict, scene, path: str, base_dir: str | None = None) -> list:
     import bpy
 
-    found, designs = [], set()
+    from . import jobtools, toolstore
+
+    found, designs, library = [], set(), []
+
+    def library_of():                   # the tool library, read once and only when a tool is named
+        if not library:
+            library.append(toolstore.load())
+        return library[0]
+
     for index, table in enumerate(data["operations"], 1):
         where = f"job file {os.path.basename(path)}: operation {index} ({table['name']!r})"
         if "design" in table and repr(table["design"]) not in designs:     # a drawing's curves, made once
@@ -163,8 +173,10 @@ def entries(data: dict, scene, path: str, base_dir: str | None = None) -> list:
             if obj is None or scene not in obj.users_scene:
                 raise JobFileError(f"{where}: objects.{slot} = {name!r} is not an object of the scene")
             objects[slot] = obj
+        settings = dict(table.get("settings", {}))
+        settings.update(jobtools.tool_settings(table, table["kind"], settings, where, library_of))
         found.append(JobEntry(table["name"], table["kind"], table.get("enabled", True), objects,
-                              dict(table.get("settings", {})), table, where,
+                              settings, table, where,
                               base_dir or os.path.dirname(os.path.abspath(path))))
     return found
 

@@ -2404,14 +2404,14 @@ def _build() -> dict:
     for table in (PROPERTY_TEXTS, PANEL_TEXTS, OPERATOR_DESCRIPTIONS, MESSAGES):
         for english, japanese in table.items():
             messages[(DEFAULT, english)] = japanese
-    for english, japanese in (*JOBLIST_TEXTS.items(), *POCKET_TEXTS.items(), *ROUTER_PANEL_TEXTS.items()):
+    for english, japanese in (*JOBLIST_TEXTS.items(), *POCKET_TEXTS.items(), *ROUTER_PANEL_TEXTS.items(), *TOOLLIB_TEXTS.items()):
         messages.setdefault((DEFAULT, english), japanese)
     from .. import post
     for cls in post.posts():     # each post declares its own Japanese label and description
         for english, japanese in ((cls.label, cls.label_ja), (cls.description, cls.description_ja)):
             if japanese:
                 messages.setdefault((DEFAULT, english), japanese)
-    for table in (OPERATOR_LABELS, OPERATOR_TEXTS, JOBLIST_OPERATORS):
+    for table in (OPERATOR_LABELS, OPERATOR_TEXTS, JOBLIST_OPERATORS, TOOLLIB_OPERATORS):
         for english, japanese in table.items():
             messages[(OPERATOR, english)] = japanese
             # A panel may share an operator's label ("Pipe Elbow"): the panel's wording wins in "*".
@@ -2557,6 +2557,188 @@ FEEDS_TEMPLATES = {
 PROPERTY_TEXTS.update(FEEDS_TEXTS)
 MESSAGE_TEMPLATES.update(FEEDS_TEMPLATES)
 NESTED.update(FEEDS_NESTED)
+# the tool library (toolpath/tooling, operators/jobtools.py, operators/toolbatch.py)
+TOOLLIB_OPERATORS = {
+    "Load Tool Library": "工具ライブラリを読み込み", "Save Tool Library": "工具ライブラリを保存",
+    "Add Library Tool": "ライブラリに工具を追加", "Remove Library Tool": "ライブラリから工具を削除",
+    "Import Tools": "工具を読み込み", "Export Tools": "工具を書き出し",
+    "Save": "保存", "Import": "読込", "Export": "書出",
+    "Use for Roughing": "荒加工に使用", "Use for Finishing": "仕上げに使用", "Use for the Job": "この加工に使用",
+}
+TOOLLIB_TEXTS = {
+    "Add a 6 mm flat end mill under the next free number, and save":
+        "空いている次の番号に 6 mm フラットエンドミルを追加して保存します",
+    "Write the tool library to a file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json, FreeCAD .fctl)":
+        "工具ライブラリをファイルに書き出します（Kezuri .toml、LinuxCNC .tbl、Fusion 360 .json、FreeCAD .fctl）",
+    "Merge a tool file (Kezuri .toml, LinuxCNC .tbl, Fusion 360 .json, FreeCAD .fctl) into the library":
+        "工具ファイル（Kezuri .toml、LinuxCNC .tbl、Fusion 360 .json、FreeCAD .fctl）をライブラリに取り込みます",
+    "FreeCAD (.fctl)": "FreeCAD 形式 (.fctl)", "A FreeCAD tool library and its tool bit files":
+        "FreeCAD の工具ライブラリとその工具ビットファイル",
+    "Read the tool library file (edits not saved are dropped)": "工具ライブラリのファイルを読み込みます（保存していない編集は破棄されます）",
+    "Remove the selected tool from the library, and save": "選択した工具をライブラリから削除して保存します",
+    "Check every row and write the tool library file (the file before is kept as a backup)":
+        "すべての行を確認して工具ライブラリのファイルに書き込みます（以前のファイルはバックアップとして残ります）",
+    "Format": "形式", "From Extension": "拡張子から",
+    "The format the file name's extension says": "ファイル名の拡張子が示す形式",
+    "A Fusion 360 tool library": "Fusion 360 の工具ライブラリ", "Fusion 360 (.json)": "Fusion 360 形式 (.json)",
+    "Kezuri's own tool library file": "Kezuri 独自の工具ライブラリファイル", "Kezuri (.toml)": "Kezuri 形式 (.toml)",
+    "A LinuxCNC tool table": "LinuxCNC のツールテーブル", "LinuxCNC (.tbl)": "LinuxCNC 形式 (.tbl)",
+    "Table Units": "テーブルの単位", "A LinuxCNC tool table's units": "LinuxCNC ツールテーブルの単位",
+    "A LinuxCNC tool table's units (the table does not say)": "LinuxCNC ツールテーブルの単位（テーブルには書かれていません）",
+    "Millimetres": "ミリメートル", "Inches": "インチ",
+    "The tool table is in millimetres": "ツールテーブルはミリメートル単位です",
+    "The tool table is in inches": "ツールテーブルはインチ単位です",
+    "Replace Same Numbers": "同じ番号を置き換え",
+    "Tools of the file replace the library's tools of the same number": "ファイルの工具で同じ番号のライブラリ工具を置き換えます",
+    "V-bit or engraver: included angle; drill: point angle (degrees)":
+        "Vビット・彫刻刃：刃先角、ドリル：先端角（度）",
+    "Angle": "角度", "Bull nose corner radius (mm)": "ラジアスエンドミルのコーナー半径 (mm)",
+    "Number of flutes": "刃の数", "Flutes": "刃数",
+    "The holder's (collet nut's) diameter (mm); 0: not known": "ホルダー（コレットナット）の直径 (mm)。0：不明",
+    "Holder Diameter": "ホルダー径", "Pointed engraving cutter": "先の尖った彫刻刃", "Engraver": "彫刻刃",
+    "Material": "材質", "Solid carbide": "超硬ソリッド", "Carbide": "超硬", "High-speed steel": "ハイス鋼", "HSS": "ハイス",
+    "Tool number, the T word": "工具番号（T ワード）", "The maker's product number": "メーカーの品番", "Product ID": "品番",
+    "How far the tool stands out of the holder (mm); 0: not measured": "ホルダーからの工具の突き出し (mm)。0：未測定",
+    "Stick-Out": "突き出し", "Who makes the tool": "工具のメーカー", "Vendor": "メーカー",
+    "Select a tool in the library first": "先にライブラリの工具を選択してください",
+    "The library file cannot be read": "ライブラリのファイルを読み込めません",
+    "Put the selected library tool on the picked job (its number, diameter and flute length)":
+        "選択したライブラリの工具を選んだ加工に設定します（番号・直径・刃長）",
+    "a FreeCAD library is several files: export it to a .fctl path":
+        "FreeCAD のライブラリは複数のファイルです。.fctl のパスに書き出してください",
+}
+TOOLLIB_NESTED = {"{}: refused: {}": (1,), "T{}: not a tool a program can use: {}": (1,),
+                  "{}: {} = {} cannot be used: {}": (3,), "the tool library cannot be read, and is left as it is: {}{}": (0,)}
+TOOLLIB_TEMPLATES = {
+    # notes of an import (reported as warnings)
+    "{}: only the number and diameter are in the table: taken as a {} from the comment (angle {}); flutes, lengths "
+    "and material at their defaults":
+        "{0}：テーブルには番号と直径しかありません。コメントから {1}（角度 {2}）とし、刃数・長さ・材質は既定値です",
+    "{}: a {} is not a tool Kezuri cuts with: left out": "{0}：{1} は Kezuri が使う工具ではないため除きました",
+    "{}: a {} bit is not a tool Kezuri cuts with: left out": "{0}：{1} のビットは Kezuri が使う工具ではないため除きました",
+    "{}: its flat tip (FlatRadius {} mm) is not kept: Kezuri's V-bit comes to a point":
+        "{0}：先端の平坦部（FlatRadius {1} mm）は保持しません。Kezuri の Vビットは先端が尖っています",
+    "{}: a FreeCAD library is read with its bit files: read it from its path":
+        "{0}：FreeCAD のライブラリは工具ビットファイルと一緒に読みます。そのパスから読み込んでください",
+    "{}: parameter CuttingEdgeAngle is missing (a V-bit's included angle)":
+        "{0}：パラメーター CuttingEdgeAngle（Vビットの刃先角）がありません",
+    "{}: attribute Material = {} is not one of {}": "{0}：属性 Material = {1} は {2} のいずれでもありません",
+    "{}: attribute {} is not Kezuri's JSON": "{0}：属性 {1} が Kezuri の JSON ではありません",
+    "{}: attribute {} has an unknown field {}": "{0}：属性 {1} に不明な項目 {2} があります",
+    "{}: not a FreeCAD tool library: no \"tools\" list": "{0}：FreeCAD の工具ライブラリではありません：\"tools\" リストがありません",
+    "{}: needs \"nr\" (the tool number) and \"path\" (its bit file)":
+        "{0}：\"nr\"（工具番号）と \"path\"（工具ビットファイル）が必要です",
+    "{}: parameter {} = {} is not a quantity (\"6.0 mm\")": "{0}：パラメーター {1} = {2} は量（\"6.0 mm\"）ではありません",
+    "{}: parameter {} = {}: unit {} is not one of {}": "{0}：パラメーター {1} = {2}：単位 {3} は {4} のいずれでもありません",
+    "{}: parameter {} = {} is not a finite number": "{0}：パラメーター {1} = {2} は有限の数ではありません",
+    "{}: not a FreeCAD {}: not JSON ({} at line {}, column {})":
+        "{0}：FreeCAD の {1} ではありません：JSON ではありません（{3} 行 {4} 列：{2}）",
+    "{}: the bit file {} is not there (looked for {})": "{0}：工具ビットファイル {1} がありません（探した場所 {2}）",
+    "{}: not a FreeCAD tool bit (parameter and attribute must be objects)":
+        "{0}：FreeCAD の工具ビットではありません（parameter と attribute はオブジェクトにしてください）",
+    "{}: parameter Diameter is missing": "{0}：パラメーター Diameter がありません",
+    "{}: parameter FlatRadius is missing (a bull nose's flat)": "{0}：パラメーター FlatRadius（ラジアスエンドミルの平らな底）がありません",
+    "Tool library: {} tools from {}": "工具ライブラリ：{1} から {0} 本の工具",
+    "Saved the tool library to {}": "工具ライブラリを {0} に保存しました",
+    "Imported {} new and {} replaced tools from {}": "{2} から新規 {0} 本、置き換え {1} 本の工具を取り込みました",
+    "Exported {} tools to {}": "{0} 本の工具を {1} に書き出しました",
+    "{}: a {} operation does not take its tools from the library; the kinds that do are {}":
+        "{0}：{1} の加工は工具ライブラリから工具を取りません（取る種類は {2}）",
+    "{}: give tool or tools, not both": "{0}：tool と tools はどちらか一方を指定してください",
+    "{}: tools must be a table of slot = tool number, e.g. tools = {{ {} = 3 }}":
+        "{0}：tools は「スロット = 工具番号」の表にしてください（例 tools = {{ {1} = 3 }}）",
+    "{}: tools.{} is not a tool of a {}; its tools are {}": "{0}：tools.{1} は {2} の工具ではありません（工具は {3}）",
+    "{}: {} = {} cannot be used: {}": "{0}：{1} = {2} は使えません：{3}",
+    "{}: {} = {} is {}; the {}'s {} tool must be a {}": "{0}：{1} = {2} は {3} です。{4} の {5} 工具は {6} にしてください",
+    "{}: {} = {} is {} with a {}° point; the {} is planned for a {}° one (a program's tool does not carry its angle "
+    "yet)":
+        "{0}：{1} = {2} は先端角 {4}° の {3} です。{5} は {6}° の工具で計画されます（プログラムの工具はまだ角度を持ちません）",
+    "{}: settings.{} and {} = {} both give the {} tool; give one":
+        "{0}：settings.{1} と {2} = {3} の両方が {4} 工具を指定しています。どちらか一方にしてください",
+    "{} is the tool library itself (or its backup); export to another file":
+        "{0} は工具ライブラリそのもの（またはそのバックアップ）です。別のファイルに書き出してください",
+    "tool library format {} is not one of {}": "工具ライブラリの形式 {0} は {1} のいずれでもありません",
+    "{}: which tool library format is {}? Known: {}; or name the format":
+        "{0}：{1} はどの工具ライブラリ形式ですか？既知の形式：{2}。または形式を指定してください",
+    "{}: units are given by the {} file itself; --units is for tool tables":
+        "{0}：単位は {1} ファイル自身が示します。--units はツールテーブル用です",
+    "a {} file is written in mm; units are for tool tables": "{0} ファイルは mm で書き出します。単位の指定はツールテーブル用です",
+    "{}: {} bytes is not a tool library (at most {})": "{0}：{1} バイトは工具ライブラリではありません（最大 {2}）",
+    "{}: a folder, not a tool library file": "{0}：フォルダーです。工具ライブラリのファイルではありません",
+    "{}: cannot be read ({})": "{0}：読み込めません（{1}）",
+    "{}: line {}: not UTF-8 text": "{0}：{1} 行目：UTF-8 のテキストではありません",
+    "{}: BMC = {} is not one of {}": "{0}：BMC = {1} は {2} のいずれでもありません",
+    "{}: not a Fusion 360 tool library: not JSON ({} at line {}, column {})":
+        "{0}：Fusion 360 の工具ライブラリではありません：JSON ではありません（{2} 行 {3} 列：{1}）",
+    "{}: not a Fusion 360 tool library: no \"data\" list of tools":
+        "{0}：Fusion 360 の工具ライブラリではありません：工具の \"data\" リストがありません",
+    "{}: not an object": "{0}：オブジェクトではありません",
+    "{}: {} = {} is not a number": "{0}：{1} = {2} は数値ではありません",
+    "{}: {} = {} is not text": "{0}：{1} = {2} は文字列ではありません",
+    "{}: post-process and geometry must be objects": "{0}：post-process と geometry はオブジェクトにしてください",
+    "{}: post-process.number (the tool number) is missing": "{0}：post-process.number（工具番号）がありません",
+    "{}: unit = {} is not one of {}": "{0}：unit = {1} は {2} のいずれでもありません",
+    "{}: geometry NOF = {} is not a whole number of flutes": "{0}：geometry NOF = {1} は刃数として整数ではありません",
+    "{}: not a Kezuri tool library: not TOML ({})": "{0}：Kezuri の工具ライブラリではありません：TOML ではありません（{1}）",
+    "{}: unknown key {}; the file has {}": "{0}：不明なキー {1}（ファイルのキーは {2}）",
+    "{}: format = {}, not {}: not a Kezuri tool library": "{0}：format = {1} で {2} ではありません：Kezuri の工具ライブラリではありません",
+    "{}: version = {}; this Kezuri reads version {} (a newer Kezuri wrote it?)":
+        "{0}：version = {1}。この Kezuri が読めるのはバージョン {2} です（新しい Kezuri で書かれましたか？）",
+    "{}: units = {}; a Kezuri tool library is in \"mm\"": "{0}：units = {1}。Kezuri の工具ライブラリは \"mm\" です",
+    "{}: tools must be [[tools]] tables": "{0}：tools は [[tools]] の表にしてください",
+    "{}: not a table": "{0}：表ではありません",
+    "{}: {} = {} is not a single value": "{0}：{1} = {2} は単一の値ではありません",
+    "{}: flutes {} is not a whole number 1..{}": "{0}：刃数 {1} は 1..{2} の整数ではありません",
+    "{}: material {} is not one of {}": "{0}：材質 {1} は {2} のいずれでもありません",
+    "{}: {} {} is not text": "{0}：{1} {2} は文字列ではありません",
+    "{}: a {} has no tip angle (got {})": "{0}：{1} に先端角はありません（指定値 {2}）",
+    "{}: a {} needs its included angle (degrees)": "{0}：{1} には先端角（度）が必要です",
+    "{}: angle {} is not an included angle 1..179 degrees": "{0}：角度 {1} は 1..179 度の先端角ではありません",
+    "T{}: not a tool a program can use: {}": "T{0}：プログラムで使える工具ではありません：{1}",
+    "{}: unknown field {}; the fields are {}": "{0}：不明な項目 {1}（項目は {2}）",
+    "{}: the field {} is missing": "{0}：項目 {1} がありません",
+    "{}: refused: {}": "{0}：受け付けません：{1}",
+    "{}: not a tool": "{0}：工具ではありません",
+    "tool number T{} is given twice: {} ({}) and {} ({})": "工具番号 T{0} が2回あります：{1}（{2}）と {3}（{4}）",
+    "no tool T{} in the tool library (it has {})": "工具ライブラリに T{0} はありません（あるのは {1}）",
+    "T{} is already in the library ({}); refused: {}": "T{0} はすでにライブラリにあります（{1}）。受け付けません：{2}",
+    "{} tool number(s) already in the library: {}; nothing was imported (replace them to overwrite)":
+        "{0} 個の工具番号がすでにライブラリにあります：{1}。何も取り込んでいません（上書きするには置き換えを指定してください）",
+    "tool {} is not a tool number (3 or \"T3\")": "tool {0} は工具番号（3 または \"T3\"）ではありません",
+    "tool number {} is not a whole number 1..{}": "工具番号 {0} は 1..{1} の整数ではありません",
+    "{}: {} {} is not a number (mm)": "{0}：{1} {2} は数値（mm）ではありません",
+    "{}: {} {} must be positive (mm)": "{0}：{1} {2} は正の値（mm）にしてください",
+    "{}: a ball end mill's corner radius is its radius {} mm, not {}":
+        "{0}：ボールエンドミルのコーナー半径は工具半径 {1} mm です（{2} ではありません）",
+    "{}: corner_radius {} mm must be above 0 and at most the radius {} mm":
+        "{0}：corner_radius {1} mm は 0 より大きく工具半径 {2} mm 以下にしてください",
+    "{}: a {} has no corner radius (got {} mm)": "{0}：{1} にコーナー半径はありません（指定値 {2} mm）",
+    "{}: no D word: the tool's diameter is missing": "{0}：D ワードがありません：工具径がありません",
+    "{}: the comment's {}{{...}} repeats number or diameter (the T and D words give them)":
+        "{0}：コメントの {1}{{...}} が番号か径を繰り返しています（T と D ワードで指定されます）",
+    "{}: the comment's {}{{...}} has an unknown field {}": "{0}：コメントの {1}{{...}} に不明な項目 {2} があります",
+    "T{}: its name {} cannot stand in a tool table's comment (line breaks, spaces at the ends or in runs, or "
+    "'kezuri{{'): rename it first":
+        "T{0}：名前 {1} はツールテーブルのコメントに入りません（改行、前後や連続の空白、'kezuri{{'）。先に名前を変えてください",
+    "tool table units {} are not one of {}": "ツールテーブルの単位 {0} は {1} のいずれでもありません",
+    "{}: {} is not a tool table word (T P X Y Z A B C U V W D I J Q)":
+        "{0}：{1} はツールテーブルのワード（T P X Y Z A B C U V W D I J Q）ではありません",
+    "{}: {} is given twice": "{0}：{1} が2回指定されています",
+    "{}: {}: {} is not a number": "{0}：{1}：{2} は数値ではありません",
+    "{}: {} is not a finite number": "{0}：{1} は有限の数ではありません",
+    "{}: {}: {} must be a whole number": "{0}：{1}：{2} は整数にしてください",
+    "{}: the comment's {}{{...}} is not JSON ({} at column {} of the comment)":
+        "{0}：コメントの {1}{{...}} が JSON ではありません（コメントの {3} 列目：{2}）",
+    "{}: the comment's {}{{...}} is not a table of fields": "{0}：コメントの {1}{{...}} は項目の表ではありません",
+    "{}: no T word (tool number)": "{0}：T ワード（工具番号）がありません",
+    "{}: cannot be written ({})": "{0}：書き込めません（{1}）",
+    "the tool library cannot be read, and is left as it is: {}{}": "工具ライブラリを読み込めないため、そのままにしています：{0}{1}",
+    "{}: the library would not read back as it is; nothing was written":
+        "{0}：ライブラリが同じ内容で読み戻せないため、何も書き込んでいません",
+    "{}: the tool library cannot be written ({}); the file is as it was":
+        "{0}：工具ライブラリを書き込めません（{1}）。ファイルは元のままです",
+}
+
 MESSAGE_TEMPLATES.update(JOBLIST_TEMPLATES)
 MESSAGE_TEMPLATES.update(PROFILE_TEMPLATES)
 MESSAGES.update(PROFILE_TEXTS)
@@ -2675,6 +2857,8 @@ VCARVE_TEMPLATES = {
 }
 MESSAGE_TEMPLATES.update(VCARVE_TEMPLATES)
 NESTED.update(VCARVE_NESTED)
+MESSAGE_TEMPLATES.update(TOOLLIB_TEMPLATES)
+NESTED.update(TOOLLIB_NESTED)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

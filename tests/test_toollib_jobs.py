@@ -1,0 +1,109 @@
+"""Job files name their tools from the tool library (``tool = 11``, ``tools = { drill = "T11" }``):
+the program is the one the same tool typed as settings gives, and a tool the library has not, of
+the wrong kind or angle, or given twice, is refused naming the file, the operation and the key."""
+import os
+import re
+
+import pytest
+
+pytest.importorskip("bpy")
+from sheet_reader import read_sheet  # noqa: E402
+from test_batch_job import run  # noqa: E402
+
+from kezuri.toolpath.tooling import store  # noqa: E402
+from kezuri.toolpath.tooling.library import LibraryTool  # noqa: E402
+
+SETUP = '[setup]\nname = "holes"\nstock = [0, 0, -12, 100, 60, 0]\npost = "linuxcnc"\nmachine = "linuxcnc-manual"\n'
+HOLES = "holes = [[20.0, 20.0], [80.0, 40.0]]\n"
+
+
+@pytest.fixture
+def library(tmp_path, monkeypatch):
+    path = tmp_path / "config" / "tools.toml"
+    store.save(str(path), store.SEEDS.with_tool(LibraryTool(12, "drill", 6.5, angle=135.0, flute_length=60.0))
+               .with_tool(LibraryTool(13, "drill", 4.2, flute_length=33.0, stick_out=41.5, name="tap drill")))
+    monkeypatch.setenv("KEZURI_TOOL_LIBRARY", str(path))
+    return path
+
+
+def job(tmp_path, operation: str, name="job.toml") -> str:
+    path = tmp_path / name
+    path.write_text(SETUP + '\n[[operations]]\nkind = "drill"\nname = "holes"\n' + HOLES + operation)
+    return str(path)
+
+
+def program(out) -> str:
+    return open(os.path.join(out, "holes.ngc")).read()
+
+
+def test_a_library_tool_gives_the_program_its_typed_twin(tmp_path, library):
+    status, message, out = run("job", job(tmp_path, 'tool = "T13"\nsettings = { depth = 10.0, peck = 3.0 }\n'))
+    assert status == 0, message
+    typed = job(tmp_path, "settings = { depth = 10.0, peck = 3.0, tool_number = 13, diameter = 4.2, "
+                          "flute_length = 33.0 }\n", "typed.toml")
+    status, message, out_typed = run("job", typed)
+    assert status == 0, message
+    text = program(out)
+    assert re.findall(r"^T(\d+) M0?6", text, re.M) == ["13"]
+    strip = lambda t: re.sub(r"\(.*?\)", "", t)             # noqa: E731 - comments name the file and time
+    assert strip(text) == strip(program(out_typed))
+
+
+def stick_out_column(out) -> dict:
+    table = read_sheet(open(os.path.join(out, "setup-sheet.html"), encoding="utf-8").read()).tables["tools"]
+    column = table[0].index("Stick-out (mm)")
+    return {row[0]: row[column] for row in table[1:]}
+
+
+def test_the_setup_sheet_lists_the_library_tools_stick_out(tmp_path, library):
+    status, message, out = run("job", job(tmp_path, 'tool = 13\nsettings = { depth = 10.0 }\n'))
+    assert status == 0, message
+    assert stick_out_column(out) == {"T13": "41.5"}
+    # the same number typed as another tool (a 4.3 mm drill) is not the library's: its stick-out is not known
+    typed = job(tmp_path, "settings = { depth = 10.0, tool_number = 13, diameter = 4.3 }\n", "typed.toml")
+    status, message, out = run("job", typed)
+    assert status == 0, message
+    assert stick_out_column(out) == {"T13": "—"}
+
+
+def test_slots_by_name(tmp_path, library):
+    status, message, out = run("job", job(tmp_path, 'tools = { drill = 4 }\nsettings = { depth = 10.0 }\n'))
+    assert status == 0, message
+    assert re.findall(r"^T(\d+) M0?6", program(out), re.M) == ["4"]
+
+
+@pytest.mark.parametrize("operation, words", [
+    ("tool = 40\n", ["operation 1 ('holes')", "tool = 40", "no tool T40 in the tool library", "T1, T2"]),
+    ("tool = 2\n", ["tool = 2 is T2 6 mm ball end mill", "the drill's drill tool must be a drill"]),
+    ("tool = 12\n", ["tool = 12", "135° point", "planned for a 118° one"]),
+    ("tool = 4\nsettings = { diameter = 5.0 }\n", ["settings.diameter and tool = 4 both give the drill tool"]),
+    ("tool = 4\ntools = { mill = 5 }\n", ["give tool or tools, not both"]),
+    ("tools = { router = 5 }\n", ["tools.router is not a tool of a drill; its tools are drill, mill, spot"]),
+    ("tool = 4.5\n", ["tool = 4.5", "not a tool number"]),
+])
+def test_a_tool_that_cannot_be_used_is_refused_by_name(tmp_path, library, operation, words):
+    status, message, _ = run("job", job(tmp_path, operation))
+    assert status == 2
+    for word in words:
+        assert word in message, message
+
+
+def test_the_sample_job_with_library_tools_writes_the_same_program(tmp_path, library):
+    """The name plate job naming its tools from the presets (T2 ball, T3 flat, T4 drill) instead of
+    the typed defaults: the same program, move for move, and the sheet has the presets' stick-outs."""
+    sample = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "samples", "jobs",
+                          "nameplate-with-holes.toml")
+    text = open(sample, encoding="utf-8").read()
+    named = text.replace("settings = { seed = 7 }", 'tools = { rough = 2, finish = "T3" }\nsettings = { seed = 7 }')
+    named = named.replace("settings = { tool_number = 4, diameter = 5.0, depth", "tool = 4\nsettings = { depth")
+    assert named.count("tool") >= 2 and named != text
+    (tmp_path / "named.toml").write_text(named, encoding="utf-8")
+    status, message, out_named = run("job", str(tmp_path / "named.toml"))
+    assert status == 0, message
+    status, message, out_typed = run("job", sample)
+    assert status == 0, message
+    strip = lambda t: re.sub(r"\(.*?\)", "", t)             # noqa: E731 - comments name the file and time
+    named_text = open(os.path.join(out_named, "nameplate.ngc")).read()
+    assert strip(named_text) == strip(open(os.path.join(out_typed, "nameplate.ngc")).read())
+    assert len(named_text.splitlines()) > 1000
+    assert stick_out_column(out_named) == {"T2": "30", "T3": "15", "T4": "50"}
