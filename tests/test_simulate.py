@@ -473,3 +473,29 @@ def test_each_cell_knows_the_operation_whose_surface_shows_there(kernel):
     assert hf.operation.shape == hf.shape
     assert list(hf.operation_at([[26.0, 20.0], [14.0, 20.0], [5.0, 5.0], [35.0, 35.0]])) == [0, 1, -1, -1]
     assert set(np.unique(hf.operation)) == {-1, 0, 1}
+
+
+@pytest.mark.parametrize("scale", [1.0, 1.0 - 1e-12, 1.0 + 1e-12, 1.0 + 1e-5, 1.0 + 1e-4, 1.001, 0.9, 1.1])
+def test_a_v_bit_falling_along_its_own_flank_cuts_no_deeper_than_its_tip(scale):
+    """A 60 deg V-bit fed down at exactly its flank's slope (2 mm over 2 tan 30 deg of XY) once cut
+    the height field 12 mm deep beside a 2 mm move (the cone band's a/g blew up in rounding).
+    Brute force: every cell's height is the lowest of the cone stamped at 2,001 places along the
+    move (z + dist / tan 30 deg), within the stamping's spacing."""
+    k = 1 / math.tan(math.radians(30))
+    length = 2 / k * scale
+    start = np.array([3.87, 3.87, 0.0])
+    end = start + np.array([1, 1, 0]) / math.sqrt(2) * length
+    end[2] = -2.0
+    op = Operation("flank", Tool(1, "vbit", 12.0, tip_angle=60.0), 10000, np.array([RAPID, FEED]),
+                   np.array([start, end]), np.array([np.nan, 300.0]), start=np.array([3.87, 3.87, 5.0]),
+                   clearance_z=5.0, safe_z=5.0)
+    hf = sim.simulate([op], sim.BoxStock(0, 0, -20, 12, 12, 0), cell=0.1).heightfield
+    t = np.linspace(0, 1, 2001)
+    places = start + t[:, None] * (end - start)
+    x, y = np.meshgrid(hf.x(), hf.y(), indexing="ij")
+    lowest = np.full(x.shape, np.inf)
+    for px, py, pz in places:
+        lowest = np.minimum(lowest, pz + k * np.hypot(x - px, y - py))
+    expected = np.minimum(lowest, 0.0)
+    assert hf.heights.min() >= -2.0 - 1e-4
+    assert np.abs(hf.heights - expected).max() <= k * length / 2000 + 1e-3

@@ -13,6 +13,7 @@ from .stock import HeightField
 # A move shorter than this in XY is taken as vertical: its ends are stamped whole instead.
 MIN_XY_LENGTH = 1e-3
 _EPS = 1e-6                # mm: regions are widened by this so no cell falls between two of them
+MAX_CONE_MU = 300.0        # the steepest cone band kept (|a|/g; see the cone bands in families_of)
 
 
 def _ring_count(flat_radius: float, corner_radius: float, tolerance: float) -> int:
@@ -462,7 +463,16 @@ def families_of(chain: Chain, top: float, tolerance: float) -> list:
         slope = 1 / shape.tip_tan
         # the flank beside each move, and where the move climbs or falls, the rim (a flat disc
         # at the cone's top) beside it: with the cone at the points, the exact envelope
-        s = np.flatnonzero(bands & (np.abs(delta[:, 2]) < slope * length))
+        # a move falling or climbing (nearly) along the flank itself, |a| -> k, gets no band: the
+        # band's cells are widened by _EPS across the move, and there its formula reads the move
+        # |mu|*_EPS beyond its end (mu = a/g: a 2 mm move along a 60 deg flank cut 12 mm deep).
+        # Without the band the cones at the ends are the envelope but for (k - |a|) per mm of the
+        # move and the radius: |mu| <= MAX_CONE_MU bounds the first error by MAX_CONE_MU*_EPS*k
+        # (5e-4 mm at k = 1.7) and the second by k/(2*MAX_CONE_MU^2), 1e-5 mm per mm
+        a_all = np.divide(delta[:, 2], length, out=np.zeros(len(length)), where=length > 0)
+        g_all = np.sqrt(np.maximum(slope * slope - a_all * a_all, 0.0))
+        s = np.flatnonzero(bands & (np.abs(delta[:, 2]) < slope * length)
+                           & (np.abs(a_all) <= MAX_CONE_MU * g_all))
         a = delta[s, 2] / length[s]
         g = np.sqrt(slope * slope - a * a)
         families.append(_ConeBands(s, p[s, 0], p[s, 1], ux=delta[s, 0] / length[s], uy=delta[s, 1] / length[s],
