@@ -16,7 +16,9 @@ from ..toolpath.ir.tools import TIP_ANGLE_DEG
 from ..toolpath.tooling.library import KIND_LABELS, ToolLibraryError, tool_number
 
 # kind -> slot -> (number setting, diameter setting, flute length setting or None, the kinds it takes,
-# whether the tip angle shapes the cut); the first slot is the one ``tool = N`` fills
+# the tip angle: True where the kind is planned for its shape's angle only, the name of the setting
+# that takes the library tool's angle, or False where the angle does not shape the cut); the first
+# slot is the one ``tool = N`` fills
 SLOTS = {
     "engrave": {"rough": ("rough_tool_number", "rough_diameter", None, ("ball",), False),
                 "finish": ("finish_tool_number", "finish_diameter", None, ("flat",), False)},
@@ -30,6 +32,8 @@ SLOTS = {
               "mill": ("mill_tool_number", "mill_diameter", "mill_flute_length", ("flat",), False),
               "spot": ("spot_tool_number", "spot_diameter", None, ("drill",), False)},
     "chamfer": {"tool": ("tool_number", "diameter", "flute_length", ("vbit", "engraver"), True)},
+    "vcarve": {"tool": ("tool_number", "diameter", "flute_length", ("vbit", "engraver"), "angle"),
+               "clear": ("clear_tool_number", "clear_diameter", "clear_flute_length", ("flat",), False)},
 }
 KEYS = ("tool", "tools")
 
@@ -77,13 +81,15 @@ def tool_settings(table: dict, kind: str, settings: dict, where: str, library_of
             raise JobFileError(f"{where}: {key} = {typed!r} is {tool.describe()}; the {kind}'s {slot} tool must "
                                f"be a {' or '.join(KIND_LABELS[k] for k in kinds)}")
         ir_kind = "vbit" if tool.kind == "engraver" else tool.kind
-        if angled and abs(tool.angle - TIP_ANGLE_DEG[ir_kind]) > 1e-9:
+        if angled is True and abs(tool.angle - TIP_ANGLE_DEG[ir_kind]) > 1e-9:
             raise JobFileError(f"{where}: {key} = {typed!r} is {tool.describe()} with a {tool.angle:g}° point; the "
                                f"{kind} is planned for a {TIP_ANGLE_DEG[ir_kind]:g}° one (a program's tool does not "
                                "carry its angle yet)")
         values = {number_key: tool.number, diameter_key: tool.diameter}
         if flute_key is not None:
             values[flute_key] = tool.flute_length
+        if isinstance(angled, str):
+            values[angled] = tool.angle
         typed_too = sorted(set(values) & set(settings))
         if typed_too:
             raise JobFileError(f"{where}: settings.{typed_too[0]} and {key} = {typed!r} both give the {slot} tool; "

@@ -107,3 +107,23 @@ def test_the_sample_job_with_library_tools_writes_the_same_program(tmp_path, lib
     assert strip(named_text) == strip(open(os.path.join(out_typed, "nameplate.ngc")).read())
     assert len(named_text.splitlines()) > 1000
     assert stick_out_column(out_named) == {"T2": "30", "T3": "15", "T4": "50"}
+
+
+def test_a_library_v_bit_gives_a_v_carve_its_angle(tmp_path):
+    """A 60 deg V-bit named from the library: the V-carve's tool is that cone (its tip angle in the
+    program's tool), a 90 deg one is the kind's own; the end mill fills the clear slot."""
+    from kezuri.toolpath.tooling.library import LibraryTool
+
+    sixty = LibraryTool(number=7, kind="vbit", diameter=12.7, angle=60.0, flutes=2, flute_length=12.0)
+    ninety = LibraryTool(number=8, kind="vbit", diameter=12.7, angle=90.0, flutes=2, flute_length=12.0)
+    assert sixty.to_ir_tool().shape.tip_angle_deg == pytest.approx(60.0)
+    assert ninety.to_ir_tool().tip_angle == 0.0 and ninety.to_ir_tool().shape.tip_angle_deg == pytest.approx(90.0)
+    from kezuri.operators import jobtools
+    from kezuri.toolpath.tooling.library import ToolLibrary
+
+    library = ToolLibrary((sixty, ninety, LibraryTool(number=4, kind="flat", diameter=3.175, flutes=2,
+                                                       flute_length=12.0)))
+    found = jobtools.tool_settings({"tools": {"tool": 7, "clear": "T4"}}, "vcarve", {}, "job.toml: sign",
+                                   lambda: library)
+    assert found == {"tool_number": 7, "diameter": 12.7, "flute_length": 12.0, "angle": 60.0,
+                     "clear_tool_number": 4, "clear_diameter": 3.175, "clear_flute_length": 12.0}

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 from ..ir.errors import InputError
 from ..ir.program import ProgramError, Tool
+from ..ir.tools import TIP_ANGLE_DEG
 
 KINDS = ("flat", "ball", "bull", "vbit", "drill", "engraver")
 KIND_LABELS = {"flat": "flat end mill", "ball": "ball end mill", "bull": "bull nose end mill",
@@ -141,9 +142,17 @@ class LibraryTool:
         label = "engraver" if self.kind == "engraver" else ""
         try:
             return Tool(self.number, kind, self.diameter, corner_radius=self.corner_radius,
-                        flute_length=self.flute_length, name=self.name, label=label)
+                        flute_length=self.flute_length, name=self.name, label=label,
+                        tip_angle=self.tip_angle_for(kind))
         except ProgramError as error:
             raise ToolLibraryError(f"T{self.number}: not a tool a program can use: {error}") from None
+
+    def tip_angle_for(self, kind: str) -> float:
+        """The program tool's ``tip_angle``: this tool's angle where it is pointed and differs from
+        its kind's (0: the kind's own, so a 90 deg V-bit or a 118 deg drill is the tool it always was)."""
+        if kind not in TIP_ANGLE_DEG or self.angle is None or abs(self.angle - TIP_ANGLE_DEG[kind]) <= 1e-9:
+            return 0.0
+        return float(self.angle)
 
     def as_dict(self) -> dict:
         return {key: getattr(self, key) for key in FIELDS}
