@@ -529,10 +529,11 @@ def read_nc(text: str, tool: Tool, name: str = "NC program", progress=None, bulk
         text = text.replace("\r\n", "\n").replace("\r", "\n")
     reader = _Reader()
     for first, lines, rows, end in _chunks(text):
-        if _read_lines(reader, first, lines, rows if bulk else None):
-            break
+        ended = _read_lines(reader, first, lines, rows if bulk else None)
         if progress is not None:
-            progress(end / max(len(text), 1))
+            progress(1.0 if ended else end / max(len(text), 1))
+        if ended:
+            break
     return _result(reader, tool, name)
 
 
