@@ -41,6 +41,9 @@ ENGRAVE_WIDTHS = (200, 400, 800, 1200)
 # plate width (mm): (CPU s, peak RSS MB) of plan + bake + gate before the change, measured at its
 # start with the same child (the 1200 mm plate with the cell limit lifted to allow 0.1 mm)
 ENGRAVE_BEFORE = {200: (0.52, 448), 400: (1.13, 703), 800: (3.34, 1589), 1200: (7.71, 3048)}
+# batch.py engrave of that sign before the change (CPU s user + sys, peak RSS MB; /usr/bin/time, the
+# base commit ae77f3d, same session): the gate fell back to 0.2 mm cells
+ENGRAVE_SIGN_BEFORE = (3.9, 1056)
 CARVE_AREAS = (1.0, 2.0, 4.0)
 CARVE_SCALLOPS = (0.08, 0.02, 0.005)
 TURNMILL_SPLITS = (0, 1, 2, 3)
@@ -165,8 +168,36 @@ def _part21(path: str) -> dict:
     return _measure(work)
 
 
+def _batch_engrave(blend: str) -> dict:
+    import batch
+
+    def work():
+        out = blend + ".out"
+        status = batch.main(["batch.py", "engrave", "--blend", blend, "--post", "linuxcnc", "--out", out,
+                             "--travel", "1400", "800", "150"])      # the preset's 600 x 400 mm would not hold it
+        with open(os.path.join(out, "report.json")) as stream:
+            return {"status": status, "gate_cell_mm": json.load(stream)["gate"]["cell_mm"]}
+    return _measure(work)
+
+
+def _sign_blend(path: str) -> dict:
+    """The sample name plate at 6 mm per unit: a 1200 x 600 mm sign (as tests/test_hostile_batch.py)."""
+    import batch
+    batch.load_extension()
+    import bpy
+
+    from kezuri.operators import batchio, samples
+    scene = batchio.open_blend(None)
+    samples.name_plate(scene)
+    scene.unit_settings.scale_length = 0.006
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    return {"path": path}
+
+
 def _write(kind: str, size: int, path: str) -> dict:
     """The input files, written by a child of their own (their writing's memory is not the reader's)."""
+    if kind == "sign":
+        return _sign_blend(path)
     if kind == "nc":
         text = raster_text(size)
     else:
@@ -183,6 +214,10 @@ def child(argv: list) -> dict:
     kind, *values = argv
     if kind == "batch":
         return _batch_simulate(values[0])
+    if kind == "batch-engrave":
+        return _batch_engrave(values[0])
+    if kind == "write" and values[0] == "sign":
+        return _write("sign", 0, values[2])
     from batch import import_package
     import_package()
     if kind == "engrave":
@@ -249,6 +284,19 @@ def run() -> list:
     rows += series("engrave plan + bake + gate at 0.1 mm", lambda w: f"{w} x {w // 2} mm plate", ENGRAVE_WIDTHS,
                    engrave, lambda w: w * w / 2, before=lambda w: ENGRAVE_BEFORE.get(w, (None, None)),
                    note="; exponent on the plate's area")
+    folder = tempfile.mkdtemp(prefix="kezuri-scaling-")
+    try:
+        sign = run_child("batch-engrave", run_child("write", "sign", 0, os.path.join(folder, "sign.blend"))["path"])
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
+    rows.append({"name": "scaling: batch.py engrave, the sample as a 1200 x 600 mm sign (whole command)",
+                 "seconds": sign["cpu_s"], "target_s": None, "cpu_s": round(sign["cpu_s"], 3),
+                 "peak_rss_mb": round(sign["peak_rss_mb"]), "exponent": None, "refused_up_front_at": "—",
+                 "point": sign, "before_cpu_s": ENGRAVE_SIGN_BEFORE[0], "before_peak_rss_mb": ENGRAVE_SIGN_BEFORE[1],
+                 "notes": f"gate cell {sign['gate_cell_mm']:g} mm (target: 0.1 mm within 2 GB); peak "
+                          f"{sign['peak_rss_mb']:.0f} MB; before: {ENGRAVE_SIGN_BEFORE[0]} s, "
+                          f"{ENGRAVE_SIGN_BEFORE[1]} MB with the gate at 0.2 mm (the 0.1 mm grid was over the "
+                          "cell limit)"})
     carve_area = [run_child("carve", a, 0.02) for a in CARVE_AREAS]
     rows += series("carve wave relief, scallop 0.02 mm", lambda a: f"area x{a:g}", CARVE_AREAS, carve_area,
                    lambda a: a, note="; exponent on the area")
