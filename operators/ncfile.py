@@ -50,6 +50,7 @@ def batch(args) -> dict:
     from ..post import write_atomic
     from ..toolpath.simulate import ncread
     from . import batchio, convert, preview, simview
+    from .common import Progress
 
     if not os.path.isfile(args.nc):
         raise FileNotFoundError(f"no such NC file: {args.nc}")
@@ -63,8 +64,9 @@ def batch(args) -> dict:
             raise core.SimulationError(f"--tool {args.tool!r}: {label} {value:g} mm is outside the allowed range "
                                        f"{limit.text(label)}")
     text = read_text(args.nc)
+    progress = Progress(None, "simulate")      # on stderr; a long run can be stopped (Ctrl-C) between its steps
     try:
-        read = ncread.read_nc(text, tool, os.path.basename(args.nc))
+        read = ncread.read_nc(text, tool, os.path.basename(args.nc), progress=lambda f: progress(0.3 * f, "reading"))
     except ncread.NCReadError as error:     # which file the line is of
         raise ncread.NCReadError(f"--nc {args.nc}: {error}") from None
     op, lines = read
@@ -84,7 +86,8 @@ def batch(args) -> dict:
         design = load_design(args.design)
     # one operation per spindle state (the reader's runs): a cut with the spindle stopped is named by its line
     result = core.simulate([run for run, _ in runs], parse_stock(args.stock), engine=args.engine, cell=args.cell, design=design,
-                           design_name=os.path.basename(args.design or ""))
+                           design_name=os.path.basename(args.design or ""),
+                           progress=lambda f: progress(0.3 + 0.7 * f, "cutting"))
     report = simview.report_of(result)
     report["nc_ignored"] = read.ignored          # what the reader read and set aside, per code
     report["warnings"] = list(result.warnings)   # what the simulation repaired in its input

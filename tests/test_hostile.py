@@ -219,7 +219,7 @@ def test_a_cell_too_coarse_to_mean_anything_is_refused_like_a_too_fine_one():
     op, _ = read(START + "G1 Z-2 F100\nX50\n")
     stock = (-10, -10, -10, 110, 10, 0)       # 20 mm across its smaller side: cells up to 5 mm
     with pytest.raises(sim.SimulationError, match=r"cell 1e\+09 mm is too coarse for a stock 20 mm across .*"
-                                                  r"give a cell from 0.00632 to 5 mm"):
+                                                  r"give a cell from 0.00548 to 5 mm"):
         sim.simulate([op], stock, cell=1e9)
     with pytest.raises(sim.SimulationError, match="use a coarser cell"):
         sim.simulate([op], stock, cell=1e-4)

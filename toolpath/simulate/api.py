@@ -17,7 +17,7 @@ from .heightfield import Simulation, compiled_kernels, stock_grid
 from .meshes import solid_of
 from .result import SimulationResult
 from .paths import chains_of, operations_of, can_plunge
-from .stock import (ENGINES, GOUGE_TOLERANCE, MAX_CELLS, TOUCH_TOLERANCE, CylinderStock, Finding, HeightField, CellError, CellTooFine, SimulationCancelled, SimulationError, stock_box, stock_solid, as_stock)
+from .stock import (ENGINES, GOUGE_TOLERANCE, MAX_CELLS, MAX_DEXELS, TOUCH_TOLERANCE, CylinderStock, Finding, HeightField, CellError, CellTooFine, SimulationCancelled, SimulationError, stock_box, stock_solid, as_stock)
 
 MIN_CELLS_ACROSS = 4       # a cell coarser than a quarter of the stock's smaller side means nothing
 
@@ -163,8 +163,8 @@ def _radius_map_cut(ops, radial, stock: CylinderStock, cell: float, tolerance: f
                     progress, kernels):
     """The radial turn-mill operations on a radius map: (map, findings)."""
     dexels = math.ceil(2 * math.pi * stock.radius / cell) * math.ceil(stock.height / cell)
-    if dexels > MAX_CELLS:
-        raise CellTooFine(f"a {cell} mm cell gives {dexels} dexels round the bar (more than {MAX_CELLS}); "
+    if dexels > MAX_DEXELS:
+        raise CellTooFine(f"a {cell} mm cell gives {dexels} dexels round the bar (more than {MAX_DEXELS}); "
                               "use a coarser cell")
     rm = rmap.grid(stock.radius, stock.bottom, stock.top, cell)
     total = sum(len(op) for op, r in zip(ops, radial) if r)

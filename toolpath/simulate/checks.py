@@ -19,37 +19,74 @@ from .stock import GOUGE_TOLERANCE, Finding, HeightField, SimulationError, stock
 
 # ----- design surface ---------------------------------------------------------------------------
 
-def design_heights(hf: HeightField, design, keep_regions) -> np.ndarray | None:
-    """Lowest Z the finished part allows per cell (-inf: anything may be cut), or None."""
+ROWS_PER_BLOCK = 256       # grid rows (X) of the design's heights made and compared at a time
+
+
+class DesignHeights:
+    """Lowest Z the finished part allows per cell (-inf: anything may be cut), made a block of
+    grid rows at a time (:meth:`rows`): a design given as one number with keep regions (an
+    engraving's floor and its letters) never takes a full grid of memory.  A function or a mesh
+    is evaluated over the whole grid once (``grid``), its keep regions put into it."""
+
+    def __init__(self, hf: HeightField, floor: float, keeps: list, grid: np.ndarray | None = None):
+        self.hf, self.floor, self.keeps, self.grid = hf, floor, keeps, grid
+
+    def rows(self, i0: int, i1: int) -> np.ndarray:
+        """The heights of grid rows i0..i1-1, an (i1 - i0, ny) float array."""
+        if self.grid is not None:
+            return self.grid[i0:i1]
+        allowed = np.full((i1 - i0, self.hf.shape[1]), self.floor)
+        _keep_standing(allowed, i0, self.hf, self.keeps)
+        return allowed
+
+
+def _keep_standing(allowed: np.ndarray, i0: int, hf: HeightField, keeps: list) -> None:
+    """Raise ``allowed`` (grid rows i0.. of ``hf``) to each keep region's Z inside it.  A cell's
+    parity depends only on its own x and its row's crossings, so a block of rows gets the same
+    cells as one ``grid_inside`` over the whole region."""
+    i1 = i0 + allowed.shape[0]
+    for area, z_min, (k0, k1), (j0, j1) in keeps:
+        a, b = max(i0, k0), min(i1, k1)
+        if a >= b:
+            continue
+        inside = rg.grid_inside(area, hf.x()[a:b], hf.y()[j0:j1])
+        block = allowed[a - i0:b - i0, j0:j1]
+        block[inside] = np.maximum(block[inside], z_min)
+
+
+def design_heights(hf: HeightField, design, keep_regions) -> DesignHeights | None:
+    """The design's heights over the grid (:class:`DesignHeights`), or None when nothing limits
+    the cutting.  Refuses a design that is neither a function z(x, y), a mesh nor a number, and
+    NaN heights."""
     if design is None and not keep_regions:
         return None
-    allowed = np.full(hf.shape, -np.inf)
+    floor, grid = -np.inf, None
     if design is not None:
         if callable(design):
             gx, gy = np.meshgrid(hf.x(), hf.y(), indexing="ij")
             values = np.asarray(design(gx, gy), float)
-            allowed = np.broadcast_to(values, hf.shape).copy()
+            grid = np.broadcast_to(values, hf.shape).copy()
         elif hasattr(design, "vertices") and hasattr(design, "faces"):
-            allowed = mesh_top(hf, np.asarray(design.vertices, float), np.asarray(design.faces, np.int64))
+            grid = mesh_top(hf, np.asarray(design.vertices, float), np.asarray(design.faces, np.int64))
         else:
             try:
-                allowed[:] = float(design)
+                floor = float(design)
             except (TypeError, ValueError):
                 raise SimulationError("design must be a function z(x, y), a mesh with vertices and faces, or a number")
-        if np.isnan(allowed).any():
+        if (grid is not None and np.isnan(grid).any()) or np.isnan(floor):
             raise SimulationError("design surface has NaN heights")
+    keeps = []
     for item in keep_regions or ():
         shape, z_min = (item if isinstance(item, tuple) else (item, hf.top))
         area = _keep_area(shape)
         x0, y0, x1, y1 = area.bounds()
         i0, i1 = _index_range(hf.x0, hf.cell_x, hf.shape[0], x0, x1)
         j0, j1 = _index_range(hf.y0, hf.cell_y, hf.shape[1], y0, y1)
-        if i0 >= i1 or j0 >= j1:
-            continue
-        inside = rg.grid_inside(area, hf.x()[i0:i1], hf.y()[j0:j1])
-        block = allowed[i0:i1, j0:j1]
-        block[inside] = np.maximum(block[inside], float(z_min))
-    return allowed
+        if i0 < i1 and j0 < j1:
+            keeps.append((area, float(z_min), (i0, i1), (j0, j1)))
+    if grid is not None:
+        _keep_standing(grid, 0, hf, keeps)
+    return DesignHeights(hf, floor, keeps, grid)
 
 
 def _keep_area(shape) -> CrossSection:
@@ -116,16 +153,24 @@ def cut_findings(sim: Simulation, chains: list, ops: list, design_z) -> list:
                                     chain.op_index, move, xy, depth))
     hf = sim.hf
     if design_z is not None:
-        material_floor = np.minimum(design_z, hf.top)
-        depth = np.where(hf.inside, material_floor - np.maximum(hf.heights, hf.bottom), -np.inf)
-        gouged = depth > GOUGE_TOLERANCE
-        if gouged.any():
-            i, j = np.unravel_index(int(np.argmax(depth)), hf.shape)
-            worst = float(depth[i, j])
+        # a block of rows at a time: the depth below the design is never a full grid
+        worst, where, count = -np.inf, None, 0
+        for i0 in range(0, hf.shape[0], ROWS_PER_BLOCK):
+            i1 = min(i0 + ROWS_PER_BLOCK, hf.shape[0])
+            material_floor = np.minimum(design_z.rows(i0, i1), hf.top)
+            depth = np.where(hf.inside[i0:i1], material_floor - np.maximum(hf.heights[i0:i1], hf.bottom), -np.inf)
+            gouged = depth > GOUGE_TOLERANCE
+            if gouged.any():
+                count += int(gouged.sum())
+                k = int(np.argmax(depth))
+                if depth.flat[k] > worst:      # the first of equal depths, as one argmax over the grid
+                    worst, where = float(depth.flat[k]), (i0 + k // depth.shape[1], k % depth.shape[1])
+        if count:
+            i, j = where
             xy = (float(hf.x()[i]), float(hf.y()[j]))
             chain, segment, _ = lowest_move(chains, hf, int(i), int(j), sim.tolerance)
             move = int(chain.move[segment])
-            area = float(gouged.sum() * hf.cell_x * hf.cell_y)
+            area = float(count * hf.cell_x * hf.cell_y)
             findings.append(Finding("gouge", f"{ops[chain.op_index].name}: move {move} cuts {worst:.3f} mm below the "
                                     f"design at ({xy[0]:.2f}, {xy[1]:.2f}); {area:.1f} mm^2 gouged in all",
                                     chain.op_index, move, xy, worst))

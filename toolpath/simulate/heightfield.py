@@ -171,6 +171,9 @@ class Simulation:
         nx, ny = self.hf.shape
         flat = np.full(nx * ny + ny + 8, np.inf, np.float32)    # margin for the runs' padding
         flat[:nx * ny] = self.hf.heights.reshape(-1)
+        in_place = self.hf.heights.dtype == np.float32
+        if in_place:        # the heights become a view of the buffer cut in: no second grid in memory
+            self.hf.heights = flat[:nx * ny].reshape(nx, ny)
         total = sum(len(ch.move) for ch in chains) or 1
         done = 0
         operation = np.full(nx * ny, -1, np.int16)
@@ -192,7 +195,8 @@ class Simulation:
                 if self.progress is not None and self.progress(done / total) is False:
                     raise SimulationCancelled("simulation cancelled")
             operation[flat[:nx * ny] < before] = chain.op_index
-        self.hf.heights[...] = flat[:nx * ny].reshape(nx, ny)
+        if not in_place:
+            self.hf.heights[...] = flat[:nx * ny].reshape(nx, ny)
         self.hf.operation = operation.reshape(nx, ny)
 
     def _checked(self, flat, chain, segment, families):

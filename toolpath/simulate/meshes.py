@@ -50,7 +50,11 @@ def _relief_mesh(heights: np.ndarray, x0, y0, x1, y1, cx, cy, bottom):
 
 def heightfield_mesh(hf: HeightField, stock, max_cells):
     heights = np.where(hf.inside, hf.heights, hf.top)
-    heights, block = _pooled(np.clip(heights, hf.bottom + 1e-3, hf.top).astype(float), max_cells)
+    np.clip(heights, hf.bottom + 1e-3, hf.top, out=heights)
+    # pooled in the heights' own precision, widened after (the minimum of a block is exact either
+    # way): no float64 copy of a whole 72 M-cell sign
+    heights, block = _pooled(heights, max_cells)
+    heights = heights.astype(float)
     (x0, y0, _), (x1, y1, _) = stock_box(stock)
     cx, cy = block * hf.cell_x, block * hf.cell_y
     vertices, faces = _relief_mesh(heights, x0, y0, x1, y1, cx, cy, hf.bottom)

@@ -40,17 +40,14 @@ import numpy as np
 from ..ir.errors import MAX_REACH_MM, InputError
 from ..ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Tool
 from ..ir.tools import SHAPES
+# LinuxCNC's arc tolerances (interp_internal.hh) are ncplain's, which checks arcs too
+from .ncplain import (ARC_RELATIVE_TOLERANCE, ARC_TOLERANCE_INCH, ARC_TOLERANCE_MM, MIN_ARC_RADIUS_INCH, PLAIN,
+                      ROW_OTHER, LineNumbers, MoveStore, plain_moves)
 
 NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)")
 _VALUE = re.compile(r"\s*([-+]?[0-9.]*)")
 _END_CODES = ("M2", "M30")
-_LINE_BREAK = re.compile(r"\r\n|\r|\n")
 
-# LinuxCNC's arc tolerances (interp_internal.hh), program units
-ARC_TOLERANCE_MM = 2 * 0.01 * math.sqrt(2)       # CENTER_ARC_RADIUS_TOLERANCE_MM
-ARC_TOLERANCE_INCH = 2 * 0.001 * math.sqrt(2)    # CENTER_ARC_RADIUS_TOLERANCE_INCH
-ARC_RELATIVE_TOLERANCE = 0.001                   # SPIRAL_RELATIVE_TOLERANCE
-MIN_ARC_RADIUS_INCH = 0.00005                    # RADIUS_TOLERANCE_INCH (0.00127 mm)
 
 # Codes that do not move the tool, read and set aside (listed in NCRead.ignored).
 IGNORED_CODES = {
@@ -227,41 +224,43 @@ def _check_arc(number: int, raw: str, start, end, centre, inch: bool) -> None:
                           f"{_shown(raw)}")
 
 
-def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
-    """(Operation, line number of every move) with ``.ignored`` (see :class:`NCRead`).
-    Coordinates in mm (G20 programs are converted)."""
-    if not isinstance(text, str):
-        raise NCReadError("the NC program must be text")
-    position = {"X": 0.0, "Y": 0.0, "Z": 0.0, "C": 0.0}
-    known = set()
-    mode, absolute, scale = None, True, 1.0
-    retract, cycle_start_z, cycle = "G98", None, {}      # G98/G99; the Z a cycle started from; its R, Z, Q
-    kinds, points, centres, c_values, lines = [], [], [], [], []
-    speeds, turning = [], []          # per move: the S in effect, the direction (None: stopped)
-    speed, direction = 0.0, None
-    feed_rate, feed_line = None, None     # the F in effect and the line that set it
-    saw_c = False
-    ignored: dict = {}
-    comments: list = []
+class _Reader:
+    """The reader's state between lines, and one line at a time (:meth:`block`); the plain
+    lines of a run are followed in bulk by :func:`ncplain.plain_moves` from the same state."""
 
-    def ignore(code, meaning, number):
-        entry = ignored.setdefault(code, {"code": code, "meaning": meaning, "count": 0, "first_line": number})
-        entry["count"] += 1
+    def __init__(self):
+        self.position = {"X": 0.0, "Y": 0.0, "Z": 0.0, "C": 0.0}
+        self.known = set()
+        self.mode, self.absolute, self.scale = None, True, 1.0
+        self.retract, self.cycle_start_z, self.cycle = "G98", None, {}   # G98/G99; the Z a cycle started from; its R, Z, Q
+        self.speed, self.direction = 0.0, None      # the S in effect, the direction (None: stopped)
+        self.feed_rate, self.feed_line = None, None     # the F in effect and the line that set it
+        self.saw_c = False
+        self.started = False
+        self.ignored: dict = {}
+        self.comments: list = []
+        self.moves = MoveStore()
 
-    started = False
-    # lines end at LF, CR LF or CR only: str.splitlines would also break at form feeds and at
-    # U+0085, a byte of many UTF-8 kanji read as latin-1 (工 of 工具 in a comment), and shift the numbers
-    for number, raw in enumerate(_LINE_BREAK.split(text), start=1):
-        line = _strip_comments(raw, number, comments)
+    def ignore(self, code, meaning, number, count=1):
+        entry = self.ignored.setdefault(code, {"code": code, "meaning": meaning, "count": 0, "first_line": number})
+        entry["count"] += count
+
+    def move(self, kind, z, centre, number):
+        self.moves.append(kind, (self.position["X"], self.position["Y"], z), centre, self.position["C"], number,
+                          self.speed if self.direction is not None else 0.0, self.direction is not False)
+
+    def block(self, number: int, raw: str) -> bool:
+        """Follow line ``number``; True when it ends the program."""
+        line = _strip_comments(raw, number, self.comments)
         if line.startswith("%"):
-            if started:     # the closing %: the end of the program (LinuxCNC, and the end of the tape on a Fanuc)
-                break
-            continue
+            if self.started:     # the closing %: the end of the program (LinuxCNC, and the end of the tape on a Fanuc)
+                return True
+            return False
         if not line:
-            continue
-        started = True
+            return False
+        self.started = True
         if re.fullmatch(r"O\d+", line):
-            continue
+            return False
         if line.startswith("/"):
             raise NCReadError(f"line {number}: a block delete '/' is not followed (whether the control skips the "
                               f"line depends on its Block Delete switch): {_shown(raw)}")
@@ -286,7 +285,7 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             if len(group) == 2 and all(code in codes for code in group):
                 raise NCReadError(f"line {number}: {group[0]} and {group[1]} are in one modal group, so one block "
                                   f"cannot have both: {_shown(raw)}")
-        block_scale = 25.4 if "G20" in codes else 1.0 if "G21" in codes else scale
+        block_scale = 25.4 if "G20" in codes else 1.0 if "G21" in codes else self.scale
         for letter in [a for a in AXES if a in values] + [w for w in "IJ" if w in values]:
             if abs(values[letter]) * (block_scale if letter != "C" else 1.0) > MAX_REACH_MM:
                 raise NCReadError(f"line {number}: {letter}{values[letter]:.6g} lies beyond the {MAX_REACH_MM:g} mm "
@@ -295,40 +294,40 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             if values["F"] < 0:
                 raise NCReadError(f"line {number}: F{values['F']:g} is a negative feed, which no control takes: "
                                   f"{_shown(raw)}")
-            feed_rate, feed_line = values["F"], number
+            self.feed_rate, self.feed_line = values["F"], number
         if "P" in values and "G4" in codes and values["P"] < 0:
             raise NCReadError(f"line {number}: G4 P{values['P']:g} is a negative dwell: {_shown(raw)}")
         # LinuxCNC's order of execution in a block: S, then the tool change M6, then M3/M4/M5
         if "S" in values:
             if values["S"] < 0:
                 raise NCReadError(f"line {number}: S{values['S']:g} is not a spindle speed: {_shown(raw)}")
-            speed = values["S"]
+            self.speed = values["S"]
         if "M6" in codes:
-            direction = None
+            self.direction = None
         if spindle:
-            direction = SPINDLE[spindle[0]]
+            self.direction = SPINDLE[spindle[0]]
         home = lift = False
         for code in codes:
             if code in REFUSED:
                 raise NCReadError(f"line {number}: {code} {REFUSED[code]}: {_shown(raw)}")
             if code in MOTION:
-                mode = MOTION[code]
+                self.mode = MOTION[code]
             elif code in CYCLES:
-                if mode not in CYCLES:
-                    cycle_start_z = position["Z"]
-                mode = code
+                if self.mode not in CYCLES:
+                    self.cycle_start_z = self.position["Z"]
+                self.mode = code
             elif code == "G80":
-                mode = None
+                self.mode = None
             elif code in RETRACTS:
-                retract = code
+                self.retract = code
             elif code == "G90":
-                absolute = True
+                self.absolute = True
             elif code == "G91":
-                absolute = False
+                self.absolute = False
             elif code == "G20":
-                scale = 25.4
+                self.scale = 25.4
             elif code == "G21":
-                scale = 1.0
+                self.scale = 1.0
             elif code == "G28":
                 home = True
             elif code == "G53":
@@ -336,19 +335,19 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             elif code in _END_CODES or code in SPINDLE:
                 pass
             elif code in IGNORED_CODES:
-                ignore(code, IGNORED_CODES[code], number)
+                self.ignore(code, IGNORED_CODES[code], number)
             else:
                 raise NCReadError(f"line {number}: {code} is not a code this reader knows: {_shown(raw)}")
         for letter in values:
             if letter in AXES or letter in "IJS":
                 continue
             if letter in WORD_USE:
-                ignore(letter, WORD_USE[letter], number)
+                self.ignore(letter, WORD_USE[letter], number)
             elif letter == "P" and any(c in ("G4", "G64") for c in codes):
                 continue
-            elif letter in "RQP" and mode in CYCLES:
+            elif letter in "RQP" and self.mode in CYCLES:
                 continue
-            elif letter == "R" and mode in (2, 3) and not home:
+            elif letter == "R" and self.mode in (2, 3) and not home:
                 raise NCReadError(f"line {number}: R-format arcs are not supported; use I and J: {_shown(raw)}")
             else:
                 raise NCReadError(f"line {number}: the {letter} word is not supported here: {_shown(raw)}")
@@ -356,14 +355,14 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
         axes = [a for a in AXES if a in values]
         if home:
             # G28 goes home through the point its words give: only "through where it is" can be
-            # followed (G91 G28 Z0), and home itself is not known: the tool stays put.
-            if absolute or any(values[a] != 0 for a in axes):
+            # followed (G91 G28 Z0), and home itself is not self.known: the tool stays put.
+            if self.absolute or any(values[a] != 0 for a in axes):
                 raise NCReadError(f"line {number}: G28 is followed only as G91 G28 with zero words (home is not "
                                   f"known to the reader): {_shown(raw)}")
-            ignore("G28", "return to the reference point (not simulated: the tool is taken to stay put)", number)
+            self.ignore("G28", "return to the reference point (not simulated: the tool is taken to stay put)", number)
             if ends:
-                break
-            continue
+                return True
+            return False
         if lift:
             # G53 moves in machine coordinates, which the reader does not know; a Z-only move is the
             # posts' lift to the top of travel (before XY after a start or a tool load), followed as
@@ -371,144 +370,210 @@ def read_nc(text: str, tool: Tool, name: str = "NC program") -> NCRead:
             if [a for a in axes if a != "Z"] or "I" in values or "J" in values:
                 raise NCReadError(f"line {number}: G53 moves in machine coordinates, which the reader does not "
                                   f"know (only a Z lift is followed): {_shown(raw)}")
-            ignore("G53", "lift in machine coordinates (not simulated: the tool is taken to stay put)", number)
+            self.ignore("G53", "lift in machine coordinates (not simulated: the tool is taken to stay put)", number)
             if ends:
-                break
-            continue
-        if mode in CYCLES and (axes or any(w in values for w in "RQ")):
-            if not absolute:
+                return True
+            return False
+        if self.mode in CYCLES and (axes or any(w in values for w in "RQ")):
+            if not self.absolute:
                 raise NCReadError(f"line {number}: a drilling cycle in incremental mode (G91) is not followed: "
                                   f"{_shown(raw)}")
             if "C" in values:
                 raise NCReadError(f"line {number}: a drilling cycle with a C word is not followed: {_shown(raw)}")
             for word in "ZRQ":
                 if word in values:
-                    cycle[word] = values[word] * scale
-            if "Z" not in cycle or "R" not in cycle:
-                raise NCReadError(f"line {number}: {mode} needs its Z (the bottom) and R (the retract plane) "
+                    self.cycle[word] = values[word] * self.scale
+            if "Z" not in self.cycle or "R" not in self.cycle:
+                raise NCReadError(f"line {number}: {self.mode} needs its Z (the bottom) and R (the retract plane) "
                                   f"words: {_shown(raw)}")
-            if mode == "G83" and not cycle.get("Q", 0) > 0:
+            if self.mode == "G83" and not self.cycle.get("Q", 0) > 0:
                 raise NCReadError(f"line {number}: G83 needs a peck Q greater than 0: {_shown(raw)}")
-            if mode == "G82" and values.get("P", 0) < 0:
+            if self.mode == "G82" and values.get("P", 0) < 0:
                 raise NCReadError(f"line {number}: G82 P{values['P']:g} is a negative dwell: {_shown(raw)}")
-            if cycle["Z"] > cycle["R"]:
-                raise NCReadError(f"line {number}: the cycle's bottom Z{cycle['Z']:g} lies above its R plane "
-                                  f"R{cycle['R']:g}: {_shown(raw)}")
-            if feed_line is None or not feed_rate:
-                raise NCReadError(f"line {number}: {mode} with no feed in effect (a control refuses a cutting move "
+            if self.cycle["Z"] > self.cycle["R"]:
+                raise NCReadError(f"line {number}: the cycle's bottom Z{self.cycle['Z']:g} lies above its R plane "
+                                  f"R{self.cycle['R']:g}: {_shown(raw)}")
+            if self.feed_line is None or not self.feed_rate:
+                raise NCReadError(f"line {number}: {self.mode} with no feed in effect (a control refuses a cutting move "
                                   f"without a feed): {_shown(raw)}")
-            if not any(a in values for a in "XY") and not kinds:
+            if not any(a in values for a in "XY") and not self.moves.count:
                 raise NCReadError(f"line {number}: a drilling cycle before the tool's XY position is known: "
                                   f"{_shown(raw)}")
-            x = values["X"] * scale if "X" in values else position["X"]
-            y = values["Y"] * scale if "Y" in values else position["Y"]
-            r_plane, bottom = cycle["R"], cycle["Z"]
+            x = values["X"] * self.scale if "X" in values else self.position["X"]
+            y = values["Y"] * self.scale if "Y" in values else self.position["Y"]
+            r_plane, bottom = self.cycle["R"], self.cycle["Z"]
 
             def go(kind, z, xy=None):
-                position["X"], position["Y"] = (x, y) if xy is None else xy
-                position["Z"] = z
-                kinds.append(kind)
-                points.append((position["X"], position["Y"], z))
-                centres.append((np.nan, np.nan, np.nan))
-                c_values.append(position["C"])
-                lines.append(number)
-                speeds.append(speed if direction is not None else 0.0)
-                turning.append(direction is not False)
+                self.position["X"], self.position["Y"] = (x, y) if xy is None else xy
+                self.position["Z"] = z
+                self.move(kind, z, (np.nan, np.nan, np.nan), number)
 
-            if position["Z"] < r_plane:          # below R: up to it first (LinuxCNC's preliminary motion)
-                go(RAPID, r_plane, (position["X"], position["Y"]))
-            go(RAPID, position["Z"])              # over the hole at the height it is at
+            if self.position["Z"] < r_plane:          # below R: up to it first (LinuxCNC's preliminary motion)
+                go(RAPID, r_plane, (self.position["X"], self.position["Y"]))
+            go(RAPID, self.position["Z"])              # over the hole at the height it is at
             go(RAPID, r_plane)
-            if mode == "G83":
+            if self.mode == "G83":
                 depth = r_plane
                 while depth > bottom + 1e-9:
                     if depth < r_plane:
                         go(RAPID, depth + PECK_CLEARANCE_MM)
-                    depth = max(bottom, depth - cycle["Q"])
+                    depth = max(bottom, depth - self.cycle["Q"])
                     go(FEED, depth)
                     if depth > bottom + 1e-9:
                         go(RAPID, r_plane)
             else:
                 go(FEED, bottom)
-            top = r_plane if retract == "G99" else max(r_plane, cycle_start_z if cycle_start_z is not None else r_plane)
+            top = r_plane if self.retract == "G99" else max(r_plane, self.cycle_start_z if self.cycle_start_z is not None else r_plane)
             go(RAPID, top)
-            known.update(("X", "Y", "Z"))
+            self.known.update(("X", "Y", "Z"))
             if ends:
-                break
-            continue
-        if ("I" in values or "J" in values) and (mode not in (2, 3) or not axes):
+                return True
+            return False
+        if ("I" in values or "J" in values) and (self.mode not in (2, 3) or not axes):
             raise NCReadError(f"line {number}: I or J without an arc move in {_shown(raw)}")
         if axes:
-            if mode is None:
+            if self.mode is None:
                 raise NCReadError(f"line {number}: a move before any G0/G1/G2/G3: {_shown(raw)}")
-            if not absolute and not kinds:
-                unknown = [a for a in axes if a not in known]
+            if not self.absolute and not self.moves.count:
+                unknown = [a for a in axes if a not in self.known]
                 if unknown:
                     raise NCReadError(f"line {number}: an incremental (G91) move before any absolute position of "
                                       f"{', '.join(unknown)}: {_shown(raw)}")
-            before = dict(position)
+            before = dict(self.position)
             for axis in axes:
-                value = values[axis] * (scale if axis != "C" else 1.0)
-                position[axis] = value if absolute else position[axis] + value
-            kind = (RAPID, FEED, ARC_CW, ARC_CCW)[mode]
-            if kind != RAPID and feed_line is None:
-                raise NCReadError(f"line {number}: a G{mode} move with no F word before it (a control refuses a "
+                value = values[axis] * (self.scale if axis != "C" else 1.0)
+                self.position[axis] = value if self.absolute else self.position[axis] + value
+            kind = (RAPID, FEED, ARC_CW, ARC_CCW)[self.mode]
+            if kind != RAPID and self.feed_line is None:
+                raise NCReadError(f"line {number}: a G{self.mode} move with no F word before it (a control refuses a "
                                   f"cutting move without a feed): {_shown(raw)}")
-            if kind != RAPID and not feed_rate:
-                raise NCReadError(f"line {number}: a G{mode} move with F0 in effect since line {feed_line} (a control "
+            if kind != RAPID and not self.feed_rate:
+                raise NCReadError(f"line {number}: a G{self.mode} move with F0 in effect since line {self.feed_line} (a control "
                                   f"refuses a cutting move without a feed): {_shown(raw)}")
             centre = (np.nan, np.nan, np.nan)
             if kind in (ARC_CW, ARC_CCW):
                 if "I" not in values and "J" not in values:
                     raise NCReadError(f"line {number}: an arc needs I and J: {_shown(raw)}")
-                if not kinds:
+                if not self.moves.count:
                     raise NCReadError(f"line {number}: an arc before the tool's XY position is known: "
                                       f"{_shown(raw)}")
-                centre = (before["X"] + values.get("I", 0.0) * scale, before["Y"] + values.get("J", 0.0) * scale,
-                          position["Z"])
-                _check_arc(number, raw, (before["X"], before["Y"]), (position["X"], position["Y"]), centre,
-                           scale != 1.0)
-            saw_c = saw_c or "C" in values
-            known.update(axes)
-            kinds.append(kind)
-            points.append((position["X"], position["Y"], position["Z"]))
-            centres.append(centre)
-            c_values.append(position["C"])
-            lines.append(number)
-            speeds.append(speed if direction is not None else 0.0)
-            turning.append(direction is not False)
+                centre = (before["X"] + values.get("I", 0.0) * self.scale, before["Y"] + values.get("J", 0.0) * self.scale,
+                          self.position["Z"])
+                _check_arc(number, raw, (before["X"], before["Y"]), (self.position["X"], self.position["Y"]), centre,
+                           self.scale != 1.0)
+            self.saw_c = self.saw_c or "C" in values
+            self.known.update(axes)
+            self.move(kind, self.position["Z"], centre, number)
         if ends:
+            return True
+        return False
+
+
+# lines per bulk call at most, and at first after a line the bulk reader left to block()
+BULK_LINES, BULK_FIRST = 65536, 64
+CHUNK_CHARS = 1 << 21        # text read per regular-expression pass
+
+
+def _chunks(text: str):
+    """(first line number, lines, rows of ncplain.PLAIN or None, end offset) of consecutive
+    pieces of ``text``, each ending at a line break."""
+    number, at = 1, 0
+    while True:
+        end = text.find("\n", at + CHUNK_CHARS) if at + CHUNK_CHARS < len(text) else -1
+        piece = text[at:] if end < 0 else text[at:end]
+        lines = piece.split("\n")
+        rows = PLAIN.findall(piece)
+        yield number, lines, (rows if len(rows) == len(lines) else None), (len(text) if end < 0 else end)
+        if end < 0:
+            return
+        number, at = number + len(lines), end + 1
+
+
+def _read_lines(reader: _Reader, first: int, lines: list, rows) -> bool:
+    """Follow ``lines`` (line ``first`` on): runs of plain lines in bulk, the others one at a
+    time; True when the program ends among them."""
+    if rows is None:
+        plain = np.zeros(len(lines), bool)
+    else:
+        plain = np.fromiter((row[ROW_OTHER] == "" for row in rows), bool, len(rows))
+    others = np.flatnonzero(~plain)
+    k, window = 0, BULK_LINES
+    while k < len(lines):
+        if plain[k]:
+            stop = min(int(others[np.searchsorted(others, k)]) if len(others) and others[-1] > k else len(lines),
+                       k + window)
+            done = plain_moves(reader, rows[k:stop], first + k)
+            k += done
+            window = min(BULK_LINES, 2 * window) if k == stop else max(BULK_FIRST, 2 * done)
+            if k == stop:
+                continue
+        if reader.block(first + k, lines[k]):
+            return True
+        k += 1
+    return False
+
+
+def read_nc(text: str, tool: Tool, name: str = "NC program", progress=None, bulk: bool = True) -> NCRead:
+    """(Operation, line number of every move) with ``.ignored`` (see :class:`NCRead`).
+    Coordinates in mm (G20 programs are converted).  ``progress``: optional callable(fraction),
+    called after every piece of about 2 MB of text is read (a place to cancel).
+
+    Plain lines are followed in bulk (:mod:`ncplain`), every other line one at a time
+    (:meth:`_Reader.block`), with the same result; ``bulk=False`` follows every line one at a
+    time (what the tests compare the bulk reading with)."""
+    if not isinstance(text, str):
+        raise NCReadError("the NC program must be text")
+    # lines end at LF, CR LF or CR only: str.splitlines would also break at form feeds and at
+    # U+0085, a byte of many UTF-8 kanji read as latin-1 (工 of 工具 in a comment), and shift the numbers
+    if "\r" in text:
+        text = text.replace("\r\n", "\n").replace("\r", "\n")
+    reader = _Reader()
+    for first, lines, rows, end in _chunks(text):
+        ended = _read_lines(reader, first, lines, rows if bulk else None)
+        if progress is not None:
+            progress(1.0 if ended else end / max(len(text), 1))
+        if ended:
             break
-    if comments:
-        ignored = {"(": {"code": "comment", "meaning": "comments", "count": len(set(comments)),
-                         "first_line": min(comments)}, **ignored}
-    if not kinds:
+    return _result(reader, tool, name)
+
+
+def _result(reader: _Reader, tool: Tool, name: str) -> NCRead:
+    ignored = reader.ignored
+    if reader.comments:
+        ignored = {"(": {"code": "comment", "meaning": "comments", "count": len(set(reader.comments)),
+                         "first_line": min(reader.comments)}, **ignored}
+    if not reader.moves.count:
         raise NCReadError("the NC file has no moves")
-    feed = np.where(np.array(kinds) == RAPID, np.nan, 1000.0)
-    rotary = {"c": np.array(c_values)} if saw_c else {}
-    cutting = np.flatnonzero(np.array(kinds) != RAPID)
-    slowest = min((speeds[i] for i in cutting), default=speeds[-1])
-    clockwise = turning[cutting[0]] if len(cutting) else True
+    moves = reader.moves.arrays()
+    kinds, speeds, turning = moves["kind"], moves["speed"], moves["turning"]
+    feed = np.where(kinds == RAPID, np.nan, 1000.0)
+    rotary = {"c": moves["c"]} if reader.saw_c else {}
+    cutting = np.flatnonzero(kinds != RAPID)
+    slowest = float(speeds[cutting].min()) if len(cutting) else float(speeds[-1])
+    clockwise = bool(turning[cutting[0]]) if len(cutting) else True
+    points = moves["point"]
     # The tool is taken to start where the first move ends: nothing is known of where it was.
-    op = Operation(name, tool, slowest, kinds, points, feed, center=centres, rotary=rotary, start=np.array(points[0]),
-                   spindle_cw=clockwise)
+    op = Operation(name, tool, slowest, kinds, points, feed, center=moves["centre"], rotary=rotary,
+                   start=points[0].copy(), spindle_cw=clockwise)
+    lines = LineNumbers(moves["line"])
     return NCRead(op, lines, sorted(ignored.values(), key=lambda e: e["first_line"]),
                   _spindle_runs(op, lines, speeds, turning, cutting))
 
 
-def _spindle_runs(op: Operation, lines: list, speeds: list, turning: list, cutting) -> list:
+def _spindle_runs(op: Operation, lines: LineNumbers, speeds: np.ndarray, turning: np.ndarray, cutting) -> list:
     """[(Operation, lines)]: ``op`` cut where a cutting move runs at another spindle (speed or
     direction) than the cutting move before it; rapids go with the run they lie in."""
-    starts = [0] + [int(i) for i, j in zip(cutting[1:], cutting[:-1])
-                    if (speeds[i], turning[i]) != (speeds[j], turning[j])]
+    changed = (speeds[cutting[1:]] != speeds[cutting[:-1]]) | (turning[cutting[1:]] != turning[cutting[:-1]])
+    starts = [0] + [int(i) for i in cutting[1:][changed]]
     if len(starts) == 1:
         return [(op, lines)]
     runs = []
     for a, b in zip(starts, starts[1:] + [len(op)]):
-        first = next((i for i in cutting if a <= i < b), a)
+        inside = cutting[(cutting >= a) & (cutting < b)]
+        first = int(inside[0]) if len(inside) else a
         where = f"line {lines[a]}" if b - a == 1 else f"lines {lines[a]}-{lines[b - 1]}"
-        part = op.replace(name=f"{op.name} {where}", spindle_rpm=speeds[first],
-                          spindle_cw=turning[first], kind=op.kind[a:b], xyz=op.xyz[a:b], feed=op.feed[a:b],
+        part = op.replace(name=f"{op.name} {where}", spindle_rpm=float(speeds[first]),
+                          spindle_cw=bool(turning[first]), kind=op.kind[a:b], xyz=op.xyz[a:b], feed=op.feed[a:b],
                           center=op.center[a:b], rotary={k: v[a:b] for k, v in op.rotary.items()},
                           start=op.xyz[a - 1] if a else op.start, links=None)
         runs.append((part, lines[a:b]))
