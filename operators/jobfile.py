@@ -308,7 +308,9 @@ def feeds_check(planned, program) -> list:
     setup = planned.job.setup
     if not setup.material:
         return []
-    return programcheck.check_program(program, setup.material, setup.machine)
+    from .toolstore import tool_makes
+
+    return programcheck.check_program(program, setup.material, setup.machine, known=tool_makes(program.tools()))
 
 
 def write_job(path: str, out: str, post_name: str | None = None, allow_findings: bool = False,

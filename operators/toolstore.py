@@ -31,6 +31,31 @@ def save(library) -> str:
     return store.save(library_path(), library)
 
 
+def library_or_none():
+    """The user's tool library, or None when there is no file yet (nothing is written here) or
+    it cannot be read."""
+    path = library_path()
+    if not os.path.isfile(path):
+        return None
+    try:
+        return store.load(path)
+    except ToolLibraryError:
+        return None
+
+
+def tool_makes(tools) -> dict:
+    """{tool number: (flutes, tool material)} for the program tools ``tools`` that the user's
+    library holds as the same tool (number, kind and diameter); for the feeds check."""
+    library = library_or_none()
+    found = {}
+    for tool in tools if library is not None else ():
+        entry = library.find(tool.number)
+        if (entry is not None and entry.to_ir_tool().kind == tool.kind
+                and abs(entry.diameter - float(tool.diameter)) <= 1e-6):
+            found[tool.number] = (entry.flutes, entry.material)
+    return found
+
+
 def stick_outs(entries) -> dict:
     """{tool number: stick-out (mm)} for a report's ``operations`` whose tool the user's library has
     as the same tool (its number, kind and diameter) with a measured stick-out; for the setup sheet.

@@ -127,3 +127,32 @@ def test_a_library_v_bit_gives_a_v_carve_its_angle(tmp_path):
                                    lambda: library)
     assert found == {"tool_number": 7, "diameter": 12.7, "flute_length": 12.0, "angle": 60.0,
                      "clear_tool_number": 4, "clear_diameter": 3.175, "clear_flute_length": 12.0}
+
+
+def test_the_feeds_check_takes_flutes_and_tool_material_from_the_library(tmp_path, monkeypatch):
+    """A job in hardwood drilling with T13, a 1-flute HSS drill in the library: the feeds entry runs
+    at feed / (rpm x 1) per tooth, not the 2-flute carbide it assumes without the library."""
+    import json
+
+    path = tmp_path / "config" / "tools.toml"
+    store.save(str(path), store.SEEDS.with_tool(LibraryTool(13, "drill", 4.2, flutes=1, material="hss",
+                                                            flute_length=33.0)))
+    setup = SETUP.replace('machine = "linuxcnc-manual"\n', 'machine = "linuxcnc-manual"\nmaterial = "hardwood"\n')
+    file = tmp_path / "job.toml"
+    file.write_text(setup + '\n[[operations]]\nkind = "drill"\nname = "holes"\n' + HOLES
+                    + 'tool = 13\nsettings = { depth = 10.0, rpm = 3000.0, feed = 150.0 }\n')
+    monkeypatch.setenv("KEZURI_TOOL_LIBRARY", str(path))
+    status, message, out = run("job", str(file))
+    assert status == 0, message
+    entry = json.load(open(os.path.join(out, "report.json")))["feeds"][0]
+    assert entry["flutes"] == 1 and entry["tool_material"] == "hss" and entry["assumed"] == []
+    assert entry["chip_load_mm"] == pytest.approx(150.0 / 3000.0, abs=1e-4)       # 0.05 mm per tooth
+    # a typed tool the library does not hold: assumed 2-flute carbide, and said so
+    typed = tmp_path / "typed.toml"
+    typed.write_text(setup + '\n[[operations]]\nkind = "drill"\nname = "holes"\n' + HOLES
+                     + 'settings = { depth = 10.0, rpm = 3000.0, feed = 150.0, tool_number = 31, diameter = 4.2 }\n')
+    status, message, out = run("job", str(typed))
+    assert status == 0, message
+    entry = json.load(open(os.path.join(out, "report.json")))["feeds"][0]
+    assert entry["flutes"] == 2 and set(entry["assumed"]) == {"flutes", "tool material"}
+    assert entry["chip_load_mm"] == pytest.approx(150.0 / 3000.0 / 2, abs=1e-4)

@@ -3,8 +3,9 @@ against its tool and the job's material (:func:`.calculator.check`).
 
 An operation's cutting feed is the feed that carries the most of its cutting length (its plunges
 and links at other feeds are not its chip load); its fastest feed is checked for overload too.  A
-tool that does not say its flutes or its material (the IR's tools do not yet) is taken as a
-2-flute carbide router bit, as the charts' are, and the entry says it was assumed.
+tool's flutes and material come from ``known`` (the user's tool library, matched by the shell on
+number, kind and diameter); a tool not found there is taken as a 2-flute carbide router bit, as
+the charts' are, and the entry says it was assumed.
 """
 from __future__ import annotations
 
@@ -36,15 +37,17 @@ def cutting_feeds(op) -> tuple:
     return main, max(by_feed)
 
 
-def check_program(operations, material: str, machine=None, tool_material: str = "carbide") -> list:
+def check_program(operations, material: str, machine=None, tool_material: str = "carbide",
+                  known: dict | None = None) -> list:
     """One entry per operation (report.json's ``feeds``): its tool, rpm, cutting feed, the chip
-    load they give, the band and the flags.  ``material``: a key of :data:`materials.MATERIALS`."""
+    load they give, the band and the flags.  ``material``: a key of :data:`materials.MATERIALS`;
+    ``known``: {tool number: (flutes, tool material)} for the tools whose make is known."""
     m = materials.material(material)
     entries = []
     for op in getattr(operations, "operations", operations):
         tool = op.tool
-        flutes = getattr(tool, "flutes", None)
-        t_material = getattr(tool, "material", None) or tool_material
+        flutes, given_material = (known or {}).get(tool.number, (None, None))
+        t_material = given_material or tool_material
         entry = {"operation": op.name, "tool": tool.describe(), "tool_number": tool.number, "material": m.key}
         main, fastest = cutting_feeds(op)
         rpm = float(op.spindle_rpm or 0.0)
@@ -60,8 +63,7 @@ def check_program(operations, material: str, machine=None, tool_material: str = 
             flags += [f for f in extra if f.kind == "overload"]
         entry.update({"checked": True, "spindle_rpm": rpm, "feed_mm_min": main, "fastest_feed_mm_min": fastest,
                       "flutes": found.flutes, "tool_material": found.tool_material,
-                      "assumed": [name for name, given in (("flutes", flutes), ("tool material",
-                                                                                  getattr(tool, "material", None)))
+                      "assumed": [name for name, given in (("flutes", flutes), ("tool material", given_material))
                                   if given is None],
                       "chip_load_mm": round(found.chip_load, 4), "band_mm": [round(v, 4) for v in found.band],
                       "flags": [f.as_dict() for f in flags], "notes": list(found.notes),
