@@ -2378,11 +2378,69 @@ PROFILE_TEMPLATES = {
         "輪郭加工 {0}：輪郭 {1} にタブがなく貫通します。その部分は最後のパスで外れます",
 }
 
+# work estimates before planning (toolpath/workload.py, issue 27): the message is
+# "<what> is about <n> <quantity>, over the <limit> this machine can plan; <advice>", each part
+# translated by its own template (NESTED)
+WORKLOAD_NESTED = {"{} is about {} {}, over the {} this machine can plan; {}": (0, 2, 4), "operation {}: {}": (1,)}
+WORKLOAD_TEMPLATES = {
+    "{} is about {} {}, over the {} this machine can plan; {}":
+        "{0} は約 {1} {2} で、この機械で計画できる上限 {3} を超えています。{4}",
+    # what is estimated
+    "carve {}: the finishing raster at scallop {} mm and sample spacing {} mm":
+        "曲面加工 {0}：スカラップ {1} mm、サンプル間隔 {2} mm の仕上げラスタ",
+    "carve {}: the roughing through {} mm of stock above the design at step down {} mm ({} levels)":
+        "曲面加工 {0}：形状の上の素材 {1} mm を切込み深さ {2} mm で削る荒加工（{3} 段）",
+    "engrave {}: the gouge texture at stepover {} mm and spacing {} mm over {} mm2":
+        "彫刻 {0}：ステップオーバー {1} mm、間隔 {2} mm、面積 {3} mm2 の彫刻刀跡テクスチャ",
+    "engrave {}: the band finishing at band stepover {} mm and band step down {} mm ({} rings, {} levels)":
+        "彫刻 {0}：帯のステップオーバー {1} mm、帯の切込み深さ {2} mm の帯仕上げ（{3} 周、{4} 段）",
+    "pocket {}: {} mm2 at stepover {} mm and step down {} mm ({} levels)":
+        "ポケット {0}：{1} mm2 をステップオーバー {2} mm、切込み深さ {3} mm で（{4} 段）",
+    "profile {}: {} mm of outline at step down {} mm ({} levels)":
+        "輪郭加工 {0}：輪郭 {1} mm を切込み深さ {2} mm で（{3} 段）",
+    "chamfer {}: the drawing": "面取り {0}：図面",
+    "drill {}: the drawing's holes": "穴あけ {0}：図面の穴",
+    "drill {}: the shortest order of its holes": "穴あけ {0}：穴の最短順序",
+    "drill {}: {} holes {} mm deep at peck {} mm": "穴あけ {0}：深さ {2} mm の穴 {1} 個をペック {3} mm で",
+    "pocket {}: the toolpath at a spacing of {} mm and a step down of {} mm":
+        "ポケット {0}：点間隔 {1} mm、切込み深さ {2} mm の工具経路",
+    "the STEP-NC file {}": "STEP-NC ファイル {0}",
+    "hole {} at {} lies beyond the {} mm any machine reaches (a unit mistake?)":
+        "穴 {0}（{1}）は、どの機械も届かない {2} mm より遠くにあります（単位の間違い？）",
+    "turn-mill {}: {} faces at sample spacing {} mm": "複合加工 {0}：{1} 面をサンプル間隔 {2} mm で",
+    # what is counted
+    "tool positions": "工具位置", "moves": "移動", "gouges": "彫刻刀跡", "ring passes": "周回パス",
+    "mm of path": "mm の経路", "outline points": "輪郭点", "holes": "穴", "holes to order": "順序付けする穴",
+    "pecks": "ペック", "path points": "経路点", "bytes": "バイト", "classification samples": "分類サンプル",
+    # what to do
+    "raise sample spacing to {} mm or more, or the scallop":
+        "サンプル間隔を {0} mm 以上にするか、スカラップを大きくしてください",
+    "raise step down to {} mm or more, or give less stock above the design":
+        "切込み深さを {0} mm 以上にするか、形状の上の素材を減らしてください",
+    "raise stepover to {} mm or more": "ステップオーバーを {0} mm 以上にしてください",
+    "raise band stepover or band step down": "帯のステップオーバーか帯の切込み深さを大きくしてください",
+    "raise stepover to {} mm or more, or the step down":
+        "ステップオーバーを {0} mm 以上にするか、切込み深さを大きくしてください",
+    "raise step down to {} mm or more": "切込み深さを {0} mm 以上にしてください",
+    "simplify the drawing (fewer points)": "図面を単純にしてください（点を減らす）",
+    "split the holes into several operations": "穴を複数の工程に分けてください",
+    "set the order to 'given' (the drawing's), or split the holes into several operations":
+        "順序を 'given'（図面の順）にするか、穴を複数の工程に分けてください",
+    "raise peck to {} mm or more": "ペックを {0} mm 以上にしてください",
+    "raise spacing to {} mm or more": "点間隔を {0} mm 以上にしてください",
+    "a workplan is a few MB: check that this is the file meant":
+        "ワークプランは数 MB です。意図したファイルか確認してください",
+    "raise sample spacing to {} mm or more, or use a mesh of fewer faces":
+        "サンプル間隔を {0} mm 以上にするか、面の少ないメッシュを使ってください",
+}
+
 MESSAGE_TEMPLATES.update(JOBLIST_TEMPLATES)
 MESSAGE_TEMPLATES.update(PROFILE_TEMPLATES)
 MESSAGES.update(PROFILE_TEXTS)
 MESSAGE_TEMPLATES.update(POCKET_TEMPLATES)
 NESTED.update(POCKET_NESTED)
+MESSAGE_TEMPLATES.update(WORKLOAD_TEMPLATES)
+NESTED.update(WORKLOAD_NESTED)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ...job import OperationKind, Part
+from ... import workload
 from .model import StepNcError
 from .solids import fixture_clearance, stock_box
 from .workplan import LoadedWorkplan, nothing_to_machine, skipped_workingsteps, to_program, workplan_from_text
@@ -43,6 +44,9 @@ class StepncKind(OperationKind):
     label = "STEP-NC Workplan"
     families = ("milling",)
     settings_type = StepncSettings
+
+    def workload(self, setup, settings, geometry: StepncGeometry) -> list:
+        return workload.stepnc(setup.name, len(geometry.text))
 
     def plan(self, setup, settings: StepncSettings, geometry: StepncGeometry, progress=None) -> Part:
         loaded = workplan_from_text(geometry.text)

@@ -11,6 +11,7 @@ import numpy as np
 
 from ...engines.meshrays import TrimeshRayEngine, check_mesh, face_samples
 from ...job import DesignLayer, OperationKind, Part
+from ... import workload
 from ...simulate import as_stock
 from . import turnmill
 from .turnreach import NEITHER, classify_faces
@@ -56,6 +57,13 @@ class TurnMillKind(OperationKind):
     label = "Turn-Mill"
     families = ("xzc",)
     settings_type = turnmill.TurnMillSettings
+
+    def workload(self, setup, settings, geometry: TurnMillGeometry) -> list:
+        vertices, faces = check_mesh(geometry.vertices, geometry.faces)
+        triangles = vertices[faces]
+        areas = np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]),
+                               axis=1) / 2.0
+        return workload.turnmill(setup.name, areas, settings)
 
     def plan(self, setup, settings, geometry: TurnMillGeometry, progress=None) -> Part:
         report = progress or (lambda fraction, text="": None)
