@@ -368,3 +368,39 @@ def test_range_messages_name_the_panel_and_the_label_as_the_japanese_panel_shows
     message = limits.problem("", "diameter", "Diameter", -2.0, "Tool Library 'T7 ball'", limits.LIBRARY["diameter"])
     japanese = translations.japanese_message(message)
     assert japanese.startswith(JA[(DEFAULT, "Tool Library")] + " 'T7 ball'：" + JA[(DEFAULT, "Diameter")]), japanese
+
+
+# A measurement put into a message with no format (str of a float) shows Blender's single
+# precision or the arithmetic's last bits: "outside the 140.00000664964318 x 90.00000427477062 mm
+# board", "stepover 0.30000001192092896 mm".  Every message the core or the shell raises or reports
+# formats such a value (:g, :.3f ...); exempt are values shown as given after "got" (the refused
+# input), !r (a value quoted as given), CONSTANTS written in the code, and these, which are not floats:
+NOT_MEASUREMENTS = {"feed_line",          # ncread: a line number
+                    "area",               # picture: a pixel rectangle (ints)
+                    "levels",             # pocket: a count
+                    "size", "scale",      # convert: already formatted text
+                    "lengths",            # sheetmetal: already formatted text
+                    "height",             # picture: "got {width} x {height}" pixels as given
+                    "overlap"}            # stepnc motion: a ratio or None, shown as the file gives it
+MEASUREMENT = re.compile(r"depth|diameter|size|radius|thickness|width|height|stepover|spacing|tolerance|length|"
+                         r"pitch|angle|scale|allowance|clearance|feed|rpm|overlap|distance|gap|reach|travel|area|"
+                         r"top|bottom|level|cell|margin|slope|^[xyz]$|_[xyz]$", re.I)
+
+
+def test_no_message_shows_a_measurement_unformatted():
+    bare = []
+    for message, where in raised_messages():
+        if not isinstance(message, ast.JoinedStr):
+            continue
+        before = ""
+        for part in message.values:
+            if isinstance(part, ast.Constant):
+                before = str(part.value)
+                continue
+            value = part.value
+            last = value.attr if isinstance(value, ast.Attribute) else getattr(value, "id", None)
+            if (part.format_spec is None and part.conversion != ord("r") and last and MEASUREMENT.search(last)
+                    and not last.isupper() and last not in NOT_MEASUREMENTS and not before.rstrip().endswith("got")):
+                bare.append(f"{where}: {{{ast.unparse(value)}}}")
+            before = ""
+    assert not bare, "measurements shown unformatted (give them :g or a precision):\n" + "\n".join(bare)
