@@ -2405,6 +2405,14 @@ WORKLOAD_TEMPLATES = {
     "pocket {}: the toolpath at a spacing of {} mm and a step down of {} mm":
         "ポケット {0}：点間隔 {1} mm、切込み深さ {2} mm の工具経路",
     "the STEP-NC file {}": "STEP-NC ファイル {0}",
+    "project #{}: its name is {} characters; the first {} are used, followed by ...":
+        "プロジェクト #{0}：名前が {1} 文字あります。先頭の {2} 文字に ... を付けて使います",
+    "no workpiece BLOCK: the stock bottom is taken as Z {}, the depth of the deepest through feature #{} {} ({} mm "
+    "below its top); check the stock's thickness, or give the workpiece its BLOCK":
+        "ワークピースに BLOCK がありません：素材の底を、最も深い貫通フィーチャ #{1} {2} の深さ Z {0}（上面から {3} mm）と"
+        "しました。素材の厚さを確認するか、ワークピースに BLOCK を指定してください",
+    "through feature #{} {} ends at Z {}, {} mm above that stock bottom: it does not go through":
+        "貫通フィーチャ #{0} {1} は Z {2} で終わり、その素材の底より {3} mm 上です：貫通しません",
     "hole {} at {} lies beyond the {} mm any machine reaches (a unit mistake?)":
         "穴 {0}（{1}）は、どの機械も届かない {2} mm より遠くにあります（単位の間違い？）",
     "turn-mill {}: {} faces at sample spacing {} mm": "複合加工 {0}：{1} 面をサンプル間隔 {2} mm で",
