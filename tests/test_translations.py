@@ -404,3 +404,39 @@ def test_no_message_shows_a_measurement_unformatted():
                 bare.append(f"{where}: {{{ast.unparse(value)}}}")
             before = ""
     assert not bare, "measurements shown unformatted (give them :g or a precision):\n" + "\n".join(bare)
+
+
+def warning_messages() -> dict:
+    """{English template: where} of every warning or note built with an f-string and added to a
+    list of warnings or notes (``warnings.append(f"...")``, ``notes.insert(0, f"...")``): the panel
+    reports them (translate_message) as it reports errors."""
+    root = os.path.dirname(os.path.dirname(operators.__file__))
+    found = {}
+    for top in ("toolpath", "post", "operators"):
+        for base, _, names in sorted(os.walk(os.path.join(root, top))):
+            for filename in sorted(names):
+                if not filename.endswith(".py") or filename == "translations.py":
+                    continue
+                with open(os.path.join(base, filename), encoding="utf-8") as stream:
+                    tree = ast.parse(stream.read(), filename)
+                for node in ast.walk(tree):
+                    if not (isinstance(node, ast.Call) and getattr(node.func, "attr", "") in {"append", "insert"}
+                            and node.args):
+                        continue
+                    target = ast.unparse(node.func.value)
+                    if "warning" not in target and "notes" not in target:
+                        continue
+                    message = node.args[-1]
+                    if isinstance(message, (ast.JoinedStr, ast.BinOp)):
+                        template = _template(message)
+                        if template is not None and "{}" in template:
+                            found.setdefault(template, f"{os.path.relpath(base, root)}/{filename}:{node.lineno}")
+    return found
+
+
+def test_every_formatted_warning_has_a_japanese_template():
+    found = warning_messages()
+    assert "through feature #{} '{}' ends at Z {}, {} mm above that stock bottom: it does not go through" in found
+    missing = sorted(f"{where}: {template!r}" for template, where in found.items()
+                     if template not in translations.MESSAGE_TEMPLATES)
+    assert not missing, f"{len(missing)} f-string warnings without a ja_JP template:\n" + "\n".join(missing)

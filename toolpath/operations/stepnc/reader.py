@@ -667,8 +667,11 @@ class _Reader:
         name = self.text(t, 0, "its_id")
         if len(name) <= MAX_NAME:
             return name
-        if warn:
-            self.warnings.append(f"{what} #{t.id}: its name is {len(name)} characters; the first {MAX_NAME} "
+        if warn and what == "project":
+            self.warnings.append(f"project #{t.id}: its name is {len(name)} characters; the first {MAX_NAME} "
+                                 "are used, followed by ...")
+        elif warn:
+            self.warnings.append(f"workingstep #{t.id}: its name is {len(name)} characters; the first {MAX_NAME} "
                                  "are used, followed by ...")
         return name[:MAX_NAME] + "..."
 

@@ -95,7 +95,7 @@ def workplan_of(part21) -> LoadedWorkplan:
 # --------------------------------------------------------------------------- workplan -> Program
 
 
-def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None = None) -> Program:
+def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None = None, progress=None) -> Program:
     """The NC program of a workplan: one Operation per enabled workingstep, named after it.
 
     order:   workingstep instance ids in the order to machine them (every workingstep once);
@@ -131,7 +131,9 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
             step.its_feature, "bottom_condition", None) in THROUGH_CONDITIONS], bottom)
     operations = []
     stock = in_process_stock(model)
-    for step in sequence:
+    for index, step in enumerate(sequence):
+        if progress is not None:        # (fraction, text); what it raises (the panel's Esc) stops the conversion
+            progress(index / len(sequence), f"workingstep #{step.id}")
         if step.id not in enabled:
             notes.append(f"workingstep #{step.id} '{step.its_id}' skipped: switched off (left out of the order to cut)")
             continue
