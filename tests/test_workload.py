@@ -313,3 +313,20 @@ def test_coincident_holes_among_many_are_found_in_a_moment_and_a_far_hole_is_ref
     assert len(drill.check_holes(grid_holes(25_000) + ((20.0008, 0.0008),))) == 25_001      # 1.1 micron apart
     with pytest.raises(drill.DrillError, match=r"hole 2 at \[1e\+200, 0.0\] lies beyond the 100000 mm"):
         drill.check_holes([(0.0, 0.0), (1e200, 0.0)])
+
+
+def test_the_panel_refuses_a_carving_past_the_limit_before_planning(empty_scene):
+    """Generate Carving with the finest scallop and sample spacing the panel allows (single
+    precision: 9.99999974737875e-05 and 0.0099999998 are shown as typed)."""
+    bpy = pytest.importorskip("bpy")
+    from kezuri.operators import samples
+    samples.set_millimetres(empty_scene)
+    assert bpy.ops.kezuri.carve_sample(sample="wave") == {"FINISHED"}
+    empty_scene.kezuri.carve.scallop = 0.0001
+    empty_scene.kezuri.carve.sample_spacing = 0.01
+    started = time.perf_counter()
+    with time_limit(60), pytest.raises(RuntimeError, match=r"carve '[^']*': the finishing raster at scallop 0\.0001 mm "
+                                                           r"and sample spacing 0\.01 mm is about 2\.\de7 tool positions, "
+                                                           r"over the 2e7 this machine can plan; raise sample spacing"):
+        bpy.ops.kezuri.carve_generate()
+    assert time.perf_counter() - started < 10.0
