@@ -59,7 +59,14 @@ class TurnMillKind(OperationKind):
     settings_type = turnmill.TurnMillSettings
 
     def workload(self, setup, settings, geometry: TurnMillGeometry) -> list:
-        vertices, faces = check_mesh(geometry.vertices, geometry.faces)
+        try:
+            vertices = np.asarray(geometry.vertices, float)
+            faces = np.asarray(geometry.faces, np.int64)
+        except (TypeError, ValueError):
+            return []           # the plan refuses the mesh by name (check_mesh)
+        if vertices.ndim != 2 or vertices.shape[1] != 3 or faces.ndim != 2 or faces.shape[1] != 3 \
+                or not len(faces) or faces.min() < 0 or faces.max() >= len(vertices):
+            return []
         triangles = vertices[faces]
         areas = np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]),
                                axis=1) / 2.0
