@@ -2394,8 +2394,9 @@ WORKLOAD_TEMPLATES = {
         "曲面加工 {0}：形状の上の素材 {1} mm を切込み深さ {2} mm で削る荒加工（{3} 段）",
     "engrave {}: the gouge texture at stepover {} mm and spacing {} mm over {} mm2":
         "彫刻 {0}：ステップオーバー {1} mm、間隔 {2} mm、面積 {3} mm2 の彫刻刀跡テクスチャ",
-    "engrave {}: the band finishing at band stepover {} mm and band step down {} mm ({} rings, {} levels)":
-        "彫刻 {0}：帯のステップオーバー {1} mm、帯の切込み深さ {2} mm の帯仕上げ（{3} 周、{4} 段）",
+    "engrave {}: the band finishing at band stepover {} mm and band step down {} mm ({} rings, {} levels round {} "
+    "mm of letter outlines)":
+        "彫刻 {0}：帯のステップオーバー {1} mm、帯の切込み深さ {2} mm の帯仕上げ（文字の輪郭 {5} mm を {3} 周、{4} 段）",
     "pocket {}: {} mm2 at stepover {} mm and step down {} mm ({} levels)":
         "ポケット {0}：{1} mm2 をステップオーバー {2} mm、切込み深さ {3} mm で（{4} 段）",
     "profile {}: {} mm of outline at step down {} mm ({} levels)":
@@ -2443,7 +2444,7 @@ WORKLOAD_TEMPLATES = {
         "穴 {0}（{1}）は、どの機械も届かない {2} mm より遠くにあります（単位の間違い？）",
     "turn-mill {}: {} faces at sample spacing {} mm": "複合加工 {0}：{1} 面をサンプル間隔 {2} mm で",
     # what is counted
-    "tool positions": "工具位置", "moves": "移動", "gouges": "彫刻刀跡", "ring passes": "周回パス",
+    "tool positions": "工具位置", "moves": "移動", "gouges": "彫刻刀跡",
     "mm of path": "mm の経路", "outline points": "輪郭点", "holes": "穴", "holes to order": "順序付けする穴",
     "pecks": "ペック", "path points": "経路点", "bytes": "バイト", "classification samples": "分類サンプル",
     # what to do

@@ -107,9 +107,9 @@ def test_engrave_gouges_at_a_tiny_stepover_are_refused():
 def test_engrave_band_rings_at_a_tiny_band_stepover_are_refused():
     settings = EngraveSettings(band_stepover=1e-5)
     message, _ = refused("engrave", settings, plate_geometry([("K", (square(20.0),))]), "Sign")
-    # (4 - 1) mm / 1e-5 mm + 1 = 300,001 rings, 2 levels of 1 mm: 6e5 passes
-    assert "band stepover 1e-05 mm and band step down 1 mm (300,001 rings, 2 levels) is about 600,002 ring passes, " \
-           "over the 20,000" in message, message
+    # (4 - 1) mm / 1e-5 mm + 1 = 300,001 rings, 2 levels of 1 mm, round the 80 mm square: 4.8e7 mm
+    assert "band stepover 1e-05 mm and band step down 1 mm (300,001 rings, 2 levels round 80 mm of letter " \
+           "outlines) is about 4.8e7 mm of path, over the 1e7" in message, message
 
 
 def test_pocket_path_at_a_tiny_stepover_is_refused():

@@ -14,6 +14,12 @@ The limits (:data:`LIMITS`) are measured on this project's planning, on a 2-core
    samples: 4e4-8e4 positions, 1-7 s), so 2e7 positions is about 3-20 minutes and 1-2 GB;
  - a program past 1e7 moves is hundreds of MB of NC text, more than a control's memory holds;
  - the rotary C unwrapping runs out of memory past 5e6 path points (issue 27's measurement);
+ - engraving cuts about 6e4 gouges a second (2e6: about half a minute before the check) and
+   5e5 mm of band path a second (a 1 km band: 20 s);
+ - the pocket and profile limit, 1e7 mm (10 km) of path, is 140 hours of cutting at 1.2 m/min;
+ - the limits of chamfer points, drill holes and pecks and turn-mill samples are set far above
+   any real job (a sign's outline has 1e4 points, a drilled panel 1e3 holes, the turn-mill
+   sample 2e4 samples), not measured at their edge;
  - the shortest drilling order compares pairs of holes: 2,000 holes in 2 s, 8,000 in 32 s, so
    20,000 is about 3 minutes;
  - a Part 21 file past 200 MB is not a workplan (the largest AP238 examples are a few MB).
@@ -43,7 +49,7 @@ LIMITS = {
     "carve finishing": Limit("tool positions", 2e7),
     "carve roughing": Limit("moves", 1e7),
     "engrave gouges": Limit("gouges", 2e6),
-    "engrave band": Limit("ring passes", 2e4),
+    "engrave band": Limit("mm of path", 1e7),
     "pocket path": Limit("mm of path", 1e7),
     "profile path": Limit("mm of path", 1e7),
     "chamfer points": Limit("outline points", 2e6),
@@ -160,7 +166,7 @@ def carve(name: str, size: tuple, stock_above: float, settings) -> list:
 def engrave(name: str, texture_area: float, letters_perimeter: float, settings) -> list:
     """Gouges: the roughing raster's length over the plate (area / stepover) cut into gouges every
     texture spacing.  Band: rings every band stepover across the band, each ramped down level by
-    level."""
+    level round the letters' outlines (``letters_perimeter``, mm)."""
     texture = settings.texture
     where = f"engrave {name!r}"
     estimates = []
@@ -175,10 +181,10 @@ def engrave(name: str, texture_area: float, letters_perimeter: float, settings) 
         rings = max(settings.band_width - 2 * settings.finish_tool.radius, 0.0) / settings.band_stepover + 1
         levels = math.ceil(abs(settings.band_depth) / settings.band_step_down)
         most = LIMITS["engrave band"].most
-        estimates.append(check(Estimate("engrave band", rings * levels),
+        estimates.append(check(Estimate("engrave band", rings * levels * letters_perimeter),
                                f"{where}: the band finishing at band stepover {settings.band_stepover:g} mm and "
                                f"band step down {settings.band_step_down:g} mm ({count(rings)} rings, "
-                               f"{count(levels)} levels)",
+                               f"{count(levels)} levels round {letters_perimeter:.0f} mm of letter outlines)",
                                "raise band stepover or band step down"))
     return estimates
 
