@@ -21,7 +21,8 @@ Each command writes its output files, ``report.json``, a preview PNG and ``setup
 job's setup sheet for the operator, one self-contained page) into --out.
 Exit status: 0 on success, 2 on bad input (the message says what to fix), 3 when the export gate
 refuses a program the simulation finds fault with (``--allow-findings`` writes it anyway, and
-``report.json`` records the override), 130 / 143 when stopped by SIGINT (Ctrl-C) / SIGTERM.
+``report.json`` records the override), 4 when out of memory (or the address space is capped below
+what Blender's module needs to load, 1.5 GB), 130 / 143 when stopped by SIGINT (Ctrl-C) / SIGTERM.
 ``job --each``: the rows that could run are written; the status is 2 when a row had bad input,
 else 3 when the gate refused a row.
 A run writes all its files or none: everything goes into a hidden staging folder beside --out and
@@ -178,22 +179,50 @@ def feeds(args) -> int:
     return 0
 
 
+MEMORY_STATUS = 4
+# Below about 1.3 GB of address space (ulimit -v) Blender's module dies while loading, by SIGSEGV in
+# its allocator, before any message can be given (measured with the bpy 5.0 wheel: 1.15 GB loads,
+# 1.2-1.25 GB crash); the samples run in 2 GB.  So a smaller cap is refused before anything loads.
+MIN_ADDRESS_SPACE = 1536 << 20
+
+
+def address_space_cap() -> int | None:
+    """The process's address-space limit in bytes (RLIMIT_AS, ``ulimit -v``), None when unlimited."""
+    try:
+        import resource
+    except ImportError:         # not on Windows
+        return None
+    soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+    return None if soft == resource.RLIM_INFINITY else soft
+
+
 def main(argv: list) -> int:
+    cap = address_space_cap()
+    if cap is not None and cap < MIN_ADDRESS_SPACE:
+        print(f"kezuri: the address space is capped at {cap >> 20} MB (ulimit -v); Blender's module crashes while "
+              f"loading below about 1300 MB: give the run {MIN_ADDRESS_SPACE >> 20} MB or more", file=sys.stderr)
+        return MEMORY_STATUS
     if script_arguments(argv)[:1] == ["tools"]:         # the tool library: no --out, no staging
         import_package()
         from kezuri.operators.toolbatch import main as tools_main
         return tools_main(script_arguments(argv)[1:])
-    args = parse(script_arguments(argv))
-    if args.command == "feeds":
-        return feeds(args)
-    with stoppable():
-        try:
-            load_extension()
-            return run(args)
-        except Stopped as stopped:
-            name = signal.Signals(stopped.signum).name
-            print(f"kezuri: stopped by {name}: nothing was written", file=sys.stderr)
-            return STOP_STATUS[stopped.signum]
+    try:
+        args = parse(script_arguments(argv))
+        if args.command == "feeds":
+            return feeds(args)
+        with stoppable():
+            try:
+                load_extension()
+                return run(args)
+            except Stopped as stopped:
+                name = signal.Signals(stopped.signum).name
+                print(f"kezuri: stopped by {name}: nothing was written", file=sys.stderr)
+                return STOP_STATUS[stopped.signum]
+    except MemoryError:
+        limit = f" (the address space is capped at {cap >> 20} MB, ulimit -v)" if cap is not None else ""
+        print(f"kezuri: out of memory{limit}: nothing was written; give the run more memory, or lighter settings "
+              "(a coarser stepover, sample spacing or simulation cell)", file=sys.stderr)
+        return MEMORY_STATUS
 
 
 def run(args) -> int:

@@ -196,10 +196,15 @@ class SteppedOperator:
         return run_reported(self, work)
 
     def invoke(self, context, event):
+        return self.start_stepped(context)
+
+    def start_stepped(self, context):
+        """From the UI: the work in steps from a timer, Esc to cancel (returns RUNNING_MODAL); in
+        background mode or without a window: :meth:`execute`, all at once."""
         import bpy
 
         if bpy.app.background or context.window is None:
-            return self.execute(context)
+            return SteppedOperator.execute(self, context)
         if self.bl_idname in SteppedOperator.running:
             self.report({"WARNING"},
                         translate_message("This job is already running: wait for it or press Esc to cancel it"))

@@ -26,7 +26,7 @@ from . import textcells
 from . import gate
 from . import pathview
 from .common import SteppedOperator
-from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
+from .exporting import Exported, NCExport, stages, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import SettingError, check_group
 from .plancache import cache_of, keep
@@ -181,16 +181,33 @@ def program_for_post(job: EngraveJob, post_name: str):
 
 def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str | None = None,
                    allow: bool | str = False, checked: bool = False, orient_spindle: bool = False,
-                   machine=None, findings: list | None = None) -> str:
+                   machine=None, findings: list | None = None, progress=None) -> str:
     """Write the program for ``post_name``; the export gate simulates it first unless the caller
     has (``checked``); ``allow``: the gate's override (see :func:`gate.check`); ``orient_spindle``:
     M19 before each tool change (Fanuc posts only); ``machine``: the machine profile (None: the
-    post's own)."""
+    post's own); ``progress``: the gate's (returning False cancels)."""
     post = machine_post(POST_FAMILIES, post_name, work_offset, orient_spindle, machine)
     text = post.to_text(program_for_post(job, post_name))
     if not checked:
-        gate.check(simulation(job), allow, machine=post.machine)
+        gate.check(simulation(job), allow, progress, machine=post.machine)
     return write_program(path, text, post, findings)
+
+
+def nc_export_request(scene, depsgraph, post_name: str, target: str):
+    """The panel's export: read the scene here; ``work(progress) -> Exported`` plans, checks and
+    writes ``target`` without touching Blender data (so it runs in steps, Esc cancelling)."""
+    compute = engrave_request(scene, depsgraph, post_name=post_name)
+    machine = scene.kezuri.machine
+    offset, orient = machine.work_offset, machine.orient_spindle
+    allow, profile = scene.kezuri.simulation.acknowledged, scene_machine(machine, POST_FAMILIES, post_name)
+
+    def work(progress=None) -> Exported:
+        planning, checking = stages(progress)
+        job, findings = compute(planning), []
+        written = export_engrave(job, post_name, target, offset, allow=allow, orient_spindle=orient,
+                                 machine=profile, findings=findings, progress=checking)
+        return Exported(written, job.replanned, findings)
+    return work
 
 
 def extension_for(post_name: str) -> str:
@@ -287,13 +304,8 @@ class KEZURI_OT_engrave_export(NCExport, bpy.types.Operator):
     def poll(cls, context):
         return KEZURI_OT_engrave_generate.poll(context)
 
-    def write(self, context) -> str:
-        job = run_engrave(context.scene, context.evaluated_depsgraph_get(), post_name=self.post)
-        self.replanned = job.replanned
-        machine = context.scene.kezuri.machine
-        return export_engrave(job, self.post, self.filepath, machine.work_offset,
-                              allow=context.scene.kezuri.simulation.acknowledged, orient_spindle=machine.orient_spindle,
-                              machine=scene_machine(machine, POST_FAMILIES, self.post), findings=self.findings)
+    def export_request(self, context):
+        return nc_export_request(context.scene, context.evaluated_depsgraph_get(), self.post, self.filepath)
 
 
 CLASSES = (KEZURI_OT_engrave_generate, KEZURI_OT_engrave_export)

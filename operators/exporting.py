@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import inspect
 import os
+from dataclasses import dataclass, field
 
 import bpy
 from bpy_extras.io_utils import ExportHelper
@@ -13,7 +14,7 @@ from bpy_extras.io_utils import ExportHelper
 from .. import post as posts
 from ..post.capacity import program_findings
 from ..post.output import write_atomic
-from .common import run_reported
+from .common import SteppedOperator
 from .preferences import scene_output_dir, scene_post
 from .plancache import replanned_message
 from .translations import translate_message
@@ -78,13 +79,41 @@ def report_findings(operator, findings) -> None:
         operator.report({"WARNING"}, translate_message(finding))
 
 
-class NCExport(ExportHelper):
+@dataclass
+class Exported:
+    """What an export's work returns: the written ``path``, the operation names re-planned (None:
+    the export does not plan through the scene's plans), what the machine cannot take of the
+    program (``findings``), and ``then(scene)``: what to record in the scene afterwards (on the
+    main thread), or None."""
+
+    path: str
+    replanned: list | None = None
+    findings: list = field(default_factory=list)
+    then: object = None
+
+
+def stages(progress, share: float = 0.5) -> tuple:
+    """(planning's progress, the gate's progress): ``progress`` split at ``share``; a stage's call
+    returns what ``progress`` returns (False or JobCancelled: cancelled)."""
+    if progress is None:
+        return None, None
+    return (lambda f, text="": progress(share * f, text or "planning"),
+            lambda f, text="": progress(share + (1 - share) * f, text or "checking"))
+
+
+class NCExport(SteppedOperator, ExportHelper):
     """Mixed into an ExportHelper operator with a ``post`` enum of ``post_families``.  The operator
-    sets ``file_suffix`` and implements ``write(context) -> path``; ``preferred_post`` names the
-    post the file browser starts with (None: the enum's own default)."""
+    sets ``file_suffix`` and implements ``export_request(context)``: it reads the scene (main thread)
+    and returns ``compute(progress) -> Exported``, which plans, checks through the gate and writes
+    the file without touching Blender data.  After the file browser (or from the job list's button)
+    the work runs in steps with a progress bar and Esc to cancel, as Generate does; a cancelled
+    export writes nothing (the file is written after the last progress call).  From a script or in
+    background mode it runs at once.  ``preferred_post`` names the post the file browser starts
+    with (None: the enum's own default)."""
 
     file_suffix = ""
     post_families: tuple = ("milling",)
+    progress_label = "export"
 
     def preferred_post(self, context) -> str | None:
         return scene_post(context.scene, context)
@@ -109,20 +138,26 @@ class NCExport(ExportHelper):
         self.filename_ext = self.extension_for(self.post)
         return ExportHelper.check(self, context)
 
+    def export_request(self, context):
+        raise NotImplementedError
+
+    def prepare(self, context):
+        if not self.properties.is_property_set("post"):
+            # run from a script without a post (invoke sets it from the file browser): the
+            # job's own post, as the file browser would have started with, not the enum's default
+            preferred = self.preferred_post(context)
+            if preferred is not None:
+                self.post = preferred
+        return self.export_request(context)
+
     def execute(self, context):
-        def work():
-            if not self.properties.is_property_set("post"):
-                # run from a script without a post (invoke sets it from the file browser): the
-                # job's own post, as the file browser would have started with, not the enum's default
-                preferred = self.preferred_post(context)
-                if preferred is not None:
-                    self.post = preferred
-            self.findings = []       # what the machine cannot take of the program (write_program)
-            self.replanned = None    # set by a write() that plans through the scene's plans (plancache)
-            path = self.write(context)
-            self.report({"INFO"}, translate_message(f"Wrote {path}"))
-            if self.replanned is not None:
-                self.report({"INFO"}, translate_message(replanned_message(list(self.replanned))))
-            report_findings(self, self.findings)
-            return {"FINISHED"}
-        return run_reported(self, work)
+        return self.start_stepped(context)
+
+    def finish(self, context, exported: Exported):
+        if exported.then is not None:
+            exported.then(context.scene)
+        self.report({"INFO"}, translate_message(f"Wrote {exported.path}"))
+        if exported.replanned is not None:
+            self.report({"INFO"}, translate_message(replanned_message(list(exported.replanned))))
+        report_findings(self, exported.findings)
+        return {"FINISHED"}

@@ -302,15 +302,17 @@ def plan_file(path: str, post_name: str | None = None, progress=None, text: str 
     return plan_job(job, progress=progress), frame, families, scene
 
 
-def feeds_check(planned, program) -> list:
+def feeds_check(planned, program, library=False) -> list:
     """The check before export (report.json's ``feeds``): each operation of the program against the
-    job's material and machine; [] when the job has no material."""
+    job's material and machine; [] when the job has no material.  ``library``: the tool library
+    already read (see toolstore.tool_makes), else read here."""
     setup = planned.job.setup
     if not setup.material:
         return []
     from .toolstore import tool_makes
 
-    return programcheck.check_program(program, setup.material, setup.machine, known=tool_makes(program.tools()))
+    return programcheck.check_program(program, setup.material, setup.machine,
+                                      known=tool_makes(program.tools(), library))
 
 
 def write_job(path: str, out: str, post_name: str | None = None, allow_findings: bool = False,

@@ -24,7 +24,7 @@ from ..toolpath.ir.errors import InputError
 from ..toolpath.job import fingerprint, plan_job
 from . import convert, pathview, simview
 from .common import SteppedOperator, run_reported
-from .exporting import NCExport, machine_post, write_program
+from .exporting import Exported, NCExport, stages, machine_post, write_program
 from .jobentry import JobFileError
 from .plancache import cache_of, keep, replanned_message
 from .jobrows import (active_row, job_list, read_back, row_by_uid, row_entry, select_row, show_row,
@@ -152,27 +152,44 @@ def operation_rows(planned) -> list:
 def export_job(scene, path: str, post_name: str, allow=False, findings: list | None = None, progress=None):
     """Plan what is stale (the rest from the scene's kept plans), check the whole job through the
     export gate and write one program: (the written path, the names re-planned)."""
+    exported = export_job_request(scene, path, post_name, allow)(progress)
+    exported.then(scene)
+    if findings is not None:
+        findings += exported.findings
+    return exported.path, exported.replanned
+
+
+def export_job_request(scene, path: str, post_name: str, allow=False):
+    """Read the job list (main thread); ``compute(progress) -> Exported`` plans, checks and writes
+    without touching Blender data; its ``then`` records the rows' states in the scene."""
     from .. import post as posts
     from . import gate
     from .workflow import SimulationSetup
 
     job, frame, families = build(scene, post_name)
-    planned = plan_job(job, cache_of(scene), progress)
-    keep(cache_of(scene), planned)
-    record(scene, planned)
+    cache = cache_of(scene)
     setup = job.setup
-    post_class = posts.find(families, setup.post)
-    program = planned.program(macro=post_class.needs_texture)
-    cut, stock, limits = planned.simulation()
-    gate.check(SimulationSetup(cut, stock, limits, frame, setup.name), allow, machine=setup.machine)
-    machine = scene.kezuri.machine
-    post = machine_post(families, setup.post, setup.work_offset, machine.orient_spindle, setup.machine)
-    written = write_program(path, post.to_text(program), post, findings)
-    if findings is not None:        # the feeds against the material: warnings, never a refusal
-        from ..toolpath.feeds import programcheck
-        from .jobfile import feeds_check
-        findings += programcheck.warnings(feeds_check(planned, program))
-    return written, planned.replanned()
+    from ..toolpath.feeds import programcheck
+    from .jobfile import feeds_check
+    from .toolstore import library_or_none
+
+    library = library_or_none() if setup.material else None     # read here: compute may run off the main thread
+    post = machine_post(families, setup.post, setup.work_offset, scene.kezuri.machine.orient_spindle, setup.machine)
+    macro = posts.find(families, setup.post).needs_texture
+
+    def compute(progress=None):
+        planning, checking = stages(progress)
+        planned = plan_job(job, cache, planning)
+        keep(cache, planned)
+        cut, stock, limits = planned.simulation()
+        gate.check(SimulationSetup(cut, stock, limits, frame, setup.name), allow, checking, machine=setup.machine)
+        findings = []
+        program = planned.program(macro=macro)
+        written = write_program(path, post.to_text(program), post, findings)
+        findings += programcheck.warnings(feeds_check(planned, program, library))   # the feeds: warnings only
+        return Exported(written, planned.replanned(), findings,
+                        lambda scene: record(scene, planned))
+    return compute
 
 
 # ----- job files ----------------------------------------------------------------------------------------
@@ -475,11 +492,9 @@ class KEZURI_OT_job_export(NCExport, bpy.types.Operator):
     def poll(cls, context):
         return JobListOperator.poll.__func__(cls, context)
 
-    def write(self, context) -> str:
-        path, replanned = export_job(context.scene, self.filepath, self.post,
-                                     allow=context.scene.kezuri.simulation.acknowledged, findings=self.findings)
-        self.report({"INFO"}, translate_message(replanned_message(replanned)))
-        return path
+    def export_request(self, context):
+        return export_job_request(context.scene, self.filepath, self.post,
+                                  allow=context.scene.kezuri.simulation.acknowledged)
 
 
 class KEZURI_OT_job_save(bpy.types.Operator, ExportHelper):

@@ -27,8 +27,8 @@ from ..toolpath.operations.stepnc.solids import block_of, feature_solid, stock_b
 from . import convert
 from . import gate
 from . import pathview
-from .common import run_reported
-from .exporting import NCExport, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
+from .common import SteppedOperator, run_reported
+from .exporting import Exported, NCExport, stages, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
 from .properties import post_items, post_number
@@ -189,16 +189,28 @@ def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progr
     """Convert the workplan, simulate it (the export gate) and write it: (path, the planned
     :class:`WorkplanJob`, gate's simulation job, gate report).  ``profile``: the machine (default:
     Machine & Stock's for the post)."""
+    return export_nc_request(scene, post_name, path, allow, profile, findings)(progress)
+
+
+def export_nc_request(scene, post_name: str, path: str, allow: bool | str = False, profile=None,
+                      findings: list | None = None):
+    """Read the scene (the workplan's file, Machine & Stock); ``compute(progress)`` plans, checks
+    and writes as :func:`export_nc` says, without touching Blender data."""
     machine = scene.kezuri.machine
     profile = profile or scene_machine(machine, POST_FAMILIES, post_name)
-    job = plan_workplan(scene, profile, post_name)
-    program = job.program
+    job = workplan_job(scene, profile, post_name)
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
     post = machine_post(POST_FAMILIES, post_name, machine.work_offset, machine.orient_spindle, profile)
     if post.needs_texture:
         raise posts.PostError(f"the {post.name} post writes textured engravings only; pick another post")
-    text = post.to_text(program)
-    checked, report = gate.check(simulation(job), allow, progress, machine=post.machine)
-    return write_program(path, text, post, findings), job, checked, report
+
+    def compute(progress=None) -> tuple:
+        planning, checking = stages(progress)
+        planned = WorkplanJob(plan_job(job, progress=planning).parts[0], frame)
+        text = post.to_text(planned.program)
+        checked, report = gate.check(simulation(planned), allow, checking, machine=post.machine)
+        return write_program(path, text, post, findings), planned, checked, report
+    return compute
 
 
 def extension_for(post_name: str) -> str:
@@ -265,12 +277,13 @@ class KEZURI_OT_import_stepnc(bpy.types.Operator, ImportHelper):
         return run_reported(self, work)
 
 
-class KEZURI_OT_stepnc_generate(bpy.types.Operator):
+class KEZURI_OT_stepnc_generate(SteppedOperator, bpy.types.Operator):
     """Convert the workplan, in the list's order, and show the toolpaths"""
 
     bl_idname = "kezuri.stepnc_generate"
     bl_label = "Generate Workplan Toolpaths"
     bl_options = {"REGISTER", "UNDO"}
+    progress_label = "stepnc"
 
     @classmethod
     def poll(cls, context):
@@ -279,17 +292,17 @@ class KEZURI_OT_stepnc_generate(bpy.types.Operator):
             return False
         return True
 
-    def execute(self, context):
-        def work():
-            job = plan_workplan(context.scene)
-            program = job.program
-            show_workplan(context.scene, job.loaded, program)
-            for note in program.notes:
-                self.report({"WARNING"}, translate_message(note))
-            minutes = program.cycle_time() / 60
-            self.report({"INFO"}, translate_message(f"{len(program.operations)} operations, about {minutes:.1f} min"))
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def prepare(self, context):
+        return stepnc_request(context.scene, context.evaluated_depsgraph_get())
+
+    def finish(self, context, job):
+        program = job.program
+        show_workplan(context.scene, job.loaded, program)
+        for note in program.notes:
+            self.report({"WARNING"}, translate_message(note))
+        minutes = program.cycle_time() / 60
+        self.report({"INFO"}, translate_message(f"{len(program.operations)} operations, about {minutes:.1f} min"))
+        return {"FINISHED"}
 
 
 class KEZURI_OT_stepnc_export(NCExport, bpy.types.Operator):
@@ -309,10 +322,11 @@ class KEZURI_OT_stepnc_export(NCExport, bpy.types.Operator):
     def poll(cls, context):
         return KEZURI_OT_stepnc_generate.poll(context)
 
-    def write(self, context) -> str:
-        path, *_ = export_nc(context.scene, self.post, self.filepath, allow=context.scene.kezuri.simulation.acknowledged,
-                             findings=self.findings)
-        return path
+    def export_request(self, context):
+        findings = []
+        compute = export_nc_request(context.scene, self.post, self.filepath,
+                                    allow=context.scene.kezuri.simulation.acknowledged, findings=findings)
+        return lambda progress=None: Exported(compute(progress)[0], None, findings)
 
 
 class KEZURI_OT_export_stepnc(bpy.types.Operator, ExportHelper):

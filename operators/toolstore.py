@@ -43,10 +43,12 @@ def library_or_none():
         return None
 
 
-def tool_makes(tools) -> dict:
+def tool_makes(tools, library=False) -> dict:
     """{tool number: (flutes, tool material)} for the program tools ``tools`` that the user's
-    library holds as the same tool (number, kind and diameter); for the feeds check."""
-    library = library_or_none()
+    library holds as the same tool (number, kind and diameter); for the feeds check.  ``library``:
+    the library already read (None: there is none), else it is read here."""
+    if library is False:
+        library = library_or_none()
     found = {}
     for tool in tools if library is not None else ():
         entry = library.find(tool.number)

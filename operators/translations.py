@@ -2739,6 +2739,97 @@ TOOLLIB_TEMPLATES = {
         "{0}：工具ライブラリを書き込めません（{1}）。ファイルは元のままです",
 }
 
+# work estimates before planning (toolpath/workload.py, issue 27): the message is
+# "<what> is about <n> <quantity>, over the <limit> this machine can plan; <advice>", each part
+# translated by its own template (NESTED)
+WORKLOAD_NESTED = {"{} is about {} {}, over the {} this machine can plan; {}": (0, 2, 4), "operation {}: {}": (1,),
+                   "workingstep #{} '{}': {}": (2,), "setup #{} of workplan #{} left out: {}": (2,),
+                   "the bounding geometry of workpiece #{} is left out: {}": (1,)}
+WORKLOAD_TEMPLATES = {
+    "{} is about {} {}, over the {} this machine can plan; {}":
+        "{0} は約 {1} {2} で、この機械で計画できる上限 {3} を超えています。{4}",
+    # what is estimated
+    "carve {}: the finishing raster at scallop {} mm and sample spacing {} mm":
+        "曲面加工 {0}：スカラップ {1} mm、サンプル間隔 {2} mm の仕上げラスタ",
+    "carve {}: the roughing through {} mm of stock above the design at step down {} mm ({} levels)":
+        "曲面加工 {0}：形状の上の素材 {1} mm を切込み深さ {2} mm で削る荒加工（{3} 段）",
+    "engrave {}: the gouge texture at stepover {} mm and spacing {} mm over {} mm2":
+        "彫刻 {0}：ステップオーバー {1} mm、間隔 {2} mm、面積 {3} mm2 の彫刻刀跡テクスチャ",
+    "engrave {}: the band finishing at band stepover {} mm and band step down {} mm ({} rings, {} levels round {} "
+    "mm of letter outlines)":
+        "彫刻 {0}：帯のステップオーバー {1} mm、帯の切込み深さ {2} mm の帯仕上げ（文字の輪郭 {5} mm を {3} 周、{4} 段）",
+    "pocket {}: {} mm2 at stepover {} mm and step down {} mm ({} levels)":
+        "ポケット {0}：{1} mm2 をステップオーバー {2} mm、切込み深さ {3} mm で（{4} 段）",
+    "profile {}: {} mm of outline at step down {} mm ({} levels)":
+        "輪郭加工 {0}：輪郭 {1} mm を切込み深さ {2} mm で（{3} 段）",
+    "chamfer {}: the drawing": "面取り {0}：図面",
+    "drill {}: the drawing's holes": "穴あけ {0}：図面の穴",
+    "drill {}: the shortest order of its holes": "穴あけ {0}：穴の最短順序",
+    "drill {}: {} holes {} mm deep at peck {} mm": "穴あけ {0}：深さ {2} mm の穴 {1} 個をペック {3} mm で",
+    "pocket {}: the toolpath at a spacing of {} mm and a step down of {} mm":
+        "ポケット {0}：点間隔 {1} mm、切込み深さ {2} mm の工具経路",
+    "the STEP-NC file {}": "STEP-NC ファイル {0}",
+    "project #{}: its name is {} characters; the first {} are used, followed by ...":
+        "プロジェクト #{0}：名前が {1} 文字あります。先頭の {2} 文字に ... を付けて使います",
+    "no workpiece BLOCK: the stock bottom is taken as Z {}, the depth of the deepest through feature #{} '{}' ({} mm "
+    "below its top); check the stock's thickness, or give the workpiece its BLOCK":
+        "ワークピースに BLOCK がありません：素材の底を、最も深い貫通フィーチャ #{1} '{2}' の深さ Z {0}（上面から {3} mm）と"
+        "しました。素材の厚さを確認するか、ワークピースに BLOCK を指定してください",
+    "through feature #{} '{}' ends at Z {}, {} mm above that stock bottom: it does not go through":
+        "貫通フィーチャ #{0} '{1}' は Z {2} で終わり、その素材の底より {3} mm 上です：貫通しません",
+    # warnings and notes the panel reports (tests/test_translations.py: every formatted warning)
+    "{}the part falls free: its micro-joints leave no web": "{0}部品が抜け落ちます：マイクロジョイントが残りません",
+    "{}: the tool is too big to enter a gap of {} mm^2 in {} of letters {} near X{} Y{}; it is left uncut":
+        "{0}：文字 {3} の {2} にある {1} mm^2 のすき間（X{4} Y{5} 付近）は工具が大きすぎて入れません。削り残します",
+    "{}: the tool is too big to enter a gap of {} mm^2 in letters {} near X{} Y{}; it is left uncut":
+        "{0}：文字 {2} の {1} mm^2 のすき間（X{3} Y{4} 付近）は工具が大きすぎて入れません。削り残します",
+    "no room for a {} mm helix at X{} Y{}; ramped instead":
+        "X{1} Y{2} に {0} mm のヘリカルの余地がありません。代わりにランプで入ります",
+    "#{} {} in workplan #{} skipped: only workingsteps and workplans are supported":
+        "ワークプラン #{2} の #{0} {1} を飛ばしました：対応しているのはワーキングステップとワークプランだけです",
+    "setup #{} of workplan #{} left out: {}": "ワークプラン #{1} のセットアップ #{0} を省きました：{2}",
+    "the bounding geometry of workpiece #{} is left out: {}": "ワークピース #{0} の外形を省きました：{1}",
+    "workingstep #{} '{}' skipped: switched off (left out of the order to cut)":
+        "ワーキングステップ #{0} '{1}' を飛ばしました：オフ（加工順から外しています）",
+    "workingstep #{} '{}' assumes roughing #{} '{}' was done before it":
+        "ワーキングステップ #{0} '{1}' は、荒加工 #{2} '{3}' が先に済んでいる前提です",
+    "the floor fillet R{} is cut with the tool's corner radius R{}": "底のフィレット R{0} を工具のコーナ半径 R{1} で削ります",
+    "hole #{}: helical entry at the file's {} degrees (pitch = pi x circle diameter x tan {}: {} mm a turn on the {} mm "
+    "circle)": "穴 #{0}：ファイルの {1} 度でヘリカル進入（ピッチ = π × 円の直径 × tan {2}：直径 {4} mm の円で1周 {3} mm）",
+    "hole #{}: the {} mm circle is too small for a {} degree helix (more than {} turns a layer): one turn per layer "
+    "there": "穴 #{0}：直径 {1} mm の円は {2} 度のヘリカルには小さすぎます（1段 {3} 周を超える）：そこでは1段1周にします",
+    "through hole: the drill goes {} mm below the hole bottom ({}) to Z {}":
+        "貫通穴：ドリルは穴底より {0} mm 下（{1}）の Z {2} まで進みます",
+    "no dwell of {} s at the bottom (not written)": "穴底での {0} 秒のドウェルはありません（出力しません）",
+    "hole {} at {} lies beyond the {} mm any machine reaches (a unit mistake?)":
+        "穴 {0}（{1}）は、どの機械も届かない {2} mm より遠くにあります（単位の間違い？）",
+    "turn-mill {}: {} faces at sample spacing {} mm": "複合加工 {0}：{1} 面をサンプル間隔 {2} mm で",
+    # what is counted
+    "tool positions": "工具位置", "moves": "移動", "gouges": "彫刻刀跡",
+    "mm of path": "mm の経路", "outline points": "輪郭点", "holes": "穴", "holes to order": "順序付けする穴",
+    "pecks": "ペック", "path points": "経路点", "bytes": "バイト", "classification samples": "分類サンプル",
+    # what to do
+    "raise sample spacing to {} mm or more, or the scallop":
+        "サンプル間隔を {0} mm 以上にするか、スカラップを大きくしてください",
+    "raise step down to {} mm or more, or give less stock above the design":
+        "切込み深さを {0} mm 以上にするか、形状の上の素材を減らしてください",
+    "raise stepover to {} mm or more": "ステップオーバーを {0} mm 以上にしてください",
+    "raise band stepover or band step down": "帯のステップオーバーか帯の切込み深さを大きくしてください",
+    "raise stepover to {} mm or more, or the step down":
+        "ステップオーバーを {0} mm 以上にするか、切込み深さを大きくしてください",
+    "raise step down to {} mm or more": "切込み深さを {0} mm 以上にしてください",
+    "simplify the drawing (fewer points)": "図面を単純にしてください（点を減らす）",
+    "split the holes into several operations": "穴を複数の工程に分けてください",
+    "set the order to 'given' (the drawing's), or split the holes into several operations":
+        "順序を 'given'（図面の順）にするか、穴を複数の工程に分けてください",
+    "raise peck to {} mm or more": "ペックを {0} mm 以上にしてください",
+    "raise spacing to {} mm or more": "点間隔を {0} mm 以上にしてください",
+    "a workplan is a few MB: check that this is the file meant":
+        "ワークプランは数 MB です。意図したファイルか確認してください",
+    "raise sample spacing to {} mm or more, or use a mesh of fewer faces":
+        "サンプル間隔を {0} mm 以上にするか、面の少ないメッシュを使ってください",
+}
+
 MESSAGE_TEMPLATES.update(JOBLIST_TEMPLATES)
 MESSAGE_TEMPLATES.update(PROFILE_TEMPLATES)
 MESSAGES.update(PROFILE_TEXTS)
@@ -2859,6 +2950,8 @@ MESSAGE_TEMPLATES.update(VCARVE_TEMPLATES)
 NESTED.update(VCARVE_NESTED)
 MESSAGE_TEMPLATES.update(TOOLLIB_TEMPLATES)
 NESTED.update(TOOLLIB_NESTED)
+MESSAGE_TEMPLATES.update(WORKLOAD_TEMPLATES)
+NESTED.update(WORKLOAD_NESTED)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

@@ -29,7 +29,7 @@ from . import convert
 from . import gate
 from . import pathview
 from .common import SteppedOperator
-from .exporting import NCExport, report_findings
+from .exporting import Exported, NCExport, stages, report_findings
 from .limits import check_group
 from .plancache import cache_of, keep
 from .properties import post_items, post_number
@@ -222,14 +222,29 @@ def unmachined_warnings(job: TurnMillJob) -> list:
 
 
 def export_turnmill(job: TurnMillJob, post_name: str, path: str, allow: bool | str = False,
-                    checked: bool = False) -> tuple:
-    """Write the program; the export gate simulates it first unless the caller has (``checked``).
-    Returns the path and the machine's findings on the program (:func:`machine_findings`)."""
+                    checked: bool = False, progress=None) -> tuple:
+    """Write the program; the export gate simulates it first unless the caller has (``checked``;
+    ``progress``: the gate's).  Returns the path and the machine's findings on the program
+    (:func:`machine_findings`)."""
     post = posts.create(POST_FAMILIES, post_name)
     text = post.to_text(job.plan.program)
     if not checked:
-        gate.check(simulation(job), allow)
+        gate.check(simulation(job), allow, progress)
     return write_atomic(path, text), machine_findings(job, post, text)
+
+
+def nc_export_request(scene, depsgraph, post_name: str, target: str):
+    """The panel's export: read the scene here; ``work(progress) -> Exported`` classifies, plans,
+    checks and writes ``target`` without touching Blender data (so it runs in steps, Esc cancelling)."""
+    compute = turnmill_request(scene, depsgraph)
+    allow = scene.kezuri.simulation.acknowledged
+
+    def work(progress=None) -> Exported:
+        planning, checking = stages(progress)
+        job = compute(planning)
+        written, findings = export_turnmill(job, post_name, target, allow=allow, progress=checking)
+        return Exported(written, job.replanned, unmachined_warnings(job) + findings)
+    return work
 
 
 def extension_for(post_name: str) -> str:
@@ -336,13 +351,8 @@ class KEZURI_OT_turnmill_export(NCExport, bpy.types.Operator):
     def preferred_post(self, context):
         return None                                       # the turn-mill has no post setting: X-Z-C
 
-    def write(self, context) -> str:
-        job = run_turnmill(context.scene, context.evaluated_depsgraph_get())
-        self.replanned = job.replanned
-        path, findings = export_turnmill(job, self.post, self.filepath,
-                                         allow=context.scene.kezuri.simulation.acknowledged)
-        report_findings(self, unmachined_warnings(job) + findings)
-        return path
+    def export_request(self, context):
+        return nc_export_request(context.scene, context.evaluated_depsgraph_get(), self.post, self.filepath)
 
 
 CLASSES = (KEZURI_OT_turnmill_classify, KEZURI_OT_turnmill_generate, KEZURI_OT_turnmill_export)

@@ -78,7 +78,7 @@ def to_text(program: PunchProgram, end_code: str = "G50") -> str:
     number = 0
     for op in program.operations:
         if op.thickness > THICK_SHEET and op.pitch < op.thickness:
-            raise PostError(f"G79 punching line: pitch Q {op.pitch} must be at least the thickness {op.thickness} mm")
+            raise PostError(f"G79 punching line: pitch Q {op.pitch:g} must be at least the thickness {op.thickness:g} mm")
         starts, length, angle = op.lines[:, 0], op.lengths(), op.angles()
         _check_reach(starts, length, number)
         short = np.flatnonzero(length < MIN_SEGMENT)

@@ -101,7 +101,7 @@ def test_tool_offset_sign():
 
 def test_thick_sheet_uses_punching_line():
     contour = paper_contour()
-    with pytest.raises(PostError, match="pitch Q 3.0 must be at least the thickness 4.5"):
+    with pytest.raises(PostError, match="pitch Q 3 must be at least the thickness 4.5 mm"):
         to_text(contour, station=302, pitch=3.0, thickness=4.5)
     text = to_text(contour, station=302, pitch=5.0, thickness=4.5, origin=(1250, 1000), end_code="M30")
     lines, starts, moves = parse(text, G79)

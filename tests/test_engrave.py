@@ -293,7 +293,7 @@ def test_bad_geometry_is_refused_with_a_clear_message(plate, letters, match):
     (dict(stepover=0.0), "stepover"),
     (dict(stepover=8.0), "wider than"),
     (dict(letter_clearance=2.0), "cut into the letters"),
-    (dict(finish_tool=Tool(3, "flat", 6.0)), "wider than the 4.0 mm band"),
+    (dict(finish_tool=Tool(3, "flat", 6.0)), "the 6 mm finishing tool is wider than the 4 mm band"),
     (dict(rough_feed=float("nan")), "finite"),
 ])
 def test_bad_settings_are_refused(changes, match):

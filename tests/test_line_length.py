@@ -90,3 +90,19 @@ def test_252_characters_is_what_rs274_reads():
     with pytest.raises(AssertionError, match="too long"):
         rs274.run("(" + "A" * 251 + ")\nG00 X1\nM2\n")
     assert os.linesep == "\n"
+
+
+def test_a_long_project_name_is_cut_like_a_workingstep_s_with_a_note():
+    text = ex1_text()
+    start = text.index("#1= PROJECT('") + len("#1= PROJECT('")
+    end = text.index("'", start)
+    text = text[:start] + "P" * 100_000 + text[end:]
+    loaded = load_workplan(text)
+    assert loaded.project.its_id == "P" * 200 + "..."
+    assert "project #1: its name is 100000 characters; the first 200 are used, followed by ..." in loaded.warnings
+    program = to_program(loaded)
+    for name in sorted(CONTROLS):
+        cls = registry.find("milling", name)
+        lines = cls().to_text(program).splitlines()
+        assert max(len(line) for line in lines) <= cls.limits.max_line_length
+        assert len(lines) < 400           # the name's comment is a few lines, not 100,000 characters of them

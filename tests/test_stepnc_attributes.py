@@ -264,3 +264,29 @@ def test_a_drilling_strategy_of_ratios_halves_the_feed_over_the_first_depth():
     drill = next(op for op in program.operations if op.name == "WS DRILL HOLE1")
     feeds = sorted(set(np.round(drill.feed[drill.kind == 1], 6)))
     assert feeds == [900.0, 1800.0]
+
+
+def test_without_a_block_the_deepest_through_feature_sets_the_stock_bottom_and_the_notes_say_so():
+    """NIST's ex1 as published has no BLOCK: its through hole #17 (Z 0 to -30) gives the stock's
+    bottom.  A hole mistyped 4500 mm deep would make its own 4.5 m stock: planned as the file says
+    (ISO 14649: a through feature goes through the workpiece), but never in silence."""
+    notes = to_program(load_workplan(EX1)).notes
+    assert ("no workpiece BLOCK: the stock bottom is taken as Z -30, the depth of the deepest through feature #17 "
+            "'HOLE1 D=22MM' (30 mm below its top); check the stock's thickness, or give the workpiece its BLOCK") in notes
+    deep = EX1.replace("#112= CARTESIAN_POINT('HOLE1: DEPTH ',(0.000,0.000,-30.000));",
+                       "#112= CARTESIAN_POINT('HOLE1: DEPTH ',(0.000,0.000,-4500.));")
+    # the pocket #18 made through too: it ends at its own depth, Z -30, far above the hole's bottom
+    deep = deep.replace("#27= PLANAR_POCKET_BOTTOM_CONDITION();", "#27= THROUGH_POCKET_BOTTOM_CONDITION();")
+    notes = to_program(load_workplan(deep)).notes
+    assert any(note.startswith("no workpiece BLOCK: the stock bottom is taken as Z -4500, the depth of the deepest "
+                               "through feature #17 'HOLE1 D=22MM' (4500 mm below its top)") for note in notes), notes
+    assert [note for note in notes if note.startswith("through feature")] == [
+        "through feature #18 'POCKET1' ends at Z -30, 4470 mm above that stock bottom: it does not go through"]
+    # with its BLOCK the same hole is refused (test_a_hole_deeper_than_the_workpiece_is_refused), no note
+    assert not any("no workpiece BLOCK" in note for note in to_program(load_workplan(with_block())).notes)
+    bpy = pytest.importorskip("bpy")
+    assert bpy
+    from kezuri.operators import translations
+    for note in [note for note in notes if "BLOCK" in note or note.startswith("through feature")]:
+        japanese = translations.japanese_message(note)
+        assert japanese is not None and "#1" in japanese and re.search(r"[\u3040-\u30ff\u4e00-\u9fff]", japanese), note

@@ -370,3 +370,75 @@ def test_range_messages_name_the_panel_and_the_label_as_the_japanese_panel_shows
     message = limits.problem("", "diameter", "Diameter", -2.0, "Tool Library 'T7 ball'", limits.LIBRARY["diameter"])
     japanese = translations.japanese_message(message)
     assert japanese.startswith(JA[(DEFAULT, "Tool Library")] + " 'T7 ball'：" + JA[(DEFAULT, "Diameter")]), japanese
+
+
+# A measurement put into a message with no format (str of a float) shows Blender's single
+# precision or the arithmetic's last bits: "outside the 140.00000664964318 x 90.00000427477062 mm
+# board", "stepover 0.30000001192092896 mm".  Every message the core or the shell raises or reports
+# formats such a value (:g, :.3f ...); exempt are values shown as given after "got" (the refused
+# input), !r (a value quoted as given), CONSTANTS written in the code, and these, which are not floats:
+NOT_MEASUREMENTS = {"feed_line",          # ncread: a line number
+                    "area",               # picture: a pixel rectangle (ints)
+                    "levels",             # pocket: a count
+                    "size", "scale",      # convert: already formatted text
+                    "lengths",            # sheetmetal: already formatted text
+                    "height",             # picture: "got {width} x {height}" pixels as given
+                    "overlap"}            # stepnc motion: a ratio or None, shown as the file gives it
+MEASUREMENT = re.compile(r"depth|diameter|size|radius|thickness|width|height|stepover|spacing|tolerance|length|"
+                         r"pitch|angle|scale|allowance|clearance|feed|rpm|overlap|distance|gap|reach|travel|area|"
+                         r"top|bottom|level|cell|margin|slope|^[xyz]$|_[xyz]$", re.I)
+
+
+def test_no_message_shows_a_measurement_unformatted():
+    bare = []
+    for message, where in raised_messages():
+        if not isinstance(message, ast.JoinedStr):
+            continue
+        before = ""
+        for part in message.values:
+            if isinstance(part, ast.Constant):
+                before = str(part.value)
+                continue
+            value = part.value
+            last = value.attr if isinstance(value, ast.Attribute) else getattr(value, "id", None)
+            if (part.format_spec is None and part.conversion != ord("r") and last and MEASUREMENT.search(last)
+                    and not last.isupper() and last not in NOT_MEASUREMENTS and not before.rstrip().endswith("got")):
+                bare.append(f"{where}: {{{ast.unparse(value)}}}")
+            before = ""
+    assert not bare, "measurements shown unformatted (give them :g or a precision):\n" + "\n".join(bare)
+
+
+def warning_messages() -> dict:
+    """{English template: where} of every warning or note built with an f-string and added to a
+    list of warnings or notes (``warnings.append(f"...")``, ``notes.insert(0, f"...")``): the panel
+    reports them (translate_message) as it reports errors."""
+    root = os.path.dirname(os.path.dirname(operators.__file__))
+    found = {}
+    for top in ("toolpath", "post", "operators"):
+        for base, _, names in sorted(os.walk(os.path.join(root, top))):
+            for filename in sorted(names):
+                if not filename.endswith(".py") or filename == "translations.py":
+                    continue
+                with open(os.path.join(base, filename), encoding="utf-8") as stream:
+                    tree = ast.parse(stream.read(), filename)
+                for node in ast.walk(tree):
+                    if not (isinstance(node, ast.Call) and getattr(node.func, "attr", "") in {"append", "insert"}
+                            and node.args):
+                        continue
+                    target = ast.unparse(node.func.value)
+                    if "warning" not in target and "notes" not in target:
+                        continue
+                    message = node.args[-1]
+                    if isinstance(message, (ast.JoinedStr, ast.BinOp)):
+                        template = _template(message)
+                        if template is not None and "{}" in template:
+                            found.setdefault(template, f"{os.path.relpath(base, root)}/{filename}:{node.lineno}")
+    return found
+
+
+def test_every_formatted_warning_has_a_japanese_template():
+    found = warning_messages()
+    assert "through feature #{} '{}' ends at Z {}, {} mm above that stock bottom: it does not go through" in found
+    missing = sorted(f"{where}: {template!r}" for template, where in found.items()
+                     if template not in translations.MESSAGE_TEMPLATES)
+    assert not missing, f"{len(missing)} f-string warnings without a ja_JP template:\n" + "\n".join(missing)

@@ -113,6 +113,12 @@ class OperationKind:
     def plan(self, setup: Setup, settings, geometry, progress=None) -> Part:
         raise NotImplementedError
 
+    def workload(self, setup: Setup, settings, geometry) -> list:
+        """The estimates of :mod:`toolpath.workload` for this operation, made from its settings and
+        the size of its geometry before any planning; an estimate past its limit raises
+        :class:`~toolpath.workload.WorkloadError`.  Default: nothing to estimate."""
+        return []
+
 
 def kinds() -> dict:
     """Every declared operation kind by key: each package under ``operations/`` declares its kind
@@ -335,6 +341,30 @@ def _inside(loops, gx, gy) -> np.ndarray:
     return rg.contains_points(area, np.column_stack([gx.ravel(), gy.ravel()])).reshape(gx.shape)
 
 
+def estimate_job(job: Job) -> list:
+    """(kind, the :mod:`toolpath.workload` estimates) of every switched-on operation, its machine
+    family and settings type checked, made before any planning; an operation past a limit is
+    refused (its name in front of the message when the job has several)."""
+    active = [op for op in job.operations if op.enabled]
+    found = []
+    for op in active:
+        kind = kind_of(op.kind)
+        family = getattr(job.setup.machine, "family", None)
+        if family is not None and kind.families and family not in kind.families:
+            raise JobError(f"operation {op.name!r} ({kind.label}) runs on {', '.join(kind.families)} machines, "
+                           f"not on the job's {family} machine")
+        if not isinstance(op.settings, kind.settings_type):
+            raise JobError(f"operation {op.name!r}: settings must be {kind.settings_type.__name__}, "
+                           f"got {type(op.settings).__name__}")
+        try:
+            found.append((kind, kind.workload(job.setup, op.settings, op.geometry)))
+        except InputError as error:
+            if len(active) == 1:
+                raise
+            raise JobError(f"operation {op.name!r}: {error}") from None
+    return found
+
+
 def plan_job(job: Job, cache: dict | None = None, progress=None) -> PlannedJob:
     """Plan the switched-on operations in order (see the module docstring).  ``cache``: a dict
     fingerprint -> Part, read and filled; ``progress(fraction, text)``, returning False cancels."""
@@ -346,16 +376,9 @@ def plan_job(job: Job, cache: dict | None = None, progress=None) -> PlannedJob:
         if names.count(name) > 1:
             raise JobError(f"two operations are named {name!r}: give each operation its own name")
     planned = PlannedJob(job)
+    kinds_of = [kind for kind, _ in estimate_job(job)]
     before = ""
-    for index, op in enumerate(active):
-        kind = kind_of(op.kind)
-        family = getattr(job.setup.machine, "family", None)
-        if family is not None and kind.families and family not in kind.families:
-            raise JobError(f"operation {op.name!r} ({kind.label}) runs on {', '.join(kind.families)} machines, "
-                           f"not on the job's {family} machine")
-        if not isinstance(op.settings, kind.settings_type):
-            raise JobError(f"operation {op.name!r}: settings must be {kind.settings_type.__name__}, "
-                           f"got {type(op.settings).__name__}")
+    for index, (op, kind) in enumerate(zip(active, kinds_of)):
         key = fingerprint(job.setup, op, before)
         part = None if cache is None else cache.get(key)
         replanned = part is None

@@ -60,7 +60,7 @@ class Tool:
         if shape.corner_is_radius and self.corner_radius == 0.0:
             object.__setattr__(self, "corner_radius", self.diameter / 2)
         if not 0 <= self.corner_radius <= self.diameter / 2 + 1e-9:
-            raise ProgramError(f"corner radius {self.corner_radius} does not fit a {self.diameter} mm tool")
+            raise ProgramError(f"corner radius {self.corner_radius:g} does not fit a {self.diameter:g} mm tool")
         if self.tip_angle:
             if not shape.pointed:
                 raise ProgramError(f"a tip angle ({self.tip_angle!r} deg) is for a pointed tool, not a {shape.label}")

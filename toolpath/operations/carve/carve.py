@@ -109,15 +109,15 @@ class CarveSettings:
         if self.rough and self.rough_tool.shape.pointed:
             raise CarveError(f"roughing needs a flat, ball or bull nose end mill, got a {self.rough_tool.describe()}")
         if self.scallop >= self.finish_tool.radius:
-            raise CarveError(f"scallop {self.scallop} mm must be smaller than the ball's radius "
-                             f"{self.finish_tool.radius} mm")
+            raise CarveError(f"scallop {self.scallop:g} mm must be smaller than the ball's radius "
+                             f"{self.finish_tool.radius:g} mm")
         if self.rough_stepover > self.rough_tool.diameter:
-            raise CarveError(f"roughing stepover {self.rough_stepover} mm is wider than the "
-                             f"{self.rough_tool.diameter} mm tool")
+            raise CarveError(f"roughing stepover {self.rough_stepover:g} mm is wider than the "
+                             f"{self.rough_tool.diameter:g} mm tool")
         if not 0 <= self.max_slope_deg < 90:
-            raise CarveError(f"max slope must be 0..90 degrees, got {self.max_slope_deg}")
+            raise CarveError(f"max slope must be 0..90 degrees, got {self.max_slope_deg:g}")
         if self.safe_z < self.clearance:
-            raise CarveError(f"safe Z {self.safe_z} mm must be at least the clearance {self.clearance} mm")
+            raise CarveError(f"safe Z {self.safe_z:g} mm must be at least the clearance {self.clearance:g} mm")
 
 
 @dataclass

@@ -8,6 +8,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ...job import DesignLayer, OperationKind, Part
+from ... import workload
 from ...engines.meshdata import inside_out
 from ...simulate import BoxStock
 from . import carve
@@ -28,6 +29,15 @@ class CarveKind(OperationKind):
     label = "Carving"
     families = ("milling",)
     settings_type = carve.CarveSettings
+
+    def workload(self, setup, settings, geometry: CarveGeometry) -> list:
+        settings.check()
+        vertices = np.asarray(geometry.vertices, float).reshape(-1, 3)
+        vertices = vertices[np.isfinite(vertices).all(axis=1)]
+        if not len(vertices):
+            return []           # the plan refuses the mesh by name
+        size = tuple(float(x) for x in vertices.max(axis=0) - vertices.min(axis=0))
+        return workload.carve(setup.name, size, float(geometry.stock_above), settings)
 
     def plan(self, setup, settings, geometry: CarveGeometry, progress=None) -> Part:
         vertices, faces = carve.check_mesh(geometry.vertices, geometry.faces)

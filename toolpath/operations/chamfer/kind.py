@@ -7,6 +7,7 @@ import numpy as np
 
 from ...engines import region
 from ...job import DesignLayer, OperationKind, Part
+from ... import workload
 from ...simulate import BoxStock
 from . import chamfer
 from .holes import check_holes, plan_holes
@@ -30,6 +31,10 @@ class ChamferKind(OperationKind):
     label = "Chamfer"
     families = ("milling",)
     settings_type = chamfer.ChamferSettings
+
+    def workload(self, setup, settings, geometry: ChamferGeometry) -> list:
+        _, _, points = workload.outline_measures(geometry.loops)
+        return workload.chamfer(setup.name, points)
 
     def plan(self, setup, settings, geometry: ChamferGeometry, progress=None) -> Part:
         width, _, offset, tip = settings.geometry()

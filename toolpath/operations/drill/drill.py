@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...ir.cycles import DrillCycle
-from ...ir.errors import InputError
+from ...ir.errors import MAX_REACH_MM, InputError
 from ...ir.program import Operation, PathBuilder, Tool
 
 
@@ -113,11 +113,42 @@ def check_holes(holes) -> np.ndarray:
     bad = np.flatnonzero(~np.isfinite(points).all(axis=1))
     if len(bad):
         raise DrillError(f"hole {int(bad[0]) + 1} has a coordinate that is not a number: {points[bad[0]].tolist()}")
-    for i in range(len(points)):
-        near = np.flatnonzero(np.hypot(*(points[i + 1:] - points[i]).T) < 1e-3)
-        if len(near):
-            raise DrillError(f"holes {i + 1} and {i + 2 + int(near[0])} are the same point {points[i].tolist()}")
+    far = np.flatnonzero(np.abs(points).max(axis=1) > MAX_REACH_MM)
+    if len(far):
+        raise DrillError(f"hole {int(far[0]) + 1} at {points[far[0]].tolist()} lies beyond the {MAX_REACH_MM:g} mm "
+                         f"any machine reaches (a unit mistake?)")
+    pair = first_coincident(points, 1e-3)
+    if pair is not None:
+        i, j = pair
+        raise DrillError(f"holes {i + 1} and {j + 1} are the same point {points[i].tolist()}")
     return points
+
+
+def first_coincident(points: np.ndarray, tolerance: float):
+    """The first pair (i, j), i < j, in (i, j) order, of points closer than ``tolerance``, or None.
+    Points are binned in cells of ``tolerance``: a close pair lies in one cell or two neighbouring
+    ones, so only those are compared (n log n; comparing every pair took 14 s for 25,000 holes)."""
+    # within MAX_REACH_MM a cell index is below 2^27 in size: two of them make one int64 key
+    cells = np.floor(points / tolerance).astype(np.int64) + (1 << 27)
+    keys = cells[:, 0] * (1 << 29) + cells[:, 1]
+    order = np.argsort(keys, kind="stable")
+    sorted_keys = keys[order]
+    found = []
+    for dx, dy in ((0, 0), (0, 1), (1, -1), (1, 0), (1, 1)):
+        target = sorted_keys + dx * (1 << 29) + dy
+        lo = np.searchsorted(sorted_keys, target, "left")
+        hi = np.searchsorted(sorted_keys, target, "right")
+        if (dx, dy) == (0, 0):
+            lo = np.arange(len(order)) + 1          # the same cell: each pair once
+        counts = np.maximum(hi - lo, 0)
+        if not counts.any():
+            continue
+        a = np.repeat(np.arange(len(order)), counts)
+        b = np.concatenate([np.arange(l, h) for l, h in zip(lo[counts > 0], hi[counts > 0])])
+        a, b = order[a], order[b]
+        close = np.hypot(*(points[a] - points[b]).T) < tolerance
+        found += [(min(i, j), max(i, j)) for i, j in zip(a[close].tolist(), b[close].tolist())]
+    return min(found) if found else None
 
 
 def cycle_kind(peck: float, dwell: float) -> str:

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...job import DesignLayer, OperationKind, Part
+from ... import workload
 from ...simulate import BoxStock
 from . import drill
 from .helix import FIT, plan_helix
@@ -55,6 +56,13 @@ class DrillKind(OperationKind):
     label = "Drilling"
     families = ("milling",)
     settings_type = drill.DrillSettings
+
+    def workload(self, setup, settings, geometry: DrillGeometry) -> list:
+        settings.check()
+        points = drill.check_holes(geometry.holes)
+        bottoms = [b for b in (geometry.bottoms or ()) if b is not None]
+        depth = max([settings.depth] + [geometry.top - b for b in bottoms])
+        return workload.drill(setup.name, len(points), depth, settings)
 
     def plan(self, setup, settings, geometry: DrillGeometry, progress=None) -> Part:
         settings.check()

@@ -84,16 +84,16 @@ class EngraveSettings:
         for name in ("stepover", "band_stepover", "band_step_down", "band_width", "rough_feed", "finish_feed",
                      "plunge_feed"):
             if numbers[name] <= 0:
-                raise EngraveError(f"{name.replace('_', ' ')} must be greater than zero, got {numbers[name]}")
+                raise EngraveError(f"{name.replace('_', ' ')} must be greater than zero, got {numbers[name]:g}")
         if self.stepover > self.rough_tool.diameter:
-            raise EngraveError(f"stepover {self.stepover} mm is wider than the {self.rough_tool.diameter} mm "
+            raise EngraveError(f"stepover {self.stepover:g} mm is wider than the {self.rough_tool.diameter:g} mm "
                                "roughing tool: ridges would be left standing")
         if self.letter_clearance < self.rough_tool.radius:
-            raise EngraveError(f"letter clearance {self.letter_clearance} mm is less than the roughing tool radius "
-                               f"{self.rough_tool.radius} mm: the ball would cut into the letters")
+            raise EngraveError(f"letter clearance {self.letter_clearance:g} mm is less than the roughing tool radius "
+                               f"{self.rough_tool.radius:g} mm: the ball would cut into the letters")
         if self.finish_tool.diameter > self.band_width:
-            raise EngraveError(f"the {self.finish_tool.diameter} mm finishing tool is wider than the "
-                               f"{self.band_width} mm band")
+            raise EngraveError(f"the {self.finish_tool.diameter:g} mm finishing tool is wider than the "
+                               f"{self.band_width:g} mm band")
         if self.band_step_down > self.finish_tool.diameter + 1e-9:
             raise EngraveError(f"band step down {self.band_step_down:g} mm is more than the "
                                f"{self.finish_tool.diameter:g} mm finishing tool's diameter: a small flat end mill "

@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ...job import DesignLayer, OperationKind, Part
+from ... import workload
 from . import engrave, surface_engrave
 
 
@@ -46,6 +47,12 @@ class EngraveKind(OperationKind):
     label = "Engraving"
     families = ("milling",)
     settings_type = engrave.EngraveSettings
+
+    def workload(self, setup, settings, geometry: EngraveGeometry) -> list:
+        settings.validate()
+        plate, _, _ = workload.outline_measures(geometry.plate_outline)
+        _, letters, _ = workload.outline_measures(geometry.letter_loops)
+        return workload.engrave(setup.name, plate, letters, settings)
 
     def plan(self, setup, settings, geometry: EngraveGeometry, progress=None) -> Part:
         outline = list(geometry.plate_outline)

@@ -7,6 +7,7 @@ import numpy as np
 
 from ...engines import region as rg
 from ...job import DesignLayer, OperationKind, Part
+from ... import workload
 from ...simulate import BoxStock
 from . import pocket
 
@@ -43,6 +44,11 @@ class PocketKind(OperationKind):
     label = "Pocket"
     families = ("milling",)
     settings_type = pocket.PocketSettings
+
+    def workload(self, setup, settings, geometry: PocketGeometry) -> list:
+        settings.check(geometry.name)
+        area, _, _ = workload.outline_measures(geometry.loops)
+        return workload.pocket(geometry.name, area, settings.depth, settings)
 
     def plan(self, setup, settings, geometry: PocketGeometry, progress=None) -> Part:
         result = pocket.plan(geometry.loops, settings, name=geometry.name, top=geometry.top, progress=progress)

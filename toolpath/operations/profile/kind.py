@@ -15,6 +15,7 @@ import numpy as np
 
 from ...engines import region as rg
 from ...job import DesignLayer, OperationKind, Part
+from ... import workload
 from ...simulate import BoxStock
 from . import contours as ct
 from . import profile
@@ -54,6 +55,12 @@ class ProfileKind(OperationKind):
     label = "Profile"
     families = ("milling",)
     settings_type = profile.ProfileSettings
+
+    def workload(self, setup, settings, geometry: ProfileGeometry) -> list:
+        thickness = float(geometry.thickness)
+        settings.check(thickness)
+        _, perimeter, _ = workload.outline_measures(geometry.loops)
+        return workload.profile(geometry.name, perimeter, settings.cut_depth(thickness), settings)
 
     def plan(self, setup, settings, geometry: ProfileGeometry, progress=None) -> Part:
         loops = [np.asarray(loop, float) for loop in geometry.loops]

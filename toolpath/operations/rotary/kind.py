@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ...job import OperationKind, Part
+from ... import workload
 from ...simulate import BoxStock
 from . import rotary
 from .rotary_pocket import Block, RotarySettings
@@ -24,6 +25,15 @@ class RotaryKind(OperationKind):
     label = "Rotary Pockets"
     families = ("cxz",)
     settings_type = RotarySettings
+
+    def workload(self, setup, settings, geometry: RotaryGeometry) -> list:
+        settings.validate()
+        estimates = []
+        for pocket in geometry.pockets:
+            area, perimeter, _ = workload.outline_measures([pocket.outline])
+            estimates += workload.rotary(pocket.name, area, perimeter, float(pocket.depth), settings,
+                                         pocket.bottom != "flat")
+        return estimates
 
     def plan(self, setup, settings, geometry: RotaryGeometry, progress=None) -> Part:
         result = rotary.plan(geometry.block, list(geometry.pockets), settings, name=setup.name, progress=progress)

@@ -111,15 +111,15 @@ class RotarySettings:
                 raise RotaryError(f"{name.replace('_', ' ')} must be a finite number, got {value!r}")
         for name in names:
             if name != "allowance" and getattr(self, name) <= 0:
-                raise RotaryError(f"{name.replace('_', ' ')} must be greater than zero, got {getattr(self, name)}")
+                raise RotaryError(f"{name.replace('_', ' ')} must be greater than zero, got {getattr(self, name):g}")
         if self.allowance < 0:
-            raise RotaryError(f"allowance must be >= 0, got {self.allowance}")
+            raise RotaryError(f"allowance must be >= 0, got {self.allowance:g}")
         if self.tool.kind != "ball":
             raise RotaryError(f"the rotary pockets are cut with a ball-nose bit, not a {self.tool.kind} tool")
         for name in ("stepover", "roughing_stepover", "wall_stepover"):
             if getattr(self, name) > self.tool.diameter:
-                raise RotaryError(f"{name.replace('_', ' ')} {getattr(self, name)} mm is wider than the "
-                                  f"{self.tool.diameter} mm bit: ridges would be left standing")
+                raise RotaryError(f"{name.replace('_', ' ')} {getattr(self, name):g} mm is wider than the "
+                                  f"{self.tool.diameter:g} mm bit: ridges would be left standing")
         if not 0 < self.approach_gap < self.clearance_z <= self.safe_z:
             raise RotaryError("heights must satisfy 0 < approach gap < clearance plane <= safe Z")
 
@@ -239,7 +239,7 @@ class PocketGeometry:
             if centre.shape != (2,) or not np.all(np.isfinite(centre)):
                 raise RotaryError(f"{what}: the centre must be two finite numbers, got {pocket.centre!r}")
         if pocket.depth <= 0:
-            raise RotaryError(f"{what}: depth must be greater than zero, got {pocket.depth}")
+            raise RotaryError(f"{what}: depth must be greater than zero, got {pocket.depth:g}")
         if pocket.depth >= block.thickness:
             raise RotaryError(f"{what}: depth {pocket.depth:.6g} mm goes through the {block.thickness:.6g} mm board")
         if pocket.depth > settings.tool.flute_length:
@@ -247,7 +247,7 @@ class PocketGeometry:
                               f"{settings.tool.flute_length:.6g} mm")
         if not 0 <= pocket.wall_angle_deg <= MAX_WALL_ANGLE:
             raise RotaryError(f"{what}: wall angle must be 0..{MAX_WALL_ANGLE} degrees from vertical, "
-                              f"got {pocket.wall_angle_deg}")
+                              f"got {pocket.wall_angle_deg:g}")
         if pocket.bottom not in BOTTOMS:
             raise RotaryError(f"{what}: bottom must be one of {BOTTOMS}, got {pocket.bottom!r}")
         half = np.array([block.size_x, block.size_y]) / 2
@@ -274,8 +274,8 @@ class PocketGeometry:
                 raise RotaryError(f"{what}: the bowl's lowest point (the centre) is outside the outline")
             needed = (self.far ** 2 + self.depth ** 2) / (2 * self.depth)
             if rs < needed:
-                raise RotaryError(f"{what}: sphere radius {rs} mm is smaller than the opening requires: a bowl "
-                                  f"{self.depth} mm deep reaching {self.far:.2f} mm from its centre needs "
+                raise RotaryError(f"{what}: sphere radius {rs:g} mm is smaller than the opening requires: a bowl "
+                                  f"{self.depth:g} mm deep reaching {self.far:.2f} mm from its centre needs "
                                   f"at least {needed:.2f} mm")
             self.sphere_radius = float(rs)
         if rg.area(self.bottom_region()) < rg.MIN_AREA:

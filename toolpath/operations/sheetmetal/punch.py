@@ -448,7 +448,7 @@ def simulate_punching(program_or_text, *, punch_diameter: float | None = None, p
     if not d > 0:
         raise PunchError(f"punch diameter must be a number > 0, got {punch_diameter!r}")
     if program.punch_diameter is not None and abs(program.punch_diameter - d) > 0.005 + 1e-9:
-        raise PunchError(f"punch diameter {d} does not match the program's P {program.punch_diameter}")
+        raise PunchError(f"punch diameter {d:g} does not match the program's P {program.punch_diameter:g}")
     tol = _number(tolerance)
     if not 0 < tol < d / 4:
         raise PunchError(f"tolerance must be > 0 and well under the punch radius, got {tolerance!r}")

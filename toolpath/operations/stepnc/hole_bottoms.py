@@ -62,3 +62,21 @@ def flat_bottom_notes(workingsteps, machined_ids) -> list:
                      f"{hole.bottom_z + cone:.3f}); no workingstep cuts the bottom flat: add a flat end mill or "
                      "counterbore workingstep, or finish it by hand")
     return notes
+
+
+def through_bottom_notes(through: list, bottom: float, tolerance: float = 1e-6) -> list:
+    """Without a workpiece BLOCK the deepest through feature's depth plane is taken as the stock's
+    bottom (ISO 14649: a through feature goes through the workpiece), so a mistyped depth would
+    make its own stock: the notes say which feature set the bottom and how thick that makes the
+    stock, and name every other through feature that ends above it (it would not go through)."""
+    through = list({feature.id: feature for feature in through}.values())    # a feature of several workingsteps once
+    deepest = min(through, key=lambda feature: feature.bottom_z)
+    top = max(feature.top_z for feature in through)
+    notes = [f"no workpiece BLOCK: the stock bottom is taken as Z {bottom:g}, the depth of the deepest through "
+             f"feature #{deepest.id} '{deepest.its_id}' ({top - bottom:g} mm below its top); check the stock's "
+             f"thickness, or give the workpiece its BLOCK"]
+    for feature in through:
+        if feature.bottom_z > bottom + tolerance:
+            notes.append(f"through feature #{feature.id} '{feature.its_id}' ends at Z {feature.bottom_z:g}, "
+                         f"{feature.bottom_z - bottom:g} mm above that stock bottom: it does not go through")
+    return notes

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ...job import OperationKind, Part
+from ... import workload
 from .model import StepNcError
 from .solids import fixture_clearance, stock_box
 from .workplan import LoadedWorkplan, nothing_to_machine, skipped_workingsteps, to_program, workplan_from_text
@@ -44,13 +45,19 @@ class StepncKind(OperationKind):
     families = ("milling",)
     settings_type = StepncSettings
 
+    def workload(self, setup, settings, geometry: StepncGeometry) -> list:
+        return workload.stepnc(setup.name, len(geometry.text))
+
     def plan(self, setup, settings: StepncSettings, geometry: StepncGeometry, progress=None) -> Part:
+        report = progress or (lambda fraction, text="": None)
+        report(0.0, "reading")
         loaded = workplan_from_text(geometry.text)
         if not loaded.workingsteps:
             raise StepNcError(nothing_to_machine(loaded.warnings))
         if settings.enabled is not None and not settings.enabled:
             raise StepNcError("every workingstep is switched off: nothing to export")
-        program = to_program(loaded, order=settings.order, enabled=settings.enabled, name=setup.name)
+        program = to_program(loaded, order=settings.order, enabled=settings.enabled, name=setup.name,
+                             progress=lambda fraction, text="": report(0.1 + 0.9 * fraction, text))
         if not program.operations:
             raise StepNcError(nothing_to_machine(program.notes))
         program.work_offset, program.rapid_rate = setup.work_offset, setup.rapid_rate

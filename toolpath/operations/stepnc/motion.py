@@ -268,7 +268,7 @@ def stepover_of(diameter: float, overlap: float | None, radial: float | None) ->
     stepover = min(candidates) if candidates else diameter * DEFAULT_STEPOVER_RATIO
     if stepover < MIN_STEPOVER:
         raise StepNcError(f"stepover {stepover:g} mm (overlap {overlap}, radial depth {radial}) is below "
-                          f"{MIN_STEPOVER} mm")
+                          f"{MIN_STEPOVER:g} mm")
     return stepover
 
 

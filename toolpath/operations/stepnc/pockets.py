@@ -71,7 +71,7 @@ def pockets_to_part21(stock_box, pockets, tool: Tool, *, feed: float = 600.0, sp
     for pocket in pockets:
         rg.validate_loop(pocket.outline, f"pocket {pocket.name!r}")
         if not 0 < pocket.depth <= z1 - z0:
-            raise StepNcError(f"pocket {pocket.name!r}: depth {pocket.depth} must be above 0 and at most the stock "
+            raise StepNcError(f"pocket {pocket.name!r}: depth {pocket.depth:g} must be above 0 and at most the stock "
                              f"height {z1 - z0:g}")
         if pocket.corner_radius < 0:
             raise StepNcError(f"pocket {pocket.name!r}: corner radius must not be negative")

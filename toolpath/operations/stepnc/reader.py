@@ -674,12 +674,16 @@ class _Reader:
 
     # ---- executables
 
-    def step_name(self, t, warn=True) -> str:
-        """A workingstep's its_id, at most MAX_NAME characters and "..." (it is written as a comment)."""
+    def step_name(self, t, warn=True, what="workingstep") -> str:
+        """A workingstep's (or the project's) its_id, at most MAX_NAME characters and "..." (it is
+        written as a comment)."""
         name = self.text(t, 0, "its_id")
         if len(name) <= MAX_NAME:
             return name
-        if warn:
+        if warn and what == "project":
+            self.warnings.append(f"project #{t.id}: its name is {len(name)} characters; the first {MAX_NAME} "
+                                 "are used, followed by ...")
+        elif warn:
             self.warnings.append(f"workingstep #{t.id}: its name is {len(name)} characters; the first {MAX_NAME} "
                                  "are used, followed by ...")
         return name[:MAX_NAME] + "..."
@@ -781,5 +785,5 @@ def read_project(part21: Part21File) -> tuple:
     main = reader.entity(t, 1, "main_workplan", ("WORKPLAN",))
     workpieces = tuple(reader.memoised(piece, reader.workpiece)
                        for piece in reader.entities(t, 2, "its_workpieces", ("WORKPIECE",)))
-    project = Project(t.id, reader.text(t, 0, "its_id"), reader.workplan(main), workpieces)
+    project = Project(t.id, reader.step_name(t, what="project"), reader.workplan(main), workpieces)
     return project, reader.warnings

@@ -32,7 +32,7 @@ from ...engines import region as rg
 from ...ir.errors import InputError
 from ...ir.program import ARC_CW, Operation, Program, Tool
 from .freeform import plan_freeform
-from .hole_bottoms import DEFAULT_TOOL_TOP_ANGLE, flat_bottom_notes  # noqa: F401 (re-exported)
+from .hole_bottoms import DEFAULT_TOOL_TOP_ANGLE, flat_bottom_notes, through_bottom_notes  # noqa: F401
 from .inprocess import InProcessStock
 from .model import (Bidirectional, BottomAndSideMilling, ClosedPocket, ContourBidirectional, ContourParallel, CuttingTool, DrillingOperation, FreeformOperation, PlanarFace, PlaneMilling, PlungeHelix, PlungeRamp, Project, RoundHole, Slot, StepNcError, Unidirectional, Workingstep)
 from .reader import read_project
@@ -95,7 +95,7 @@ def workplan_of(part21) -> LoadedWorkplan:
 # --------------------------------------------------------------------------- workplan -> Program
 
 
-def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None = None) -> Program:
+def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None = None, progress=None) -> Program:
     """The NC program of a workplan: one Operation per enabled workingstep, named after it.
 
     order:   workingstep instance ids in the order to machine them (every workingstep once);
@@ -126,9 +126,14 @@ def to_program(model: LoadedWorkplan, order=None, enabled=None, name: str | None
     if bottom is None:
         notes.append("the stock bottom is unknown (no workpiece BLOCK and no through feature): feature depths "
                      "are not checked against the stock")
+    elif source.startswith("the depth of through feature"):      # no BLOCK: said, never silent
+        notes += through_bottom_notes([step.its_feature for step in model.workingsteps if getattr(
+            step.its_feature, "bottom_condition", None) in THROUGH_CONDITIONS], bottom)
     operations = []
     stock = in_process_stock(model)
-    for step in sequence:
+    for index, step in enumerate(sequence):
+        if progress is not None:        # (fraction, text); what it raises (the panel's Esc) stops the conversion
+            progress(index / len(sequence), f"workingstep #{step.id}")
         if step.id not in enabled:
             notes.append(f"workingstep #{step.id} '{step.its_id}' skipped: switched off (left out of the order to cut)")
             continue

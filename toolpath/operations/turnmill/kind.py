@@ -11,6 +11,7 @@ import numpy as np
 
 from ...engines.meshrays import TrimeshRayEngine, check_mesh, face_samples
 from ...job import DesignLayer, OperationKind, Part
+from ... import workload
 from ...simulate import as_stock
 from . import turnmill
 from .turnreach import NEITHER, classify_faces
@@ -56,6 +57,20 @@ class TurnMillKind(OperationKind):
     label = "Turn-Mill"
     families = ("xzc",)
     settings_type = turnmill.TurnMillSettings
+
+    def workload(self, setup, settings, geometry: TurnMillGeometry) -> list:
+        try:
+            vertices = np.asarray(geometry.vertices, float)
+            faces = np.asarray(geometry.faces, np.int64)
+        except (TypeError, ValueError):
+            return []           # the plan refuses the mesh by name (check_mesh)
+        if vertices.ndim != 2 or vertices.shape[1] != 3 or faces.ndim != 2 or faces.shape[1] != 3 \
+                or not len(faces) or faces.min() < 0 or faces.max() >= len(vertices):
+            return []
+        triangles = vertices[faces]
+        areas = np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]),
+                               axis=1) / 2.0
+        return workload.turnmill(setup.name, areas, settings)
 
     def plan(self, setup, settings, geometry: TurnMillGeometry, progress=None) -> Part:
         report = progress or (lambda fraction, text="": None)

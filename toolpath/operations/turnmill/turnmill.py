@@ -142,7 +142,7 @@ class TurnMillSettings:
             if not positive(getattr(self, name)):
                 raise TurnMillError(f"{name.replace('_', ' ')} must be a number > 0, got {getattr(self, name)!r}")
         if self.tolerance >= self.radius:
-            raise TurnMillError(f"tolerance {self.tolerance} must be smaller than the tool radius {self.radius}")
+            raise TurnMillError(f"tolerance {self.tolerance:g} must be smaller than the tool radius {self.radius:g}")
         if self.stepover is not None and not (positive(self.stepover) and self.stepover <= self.tool_diameter):
             raise TurnMillError(f"stepover must be > 0 and at most the tool diameter, got {self.stepover!r}")
         if self.block_ms is not None and not positive(self.block_ms):
