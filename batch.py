@@ -167,6 +167,15 @@ def stoppable():
             signal.signal(number, handler)
 
 
+def say(message: str) -> None:
+    """``kezuri: message`` on stderr, on a line of its own (after a progress bar left open)."""
+    common = sys.modules.get("kezuri.operators.common")
+    if common is not None and getattr(common.Progress, "line_open", False):
+        print(file=sys.stderr)
+        common.Progress.line_open = False
+    print(f"kezuri: {message}", file=sys.stderr)
+
+
 def feeds(args) -> int:
     """``batch.py feeds``: the calculator's values as JSON on stdout; bad input exits 2."""
     from kezuri.operators import feedsbatch
@@ -174,7 +183,7 @@ def feeds(args) -> int:
     try:
         print(json.dumps(feedsbatch.run(args), indent=2, ensure_ascii=False))
     except InputError as error:
-        print(f"kezuri: {error}", file=sys.stderr)
+        say(f"{error}")
         return 2
     return 0
 
@@ -199,8 +208,8 @@ def address_space_cap() -> int | None:
 def main(argv: list) -> int:
     cap = address_space_cap()
     if cap is not None and cap < MIN_ADDRESS_SPACE:
-        print(f"kezuri: the address space is capped at {cap >> 20} MB (ulimit -v); Blender's module crashes while "
-              f"loading below about 1300 MB: give the run {MIN_ADDRESS_SPACE >> 20} MB or more", file=sys.stderr)
+        say(f"the address space is capped at {cap >> 20} MB (ulimit -v); Blender's module crashes while "
+            f"loading below about 1300 MB: give the run {MIN_ADDRESS_SPACE >> 20} MB or more")
         return MEMORY_STATUS
     if script_arguments(argv)[:1] == ["tools"]:         # the tool library: no --out, no staging
         import_package()
@@ -216,12 +225,12 @@ def main(argv: list) -> int:
                 return run(args)
             except Stopped as stopped:
                 name = signal.Signals(stopped.signum).name
-                print(f"kezuri: stopped by {name}: nothing was written", file=sys.stderr)
+                say(f"stopped by {name}: nothing was written")
                 return STOP_STATUS[stopped.signum]
     except MemoryError:
         limit = f" (the address space is capped at {cap >> 20} MB, ulimit -v)" if cap is not None else ""
-        print(f"kezuri: out of memory{limit}: nothing was written; give the run more memory, or lighter settings "
-              "(a coarser stepover, sample spacing or simulation cell)", file=sys.stderr)
+        say(f"out of memory{limit}: nothing was written; give the run more memory, or lighter settings "
+            "(a coarser stepover, sample spacing or simulation cell)")
         return MEMORY_STATUS
 
 
@@ -233,7 +242,7 @@ def run(args) -> int:
     try:
         staging = Staging(args.out, "--out")
     except user_errors() as error:
-        print(f"kezuri: {error}", file=sys.stderr)
+        say(f"{error}")
         return 2
     args.out = staging.folder
     args.final = staging.final          # where the staged paths will be (a template's rows write reports)
@@ -245,10 +254,10 @@ def run(args) -> int:
         write_report(staging.folder, report)
         staging.commit()
     except GateRefused as error:
-        print(f"kezuri: {staging.final(str(error))}", file=sys.stderr)
+        say(f"{staging.final(str(error))}")
         return REFUSED_STATUS
     except user_errors() as error:
-        print(f"kezuri: {staging.final(str(error))}", file=sys.stderr)
+        say(f"{staging.final(str(error))}")
         return 2
     finally:
         staging.discard()

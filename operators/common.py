@@ -52,6 +52,8 @@ def run_reported(operator, work):
 class Progress:
     """Progress in the UI (window manager cursor) or as a text bar in batch mode."""
 
+    line_open = False       # batch: a bar is on stderr's last line, not ended (a message starts a new one)
+
     def __init__(self, context=None, label: str = ""):
         import bpy
 
@@ -68,8 +70,10 @@ class Progress:
         elif percent // 10 != self.last // 10:
             bar = "#" * (percent // 5)
             print(f"\r{self.label:<10} [{bar:<20}] {percent:3d}% {text:<30}", end="", file=sys.stderr, flush=True)
+            Progress.line_open = True
             if percent >= 100:
                 print(file=sys.stderr)
+                Progress.line_open = False
         self.last = percent
 
     def end(self):

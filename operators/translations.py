@@ -2952,6 +2952,32 @@ MESSAGE_TEMPLATES.update(TOOLLIB_TEMPLATES)
 NESTED.update(TOOLLIB_NESTED)
 MESSAGE_TEMPLATES.update(WORKLOAD_TEMPLATES)
 NESTED.update(WORKLOAD_NESTED)
+# merged together (session 12): notes and warnings of the feeds calculator, engraving's too-fine text
+# and V-carving that are built in pieces
+MERGED_NESTED = {"{}; no text up to {} times as tall lets the tool in: use a smaller tool": (0,),
+                 "{} (gaps {} mm wide); make it at least {} mm tall (now {} mm)": (0,),
+                 "V-carve {}: clearing the flat floor: {}": (1,)}
+MERGED_TEMPLATES = {
+    "flutes not given: {} assumed (the charts' router bits)": "刃数の指定なし：{0} 枚刃とみなしました（表のルータービット）",
+    "spindle {} rpm for {} m/min capped at the machine's {} rpm":
+        "{1} m/min に要る主軸 {0} rpm を機械の {2} rpm に制限しました",
+    "spindle raised to the machine's slowest, {} rpm": "主軸を機械の最低回転数 {0} rpm に上げました",
+    "feed {} mm/min capped at the machine's {} mm/min: chip load {} mm":
+        "送り {0} mm/min を機械の {1} mm/min に制限しました：1刃送り {2} mm",
+    "the band finishing's {} mm tool is too big for {} of letters {}: {} mm^2 between its strokes is left uncut":
+        "帯仕上げの {0} mm 工具は文字 {2} の {1} には太すぎます：線の間の {3} mm² が削り残ります",
+    "{}; no text up to {} times as tall lets the tool in: use a smaller tool":
+        "{0}。{1} 倍の高さまで大きくしても工具が入りません。小さい工具を使ってください",
+    "{} (gaps {} mm wide); make it at least {} mm tall (now {} mm)":
+        "{0}（隙間の幅 {1} mm）。高さを {2} mm 以上にしてください（現在 {3} mm）",
+    "{}: the {} cannot reach {} part(s) of the flat floor at max depth ({}{}); the V-bit's tip traces them, ridges "
+    "up to {} mm high may stand there":
+        "{0}：{1} は最大深さの平らな底の {2} か所（{3}{4}）に届きません。V ビットの先端がなぞりますが、"
+        "高さ {5} mm までの山が残ることがあります",
+    "V-carve {}: clearing the flat floor: {}": "V 彫り {0}：平らな底の除去：{1}",
+}
+MESSAGE_TEMPLATES.update(MERGED_TEMPLATES)
+NESTED.update(MERGED_NESTED)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 
