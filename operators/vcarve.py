@@ -1,4 +1,5 @@
-"""V-carving in the shell: an operation of job files (its panel comes with the router panels).
+"""V-carving in the shell: an operation of job files and of the CAM tab's job list (its settings
+as panel properties, :func:`settings_group`, in the sub-panels :data:`PANELS` under the Job panel).
 
 The region is the object in the ``region`` slot (closed curves, a Text in any font, mesh faces;
 seen from above, read even-odd so counters are islands) in the plate's work frame, or a text laid
@@ -192,5 +193,50 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     return JobOperation("vcarve", entry.name, settings, geometry, entry.enabled), setup, plate.frame
 
 
-WORKFLOW = Workflow("VCARVE", "V-carve", "V-carve closed regions and text with a V-bit; inlays (job files)",
-                    post_families=POST_FAMILIES, kind="vcarve", job_operation=job_operation)
+def settings_group() -> type:
+    """The V-carve's settings as panel properties (names, units and defaults of VCarveSettings)."""
+    from . import kindsettings as ks
+
+    d = core.VCarveSettings()
+    return ks.settings_group("KezuriVCarveSettings", {
+        "tool_number": ks.whole("Tool Number", d.tool.number, "The V-bit's tool number (T word)"),
+        "angle": ks.number("Angle", d.tool.shape.tip_angle_deg, "The V-bit's included angle", "degrees"),
+        "diameter": ks.length("Diameter", d.tool.diameter, "The V-bit's diameter"),
+        "flute_length": ks.length("Flute Length", d.tool.flute_length, "The V-bit's flute length"),
+        "max_depth": ks.length("Max Depth", d.max_depth, "Deepest the V-bit goes; deeper areas cleared flat by "
+                                                         "the end mill; 0: no limit"),
+        "start_depth": ks.length("Start Depth", d.start_depth, "The tip's depth where the region is 0 wide (an "
+                                                               "inlay's plug: how far it goes in)"),
+        "tolerance": ks.length("Tolerance", d.tolerance, "How far the path may stray from the medial axis"),
+        "clear_tool_number": ks.whole("Mill Tool", d.clear_tool.number, "The end mill's tool number (T word)"),
+        "clear_diameter": ks.length("Mill Diameter", d.clear_tool.diameter, "The end mill's diameter"),
+        "clear_flute_length": ks.length("Mill Flutes", d.clear_tool.flute_length, "The end mill's flute length"),
+        "clear_stepover": ks.length("Stepover", d.clear_stepover, "Between the end mill's rings; 0: its radius"),
+        "clear_step_down": ks.length("Step Down", d.clear_step_down, "Deepest cut of one level"),
+        "clear_rpm": ks.number("Mill Spindle", d.clear_rpm, "The end mill's spindle speed", "rpm", 0),
+        "clear_feed": ks.number("Mill Feed", d.clear_feed, "The end mill's feed", "mm/min", 0),
+        "inlay": ks.choice("Inlay", d.inlay, "A plain V-carve, or one half of an inlay", (
+            ("none", "None", "A plain V-carve"),
+            ("female", "Female", "The inlay's pocket: the design carved in"),
+            ("male", "Male", "The inlay's plug: the design mirrored, the waste round it carved away"))),
+        "glue_gap": ks.length("Glue Gap", d.glue_gap, "Male: between plug and pocket, square to the walls"),
+        "waste_margin": ks.length("Waste Margin", d.waste_margin, "Male: board cleared round the plug; 0: twice "
+                                                                  "the widest cut plus 2 mm"),
+        "rpm": ks.number("Spindle", d.rpm, "Spindle speed", "rpm", 0),
+        "feed": ks.number("Feed", d.feed, "Cutting feed", "mm/min", 0),
+        "entry_feed": ks.number("Entry Feed", d.entry_feed, "Feed down into each path", "mm/min", 0),
+        "clearance_z": ks.length("Clearance Plane", d.clearance_z, "Height of rapid moves between cuts"),
+        "safe_z": ks.length("Safe Z", d.safe_z, "Height where the operation starts and ends"),
+    })
+
+
+PANELS = (("V-Bit", ("tool_number", "angle", "diameter", "flute_length")),
+          ("Depth", ("max_depth", "start_depth", "tolerance")),
+          ("Clearing", ("clear_tool_number", "clear_diameter", "clear_flute_length", "clear_stepover",
+                        "clear_step_down", "clear_rpm", "clear_feed")),
+          ("Inlay", ("inlay", "glue_gap", "waste_margin")),
+          ("Feeds & Heights", ("rpm", "feed", "entry_feed", "clearance_z", "safe_z")))
+
+WORKFLOW = Workflow("VCARVE", "V-carve", "V-carve closed regions and text with a V-bit; inlays",
+                    post_families=POST_FAMILIES, kind="vcarve", job_operation=job_operation,
+                    settings_group=settings_group(), settings_panels=PANELS)
