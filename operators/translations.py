@@ -2881,6 +2881,22 @@ VCARVE_PANEL_TEXTS = {
     "Feed down into each path (mm/min)": "各経路へ下る送り (mm/min)",
 }
 ROUTER_PANEL_TEXTS.update(VCARVE_PANEL_TEXTS)
+# text too fine for a V-carve's clearing end mill (toolpath/operations/vcarve/fine.py)
+VCARVE_FINE_TEMPLATES = {
+    "{}: the clearing's {} mm end mill is too big for {} of {}: {} mm^2 of the flat floor at max depth {} mm is left "
+    "to the V-bit's tip (strokes {} mm wide; the end mill needs {} mm); make it at least {} mm tall (now {} mm), or "
+    "use a smaller end mill or a smaller max depth":
+        "{0}：除去加工の {1} mm エンドミルは {3} の {2} には太すぎます：最大深さ {5} mm の平らな底のうち {4} mm² が"
+        "V ビットの先端に残ります（線幅 {6} mm、エンドミルには {7} mm 必要）。高さを {8} mm 以上にする"
+        "（現在 {9} mm）か、小さいエンドミルまたは浅い最大深さにしてください",
+    "{}: the clearing's {} mm end mill is too big for {} of {}: {} mm^2 of the flat floor at max depth {} mm is left "
+    "to the V-bit's tip (strokes {} mm wide; the end mill needs {} mm); no text up to {} times as tall lets the end "
+    "mill in: use a smaller end mill or a smaller max depth":
+        "{0}：除去加工の {1} mm エンドミルは {3} の {2} には太すぎます：最大深さ {5} mm の平らな底のうち {4} mm² が"
+        "V ビットの先端に残ります（線幅 {6} mm、エンドミルには {7} mm 必要）。{8} 倍の高さまで大きくしても"
+        "エンドミルが入りません。小さいエンドミルまたは浅い最大深さにしてください",
+}
+MESSAGE_TEMPLATES.update(VCARVE_FINE_TEMPLATES)
 MESSAGE_TEMPLATES.update(TOOLLIB_TEMPLATES)
 NESTED.update(TOOLLIB_NESTED)
 TRANSLATIONS = _build()

@@ -21,7 +21,7 @@ from ..toolpath.job import JobOperation, Setup
 from ..toolpath.operations.pocket import pocket as pocket_core
 from ..toolpath.operations.vcarve import vcarve as core
 from ..toolpath.operations.vcarve.kind import VCarveGeometry, VCarveKind
-from . import convert
+from . import convert, textcells
 from .workflow import Workflow
 
 POST_FAMILIES = ("milling",)
@@ -116,12 +116,18 @@ def text_spec(text, where: str) -> dict:
 
 def text_loops(spec: dict, base_dir: str, where: str) -> list:
     """The text's outlines (mm, centred on the origin), laid out by Blender in its font."""
+    return text_outlines(spec, base_dir, where)[0]
+
+
+def text_outlines(spec: dict, base_dir: str, where: str) -> tuple:
+    """(the text's outlines, its characters one by one as (character, index, loops)), mm, centred
+    on the origin, laid out by Blender in its font (the characters: [] for a text longer than
+    textcells.MAX_CHARACTERS)."""
     import bpy
 
     from .jobentry import JobFileError
 
     curve = bpy.data.curves.new("V-carve text", type="FONT")
-    obj = bpy.data.objects.new("V-carve text", curve)
     try:
         curve.body = spec["body"]
         curve.size = spec["size"]
@@ -133,20 +139,17 @@ def text_loops(spec: dict, base_dir: str, where: str) -> list:
                 curve.font = bpy.data.fonts.load(path, check_existing=True)
             except RuntimeError as error:
                 raise JobFileError(f"{where}: text.font = {spec['font']!r}: Blender cannot read it ({error})") from None
-        mesh = obj.to_mesh()
-        count = len(mesh.vertices)
-        vertices = np.empty(count * 3)
-        mesh.vertices.foreach_get("co", vertices)
-        vertices = vertices.reshape(-1, 3)[:, :2]
-        faces = [vertices[list(p.vertices)] for p in mesh.polygons]
-        obj.to_mesh_clear()
+        local, faces, materials = textcells.character_faces(curve)
     finally:
-        bpy.data.objects.remove(obj)
         bpy.data.curves.remove(curve)
     if not faces:
         raise JobFileError(f"{where}: text {spec['body']!r} has no glyph outlines in its font (is the font missing "
                            "these characters?)")
-    return rg.loops(rg.union_of_faces(faces, f"text {spec['body']!r}"))
+    points = local[:, :2]
+    loops = rg.loops(rg.union_of_faces([points[face] for face in faces], f"text {spec['body']!r}"))
+    characters = [] if len(spec["body"]) > textcells.MAX_CHARACTERS else \
+        textcells.outlines_by_character(spec["body"], points, faces, materials, f"text {spec['body']!r}")
+    return loops, characters
 
 
 def job_operation(scene, depsgraph, entry, post_name: str):
@@ -171,21 +174,26 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     what = f"V-carve {entry.name!r}"
     if has_text:
         spec = text_spec(entry.table["text"], entry.where)
-        loops = text_loops(spec, entry.base_dir, entry.where)
+        loops, characters = text_outlines(spec, entry.base_dir, entry.where)
         outline = np.vstack(plate.outline)
-        at = spec["at"] if spec["at"] is not None else (outline.min(axis=0) + outline.max(axis=0)) / 2
-        loops = [loop + np.asarray(at, float) for loop in loops]
-        what += f" (text {spec['body']!r})"
+        at = np.asarray(spec["at"] if spec["at"] is not None else (outline.min(axis=0) + outline.max(axis=0)) / 2,
+                        float)
+        loops = [loop + at for loop in loops]
+        characters = [(char, index, tuple(loop + at for loop in outlines)) for char, index, outlines in characters]
+        letters = f"text {spec['body']!r}"
     else:
         obj = entry.objects["region"]
         loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
-        what += f" (object {obj.name!r})"
+        characters = textcells.character_outlines(obj, depsgraph, plate.frame, loops)
+        letters = f"object {obj.name!r}"
+    what += f" ({letters})"
     try:
         settings.check(what)
         core.carved_region(loops, settings, what)
     except core.VCarveError as error:
         raise JobFileError(f"{entry.where}: the V-carve: {error}") from None
-    geometry = VCarveGeometry(tuple(loops), entry.name, 0.0, tuple(plate.outline), float(plate.size[2]))
+    geometry = VCarveGeometry(tuple(loops), entry.name, 0.0, tuple(plate.outline), float(plate.size[2]),
+                              tuple(characters), letters)
     stock = VCarveKind.stock(geometry, None, settings)
     machine = scene_machine(kezuri.machine, POST_FAMILIES, post_name)
     setup = Setup(name=scene.name, post=post_name, machine=machine,
