@@ -7,6 +7,7 @@ import contextlib
 import io
 import json
 import math
+import os
 
 import pytest
 
@@ -76,3 +77,33 @@ def test_no_flat_floor_no_too_fine(empty_scene, tmp_path):
     so the V-bit carves them all to a point: no floor, nothing named."""
     operation = run_job(tmp_path, 1.0)
     assert operation["too_fine"] == [] and operation["operations"] == ["kanji"]
+
+
+def test_a_text_objects_characters_are_named_from_the_job_list(empty_scene):
+    """A V-carve row of the job list on a Text object (its characters told one by one in the
+    plate's frame): the same kanji, the same max depth, named in the planned part's result."""
+    from kezuri.operators import joblist, samples
+    from kezuri.toolpath.job import plan_job
+
+    scene = empty_scene
+    plate, _ = samples.name_plate(scene)
+    data = bpy.data.curves.new("Name", "FONT")
+    data.body = "欅 削り"
+    data.font = bpy.data.fonts.load(os.path.join(bpy.utils.system_resource("DATAFILES"), "fonts",
+                                                 "Noto Sans CJK Regular.woff2"), check_existing=True)
+    data.size = 15.54
+    name = bpy.data.objects.new("Name", data)
+    scene.collection.objects.link(name)
+    scene.kezuri.machine.post = "linuxcnc"
+    assert bpy.ops.kezuri.job_add(kind="vcarve") == {"FINISHED"}
+    row = scene.kezuri.job_list.rows[0]
+    next(item for item in row.objects if item.slot == "region").object = name
+    props = scene.kezuri.vcarve
+    props.max_depth, props.clear_diameter = 0.3, 3.175
+    assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
+    assert row.state == "FINDINGS"
+    (item,) = plan_job(joblist.build(scene)[0]).planned
+    found = item.part.result.too_fine
+    assert [(f["char"], f["index"]) for f in found][:2] == [("欅", 0), ("削", 2)]
+    assert all(f["letters"] == "object 'Name'" and set(f) == KEYS for f in found)
+    assert any("too big for '欅' (U+6B05) of object 'Name'" in w for w in item.part.warnings)
