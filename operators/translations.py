@@ -2896,6 +2896,10 @@ VCARVE_FINE_TEMPLATES = {
         "V ビットの先端に残ります（線幅 {6} mm、エンドミルには {7} mm 必要）。{8} 倍の高さまで大きくしても"
         "エンドミルが入りません。小さいエンドミルまたは浅い最大深さにしてください",
 }
+VCARVE_FINE_TEMPLATES["{}: the {} cannot reach {} part(s) of the flat floor at max depth ({}); the V-bit's tip traces "
+                      "them, ridges up to {} mm high may stand there"] = \
+    "{0}：{1} は最大深さの平らな底のうち {2} か所（{3}）に届きません。V ビットの先端がなぞり、" \
+    "高さ {4} mm までの山が残ることがあります"
 MESSAGE_TEMPLATES.update(VCARVE_FINE_TEMPLATES)
 MESSAGE_TEMPLATES.update(TOOLLIB_TEMPLATES)
 NESTED.update(TOOLLIB_NESTED)

@@ -107,3 +107,13 @@ def test_a_text_objects_characters_are_named_from_the_job_list(empty_scene):
     assert [(f["char"], f["index"]) for f in found][:2] == [("欅", 0), ("削", 2)]
     assert all(f["letters"] == "object 'Name'" and set(f) == KEYS for f in found)
     assert any("too big for '欅' (U+6B05) of object 'Name'" in w for w in item.part.warnings)
+
+
+def test_the_floor_corners_warning_comes_out_in_japanese(empty_scene):
+    english = ("V-carve 'pocket': the T4 3.175 mm flat end mill (3.175 mm end mill) cannot reach 2 part(s) of the "
+               "flat floor at max depth (X-0.00 Y-12.56, X1.00 Y2.00); the V-bit's tip traces them, ridges up to "
+               "0.48 mm high may stand there")
+    japanese = translations.japanese_message(english)
+    assert japanese == ("V-carve 'pocket'：T4 3.175 mm flat end mill (3.175 mm end mill) は最大深さの平らな底のうち "
+                        "2 か所（X-0.00 Y-12.56, X1.00 Y2.00）に届きません。V ビットの先端がなぞり、高さ 0.48 mm "
+                        "までの山が残ることがあります")
