@@ -2884,18 +2884,17 @@ ROUTER_PANEL_TEXTS.update(VCARVE_PANEL_TEXTS)
 # text too fine for a V-carve's clearing end mill (toolpath/operations/vcarve/fine.py)
 VCARVE_FINE_TEMPLATES = {
     "{}: the clearing's {} mm end mill is too big for {} of {}: {} mm^2 of the flat floor at max depth {} mm is left "
-    "to the V-bit's tip (strokes {} mm wide; the end mill needs {} mm); make it at least {} mm tall (now {} mm), or "
-    "use a smaller end mill or a smaller max depth":
+    "to the V-bit's tip (strokes {} mm wide; the end mill needs {} mm)":
         "{0}：除去加工の {1} mm エンドミルは {3} の {2} には太すぎます：最大深さ {5} mm の平らな底のうち {4} mm² が"
-        "V ビットの先端に残ります（線幅 {6} mm、エンドミルには {7} mm 必要）。高さを {8} mm 以上にする"
-        "（現在 {9} mm）か、小さいエンドミルまたは浅い最大深さにしてください",
-    "{}: the clearing's {} mm end mill is too big for {} of {}: {} mm^2 of the flat floor at max depth {} mm is left "
-    "to the V-bit's tip (strokes {} mm wide; the end mill needs {} mm); no text up to {} times as tall lets the end "
-    "mill in: use a smaller end mill or a smaller max depth":
-        "{0}：除去加工の {1} mm エンドミルは {3} の {2} には太すぎます：最大深さ {5} mm の平らな底のうち {4} mm² が"
-        "V ビットの先端に残ります（線幅 {6} mm、エンドミルには {7} mm 必要）。{8} 倍の高さまで大きくしても"
-        "エンドミルが入りません。小さいエンドミルまたは浅い最大深さにしてください",
+        "V ビットの先端に残ります（線幅 {6} mm、エンドミルには {7} mm 必要）",
+    "{}; make it at least {} mm tall (now {} mm), or use a smaller end mill or a smaller max depth":
+        "{0}。高さを {1} mm 以上にする（現在 {2} mm）か、小さいエンドミルまたは浅い最大深さにしてください",
+    "{}; no text up to {} times as tall lets the end mill in: use a smaller end mill or a smaller max depth":
+        "{0}。{1} 倍の高さまで大きくしてもエンドミルが入りません。小さいエンドミルまたは浅い最大深さにしてください",
 }
+NESTED.update({"{}; make it at least {} mm tall (now {} mm), or use a smaller end mill or a smaller max depth": (0,),
+               "{}; no text up to {} times as tall lets the end mill in: use a smaller end mill or a smaller max "
+               "depth": (0,)})
 VCARVE_FINE_TEMPLATES["{}: the {} cannot reach {} part(s) of the flat floor at max depth ({}); the V-bit's tip traces "
                       "them, ridges up to {} mm high may stand there"] = \
     "{0}：{1} は最大深さの平らな底のうち {2} か所（{3}）に届きません。V ビットの先端がなぞり、" \
