@@ -355,7 +355,9 @@ def write_job(path: str, out: str, post_name: str | None = None, allow_findings:
         "toolpath_seconds": round(seconds, 3),
         "job_operations": [{"name": item.operation.name, "kind": item.operation.kind,
                             "operations": [op.name for op in item.part.operations],
-                            "warnings": list(item.part.warnings), "plan_seconds": round(item.part.seconds, 3)}
+                            "warnings": list(item.part.warnings), "plan_seconds": round(item.part.seconds, 3),
+                            # characters too fine for a tool (engraving's band, a V-carve's clearing)
+                            "too_fine": list(getattr(item.part.result, "too_fine", None) or [])}
                            for item in planned.planned],
         "operations": program.summary(),
         "tools": [tool.describe() for tool in program.tools()],

@@ -23,8 +23,20 @@ def character_outlines(obj, depsgraph, frame, letter_loops) -> list:
     object's outline as planned: a modifier changed it, for one)."""
     if obj.type != "FONT" or not obj.data.body.strip() or len(obj.data.body) > MAX_CHARACTERS:
         return []
-    body = obj.data.body
-    data = obj.data.copy()
+    local, faces, materials = character_faces(obj.data)
+    world = convert.placed(local, np.array(obj.evaluated_get(depsgraph).matrix_world))
+    found = outlines_by_character(obj.data.body, frame.to_work(world)[:, :2], faces, materials, obj.name)
+    if not found or not _agrees(found, letter_loops):
+        return []
+    return found
+
+
+def character_faces(data) -> tuple:
+    """A Text's curve data as a mesh whose faces are numbered by character: (vertices (n, 3) in
+    the curve's own coordinates, faces (vertex index lists), each face's material index, the
+    character's place in the body + 1)."""
+    body = data.body
+    data = data.copy()
     try:
         data.materials.clear()
         for _ in range(len(body) + 1):
@@ -45,19 +57,21 @@ def character_outlines(obj, depsgraph, frame, letter_loops) -> list:
             bpy.data.objects.remove(temp)
     finally:
         bpy.data.curves.remove(data)
-    world = convert.placed(local.reshape(count, 3), np.array(obj.evaluated_get(depsgraph).matrix_world))
-    work = frame.to_work(world)[:, :2]
+    return local.reshape(count, 3), faces, materials
+
+
+def outlines_by_character(body: str, points, faces, materials, name: str) -> list:
+    """[(character, index, (loop, ...)), ...] from :func:`character_faces`' faces (``points``:
+    their vertices in work mm, (n, 2)); [] when they cannot be told apart."""
     found = []
     try:
-        for slot in sorted(set(materials.tolist()) - {0}):
+        for slot in sorted(set(np.asarray(materials).tolist()) - {0}):
             index = slot - 1
             if index >= len(body):
                 return []
-            shape = region.union_of_faces([work[faces[k]] for k in np.nonzero(materials == slot)[0]],
-                                          f"character {index + 1} of {obj.name!r}")
+            shape = region.union_of_faces([points[faces[k]] for k in np.nonzero(materials == slot)[0]],
+                                          f"character {index + 1} of {name!r}")
             found.append((body[index], index, tuple(region.loops(shape))))
-        if not found or not _agrees(found, letter_loops):
-            return []
     except region.RegionError:         # a glyph of no area: the characters are not told apart, nothing fails
         return []
     return found

@@ -2948,6 +2948,49 @@ VCARVE_TEMPLATES = {
 }
 MESSAGE_TEMPLATES.update(VCARVE_TEMPLATES)
 NESTED.update(VCARVE_NESTED)
+# the V-carve's settings panels in the job list (issue 30: operators/vcarve.py settings_group)
+VCARVE_PANEL_TEXTS = {
+    "V-carve": "V 彫り", "V-carve closed regions and text with a V-bit; inlays":
+        "閉じた領域と文字を V ビットで V 彫り、インレイ",
+    "Inlay": "インレイ", "Max Depth": "最大深さ", "Start Depth": "開始深さ", "Glue Gap": "接着すき間",
+    "Waste Margin": "捨て代", "Female": "雌型", "Male": "雄型",
+    "The V-bit's included angle (degrees)": "Vビットの刃先角 (度)",
+    "Deepest the V-bit goes; deeper areas cleared flat by the end mill; 0: no limit (mm)":
+        "Vビットの最大深さ。これより深い所はエンドミルで平らに削ります。0：制限なし (mm)",
+    "The tip's depth where the region is 0 wide (an inlay's plug: how far it goes in) (mm)":
+        "領域の幅が0の所での先端の深さ（インレイのプラグ：差し込む深さ） (mm)",
+    "How far the path may stray from the medial axis (mm)": "経路が中心軸から外れてよい距離 (mm)",
+    "Between the end mill's rings; 0: its radius (mm)": "エンドミルのリングの間隔。0：その半径 (mm)",
+    "A plain V-carve, or one half of an inlay": "通常の V 彫り、またはインレイの片側",
+    "A plain V-carve": "通常の V 彫り",
+    "The inlay's pocket: the design carved in": "インレイのポケット：図柄を彫り込みます",
+    "The inlay's plug: the design mirrored, the waste round it carved away":
+        "インレイのプラグ：図柄を反転し、周りの捨て部分を彫り取ります",
+    "Male: between plug and pocket, square to the walls (mm)": "雄型：プラグとポケットの間、壁に垂直に測る (mm)",
+    "Male: board cleared round the plug; 0: twice the widest cut plus 2 mm (mm)":
+        "雄型：プラグの周りで削る板の幅。0：最も広い切削の2倍＋2 mm (mm)",
+    "Feed down into each path (mm/min)": "各経路へ下る送り (mm/min)",
+}
+ROUTER_PANEL_TEXTS.update(VCARVE_PANEL_TEXTS)
+# text too fine for a V-carve's clearing end mill (toolpath/operations/vcarve/fine.py)
+VCARVE_FINE_TEMPLATES = {
+    "{}: the clearing's {} mm end mill is too big for {} of {}: {} mm^2 of the flat floor at max depth {} mm is left "
+    "to the V-bit's tip (strokes {} mm wide; the end mill needs {} mm)":
+        "{0}：除去加工の {1} mm エンドミルは {3} の {2} には太すぎます：最大深さ {5} mm の平らな底のうち {4} mm² が"
+        "V ビットの先端に残ります（線幅 {6} mm、エンドミルには {7} mm 必要）",
+    "{}; make it at least {} mm tall (now {} mm), or use a smaller end mill or a smaller max depth":
+        "{0}。高さを {1} mm 以上にする（現在 {2} mm）か、小さいエンドミルまたは浅い最大深さにしてください",
+    "{}; no text up to {} times as tall lets the end mill in: use a smaller end mill or a smaller max depth":
+        "{0}。{1} 倍の高さまで大きくしてもエンドミルが入りません。小さいエンドミルまたは浅い最大深さにしてください",
+}
+NESTED.update({"{}; make it at least {} mm tall (now {} mm), or use a smaller end mill or a smaller max depth": (0,),
+               "{}; no text up to {} times as tall lets the end mill in: use a smaller end mill or a smaller max "
+               "depth": (0,)})
+VCARVE_FINE_TEMPLATES["{}: the {} cannot reach {} part(s) of the flat floor at max depth ({}); the V-bit's tip traces "
+                      "them, ridges up to {} mm high may stand there"] = \
+    "{0}：{1} は最大深さの平らな底のうち {2} か所（{3}）に届きません。V ビットの先端がなぞり、" \
+    "高さ {4} mm までの山が残ることがあります"
+MESSAGE_TEMPLATES.update(VCARVE_FINE_TEMPLATES)
 MESSAGE_TEMPLATES.update(TOOLLIB_TEMPLATES)
 NESTED.update(TOOLLIB_NESTED)
 MESSAGE_TEMPLATES.update(WORKLOAD_TEMPLATES)

@@ -1,4 +1,5 @@
-"""V-carving in the shell: an operation of job files (its panel comes with the router panels).
+"""V-carving in the shell: an operation of job files and of the CAM tab's job list (its settings
+as panel properties, :func:`settings_group`, in the sub-panels :data:`PANELS` under the Job panel).
 
 The region is the object in the ``region`` slot (closed curves, a Text in any font, mesh faces;
 seen from above, read even-odd so counters are islands) in the plate's work frame, or a text laid
@@ -20,7 +21,7 @@ from ..toolpath.job import JobOperation, Setup
 from ..toolpath.operations.pocket import pocket as pocket_core
 from ..toolpath.operations.vcarve import vcarve as core
 from ..toolpath.operations.vcarve.kind import VCarveGeometry, VCarveKind
-from . import convert
+from . import convert, textcells
 from .workflow import Workflow
 
 POST_FAMILIES = ("milling",)
@@ -115,12 +116,18 @@ def text_spec(text, where: str) -> dict:
 
 def text_loops(spec: dict, base_dir: str, where: str) -> list:
     """The text's outlines (mm, centred on the origin), laid out by Blender in its font."""
+    return text_outlines(spec, base_dir, where)[0]
+
+
+def text_outlines(spec: dict, base_dir: str, where: str) -> tuple:
+    """(the text's outlines, its characters one by one as (character, index, loops)), mm, centred
+    on the origin, laid out by Blender in its font (the characters: [] for a text longer than
+    textcells.MAX_CHARACTERS)."""
     import bpy
 
     from .jobentry import JobFileError
 
     curve = bpy.data.curves.new("V-carve text", type="FONT")
-    obj = bpy.data.objects.new("V-carve text", curve)
     try:
         curve.body = spec["body"]
         curve.size = spec["size"]
@@ -132,20 +139,17 @@ def text_loops(spec: dict, base_dir: str, where: str) -> list:
                 curve.font = bpy.data.fonts.load(path, check_existing=True)
             except RuntimeError as error:
                 raise JobFileError(f"{where}: text.font = {spec['font']!r}: Blender cannot read it ({error})") from None
-        mesh = obj.to_mesh()
-        count = len(mesh.vertices)
-        vertices = np.empty(count * 3)
-        mesh.vertices.foreach_get("co", vertices)
-        vertices = vertices.reshape(-1, 3)[:, :2]
-        faces = [vertices[list(p.vertices)] for p in mesh.polygons]
-        obj.to_mesh_clear()
+        local, faces, materials = textcells.character_faces(curve)
     finally:
-        bpy.data.objects.remove(obj)
         bpy.data.curves.remove(curve)
     if not faces:
         raise JobFileError(f"{where}: text {spec['body']!r} has no glyph outlines in its font (is the font missing "
                            "these characters?)")
-    return rg.loops(rg.union_of_faces(faces, f"text {spec['body']!r}"))
+    points = local[:, :2]
+    loops = rg.loops(rg.union_of_faces([points[face] for face in faces], f"text {spec['body']!r}"))
+    characters = [] if len(spec["body"]) > textcells.MAX_CHARACTERS else \
+        textcells.outlines_by_character(spec["body"], points, faces, materials, f"text {spec['body']!r}")
+    return loops, characters
 
 
 def job_operation(scene, depsgraph, entry, post_name: str):
@@ -170,21 +174,26 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     what = f"V-carve {entry.name!r}"
     if has_text:
         spec = text_spec(entry.table["text"], entry.where)
-        loops = text_loops(spec, entry.base_dir, entry.where)
+        loops, characters = text_outlines(spec, entry.base_dir, entry.where)
         outline = np.vstack(plate.outline)
-        at = spec["at"] if spec["at"] is not None else (outline.min(axis=0) + outline.max(axis=0)) / 2
-        loops = [loop + np.asarray(at, float) for loop in loops]
-        what += f" (text {spec['body']!r})"
+        at = np.asarray(spec["at"] if spec["at"] is not None else (outline.min(axis=0) + outline.max(axis=0)) / 2,
+                        float)
+        loops = [loop + at for loop in loops]
+        characters = [(char, index, tuple(loop + at for loop in outlines)) for char, index, outlines in characters]
+        letters = f"text {spec['body']!r}"
     else:
         obj = entry.objects["region"]
         loops = convert.outlines_in_work(obj, depsgraph, plate.frame)
-        what += f" (object {obj.name!r})"
+        characters = textcells.character_outlines(obj, depsgraph, plate.frame, loops)
+        letters = f"object {obj.name!r}"
+    what += f" ({letters})"
     try:
         settings.check(what)
         core.carved_region(loops, settings, what)
     except core.VCarveError as error:
         raise JobFileError(f"{entry.where}: the V-carve: {error}") from None
-    geometry = VCarveGeometry(tuple(loops), entry.name, 0.0, tuple(plate.outline), float(plate.size[2]))
+    geometry = VCarveGeometry(tuple(loops), entry.name, 0.0, tuple(plate.outline), float(plate.size[2]),
+                              tuple(characters), letters)
     stock = VCarveKind.stock(geometry, None, settings)
     machine = scene_machine(kezuri.machine, POST_FAMILIES, post_name)
     setup = Setup(name=scene.name, post=post_name, machine=machine,
@@ -192,5 +201,50 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     return JobOperation("vcarve", entry.name, settings, geometry, entry.enabled), setup, plate.frame
 
 
-WORKFLOW = Workflow("VCARVE", "V-carve", "V-carve closed regions and text with a V-bit; inlays (job files)",
-                    post_families=POST_FAMILIES, kind="vcarve", job_operation=job_operation)
+def settings_group() -> type:
+    """The V-carve's settings as panel properties (names, units and defaults of VCarveSettings)."""
+    from . import kindsettings as ks
+
+    d = core.VCarveSettings()
+    return ks.settings_group("KezuriVCarveSettings", {
+        "tool_number": ks.whole("Tool Number", d.tool.number, "The V-bit's tool number (T word)"),
+        "angle": ks.number("Angle", d.tool.shape.tip_angle_deg, "The V-bit's included angle", "degrees"),
+        "diameter": ks.length("Diameter", d.tool.diameter, "The V-bit's diameter"),
+        "flute_length": ks.length("Flute Length", d.tool.flute_length, "The V-bit's flute length"),
+        "max_depth": ks.length("Max Depth", d.max_depth, "Deepest the V-bit goes; deeper areas cleared flat by "
+                                                         "the end mill; 0: no limit"),
+        "start_depth": ks.length("Start Depth", d.start_depth, "The tip's depth where the region is 0 wide (an "
+                                                               "inlay's plug: how far it goes in)"),
+        "tolerance": ks.length("Tolerance", d.tolerance, "How far the path may stray from the medial axis"),
+        "clear_tool_number": ks.whole("Mill Tool", d.clear_tool.number, "The end mill's tool number (T word)"),
+        "clear_diameter": ks.length("Mill Diameter", d.clear_tool.diameter, "The end mill's diameter"),
+        "clear_flute_length": ks.length("Mill Flutes", d.clear_tool.flute_length, "The end mill's flute length"),
+        "clear_stepover": ks.length("Stepover", d.clear_stepover, "Between the end mill's rings; 0: its radius"),
+        "clear_step_down": ks.length("Step Down", d.clear_step_down, "Deepest cut of one level"),
+        "clear_rpm": ks.number("Mill Spindle", d.clear_rpm, "The end mill's spindle speed", "rpm", 0),
+        "clear_feed": ks.number("Mill Feed", d.clear_feed, "The end mill's feed", "mm/min", 0),
+        "inlay": ks.choice("Inlay", d.inlay, "A plain V-carve, or one half of an inlay", (
+            ("none", "None", "A plain V-carve"),
+            ("female", "Female", "The inlay's pocket: the design carved in"),
+            ("male", "Male", "The inlay's plug: the design mirrored, the waste round it carved away"))),
+        "glue_gap": ks.length("Glue Gap", d.glue_gap, "Male: between plug and pocket, square to the walls"),
+        "waste_margin": ks.length("Waste Margin", d.waste_margin, "Male: board cleared round the plug; 0: twice "
+                                                                  "the widest cut plus 2 mm"),
+        "rpm": ks.number("Spindle", d.rpm, "Spindle speed", "rpm", 0),
+        "feed": ks.number("Feed", d.feed, "Cutting feed", "mm/min", 0),
+        "entry_feed": ks.number("Entry Feed", d.entry_feed, "Feed down into each path", "mm/min", 0),
+        "clearance_z": ks.length("Clearance Plane", d.clearance_z, "Height of rapid moves between cuts"),
+        "safe_z": ks.length("Safe Z", d.safe_z, "Height where the operation starts and ends"),
+    })
+
+
+PANELS = (("V-Bit", ("tool_number", "angle", "diameter", "flute_length")),
+          ("Depth", ("max_depth", "start_depth", "tolerance")),
+          ("Clearing", ("clear_tool_number", "clear_diameter", "clear_flute_length", "clear_stepover",
+                        "clear_step_down", "clear_rpm", "clear_feed")),
+          ("Inlay", ("inlay", "glue_gap", "waste_margin")),
+          ("Feeds & Heights", ("rpm", "feed", "entry_feed", "clearance_z", "safe_z")))
+
+WORKFLOW = Workflow("VCARVE", "V-carve", "V-carve closed regions and text with a V-bit; inlays",
+                    post_families=POST_FAMILIES, kind="vcarve", job_operation=job_operation,
+                    settings_group=settings_group(), settings_panels=PANELS)

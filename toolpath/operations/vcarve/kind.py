@@ -18,13 +18,15 @@ KEEP_BAND = 2.0         # mm round the carving that must stand
 class VCarveGeometry:
     """The design's loops (work mm, read even-odd: counters are islands), the operation's name,
     the stock's top Z and, for the stock, the plate's outline and thickness (empty: a box 5 mm
-    round the design)."""
+    round the design); a text's characters one by one, to name those too fine for the end mill."""
 
     loops: tuple
     name: str = "vcarve"
     top: float = 0.0
     plate_outline: tuple = ()
     plate_thickness: float = 0.0
+    characters: tuple = ()      # ((character, index in the text, loops), ...) of a text, for naming
+    letters: str = ""           # what the characters are called in messages (the Text object, the text)
 
 
 def design_layer(result: vcarve.VCarveResult, settings, top: float) -> DesignLayer:
@@ -47,7 +49,8 @@ class VCarveKind(OperationKind):
     settings_type = vcarve.VCarveSettings
 
     def plan(self, setup, settings, geometry: VCarveGeometry, progress=None) -> Part:
-        result = vcarve.plan(list(geometry.loops), settings, name=geometry.name, top=geometry.top, progress=progress)
+        result = vcarve.plan(list(geometry.loops), settings, name=geometry.name, top=geometry.top, progress=progress,
+                             characters=geometry.characters, letters=geometry.letters)
         stock = setup.stock or self.stock(geometry, result, settings)
         design = design_layer(result, settings, geometry.top)
         return Part(tuple(result.operations), stock, design, tuple(result.warnings), (), None, result)

@@ -31,7 +31,7 @@ from ...ir.program import Operation, PathBuilder, ProgramError, Tool
 from ..pocket import pocket
 from ..stepnc.motion import round_offset
 from . import chains as ch
-from . import medial
+from . import fine, medial
 
 INLAYS = ("none", "female", "male")
 MIN_TOLERANCE = 0.001           # mm: the medial axis's sampling tolerance, finest
@@ -148,6 +148,9 @@ class VCarveResult:
     medial: medial.MedialAxis
     warnings: list
     left: list                  # (x, y) of flat-floor corners the end mill cannot reach
+    # the characters too fine for the clearing tool: [{operation, letters, char, index, missed_mm2,
+    # narrowest_mm, height_mm, min_height_mm, at}] (:mod:`.fine`)
+    too_fine: list = field(default_factory=list)
 
 
 def mirrored(loops: list) -> list:
@@ -174,8 +177,10 @@ def carved_region(loops, settings: VCarveSettings, what: str):
 
 
 def plan(loops, settings: VCarveSettings = VCarveSettings(), name: str = "vcarve", top: float = 0.0,
-         progress=None) -> VCarveResult:
-    """The V-carve of the closed ``loops`` (work mm, even-odd) from the stock's top ``top``."""
+         progress=None, characters=None, letters: str = "") -> VCarveResult:
+    """The V-carve of the closed ``loops`` (work mm, even-odd) from the stock's top ``top``;
+    ``characters`` ((character, index, loops), ...) and ``letters`` (what they are called) name
+    the characters too fine for the clearing tool (:mod:`.fine`)."""
     what = f"V-carve {name!r}"
     settings.check(what)
     if isinstance(loops, np.ndarray) and loops.ndim == 2:
@@ -234,6 +239,14 @@ def plan(loops, settings: VCarveSettings = VCarveSettings(), name: str = "vcarve
                             f"the flat floor at max depth ({shown}{', ...' if len(left) > LEFT_REPORTED else ''}); "
                             f"the V-bit's tip traces them, ridges up to "
                             f"{min(settings.clear_tool.radius, ridge) / tan:.2f} mm high may stand there")
+    too_fine = []
+    if flat is not None:
+        if characters and settings.inlay == "male":
+            characters = fine.mirrored_characters(characters, float(np.vstack(loops)[:, 0].min() +
+                                                                    np.vstack(loops)[:, 0].max()))
+        too_fine, fine_warnings = fine.too_fine(characters, design, carved, flat, settings, limit,
+                                                letters or f"the design of {what}", what)
+        warnings += fine_warnings
     if progress is not None:
         progress(0.6)
     walks = ch.join(pieces)
@@ -244,7 +257,7 @@ def plan(loops, settings: VCarveSettings = VCarveSettings(), name: str = "vcarve
     operations.append(vbit_operation(ordered, settings, name, top, shift, tan))
     if progress is not None:
         progress(1.0)
-    return VCarveResult(operations, design, carved, flat, deepest, axis, warnings, left)
+    return VCarveResult(operations, design, carved, flat, deepest, axis, warnings, left, too_fine)
 
 
 def densified(points: np.ndarray, radii: np.ndarray, step: float) -> tuple:
