@@ -21,23 +21,40 @@ class SuggestFeedsError(InputError):
     """Feeds that cannot be suggested for the row: the message says why."""
 
 
-def suggest(scene) -> list:
-    """Fill the selected row's settings: the records (one per tool) of what was filled."""
+def fill(scene, row, keep_typed: bool = True) -> list:
+    """The calculator's feeds into the row's settings (``keep_typed``: the ones it has stay, as a
+    job file's do): the records (one per tool) of what was filled; the scene has a material."""
     from . import toolstore
-    from .joblist import adapters
     from .preferences import scene_post
+    from .workflows import WORKFLOWS
 
+    index = list(job_list(scene).rows).index(row) + 1
+    entry = row_entry(row, index)
+    families = next(w.post_families for w in WORKFLOWS if w.kind == row.kind)
+    added, records = operation_feeds(scene, entry, families, scene_post(scene), toolstore.library_or_none(),
+                                     keep_typed)
+    if added:
+        row.settings = json.dumps({**entry.settings, **added}, sort_keys=True)     # the panel's group follows
+    return records
+
+
+def fill_new(scene, row) -> None:
+    """A row added to the list, or loaded from a job file, while the scene has a material: the
+    feeds it leaves out from the calculator, so the panel shows what a job file would compute."""
+    if scene.kezuri.stock.material != "NONE" and row.kind in KINDS:
+        fill(scene, row)
+
+
+def suggest(scene) -> list:
+    """Fill the selected row's settings (every value computed): the records (one per tool)."""
     row = active_row(scene)
     if scene.kezuri.stock.material == "NONE":
         raise SuggestFeedsError("Suggest Feeds needs the stock's Material: pick it in Machine & Stock first")
     read_back(scene)
-    index = list(job_list(scene).rows).index(row) + 1
-    entry = row_entry(row, index)
-    added, records = operation_feeds(scene, entry, adapters()[row.kind].post_families, scene_post(scene),
-                                     toolstore.library_or_none(), keep_typed=False)
+    records = fill(scene, row, keep_typed=False)
     if not records:
-        raise SuggestFeedsError(f"{entry.where}: no tool to suggest feeds for: its diameter is not a positive number")
-    row.settings = json.dumps({**entry.settings, **added}, sort_keys=True)     # the panel's group follows
+        raise SuggestFeedsError(f"{row_entry(row, 0).where}: no tool to suggest feeds for: its diameter is not a "
+                                "positive number")
     return records
 
 

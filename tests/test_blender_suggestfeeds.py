@@ -41,7 +41,8 @@ def test_suggest_feeds_fills_the_profile_row_and_reports_the_chip_load(plate, ca
     listed.active = 1
     with pytest.raises(RuntimeError, match="Material"):            # no material: refused, naming it
         bpy.ops.kezuri.job_suggest_feeds()
-    assert "rpm" not in json.loads(listed.rows[1].settings)
+    bpy.ops.kezuri.job_generate()                                  # the panel's values read back into the row
+    assert json.loads(listed.rows[1].settings)["rpm"] == 18000      # the kind's default, kept as the row's own
     scene.kezuri.stock.material = "hardwood"
     capfd.readouterr()
     assert bpy.ops.kezuri.job_suggest_feeds() == {"FINISHED"}
@@ -88,3 +89,24 @@ def test_the_messages_are_in_japanese():
     ja = translations.japanese_message("job file a.toml: operation 2 ('cut'): feeds: flutes = 16: must be a whole "
                                        "number 1..12")
     assert ja is not None and "刃数" in ja
+
+
+def test_a_row_added_or_loaded_with_a_material_starts_with_the_computed_feeds(plate, tmp_path):
+    scene = plate
+    scene.kezuri.stock.material = "hardwood"
+    assert bpy.ops.kezuri.job_add(kind="drill") == {"FINISHED"}
+    listed = scene.kezuri.job_list
+    rpm = round(M_MIN * 1000 / (math.pi * 5.0))                    # the drilling's 5 mm drill: 15524 rpm
+    feed = round(rpm * 2 * hardwood_chip_mm(5.0))
+    settings = json.loads(listed.rows[2].settings)
+    assert (settings["rpm"], settings["feed"], settings["peck"]) == (rpm, feed, 5.0)
+    assert scene.kezuri.drill.rpm == pytest.approx(rpm)            # the panel shows what runs
+    # a job file that leaves them out: loaded, the rows hold what batch computes; a typed value stays
+    job = tmp_path / "cut.toml"
+    job.write_text('[setup]\nmaterial = "hardwood"\n\n[[operations]]\nkind = "profile"\nname = "cut"\n'
+                   'settings = { diameter = 6.35, feed = 900 }\n', encoding="utf-8")
+    scene.kezuri.stock.material = "NONE"
+    assert bpy.ops.kezuri.job_load(filepath=str(job)) == {"FINISHED"}
+    settings = json.loads(listed.rows[0].settings)
+    assert settings["feed"] == 900 and settings["plunge_feed"] == 450           # typed, and its feed / flutes
+    assert settings["rpm"] == round(M_MIN * 1000 / (math.pi * 6.35)) and settings["step_down"] == 6.35

@@ -67,6 +67,11 @@ class ToolMake:
     material: str | None = None
 
 
+def setting_names(kind: str) -> tuple:
+    """Every setting the calculator may fill for an operation of ``kind`` (none for the other kinds)."""
+    return tuple(name for slot in KINDS.get(kind, ()) for _, name in slot.settings)
+
+
 def cuts(slot: Slot, typed: dict) -> bool:
     """Whether the slot's tool cuts with these settings (its ``needs`` given and not 0 / false)."""
     return not slot.needs or bool(typed.get(slot.needs))
