@@ -26,12 +26,12 @@ from . import convert, pathview, simview
 from .common import SteppedOperator, run_reported
 from .exporting import NCExport, machine_post, write_program
 from .jobentry import JobFileError
-from .suggestfeeds import fill_new
 from .plancache import cache_of, keep, replanned_message
 from .jobrows import (active_row, job_list, read_back, row_by_uid, row_entry, select_row, show_row,
                       shown_state, snapshot)
 from .preferences import scene_post
 from .properties import post_items, post_number
+from .suggestfeeds import fill_new
 from .translations import translate_message
 
 PREFIX = "Kezuri Job"
