@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import bpy
 
-from . import designfile, joblist, panels, preferences, properties, simulate, toollib, translations
+from . import designfile, joblist, panels, preferences, properties, simulate, suggestfeeds, toollib, translations
 from .workflows import WORKFLOWS, job_items, settings_groups
 
 CLASSES = (*preferences.CLASSES, *(cls for workflow in WORKFLOWS for cls in workflow.classes), *simulate.CLASSES,
            *joblist.CLASSES, *designfile.CLASSES, *panels.CLASSES,
-           *toollib.CLASSES)
+           *toollib.CLASSES, *suggestfeeds.CLASSES)
 MENUS = (*(menu for workflow in WORKFLOWS for menu in workflow.menus), *designfile.MENUS)
 
 

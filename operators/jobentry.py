@@ -63,10 +63,10 @@ def apply_settings(group, entry: JobEntry, skip=()) -> None:
         check_group(group, entry.kind)
 
 
-def settings_of(group, skip=()) -> dict:
-    """The group's settings that differ from their defaults, by property name (what
-    :func:`apply_settings` puts back): floats as the shortest text their single-precision
-    property holds (0.3, not 0.30000001192092896)."""
+def settings_of(group, skip=(), keep=()) -> dict:
+    """The group's settings that differ from their defaults, and those named in ``keep`` whatever
+    their value, by property name (what :func:`apply_settings` puts back): floats as the shortest
+    text their single-precision property holds (0.3, not 0.30000001192092896)."""
     import numpy as np
 
     found = {}
@@ -77,9 +77,9 @@ def settings_of(group, skip=()) -> dict:
         value = getattr(group, key)
         if prop.type == "FLOAT":
             value = float(str(np.float32(value)))
-            if value == float(str(np.float32(prop.default))):
+            if value == float(str(np.float32(prop.default))) and key not in keep:
                 continue
-        elif value == prop.default:
+        elif value == prop.default and key not in keep:
             continue
         found[key] = value
     return found

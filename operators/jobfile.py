@@ -12,7 +12,10 @@ A job file (TOML)::
     machine = "linuxcnc-manual" # a machine preset (default: the post's own machine)
     arcs = false                # milling posts write every move as planned (default true: G2/G3 fitted)
     material = "hardwood"       # the stock's material: each operation's feeds checked against it
-                                # (report.json's ``feeds``; default: the scene's, none = not checked)
+                                # (report.json's ``feeds``; default: the scene's, none = not checked);
+                                # a profile's, pocket's, drilling's, chamfer's or V-carve's spindle
+                                # speed, feeds and steps left out of its settings are computed
+                                # (operators/jobfeeds.py)
 
     [[operations]]              # in the order they are cut
     kind = "engrave"            # an operation kind (toolpath/operations/<kind>)
@@ -257,15 +260,20 @@ def job_of(scene, entries: list, name: str, post_name: str, where: str):
     the file and the panel, so both plan and write the same program."""
     import bpy
 
+    from . import jobfeeds, toolstore
     from .workflows import WORKFLOWS
 
     adapters = {w.kind: w for w in WORKFLOWS if w.kind and w.job_operation is not None}
     depsgraph = bpy.context.evaluated_depsgraph_get()
-    operations, setup, frame, families = [], None, None, []
+    operations, setup, frame, families, feeds = [], None, None, [], []
+    material = scene.kezuri.stock.material
+    library = toolstore.library_or_none() if material != "NONE" else None
     for entry in entries:
         if entry.kind not in adapters:
             raise JobFileError(f"{entry.where}: kind {entry.kind!r} is not one of {', '.join(sorted(adapters))}")
         workflow = adapters[entry.kind]
+        entry, computed = jobfeeds.with_feeds(scene, entry, workflow.post_families, post_name, library)
+        feeds += computed           # the settings left out, from the calculator (with a material)
         operation, op_setup, op_frame = workflow.job_operation(scene, depsgraph, entry, post_name)
         operations.append(operation)
         families += [f for f in workflow.post_families if f not in families]
@@ -279,9 +287,9 @@ def job_of(scene, entries: list, name: str, post_name: str, where: str):
     if setup is None:
         raise JobFileError(f"{where}: no operation gives the stock: begin with one that works on a "
                            "plate or a part (engrave, carve)")
-    material = scene.kezuri.stock.material
     setup = Setup(name=name, post=post_name, machine=setup.machine, work_offset=setup.work_offset,
-                  rapid_rate=setup.rapid_rate, stock=setup.stock, material="" if material == "NONE" else material)
+                  rapid_rate=setup.rapid_rate, stock=setup.stock, material="" if material == "NONE" else material,
+                  feeds=tuple(feeds))
     return Job(setup, tuple(operations)), frame, tuple(families)
 
 
@@ -309,10 +317,12 @@ def feeds_check(planned, program, library=False) -> list:
     setup = planned.job.setup
     if not setup.material:
         return []
+    from .jobfeeds import annotate
     from .toolstore import tool_makes
 
-    return programcheck.check_program(program, setup.material, setup.machine,
-                                      known=tool_makes(program.tools(), library))
+    entries = programcheck.check_program(program, setup.material, setup.machine,
+                                         known=tool_makes(program.tools(), library))
+    return annotate(entries, planned, program, setup.feeds)
 
 
 def write_job(path: str, out: str, post_name: str | None = None, allow_findings: bool = False,

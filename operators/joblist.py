@@ -31,6 +31,7 @@ from .jobrows import (active_row, job_list, read_back, row_by_uid, row_entry, se
                       shown_state, snapshot)
 from .preferences import scene_post
 from .properties import post_items, post_number
+from .suggestfeeds import fill_new
 from .translations import translate_message
 
 PREFIX = "Kezuri Job"
@@ -271,6 +272,7 @@ def load_job_file(scene, path: str) -> int:
             item.slot, item.object = slot, obj
         row.settings = json.dumps(entry.settings, sort_keys=True)
         row.extra = json.dumps({k: v for k, v in entry.table.items() if k not in ROW_KEYS})
+        fill_new(scene, row)        # with a material: what the file leaves out, as batch computes it
     listed.active = 0
     return len(found)
 
@@ -330,6 +332,7 @@ class KEZURI_OT_job_add(bpy.types.Operator):
             label = next((label for key, label, _ in _KIND_ITEMS if key == self.kind), self.kind)
             row = new_row(context.scene, self.kind, label.lower())
             job_list(context.scene).active = len(job_list(context.scene).rows) - 1
+            fill_new(context.scene, row)        # with a material: the calculator's feeds (Suggest Feeds)
             self.report({"INFO"}, translate_message(f"Added {row.name!r}"))
             return {"FINISHED"}
         return run_reported(self, run)

@@ -14,6 +14,7 @@ import bpy
 from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, \
     PointerProperty, StringProperty
 
+from ..toolpath.feeds.operationfeeds import setting_names
 from ..toolpath.ir.errors import InputError
 from .jobentry import JobEntry, JobFileError, apply_settings, settings_of
 
@@ -35,7 +36,7 @@ def settings_changed(row, context=None):
     if group is None or job_list(scene).shown != row.uid:
         return
     try:
-        if json.loads(row.settings or "{}") != settings_of(group):
+        if json.loads(row.settings or "{}") != shown_settings(group, row.kind):
             show_row(scene, row)
     except (ValueError, InputError) as error:
         print(f"Kezuri: {error}")
@@ -119,9 +120,17 @@ def read_back(scene) -> None:
     row = row_by_uid(scene, job_list(scene).shown)
     group = None if row is None else group_of(scene, row.kind)
     if group is not None:
-        settings = json.dumps(settings_of(group), sort_keys=True)
+        settings = json.dumps(shown_settings(group, row.kind), sort_keys=True)
         if settings != row.settings:
             row.settings = settings
+
+
+def shown_settings(group, kind: str) -> dict:
+    """The panel group's settings as the row keeps them: those that differ from the kind's
+    defaults, and the spindle speed, feeds and steps the feeds calculator would fill whatever their
+    value (what the panel shows is what runs: a job file with a material computes the ones it
+    leaves out, :mod:`.jobfeeds`)."""
+    return settings_of(group, keep=setting_names(kind))
 
 
 def show_row(scene, row) -> None:
@@ -172,7 +181,7 @@ def snapshot(scene, row) -> str:
     """What the list compares to say "stale" cheaply: the row as it would be saved."""
     settings = row.settings
     if job_list(scene).shown == row.uid and group_of(scene, row.kind) is not None:
-        settings = json.dumps(settings_of(group_of(scene, row.kind)), sort_keys=True)
+        settings = json.dumps(shown_settings(group_of(scene, row.kind), row.kind), sort_keys=True)
     objects = sorted((item.slot, item.object.name if item.object else "") for item in row.objects)
     return json.dumps([row.kind, row.name, row.enabled, objects, settings, row.extra])
 

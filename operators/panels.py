@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import bpy
 
+from ..toolpath.feeds.operationfeeds import KINDS as FEEDS_KINDS
 from .translations import iface
 from .workflows import workflow_of
 
@@ -348,6 +349,8 @@ class KEZURI_PT_joblist(KezuriPanel, bpy.types.Panel):
                 box.prop(selected, "extra", text="")
             elif _has_settings_panels(selected.kind):     # its settings below; holes, tabs as in the file
                 field(box, selected, "extra")
+            if selected.kind in FEEDS_KINDS:             # the calculator's feeds for the stock's material
+                box.operator("kezuri.job_suggest_feeds", icon="AUTO")
         big_button(layout, "kezuri.job_generate", "FILE_REFRESH")
         column = layout.column(align=True)
         column.operator("kezuri.job_simulate", icon="MOD_BOOLEAN", text="Simulate Job").upto = False

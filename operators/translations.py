@@ -3021,6 +3021,31 @@ MERGED_TEMPLATES = {
 }
 MESSAGE_TEMPLATES.update(MERGED_TEMPLATES)
 NESTED.update(MERGED_NESTED)
+# the feeds a job's operations take from the calculator (issue 31): Suggest Feeds, job files with a material
+FEEDSUSE_OPERATORS = {"Suggest Feeds": "送り・回転数を提案"}
+FEEDSUSE_TEXTS = {
+    "Fill the selected operation's spindle speed, feeds and steps from the calculator for the stock's material":
+        "選択した加工の主軸回転数・送り・切込みを、素材の材料に合わせて計算機の値で埋めます",
+    "Suggest Feeds is for profile, pocket, drilling, chamfer and V-carve operations":
+        "送り・回転数の提案は輪郭加工・ポケット・穴あけ・面取り・Vカーブの加工が対象です",
+    "Suggest Feeds needs the stock's Material: pick it in Machine & Stock first":
+        "送り・回転数の提案には素材の材料が必要です。先に「機械と素材」で材料を選んでください",
+}
+FEEDSUSE_NESTED = {"{}: feeds: {}": (1,)}
+FEEDSUSE_TEMPLATES = {
+    "Suggested feeds for {} in {}": "{0} の送り・回転数を {1} 用に提案しました",
+    "T{}: {} rpm, feed {} mm/min, chip load {} mm per tooth (band {} - {} mm)":
+        "T{0}：{1} rpm、送り {2} mm/min、1刃送り {3} mm（範囲 {4}〜{5} mm）",
+    "{}: no tool to suggest feeds for: its diameter is not a positive number":
+        "{0}：送りを提案する工具がありません。直径が正の数ではありません",
+    "{}: feeds: {}": "{0}：送り：{1}",
+}
+OPERATOR_LABELS.update(FEEDSUSE_OPERATORS)
+OPERATOR_DESCRIPTIONS.update(FEEDSUSE_TEXTS)
+MESSAGES.update(FEEDSUSE_TEXTS)
+MESSAGE_TEMPLATES.update(FEEDSUSE_TEMPLATES)
+NESTED.update(FEEDSUSE_NESTED)
+INTERFACE_NAMES["Suggested feeds for {} in {}"] = (1,)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

@@ -14,6 +14,9 @@ bpy = pytest.importorskip("bpy")
 from blender_helpers import empty_scene  # noqa: E402,F401  (fixture)
 from kezuri.operators import joblist, samples  # noqa: E402
 from kezuri.toolpath.job import plan_job  # noqa: E402
+# a drilling row's spindle speeds, feeds and peck, kept in the row whatever their value (the feeds a
+# job file with a material computes where it leaves them out): DrillSettings' defaults
+DRILL_FEEDS = {"rpm": 3000.0, "feed": 150.0, "peck": 3.0, "mill_rpm": 12000.0, "mill_feed": 800.0}
 
 
 def planned_ops(scene):
@@ -73,7 +76,10 @@ def test_profile_set_in_the_panel_plans_the_outline_offset_by_the_radius_with_it
     props.step_down = 4.0
     assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
     assert row.state in {"PLANNED", "FINDINGS"} and row.tools == "T5"
-    assert json.loads(row.settings) == {"lead": "none", "step_down": 4.0, "tab_count": 4}   # the defaults left out
+    # the defaults left out, but for the spindle speed, feeds and steps: what the panel shows is what runs
+    # (a job file with a material computes the ones it leaves out)
+    assert json.loads(row.settings) == {"lead": "none", "step_down": 4.0, "tab_count": 4,
+                                        "rpm": 18000.0, "feed": 1500.0, "plunge_feed": 300.0}
     (op,) = planned_ops(scene)["cut out"]
     points = feed_points(op)
     floor = points[:, 2].min()
@@ -110,9 +116,12 @@ def test_pocket_drill_and_chamfer_rows_take_their_settings_from_the_panel(empty_
     assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
     rows = scene.kezuri.job_list.rows
     assert [(r.name, r.tools) for r in rows] == [("letters", "T5 T6"), ("holes", "T4"), ("edge", "T7")]
-    assert json.loads(rows[0].settings) == {"depth": 2.0, "diameter": 3.0, "rest_diameter": 1.0, "stepover": 1.2}
-    assert json.loads(rows[1].settings) == {"depth": 8.0, "dwell": 0.5, "peck": 0.0}
-    assert json.loads(rows[2].settings) == {"width": 1.5}
+    assert json.loads(rows[0].settings) == {"depth": 2.0, "diameter": 3.0, "rest_diameter": 1.0, "stepover": 1.2,
+                                            "step_down": 2.0, "rpm": 18000.0, "feed": 1200.0, "entry_feed": 400.0,
+                                            "rest_rpm": 20000.0, "rest_feed": 500.0, "rest_step_down": 1.0,
+                                            "rest_stepover": 0.8}
+    assert json.loads(rows[1].settings) == {"depth": 8.0, "dwell": 0.5, **DRILL_FEEDS, "peck": 0.0}
+    assert json.loads(rows[2].settings) == {"width": 1.5, "rpm": 16000.0, "feed": 1200.0, "plunge_feed": 300.0}
     ops = planned_ops(scene)
     rough, rest = ops["letters"]
     assert (rough.tool.diameter, rough.tool.number, rest.tool.diameter, rest.tool.number) == (3.0, 5, 1.0, 6)
@@ -138,11 +147,11 @@ def test_a_row_shows_its_settings_in_the_panel_and_keeps_them_when_another_is_se
     scene.kezuri.drill.depth = 6.0
     scene.kezuri.drill.retract = "r"
     second = add_row(scene, "drill", "b")             # selecting it reads "a" back, shows b's defaults
-    assert json.loads(first.settings) == {"depth": 6.0, "retract": "r"}
+    assert json.loads(first.settings) == {"depth": 6.0, "retract": "r", **DRILL_FEEDS}
     assert (scene.kezuri.drill.depth, scene.kezuri.drill.retract) == (10.0, "initial")
     scene.kezuri.drill.helix = True
     scene.kezuri.job_list.active = 0
-    assert json.loads(second.settings) == {"helix": True}
+    assert json.loads(second.settings) == {"helix": True, **DRILL_FEEDS}
     assert (scene.kezuri.drill.depth, scene.kezuri.drill.retract, scene.kezuri.drill.helix) == (6.0, "r", False)
     scene.kezuri.job_list.active = 1
     first.settings = json.dumps({"retract": "sideways"})      # typed by hand: refused by name on showing it

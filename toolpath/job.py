@@ -44,7 +44,9 @@ class Setup:
     name), the work offset, the rapid rate for time estimates, the stock (a BoxStock or
     CylinderStock in work mm; None: the first operation's own stock) and its ``material`` (a key
     of ``feeds.materials.MATERIALS``, "" for none: the feeds are then not checked; it does not
-    change a plan, so it is not part of the fingerprints)."""
+    change a plan, so it is not part of the fingerprints); ``feeds``: the records of the feeds the
+    calculator gave the operations' settings (``feeds.operationfeeds``; the settings hold the
+    values, so it is not part of the fingerprints either)."""
 
     name: str = "job"
     post: str = ""
@@ -53,6 +55,7 @@ class Setup:
     rapid_rate: float = 5000.0
     stock: object = None
     material: str = ""
+    feeds: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -201,7 +204,7 @@ def fingerprint(setup: Setup, operation: JobOperation, before: str = "") -> str:
     """A hash of everything the operation's plan depends on: the setup, the operation (kind,
     name, settings, geometry) and ``before``, the fingerprint of the operation before it."""
     digest = hashlib.sha256()
-    setup = dataclasses.replace(setup, material="")      # the material checks the feeds, it plans nothing
+    setup = dataclasses.replace(setup, material="", feeds=())    # the material checks the feeds, it plans nothing
     for value in (before, setup, operation.kind, operation.name, operation.settings, operation.geometry):
         _feed(digest, value)
     return digest.hexdigest()
