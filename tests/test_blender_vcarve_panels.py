@@ -13,6 +13,7 @@ bpy = pytest.importorskip("bpy")
 
 from blender_helpers import empty_scene  # noqa: E402,F401  (fixture)
 from kezuri.operators import joblist, samples  # noqa: E402
+from kezuri.toolpath.feeds import operationfeeds  # noqa: E402
 from kezuri.toolpath.job import plan_job  # noqa: E402
 
 
@@ -70,7 +71,9 @@ def test_a_strip_set_in_the_panel_is_w_over_2_tan_half_angle_deep(empty_scene, a
     props.angle, props.tool_number = angle, 7
     assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
     assert row.state == "PLANNED" and row.tools == "T7"
-    assert json.loads(row.settings) == ({"angle": 90.0, "tool_number": 7} if angle == 90.0 else {"tool_number": 7})
+    kept = json.loads(row.settings)          # what was set, and the speeds, feeds and steps a row always keeps
+    assert kept["tool_number"] == 7 and kept.get("angle", 60.0) == angle
+    assert set(kept) - {"angle", "tool_number"} <= set(operationfeeds.setting_names("vcarve"))
     ops, _ = planned_ops(scene)
     (op,) = ops["strip"]
     points = feed_points(op)
@@ -132,7 +135,10 @@ def test_an_inlay_plug_set_in_the_panel_starts_at_start_depth_plus_the_glue_gaps
     props.angle, props.inlay, props.start_depth, props.glue_gap, props.max_depth = 90.0, "male", 1.5, 0.1, 3.0
     female = add_row(scene, "pocket")
     region_slot(female, design)
-    assert json.loads(male.settings) == {"angle": 90.0, "inlay": "male", "start_depth": 1.5, "max_depth": 3.0}
+    kept = json.loads(male.settings)
+    assert {key: kept[key] for key in ("angle", "inlay", "start_depth", "max_depth")} == \
+        {"angle": 90.0, "inlay": "male", "start_depth": 1.5, "max_depth": 3.0}
+    assert set(kept) - {"angle", "inlay", "start_depth", "max_depth"} <= set(operationfeeds.setting_names("vcarve"))
     props.angle, props.inlay, props.start_depth, props.max_depth = 90.0, "female", 1.5, 2.0
     male.enabled = False          # the two halves are cut from two boards: each planned on its own
     assert bpy.ops.kezuri.job_generate() == {"FINISHED"}
