@@ -210,9 +210,14 @@ def test_our_own_posts_read_back_without_refusals():
     from kezuri.toolpath.operations.engrave import engrave
     from test_engrave import LETTERS, PLATE
     baked, _ = engrave.bake(engrave.plan(PLATE, LETTERS).program)
+    last = baked.operations[-1].xyz[-1]
     for name in ("linuxcnc", "fanuc", "grbl"):
-        op, lines = read(post.milling_post(name).to_text(baked))
-        assert len(op) > 1000, name
+        text = post.milling_post(name).to_text(baked)
+        op, lines = read(text)
+        # every motion block read (arcs, helical ones too, are one move each), to the program's end
+        assert len(op) > 500, name
+        assert len(op) >= len(re.findall(r"^(?:N\d+ )?G0?[0-3]\b", text, re.M)), name
+        assert np.allclose(op.xyz[-1, :2], last[:2], atol=1e-3), name
 
 
 def test_a_cell_too_coarse_to_mean_anything_is_refused_like_a_too_fine_one():

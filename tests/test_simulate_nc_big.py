@@ -34,7 +34,7 @@ def test_progress_on_stderr_and_the_moves_read(tmp_path):
 def test_ctrl_c_stops_a_million_moves_within_seconds(tmp_path):
     nc = raster_program(tmp_path / "big.ngc", 1_000_000)
     out = tmp_path / "out"
-    status, message, late = run(["simulate", "--nc", str(nc), *BOX, "--out", str(out)], signal_after=3.0,
+    status, message, late = run(["simulate", "--nc", str(nc), *BOX, "--out", str(out)], signal_after=1.5,
                                 signum=signal.SIGINT)
     assert status == 130, message[-2000:]
     assert "stopped by SIGINT" in message and "nothing was written" in message and "Traceback" not in message
