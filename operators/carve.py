@@ -27,7 +27,7 @@ from . import convert
 from . import gate
 from . import pathview
 from .common import SteppedOperator, run_reported
-from .exporting import Exported, NCExport, stages, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
+from .exporting import Exported, NCExport, stages, batch_orient_spindle, milling_export_request, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
 from .plancache import cache_of, keep
@@ -158,18 +158,7 @@ def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | No
 def nc_export_request(scene, depsgraph, post_name: str, target: str):
     """The panel's export: read the scene here; ``work(progress) -> Exported`` plans, checks and
     writes ``target`` without touching Blender data (so it runs in steps, Esc cancelling)."""
-    compute = carve_request(scene, depsgraph)
-    machine = scene.kezuri.machine
-    offset, orient = machine.work_offset, machine.orient_spindle
-    allow, profile = scene.kezuri.simulation.acknowledged, scene_machine(machine, POST_FAMILIES, post_name)
-
-    def work(progress=None) -> Exported:
-        planning, checking = stages(progress)
-        job, findings = compute(planning), []
-        written = export_carve(job, post_name, target, offset, allow=allow, orient_spindle=orient,
-                               machine=profile, findings=findings, progress=checking)
-        return Exported(written, job.replanned, findings)
-    return work
+    return milling_export_request(scene, post_name, target, POST_FAMILIES, carve_request(scene, depsgraph), export_carve)
 
 
 def extension_for(post_name: str) -> str:

@@ -26,7 +26,7 @@ from . import textcells
 from . import gate
 from . import pathview
 from .common import SteppedOperator
-from .exporting import Exported, NCExport, stages, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
+from .exporting import Exported, NCExport, stages, batch_orient_spindle, milling_export_request, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import SettingError, check_group
 from .plancache import cache_of, keep
@@ -196,18 +196,7 @@ def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str 
 def nc_export_request(scene, depsgraph, post_name: str, target: str):
     """The panel's export: read the scene here; ``work(progress) -> Exported`` plans, checks and
     writes ``target`` without touching Blender data (so it runs in steps, Esc cancelling)."""
-    compute = engrave_request(scene, depsgraph, post_name=post_name)
-    machine = scene.kezuri.machine
-    offset, orient = machine.work_offset, machine.orient_spindle
-    allow, profile = scene.kezuri.simulation.acknowledged, scene_machine(machine, POST_FAMILIES, post_name)
-
-    def work(progress=None) -> Exported:
-        planning, checking = stages(progress)
-        job, findings = compute(planning), []
-        written = export_engrave(job, post_name, target, offset, allow=allow, orient_spindle=orient,
-                                 machine=profile, findings=findings, progress=checking)
-        return Exported(written, job.replanned, findings)
-    return work
+    return milling_export_request(scene, post_name, target, POST_FAMILIES, engrave_request(scene, depsgraph, post_name=post_name), export_engrave)
 
 
 def extension_for(post_name: str) -> str:

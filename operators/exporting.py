@@ -101,6 +101,26 @@ def stages(progress, share: float = 0.5) -> tuple:
             lambda f, text="": progress(share + (1 - share) * f, text or "checking"))
 
 
+def milling_export_request(scene, post_name: str, target: str, families, compute, export):
+    """A milling workflow's panel export (engrave, carve): the Machine & Stock settings read here
+    (main thread); ``work(progress) -> Exported`` runs ``compute(planning)`` (the workflow's plan)
+    and ``export(job, post_name, target, work_offset, allow=, orient_spindle=, machine=, findings=,
+    progress=)`` without touching Blender data."""
+    from .machines import scene_machine
+
+    machine = scene.kezuri.machine
+    offset, orient = machine.work_offset, machine.orient_spindle
+    allow, profile = scene.kezuri.simulation.acknowledged, scene_machine(machine, families, post_name)
+
+    def work(progress=None) -> Exported:
+        planning, checking = stages(progress)
+        job, findings = compute(planning), []
+        written = export(job, post_name, target, offset, allow=allow, orient_spindle=orient, machine=profile,
+                         findings=findings, progress=checking)
+        return Exported(written, job.replanned, findings)
+    return work
+
+
 class NCExport(SteppedOperator, ExportHelper):
     """Mixed into an ExportHelper operator with a ``post`` enum of ``post_families``.  The operator
     sets ``file_suffix`` and implements ``export_request(context)``: it reads the scene (main thread)
