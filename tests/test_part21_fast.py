@@ -151,3 +151,15 @@ def test_the_big_file_of_explicit_toolpaths_goes_the_fast_way_with_its_numbers()
     for polyline in polylines:
         assert 2 <= len(polyline.params[1]) <= stepnc_bigfile.POINTS_PER_LINE
         assert all(fast.instances[ref.id].type_name == "CARTESIAN_POINT" for ref in polyline.params[1])
+
+
+def test_long_runs_of_statements_the_regex_does_not_take_read_the_same():
+    """Runs longer than part21_scan.MAX_RUN go to the exact reader in parts (lines kept); a file
+    of mostly such statements is left to it whole."""
+    head, tail = MIXED.split("#1=", 1)[0], "ENDSEC;\nEND-ISO-10303-21;\n"
+    odd = "".join(f"#{i}=A(LENGTH_MEASURE({i}.),'x');\n" for i in range(1, 12_001))
+    plain = "".join(f"#{i}=CARTESIAN_POINT('',({i}.,0.,1.));\n" for i in range(20_001, 50_001))
+    for text in (head + odd + tail, head + plain + odd + "/* end */\n" + tail):
+        found = same_both_ways(text)
+        assert found[0] == "file" and found[-1][12_000] == 8 + 11_999 + (30_000 if plain in text else 0)
+    fast_path_alone(head + plain + odd + tail)
