@@ -174,8 +174,10 @@ def _enter(motion, start, feature_top, entry_feed):
 
 
 def _add(path, moves, frame, feed):
-    for kind, end, centre in moves:
-        end = frame.to_parent([end])[0]
+    # every end point into the workpiece's frame at once (one placement per curve; point by point
+    # this was most of the time of reading a big file of explicit toolpaths)
+    ends = frame.to_parent([end for _, end, _ in moves]) if moves else ()
+    for (kind, _, centre), end in zip(moves, ends):
         if math.isnan(feed):
             if kind != FEED:
                 raise UnsupportedEntity("TRIMMED_CURVE", 0, "an arc at rapid speed (G0 is straight)")

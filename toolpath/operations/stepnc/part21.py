@@ -41,10 +41,12 @@ import itertools
 import numbers
 import re
 from dataclasses import dataclass, field
+from types import SimpleNamespace
 from typing import Any, Iterator, NoReturn, Union
 
 from ...ir.errors import InputError
 from ...engines.textfile import read_text
+from . import part21_scan
 
 __all__ = [
     "Part21Error", "Ref", "Enum", "Typed", "Unset", "Derived", "UNSET", "DERIVED", "UNKNOWN",
@@ -467,7 +469,7 @@ class _Parser:
 
     # ---- grammar
 
-    def parse_file(self) -> Part21File:
+    def parse_file(self, references: bool = True) -> Part21File:
         result = Part21File()
         self.expect("ISO-10303-21", "'ISO-10303-21;' at the start of the file")
         self.expect(";")
@@ -492,7 +494,8 @@ class _Parser:
         self.expect(";")
         if self.toks[self.i] != "":
             self.fail_at(self.i, "nothing after 'END-ISO-10303-21;'")
-        self.check_references(result)
+        if references:
+            self.check_references(result)
         return result
 
     def reject_edition3_section(self) -> None:
@@ -644,17 +647,33 @@ class _Parser:
         return self.instance_starts[n - 1][1] if n else None
 
 
-def parse_part21(text: str) -> Part21File:
-    """Parse a whole exchange structure.  Raises :class:`Part21Error`."""
+def parse_part21(text: str, fast: bool = True) -> Part21File:
+    """Parse a whole exchange structure.  Raises :class:`Part21Error`.
+
+    The plain instances that make up a big file are read by one compiled regex (see
+    :mod:`.part21_scan`); the rest, and every error, by the token parser here.  ``fast=False``:
+    the token parser alone (the same result, slower; kept for the bench)."""
     # The parse allocates many small lists that all stay alive; the cyclic garbage
     # collector would rescan them over and over (about a quarter of the time).
     gc_was_enabled = gc.isenabled()
     gc.disable()
     try:
-        return _Parser(text).parse_file()
+        if fast:
+            try:
+                return part21_scan.parse(text, _exact, _KINDS)
+            except part21_scan.GiveUp:
+                pass
+        return _exact(text)
     finally:
         if gc_was_enabled:
             gc.enable()
+
+
+def _exact(text: str, references: bool = True) -> Part21File:
+    return _Parser(text).parse_file(references)
+
+
+_KINDS = SimpleNamespace(Ref=Ref, Enum=Enum, Instance=Instance, UNSET=UNSET, DERIVED=DERIVED, iter_refs=iter_refs)
 
 
 def read_part21(path) -> Part21File:
