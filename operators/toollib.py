@@ -30,6 +30,8 @@ UNIT_ITEMS = [("mm", "Millimetres", "The tool table is in millimetres"),
               ("inch", "Inches", "The tool table is in inches")]
 ANGLED = ("vbit", "engraver", "drill")
 SLOT_LABELS = {"rough": "Use for Roughing", "finish": "Use for Finishing", "tool": "Use for the Job"}
+ROW_SLOT_LABELS = {"tool": "Use for the Row", "rest": "Use for Rest Machining", "drill": "Use as the Drill",
+                   "mill": "Use for Helix Milling", "spot": "Use for Spotting", "clear": "Use for Clearing"}
 assert tuple(item[0] for item in KIND_ITEMS) == KINDS
 
 
@@ -281,6 +283,18 @@ def panel_kind(context) -> str | None:
     return kind if kind in PANEL_GROUPS else None
 
 
+def row_kind(context) -> str | None:
+    """The kind of the job list's selected row when its panel group takes tools from the library
+    (profile, pocket, drill, chamfer, V-carve)."""
+    from . import jobrows
+    from .jobtools import SLOTS
+
+    row = jobrows.active_row(context.scene)
+    if row is None or row.kind in PANEL_GROUPS or row.kind not in SLOTS:
+        return None
+    return row.kind if jobrows.group_of(context.scene, row.kind) is not None else None
+
+
 class KEZURI_OT_toollib_use(ToolLibraryOperator, bpy.types.Operator):
     """Put the selected library tool on the picked job (its number, diameter and flute length)"""
 
@@ -289,11 +303,13 @@ class KEZURI_OT_toollib_use(ToolLibraryOperator, bpy.types.Operator):
     bl_options = {"REGISTER", "UNDO"}
 
     slot: StringProperty(name="Slot", options={"HIDDEN"})
+    row: BoolProperty(name="Row", default=False, options={"HIDDEN"},
+                      description="Put it on the job list's selected row, not on the picked workflow's panel")
 
     def run(self, context):
-        from . import jobtools
+        from . import jobrows, jobtools
 
-        kind, tools = panel_kind(context), state(context)
+        kind, tools = (row_kind(context) if self.row else panel_kind(context)), state(context)
         if kind is None or not 0 <= tools.index < len(tools.tools):
             raise ToolLibraryError("Select a tool in the library first")
         number = tools.tools[tools.index].number
@@ -302,6 +318,8 @@ class KEZURI_OT_toollib_use(ToolLibraryOperator, bpy.types.Operator):
         group = getattr(context.scene.kezuri, kind)
         for key, value in values.items():
             setattr(group, key, value)
+        if self.row:
+            jobrows.read_back(context.scene)        # the row keeps what its panel shows
         return None
 
 
@@ -352,6 +370,15 @@ def draw_library(layout, context) -> None:
         for slot, (*_, kinds, _angled) in SLOTS[kind].items():
             if tool.kind in kinds:
                 column.operator("kezuri.toollib_use", text=SLOT_LABELS[slot], icon="TOOL_SETTINGS").slot = slot
+    kind = row_kind(context)
+    if kind is not None:
+        from .jobtools import SLOTS
+
+        column = layout.column(align=True)
+        for slot, (*_, kinds, _angled) in SLOTS[kind].items():
+            if tool.kind in kinds:
+                button = column.operator("kezuri.toollib_use", text=ROW_SLOT_LABELS[slot], icon="TOOL_SETTINGS")
+                button.slot, button.row = slot, True
 
 
 class KEZURI_PT_toollib(bpy.types.Panel):

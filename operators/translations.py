@@ -2564,6 +2564,10 @@ TOOLLIB_OPERATORS = {
     "Import Tools": "工具を読み込み", "Export Tools": "工具を書き出し",
     "Save": "保存", "Import": "読込", "Export": "書出",
     "Use for Roughing": "荒加工に使用", "Use for Finishing": "仕上げに使用", "Use for the Job": "この加工に使用",
+    "Use for the Row": "選択した行に使用", "Use for Rest Machining": "残り削りに使用", "Use as the Drill": "ドリルとして使用",
+    "Use for Helix Milling": "ヘリカル加工に使用", "Use for Spotting": "センタもみに使用", "Use for Clearing": "底の除去に使用",
+    "Put it on the job list's selected row, not on the picked workflow's panel":
+        "選んだワークフローのパネルではなく、ジョブリストで選択した行に設定します",
 }
 TOOLLIB_TEXTS = {
     "Add a 6 mm flat end mill under the next free number, and save":

@@ -166,3 +166,34 @@ def test_saving_keeps_the_numbers_of_the_rows_not_edited(library):
     bpy.ops.kezuri.toollib_save()
     saved = store.load(str(library))
     assert saved.get(21).flute_length == exact and saved.get(1).stick_out == 31.0
+
+
+def test_a_library_tool_goes_on_the_job_lists_selected_row(library):
+    """A V-carve row in the job list takes the 30 deg engraver (T17) as its V-bit and the 1 mm flat
+    (T3) as its clearing end mill: the row's panel group and its saved settings say so; the
+    row buttons fit the sidebar in English and Japanese."""
+    import json
+
+    scene = bpy.context.scene
+    bpy.ops.kezuri.toollib_load()
+    bpy.ops.kezuri.toollib_import(filepath=os.path.join(FIXTURES, "kezuri-tools.toml"), replace=True)
+    state = bpy.context.window_manager.kezuri_tool_library
+    numbers = [r.number for r in rows()]
+    scene.kezuri.job = "ENGRAVE"
+    assert bpy.ops.kezuri.job_add(kind="vcarve") == {"FINISHED"}
+    state.index = numbers.index(17)
+    assert bpy.ops.kezuri.toollib_use(slot="tool", row=True) == {"FINISHED"}
+    state.index = numbers.index(3)
+    assert bpy.ops.kezuri.toollib_use(slot="clear", row=True) == {"FINISHED"}
+    vcarve = scene.kezuri.vcarve
+    assert (vcarve.tool_number, vcarve.angle, vcarve.clear_tool_number, vcarve.clear_diameter) == (17, 30.0, 3, 1.0)
+    row = scene.kezuri.job_list.rows[scene.kezuri.job_list.active]
+    saved = json.loads(row.settings)
+    assert (saved["tool_number"], saved["angle"], saved["clear_tool_number"], saved["clear_diameter"]) == (17, 30.0, 3, 1.0)
+    with pytest.raises(RuntimeError, match="must be a V-bit or engraver"):
+        bpy.ops.kezuri.toollib_use(slot="tool", row=True)       # the 1 mm flat is no V-bit
+    context = types.SimpleNamespace(scene=scene, window_manager=bpy.context.window_manager, active_object=None)
+    for table in (None, JA):
+        texts = fit.all_texts([toollib.KEZURI_PT_toollib], context, table)
+        assert any("Use for Clearing" in t.text or "底の除去に使用" in t.text for t in texts)
+        assert not fit.too_wide(texts)
