@@ -378,6 +378,7 @@ def read_mesh_file(path: str) -> tuple:
     vertices, faces = meshfile.read_mesh(path, "--mesh")
     try:
         vertices, faces = core.check_mesh(vertices, faces)     # closed, consistently wound: named before the stock
+        core.check_on_axis(vertices)
         radius = float(np.hypot(vertices[:, 0], vertices[:, 1]).max())
         stock = core.Stock(radius, float(vertices[:, 2].min()), float(vertices[:, 2].max()))
     except (core.TurnMillError, meshdata.MeshInputError) as error:

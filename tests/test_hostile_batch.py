@@ -239,6 +239,35 @@ def test_a_part_mesh_with_a_nan_vertex_is_named(tmp_path):
     refused(status, message, written, "finite")
 
 
+def box_stl(path, lo, hi) -> str:
+    """A closed box from ``lo`` to ``hi`` (mm) as an ASCII STL, its normals outward."""
+    import trimesh
+
+    box = trimesh.creation.box(bounds=[lo, hi])
+    path.write_bytes(box.export(file_type="stl"))
+    return str(path)
+
+
+@pytest.mark.parametrize("lo, hi, names", [
+    # 5 m off the spindle axis: was planned as a 10 m bar (X10044) in 6 minutes with no word
+    ((4980.0, -20.0, -60.0), (5020.0, 20.0, 0.0), ("off the spindle axis", "X 4980 to 5020 mm", "model it around")),
+    ((5.0, 5.0, -30.0), (25.0, 25.0, 0.0), ("off the spindle axis", "X 5 to 25 mm")),
+])
+def test_a_turned_part_off_the_spindle_axis_is_refused_naming_where_it_lies(tmp_path, lo, hi, names):
+    status, message, written = run("turnmill", "--mesh", box_stl(tmp_path / "part.stl", lo, hi))
+    refused(status, message, written, "part.stl", *names)
+
+
+def test_a_flat_turned_part_is_named_as_flat_along_the_axis(tmp_path):
+    stl = tmp_path / "flat.stl"
+    stl.write_text("solid p\nfacet normal 0 0 1\nouter loop\nvertex -10 -10 0\nvertex 10 -10 0\nvertex 10 10 0\n"
+                   "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex -10 -10 0\nvertex 10 10 0\n"
+                   "vertex -10 10 0\nendloop\nendfacet\nendsolid p\n")
+    status, message, written = run("turnmill", "--mesh", str(stl))
+    assert status == 2 and not written and "Traceback" not in message, message[-2000:]
+    assert "stock z_min" not in message and "flat.stl" in message
+
+
 SIMULATE_BOX = ("--tool", "flat:6", "--stock", "box:0,0,-10,40,40,0")
 
 
