@@ -3022,6 +3022,8 @@ MERGED_TEMPLATES = {
         "{0}：{1} は最大深さの平らな底の {2} か所（{3}{4}）に届きません。V ビットの先端がなぞりますが、"
         "高さ {5} mm までの山が残ることがあります",
     "V-carve {}: clearing the flat floor: {}": "V 彫り {0}：平らな底の除去：{1}",
+    "the design mesh is {} x {} mm, under {} mm across: is it in other units (metres read as mm)?":
+        "設計形状のメッシュは {0} x {1} mm で、幅 {2} mm 未満です。単位が違いませんか（メートルを mm として読んでいる）？",
     "the part has no length along Z, the spindle axis (Z {} to {} mm): model it around the Z axis":
         "部品に主軸（Z 軸）方向の長さがありません（Z {0}〜{1} mm）。Z 軸の周りにモデリングしてください",
     "the part lies off the spindle axis: X {} to {} mm, Y {} to {} mm, the axis X0 Y0 outside them; model it around "

@@ -505,3 +505,17 @@ def test_a_flat_design_with_no_stock_above_it_is_refused_naming_the_design(tmp_p
     path.write_text("v 0 0 0\nv 40 0 0\nv 40 30 0\nv 0 30 0\nf 1 2 3\nf 1 3 4\n")
     status, message, written = run("carve", "--mesh", str(path))
     refused(status, message, written, "the design is flat (Z 0 mm everywhere)", "Stock Above in the Carve panel")
+
+
+def test_a_relief_scaled_to_nothing_is_refused_before_planning(tmp_path):
+    """A 40 mm dome scaled by 1e-9 (metres twice over): refused up front naming its size, not
+    planned and then refused by the gate's grid."""
+    import trimesh
+
+    stl = tmp_path / "tiny.stl"
+    dome = trimesh.creation.icosphere(subdivisions=2, radius=20.0)
+    dome.apply_scale(1e-9)
+    stl.write_bytes(dome.export(file_type="stl"))
+    status, message, written = run("carve", "--mesh", str(stl))
+    refused(status, message, written, "tiny.stl", "under 0.5 mm across", "other units")
+    assert "roughing" not in message          # no planning progress before the refusal

@@ -62,7 +62,7 @@ from ...ir.errors import MAX_REACH_MM, InputError
 from ...ir.program import Operation, PathBuilder, Program, Tool
 from ...engines import waterline
 
-
+MIN_SIZE_MM = 0.5           # a relief narrower than this in X or Y is no carving (a unit mistake)
 MARGIN = 0.95       # the bend radius is estimated from facets: 5 % spare on the finishing stepover
 LINK = 4.0          # cleanup pieces closer than this many ball diameters are linked along the surface
 MAX_WALL_LEVELS = 2000   # waterline levels of the wall pass at most (20 mm of wall at 0.01 mm)
@@ -174,6 +174,9 @@ def check_mesh(vertices, faces) -> tuple:
     size = vertices.max(axis=0) - vertices.min(axis=0)
     if size[0] <= 0 or size[1] <= 0:
         raise CarveError(f"the design mesh is flat in X or Y ({size[0]:g} x {size[1]:g} mm): nothing to carve")
+    if min(size[0], size[1]) < MIN_SIZE_MM:   # a relief scaled 1e-9 was planned, then refused by the gate's grid
+        raise CarveError(f"the design mesh is {size[0]:.3g} x {size[1]:.3g} mm, under {MIN_SIZE_MM:g} mm across: "
+                         "is it in other units (metres read as mm)?")
     return vertices, faces.astype(np.int64)
 
 
