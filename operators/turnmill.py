@@ -44,6 +44,7 @@ LABEL_COLOURS = {core.NEITHER: (0.45, 0.45, 0.45, 1.0), core.RADIAL: (0.15, 0.45
                  core.AXIAL: (0.2, 0.85, 0.3, 1.0), core.BOTH: (0.75, 0.3, 0.95, 1.0)}
 REPORT_LABELS = {core.NEITHER: "none", core.RADIAL: "radial", core.AXIAL: "axial", core.BOTH: "both"}
 SKIPPED_COLOUR = (250, 150, 20)       # the toolpath picture's faces no tool reaches (RGB 0-255)
+REPORT_FACES = 20000                   # report.json lists each face's class up to this many faces
 
 
 class BVHRayEngine:
@@ -440,8 +441,11 @@ def batch(args) -> dict:
         "engine": job.engine,
         "rays": job.rays,
         "classification_seconds": round(job.classification_seconds, 3),
-        "faces": [{"centroid": batchio.rounded(c, 4), "label": REPORT_LABELS[int(k)]}
-                  for c, k in zip(face_centroids, labels)],
+        "face_counts": {label: int(np.count_nonzero(np.asarray(labels) == k)) for k, label in REPORT_LABELS.items()},
+        # each face with its class, up to REPORT_FACES (a 790k-face bar made a 90 MB report.json)
+        "faces": ([{"centroid": batchio.rounded(c, 4), "label": REPORT_LABELS[int(k)]}
+                   for c, k in zip(face_centroids, labels)] if len(labels) <= REPORT_FACES else
+                  f"{len(labels):,} faces: more than {REPORT_FACES:,} are counted (face_counts), not listed"),
         "operations": job.plan.program.summary(),
         "cycle_time_s": round(job.plan.program.cycle_time(), 1),
         "machine": job.profile.name,

@@ -13,6 +13,7 @@ import math
 import os
 import tempfile
 
+import numpy as np
 import pytest
 
 bpy = pytest.importorskip("bpy")
@@ -519,3 +520,27 @@ def test_a_relief_scaled_to_nothing_is_refused_before_planning(tmp_path):
     status, message, written = run("carve", "--mesh", str(stl))
     refused(status, message, written, "tiny.stl", "under 0.5 mm across", "other units")
     assert "roughing" not in message          # no planning progress before the refusal
+
+
+def test_a_dense_turned_part_is_counted_not_listed_in_the_report(tmp_path):
+    """A bar of 24,576 faces (a flat milled on it): report.json gives the count of each class and
+    says the faces are not listed (a 790k-face bar wrote a 90 MB report), and the counts add up."""
+    import json
+
+    import manifold3d as m3
+    import trimesh
+
+    bar = m3.Manifold.cylinder(40, 15, 15, 256).translate((0, 0, -40)) - m3.Manifold.cube((20, 40, 20)).translate((10, -20, -30))
+    mesh = bar.to_mesh()
+    part = trimesh.Trimesh(np.asarray(mesh.vert_properties)[:, :3], np.asarray(mesh.tri_verts)).subdivide().subdivide()
+    assert len(part.faces) > 20000
+    stl = tmp_path / "bar.stl"
+    stl.write_bytes(part.export(file_type="stl"))
+    out = tmp_path / "out"
+    with time_limit(240):
+        status = BATCH.main(["batch.py", "turnmill", "--mesh", str(stl), "--post", "linuxcnc", "--out", str(out)])
+    assert status == 0
+    report = json.load(open(out / "report.json"))
+    assert isinstance(report["faces"], str) and "counted" in report["faces"]
+    assert sum(report["face_counts"].values()) == len(part.faces)
+    assert report["face_counts"]["radial"] > 0 and os.path.getsize(out / "report.json") < 200_000
