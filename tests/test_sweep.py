@@ -344,3 +344,40 @@ def test_pocket_layers_on_the_side_of_a_bar_leave_out_the_ones_a_deeper_layer_co
                     for engine in ("heightfield", "manifold"))
     assert field.engine == "radiusmap"
     assert exact.removed_volume_mm3 == pytest.approx(field.removed_volume_mm3, rel=0.01)
+
+
+def square_loop(side, z, step=1.0):
+    """The square of this side about the origin, from (-side/2, -side/2) anticlockwise, in moves of ``step``."""
+    h = side / 2
+    corners = np.array([[-h, -h], [h, -h], [h, h], [-h, h], [-h, -h]])
+    points = [corners[0]]
+    for a, b in zip(corners[:-1], corners[1:]):
+        n = int(round(np.linalg.norm(b - a) / step))
+        points += [a + (b - a) * k / n for k in range(1, n + 1)]
+    points = np.array(points)
+    return np.column_stack([points, np.full(len(points), z)])
+
+
+def test_a_ramp_entry_along_the_contour_it_then_cuts_deeper_adds_no_pieces():
+    # a flat 6 mm ramps down at 3 degrees along a 20 mm square from the top to -2 mm, then cuts
+    # the whole square at -2 (ending where its ramp ended): the ramp lies over the contour, on the
+    # same vertical lines, so only its first and last move are cut (they hold the tool at the
+    # ends); the groove is the square ring with round outer corners, 2 deep:
+    # ((L + 2r)^2 - (4 - pi) r^2 - (L - 2r)^2) * 2
+    loop = square_loop(20.0, -2.0)[:-1]
+    ramp_moves = int(math.ceil(2.0 / math.tan(math.radians(3.0))))       # 1 mm moves
+    ramp = np.vstack([loop, loop])[:ramp_moves + 1].copy()
+    ramp[:, 2] = np.linspace(0.0, -2.0, ramp_moves + 1)
+    contour = np.vstack([loop, loop])[ramp_moves:ramp_moves + len(loop) + 1]
+    paths = sweep.LevelPaths()
+    paths.add(FLAT6, contour)
+    assert paths.covered(FLAT6, ramp).all()
+    assert paths.needed(FLAT6, ramp) == [(0, 1), (ramp_moves - 1, ramp_moves)]
+    assert not paths.covered(BALL6, ramp).any()                       # another tool: not held
+    assert not paths.covered(FLAT6, ramp - [0, 0, 2.5]).any()          # below the contour: not held
+    tips = np.vstack([ramp, contour[1:]])
+    result = sim.simulate([level_op(FLAT6, tips)], BOX, engine="manifold", tolerance=0.01)
+    expected = (26.0 ** 2 - (4 - math.pi) * 9.0 - 14.0 ** 2) * 2.0
+    # material left only, at most the tolerance deep over both walls (outer 4 L + 2 pi r, inner 4 (L - 2r))
+    walls = (4 * 20.0 + 2 * math.pi * 3.0 + 4 * 14.0) * 2.0
+    assert expected - 0.01 * walls <= result.removed_volume_mm3 <= expected * 1.001

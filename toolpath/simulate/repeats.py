@@ -87,3 +87,43 @@ class RadialLevel:
             to_own = lambda angles: angles - shift
         angles = np.concatenate([other.angle, mine[(mine > low) & (mine < high)]])
         return bool(np.all(self.reach(to_own(angles)) <= other.reach(angles) + 1e-9))
+
+
+class LevelPaths:
+    """The moves of every level run of an upright tool, by tool and by the two ends of the move
+    seen from above (rounded to 1e-6 mm), with the lowest height each is cut at.
+
+    A move of the same tool whose two ends lie on such a move's, no lower than it, lies on the
+    same vertical lines higher up: the tool there is contained in the tool below (see
+    :class:`Repeats`), so its sweep adds nothing to the cut.  A ramp entry that follows the
+    contour it then cuts at depth is such a run of moves."""
+
+    def __init__(self):
+        self.lowest = {}
+
+    @staticmethod
+    def _keys(tool, points: np.ndarray) -> list:
+        ends = np.round(points[:, :2], 6).tolist()
+        return [(tool,) + tuple(sorted((tuple(a), tuple(b)))) for a, b in zip(ends[:-1], ends[1:])]
+
+    def add(self, tool, run: np.ndarray) -> None:
+        """The level run ``run`` (points (n, 3), one height) of ``tool``, which is cut."""
+        z = round(float(run[0, 2]), 6)
+        for key in self._keys(tool, run):
+            self.lowest[key] = min(self.lowest.get(key, math.inf), z)
+
+    def covered(self, tool, points: np.ndarray) -> np.ndarray:
+        """Per move of the polyline ``points``: whether a level run of ``tool`` holds it from
+        below (the same two ends seen from above, at or below the move's lower end)."""
+        low = np.round(np.minimum(points[:-1, 2], points[1:, 2]), 6)
+        return np.array([self.lowest.get(key, math.inf) <= z + 1e-9
+                         for key, z in zip(self._keys(tool, points), low.tolist())], bool)
+
+    def needed(self, tool, points: np.ndarray) -> list:
+        """(first, last) point ranges of the polyline's moves to cut: all but those held from
+        below (see :meth:`covered`); the first and last move are always kept, so the whole
+        tool stands at both ends (the runs on either side count on it)."""
+        keep = ~self.covered(tool, points)
+        keep[0] = keep[-1] = True
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], keep.astype(np.int8), [0]])))
+        return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]

@@ -33,8 +33,9 @@ along runs wherever the geometry allows, instead of one hull per move:
 Runs that add nothing are left out: a level run that another run along the same path covers
 from deeper down (an upright tool lower on the same vertical lines: the layers of a pocket with
 vertical walls; a radial tool nearer the C axis on the same rays: roughing rings and pocket
-layers on the side of a bar; see :class:`Repeats`), and any stretch lying wholly over ground
-that deeper level runs have cleared to the top (see :class:`_Floors`).
+layers on the side of a bar; see :class:`Repeats`), any stretch lying wholly over ground
+that deeper level runs have cleared to the top (see :class:`_Floors`), and moves between runs
+that a level run holds from below (a ramp entry along its contour; see :class:`LevelPaths`).
 
 Budget of a tube: the section's facets a quarter of the tolerance (either side), the
 joints a quarter (at a vertex turning by d the section stands full size across the bisector, so
@@ -56,7 +57,7 @@ import numpy as np
 from manifold3d import CrossSection, Error, FillRule, JoinType, Manifold, Mesh64, OpType
 
 from ..ir.program import Tool
-from .repeats import Level, RadialLevel, Repeats
+from .repeats import Level, LevelPaths, RadialLevel, Repeats
 
 MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
 MAX_STRETCH_TURN = math.pi / 3   # a tube turns at most this much in all (it cannot fold back onto itself)
@@ -211,10 +212,13 @@ def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = CHUNK_TRIA
     to cancel)."""
     bounds = stock.bounding_box()
     floors = _Floors([chain for chain in chains if not chain.radial], tolerance)
-    repeats = Repeats()
+    repeats, paths = Repeats(), LevelPaths()
+    for chain in chains:
+        for i, j in ([] if chain.radial else _gentle_runs(chain.points, 0.0)):
+            paths.add(chain.tool, chain.points[i:j + 1])
     pieces = []
     for chain in chains:
-        pieces += _chain_pieces(chain, tolerance, bounds, floors, repeats)
+        pieces += _chain_pieces(chain, tolerance, bounds, floors, repeats, paths)
     # each run kept from the repeats is one piece: its own tubes unioned first (near each other,
     # they go fast)
     pieces += [lambda made=made: Manifold.batch_boolean([m() for m in made], OpType.Add)
@@ -233,9 +237,10 @@ def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = CHUNK_TRIA
     return solid
 
 
-def _chain_pieces(chain, tolerance: float, bounds, floors, repeats) -> list:
+def _chain_pieces(chain, tolerance: float, bounds, floors, repeats, paths=None) -> list:
     """The chain as pieces, each a function that builds its solid: its gentle runs as tubes, and
-    hulls for the moves between them.  Level runs (radial ones: at one height) go to
+    hulls for the moves between them but those a level run holds from below (``paths``, a
+    LevelPaths: a ramp entry along the contour it then cuts).  Level runs (radial ones: at one height) go to
     ``repeats``, which leaves out those that a deeper run along the same path contains."""
     p = chain.points
     x0, y0, _, x1, y1, top = bounds
@@ -278,9 +283,11 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats) -> list:
         else:
             pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors, closed)
     for i, j in zip(starts, ends):
-        if j > i:
-            pieces += _hull_pieces(chain, p[i:j + 1], None if axes is None else axes[i:j + 1], whole, height,
-                                   tolerance, bounds)
+        ranges = ([] if j <= i else [(0, j - i)] if paths is None or chain.radial
+                  else paths.needed(chain.tool, p[i:j + 1]))
+        for a, b in ranges:
+            pieces += _hull_pieces(chain, p[i + a:i + b + 1], None if axes is None else axes[i + a:i + b + 1], whole,
+                                   height, tolerance, bounds)
     return pieces
 
 
