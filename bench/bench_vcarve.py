@@ -16,6 +16,8 @@ import shutil
 import subprocess
 import time
 
+from timing import best_of
+
 LATIN = ("Kezuri Workshop", None, 28.0)
 KANJI = ("削り工房 欅 鬱", "Noto Sans CJK Regular.woff2", 60.0)
 
@@ -33,12 +35,7 @@ def sign_loops() -> list:
 
 
 def cpu_best_of(repeats: int, work) -> float:
-    best = float("inf")
-    for _ in range(repeats):
-        started = time.process_time()
-        work()
-        best = min(best, time.process_time() - started)
-    return best
+    return best_of(repeats, work, time.process_time)
 
 
 def run() -> list:

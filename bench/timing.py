@@ -2,10 +2,11 @@
 import time
 
 
-def best_of(repeats: int, work) -> float:
+def best_of(repeats: int, work, clock=time.perf_counter) -> float:
+    """The least time of ``repeats`` runs of ``work()`` by ``clock`` (wall; time.process_time: CPU)."""
     best = float("inf")
     for _ in range(repeats):
-        started = time.perf_counter()
+        started = clock()
         work()
-        best = min(best, time.perf_counter() - started)
+        best = min(best, clock() - started)
     return best

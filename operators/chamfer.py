@@ -95,9 +95,7 @@ def settings_group() -> type:
 
     d = core.ChamferSettings()
     return ks.settings_group("KezuriChamferSettings", {
-        "tool_number": ks.whole("Tool Number", d.tool.number, "The V-bit's tool number (T word)"),
-        "diameter": ks.length("Diameter", d.tool.diameter, "The V-bit's diameter"),
-        "flute_length": ks.length("Flute Length", d.tool.flute_length, "The V-bit's flute length"),
+        **ks.tool_fields(d.tool, "V-bit"),
         "width": ks.length("Width", d.width, "Across the top, from the edge into the material; 0: from the depth"),
         "depth": ks.length("Depth", d.depth, "Down the wall; 0: from the width"),
         "tip_gap": ks.length("Tip Gap", d.tip_gap, "The tip below the chamfer, in the waste"),

@@ -139,9 +139,7 @@ def settings_group() -> type:
 
     d = core.DrillSettings()
     return ks.settings_group("KezuriDrillSettings", {
-        "tool_number": ks.whole("Tool Number", d.tool.number, "The drill's tool number (T word)"),
-        "diameter": ks.length("Diameter", d.tool.diameter, "The drill's diameter"),
-        "flute_length": ks.length("Flute Length", d.tool.flute_length, "The drill's flute length"),
+        **ks.tool_fields(d.tool, "drill"),
         "depth": ks.length("Depth", d.depth, "Depth to the tip below the top (holes found in a mesh bring their own)"),
         "peck": ks.length("Peck", d.peck, "Deepest feed of one peck; 0: no pecking"),
         "dwell": ks.number("Dwell", d.dwell, "Time at the bottom of a hole drilled without pecks", "s", 2),

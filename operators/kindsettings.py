@@ -29,6 +29,14 @@ def whole(name: str, default: int, description: str):
     return IntProperty(name=name, default=int(default), description=description)
 
 
+def tool_fields(tool, what: str) -> dict:
+    """A tool's number, diameter and flute length as properties (``what``: "end mill", "drill",
+    "V-bit": the tooltips say whose); the keys are the job files' and the tool library's slots'."""
+    return {"tool_number": whole("Tool Number", tool.number, f"The {what}'s tool number (T word)"),
+            "diameter": length("Diameter", tool.diameter, f"The {what}'s diameter"),
+            "flute_length": length("Flute Length", tool.flute_length, f"The {what}'s flute length")}
+
+
 def switch(name: str, default: bool, description: str):
     return BoolProperty(name=name, default=bool(default), description=description)
 

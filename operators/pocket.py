@@ -101,9 +101,7 @@ def settings_group() -> type:
 
     d = core.PocketSettings()
     return ks.settings_group("KezuriPocketSettings", {
-        "tool_number": ks.whole("Tool Number", d.tool.number, "The end mill's tool number (T word)"),
-        "diameter": ks.length("Diameter", d.tool.diameter, "The end mill's diameter"),
-        "flute_length": ks.length("Flute Length", d.tool.flute_length, "The end mill's flute length"),
+        **ks.tool_fields(d.tool, "end mill"),
         "depth": ks.length("Depth", d.depth, "Depth of the floor below the top"),
         "step_down": ks.length("Step Down", d.step_down, "Deepest cut of one level"),
         "stepover": ks.length("Stepover", d.stepover, "Between neighbouring paths, at most the diameter"),

@@ -134,9 +134,7 @@ def settings_group() -> type:
 
     d = core.ProfileSettings()
     return ks.settings_group("KezuriProfileSettings", {
-        "tool_number": ks.whole("Tool Number", d.tool.number, "The end mill's tool number (T word)"),
-        "diameter": ks.length("Diameter", d.tool.diameter, "The end mill's diameter"),
-        "flute_length": ks.length("Flute Length", d.tool.flute_length, "The end mill's flute length"),
+        **ks.tool_fields(d.tool, "end mill"),
         "side": ks.choice("Side", d.side, "Which side of the outline the tool cuts", (
             ("outside", "Outside", "Cut the part out: the tool runs outside the outline"),
             ("inside", "Inside", "Cut a hole: the tool runs inside the outline"),
