@@ -97,14 +97,21 @@ def job_text(kind: str, args) -> str:
         design["layer"] = args.layer[0]
     if getattr(args, "scale", None) is not None:
         design["scale"] = float(args.scale)
+    operation = {"kind": kind, "name": kind, "design": design, "objects": {KINDS[kind][0]: name},
+                 "settings": settings(args.set)}
+    return board_job(kind, (x0, y0, x1, y1), args, operation)
+
+
+def board_job(kind: str, board, args, operation: dict) -> str:
+    """The job file of a shorthand: the board ``(x0, y0, x1, y1)`` (mm) as the stock, ``args.thickness``
+    thick, the post and machine when given, and the one operation."""
+    x0, y0, x1, y1 = board
     setup = {"name": kind, "stock": [float(x0), float(y0), -float(args.thickness), float(x1), float(y1), 0.0],
              "work_zero": args.work_zero}
     if args.post:
         setup["post"] = args.post
     if args.machine:
         setup["machine"] = args.machine
-    operation = {"kind": kind, "name": kind, "design": design, "objects": {KINDS[kind][0]: name},
-                 "settings": settings(args.set)}
     return f"[setup]\n{toml_table(setup)}\n[[operations]]\n{toml_table(operation)}"
 
 
@@ -128,14 +135,8 @@ def text_job(kind: str, args) -> str:
         text["at"] = [-float(x0 + x1) / 2, -float(y0 + y1) / 2]
     else:
         text["at"] = [-float(x0), -float(y0)]
-    setup = {"name": kind, "stock": [float(x0), float(y0), -float(args.thickness), float(x1), float(y1), 0.0],
-             "work_zero": args.work_zero}
-    if args.post:
-        setup["post"] = args.post
-    if args.machine:
-        setup["machine"] = args.machine
     operation = {"kind": kind, "name": kind, "text": text, "settings": settings(args.set)}
-    return f"[setup]\n{toml_table(setup)}\n[[operations]]\n{toml_table(operation)}"
+    return board_job(kind, (x0, y0, x1, y1), args, operation)
 
 
 def toml_table(table: dict) -> str:
