@@ -145,6 +145,15 @@ class Stopped(BaseException):
 
 
 STOP_STATUS = {signal.SIGINT: 130, signal.SIGTERM: 143}     # 128 + the signal's number, as shells do
+# the signals that arrived during the run: a Stopped raised while Python runs a finaliser is lost
+# ("unraisable"; seen on a million-move simulate), so the run checks this before it writes anything
+STOP_PENDING: list = []
+
+
+def stop_if_pending() -> None:
+    """Raise :class:`Stopped` again when a signal arrived whose Stopped was lost on the way."""
+    if STOP_PENDING:
+        raise Stopped(STOP_PENDING[0])
 
 
 @contextlib.contextmanager
@@ -154,7 +163,10 @@ def stoppable():
     def stop(signum, frame):
         for number in STOP_STATUS:
             signal.signal(number, signal.SIG_IGN)
+        STOP_PENDING.append(signum)
         raise Stopped(signum)
+
+    STOP_PENDING.clear()
 
     try:
         previous = {number: signal.signal(number, stop) for number in STOP_STATUS}
@@ -163,6 +175,7 @@ def stoppable():
     try:
         yield
     finally:
+        STOP_PENDING.clear()
         for number, handler in previous.items():
             signal.signal(number, handler)
 
@@ -222,6 +235,8 @@ def main(argv: list) -> int:
         with stoppable():
             try:
                 load_extension()
+                from kezuri.operators.common import Progress
+                Progress.checkpoint = stop_if_pending       # a lost stop is taken up at the next progress
                 return run(args)
             except Stopped as stopped:
                 name = signal.Signals(stopped.signum).name
@@ -252,6 +267,7 @@ def run(args) -> int:
         else:
             report = staging.final(finished(commands()[args.command], args))
         write_report(staging.folder, report)
+        stop_if_pending()                   # nothing is moved into --out after a stop, even a lost one
         staging.commit()
     except GateRefused as error:
         say(f"{staging.final(str(error))}")

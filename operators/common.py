@@ -53,6 +53,7 @@ class Progress:
     """Progress in the UI (window manager cursor) or as a text bar in batch mode."""
 
     line_open = False       # batch: a bar is on stderr's last line, not ended (a message starts a new one)
+    checkpoint = None       # batch: called at every update; raises to stop the run (a signal whose stop was lost)
 
     def __init__(self, context=None, label: str = ""):
         import bpy
@@ -64,6 +65,8 @@ class Progress:
             self.wm.progress_begin(0, 100)
 
     def __call__(self, fraction: float, text: str = ""):
+        if self.wm is None and Progress.checkpoint is not None:
+            Progress.checkpoint()
         percent = int(max(0.0, min(1.0, fraction)) * 100)
         if self.wm is not None:
             self.wm.progress_update(percent)
