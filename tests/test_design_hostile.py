@@ -240,3 +240,12 @@ def test_dxf_with_random_lines_changed_reads_or_is_refused_by_name(tmp_path_fact
             dxffile.read_dxf(path)
         except DesignFileError as error:
             assert str(error).startswith("f.dxf")
+
+
+@pytest.mark.parametrize("value", ["-1e400", "1e400", "nan", "x"])
+def test_insunits_that_is_no_whole_number_is_named(tmp_path, value):
+    """Hypothesis found $INSUNITS = -1e400 (infinity) raising OverflowError instead of a message."""
+    text = dxf_text(line(0, 0, 1, 1), units=4).replace("$INSUNITS\n 70\n4\n", f"$INSUNITS\n 70\n{value}\n")
+    assert value in text
+    with pytest.raises(DesignFileError, match=r"u\.dxf: line \d+: \$INSUNITS = .* is not a whole number"):
+        dxffile.read_dxf(write(tmp_path, text, "u.dxf"))

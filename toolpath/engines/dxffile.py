@@ -454,7 +454,7 @@ def read_dxf(path: str, tolerance: float = ARC_TOLERANCE, scale: float | None = 
     if units is not None:
         try:
             code = int(float(units[1]))
-        except ValueError:
+        except (ValueError, OverflowError):         # "x", "nan"; "-1e400" (infinity)
             raise DesignFileError(f"{name}: line {units[2]}: $INSUNITS = {units[1]!r} is not a whole number") from None
     if code and code not in UNITS:
         raise DesignFileError(f"{name}: $INSUNITS = {code}: units this reader does not take (mm, cm, m, inches, feet ...)")
