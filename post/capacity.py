@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import re
 
-from ..toolpath.ir.machine import MachineProfile
+from ..toolpath.ir import MachineProfile
 
 WORD = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
 COMMENT = re.compile(r"\([^)]*\)|;.*$")

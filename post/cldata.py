@@ -31,8 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.ir.program import FEED, RAPID, Operation, Program
-from ..toolpath.ir.xzc import TurnMillOperation
+from ..toolpath.ir import FEED, RAPID, Operation, Program, TurnMillOperation
 from . import words
 from .gcode import PostError, comment_text, format_duration
 from .registry import ControllerLimits, Post

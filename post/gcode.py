@@ -9,8 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.ir.machine import MachineProfile
-from ..toolpath.ir.program import FEED, RAPID, Operation, Program
+from ..toolpath.ir import FEED, RAPID, MachineProfile, Operation, Program, fit_program
 from . import words
 from .registry import ControllerLimits, Post, PostError, default_machine
 
@@ -256,9 +255,8 @@ class GcodePost(Post):
         limits = self.limits
         if self.family != "milling" or limits.arc_end_tolerance is None or not getattr(self.machine, "arcs", True):
             return program
-        from ..toolpath.ir import arcfit           # numba is loaded when a program is written, not with the posts
-        return arcfit.fit_program(program, end_tolerance=limits.arc_end_tolerance, written=self.written,
-                                  step=10.0 ** -self.decimals)
+        return fit_program(program, end_tolerance=limits.arc_end_tolerance, written=self.written,
+                           step=10.0 ** -self.decimals)      # (numba is loaded at this first call)
 
     def written(self, values) -> np.ndarray:
         """The numbers ``values`` read as once written in this post's format."""

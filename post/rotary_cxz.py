@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..toolpath.ir import kinematics
-from ..toolpath.ir.program import FEED, RAPID, Operation, Program
+from ..toolpath.ir import FEED, RAPID, Operation, Program
 from .fanuc import FANUC_MILL_LIMITS, FanucPost
 from .gcode import GcodePost, PostError, comment_text, fmt
 from .linuxcnc import LINUXCNC_LIMITS, LinuxCNCPost

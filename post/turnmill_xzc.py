@@ -53,8 +53,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..toolpath.ir import kinematics
-from ..toolpath.ir.program import FEED, RAPID, Operation, Program
-from ..toolpath.ir.xzc import TurnMillOperation
+from ..toolpath.ir import FEED, RAPID, Operation, Program, TurnMillOperation
 from . import words
 from .gcode import GcodePost, PostError, comment_text, fmt
 from .linuxcnc import LINUXCNC_LIMITS

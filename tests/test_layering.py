@@ -5,8 +5,9 @@ import os
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-# What a post may take from toolpath/: the IR package (program, machine profile, tools, kinematics, errors).
-POST_MAY_IMPORT = "ir"
+# What a post may take from toolpath/: the names the IR package's front lists (toolpath/ir/__init__.py),
+# and its kinematics and errors modules (DESIGN.md: posts import only the IR, kinematics and errors).
+POST_MAY_IMPORT = ("ir.kinematics", "ir.errors")
 BLENDER = {"bpy", "bmesh", "mathutils", "gpu", "blf"}
 
 
@@ -55,9 +56,24 @@ def test_the_checks_see_the_import_forms():
 
 @pytest.mark.parametrize("path", list(python_files("post")))
 def test_posts_import_only_the_ir_kinematics_and_errors(path):
+    from kezuri.toolpath import ir
+
+    front = {f"ir.{name}" for name in ir.__all__}
     reached = {m for statement in imports(path) for m in toolpath_modules_of_post(*statement)}
-    outside = sorted(m for m in reached if m.split(".")[0] != POST_MAY_IMPORT)
-    assert not outside, f"{path} imports toolpath modules outside the IR: {outside}"
+    outside = sorted(m for m in reached if m not in front and not m.startswith(POST_MAY_IMPORT))
+    assert not outside, f"{path} imports toolpath modules outside the IR's front, kinematics and errors: {outside}"
+
+
+def test_the_posts_rule_refuses_an_ir_module_behind_the_front():
+    from kezuri.toolpath import ir
+
+    front = {f"ir.{name}" for name in ir.__all__}
+    for module, names in (("toolpath.ir.punch", ["PunchProgram"]), ("toolpath.ir", ["machine"]),
+                          ("toolpath.ir.program", ["FEED"])):
+        reached = toolpath_modules_of_post(module, 2, names)
+        assert all(m not in front and not m.startswith(POST_MAY_IMPORT) for m in reached), reached
+    assert toolpath_modules_of_post("toolpath.ir", 2, ["Program"])[0] in front
+    assert toolpath_modules_of_post("toolpath.ir", 2, ["kinematics"])[0].startswith(POST_MAY_IMPORT)
 
 
 @pytest.mark.parametrize("path", list(python_files("toolpath")) + list(python_files("post")))
