@@ -1578,7 +1578,7 @@ MESSAGE_TEMPLATES = {
         '#{0} {1}：{2} 番目の属性がありません（このインスタンスの属性は {3} 個）',
     'the AP238 data does not follow the mapping of ISO 10303-238 near #{} ({}: {})':
         'AP238 のデータが ISO 10303-238 の対応付けに従っていません（#{0} 付近、{1}：{2}）',
-    # toolpath/operations/stepnc/freeform.py and model.py: explicit toolpaths and rapid movements
+    # toolpath/operations/stepnc/freeform.py and geometry.py: explicit toolpaths and rapid movements
     '#{} COMPOSITE_CURVE: a segment starts away from the end of the one before it':
         '#{0} COMPOSITE_CURVE：セグメントが前のセグメントの終点から離れて始まっています',
     '#{} HELIX: the pitch is zero': '#{0} HELIX：ピッチが0です',

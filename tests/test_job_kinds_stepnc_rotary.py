@@ -15,7 +15,7 @@ from kezuri.toolpath.operations.rotary import rotary
 from kezuri.toolpath.operations.rotary.kind import RotaryGeometry, RotaryKind
 from kezuri.toolpath.operations.stepnc import PocketSpec, load_workplan, pockets_to_part21, to_program
 from kezuri.toolpath.operations.stepnc.kind import StepncGeometry, StepncKind, StepncSettings
-from kezuri.toolpath.operations.stepnc.model import StepNcError
+from kezuri.toolpath.operations.stepnc.errors import StepNcError
 
 FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file__), "fixtures"))
 EX1 = os.path.join(FIXTURES, "iso14649", "ex1.stp")

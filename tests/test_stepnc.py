@@ -16,7 +16,9 @@ import rs274
 from kezuri import post
 from kezuri.toolpath.engines import region as rg
 from kezuri.toolpath.ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Tool
-from kezuri.toolpath.operations.stepnc.model import (Bidirectional, BottomAndSideMilling, ClosedPocket, ContourParallel, GeneralClosedProfile, PlanarFace, PlaneMilling, RectangularClosedProfile, RoundHole, StepNcError)
+from kezuri.toolpath.operations.stepnc.errors import StepNcError
+from kezuri.toolpath.operations.stepnc.features import ClosedPocket, GeneralClosedProfile, PlanarFace, RectangularClosedProfile, RoundHole
+from kezuri.toolpath.operations.stepnc.process import Bidirectional, BottomAndSideMilling, ContourParallel, PlaneMilling
 from kezuri.toolpath.operations.stepnc.part21 import Part21Error
 from kezuri.toolpath.operations.stepnc.workplan import (PocketSpec, finishing_leftover, load_workplan, pocket_region, pockets_to_part21, to_program)
 

@@ -19,7 +19,7 @@ from kezuri import post
 from kezuri.toolpath.ir.program import FEED
 from kezuri.toolpath.simulate import blocking, simulate
 from kezuri.toolpath.ir.errors import InputError
-from kezuri.toolpath.operations.stepnc.model import StepNcError
+from kezuri.toolpath.operations.stepnc.errors import StepNcError
 from kezuri.toolpath.operations.stepnc.solids import fixture_clearance, stock_box
 from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 from test_hostile import time_limit

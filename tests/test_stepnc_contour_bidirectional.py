@@ -18,7 +18,7 @@ import rs274
 from kezuri import post
 from kezuri.toolpath.ir.program import FEED
 from kezuri.toolpath.simulate import BoxStock, blocking, simulate
-from kezuri.toolpath.operations.stepnc.model import ContourBidirectional
+from kezuri.toolpath.operations.stepnc.process import ContourBidirectional
 from kezuri.toolpath.operations.stepnc.workplan import load_workplan, to_program
 
 STOCK = BoxStock(0, 0, -30, 120, 80, 0)

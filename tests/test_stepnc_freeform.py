@@ -217,7 +217,7 @@ def test_what_is_not_converted_is_named():
 
 
 def test_an_arc_whose_points_are_off_its_circle_is_refused_by_name():
-    from kezuri.toolpath.operations.stepnc.model import StepNcError
+    from kezuri.toolpath.operations.stepnc.errors import StepNcError
     text = freeform_file().replace("#426= CIRCLE('arc circle',#427,5.000);", "#426= CIRCLE('arc circle',#427,4.000);")
     with pytest.raises(StepNcError, match=r"#423 TRIMMED_CURVE: its points lie 5 and 5 mm from the axis of #426, "
                                           r"whose radius is 4 mm"):

@@ -31,7 +31,7 @@ from __future__ import annotations
 from .ap238_aim import Aim, attribute, attributes, kind_of, name_of
 from .ap238_features import feature_to_arm
 from .ap238_process import operation_to_arm
-from .model import StepNcError
+from .errors import StepNcError
 from .part21 import UNSET, Part21File, Ref
 
 AP238_SCHEMAS = ("AP238_STEP_NC_MIM", "MODEL_BASED_INTEGRATED_MANUFACTURING_SCHEMA", "INTEGRATED_CNC_SCHEMA",

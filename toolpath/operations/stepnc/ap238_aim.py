@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 from collections import defaultdict
 
-from .model import StepNcError
+from .errors import StepNcError
 from .part21 import UNSET, ComplexInstance, Enum, Instance, Part21File, Ref, Typed, iter_refs
 
 WORDS = {"left": "LEFT", "right": "RIGHT", "clockwise": "CW", "counterclockwise": "CCW", "climb": "CLIMB",

@@ -14,7 +14,8 @@ sits at the feature's zero point), so it is never composed twice.
 from __future__ import annotations
 
 from .ap238_aim import attribute, kind_of, measure_of, name_of, placeholder_name
-from .model import CURVE_TYPES, StepNcError
+from .errors import StepNcError
+from .geometry import CURVE_TYPES
 from .part21 import UNSET, Ref
 
 HOLE_BOTTOMS = {"through": "THROUGH_BOTTOM_CONDITION", "flat": "FLAT_HOLE_BOTTOM",
@@ -197,7 +198,7 @@ def _linear_path(aim, path, feature_placement) -> Ref:
 
 
 def _curves(aim, owner) -> list:
-    """The curves the reader knows (:data:`.model.CURVE_TYPES`) among the items of ``owner``'s
+    """The curves the reader knows (:data:`.geometry.CURVE_TYPES`) among the items of ``owner``'s
     shape representations."""
     return [item for _, item, _ in aim.shape_items(owner) if item.type_names[0] in CURVE_TYPES]
 

@@ -3,7 +3,7 @@ instances (see :mod:`.ap238`).  Property names are those of ISO 10303-238 clause
 from __future__ import annotations
 
 from .ap238_aim import attribute, enum_of, kind_of, measure_of, name_of, placeholder_name, text_of
-from .model import StepNcError
+from .errors import StepNcError
 from .part21 import UNSET, Ref
 
 

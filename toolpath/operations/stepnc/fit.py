@@ -1,8 +1,10 @@
 """Whether a workingstep's tool fits its feature, as ISO 14649 means it: a drill or reamer no wider
 than the hole it makes, an end mill no wider than the hole, slot or rectangular pocket it clears.
 A tool that does not fit is refused naming the tool, its diameter and the feature's size as written."""
-from .model import BottomAndSideMilling, ClosedPocket, DrillingOperation, RectangularClosedProfile, RoundHole, Slot, \
-    StepNcError, Workingstep
+from .errors import StepNcError
+from .features import ClosedPocket, RectangularClosedProfile, RoundHole, Slot
+from .model import Workingstep
+from .process import BottomAndSideMilling, DrillingOperation
 
 # Diameters compare with this much (mm) slack, for rounding in the file.
 FIT_TOLERANCE = 1e-6

@@ -20,7 +20,8 @@ import math
 import numpy as np
 
 from ...ir.program import ARC_CCW, ARC_CW, FEED, RAPID
-from .model import BSplineCurve, CompositeCurve, Helix, Line, Polyline, StepNcError, TrimmedCurve, UnsupportedEntity
+from .errors import StepNcError, UnsupportedEntity
+from .geometry import BSplineCurve, CompositeCurve, Helix, Line, Polyline, TrimmedCurve
 from .motion import Motion
 from .technology import MissingTechnology, feed_and_speed
 

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import math
 
-from .model import BottomAndSideMilling, DrillingOperation, RoundHole
+from .features import RoundHole
+from .process import BottomAndSideMilling, DrillingOperation
 
 FLAT_BOTTOMS = ("FLAT_HOLE_BOTTOM", "FLAT_WITH_RADIUS_HOLE_BOTTOM")
 # A drill point when the file gives no tool_top_angle (the usual 118 degrees included).

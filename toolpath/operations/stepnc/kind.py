@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 from ...job import OperationKind, Part
 from ... import workload
-from .model import StepNcError
+from .errors import StepNcError
 from .solids import fixture_clearance, stock_box
 from .workplan import LoadedWorkplan, nothing_to_machine, skipped_workingsteps, to_program, workplan_from_text
 

@@ -11,7 +11,9 @@ from manifold3d import CrossSection, JoinType
 from ...engines import region as rg
 from ...ir.program import ARC_CCW, ARC_CW, FEED, Operation, PathBuilder
 from .inprocess import InProcessStock
-from .model import CHORD_TOLERANCE, PlungeHelix, PlungeRamp, StepNcError
+from .errors import StepNcError
+from .geometry import CHORD_TOLERANCE
+from .process import PlungeHelix, PlungeRamp
 
 # Rapids stop this far (mm) above the level already cut, and feeding starts there.
 APPROACH_GAP = 2.0

@@ -9,7 +9,7 @@ import numpy as np
 
 from ...engines import region as rg
 from ...ir.program import Tool
-from .model import StepNcError
+from .errors import StepNcError
 from .part21 import UNSET, Enum
 from .tools import number_in
 from .part21_writer import Part21Writer

@@ -10,7 +10,11 @@ from dataclasses import replace
 import numpy as np
 
 from ...engines import region as rg
-from .model import (MAX_NAME, ApproachRetract, BSplineCurve, Bidirectional, Block, BottomAndSideMilling, Circle, CircularPath, ClosedPocket, ClosedProfile, CompositeCurve, CompositeCurveSegment, CURVE_TYPES, ContourBidirectional, ContourParallel, CuttingTool, DIMENSION_TYPES, DRILLING_TOOL_BODIES, DrillingOperation, DrillingTypeStrategy, Feature, FreeformOperation, GeneralClosedProfile, GeneralPath, Helix, LENGTH_TYPES, Line, LinearPath, LinearProfile, MAX_LENGTH, MILLING_TOOL_BODIES, MachineFunctions, MachiningOperation, MillingStrategy, MillingTechnology, PLANE_TYPES, Placement, PlanarFace, Plane, PlaneMilling, PlungeHelix, PlungeRamp, PlungeToolaxis, Polyline, Project, RapidMovement, RectangularClosedProfile, RoundHole, SLOT_ENDS, Setup, Slot, StepNcError, TAPERED_BODIES, ToolBody, ToolDimension, Trajectory, TrimmedCurve, Unidirectional, UnsupportedEntity, Vec3, Workingstep, Workpiece, Workplan)
+from .errors import StepNcError, UnsupportedEntity
+from .features import CircularPath, ClosedPocket, ClosedProfile, Feature, GeneralClosedProfile, GeneralPath, LinearPath, LinearProfile, PlanarFace, RectangularClosedProfile, RoundHole, SLOT_ENDS, Slot
+from .geometry import BSplineCurve, Block, CURVE_TYPES, Circle, CompositeCurve, CompositeCurveSegment, Helix, Line, PLANE_TYPES, Placement, Plane, Polyline, TrimmedCurve, Vec3
+from .model import LENGTH_TYPES, MAX_LENGTH, MAX_NAME, Project, Setup, Workingstep, Workpiece, Workplan
+from .process import ApproachRetract, Bidirectional, BottomAndSideMilling, ContourBidirectional, ContourParallel, CuttingTool, DIMENSION_TYPES, DRILLING_TOOL_BODIES, DrillingOperation, DrillingTypeStrategy, FreeformOperation, MILLING_TOOL_BODIES, MachineFunctions, MachiningOperation, MillingStrategy, MillingTechnology, PlaneMilling, PlungeHelix, PlungeRamp, PlungeToolaxis, RapidMovement, TAPERED_BODIES, ToolBody, ToolDimension, Trajectory, Unidirectional
 from .part21 import UNKNOWN, UNSET, Enum, Instance, Part21File, Ref, Typed
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...engines.meshdata import prism
-from .model import ClosedPocket, PlanarFace, RoundHole, Slot
+from .features import ClosedPocket, PlanarFace, RoundHole, Slot
 
 
 def feature_solid(feature):

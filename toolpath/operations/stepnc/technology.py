@@ -5,7 +5,8 @@ from __future__ import annotations
 import math
 
 from ...ir.program import Tool
-from .model import DrillingOperation, StepNcError
+from .errors import StepNcError
+from .process import DrillingOperation
 
 
 class MissingTechnology(StepNcError):

@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass
 
 from ...ir.program import Tool
-from .model import DRILLING_TOOL_BODIES, CuttingTool
+from .process import CuttingTool, DRILLING_TOOL_BODIES
 
 # What a tool body is called in the NC comments (Tool.describe); bodies not listed use the IR kind's name.
 BODY_LABELS = {"TWIST_DRILL": "twist drill", "TAPERED_DRILL": "drill", "CENTER_DRILL": "centre drill",

@@ -34,7 +34,10 @@ from ...ir.program import ARC_CW, Operation, Program, Tool
 from .freeform import plan_freeform
 from .hole_bottoms import DEFAULT_TOOL_TOP_ANGLE, flat_bottom_notes, through_bottom_notes  # noqa: F401
 from .inprocess import InProcessStock
-from .model import (Bidirectional, BottomAndSideMilling, ClosedPocket, ContourBidirectional, ContourParallel, CuttingTool, DrillingOperation, FreeformOperation, PlanarFace, PlaneMilling, PlungeHelix, PlungeRamp, Project, RoundHole, Slot, StepNcError, Unidirectional, Workingstep)
+from .errors import StepNcError
+from .features import ClosedPocket, PlanarFace, RoundHole, Slot
+from .model import Project, Workingstep
+from .process import Bidirectional, BottomAndSideMilling, ContourBidirectional, ContourParallel, CuttingTool, DrillingOperation, FreeformOperation, PlaneMilling, PlungeHelix, PlungeRamp, Unidirectional
 from .reader import read_project
 from .motion import (APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, Motion, cut_levels, helix_moves,
                      helix_pitch, is_empty, iso_ratio, round_offset, split_outside, stepover_of)
