@@ -33,10 +33,16 @@ import numpy as np
 from ...engines import region
 from ...ir.errors import InputError
 from ...ir.program import Operation, PathBuilder, Tool
+from ..fields import FINITE, Fields, positive, zero_or_more
 
 
 class ChamferError(InputError):
     """Outlines or settings that cannot be chamfered; the message names the setting."""
+
+
+# The sizes, then (after the width or the depth is chosen) the speeds, each within its own bounds.
+SIZES = Fields(FINITE, tuple(map(zero_or_more, ("width", "depth", "tip_gap"))))
+SPEEDS = Fields(FINITE, tuple(map(positive, ("rpm", "feed", "plunge_feed"))))
 
 
 @dataclass(frozen=True)
@@ -56,17 +62,11 @@ class ChamferSettings:
         shape = self.tool.shape
         if shape.kind != "vbit":
             raise ChamferError(f"chamfering needs a V-bit, not a {self.tool.describe()}")
-        for name in ("width", "depth", "tip_gap"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value >= 0):
-                raise ChamferError(f"chamfer: {name} must be 0 or more, got {value!r}")
+        SIZES.check(self, "chamfer", ChamferError)
         if (self.width > 0) == (self.depth > 0):
             raise ChamferError(f"chamfer: give the width or the depth, one of them (width {self.width:g}, depth "
                                f"{self.depth:g})")
-        for name in ("rpm", "feed", "plunge_feed"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value > 0):
-                raise ChamferError(f"chamfer: {name} must be a positive number, got {value!r}")
+        SPEEDS.check(self, "chamfer", ChamferError)
         if not self.approach_gap < self.clearance_z <= self.safe_z:
             raise ChamferError(f"chamfer: the approach gap {self.approach_gap:g} mm, clearance plane "
                                f"{self.clearance_z:g} mm and safe Z {self.safe_z:g} mm must rise in that order")

@@ -21,6 +21,7 @@ import numpy as np
 from ...ir.cycles import DrillCycle
 from ...ir.errors import MAX_REACH_MM, InputError
 from ...ir.program import Operation, PathBuilder, Tool
+from ..fields import FINITE, Fields, one_of, positive, zero_or_more
 
 
 class DrillError(InputError):
@@ -28,6 +29,13 @@ class DrillError(InputError):
 
 
 RETRACTS = ("initial", "r")
+# The settings each within its own bounds, checked in this order (DrillSettings.check relates them between).
+FIELDS = Fields(FINITE, (*map(positive, ("depth", "rpm", "feed")),
+                         *map(zero_or_more, ("peck", "peck_gap", "approach_gap", "dwell", "breakthrough",
+                                             "min_diameter", "max_diameter"))))
+RETRACT = Fields(FINITE, (one_of("retract", RETRACTS),))
+HELIX_FIELDS = Fields(FINITE, tuple(map(positive, ("mill_rpm", "mill_feed", "helix_pitch"))))
+SPOT_FIELDS = Fields(FINITE, (positive("spot_depth"),))
 
 
 @dataclass(frozen=True)
@@ -60,19 +68,11 @@ class DrillSettings:
     def check(self) -> None:
         if self.tool.shape.kind != "drill":
             raise DrillError(f"drilling needs a drill, not a {self.tool.describe()}")
-        for name in ("depth", "rpm", "feed"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value > 0):
-                raise DrillError(f"drilling: {name} must be a positive number, got {value!r}")
-        for name in ("peck", "peck_gap", "approach_gap", "dwell", "breakthrough", "min_diameter", "max_diameter"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value >= 0):
-                raise DrillError(f"drilling: {name} must be 0 or more, got {value!r}")
+        FIELDS.check(self, "drilling", DrillError)
         if self.peck > 0 and self.dwell > 0:
             raise DrillError("drilling: dwell is for holes drilled without pecks (peck = 0); "
                              f"got peck {self.peck:g} mm and dwell {self.dwell:g} s")
-        if self.retract not in RETRACTS:
-            raise DrillError(f"drilling: retract must be one of {', '.join(RETRACTS)}, got {self.retract!r}")
+        RETRACT.check(self, "drilling", DrillError)
         if self.order not in ("shortest", "given"):
             raise DrillError(f"drilling: order must be 'shortest' or 'given', got {self.order!r}")
         if self.max_diameter and self.max_diameter < self.min_diameter:
@@ -87,14 +87,11 @@ class DrillSettings:
         if self.helix:
             if self.mill.shape.kind != "flat":
                 raise DrillError(f"helix milling needs a flat end mill, not a {self.mill.describe()}")
-            for name in ("mill_rpm", "mill_feed", "helix_pitch"):
-                value = getattr(self, name)
-                if not (math.isfinite(value) and value > 0):
-                    raise DrillError(f"helix milling: {name} must be a positive number, got {value!r}")
+            HELIX_FIELDS.check(self, "helix milling", DrillError)
         if self.spot and self.spot_tool.shape.kind != "drill":
             raise DrillError(f"spot drilling needs a pointed drill that plunges, not a {self.spot_tool.describe()}")
-        if self.spot and not (math.isfinite(self.spot_depth) and self.spot_depth > 0):
-            raise DrillError(f"spot drilling: spot_depth must be a positive number, got {self.spot_depth!r}")
+        if self.spot:
+            SPOT_FIELDS.check(self, "spot drilling", DrillError)
 
     def point_length(self) -> float:
         """How far the drill's point reaches below its full diameter: r / tan(half point angle)."""

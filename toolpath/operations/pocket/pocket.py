@@ -15,7 +15,6 @@ rest.  Moves are straight lines; arcs are fitted by the posts' common step.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -25,6 +24,7 @@ from ...engines import ramp
 from ...engines import region as rg
 from ...ir.errors import MAX_REACH_MM, InputError
 from ...ir.program import Operation, Tool
+from ..fields import NUMBER, Field, Fields, one_of, positive, zero_or_more
 from ..stepnc.motion import round_offset
 from .clearing import ClearingError, Cutter, offset_rings, zigzag_chains
 
@@ -37,6 +37,17 @@ MAX_LEVELS = 1000         # step-down levels in one pocket
 MIN_RAMP_ANGLE = 0.5      # degrees: a shallower ramp travels over 100 mm per mm of depth
 MIN_HELIX = 0.1           # mm: the smallest helix diameter (0: no helix)
 MAX_TRAVEL = 5.0e6        # mm of cutting in one operation (5 km: days at any feed) is a typing slip
+# The settings each within its own bounds, checked in this order (PocketSettings.check then relates them);
+# the helix's diameter after the levels.
+FIELDS = Fields(NUMBER, (
+    *map(positive, ("depth", "step_down", "stepover", "rpm", "feed", "entry_feed", "rest_stepover",
+                    "rest_step_down", "rest_rpm", "rest_feed")),
+    *map(zero_or_more, ("helix_diameter", "wall_allowance", "floor_allowance")),
+    one_of("strategy", STRATEGIES), one_of("entry", ENTRIES),
+    Field("ramp_angle", low=MIN_RAMP_ANGLE, high=ramp.MAX_ANGLE, unit="degrees"),
+    *(Field(name, low=MIN_STEP, unit="mm") for name in ("stepover", "step_down", "rest_stepover", "rest_step_down")),
+    Field("clearance_z"), Field("safe_z"), Field("angle")))
+HELIX = Fields(NUMBER, (Field("helix_diameter", low=MIN_HELIX, high=MAX_REACH_MM, unit="mm", zero="no helix"),))
 
 
 class PocketError(InputError):
@@ -79,37 +90,12 @@ class PocketSettings:
             if not isinstance(tool, Tool) or tool.kind != "flat":
                 raise PocketError(f"{what}: {name} must be a flat end mill, not a "
                                   f"{tool.describe() if isinstance(tool, Tool) else repr(tool)}")
-        numbers = ("depth", "step_down", "stepover", "helix_diameter", "ramp_angle", "wall_allowance",
-                   "floor_allowance", "rpm", "feed", "entry_feed", "clearance_z", "safe_z", "angle",
-                   "rest_stepover", "rest_step_down", "rest_rpm", "rest_feed")
-        for name in numbers:
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-                raise PocketError(f"{what}: {name} must be a number, got {value!r}")
-        for name in ("depth", "step_down", "stepover", "rpm", "feed", "entry_feed", "rest_stepover",
-                     "rest_step_down", "rest_rpm", "rest_feed"):
-            if getattr(self, name) <= 0:
-                raise PocketError(f"{what}: {name} must be more than 0, got {getattr(self, name)!r}")
-        for name in ("helix_diameter", "wall_allowance", "floor_allowance"):
-            if getattr(self, name) < 0:
-                raise PocketError(f"{what}: {name} must be 0 or more, got {getattr(self, name)!r}")
-        if self.strategy not in STRATEGIES:
-            raise PocketError(f"{what}: strategy must be one of {', '.join(STRATEGIES)}, got {self.strategy!r}")
-        if self.entry not in ENTRIES:
-            raise PocketError(f"{what}: entry must be one of {', '.join(ENTRIES)}, got {self.entry!r}")
-        if not MIN_RAMP_ANGLE <= self.ramp_angle <= ramp.MAX_ANGLE:
-            raise PocketError(f"{what}: ramp_angle must be from {MIN_RAMP_ANGLE:g} to {ramp.MAX_ANGLE:g} degrees, "
-                              f"got {self.ramp_angle!r}")
-        for name in ("stepover", "step_down", "rest_stepover", "rest_step_down"):
-            if getattr(self, name) < MIN_STEP:
-                raise PocketError(f"{what}: {name} must be at least {MIN_STEP:g} mm, got {getattr(self, name)!r}")
+        FIELDS.check(self, what, PocketError)
         for name, step in (("step_down", self.step_down), ("rest_step_down", self.rest_step_down)):
             if self.depth / step > MAX_LEVELS:
                 raise PocketError(f"{what}: depth {self.depth:g} mm at a {name} of {step:g} mm makes more than "
                                   f"{MAX_LEVELS} levels")
-        if self.helix_diameter and not MIN_HELIX <= self.helix_diameter <= MAX_REACH_MM:
-            raise PocketError(f"{what}: helix_diameter must be 0 (no helix) or from {MIN_HELIX:g} to "
-                              f"{MAX_REACH_MM:g} mm, got {self.helix_diameter!r}")
+        HELIX.check(self, what, PocketError)
         if self.stepover > self.tool.diameter:
             raise PocketError(f"{what}: stepover {self.stepover:g} mm is more than the {self.tool.describe()}'s "
                               f"diameter: material would stand between the paths")

@@ -29,6 +29,7 @@ import numpy as np
 from ...engines import ramp
 from ...engines import region as rg
 from ...ir.program import Operation, PathBuilder, ProgramError, Tool
+from ..fields import NUMBER, Field, Fields, one_of, positive, zero_or_more
 from . import contours as ct
 from . import tabs as tb
 from .contours import ProfileError
@@ -40,6 +41,13 @@ KEEP_MARGIN = 0.02      # mm inside the part where the design layer starts to ke
 KEEP_BAND = 1.0         # mm: how wide the band of the part's edge the design layer keeps is
 MAX_LEVELS = 1000      # step-downs: more than this is a step_down typed wrong, not a job
 STAND = 0.05            # mm above the cut's bottom the part's edge must reach (it is not cut through)
+# The settings each within its own bounds, checked in this order (ProfileSettings.check then relates them).
+FIELDS = Fields(NUMBER, (
+    one_of("side", SIDES), one_of("tab_shape", TAB_SHAPES), one_of("lead", LEADS),
+    *map(positive, ("step_down", "rpm", "feed", "plunge_feed", "tab_width", "tab_height")),
+    *map(zero_or_more, ("breakthrough", "allowance", "tab_spacing", "lead_radius", "approach_gap")),
+    Field("ramp_angle", low=0.0, above=True, high=ramp.MAX_ANGLE, unit="degrees"),
+    Field("clearance_z"), Field("safe_z")))
 
 
 def _default_tool() -> Tool:
@@ -81,24 +89,7 @@ class ProfileSettings:
     def check(self, thickness: float) -> None:
         if self.tool.shape.kind != "flat":
             raise ProfileError(f"profile: tool: a profile is cut with a flat end mill, not a {self.tool.describe()}")
-        for name, options in (("side", SIDES), ("tab_shape", TAB_SHAPES), ("lead", LEADS)):
-            if getattr(self, name) not in options:
-                raise ProfileError(f"profile: {name} must be one of {', '.join(options)}, got {getattr(self, name)!r}")
-        numbers = ("breakthrough", "step_down", "allowance", "rpm", "feed", "plunge_feed", "ramp_angle",
-                   "tab_spacing", "tab_width", "tab_height", "lead_radius", "clearance_z", "safe_z", "approach_gap")
-        for name in numbers:
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-                raise ProfileError(f"profile: {name} must be a number, got {value!r}")
-        for name in ("step_down", "rpm", "feed", "plunge_feed", "tab_width", "tab_height"):
-            if not getattr(self, name) > 0:
-                raise ProfileError(f"profile: {name} must be more than 0, got {getattr(self, name)!r}")
-        for name in ("breakthrough", "allowance", "tab_spacing", "lead_radius", "approach_gap"):
-            if getattr(self, name) < 0:
-                raise ProfileError(f"profile: {name} must be 0 or more, got {getattr(self, name)!r}")
-        if not 0 < self.ramp_angle <= ramp.MAX_ANGLE:
-            raise ProfileError(f"profile: ramp_angle must be more than 0 and at most {ramp.MAX_ANGLE:g} degrees, "
-                               f"got {self.ramp_angle!r}")
+        FIELDS.check(self, "profile", ProfileError)
         if isinstance(self.tab_count, bool) or not isinstance(self.tab_count, int) or self.tab_count < 0:
             raise ProfileError(f"profile: tab_count must be a whole number 0 or more, got {self.tab_count!r}")
         if self.tab_count and self.tab_spacing:

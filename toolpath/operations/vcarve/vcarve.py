@@ -28,6 +28,7 @@ import numpy as np
 from ...engines import region as rg
 from ...ir.errors import InputError
 from ...ir.program import Operation, PathBuilder, ProgramError, Tool
+from ..fields import NUMBER, Field, Fields, one_of, positive, zero_or_more
 from ..pocket import pocket
 from ..stepnc.motion import round_offset
 from . import chains as ch
@@ -36,6 +37,14 @@ from . import fine, medial
 INLAYS = ("none", "female", "male")
 MIN_TOLERANCE = 0.001           # mm: the medial axis's sampling tolerance, finest
 MAX_TOLERANCE = 0.1
+# The settings each within its own bounds, checked in this order (VCarveSettings.check then relates them).
+FIELDS = Fields(NUMBER, (
+    *map(zero_or_more, ("max_depth", "start_depth", "glue_gap", "waste_margin")),
+    zero_or_more("clear_stepover", zero="the end mill's radius"),
+    *map(positive, ("clear_step_down", "clear_rpm", "clear_feed", "rpm", "feed", "entry_feed")),
+    Field("tolerance", low=MIN_TOLERANCE, high=MAX_TOLERANCE, unit="mm"),
+    one_of("inlay", INLAYS),
+    Field("clearance_z"), Field("safe_z")))
 DUST = 0.005                    # mm: floor corners narrower than this are not reported
 LEFT_REPORTED = 5               # floor corners named in the warning
 RIDGE_STEP = 0.05               # mm: the medial axis sampled this finely to bound what stands in them
@@ -94,25 +103,7 @@ class VCarveSettings:
                               f"{self.tool.describe() if isinstance(self.tool, Tool) else repr(self.tool)}")
         if self.clear_tool is not None and (not isinstance(self.clear_tool, Tool) or self.clear_tool.kind != "flat"):
             raise VCarveError(f"{what}: clear_tool must be a flat end mill")
-        for name in ("max_depth", "clear_stepover", "clear_step_down", "clear_rpm", "clear_feed", "start_depth",
-                     "glue_gap", "waste_margin", "tolerance", "rpm", "feed", "entry_feed", "clearance_z", "safe_z"):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-                raise VCarveError(f"{what}: {name} must be a number, got {value!r}")
-        for name in ("max_depth", "start_depth", "glue_gap", "waste_margin"):
-            if getattr(self, name) < 0:
-                raise VCarveError(f"{what}: {name} must be 0 or more, got {getattr(self, name)!r}")
-        if self.clear_stepover < 0:
-            raise VCarveError(f"{what}: clear_stepover must be 0 (the end mill's radius) or more, got "
-                              f"{self.clear_stepover!r}")
-        for name in ("clear_step_down", "clear_rpm", "clear_feed", "rpm", "feed", "entry_feed"):
-            if getattr(self, name) <= 0:
-                raise VCarveError(f"{what}: {name} must be more than 0, got {getattr(self, name)!r}")
-        if not MIN_TOLERANCE <= self.tolerance <= MAX_TOLERANCE:
-            raise VCarveError(f"{what}: tolerance must be from {MIN_TOLERANCE:g} to {MAX_TOLERANCE:g} mm, "
-                              f"got {self.tolerance!r}")
-        if self.inlay not in INLAYS:
-            raise VCarveError(f"{what}: inlay must be one of {', '.join(INLAYS)}, got {self.inlay!r}")
+        FIELDS.check(self, what, VCarveError)
         if not 0 < self.clearance_z <= self.safe_z:
             raise VCarveError(f"{what}: clearance_z {self.clearance_z:g} mm and safe_z {self.safe_z:g} mm must be "
                               "above the stock's top and rise in that order")
