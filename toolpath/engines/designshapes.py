@@ -9,6 +9,7 @@ Every error is a :class:`DesignFileError` naming the file, the element or entity
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,6 +31,17 @@ MAX_FILE_BYTES = 100_000_000
 class DesignFileError(InputError):
     """A drawing file (SVG, DXF) that cannot be read: the message names the file, the element or
     entity, and its line."""
+
+
+def checked_file(path: str) -> str:
+    """The file's name, once it is a file of at most MAX_FILE_BYTES (else DesignFileError)."""
+    name = os.path.basename(path)
+    if not os.path.isfile(path):
+        raise DesignFileError(f"{path}: no such file")
+    if os.path.getsize(path) > MAX_FILE_BYTES:
+        raise DesignFileError(f"{name}: {os.path.getsize(path)} bytes, more than a drawing of "
+                              f"{MAX_FILE_BYTES} bytes is refused")
+    return name
 
 
 @dataclass(frozen=True)

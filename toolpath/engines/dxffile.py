@@ -31,11 +31,10 @@ Binary DXF is refused.  Errors name the file, the entity and its line.
 from __future__ import annotations
 
 import math
-import os
 
 import numpy as np
 
-from .designshapes import (JOIN_TOLERANCE, MAX_FILE_BYTES, MAX_SEGMENTS, Design, DesignFileError, PointBudget,
+from .designshapes import (JOIN_TOLERANCE, MAX_SEGMENTS, Design, DesignFileError, PointBudget, checked_file,
                            applied, arc_points, bulge_points, circle_points, finished, is_similarity, joined_by_layer,
                            largest_scale)
 from .region import ARC_TOLERANCE
@@ -438,12 +437,7 @@ def read_dxf(path: str, tolerance: float = ARC_TOLERANCE, scale: float | None = 
     """The DXF file's shapes in mm: units from $INSUNITS, or ``scale`` (mm per drawing unit) for a
     file without units (default 1: its numbers are mm); curves within ``tolerance`` mm; open pieces
     of a layer joined where their ends meet within ``join_tolerance`` mm."""
-    name = os.path.basename(path)
-    if not os.path.isfile(path):
-        raise DesignFileError(f"{path}: no such file")
-    if os.path.getsize(path) > MAX_FILE_BYTES:
-        raise DesignFileError(f"{name}: {os.path.getsize(path)} bytes, more than a drawing of "
-                              f"{MAX_FILE_BYTES} bytes is refused")
+    name = checked_file(path)
     with open(path, "rb") as stream:
         if stream.read(22).startswith(b"AutoCAD Binary DXF"):
             raise DesignFileError(f"{name}: a binary DXF: save it as ASCII DXF")

@@ -27,13 +27,12 @@ read.  Errors name the file, the element (tag, id) and its line.
 from __future__ import annotations
 
 import math
-import os
 import re
 from xml.parsers import expat
 
 import numpy as np
 
-from .designshapes import (JOIN_TOLERANCE, MAX_FILE_BYTES, Design, DesignFileError, PointBudget, applied,
+from .designshapes import (JOIN_TOLERANCE, Design, DesignFileError, PointBudget, applied, checked_file,
                            arc_points, circle_points, finished, is_similarity, joined_by_layer, largest_scale)
 from .region import ARC_TOLERANCE
 from .svgpath import NUMBER, PathData, transform_matrix
@@ -326,12 +325,7 @@ class Reader:
 def read_svg(path: str, tolerance: float = ARC_TOLERANCE, join_tolerance: float = JOIN_TOLERANCE) -> Design:
     """The SVG file's shapes in mm (Y up, the page's bottom-left at 0, 0), curves within
     ``tolerance`` mm, open pieces of a layer joined where their ends meet within ``join_tolerance``."""
-    name = os.path.basename(path)
-    if not os.path.isfile(path):
-        raise DesignFileError(f"{path}: no such file")
-    if os.path.getsize(path) > MAX_FILE_BYTES:
-        raise DesignFileError(f"{name}: {os.path.getsize(path)} bytes, more than a drawing of "
-                              f"{MAX_FILE_BYTES} bytes is refused")
+    name = checked_file(path)
     with open(path, "rb") as stream:
         data = stream.read()
     if data[:2] == b"\x1f\x8b":

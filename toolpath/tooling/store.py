@@ -70,28 +70,34 @@ def rotate_backups(path: str) -> None:
     shutil.copy2(path, names[0])
 
 
+def replace_atomically(path: str, text: str, prefix: str) -> None:
+    """Write ``text`` (UTF-8) to a temporary file beside ``path`` (its name starting ``prefix``), to
+    the disk, then rename it onto ``path``: the file is the old one or the new one, never half of it.
+    The temporary file goes on any failure; an OSError is the caller's to name."""
+    handle, temporary = tempfile.mkstemp(prefix=prefix, suffix=".tmp", dir=os.path.dirname(os.path.abspath(path)))
+    try:
+        with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
+            stream.write(text)
+            stream.flush()
+            os.fsync(stream.fileno())
+        os.replace(temporary, path)
+    except BaseException:
+        if os.path.exists(temporary):
+            os.remove(temporary)
+        raise
+
+
 def save(path: str, library: ToolLibrary) -> str:
     """Write the library to ``path`` (backed up, atomically); returns the path."""
     text = kezuri_format.write_text(library)
     again, _ = kezuri_format.read_text(text, path)
     if again != library:
         raise ToolLibraryError(f"{path}: the library would not read back as it is; nothing was written")
-    folder = os.path.dirname(os.path.abspath(path))
     try:
-        os.makedirs(folder, exist_ok=True)
+        os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
         if os.path.exists(path):
             rotate_backups(path)
-        handle, temporary = tempfile.mkstemp(prefix=".tools-", suffix=".tmp", dir=folder)
-        try:
-            with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-                stream.write(text)
-                stream.flush()
-                os.fsync(stream.fileno())
-            os.replace(temporary, path)
-        except BaseException:
-            if os.path.exists(temporary):
-                os.remove(temporary)
-            raise
+        replace_atomically(path, text, ".tools-")
     except OSError as error:
         raise ToolLibraryError(f"{path}: the tool library cannot be written ({error.strerror or error}); "
                                "the file is as it was") from None
@@ -100,18 +106,9 @@ def save(path: str, library: ToolLibrary) -> str:
 
 def write_export(path: str, text: str) -> str:
     """An exported file, written atomically (no backups: it is the user's copy)."""
-    folder = os.path.dirname(os.path.abspath(path))
     try:
-        os.makedirs(folder, exist_ok=True)
-        handle, temporary = tempfile.mkstemp(prefix=".kezuri-", suffix=".tmp", dir=folder)
-        try:
-            with os.fdopen(handle, "w", encoding="utf-8", newline="\n") as stream:
-                stream.write(text)
-            os.replace(temporary, path)
-        except BaseException:
-            if os.path.exists(temporary):
-                os.remove(temporary)
-            raise
+        os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+        replace_atomically(path, text, ".kezuri-")
     except OSError as error:
         raise ToolLibraryError(f"{path}: cannot be written ({error.strerror or error})") from None
     return path
