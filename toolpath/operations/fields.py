@@ -51,6 +51,8 @@ class Field:
         """The bound in words: "must be ..."."""
         if self.choices:
             return f"must be one of {', '.join(self.choices)}"
+        if self.low is None and self.high is None:
+            return "must be a number"
         unit = f" {self.unit}" if self.unit else ""
         zero = f"0 ({self.zero}) or " if self.zero else ""
         if self.high is not None and self.above:
