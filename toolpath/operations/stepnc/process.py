@@ -169,8 +169,9 @@ ApproachRetract = Union[PlungeToolaxis, PlungeRamp, PlungeHelix]
 
 
 @dataclass(frozen=True)
-class PlaneMilling:
-    """PLANE_ROUGH_MILLING or PLANE_FINISH_MILLING (``type_name``)."""
+class MachiningAttributes:
+    """What every machining_operation of ISO 14649-10 has and the converter uses (``type_name``: which
+    operation it is), in the standard's order; the operations below add their own."""
 
     id: int
     type_name: str
@@ -179,10 +180,22 @@ class PlaneMilling:
     its_tool: CuttingTool
     its_technology: MillingTechnology
     its_machine_functions: MachineFunctions | None
+
+
+@dataclass(frozen=True)
+class MillingAttributes(MachiningAttributes):
+    """What the milling_type_operations (plane, bottom and side) add."""
+
     approach: ApproachRetract | None
     retract: ApproachRetract | None
     its_machining_strategy: MillingStrategy | None
     axial_cutting_depth: float | None
+
+
+@dataclass(frozen=True)
+class PlaneMilling(MillingAttributes):
+    """PLANE_ROUGH_MILLING or PLANE_FINISH_MILLING (``type_name``)."""
+
     allowance_bottom: float | None
 
     @property
@@ -191,20 +204,9 @@ class PlaneMilling:
 
 
 @dataclass(frozen=True)
-class BottomAndSideMilling:
+class BottomAndSideMilling(MillingAttributes):
     """BOTTOM_AND_SIDE_ROUGH_MILLING or BOTTOM_AND_SIDE_FINISH_MILLING (``type_name``)."""
 
-    id: int
-    type_name: str
-    its_id: str
-    retract_plane: float | None
-    its_tool: CuttingTool
-    its_technology: MillingTechnology
-    its_machine_functions: MachineFunctions | None
-    approach: ApproachRetract | None
-    retract: ApproachRetract | None
-    its_machining_strategy: MillingStrategy | None
-    axial_cutting_depth: float | None
     radial_cutting_depth: float | None
     allowance_side: float | None
     allowance_bottom: float | None
@@ -215,17 +217,10 @@ class BottomAndSideMilling:
 
 
 @dataclass(frozen=True)
-class DrillingOperation:
+class DrillingOperation(MachiningAttributes):
     """DRILLING, CENTER_DRILLING or REAMING (``type_name``); ``spindle_stop_at_bottom`` is
     REAMING's own attribute (None for the others)."""
 
-    id: int
-    type_name: str
-    its_id: str
-    retract_plane: float | None
-    its_tool: CuttingTool
-    its_technology: MillingTechnology
-    its_machine_functions: MachineFunctions | None
     cutting_depth: float | None
     previous_diameter: float | None
     dwell_time_bottom: float | None
@@ -250,17 +245,10 @@ class Trajectory:
 
 
 @dataclass(frozen=True)
-class FreeformOperation:
+class FreeformOperation(MachiningAttributes):
     """FREEFORM_OPERATION with explicit toolpaths (a TOOLPATH_LIST of trajectories), given in the
     coordinates of the workingstep's feature."""
 
-    id: int
-    type_name: str
-    its_id: str
-    retract_plane: float | None
-    its_tool: CuttingTool
-    its_technology: MillingTechnology
-    its_machine_functions: MachineFunctions | None
     its_toolpath: tuple
     finishing = False
     its_machining_strategy = None
