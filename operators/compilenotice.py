@@ -21,10 +21,16 @@ PACKAGE = "kezuri."         # our kernels' modules; numba's own compiles (its he
 def say_when_compiling(say) -> None:
     """Call ``say`` with :data:`MESSAGE` (in the interface language) once, when numba starts compiling the first kernel of ours in this
     process; nothing when every kernel comes from the cache."""
+    if _NOTICE["put"]:          # once a process (batch.main may run several times in one)
+        return
+    _NOTICE["put"] = True
     if "numba" in sys.modules:
         _listen(say)
     elif importlib.util.find_spec("numba") is not None:
         sys.meta_path.insert(0, _AfterImport("numba", lambda: _listen(say)))
+
+
+_NOTICE = {"put": False}
 
 
 def _listen(say) -> None:
