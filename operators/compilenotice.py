@@ -26,7 +26,12 @@ def say_when_compiling(say) -> None:
     _NOTICE["put"] = True
     if "numba" in sys.modules:
         _listen(say)
-    elif importlib.util.find_spec("numba") is not None:
+        return
+    try:
+        found = importlib.util.find_spec("numba") is not None
+    except (ImportError, ValueError):
+        found = False
+    if found:
         sys.meta_path.insert(0, _AfterImport("numba", lambda: _listen(say)))
 
 
@@ -34,7 +39,10 @@ _NOTICE = {"put": False}
 
 
 def _listen(say) -> None:
-    from numba.core import event
+    try:
+        from numba.core import event
+    except (ImportError, OSError, RuntimeError):    # no usable numba (as compiled.kernel_module): nothing compiles
+        return
 
     class Notice(event.Listener):
         def __init__(self):
