@@ -128,3 +128,48 @@ def test_small_operations_take_the_interpreted_search_large_ones_the_compiled():
         assert arcfit_kernel.fit_run_for(100) is arcfit_kernel.interpreted_fit_run
     assert arcfit_kernel.interpreted_fit_run is not arcfit_kernel.fit_run
     assert not hasattr(arcfit_kernel.interpreted_fit_run, "signatures")     # plain Python, no dispatcher
+
+
+READ_ONLY_CHILD = r"""
+import json, os, sys
+sys.path.insert(0, sys.argv[1])
+import batch
+batch.import_package()
+from kezuri.toolpath.engines import warmup
+from kezuri.toolpath.simulate import BoxStock, kernel, simulate
+simulate([warmup._box_operation("flat", 1)], BoxStock(0.0, 0.0, -3.0, 8.0, 8.0, 0.0), cell=0.5, kernel="numba")
+print("KEZURI-TEST " + json.dumps({"misses": sum(sum(f.stats.cache_misses.values()) for f in vars(kernel).values()
+                                                if hasattr(f, "stats")),
+                                   "hits": sum(sum(f.stats.cache_hits.values()) for f in vars(kernel).values()
+                                               if hasattr(f, "stats"))}))
+"""
+
+
+@pytest.mark.skipif(not NUMBA, reason="numba is not available")
+def test_a_read_only_install_keeps_its_kernels_in_the_users_cache_folder(tmp_path):
+    """An extension installed system-wide: its folder read-only (a read-only bind mount in a mount
+    namespace of its own, so even root cannot write there), no NUMBA_CACHE_DIR: numba keeps the
+    kernels in the user's cache folder (~/.cache/numba) and the second run loads them."""
+    import shutil
+    install, home = tmp_path / "install", tmp_path / "home"
+    shutil.copytree(ROOT, install, ignore=shutil.ignore_patterns(".git", "docs", "tests", "bench", "__pycache__",
+                                                                 "*.nbi", "*.nbc"))
+    home.mkdir()
+    env = {key: value for key, value in os.environ.items()
+           if key not in ("NUMBA_CACHE_DIR", "KEZURI_NO_NUMBA", "XDG_CACHE_HOME")}
+    env["HOME"] = str(home)
+    script = tmp_path / "child.py"
+    script.write_text(READ_ONLY_CHILD)
+    run = f"{sys.executable} {script} {install}"
+    mount = (f"mount --bind {install} {install} && mount -o remount,bind,ro {install} && "
+             f"! touch {install}/written 2>/dev/null && {run} && {run}")
+    done = subprocess.run(["unshare", "-m", "sh", "-c", mount], capture_output=True, text=True, timeout=600, env=env)
+    if done.returncode != 0 and "KEZURI-TEST" not in done.stdout:
+        pytest.skip(f"no read-only bind mount here ({done.stderr.strip()[-200:]})")
+    first, second = (json.loads(line[len("KEZURI-TEST "):]) for line in done.stdout.splitlines()
+                     if line.startswith("KEZURI-TEST "))
+    assert first["misses"] >= 2 and first["hits"] == 0     # the bands and stamps, with the helpers they call
+    assert second["misses"] == 0 and second["hits"] >= 2
+    users = [os.path.join(folder, name) for folder, _, names in os.walk(home / ".cache" / "numba") for name in names]
+    assert any(os.path.basename(path).startswith("kernel.cut_bands-") for path in users), users
+    assert not [name for _, _, names in os.walk(install) for name in names if name.endswith((".nbi", ".nbc"))]
