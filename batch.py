@@ -235,6 +235,8 @@ def main(argv: list) -> int:
         with stoppable():
             try:
                 load_extension()
+                from kezuri.operators.compilenotice import say_when_compiling
+                say_when_compiling(say)             # one line where a first run compiles the kernels
                 from kezuri.operators.common import Progress
                 Progress.checkpoint = stop_if_pending       # a lost stop is taken up at the next progress
                 return run(args)

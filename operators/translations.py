@@ -3058,6 +3058,9 @@ MESSAGES.update(FEEDSUSE_TEXTS)
 MESSAGE_TEMPLATES.update(FEEDSUSE_TEMPLATES)
 NESTED.update(FEEDSUSE_NESTED)
 INTERFACE_NAMES["Suggested feeds for {} in {}"] = (1,)
+# compilenotice.py: batch's line when a first run compiles the numba kernels
+MESSAGES["compiling the numba kernels (first run after an install only, about 2-5 s; later runs load them "
+         "from numba's cache)"] = "numbaカーネルをコンパイル中です（インストール後の初回のみ、約2～5秒。以降はnumbaのキャッシュから読み込みます）"
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

@@ -81,9 +81,9 @@ def warm_kernels(progress=None) -> list:
     square = np.array([(0.0, 0.0, 0.0), (8.0, 0.0, 0.0), (8.0, 8.0, 0.0), (0.0, 8.0, 0.0), (4.0, 4.0, 0.0)])
     planning_mesh(square, np.array([(0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)], dtype=np.int64))   # turn-mill's
     ran.append("planning mesh")
-    from ..ir.arcfit import fit_arcs
-    angle = np.linspace(0.0, np.pi / 2, 9)
-    quarter = np.column_stack([4.0 * np.cos(angle), 4.0 * np.sin(angle), np.full(9, -0.5)])
-    fit_arcs(Operation("warm arcs", Tool(1, "flat", 2.0), 10000, np.full(9, FEED), quarter, np.full(9, 300.0)))
+    from ..ir import arcfit_kernel
+    if arcfit_kernel.COMPILED:      # called directly: fit_arcs runs a small operation interpreted
+        angle = np.linspace(0.0, np.pi / 2, 9)
+        arcfit_kernel.fit_run(4.0 * np.cos(angle), 4.0 * np.sin(angle), 0.01, 3, 5000.0)
     ran.append("arc fit")
     return ran

@@ -80,9 +80,10 @@ def fit_arcs(op: Operation, tolerance: float = DEFAULT_TOLERANCE, min_segments: 
         return op
     starts = op.start_points()
     first_move, last_move, centres, turns = [], [], [], []
+    search = arcfit_kernel.fit_run_for(sum(last - first + 2 for first, last in runs))
     for first, last in runs:                       # moves first..last (inclusive) form one run
         points = np.vstack([starts[first, :2], op.xyz[first:last + 1, :2]])
-        fitted = arcfit_kernel.fit_run(np.ascontiguousarray(points[:, 0]), np.ascontiguousarray(points[:, 1]),
+        fitted = search(np.ascontiguousarray(points[:, 0]), np.ascontiguousarray(points[:, 1]),
                                        float(tolerance), int(min_segments), float(max_radius))
         ends = first + fitted[:, 0].astype(np.int64) - 1          # the original move that ends each piece
         begins = np.concatenate([[first], ends[:-1] + 1])
