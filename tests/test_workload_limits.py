@@ -112,3 +112,27 @@ def test_the_new_advice_comes_out_in_japanese():
         japanese = translations.japanese_message(str(caught.value))
         assert japanese is not None, str(caught.value)
         assert not [w for w in re.findall(r"[A-Za-z]{3,}", japanese) if w not in ("relief", "part")], japanese
+
+
+def test_the_engraving_is_refused_before_planning_past_two_million_gouges():
+    """The scaling table's engrave row: at the default stepover 3 mm and gouge spacing 20 mm a
+    gouge is 60 mm2 of plate, so 2e6 gouges are 1.2e8 mm2 (a 15.5 x 7.7 m plate)."""
+    from kezuri.toolpath.operations.engrave.engrave import EngraveSettings
+    assert workload.engrave("sign", 1.2e8 - 60, 0.0, EngraveSettings())[0].amount == pytest.approx(2e6 - 1)
+    with pytest.raises(workload.WorkloadError) as caught:
+        workload.engrave("sign", 1.2e8 + 60, 0.0, EngraveSettings())
+    assert str(caught.value) == ("engrave 'sign': the gouge texture at stepover 3 mm and spacing 20 mm over 120000060 "
+                                 "mm2 is about 2e6 gouges, over the 2e6 this machine can plan; raise stepover to 3.1 mm "
+                                 "or more")
+
+
+def test_the_gates_finest_grid_ends_at_eighty_million_cells():
+    """The scaling table's engrave row: a 1265 x 632.5 mm stock is 12,650 x 6,325 = 80,011,250 cells
+    of 0.1 mm, over the 80,000,000 the height field holds (1264 x 632 mm: 79,884,800), refused
+    before any cell is made (the gate then goes to 0.2 mm)."""
+    from kezuri.toolpath.simulate import BoxStock, CellTooFine
+    from kezuri.toolpath.simulate.heightfield import stock_grid
+    with time_limit(10), pytest.raises(CellTooFine) as caught:
+        stock_grid(BoxStock(0.0, 0.0, -10.0, 1265.0, 632.5, 0.0), 0.1)
+    assert str(caught.value) == ("a 0.1 mm cell gives 1.265e+04 x 6325 cells over the stock (more than 80000000); "
+                                 "use a coarser cell")
