@@ -64,6 +64,8 @@ def batch(args) -> dict:
             raise core.SimulationError(f"--tool {args.tool!r}: {label} {value:g} mm is outside the allowed range "
                                        f"{limit.text(label)}")
     text = read_text(args.nc)
+    from ..toolpath import workload
+    workload.nc_program(args.nc, workload.nc_lines(text))    # before reading: 1e7 lines is about 4 GB and 40 s
     progress = Progress(None, "simulate")      # on stderr; a long run can be stopped (Ctrl-C) between its steps
     try:
         read = ncread.read_nc(text, tool, os.path.basename(args.nc), progress=lambda f: progress(0.3 * f, "reading"))

@@ -2747,11 +2747,14 @@ TOOLLIB_TEMPLATES = {
 # "<what> is about <n> <quantity>, over the <limit> this machine can plan; <advice>", each part
 # translated by its own template (NESTED)
 WORKLOAD_NESTED = {"{} is about {} {}, over the {} this machine can plan; {}": (0, 2, 4), "operation {}: {}": (1,),
+                   "{} is about {} {}, over the {} this machine can simulate; {}": (0, 2, 4),
                    "workingstep #{} '{}': {}": (2,), "setup #{} of workplan #{} left out: {}": (2,),
                    "the bounding geometry of workpiece #{} is left out: {}": (1,)}
 WORKLOAD_TEMPLATES = {
     "{} is about {} {}, over the {} this machine can plan; {}":
         "{0} は約 {1} {2} で、この機械で計画できる上限 {3} を超えています。{4}",
+    "{} is about {} {}, over the {} this machine can simulate; {}":
+        "{0} は約 {1} {2} で、この機械でシミュレーションできる上限 {3} を超えています。{4}",
     # what is estimated
     "carve {}: the finishing raster at scallop {} mm and sample spacing {} mm":
         "曲面加工 {0}：スカラップ {1} mm、サンプル間隔 {2} mm の仕上げラスタ",
@@ -2773,6 +2776,7 @@ WORKLOAD_TEMPLATES = {
     "pocket {}: the toolpath at a spacing of {} mm and a step down of {} mm":
         "ポケット {0}：点間隔 {1} mm、切込み深さ {2} mm の工具経路",
     "the STEP-NC file {}": "STEP-NC ファイル {0}",
+    "the NC file {}": "NC ファイル {0}",
     "project #{}: its name is {} characters; the first {} are used, followed by ...":
         "プロジェクト #{0}：名前が {1} 文字あります。先頭の {2} 文字に ... を付けて使います",
     "no workpiece BLOCK: the stock bottom is taken as Z {}, the depth of the deepest through feature #{} '{}' ({} mm "
@@ -2812,6 +2816,7 @@ WORKLOAD_TEMPLATES = {
     "tool positions": "工具位置", "moves": "移動", "gouges": "彫刻刀跡",
     "mm of path": "mm の経路", "outline points": "輪郭点", "holes": "穴", "holes to order": "順序付けする穴",
     "pecks": "ペック", "path points": "経路点", "bytes": "バイト", "classification samples": "分類サンプル",
+    "lines": "行",
     # what to do
     "raise sample spacing to {} mm or more, or the scallop":
         "サンプル間隔を {0} mm 以上にするか、スカラップを大きくしてください",
@@ -2828,6 +2833,11 @@ WORKLOAD_TEMPLATES = {
         "順序を 'given'（図面の順）にするか、穴を複数の工程に分けてください",
     "raise peck to {} mm or more": "ペックを {0} mm 以上にしてください",
     "raise spacing to {} mm or more": "点間隔を {0} mm 以上にしてください",
+    "raise the scallop": "スカラップを大きくしてください",
+    "use a mesh of at most {} faces (each face is sampled at least 4 times)":
+        "面が {0} 以下のメッシュを使ってください（各面を少なくとも 4 回サンプリングします）",
+    "split it into files of fewer lines, or write it with a coarser stepover or tolerance":
+        "行数の少ない複数のファイルに分けるか、ステップオーバーか公差を粗くして書き出してください",
     "a workplan is a few MB: check that this is the file meant":
         "ワークプランは数 MB です。意図したファイルか確認してください",
     "raise sample spacing to {} mm or more, or use a mesh of fewer faces":

@@ -22,7 +22,12 @@ The limits (:data:`LIMITS`) are measured on this project's planning, on a 2-core
    sample 2e4 samples), not measured at their edge;
  - the shortest drilling order compares pairs of holes: 2,000 holes in 2 s, 8,000 in 32 s, so
    20,000 is about 3 minutes;
- - a Part 21 file past 200 MB is not a workplan (the largest AP238 examples are a few MB).
+ - a Part 21 file past 200 MB is not a workplan (the largest AP238 examples are a few MB);
+ - an NC program simulated as it is (``batch.py simulate --nc``) is read and cut in about 370
+   bytes and 3.7 microseconds of CPU a move (bench/scaling.json, 2026-11-27: a raster of 1e6
+   moves, one a line, peaked at 518 MB against 149 MB at the start, in 3.7 s), so 1e7 lines is
+   about 4 GB and 40 s; no post of this project writes more (carve roughing's 1e7 moves), and
+   counting the lines is a moment (a line holds at most one move: an upper side for the moves).
 Pure: numbers in, numbers or an error out.  Units: mm.
 """
 from __future__ import annotations
@@ -43,6 +48,7 @@ class WorkloadError(InputError):
 class Limit:
     quantity: str       # what is counted, plural ("tool positions")
     most: float         # the largest count planned
+    verb: str = "plan"  # what the machine does with it: "plan" or "simulate" ("this machine can plan")
 
 
 LIMITS = {
@@ -58,6 +64,7 @@ LIMITS = {
     "drill pecks": Limit("pecks", 1e6),
     "rotary points": Limit("path points", 5e6),
     "stepnc bytes": Limit("bytes", 2e8),
+    "nc lines": Limit("lines", 1e7, "simulate"),
     "turnmill samples": Limit("classification samples", 5e6),
 }
 
@@ -89,6 +96,9 @@ def count(n: float) -> str:
 def check(estimate: Estimate, what: str, advice: str) -> Estimate:
     """Refuse ``estimate`` past its limit: ``what`` is the operation and the settings that drive it,
     ``advice`` what to change."""
+    if estimate.over and estimate.limit.verb == "simulate":
+        raise WorkloadError(f"{what} is about {count(estimate.amount)} {estimate.limit.quantity}, over the "
+                            f"{count(estimate.limit.most)} this machine can simulate; {advice}")
     if estimate.over:
         raise WorkloadError(f"{what} is about {count(estimate.amount)} {estimate.limit.quantity}, over the "
                             f"{count(estimate.limit.most)} this machine can plan; {advice}")
@@ -142,13 +152,16 @@ def carve(name: str, size: tuple, stock_above: float, settings) -> list:
     across, along = raster_extent(width + 1.4 * r, depth + 1.4 * r, settings.raster_angle)
     estimates = []
     if flat > 0 and settings.sample_spacing > 0:
-        positions = (across / flat + 1) * (along / settings.sample_spacing + 1)
-        most = LIMITS["carve finishing"].most
-        needed = across * along / (flat * most)
+        lines = across / flat + 1
+        positions = lines * (along / settings.sample_spacing + 1)
+        # the spacing s that brings lines x (along / s + 1) to the limit (before, along x across / (flat x
+        # limit) left the +1s out: just over the limit it advised the spacing already given)
+        room = LIMITS["carve finishing"].most / lines - 1
+        advice = (f"raise sample spacing to {at_least(along / room)} mm or more, or the scallop" if room > 0
+                  else "raise the scallop")
         estimates.append(check(Estimate("carve finishing", positions),
                                f"{where}: the finishing raster at scallop {settings.scallop:g} mm and sample "
-                               f"spacing {settings.sample_spacing:g} mm",
-                               f"raise sample spacing to {at_least(needed)} mm or more, or the scallop"))
+                               f"spacing {settings.sample_spacing:g} mm", advice))
     if settings.rough and settings.rough_stepover > 0 and settings.step_down > 0:
         spacing = min(settings.sample_spacing * 2, settings.rough_tool.radius / 2)
         across, along = raster_extent(width, depth, settings.raster_angle + 90.0)
@@ -256,6 +269,19 @@ def stepnc(name: str, size: int) -> list:
                   "a workplan is a few MB: check that this is the file meant")]
 
 
+def nc_lines(text: str) -> int:
+    """The lines of an NC program's text, ended by LF, CR LF or CR (as the NC reader reads them;
+    a last line without its end counts)."""
+    ends = max(text.count("\n"), text.count("\r"))
+    return ends + (0 if not text or text.endswith(("\n", "\r")) else 1)
+
+
+def nc_program(name: str, lines: int) -> list:
+    """An NC program simulated as it is: its lines (:func:`nc_lines`), each at most one move."""
+    return [check(Estimate("nc lines", lines), f"the NC file {name!r}",
+                  "split it into files of fewer lines, or write it with a coarser stepover or tolerance")]
+
+
 def turnmill(name: str, face_areas, settings) -> list:
     """Classification samples: each face cut into k x k sub-triangles, k = sqrt(2 area) / sample
     spacing held to 2..16 (the rule of engines.meshrays.face_samples, counted here without
@@ -267,7 +293,12 @@ def turnmill(name: str, face_areas, settings) -> list:
     areas = areas[np.isfinite(areas) & (areas > 0)]
     k = np.clip(np.ceil(np.sqrt(2.0 * areas) / spacing), 2, 16)
     samples = float((k * k).sum())
-    coarsest = math.sqrt(2.0 * float(areas.sum()) / LIMITS["turnmill samples"].most)
+    most = LIMITS["turnmill samples"].most
+    coarsest = math.sqrt(2.0 * float(areas.sum()) / most)
+    # every face has at least 2 x 2 samples: past a quarter of the limit in faces no spacing will do
+    # (before, the advice named a spacing finer than the one given)
+    advice = (f"use a mesh of at most {count(most // 4)} faces (each face is sampled at least 4 times)"
+              if 4 * len(areas) > most else
+              f"raise sample spacing to {at_least(coarsest)} mm or more, or use a mesh of fewer faces")
     return [check(Estimate("turnmill samples", samples),
-                  f"turn-mill {name!r}: {count(len(areas))} faces at sample spacing {spacing:g} mm",
-                  f"raise sample spacing to {at_least(coarsest)} mm or more, or use a mesh of fewer faces")]
+                  f"turn-mill {name!r}: {count(len(areas))} faces at sample spacing {spacing:g} mm", advice)]
