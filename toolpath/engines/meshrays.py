@@ -286,6 +286,10 @@ class Triangles:
             d2 = np.einsum("ij,ij->i", points[query] - q, points[query] - q)
             order = np.lexsort((d2, query))
             first = order[np.r_[True, query[order][1:] != query[order][:-1]]]
+            # a triangle whose box is within reach may itself lie beyond it, and an earlier batch
+            # may already hold a nearer triangle for the same point: keep only nearer ones in reach
+            better = (d2[first] <= reach * reach) & (d2[first] < distance[query[first]] ** 2)
+            first = first[better]
             distance[query[first]] = np.sqrt(d2[first])
             closest[query[first]] = q[first]
 
