@@ -11,6 +11,7 @@ import numpy as np
 
 from ...engines import region as rg
 from .model import (MAX_NAME, ApproachRetract, BSplineCurve, Bidirectional, Block, BottomAndSideMilling, Circle, CircularPath, ClosedPocket, ClosedProfile, CompositeCurve, CompositeCurveSegment, CURVE_TYPES, ContourBidirectional, ContourParallel, CuttingTool, DIMENSION_TYPES, DRILLING_TOOL_BODIES, DrillingOperation, DrillingTypeStrategy, Feature, FreeformOperation, GeneralClosedProfile, GeneralPath, Helix, LENGTH_TYPES, Line, LinearPath, LinearProfile, MAX_LENGTH, MILLING_TOOL_BODIES, MachineFunctions, MachiningOperation, MillingStrategy, MillingTechnology, PLANE_TYPES, Placement, PlanarFace, Plane, PlaneMilling, PlungeHelix, PlungeRamp, PlungeToolaxis, Polyline, Project, RapidMovement, RectangularClosedProfile, RoundHole, SLOT_ENDS, Setup, Slot, StepNcError, TAPERED_BODIES, ToolBody, ToolDimension, Trajectory, TrimmedCurve, Unidirectional, UnsupportedEntity, Vec3, Workingstep, Workpiece, Workplan)
+from .coordinates import plain_coordinates
 from .part21 import UNKNOWN, UNSET, Enum, Instance, Part21File, Ref, Typed
 
 
@@ -208,7 +209,8 @@ class _Reader:
     def _curve(self, t):
         if t.type_name == "POLYLINE":
             points = self.entities(t, 1, "points", ("CARTESIAN_POINT",))
-            return Polyline(t.id, self.text(t, 0, "name"), tuple(self.coordinates(p) for p in points))
+            name = self.text(t, 0, "name")
+            return Polyline(t.id, name, plain_coordinates(points) or tuple(self.coordinates(p) for p in points))
         if t.type_name == "CIRCLE":
             return self._circle(t)
         if t.type_name == "B_SPLINE_CURVE_WITH_KNOTS":

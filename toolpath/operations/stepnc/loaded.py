@@ -1,0 +1,64 @@
+"""An ISO 14649 file read into its model: :class:`LoadedWorkplan` (the project, its workingsteps in
+workplan order, the warnings), from a path or from the file's Part 21 text.
+
+The shell reads the file to fill the workplan list and the plan reads the same text again (the
+file is the source of truth); the last text read and its model are kept, so a text equal to it is
+not parsed and read twice (a 50 MB file of explicit toolpaths took seconds each time).  The model
+is frozen dataclasses, so sharing it is safe; a file that fails to read is not kept, and reading
+it again raises the same error."""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+from ...engines.textfile import read_text
+from .model import Project, Workingstep
+from .part21 import parse_part21
+from .reader import read_project
+
+
+@dataclass(frozen=True)
+class LoadedWorkplan:
+    """What :func:`load_workplan` returns: the model, its workingsteps in workplan order (nested
+    workplans flattened, unsupported ones left out) and the warnings about what was left out."""
+
+    project: Project
+    workingsteps: tuple
+    warnings: tuple
+
+    def workingstep(self, ident: int) -> Workingstep:
+        for step in self.workingsteps:
+            if step.id == ident:
+                return step
+        raise KeyError(f"no workingstep #{ident}")
+
+
+def load_workplan(source) -> LoadedWorkplan:
+    """Read an ISO 14649 file, from a path or from its Part 21 text.
+
+    Raises Part21Error for a syntax error or a reference to an undefined instance and
+    StepNcError for malformed ISO 14649 data; both name the instance.
+    """
+    if isinstance(source, str) and "ISO-10303-21;" in source:
+        return workplan_from_text(source)
+    return workplan_from_text(read_text(os.fspath(source)))
+
+
+_kept: list = [None]    # (text, LoadedWorkplan) of the text read last
+
+
+def workplan_from_text(text: str) -> LoadedWorkplan:
+    """:func:`load_workplan` of a file's Part 21 text (whatever its first lines say); the model of
+    the text read last when ``text`` equals it."""
+    kept = _kept[0]
+    if kept is not None and (kept[0] is text or kept[0] == text):
+        return kept[1]
+    _kept[0] = None         # the old model is not held while the new one is read
+    loaded = workplan_of(parse_part21(text))
+    _kept[0] = (text, loaded)
+    return loaded
+
+
+def workplan_of(part21) -> LoadedWorkplan:
+    project, warnings = read_project(part21)
+    return LoadedWorkplan(project, tuple(project.main_workplan.workingsteps()), tuple(warnings))
