@@ -2,6 +2,9 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
+import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -62,9 +65,69 @@ def explicit_rows(megabytes: float = 50.0) -> list:
     return rows
 
 
+BASE_COMMIT = "495f8bd"     # before the big-file conversion work (issue 32)
+ROOT = os.path.dirname(HERE)
+
+
+def _batch_child(tree: str, path: str, out: str) -> tuple:
+    """(CPU seconds, peak RSS MB, NC text) of ``batch.py stepnc`` from ``tree`` in a child process."""
+    command = [sys.executable, os.path.join(tree, "batch.py"), "stepnc", "--input", path, "--post", "linuxcnc",
+               "--out", out]
+    child = subprocess.Popen(command, cwd=tree, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, usage = os.wait4(child.pid, 0)
+    child.returncode = os.waitstatus_to_exitcode(status)
+    if child.returncode:
+        raise RuntimeError(f"{command} exited {child.returncode}")
+    with open(os.path.join(out, "stepnc.ngc"), encoding="utf-8") as nc:
+        text = nc.read()
+    return usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024, text
+
+
+def end_to_end_rows(megabytes: float = 50.0, base: str = BASE_COMMIT) -> list:
+    """Issue #32 item 4 beyond the parser: the whole ``batch.py stepnc`` (read, convert with the
+    in-process stock, post, the gate's simulation, previews, report) of the generated file, from
+    this tree and from ``base`` (a temporary git worktree) in the same run, each in a child
+    process: CPU seconds and peak RSS; the target is twice the parse alone (CPU, this process)."""
+    import stepnc_bigfile
+    from kezuri.toolpath.operations.stepnc import part21
+
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="kezuri-bench-stepnc-") as scratch:
+        path = os.path.join(scratch, "big.stp")
+        text = stepnc_bigfile.explicit_toolpath_file(megabytes)
+        with open(path, "w", encoding="utf-8") as out:
+            out.write(text)
+        size_mb = len(text.encode()) / 1e6
+        started = time.process_time()
+        part21.parse_part21(text)
+        parse_s = time.process_time() - started
+        del text
+        trees = [("this tree", ROOT)]
+        base_tree = os.path.join(scratch, "base")
+        made = subprocess.run(["git", "-C", ROOT, "worktree", "add", "--detach", base_tree, base],
+                              capture_output=True).returncode == 0
+        if made:
+            trees.insert(0, (f"base {base}", base_tree))
+        try:
+            results = {label: _batch_child(tree, path, os.path.join(scratch, f"out{k}"))
+                       for k, (label, tree) in enumerate(trees)}
+        finally:
+            if made:
+                subprocess.run(["git", "-C", ROOT, "worktree", "remove", "--force", base_tree], capture_output=True)
+        for label, (seconds, peak, nc) in results.items():
+            rows.append({"name": f"stepnc: batch {size_mb:.0f} MB explicit toolpaths end to end, {label}",
+                         "seconds": seconds, "target_s": 2 * parse_s if label == "this tree" else None,
+                         "notes": f"{seconds / parse_s:.1f}x the parse ({parse_s:.1f} s CPU); peak {peak:.0f} MB RSS"})
+        if len(results) == 2:
+            (_, (before, _, old_nc)), (_, (now, _, new_nc)) = results.items()
+            rows[-1]["notes"] += (f"; {before / now:.1f}x less CPU than {base}; NC text "
+                                  f"{'identical' if old_nc == new_nc else 'DIFFERS'}")
+    return rows
+
+
 def run():
     from kezuri.toolpath.operations import stepnc
-    rows = explicit_rows()
+    rows = explicit_rows() + end_to_end_rows()
     text = large_file()
     size_mb = len(text.encode()) / 1e6
     started = time.perf_counter()

@@ -19,12 +19,15 @@ def plain_coordinates(points: list) -> tuple | None:
     rows = [p.params[1] if len(p.params) > 1 else None for p in points]
     if not all(type(row) is list and len(row) == 3 for row in rows):
         return None
-    if not set(map(type, chain.from_iterable(rows))) <= _NUMBERS:
+    kinds = set(map(type, chain.from_iterable(rows)))
+    if not kinds <= _NUMBERS:
         return None
     try:
-        values = np.array(rows, dtype=float).reshape(len(rows), 3)
+        values = np.fromiter(chain.from_iterable(rows), float, 3 * len(rows))
     except (OverflowError, ValueError, TypeError):
         return None
     if not (np.isfinite(values).all() and (np.abs(values) <= MAX_LENGTH).all()):
         return None
-    return tuple(map(tuple, values.tolist()))
+    if kinds == {float}:        # the numbers themselves (a new float per number took most of the time)
+        return tuple(map(tuple, rows))
+    return tuple(map(tuple, values.reshape(len(rows), 3).tolist()))

@@ -72,6 +72,11 @@ class _Reader:
         if not isinstance(value, list) or not all(isinstance(item, Ref) for item in value):
             raise StepNcError(f"#{inst.id} {inst.type_name}: attribute {name} must be a list of references, "
                               f"found {value!r}")
+        instances = self.part21.instances
+        if types is not None and all(ref.id in instances for ref in value):     # the common case at once
+            targets = [instances[ref.id] for ref in value]
+            if all(type(target) is Instance and target.type_name in types for target in targets):
+                return targets
         targets = []
         for ref in value:
             if ref.id not in self.part21.instances:
