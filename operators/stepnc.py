@@ -179,9 +179,14 @@ def show_workplan(scene, loaded, program=None) -> list:
             objects.append(convert.mesh_object(scene, f"{PREFIX} {feature.its_id}", *solid, frame,
                                                FEATURE_COLOURS.get(type(feature).__name__, (0.7, 0.7, 0.7, 1.0))))
     if program is not None:
-        objects += pathview.show_toolpaths(scene, f"{PREFIX} path", program.operations,
-                                           stock_box(loaded, program), frame)
+        objects += show_paths(scene, loaded, program)
     return objects
+
+
+def show_paths(scene, loaded, program) -> list:
+    """The program's toolpaths as curve objects (one per operation and move kind)."""
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    return pathview.show_toolpaths(scene, f"{PREFIX} path", program.operations, stock_box(loaded, program), frame)
 
 
 def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progress=None, profile=None,
@@ -471,10 +476,11 @@ def batch(args) -> dict:
         if staging is not None:
             shutil.rmtree(staging, ignore_errors=True)
     program = job.program
-    objects = show_workplan(scene, job.loaded, program)
-    depsgraph = bpy.context.evaluated_depsgraph_get()
+    objects = show_workplan(scene, job.loaded)
+    depsgraph = bpy.context.evaluated_depsgraph_get()       # before the paths: their tubes are not evaluated
     solids = [preview.object_solid(o, job.frame, depsgraph) for o in objects
               if o.type == "MESH" and o.display_type != "WIRE"]
+    show_paths(scene, job.loaded, program)
     skipped = list(job.part.skipped)
     caption = ("NOT CUT: " + ", ".join(f"#{s['id']} {s['name']}" for s in skipped)) if skipped else ""
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "stepnc-toolpaths.png"), program.operations,
