@@ -6,7 +6,7 @@ slow ones gave.
 - a POLYLINE's points read at once equal the numbers of the file's text (read here by a regex),
   and every malformed point is still refused naming that point, as the point-by-point reader did;
 - a FREEFORM trajectory's feed moves are the file's points moved to the pocket's placement;
-- the last text's model is kept (one parse for the list and the plan) and a bad text still raises;
+- the model the shell read for the list is the plan's (one parse), the fingerprint the text's;
 - the gate's height field marks the same cells as cut by each operation as with the whole grid.
 """
 import math
@@ -18,7 +18,6 @@ import numpy as np
 import pytest
 
 from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Tool
-from kezuri.toolpath.operations.stepnc import loaded as loaded_module
 from kezuri.toolpath.operations.stepnc.inprocess import InProcessStock
 from kezuri.toolpath.operations.stepnc.model import StepNcError
 from kezuri.toolpath.operations.stepnc.workplan import in_process_stock, load_workplan, to_program, workplan_from_text
@@ -148,10 +147,9 @@ def _with_point(text: str, coordinates: str) -> str:
 @pytest.mark.parametrize("coordinates, message", BAD_POINTS)
 def test_bad_points_are_named(coordinates, message):
     text = _with_point(freeform_file(), coordinates)
-    for _ in range(2):          # the second time: nothing kept from the first
-        with pytest.raises(StepNcError) as caught:
-            workplan_from_text(text)
-        assert str(caught.value) == message
+    with pytest.raises(StepNcError) as caught:
+        workplan_from_text(text)
+    assert str(caught.value) == message
 
 
 def test_whole_numbers_and_short_points_read_as_before():
@@ -163,14 +161,28 @@ def test_whole_numbers_and_short_points_read_as_before():
         assert any(c.points[0] == expected for c in curves), coordinates
 
 
-def test_last_text_is_read_once(big_text):
-    first = workplan_from_text(big_text)
-    again = workplan_from_text("".join(list(big_text)))          # an equal text, another string
-    assert again is first
-    other = workplan_from_text(freeform_file())
-    assert other is not first
-    assert workplan_from_text(big_text) is not first               # only the last is kept
-    assert loaded_module.workplan_from_text is workplan_from_text
+def test_the_plan_takes_the_model_read_by_the_caller(big_text):
+    """The shell reads the file for the workplan list and hands the model to the plan with the
+    text: the plan does not read it again; the job's fingerprint is the text's either way."""
+    from kezuri.toolpath.job import JobOperation, Setup, fingerprint
+    from kezuri.toolpath.operations.stepnc.kind import StepncGeometry, StepncKind, StepncSettings
+
+    text = freeform_file()
+    model = workplan_from_text(text)
+    given = StepncKind().plan(Setup(name="T"), StepncSettings(), StepncGeometry(text, model))
+    fresh = StepncKind().plan(Setup(name="T"), StepncSettings(), StepncGeometry(text))
+    assert given.result.loaded is model
+    assert fresh.result.loaded is not model
+    for a, b in zip(given.operations, fresh.operations):
+        assert np.array_equal(a.xyz, b.xyz) and np.array_equal(a.kind, b.kind)
+    assert StepncGeometry(text, model) == StepncGeometry(text)
+
+    def operation(geometry):
+        return JobOperation("stepnc", "stepnc", StepncSettings(), geometry)
+    assert fingerprint(Setup(), operation(StepncGeometry(text, model))) == \
+        fingerprint(Setup(), operation(StepncGeometry(text)))
+    assert fingerprint(Setup(), operation(StepncGeometry(text))) != \
+        fingerprint(Setup(), operation(StepncGeometry(text.replace("FREEFORM", "FREEFORM2", 1))))
 
 
 def test_gate_marks_the_same_cells_as_the_whole_grid(big_text, monkeypatch):

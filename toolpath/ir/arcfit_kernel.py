@@ -112,3 +112,22 @@ def fit_run(px, py, tolerance, min_segments, max_radius):
             s = best
         count += 1
     return out[:count]
+
+
+@_jit
+def fit_runs(px, py, firsts, lasts, tolerance, min_segments, max_radius):
+    """:func:`fit_run` of every run k, whose points are px[firsts[k]:lasts[k] + 2] (one call for
+    all the runs of an operation): rows (k, end index within the run, cx, cy, turn), in order."""
+    total = 0
+    for k in range(firsts.shape[0]):
+        total += max(lasts[k] + 1 - firsts[k], 1)
+    out = np.empty((total, 5))
+    count = 0
+    for k in range(firsts.shape[0]):
+        rows = fit_run(px[firsts[k]:lasts[k] + 2], py[firsts[k]:lasts[k] + 2], tolerance, min_segments, max_radius)
+        for r in range(rows.shape[0]):
+            out[count, 0] = k
+            for c in range(4):
+                out[count, c + 1] = rows[r, c]
+            count += 1
+    return out[:count]

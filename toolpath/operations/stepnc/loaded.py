@@ -1,11 +1,7 @@
 """An ISO 14649 file read into its model: :class:`LoadedWorkplan` (the project, its workingsteps in
-workplan order, the warnings), from a path or from the file's Part 21 text.
-
-The shell reads the file to fill the workplan list and the plan reads the same text again (the
-file is the source of truth); the last text read and its model are kept, so a text equal to it is
-not parsed and read twice (a 50 MB file of explicit toolpaths took seconds each time).  The model
-is frozen dataclasses, so sharing it is safe; a file that fails to read is not kept, and reading
-it again raises the same error."""
+workplan order, the warnings), from a path or from the file's Part 21 text.  The model is frozen
+dataclasses: a caller that has read a text may hand its model on (:class:`.kind.StepncGeometry`'s
+``loaded``) instead of having it read again."""
 from __future__ import annotations
 
 import gc
@@ -45,27 +41,17 @@ def load_workplan(source) -> LoadedWorkplan:
     return workplan_from_text(read_text(os.fspath(source)))
 
 
-_kept: list = [None]    # (text, LoadedWorkplan) of the text read last
-
-
 def workplan_from_text(text: str) -> LoadedWorkplan:
-    """:func:`load_workplan` of a file's Part 21 text (whatever its first lines say); the model of
-    the text read last when ``text`` equals it."""
-    kept = _kept[0]
-    if kept is not None and (kept[0] is text or kept[0] == text):
-        return kept[1]
-    _kept[0] = None         # the old model is not held while the new one is read
+    """:func:`load_workplan` of a file's Part 21 text (whatever its first lines say)."""
     # The instances and the model's tuples all stay alive while they are read: the cyclic garbage
     # collector would rescan them again and again (two thirds of the reading of a big file)
     enabled = gc.isenabled()
     gc.disable()
     try:
-        loaded = workplan_of(parse_part21(text))
+        return workplan_of(parse_part21(text))
     finally:
         if enabled:
             gc.enable()
-    _kept[0] = (text, loaded)
-    return loaded
 
 
 def workplan_of(part21) -> LoadedWorkplan:
