@@ -2,6 +2,9 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
+import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -62,9 +65,74 @@ def explicit_rows(megabytes: float = 50.0) -> list:
     return rows
 
 
+BASE_COMMIT = "495f8bd"     # before the big-file conversion work (issue 32)
+ROOT = os.path.dirname(HERE)
+
+
+def _batch_child(tree: str, path: str, out: str) -> tuple:
+    """(CPU seconds, peak RSS MB, NC text) of ``batch.py stepnc`` from ``tree`` in a child process."""
+    command = [sys.executable, os.path.join(tree, "batch.py"), "stepnc", "--input", path, "--post", "linuxcnc",
+               "--out", out]
+    child = subprocess.Popen(command, cwd=tree, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, usage = os.wait4(child.pid, 0)
+    child.returncode = os.waitstatus_to_exitcode(status)
+    if child.returncode:
+        raise RuntimeError(f"{command} exited {child.returncode}")
+    with open(os.path.join(out, "stepnc.ngc"), encoding="utf-8") as nc:
+        text = nc.read()
+    return usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024, text
+
+
+def end_to_end_rows(sizes=(5.0, 15.0, 50.0), base: str = BASE_COMMIT) -> list:
+    """Issue #32 item 4 beyond the parser: the whole ``batch.py stepnc`` (read, convert with the
+    in-process stock, post, the gate's simulation, previews, report) of generated files of
+    ``sizes`` MB, each in a child process (CPU seconds, peak RSS), and of the largest from ``base``
+    too (a temporary git worktree), in the same run.  Target: twice the parse alone (CPU, here)."""
+    import numpy as np
+    import stepnc_bigfile
+    from kezuri.toolpath.operations.stepnc import part21
+
+    rows, points = [], []
+    with tempfile.TemporaryDirectory(prefix="kezuri-bench-stepnc-") as scratch:
+        base_tree = os.path.join(scratch, "base")
+        made = subprocess.run(["git", "-C", ROOT, "worktree", "add", "--detach", base_tree, base],
+                              capture_output=True).returncode == 0
+        try:
+            for n, megabytes in enumerate(sizes):
+                path = os.path.join(scratch, f"big{n}.stp")
+                text = stepnc_bigfile.explicit_toolpath_file(megabytes)
+                with open(path, "w", encoding="utf-8") as out:
+                    out.write(text)
+                size_mb = len(text.encode()) / 1e6
+                started = time.process_time()
+                part21.parse_part21(text)
+                parse_s = time.process_time() - started
+                del text
+                seconds, peak, nc = _batch_child(ROOT, path, os.path.join(scratch, f"out{n}"))
+                points.append((size_mb, seconds))
+                row = {"name": f"stepnc: batch {size_mb:.0f} MB explicit toolpaths end to end", "seconds": seconds,
+                       "target_s": 2 * parse_s, "notes": f"{seconds / parse_s:.1f}x the parse ({parse_s:.1f} s CPU); "
+                                                         f"peak {peak:.0f} MB RSS"}
+                if made and n == len(sizes) - 1:
+                    before, before_peak, old_nc = _batch_child(base_tree, path, os.path.join(scratch, "base-out"))
+                    rows.append({"name": f"stepnc: batch {size_mb:.0f} MB explicit toolpaths end to end, base {base}",
+                                 "seconds": before, "target_s": None,
+                                 "notes": f"{before / parse_s:.1f}x the parse; peak {before_peak:.0f} MB RSS"})
+                    row["notes"] += (f"; {before / seconds:.1f}x less CPU than {base}, peak {before_peak:.0f} MB "
+                                     f"there; NC text {'identical' if old_nc == nc else 'DIFFERS'}")
+                rows.append(row)
+        finally:
+            if made:
+                subprocess.run(["git", "-C", ROOT, "worktree", "remove", "--force", base_tree], capture_output=True)
+    if len(points) > 1:
+        x, y = np.log([p[0] for p in points]), np.log([p[1] for p in points])
+        rows[-1]["notes"] += f"; CPU ~ size^{np.polyfit(x, y, 1)[0]:.2f} over {len(points)} sizes"
+    return rows
+
+
 def run():
     from kezuri.toolpath.operations import stepnc
-    rows = explicit_rows()
+    rows = explicit_rows() + end_to_end_rows()
     text = large_file()
     size_mb = len(text.encode()) / 1e6
     started = time.perf_counter()

@@ -22,6 +22,7 @@ from ..toolpath.engines.textfile import read_text
 from ..toolpath.job import Job, JobOperation, Setup, plan_job
 from ..toolpath.ir.program import Tool
 from ..toolpath.operations.stepnc.kind import StepncGeometry, StepncSettings
+from ..toolpath.operations.stepnc.loaded import workplan_from_text
 from ..toolpath.operations.stepnc.tools import tool_numbers
 from ..toolpath.operations.stepnc.solids import block_of, feature_solid, stock_box
 from . import convert
@@ -112,13 +113,16 @@ def scene_workplan_path(scene) -> str:
     return path
 
 
-def workplan_job(scene, machine=None, post_name: str = "") -> Job:
+def workplan_job(scene, machine=None, post_name: str = "", read=None) -> Job:
     """A job of one operation: the imported file's workplan in the list's order, without the
-    switched-off workingsteps.  ``machine``: the machine profile (None: not checked here)."""
+    switched-off workingsteps.  ``machine``: the machine profile (None: not checked here);
+    ``read``: (text, its LoadedWorkplan) the caller has read, used when the file still holds that
+    text (else the plan reads the file)."""
     props, settings = scene.kezuri.stepnc, scene.kezuri.machine
     order = tuple(item.ident for item in props.steps)
     enabled = tuple(item.ident for item in props.steps if item.enabled)
-    geometry = StepncGeometry(read_text(scene_workplan_path(scene)))
+    text = read_text(scene_workplan_path(scene))
+    geometry = StepncGeometry(text, read[1] if read is not None and read[0] == text else None)
     setup = Setup(name=scene.name, post=post_name, machine=machine, work_offset=settings.work_offset,
                   rapid_rate=settings.rapid_rate)
     return Job(setup, (JobOperation("stepnc", "stepnc", StepncSettings(order, enabled), geometry),))
@@ -179,26 +183,31 @@ def show_workplan(scene, loaded, program=None) -> list:
             objects.append(convert.mesh_object(scene, f"{PREFIX} {feature.its_id}", *solid, frame,
                                                FEATURE_COLOURS.get(type(feature).__name__, (0.7, 0.7, 0.7, 1.0))))
     if program is not None:
-        objects += pathview.show_toolpaths(scene, f"{PREFIX} path", program.operations,
-                                           stock_box(loaded, program), frame)
+        objects += show_paths(scene, loaded, program)
     return objects
 
 
+def show_paths(scene, loaded, program) -> list:
+    """The program's toolpaths as curve objects (one per operation and move kind)."""
+    frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
+    return pathview.show_toolpaths(scene, f"{PREFIX} path", program.operations, stock_box(loaded, program), frame)
+
+
 def export_nc(scene, post_name: str, path: str, allow: bool | str = False, progress=None, profile=None,
-              findings: list | None = None) -> tuple:
+              findings: list | None = None, read=None) -> tuple:
     """Convert the workplan, simulate it (the export gate) and write it: (path, the planned
     :class:`WorkplanJob`, gate's simulation job, gate report).  ``profile``: the machine (default:
-    Machine & Stock's for the post)."""
-    return export_nc_request(scene, post_name, path, allow, profile, findings)(progress)
+    Machine & Stock's for the post); ``read``: as :func:`workplan_job`'s."""
+    return export_nc_request(scene, post_name, path, allow, profile, findings, read)(progress)
 
 
 def export_nc_request(scene, post_name: str, path: str, allow: bool | str = False, profile=None,
-                      findings: list | None = None):
+                      findings: list | None = None, read=None):
     """Read the scene (the workplan's file, Machine & Stock); ``compute(progress)`` plans, checks
     and writes as :func:`export_nc` says, without touching Blender data."""
     machine = scene.kezuri.machine
     profile = profile or scene_machine(machine, POST_FAMILIES, post_name)
-    job = workplan_job(scene, profile, post_name)
+    job = workplan_job(scene, profile, post_name, read)
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
     post = machine_post(POST_FAMILIES, post_name, machine.work_offset, machine.orient_spindle, profile)
     if post.needs_texture:
@@ -457,13 +466,14 @@ def batch(args) -> dict:
     try:
         if not os.path.isfile(path):
             raise FileNotFoundError(f"no such ISO 14649 file: {path}")
-        loaded = stepnc.load_workplan(path)
+        text = read_text(path)
+        loaded = workplan_from_text(text)       # read once: the plan takes it (a big file reads in seconds)
         fill_workplan_list(scene, os.path.abspath(path), loaded)
         if args.order:
             apply_order(scene, args.order, path if staging is None else "the built-in sample")
         nc_path, job, checked, gate_report = export_nc(
             scene, post_name, os.path.join(args.out, f"stepnc{extension_for(post_name)}"), args.allow_findings,
-            Progress(None, "check"), profile, findings)
+            Progress(None, "check"), profile, findings, (text, loaded))
         if staging is not None:
             path = sample_file(args.out)
             scene.kezuri.stepnc.filepath = os.path.abspath(path)    # the scene points at the kept copy
@@ -471,10 +481,11 @@ def batch(args) -> dict:
         if staging is not None:
             shutil.rmtree(staging, ignore_errors=True)
     program = job.program
-    objects = show_workplan(scene, job.loaded, program)
-    depsgraph = bpy.context.evaluated_depsgraph_get()
+    objects = show_workplan(scene, job.loaded)
+    depsgraph = bpy.context.evaluated_depsgraph_get()       # before the paths: their tubes are not evaluated
     solids = [preview.object_solid(o, job.frame, depsgraph) for o in objects
               if o.type == "MESH" and o.display_type != "WIRE"]
+    show_paths(scene, job.loaded, program)
     skipped = list(job.part.skipped)
     caption = ("NOT CUT: " + ", ".join(f"#{s['id']} {s['name']}" for s in skipped)) if skipped else ""
     toolpaths_png = preview.toolpath_png(os.path.join(args.out, "stepnc-toolpaths.png"), program.operations,

@@ -41,7 +41,8 @@ class Count(event.Listener):
 event.register("numba:compile", Count())
 result = simulate([warmup._box_operation("flat", 1)], BoxStock(0.0, 0.0, -3.0, 8.0, 8.0, 0.0), cell=0.5)
 angle = np.linspace(0.0, np.pi / 2, 33)
-fitted = arcfit_kernel.fit_run_for(arcfit_kernel.COMPILE_FROM)(4.0 * np.cos(angle), 4.0 * np.sin(angle), 0.01, 3, 5000.0)
+fitted = arcfit_kernel.fit_runs_for(arcfit_kernel.COMPILE_FROM)(4.0 * np.cos(angle), 4.0 * np.sin(angle),
+                                                                np.array([0]), np.array([31]), 0.01, 3, 5000.0)
 print("KEZURI-TEST " + json.dumps({"numba_before": before, "said": said, "compiled": compiled,
                                    "kernel": result.kernel, "fitted": fitted.tolist()}))
 """
@@ -69,12 +70,12 @@ def test_an_empty_cache_is_filled_once_and_the_second_run_compiles_nothing(tmp_p
     assert first["numba_before"] is False           # the notice waited for numba's import
     assert first["kernel"] == "numba"
     # the flat end mill's kernels (bands, stamps, ...) and the arc search were compiled, and said once
-    assert {"cut_bands", "cut_stamps", "fit_run"} <= set(first["compiled"])
+    assert {"cut_bands", "cut_stamps", "fit_runs"} <= set(first["compiled"])
     assert len(first["said"]) == 1 and "compiling the numba kernels" in first["said"][0]
     filled = cache_files(cache)
     names = {os.path.basename(path) for path in filled}
     assert any(name.startswith("kernel.cut_bands-") and name.endswith(".nbc") for name in names)
-    assert any(name.startswith("arcfit_kernel.fit_run-") and name.endswith(".nbc") for name in names)
+    assert any(name.startswith("arcfit_kernel.fit_runs-") and name.endswith(".nbc") for name in names)
 
     second = child(cache)
     assert second["compiled"] == [] and second["said"] == []
@@ -83,7 +84,8 @@ def test_an_empty_cache_is_filled_once_and_the_second_run_compiles_nothing(tmp_p
     # one arc: the quarter circle of radius 4 round the origin, counter-clockwise, ending at point 32
     assert second["fitted"] == first["fitted"]
     assert len(first["fitted"]) == 1
-    end, cx, cy, turn = first["fitted"][0]
+    run, end, cx, cy, turn = first["fitted"][0]
+    assert run == 0
     assert (end, turn) == (32, 1) and abs(cx) < 1e-9 and abs(cy) < 1e-9
 
 
@@ -122,54 +124,11 @@ def test_the_interpreted_arc_search_gives_the_compiled_answers():
 
 
 def test_small_operations_take_the_interpreted_search_large_ones_the_compiled():
-    assert arcfit_kernel.fit_run_for(arcfit_kernel.COMPILE_FROM) is (
-        arcfit_kernel.fit_run if NUMBA else arcfit_kernel.interpreted_fit_run)
-    if not (NUMBA and arcfit_kernel.fit_run.signatures):       # compiled already here: it is used
-        assert arcfit_kernel.fit_run_for(100) is arcfit_kernel.interpreted_fit_run
-    assert arcfit_kernel.interpreted_fit_run is not arcfit_kernel.fit_run
-    assert not hasattr(arcfit_kernel.interpreted_fit_run, "signatures")     # plain Python, no dispatcher
-
-
-READ_ONLY_CHILD = r"""
-import json, os, sys
-sys.path.insert(0, sys.argv[1])
-import batch
-batch.import_package()
-from kezuri.toolpath.engines import warmup
-from kezuri.toolpath.simulate import BoxStock, kernel, simulate
-simulate([warmup._box_operation("flat", 1)], BoxStock(0.0, 0.0, -3.0, 8.0, 8.0, 0.0), cell=0.5, kernel="numba")
-print("KEZURI-TEST " + json.dumps({"misses": sum(sum(f.stats.cache_misses.values()) for f in vars(kernel).values()
-                                                if hasattr(f, "stats")),
-                                   "hits": sum(sum(f.stats.cache_hits.values()) for f in vars(kernel).values()
-                                               if hasattr(f, "stats"))}))
-"""
-
-
-@pytest.mark.skipif(not NUMBA, reason="numba is not available")
-def test_a_read_only_install_keeps_its_kernels_in_the_users_cache_folder(tmp_path):
-    """An extension installed system-wide: its folder read-only (a read-only bind mount in a mount
-    namespace of its own, so even root cannot write there), no NUMBA_CACHE_DIR: numba keeps the
-    kernels in the user's cache folder (~/.cache/numba) and the second run loads them."""
-    import shutil
-    install, home = tmp_path / "install", tmp_path / "home"
-    shutil.copytree(ROOT, install, ignore=shutil.ignore_patterns(".git", "docs", "tests", "bench", "__pycache__",
-                                                                 "*.nbi", "*.nbc"))
-    home.mkdir()
-    env = {key: value for key, value in os.environ.items()
-           if key not in ("NUMBA_CACHE_DIR", "KEZURI_NO_NUMBA", "XDG_CACHE_HOME")}
-    env["HOME"] = str(home)
-    script = tmp_path / "child.py"
-    script.write_text(READ_ONLY_CHILD)
-    run = f"{sys.executable} {script} {install}"
-    mount = (f"mount --bind {install} {install} && mount -o remount,bind,ro {install} && "
-             f"! touch {install}/written 2>/dev/null && {run} && {run}")
-    done = subprocess.run(["unshare", "-m", "sh", "-c", mount], capture_output=True, text=True, timeout=600, env=env)
-    if done.returncode != 0 and "KEZURI-TEST" not in done.stdout:
-        pytest.skip(f"no read-only bind mount here ({done.stderr.strip()[-200:]})")
-    first, second = (json.loads(line[len("KEZURI-TEST "):]) for line in done.stdout.splitlines()
-                     if line.startswith("KEZURI-TEST "))
-    assert first["misses"] >= 2 and first["hits"] == 0     # the bands and stamps, with the helpers they call
-    assert second["misses"] == 0 and second["hits"] >= 2
-    users = [os.path.join(folder, name) for folder, _, names in os.walk(home / ".cache" / "numba") for name in names]
-    assert any(os.path.basename(path).startswith("kernel.cut_bands-") for path in users), users
-    assert not [name for _, _, names in os.walk(install) for name in names if name.endswith((".nbi", ".nbc"))]
+    assert arcfit_kernel.fit_runs_for(arcfit_kernel.COMPILE_FROM) is (
+        arcfit_kernel.fit_runs if NUMBA else arcfit_kernel.interpreted_fit_runs)
+    if not (NUMBA and arcfit_kernel.fit_runs.signatures):       # compiled already here: it is used
+        assert arcfit_kernel.fit_runs_for(100) is arcfit_kernel.interpreted_fit_runs
+    assert arcfit_kernel.interpreted_fit_runs is not arcfit_kernel.fit_runs
+    assert not hasattr(arcfit_kernel.interpreted_fit_runs, "signatures")     # plain Python, no dispatcher
+    # the interpreted one calls the interpreted search of a run, not the compiled dispatcher
+    assert arcfit_kernel.interpreted_fit_runs.__globals__["fit_run"] is arcfit_kernel.interpreted_fit_run

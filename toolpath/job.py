@@ -169,13 +169,16 @@ class Job:
 # ----- fingerprints -------------------------------------------------------------------------------
 
 def _feed(digest, value) -> None:
-    """Hash a value: arrays by dtype, shape and bytes; dataclasses, mappings and sequences by parts."""
+    """Hash a value: arrays by dtype, shape and bytes; dataclasses, mappings and sequences by parts
+    (a dataclass field with ``metadata={"derived": True}`` is left out: the others make it)."""
     if isinstance(value, np.ndarray):
         digest.update(f"nd{value.dtype.str}{value.shape}".encode())
         digest.update(np.ascontiguousarray(value).tobytes())
     elif dataclasses.is_dataclass(value) and not isinstance(value, type):
         digest.update(type(value).__qualname__.encode())
         for item in dataclasses.fields(value):
+            if item.metadata.get("derived"):        # made from the other fields (a file's text read)
+                continue
             digest.update(item.name.encode())
             _feed(digest, getattr(value, item.name))
     elif isinstance(value, dict):

@@ -84,6 +84,6 @@ def warm_kernels(progress=None) -> list:
     from ..ir import arcfit_kernel
     if arcfit_kernel.COMPILED:      # called directly: fit_arcs runs a small operation interpreted
         angle = np.linspace(0.0, np.pi / 2, 9)
-        arcfit_kernel.fit_run(4.0 * np.cos(angle), 4.0 * np.sin(angle), 0.01, 3, 5000.0)
+        arcfit_kernel.fit_runs(4.0 * np.cos(angle), 4.0 * np.sin(angle), np.array([0]), np.array([7]), 0.01, 3, 5000.0)
     ran.append("arc fit")
     return ran

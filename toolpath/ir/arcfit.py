@@ -79,21 +79,21 @@ def fit_arcs(op: Operation, tolerance: float = DEFAULT_TOLERANCE, min_segments: 
     if not runs:
         return op
     starts = op.start_points()
-    first_move, last_move, centres, turns = [], [], [], []
-    search = arcfit_kernel.fit_run_for(sum(last - first + 2 for first, last in runs))
-    for first, last in runs:                       # moves first..last (inclusive) form one run
-        points = np.vstack([starts[first, :2], op.xyz[first:last + 1, :2]])
-        fitted = search(np.ascontiguousarray(points[:, 0]), np.ascontiguousarray(points[:, 1]),
-                                       float(tolerance), int(min_segments), float(max_radius))
-        ends = first + fitted[:, 0].astype(np.int64) - 1          # the original move that ends each piece
-        begins = np.concatenate([[first], ends[:-1] + 1])
-        arc = fitted[:, 3] != 0
-        first_move.append(begins[arc])
-        last_move.append(ends[arc])
-        centres.append(fitted[arc, 1:3])
-        turns.append(fitted[arc, 3])
-    first_move, last_move = np.concatenate(first_move), np.concatenate(last_move)
-    centres, turns = np.concatenate(centres).reshape(-1, 2), np.concatenate(turns)
+    # moves first..last (inclusive) form one run; its points are the first's start and the moves'
+    # ends: points[first:last + 2] of the operation's start followed by every end
+    firsts, lasts = (np.array(column, np.int64) for column in zip(*runs))
+    points = np.vstack([op.start[None, :2], op.xyz[:, :2]])
+    search = arcfit_kernel.fit_runs_for(int(np.sum(lasts - firsts + 2)))
+    fitted = search(np.ascontiguousarray(points[:, 0]), np.ascontiguousarray(points[:, 1]), firsts, lasts,
+                    float(tolerance), int(min_segments), float(max_radius))
+    run = fitted[:, 0].astype(np.int64)
+    ends = firsts[run] + fitted[:, 1].astype(np.int64) - 1        # the original move that ends each piece
+    opens = np.ones(len(run), bool)                                 # a run's first piece begins at its first move
+    opens[1:] = run[1:] != run[:-1]
+    begins = np.where(opens, firsts[run], np.concatenate([[0], ends[:-1] + 1]))
+    arc = fitted[:, 4] != 0
+    first_move, last_move = begins[arc], ends[arc]
+    centres, turns = fitted[arc, 2:4].reshape(-1, 2), fitted[arc, 4]
     if written is not None:
         good, centres = _as_written(starts[first_move, :2], op.xyz[last_move, :2], centres, turns < 0,
                                     written, step, end_tolerance)

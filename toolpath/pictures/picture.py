@@ -23,6 +23,7 @@ from ..ir.errors import InputError
 BACKGROUND = (246, 246, 243)
 INK = (30, 30, 34)
 MAX_FRAGMENTS = 1 << 22        # candidate pixels per rasterising step (memory bound)
+SEGMENT_BATCH = 200_000       # straight segments sampled and stamped together (memory bound)
 
 
 class PictureError(InputError):
@@ -133,6 +134,10 @@ class Picture:
         the stock stay visible); else hidden where a solid is nearer."""
         a, b = np.asarray(a, float).reshape(-1, 3), np.asarray(b, float).reshape(-1, 3)
         if not len(a):
+            return
+        if not dash and len(a) > SEGMENT_BATCH:     # each segment's pixels are its own: drawn a batch at a time
+            for k in range(0, len(a), SEGMENT_BATCH):
+                self.segments(view, a[k:k + SEGMENT_BATCH], b[k:k + SEGMENT_BATCH], colour, width, dash, over)
             return
         ax, ay, az = view.project(a)
         bx, by, bz = view.project(b)

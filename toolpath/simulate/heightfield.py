@@ -178,7 +178,8 @@ class Simulation:
         done = 0
         operation = np.full(nx * ny, -1, np.int16)
         for chain in chains:
-            before = flat[:nx * ny].copy()
+            rows = self._rows(chain)        # the grid rows the chain can lower: the rest is not copied
+            before = flat[rows].copy()
             families = families_of(chain, self.hf.top, self.tolerance)
             for a, b, checked in _runs(chain, families):
                 parts = [fam.take(slice(*np.searchsorted(fam.segment, [a, b]))) for fam in families]
@@ -194,10 +195,23 @@ class Simulation:
                 done += b - a
                 if self.progress is not None and self.progress(done / total) is False:
                     raise SimulationCancelled("simulation cancelled")
-            operation[flat[:nx * ny] < before] = chain.op_index
+            operation[rows][flat[rows] < before] = chain.op_index
         if not in_place:
             self.hf.heights[...] = flat[:nx * ny].reshape(nx, ny)
         self.hf.operation = operation.reshape(nx, ny)
+
+    def _rows(self, chain) -> slice:
+        """The part of the flat grid (whole rows of constant x) within the tool's radius and two
+        cells of the chain's points: all it can cut (every family lies within the radius of the
+        tip's path); the whole grid for a radial tool or points that are not finite."""
+        nx, ny = self.hf.shape
+        x = chain.points[:, 0]
+        if chain.radial or not len(x) or not np.isfinite(x).all():
+            return slice(0, nx * ny)
+        reach = float(chain.tool.radius)
+        i0 = max(0, math.floor((float(x.min()) - reach - self.hf.x0) / self.hf.cell_x) - 2)
+        i1 = min(nx, math.ceil((float(x.max()) + reach - self.hf.x0) / self.hf.cell_x) + 2)
+        return slice(i0 * ny, max(i0, i1) * ny)
 
     def _checked(self, flat, chain, segment, families):
         """Apply one checked move, recording it if it reaches into the material as it is

@@ -133,7 +133,11 @@ def plan_freeform(step, tool, clearance_z, stock=None):
     path = motion.path
     rpm = feed_and_speed(operation, tool, [], need_feed=False)[1]
     for index, trajectory in enumerate(operation.its_toolpath):
-        start, moves = trajectory_moves(trajectory)
+        points = _polyline_points(trajectory)
+        if points is None:
+            start, moves = trajectory_moves(trajectory)
+        else:               # straight feed moves through the points: kept as one array
+            start, moves = points[0], points[1:]
         start = frame.to_parent([start])[0]
         feed = math.nan if trajectory.rapid else _feed(trajectory, operation, tool, rpm, notes_of_step)
         if index == 0:      # fed in (when the start is below the material) at the first cutting trajectory's feed
@@ -174,10 +178,28 @@ def _enter(motion, start, feature_top, entry_feed):
     path.line(*start, feed=entry_feed())
 
 
+def _polyline_points(trajectory) -> np.ndarray | None:
+    """The (n, 3) points of a trajectory along a POLYLINE, in the order it is cut (None for other
+    curves): its moves are what :func:`trajectory_moves` makes of it, without a tuple per point."""
+    curve = trajectory.basiccurve
+    if not isinstance(curve, Polyline):
+        return None
+    points = curve.sample()
+    return points if trajectory.forward else np.ascontiguousarray(points[::-1])
+
+
 def _add(path, moves, frame, feed):
-    # every end point into the workpiece's frame at once (one placement per curve; point by point
-    # this was most of the time of reading a big file of explicit toolpaths)
-    ends = frame.to_parent([end for _, end, _ in moves]) if moves else ()
+    if isinstance(moves, np.ndarray):       # a POLYLINE's end points
+        ends = frame.to_parent(moves) if len(moves) else ()
+        if not math.isnan(feed):
+            if len(moves):
+                path.polyline(ends, feed=feed)
+            return
+        moves = [(FEED, None, None)] * len(moves)
+    else:
+        # every end point into the workpiece's frame at once (one placement per curve; point by
+        # point this was most of the time of reading a big file of explicit toolpaths)
+        ends = frame.to_parent([end for _, end, _ in moves]) if moves else ()
     for (kind, _, centre), end in zip(moves, ends):
         if math.isnan(feed):
             if kind != FEED:

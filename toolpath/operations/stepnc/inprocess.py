@@ -19,7 +19,9 @@ import math
 
 import numpy as np
 
+from ...engines import compiled
 from ...ir.program import ARC_CCW, ARC_CW, RAPID, arc_sweep
+from .model import StepNcError
 
 # Columns this wide (mm); a grid of more than MAX_COLUMNS columns is made coarser.
 CELL = 0.25
@@ -31,9 +33,14 @@ ARC_CHORD = 0.005
 class InProcessStock:
     """Material heights over the box x0..x1, y0..y1 starting at ``top``.  Outside the box the
     material is ``outside`` (None: nothing there, the box is the stock; a number: unknown stock
-    that high)."""
+    that high).  ``kernel``: how the columns are lowered, "numba" (compiled, :mod:`.inprocess_kernel`),
+    "numpy" (a segment at a time, the reference) or "auto" (numba where it can be imported); both
+    give the same heights."""
 
-    def __init__(self, x0, y0, x1, y1, top: float, outside: float | None = None, cell: float = CELL):
+    def __init__(self, x0, y0, x1, y1, top: float, outside: float | None = None, cell: float = CELL,
+                 kernel: str = "auto"):
+        self.kernel = compiled.kernel_module(kernel, f"{__package__}.inprocess_kernel", StepNcError,
+                                             "in-process stock kernel")
         area = max(x1 - x0, cell) * max(y1 - y0, cell)
         cell = max(cell, math.sqrt(area / MAX_COLUMNS))
         self.cell = cell
@@ -109,7 +116,14 @@ class InProcessStock:
         keys = np.round(rows[:, [0, 1, 2, 3, 5]], 6)
         first = np.ones(len(rows), bool)
         first[1:] = np.any(keys[1:] != keys[:-1], axis=1)
-        for ax, ay, bx, by, z, reach in rows[first]:
+        rows = rows[first]
+        if self.kernel is not None:
+            z, reach = rows[:, 4] + rise, rows[:, 5] - self.margin
+            live = reach > 0
+            ax, ay, bx, by = (np.ascontiguousarray(rows[live, k]) for k in range(4))
+            self.kernel.lower(self.heights, self.x0, self.y0, self.cell, ax, ay, bx, by, z[live], reach[live])
+            return
+        for ax, ay, bx, by, z, reach in rows:
             self._segment((ax, ay), (bx, by), z + rise, reach)
 
     def _segment(self, a, b, z: float, radius: float) -> None:

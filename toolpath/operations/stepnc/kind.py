@@ -2,7 +2,7 @@
 in the order to cut and without those switched off, become its IR operations (:mod:`.workplan`)."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from ...job import OperationKind, Part
 from ... import workload
@@ -14,9 +14,11 @@ from .workplan import LoadedWorkplan, nothing_to_machine, skipped_workingsteps, 
 @dataclass(frozen=True)
 class StepncGeometry:
     """The workplan: the ISO 14649 file's Part 21 text (the file is the source of truth; the plan
-    reads it afresh)."""
+    reads it afresh), and ``loaded``, that text already read by the caller (None: the plan reads
+    it; a big file of explicit toolpaths takes seconds to read)."""
 
     text: str
+    loaded: LoadedWorkplan | None = field(default=None, compare=False, repr=False, metadata={"derived": True})
 
 
 @dataclass(frozen=True)
@@ -51,7 +53,7 @@ class StepncKind(OperationKind):
     def plan(self, setup, settings: StepncSettings, geometry: StepncGeometry, progress=None) -> Part:
         report = progress or (lambda fraction, text="": None)
         report(0.0, "reading")
-        loaded = workplan_from_text(geometry.text)
+        loaded = geometry.loaded if geometry.loaded is not None else workplan_from_text(geometry.text)
         if not loaded.workingsteps:
             raise StepNcError(nothing_to_machine(loaded.warnings))
         if settings.enabled is not None and not settings.enabled:

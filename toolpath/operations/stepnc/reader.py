@@ -15,6 +15,7 @@ from .features import CircularPath, ClosedPocket, ClosedProfile, Feature, Genera
 from .geometry import BSplineCurve, Block, CURVE_TYPES, Circle, CompositeCurve, CompositeCurveSegment, Helix, Line, PLANE_TYPES, Placement, Plane, Polyline, TrimmedCurve, Vec3
 from .model import LENGTH_TYPES, MAX_LENGTH, MAX_NAME, Project, Setup, Workingstep, Workpiece, Workplan
 from .process import ApproachRetract, Bidirectional, BottomAndSideMilling, ContourBidirectional, ContourParallel, CuttingTool, DIMENSION_TYPES, DRILLING_TOOL_BODIES, DrillingOperation, DrillingTypeStrategy, FreeformOperation, MILLING_TOOL_BODIES, MachineFunctions, MachiningOperation, MillingStrategy, MillingTechnology, PlaneMilling, PlungeHelix, PlungeRamp, PlungeToolaxis, RapidMovement, TAPERED_BODIES, ToolBody, ToolDimension, Trajectory, Unidirectional
+from .coordinates import plain_coordinates
 from .part21 import UNKNOWN, UNSET, Enum, Instance, Part21File, Ref, Typed
 
 
@@ -75,6 +76,11 @@ class _Reader:
         if not isinstance(value, list) or not all(isinstance(item, Ref) for item in value):
             raise StepNcError(f"#{inst.id} {inst.type_name}: attribute {name} must be a list of references, "
                               f"found {value!r}")
+        instances = self.part21.instances
+        if types is not None and all(ref.id in instances for ref in value):     # the common case at once
+            targets = [instances[ref.id] for ref in value]
+            if all(type(target) is Instance and target.type_name in types for target in targets):
+                return targets
         targets = []
         for ref in value:
             if ref.id not in self.part21.instances:
@@ -212,7 +218,8 @@ class _Reader:
     def _curve(self, t):
         if t.type_name == "POLYLINE":
             points = self.entities(t, 1, "points", ("CARTESIAN_POINT",))
-            return Polyline(t.id, self.text(t, 0, "name"), tuple(self.coordinates(p) for p in points))
+            name = self.text(t, 0, "name")
+            return Polyline(t.id, name, plain_coordinates(points) or tuple(self.coordinates(p) for p in points))
         if t.type_name == "CIRCLE":
             return self._circle(t)
         if t.type_name == "B_SPLINE_CURVE_WITH_KNOTS":

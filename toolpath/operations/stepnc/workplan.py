@@ -21,9 +21,7 @@ Coordinates are the workpiece's (the work offset); lengths in mm, feed in mm/min
 from __future__ import annotations
 
 import math
-import os
 import re
-from dataclasses import dataclass
 
 import numpy as np
 from manifold3d import CrossSection
@@ -36,13 +34,12 @@ from .hole_bottoms import DEFAULT_TOOL_TOP_ANGLE, flat_bottom_notes, through_bot
 from .inprocess import InProcessStock
 from .errors import StepNcError
 from .features import ClosedPocket, PlanarFace, RoundHole, Slot
-from .model import Project, Workingstep
+from .model import Workingstep
 from .process import Bidirectional, BottomAndSideMilling, ContourBidirectional, ContourParallel, CuttingTool, DrillingOperation, FreeformOperation, PlaneMilling, PlungeHelix, PlungeRamp, Unidirectional
-from .reader import read_project
+from .loaded import LoadedWorkplan, load_workplan, workplan_from_text, workplan_of  # noqa: F401 (re-exported)
 from .motion import (APPROACH_GAP, DEFAULT_STEPOVER_RATIO, LINK_TOLERANCE, MAX_PASSES, MIN_STEPOVER, Motion, cut_levels, helix_moves,
                      helix_pitch, is_empty, iso_ratio, round_offset, split_outside, stepover_of)
 from .fit import check_fit
-from .part21 import parse_part21, read_part21
 from .pockets import PocketSpec, pockets_to_part21  # noqa: F401 (re-exported)
 from .technology import MissingTechnology, feed_and_speed  # noqa: F401 (re-exported)
 from .tools import BODY_LABELS, tool_for, tool_numbering, tool_numbers  # noqa: F401 (re-exported)
@@ -56,43 +53,6 @@ POINTED_DRILL_BODIES = ("TWIST_DRILL", "TAPERED_DRILL")
 THROUGH_CONDITIONS = ("THROUGH_BOTTOM_CONDITION", "THROUGH_POCKET_BOTTOM_CONDITION")
 # A feature may reach this far (mm) below the stock bottom before it is refused (rounding in the file).
 DEPTH_TOLERANCE = 1e-6
-
-
-@dataclass(frozen=True)
-class LoadedWorkplan:
-    """What :func:`load_workplan` returns: the model, its workingsteps in workplan order (nested
-    workplans flattened, unsupported ones left out) and the warnings about what was left out."""
-
-    project: Project
-    workingsteps: tuple
-    warnings: tuple
-
-    def workingstep(self, ident: int) -> Workingstep:
-        for step in self.workingsteps:
-            if step.id == ident:
-                return step
-        raise KeyError(f"no workingstep #{ident}")
-
-
-def load_workplan(source) -> LoadedWorkplan:
-    """Read an ISO 14649 file, from a path or from its Part 21 text.
-
-    Raises Part21Error for a syntax error or a reference to an undefined instance and
-    StepNcError for malformed ISO 14649 data; both name the instance.
-    """
-    if isinstance(source, str) and "ISO-10303-21;" in source:
-        return workplan_from_text(source)
-    return workplan_of(read_part21(os.fspath(source)))
-
-
-def workplan_from_text(text: str) -> LoadedWorkplan:
-    """:func:`load_workplan` of a file's Part 21 text (whatever its first lines say)."""
-    return workplan_of(parse_part21(text))
-
-
-def workplan_of(part21) -> LoadedWorkplan:
-    project, warnings = read_project(part21)
-    return LoadedWorkplan(project, tuple(project.main_workplan.workingsteps()), tuple(warnings))
 
 
 # --------------------------------------------------------------------------- workplan -> Program
