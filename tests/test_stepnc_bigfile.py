@@ -19,7 +19,7 @@ import pytest
 
 from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Tool
 from kezuri.toolpath.operations.stepnc.inprocess import InProcessStock
-from kezuri.toolpath.operations.stepnc.model import StepNcError
+from kezuri.toolpath.operations.stepnc.errors import StepNcError
 from kezuri.toolpath.operations.stepnc.workplan import in_process_stock, load_workplan, to_program, workplan_from_text
 
 HERE = os.path.dirname(os.path.abspath(__file__))

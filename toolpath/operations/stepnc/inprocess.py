@@ -21,7 +21,7 @@ import numpy as np
 
 from ...engines import compiled
 from ...ir.program import ARC_CCW, ARC_CW, RAPID, arc_sweep
-from .model import StepNcError
+from .errors import StepNcError
 
 # Columns this wide (mm); a grid of more than MAX_COLUMNS columns is made coarser.
 CELL = 0.25
