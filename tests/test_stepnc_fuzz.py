@@ -64,7 +64,7 @@ def test_random_mutations_give_only_clear_input_errors():
 
 # ----- issue 27: attribute values with hostile numbers (Hypothesis) ------------------------------------------
 
-from hypothesis import HealthCheck, given, settings, strategies as st  # noqa: E402
+from hypothesis import HealthCheck, example, given, settings, strategies as st  # noqa: E402
 
 from test_hostile import time_limit  # noqa: E402
 from test_stepnc_attributes import BREAKTHROUGH, STOCK_BOTTOM, with_block  # noqa: E402
@@ -120,6 +120,7 @@ def mutated(changes) -> str:
 @settings(max_examples=int(os.environ.get("KEZURI_HYPOTHESIS_EXAMPLES", "120")), deadline=None,
           suppress_health_check=[HealthCheck.too_slow])
 @given(edits)
+@example([(19, 5, "2.225074E-311")])     # a denormal axial_cutting_depth: 5 mm / 2.2e-311 overflowed (found 2026-11-28)
 def test_hostile_attribute_values_plan_within_the_stock_or_are_refused_by_name(changes):
     text = mutated(changes)
     with time_limit(30):

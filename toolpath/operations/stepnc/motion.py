@@ -4,6 +4,7 @@ strategies share (levels, stepover, offsets).  Split from workplan.py."""
 from __future__ import annotations
 
 import math
+from decimal import Decimal
 
 import numpy as np
 from manifold3d import CrossSection, JoinType
@@ -243,10 +244,12 @@ def cut_levels(top: float, floor: float, step: float | None) -> list:
     height = top - floor
     if height <= 1e-9:
         return []
-    count = max(1, math.ceil(height / step - 1e-9)) if step else 1
-    if count > MAX_PASSES:
-        raise StepNcError(f"{height:g} mm cut {step:g} mm at a time needs {count} layers (more than {MAX_PASSES}): "
+    layers = height / step if step else 1.0        # inf for a step of a denormal size (2.2e-311)
+    if layers - 1e-9 > MAX_PASSES:
+        shown = f"{math.ceil(layers - 1e-9)}" if math.isfinite(layers) else f"{Decimal(height) / Decimal(step):.3g}"
+        raise StepNcError(f"{height:g} mm cut {step:g} mm at a time needs {shown} layers (more than {MAX_PASSES}): "
                           "check axial_cutting_depth")
+    count = max(1, math.ceil(layers - 1e-9))
     return [top - height * k / count for k in range(1, count + 1)]
 
 
