@@ -38,7 +38,7 @@ def pieces_of(tool, points, tolerance=0.01, stock=None, radial=False):
     stock = stock or stock_solid(sim.as_stock(BOX), tolerance)
     repeats = sweep.Repeats()
     makers = sweep._chain_pieces(chain(tool, points, radial=radial), tolerance, stock.bounding_box(),
-                                 sweep._Floors([], tolerance), repeats)
+                                 sweep.Floors([], tolerance), repeats)
     return [make() for make in makers + [m for made in repeats.kept() for m in made]]
 
 
@@ -141,7 +141,7 @@ def test_a_layer_wholly_inside_a_deeper_ones_footprint_is_left_out():
     # lies inside it, so it adds nothing
     deep = [circle(radius, -5.0) for radius in (6.0, 8.0, 10.0)]
     shallow = circle(8.0, -1.0)
-    floors = sweep._Floors([chain(FLAT6, ring) for ring in deep], 0.05)
+    floors = sweep.Floors(sweep.level_runs([chain(FLAT6, ring) for ring in deep]), 0.05)
     assert floors.needed(shallow, FLAT6.radius) == []
     assert floors.needed(circle(12.0, -1.0), FLAT6.radius) == [(0, 400)]      # pokes out: kept
     ops = [level_op(FLAT6, ring, f"ring {i}") for i, ring in enumerate(deep + [shallow])]
