@@ -280,7 +280,7 @@ def test_a_ring_repeated_farther_from_the_c_axis_is_left_out():
     repeats = sweep.Repeats()
     for tips in rings + [ring(18.0, turns=0.5)]:
         assert sweep._chain_pieces(chain(BALL6, tips, radial=True), 0.05, stock.bounding_box(),
-                                   sweep._Floors([], 0.05), repeats) == []
+                                   sweep.Floors([], 0.05), repeats) == []
     assert len(repeats.kept()) == 2
     solid = sweep.cut(stock, [chain(BALL6, tips, radial=True) for tips in rings], 0.05)
     expected = radial_groove_volume(3.0, 20.0, 25.0)
@@ -297,7 +297,7 @@ def test_a_slot_repeated_at_every_depth_is_cut_once_at_the_bottom():
     stock = stock_solid(sim.as_stock(BOX), 0.01)
     repeats = sweep.Repeats()
     for tips in passes:
-        sweep._chain_pieces(chain(FLAT6, tips), 0.01, stock.bounding_box(), sweep._Floors([], 0.01), repeats)
+        sweep._chain_pieces(chain(FLAT6, tips), 0.01, stock.bounding_box(), sweep.Floors([], 0.01), repeats)
     assert len(repeats.kept()) == 1
     result = sim.simulate([level_op(FLAT6, tips, f"pass {k}") for k, tips in enumerate(passes)], BOX,
                           engine="manifold", tolerance=0.01)
@@ -323,7 +323,7 @@ def test_pocket_layers_on_the_side_of_a_bar_leave_out_the_ones_a_deeper_layer_co
     stock = stock_solid(sim.CylinderStock(radius=25.0, height=30), 0.05)
     for tips in chords:
         assert sweep._chain_pieces(chain(BALL6, tips, radial=True), 0.05, stock.bounding_box(),
-                                   sweep._Floors([], 0.05), repeats) == []
+                                   sweep.Floors([], 0.05), repeats) == []
     assert len(repeats.kept()) == 2
 
     def radial_op(tips, name):

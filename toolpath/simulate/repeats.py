@@ -119,6 +119,15 @@ class LevelPaths:
         return np.array([self.lowest.get(key, math.inf) <= z + 1e-9
                          for key, z in zip(self._keys(tool, points), low.tolist())], bool)
 
+    def not_held_below(self, tool, run: np.ndarray) -> list:
+        """(first, last) point ranges of the level run ``run`` (one height) whose moves no level run
+        of ``tool`` holds from strictly deeper down (the run never holds itself): a pocket layer
+        whose rings repeat, in part, the path of a deeper layer."""
+        z = round(float(run[0, 2]), 6)
+        keep = np.array([self.lowest.get(key, math.inf) >= z - 1e-9 for key in self._keys(tool, run)], bool)
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], keep.astype(np.int8), [0]])))
+        return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]
+
     def needed(self, tool, points: np.ndarray) -> list:
         """(first, last) point ranges of the polyline's moves to cut: all but those held from
         below (see :meth:`covered`); the first and last move are always kept, so the whole

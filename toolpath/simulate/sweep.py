@@ -57,7 +57,7 @@ from manifold3d import CrossSection, Error, Manifold, Mesh64, OpType
 
 from ..ir.program import Tool
 from .facets import area_scale, outside, polygon_sides, segments_for, tool_points, tool_rings  # noqa: F401 (the engine's names)
-from .floors import Floors
+from .floors import Floors, footprint
 from .repeats import Level, LevelPaths, RadialLevel, Repeats
 
 MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
@@ -73,6 +73,7 @@ ROW_STRAIGHTNESS = 0.02          # of the tolerance: how far the vertices of one
 # the stock (in a bar, every tool's shank reaches out of it, and far-reaching unions grow slow),
 # large enough that the solid is not rebuilt too often
 CHUNK_TRIANGLES = 25_000
+SHANK_OVERLAP = 0.5              # mm: a level run's tubes reach this far up its shank's prism (see :func:`_prism`)
 LEVEL = 1e-6                     # mm: a run whose height varies less than this is level (posts round to 1e-4)
 
 
@@ -198,10 +199,14 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats, paths=None) 
                 pieces += make()
         elif level:
             # a pocket with vertical walls repeats its path at every depth: the same tool lower
-            # down contains it
-            repeats.add((chain.tool, np.round(run[:, :2], 6).tobytes()), Level(run),
-                        lambda run=run, closed=closed: _axial_run(chain, run, whole, height, tolerance, bounds,
-                                                                  floors, closed))
+            # down contains it, the whole run (see Repeats) or some of its moves (see LevelPaths,
+            # and there the tool lower down holds the whole tool at the ends of what is left)
+            for a, b in [(0, len(run) - 1)] if paths is None else paths.not_held_below(chain.tool, run):
+                part = run[a:b + 1]
+                held = (closed[0] if a == 0 else True, closed[1] if b == len(run) - 1 else True)
+                repeats.add((chain.tool, np.round(part[:, :2], 6).tobytes()), Level(part),
+                            lambda part=part, held=held: _axial_run(chain, part, whole, height, tolerance, bounds,
+                                                                    floors, held))
         else:
             pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors, closed)
     for i, j in zip(starts, ends):
@@ -289,17 +294,34 @@ def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance
     facets, inset = _section_budget(r, tolerance)
     if len(straight_runs(p, LEVEL)) == 2:
         inset = 0.0         # a straight run is followed exactly: no room needed to thin it
-    section = _section(tool_rings(tool, 2 * facets, inset), r - inset, top + 1.0 - lo[2])
+    rings = tool_rings(tool, 2 * facets, inset)
+    reach = top + 1.0 - lo[2]
+    # a level run's shank sweeps its footprint: a prism, and the tubes carry the end alone
+    prism = np.ptp(p[:, 2]) <= LEVEL and reach > rings[-1][1] + SHANK_OVERLAP
+    section = _section(rings, r - inset, rings[-1][1] + SHANK_OVERLAP if prism else reach)
     pieces = []
     for a, b in floors.needed(p, r):
+        if prism and not tool.corner_radius and not tool.shape.pointed:
+            pieces.append(_prism(p[a:b + 1], r, 0.0, top, tolerance))      # a flat end mill: the prism is all
+            continue
         tubes = _tube_pieces(p[a:b + 1], section, tolerance, (closed[0] and a == 0, closed[1] and b == len(p) - 1))
         if tubes is not None:
-            pieces += tubes
+            pieces += tubes + ([_prism(p[a:b + 1], r, rings[-1][1] + SHANK_OVERLAP / 2, top, tolerance)] if prism else [])
         elif tool.shape.staircase and np.ptp(p[a:b + 1, 2]) <= LEVEL:
             pieces += _level_staircase(chain, p[a:b + 1], height, tolerance, bounds)
         else:
             pieces += _hull_pieces(chain, p[a:b + 1], None, whole, height, tolerance, bounds)
     return pieces
+
+
+def _prism(run: np.ndarray, radius: float, above: float, top: float, tolerance: float):
+    """The sweep of the tool's shank (a cylinder of ``radius`` from ``above`` the tip up to above
+    the stock) along the level run: its footprint (see :func:`footprint`, facets inside within a
+    quarter of the tolerance) extruded, its top lifted by an amount of its own (see :func:`_lifted`)."""
+    bottom = float(run[0, 2]) + above
+    lift = 0.05 + 0.45 * ((len(run) * 0.6180339887 + bottom * 0.3819660113) % 1.0)
+    return lambda: Manifold.extrude(footprint(run[:, :2], radius, tolerance / 4),
+                                    top + 1.0 + lift - bottom).translate([0.0, 0.0, bottom])
 
 
 def _level_staircase(chain, p: np.ndarray, height: float, tolerance: float, bounds) -> list:
