@@ -457,3 +457,19 @@ def test_the_moves_of_a_layer_that_a_deeper_layer_repeats_are_left_out():
     assert result.removed_volume_mm3 == pytest.approx(every.removed_volume_mm3, rel=1e-4)
     field = sim.simulate(ops, BOX, cell=0.05)
     assert result.removed_volume_mm3 == pytest.approx(field.removed_volume_mm3, rel=0.01)
+
+
+def test_shanks_at_one_height_are_one_prism_and_the_rings_cut_their_closed_form():
+    # three overlapping rings of a flat 6 mm at -2 (footprints 3..9, 7..13, 11..17 mm round the
+    # origin) and one at -1: two prisms, one per height; the -2 rings cut the annulus 3..17
+    # (the -1 ring lies inside it and adds nothing)
+    rings = [circle(radius, -2.0) for radius in (6.0, 10.0, 14.0)] + [circle(10.0, -1.0)]
+    shanks = sweep.Shanks(0.01)
+    for ring in rings:
+        shanks.add(ring, 3.0, float(ring[0, 2]))
+    prisms = [make() for make in shanks.pieces(BOX[5])]
+    assert sorted(round(p.bounding_box()[2], 9) for p in prisms) == [-2.0, -1.0]
+    ops = [level_op(FLAT6, ring, f"ring {k}") for k, ring in enumerate(rings)]
+    result = sim.simulate(ops, (-40, -40, -20, 40, 40, 0), engine="manifold", tolerance=0.01)
+    expected = math.pi * (17.0 ** 2 - 3.0 ** 2) * 2.0
+    assert expected * 0.999 < result.removed_volume_mm3 <= expected

@@ -6,7 +6,7 @@ from __future__ import annotations
 import bisect
 
 import numpy as np
-from manifold3d import CrossSection, FillRule, JoinType
+from manifold3d import CrossSection, FillRule, JoinType, Manifold, OpType
 
 from .facets import polygon_sides, tool_rings
 
@@ -56,6 +56,30 @@ class Floors:
                 keep[a:b] = True
         edges = np.flatnonzero(np.diff(np.concatenate([[0], keep.astype(np.int8), [0]])))
         return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]
+
+
+class Shanks:
+    """The sweep of the shank (a cylinder of the tool's radius from where its end meets it up to
+    above the stock) along level runs: exactly the run's footprint, from that height up.  Those
+    starting at one height are merged in 2-D (cheap) and become one prism each."""
+
+    def __init__(self, tolerance: float):
+        self.tolerance = tolerance
+        self.footprints = {}
+
+    def add(self, run: np.ndarray, radius: float, bottom: float) -> None:
+        """The shank of radius ``radius`` from height ``bottom`` up, along the level run (its points, (n, 2+))."""
+        self.footprints.setdefault(round(bottom, 9), []).append((run[:, :2], radius))
+
+    def pieces(self, top: float) -> list:
+        """Functions building one prism per height, reaching 1 mm above ``top`` and more (each
+        its own amount: many tops in one plane make the union slow)."""
+        def prism(bottom, parts):
+            area = CrossSection.batch_boolean([footprint(path, radius, self.tolerance / 4) for path, radius in parts],
+                                              OpType.Add)
+            lift = 0.05 + 0.45 * ((bottom * 0.3819660113) % 1.0)
+            return Manifold.extrude(area, top + 1.0 + lift - bottom).translate([0.0, 0.0, bottom])
+        return [lambda bottom=bottom, parts=parts: prism(bottom, parts) for bottom, parts in self.footprints.items()]
 
 
 def footprint(path: np.ndarray, radius: float, tolerance: float) -> CrossSection:

@@ -18,7 +18,11 @@ along runs wherever the geometry allows, instead of one hull per move:
   follows the path while it turns gently (the section stands on the bisector at each vertex);
   at a sharp corner, after 60 degrees of turning and at both ends it stops square to its move
   and a wedge of the tool (the section's outer half turned about the tool axis over the open
-  angle) fills the corner; at a reversal the whole tool does.
+  angle) fills the corner; at a reversal the whole tool does.  On a *level* run the shank
+  (a cylinder from where the end meets it up to above the stock) sweeps exactly its footprint,
+  the path offset by the radius: that is one prism (see :class:`Shanks`), and the tubes and
+  wedges carry the end alone, up SHANK_OVERLAP into the prism; a flat end mill's level run is
+  its prism alone, however jagged its path.
 * A *run of a radial ball* (turn-mill: the axis runs from the C axis through the tip): moves
   that travel across the axis rather than along it, level or ramping along the bar.  Its tube
   carries the tip-side half of the ball's great circle square to the move and the shank's two
@@ -34,7 +38,9 @@ Runs that add nothing are left out: a level run that another run along the same 
 from deeper down (an upright tool lower on the same vertical lines: the layers of a pocket with
 vertical walls; a radial tool nearer the C axis on the same rays: roughing rings and pocket
 layers on the side of a bar; see :class:`Repeats`), any stretch lying wholly over ground
-that deeper level runs have cleared to the top (see :class:`Floors`), and moves between runs
+that deeper level runs have cleared to the top (see :class:`Floors`), the moves of a level run
+that a deeper level run of the tool repeats (a pocket layer whose rings follow, in part, a deeper
+layer's; the tool below holds the tool at the ends of what is left), and moves between runs
 that a level run holds from below (a ramp entry along its contour; see :class:`LevelPaths`).
 
 Budget of a tube: the section's facets a quarter of the tolerance (either side), the
@@ -42,7 +48,8 @@ joints a quarter (at a vertex turning by d the section stands full size across t
 the tube lies W (1/cos(d/2) - 1) inside the sweep on the inner side), the section shrunk by an
 eighth so the path can be thinned to within an eighth (a quarter in all), and on a slope the
 upright section up to a quarter (on a level path, that quarter goes to the joints too).  A
-straight run needs no thinning room: its section is not shrunk.
+straight run needs no thinning room: its section is not shrunk.  A prism's facets (its round
+ends and joins) lie inside the offset within a quarter; it has no other error.
 
 Budget of a level staircase: facets a half, the tool shrunk by a quarter (for a row's dip and
 straightness, or a run of moves merged into one hull), and a quarter for each move it leaves
@@ -57,7 +64,7 @@ from manifold3d import CrossSection, Error, Manifold, Mesh64, OpType
 
 from ..ir.program import Tool
 from .facets import area_scale, outside, polygon_sides, segments_for, tool_points, tool_rings  # noqa: F401 (the engine's names)
-from .floors import Floors, footprint
+from .floors import Floors, Shanks
 from .repeats import Level, LevelPaths, RadialLevel, Repeats
 
 MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
@@ -73,7 +80,7 @@ ROW_STRAIGHTNESS = 0.02          # of the tolerance: how far the vertices of one
 # the stock (in a bar, every tool's shank reaches out of it, and far-reaching unions grow slow),
 # large enough that the solid is not rebuilt too often
 CHUNK_TRIANGLES = 25_000
-SHANK_OVERLAP = 0.5              # mm: a level run's tubes reach this far up its shank's prism (see :func:`_prism`)
+SHANK_OVERLAP = 0.5              # mm: a level run's tubes reach this far up its shank's prism (see :class:`Shanks`)
 LEVEL = 1e-6                     # mm: a run whose height varies less than this is level (posts round to 1e-4)
 
 
@@ -133,13 +140,14 @@ def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = CHUNK_TRIA
     repeats, paths = Repeats(), LevelPaths()
     for tool, run in levels:
         paths.add(tool, run)
-    pieces = []
+    pieces, shanks = [], Shanks(tolerance)
     for chain in chains:
-        pieces += _chain_pieces(chain, tolerance, bounds, floors, repeats, paths)
+        pieces += _chain_pieces(chain, tolerance, bounds, floors, repeats, paths, shanks)
     # each run kept from the repeats is one piece: its own tubes unioned first (near each other,
     # they go fast)
     pieces += [lambda made=made: Manifold.batch_boolean([m() for m in made], OpType.Add)
                for made in repeats.kept() if made]
+    pieces += shanks.pieces(bounds[5])       # after every run is planned (repeats.kept plans the level ones)
     solid = stock
     swept, size = [], 0
     for done, make in enumerate(pieces, 1):
@@ -160,7 +168,7 @@ def level_runs(chains: list) -> list:
             for i, j in _gentle_runs(chain.points, 0.0)]
 
 
-def _chain_pieces(chain, tolerance: float, bounds, floors, repeats, paths=None) -> list:
+def _chain_pieces(chain, tolerance: float, bounds, floors, repeats, paths=None, shanks=None) -> list:
     """The chain as pieces, each a function that builds its solid: its gentle runs as tubes, and
     hulls for the moves between them but those a level run holds from below (``paths``, a
     LevelPaths: a ramp entry along the contour it then cuts).  Level runs (radial ones: at one height) go to
@@ -206,9 +214,9 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats, paths=None) 
                 held = (closed[0] if a == 0 else True, closed[1] if b == len(run) - 1 else True)
                 repeats.add((chain.tool, np.round(part[:, :2], 6).tobytes()), Level(part),
                             lambda part=part, held=held: _axial_run(chain, part, whole, height, tolerance, bounds,
-                                                                    floors, held))
+                                                                    floors, held, shanks))
         else:
-            pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors, closed)
+            pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors, closed, shanks)
     for i, j in zip(starts, ends):
         ranges = ([] if j <= i else [(0, j - i)] if paths is None or chain.radial
                   else paths.needed(chain.tool, p[i:j + 1]))
@@ -277,7 +285,7 @@ def _hull_pieces(chain, p, axes, whole, height, tolerance, bounds) -> list:
 
 
 def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance: float, bounds, floors,
-               closed: tuple = (False, False)) -> list:
+               closed: tuple = (False, False), shanks: Shanks | None = None) -> list:
     """path (+) tool for an upright tool along a gentle run: the tool's section through its axis
     (end and shank, up to above the stock) carried along the path as tubes, upright and across
     the path, with wedges of the tool at sharp corners and at both ends; stretches that deeper
@@ -300,28 +308,21 @@ def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance
     prism = np.ptp(p[:, 2]) <= LEVEL and reach > rings[-1][1] + SHANK_OVERLAP
     section = _section(rings, r - inset, rings[-1][1] + SHANK_OVERLAP if prism else reach)
     pieces = []
+    own = Shanks(tolerance) if shanks is None else shanks
     for a, b in floors.needed(p, r):
         if prism and not tool.corner_radius and not tool.shape.pointed:
-            pieces.append(_prism(p[a:b + 1], r, 0.0, top, tolerance))      # a flat end mill: the prism is all
+            own.add(p[a:b + 1], r, float(p[0, 2]))       # a flat end mill: the prism is all
             continue
         tubes = _tube_pieces(p[a:b + 1], section, tolerance, (closed[0] and a == 0, closed[1] and b == len(p) - 1))
         if tubes is not None:
-            pieces += tubes + ([_prism(p[a:b + 1], r, rings[-1][1] + SHANK_OVERLAP / 2, top, tolerance)] if prism else [])
+            pieces += tubes
+            if prism:
+                own.add(p[a:b + 1], r, float(p[0, 2]) + rings[-1][1] + SHANK_OVERLAP / 2)
         elif tool.shape.staircase and np.ptp(p[a:b + 1, 2]) <= LEVEL:
             pieces += _level_staircase(chain, p[a:b + 1], height, tolerance, bounds)
         else:
             pieces += _hull_pieces(chain, p[a:b + 1], None, whole, height, tolerance, bounds)
-    return pieces
-
-
-def _prism(run: np.ndarray, radius: float, above: float, top: float, tolerance: float):
-    """The sweep of the tool's shank (a cylinder of ``radius`` from ``above`` the tip up to above
-    the stock) along the level run: its footprint (see :func:`footprint`, facets inside within a
-    quarter of the tolerance) extruded, its top lifted by an amount of its own (see :func:`_lifted`)."""
-    bottom = float(run[0, 2]) + above
-    lift = 0.05 + 0.45 * ((len(run) * 0.6180339887 + bottom * 0.3819660113) % 1.0)
-    return lambda: Manifold.extrude(footprint(run[:, :2], radius, tolerance / 4),
-                                    top + 1.0 + lift - bottom).translate([0.0, 0.0, bottom])
+    return pieces + (own.pieces(top) if shanks is None else [])
 
 
 def _level_staircase(chain, p: np.ndarray, height: float, tolerance: float, bounds) -> list:
