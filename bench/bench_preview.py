@@ -7,15 +7,76 @@ within 0.05 mm of the exact cut, always on the side of leaving material.  The no
 removed volume against the height field's (0.1 mm cells) as a cross-check.  Issue #7's target:
 every sample under 10 s; issue #32's: within 3x the height field's CPU (the notes give
 the ratio).  Each job runs once.  A last row runs a program of 1e5 moves (ramped circles, see
-:func:`ramped_circles`) the same way, and again as the code before ramp entries were left out.
+:func:`ramped_circles`) the same way.  Every exact preview runs twice in child processes, side by
+side in the same run: with this code and with the code of commit BASE (before issue #32's level-run
+prisms; checked out by ``git archive`` into a temporary folder), each after an untimed height-field
+run that loads the compiled kernels.
 """
 from __future__ import annotations
 
+import json
 import os
+import pickle
+import subprocess
+import sys
+import tarfile
 import tempfile
 import time
 
 TOLERANCE = 0.05   # mm: the preview's allowed error
+BASE = "495f8bd"   # the exact preview before issue #32's prisms and left-out repeated moves
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+_CHILD = """
+import json, os, pickle, sys, time
+sys.path.insert(0, sys.argv[1])
+from batch import import_package
+import_package()
+from kezuri.toolpath import simulate as sim
+program, stock, extra, cell = pickle.load(open(sys.argv[2], "rb"))
+sim.simulate(program, stock, cell=cell, **extra)                  # loads the compiled kernels
+cpu = time.process_time()
+exact = sim.simulate(program, stock, engine="manifold", cell=cell, tolerance=float(sys.argv[3]), **extra)
+print(json.dumps({"cpu": time.process_time() - cpu, "removed": exact.removed_volume_mm3}))
+"""
+
+
+def base_tree() -> str:
+    """A temporary folder holding the code of commit BASE."""
+    folder = tempfile.mkdtemp(prefix="kezuri-base-")
+    archive = subprocess.run(["git", "-C", ROOT, "archive", "--format=tar", BASE], check=True,
+                             capture_output=True).stdout
+    with tarfile.open(fileobj=__import__("io").BytesIO(archive)) as tar:
+        tar.extractall(folder, filter="data")
+    return folder
+
+
+def exact_in_child(root: str, program, stock, extra: dict, cell: float) -> dict:
+    """CPU seconds and removed volume of the exact preview with the code in ``root``, in a child process."""
+    with tempfile.NamedTemporaryFile(suffix=".pickle", delete=False) as stream:
+        pickle.dump((program, stock, extra, cell), stream)
+    try:
+        out = subprocess.run([sys.executable, "-c", _CHILD, root, stream.name, str(TOLERANCE)], check=True,
+                             capture_output=True, text=True).stdout
+    finally:
+        os.unlink(stream.name)
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def side_by_side(base: str, program, stock, extra: dict, cell: float, field_cpu: float) -> str:
+    """The note comparing this code's exact preview with BASE's, both in child processes, and
+    (an added figure; issue #32's target is against the 0.1 mm field) with a height field of
+    0.05 mm cells, about as fine as the preview's 0.05 mm tolerance."""
+    from kezuri.toolpath import simulate as sim
+
+    now, before = (exact_in_child(root, program, stock, extra, cell) for root in (ROOT, base))
+    cpu = time.process_time()
+    fine = sim.simulate(program, stock, cell=0.05, **extra)
+    fine_cpu = time.process_time() - cpu
+    return (f"side by side in child processes: CPU {now['cpu']:.2f} s ({now['cpu'] / max(field_cpu, 1e-9):.0f}x), "
+            f"removed {now['removed']:.1f} mm^3; commit {BASE}: {before['cpu']:.2f} s "
+            f"({before['cpu'] / max(field_cpu, 1e-9):.0f}x), {before['removed']:.1f} mm^3; "
+            f"{before['cpu'] / max(now['cpu'], 1e-9):.2f}x faster; a 0.05 mm height field: {fine_cpu:.2f} s, "
+            f"removed {fine.removed_volume_mm3:.1f} mm^3, exact/that {now['cpu'] / max(fine_cpu, 1e-9):.1f}x")
 
 
 def _sample_jobs():
@@ -45,6 +106,20 @@ def _sample_jobs():
 def run():
     from kezuri.toolpath import simulate as sim
 
+    import shutil
+
+    rows = []
+    base = base_tree()
+    try:
+        rows = _rows(base)
+    finally:
+        shutil.rmtree(base, ignore_errors=True)
+    return rows
+
+
+def _rows(base: str) -> list:
+    from kezuri.toolpath import simulate as sim
+
     rows = []
     for name, (program, stock, extra, _, _) in _sample_jobs():
         moves = sum(len(op) for op in program.operations)
@@ -60,8 +135,9 @@ def run():
                      "notes": f"tolerance {TOLERANCE} mm; removed {exact.removed_volume_mm3:.0f} mm^3, "
                               f"{difference:+.2%} against the height field at 0.1 mm ({field.seconds:.2f} s); "
                               f"{len(exact.findings)} findings; CPU {exact_cpu:.2f} s against the height "
-                              f"field's {field_cpu:.2f} s: {exact_cpu / max(field_cpu, 1e-9):.0f}x (issue #32: 3x)"})
-    rows.append(big_row())
+                              f"field's {field_cpu:.2f} s: {exact_cpu / max(field_cpu, 1e-9):.0f}x (issue #32: 3x); "
+                              + side_by_side(base, program, stock, extra, 0.5, field_cpu)})
+    rows.append(big_row(base))
     return rows
 
 
@@ -100,13 +176,12 @@ def ramped_circles(grid: int = 10, layers: int = 3, moves: int = 140):
     return [operation], (-6.0, -6.0, -10.0, grid * 6.0, grid * 6.0, 0.0)
 
 
-def big_row(old: bool = True):
-    """The 1e5-move row: height field, exact preview, and (``old``) the exact preview with every
-    move between runs swept, as the code swept them before ramp entries were left out."""
+def big_row(base: str | None = None):
+    """The 1e5-move row: height field and exact preview, and (``base``: a folder with the code of
+    commit BASE) the two exact previews side by side in child processes."""
     import math
 
     from kezuri.toolpath import simulate as sim
-    from kezuri.toolpath.simulate import repeats, sweep
 
     program, plate = ramped_circles()
     moves = sum(len(op) for op in program)
@@ -121,18 +196,7 @@ def big_row(old: bool = True):
              f"closed form, {field.removed_volume_mm3 / closed - 1:+.2%} for the height field); CPU {exact_cpu:.1f} s "
              f"against the height field's {field_cpu:.2f} s: "
              f"{exact_cpu / max(field_cpu, 1e-9):.0f}x (issue #32: 3x)")
-    if old:
-        class SweptAll(repeats.LevelPaths):
-            def needed(self, tool, points):
-                return [(0, len(points) - 1)]
-        sweep.LevelPaths, kept = SweptAll, sweep.LevelPaths
-        try:
-            cpu = time.process_time()
-            before = sim.simulate(program, plate, engine="manifold", tolerance=TOLERANCE)
-            old_cpu = time.process_time() - cpu
-        finally:
-            sweep.LevelPaths = kept
-        notes += (f"; every move swept (the code before): CPU {old_cpu:.1f} s, {old_cpu / max(field_cpu, 1e-9):.0f}x, "
-                  f"removed {before.removed_volume_mm3:.0f} mm^3")
+    if base is not None:
+        notes += "; " + side_by_side(base, program, plate, {}, 0.1, field_cpu)
     return {"name": f"preview: manifold, {moves} moves (ramped circles)", "seconds": seconds, "target_s": None,
             "notes": notes}

@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 import pytest
-from manifold3d import Manifold, OpType
+from manifold3d import CrossSection, Manifold, OpType
 
 from kezuri.toolpath import simulate as sim
 from kezuri.toolpath.simulate import sweep
@@ -38,7 +38,7 @@ def pieces_of(tool, points, tolerance=0.01, stock=None, radial=False):
     stock = stock or stock_solid(sim.as_stock(BOX), tolerance)
     repeats = sweep.Repeats()
     makers = sweep._chain_pieces(chain(tool, points, radial=radial), tolerance, stock.bounding_box(),
-                                 sweep._Floors([], tolerance), repeats)
+                                 sweep.Floors([], tolerance), repeats)
     return [make() for make in makers + [m for made in repeats.kept() for m in made]]
 
 
@@ -141,7 +141,7 @@ def test_a_layer_wholly_inside_a_deeper_ones_footprint_is_left_out():
     # lies inside it, so it adds nothing
     deep = [circle(radius, -5.0) for radius in (6.0, 8.0, 10.0)]
     shallow = circle(8.0, -1.0)
-    floors = sweep._Floors([chain(FLAT6, ring) for ring in deep], 0.05)
+    floors = sweep.Floors(sweep.level_runs([chain(FLAT6, ring) for ring in deep]), 0.05)
     assert floors.needed(shallow, FLAT6.radius) == []
     assert floors.needed(circle(12.0, -1.0), FLAT6.radius) == [(0, 400)]      # pokes out: kept
     ops = [level_op(FLAT6, ring, f"ring {i}") for i, ring in enumerate(deep + [shallow])]
@@ -280,7 +280,7 @@ def test_a_ring_repeated_farther_from_the_c_axis_is_left_out():
     repeats = sweep.Repeats()
     for tips in rings + [ring(18.0, turns=0.5)]:
         assert sweep._chain_pieces(chain(BALL6, tips, radial=True), 0.05, stock.bounding_box(),
-                                   sweep._Floors([], 0.05), repeats) == []
+                                   sweep.Floors([], 0.05), repeats) == []
     assert len(repeats.kept()) == 2
     solid = sweep.cut(stock, [chain(BALL6, tips, radial=True) for tips in rings], 0.05)
     expected = radial_groove_volume(3.0, 20.0, 25.0)
@@ -297,7 +297,7 @@ def test_a_slot_repeated_at_every_depth_is_cut_once_at_the_bottom():
     stock = stock_solid(sim.as_stock(BOX), 0.01)
     repeats = sweep.Repeats()
     for tips in passes:
-        sweep._chain_pieces(chain(FLAT6, tips), 0.01, stock.bounding_box(), sweep._Floors([], 0.01), repeats)
+        sweep._chain_pieces(chain(FLAT6, tips), 0.01, stock.bounding_box(), sweep.Floors([], 0.01), repeats)
     assert len(repeats.kept()) == 1
     result = sim.simulate([level_op(FLAT6, tips, f"pass {k}") for k, tips in enumerate(passes)], BOX,
                           engine="manifold", tolerance=0.01)
@@ -323,7 +323,7 @@ def test_pocket_layers_on_the_side_of_a_bar_leave_out_the_ones_a_deeper_layer_co
     stock = stock_solid(sim.CylinderStock(radius=25.0, height=30), 0.05)
     for tips in chords:
         assert sweep._chain_pieces(chain(BALL6, tips, radial=True), 0.05, stock.bounding_box(),
-                                   sweep._Floors([], 0.05), repeats) == []
+                                   sweep.Floors([], 0.05), repeats) == []
     assert len(repeats.kept()) == 2
 
     def radial_op(tips, name):
@@ -381,3 +381,95 @@ def test_a_ramp_entry_along_the_contour_it_then_cuts_deeper_adds_no_pieces():
     # material left only, at most the tolerance deep over both walls (outer 4 L + 2 pi r, inner 4 (L - 2r))
     walls = (4 * 20.0 + 2 * math.pi * 3.0 + 4 * 14.0) * 2.0
     assert expected - 0.01 * walls <= result.removed_volume_mm3 <= expected * 1.001
+
+
+def test_a_flat_end_mills_level_run_is_one_prism_at_its_closed_form():
+    # a flat 6 mm round a 10 mm circle 2 mm deep, in 400 chords: the shank's sweep is the path
+    # offset by r, a prism; its facets lie inside within a quarter of the tolerance, so the groove
+    # pi ((R + r)^2 - (R - r)^2) d is met from below within a thousandth (chords and facets)
+    tips = circle(10.0, -2.0)
+    pieces = pieces_of(FLAT6, tips, tolerance=0.01)
+    assert len(pieces) == 1
+    lo, hi = np.split(np.asarray(pieces[0].bounding_box()), 2)
+    assert lo[2] == pytest.approx(-2.0) and hi[2] > BOX[5] and hi[0] == pytest.approx(13.0, abs=1e-3)
+    result = sim.simulate(level_op(FLAT6, tips), BOX, engine="manifold", tolerance=0.01)
+    expected = math.pi * (13.0 ** 2 - 7.0 ** 2) * 2.0
+    assert expected * 0.999 < result.removed_volume_mm3 <= expected
+
+
+def test_a_flat_end_mills_jagged_level_run_is_its_exact_sweep():
+    # the staircase that other tools cut as hulls: for a flat end mill the prism is exact, so the
+    # cut is the stairs' 2-D offset (an independent Clipper offset of each move's stadium) times
+    # the depth, within the facets
+    steps = np.asarray([[-10.0 + 0.5 * (k // 2 + k % 2), 0.5 * (k // 2), -1.5] for k in range(40)])
+    pieces = pieces_of(FLAT6, steps, tolerance=0.01)
+    assert len(pieces) == 1
+    stadiums = [CrossSection.circle(3.0, 720).translate(list(a[:2])) + CrossSection.circle(3.0, 720).translate(list(b[:2]))
+                for a, b in zip(steps[:-1], steps[1:])]
+    hulls = CrossSection.batch_boolean([CrossSection.batch_hull([s]) for s in stadiums], OpType.Add)
+    result = sim.simulate(level_op(FLAT6, steps), BOX, engine="manifold", tolerance=0.01)
+    expected = hulls.area() * 1.5
+    assert expected * 0.999 < result.removed_volume_mm3 <= expected * 1.0001
+
+
+def test_a_ball_level_run_carries_its_end_in_tubes_and_its_shank_in_a_prism():
+    # the tubes stop SHANK_OVERLAP (and a lift under half a millimetre) above the ball's equator;
+    # one prism reaches from inside them to above the stock; together they lie inside the exact
+    # sweep and hold the sweep of the tool shrunk by the tolerance
+    tolerance = 0.05
+    tips = circle(8.0, -4.0, n=120)
+    pieces = pieces_of(BALL6, tips, tolerance=tolerance)
+    tops = sorted(p.bounding_box()[5] for p in pieces)
+    assert tops[-1] > BOX[5] and tops[-2] < -4.0 + 3.0 + sweep.SHANK_OVERLAP + 0.5 + 1e-9
+    swept = Manifold.batch_boolean(pieces, OpType.Add)
+    samples = surface_samples(swept)
+    assert depth_outside_ball_sweep(samples[samples[:, 2] < BOX[5]], tips, 3.0).max() < sweep.outside(BALL6, tolerance) + 1e-6
+    shrunk = sweep.tool_points(BALL6, 0.005, 8.0, inset=tolerance)
+    inner = Manifold.batch_boolean([Manifold.hull_points(sweep.placed(shrunk, tips[k:k + 2], None))
+                                    for k in range(len(tips) - 1)], OpType.Add)
+    stock = stock_solid(sim.as_stock(BOX), tolerance)
+    assert ((inner ^ stock) - swept).volume() < 1e-6
+
+
+def test_the_moves_of_a_layer_that_a_deeper_layer_repeats_are_left_out():
+    # a ball runs a 20 mm square at -3, then at -1.5 the same square with a detour out to the
+    # side along one edge: only the detour is cut at -1.5 (its ends held by the deeper square),
+    # and the cut is the same as with every move swept
+    deep = square_loop(20.0, -3.0)
+    loop = square_loop(20.0, -1.5)
+    detour = np.array([[-2.0, -10.0], [-2.0, -14.0], [2.0, -14.0], [2.0, -10.0]])
+    k = int(np.flatnonzero(np.all(np.isclose(loop[:, :2], [-2.0, -10.0]), axis=1))[0])
+    upper = np.vstack([loop[:k], np.column_stack([detour, np.full(4, -1.5)]),
+                       loop[np.flatnonzero(np.all(np.isclose(loop[:, :2], [2.0, -10.0]), axis=1))[0] + 1:]])
+    paths = sweep.LevelPaths()
+    paths.add(BALL6, deep)
+    paths.add(BALL6, upper)
+    assert paths.not_held_below(BALL6, upper) == [(k, k + 3)]
+    assert paths.not_held_below(BALL6, deep) == [(0, len(deep) - 1)]          # never held by itself
+    ops = [level_op(BALL6, deep, "deep"), level_op(BALL6, upper, "upper")]
+    result = sim.simulate(ops, BOX, engine="manifold", tolerance=0.01)
+    kept = sweep.LevelPaths.not_held_below
+    try:
+        sweep.LevelPaths.not_held_below = lambda self, tool, run: [(0, len(run) - 1)]
+        every = sim.simulate(ops, BOX, engine="manifold", tolerance=0.01)
+    finally:
+        sweep.LevelPaths.not_held_below = kept
+    assert result.removed_volume_mm3 == pytest.approx(every.removed_volume_mm3, rel=1e-4)
+    field = sim.simulate(ops, BOX, cell=0.05)
+    assert result.removed_volume_mm3 == pytest.approx(field.removed_volume_mm3, rel=0.01)
+
+
+def test_shanks_at_one_height_are_one_prism_and_the_rings_cut_their_closed_form():
+    # three overlapping rings of a flat 6 mm at -2 (footprints 3..9, 7..13, 11..17 mm round the
+    # origin) and one at -1: two prisms, one per height; the -2 rings cut the annulus 3..17
+    # (the -1 ring lies inside it and adds nothing)
+    rings = [circle(radius, -2.0) for radius in (6.0, 10.0, 14.0)] + [circle(10.0, -1.0)]
+    shanks = sweep.Shanks(0.01)
+    for ring in rings:
+        shanks.add(ring, 3.0, float(ring[0, 2]))
+    prisms = [make() for make in shanks.pieces(BOX[5])]
+    assert sorted(round(p.bounding_box()[2], 9) for p in prisms) == [-2.0, -1.0]
+    ops = [level_op(FLAT6, ring, f"ring {k}") for k, ring in enumerate(rings)]
+    result = sim.simulate(ops, (-40, -40, -20, 40, 40, 0), engine="manifold", tolerance=0.01)
+    expected = math.pi * (17.0 ** 2 - 3.0 ** 2) * 2.0
+    assert expected * 0.999 < result.removed_volume_mm3 <= expected

@@ -53,8 +53,9 @@ Layout: stock.py (settings, stocks, findings, the height field), paths.py (moves
 families.py (the height field's regions), heightfield.py (the grid and its evaluation),
 kernel.py (the compiled kernels), meshtop.py (a mesh's upper envelope over the grid), checks.py
 (design heights and findings), meshes.py (preview meshes, solids <-> arrays), result.py (what a
-simulation returns), radiusmap.py (radial turn-mill work), sweep.py and repeats.py (the manifold engine's
-swept solids), api.py (:func:`simulate` and :func:`check`).
+simulation returns), radiusmap.py (radial turn-mill work), sweep.py, facets.py, floors.py and repeats.py
+(the manifold engine's swept solids: pieces, the tool as facets, footprints and shank prisms, runs
+that repeat), api.py (:func:`simulate` and :func:`check`).
 """
 from __future__ import annotations
 

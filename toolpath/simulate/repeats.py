@@ -99,25 +99,38 @@ class LevelPaths:
     contour it then cuts at depth is such a run of moves."""
 
     def __init__(self):
-        self.lowest = {}
+        self.lowest = {}         # tool -> {move's two ends: lowest height}
 
     @staticmethod
-    def _keys(tool, points: np.ndarray) -> list:
+    def _keys(points: np.ndarray) -> list:
         ends = np.round(points[:, :2], 6).tolist()
-        return [(tool,) + tuple(sorted((tuple(a), tuple(b)))) for a, b in zip(ends[:-1], ends[1:])]
+        return [(a[0], a[1], b[0], b[1]) if a <= b else (b[0], b[1], a[0], a[1]) for a, b in zip(ends[:-1], ends[1:])]
 
     def add(self, tool, run: np.ndarray) -> None:
         """The level run ``run`` (points (n, 3), one height) of ``tool``, which is cut."""
         z = round(float(run[0, 2]), 6)
-        for key in self._keys(tool, run):
-            self.lowest[key] = min(self.lowest.get(key, math.inf), z)
+        lowest = self.lowest.setdefault(tool, {})
+        for key in self._keys(run):
+            if lowest.get(key, math.inf) > z:
+                lowest[key] = z
 
     def covered(self, tool, points: np.ndarray) -> np.ndarray:
         """Per move of the polyline ``points``: whether a level run of ``tool`` holds it from
         below (the same two ends seen from above, at or below the move's lower end)."""
+        lowest = self.lowest.get(tool, {})
         low = np.round(np.minimum(points[:-1, 2], points[1:, 2]), 6)
-        return np.array([self.lowest.get(key, math.inf) <= z + 1e-9
-                         for key, z in zip(self._keys(tool, points), low.tolist())], bool)
+        return np.array([lowest.get(key, math.inf) <= z + 1e-9 for key, z in zip(self._keys(points), low.tolist())],
+                        bool)
+
+    def not_held_below(self, tool, run: np.ndarray) -> list:
+        """(first, last) point ranges of the level run ``run`` (one height) whose moves no level run
+        of ``tool`` holds from strictly deeper down (the run never holds itself): a pocket layer
+        whose rings repeat, in part, the path of a deeper layer."""
+        z = round(float(run[0, 2]), 6)
+        lowest = self.lowest.get(tool, {})
+        keep = np.array([lowest.get(key, math.inf) >= z - 1e-9 for key in self._keys(run)], bool)
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], keep.astype(np.int8), [0]])))
+        return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]
 
     def needed(self, tool, points: np.ndarray) -> list:
         """(first, last) point ranges of the polyline's moves to cut: all but those held from

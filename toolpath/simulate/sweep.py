@@ -18,7 +18,11 @@ along runs wherever the geometry allows, instead of one hull per move:
   follows the path while it turns gently (the section stands on the bisector at each vertex);
   at a sharp corner, after 60 degrees of turning and at both ends it stops square to its move
   and a wedge of the tool (the section's outer half turned about the tool axis over the open
-  angle) fills the corner; at a reversal the whole tool does.
+  angle) fills the corner; at a reversal the whole tool does.  On a *level* run the shank
+  (a cylinder from where the end meets it up to above the stock) sweeps exactly its footprint,
+  the path offset by the radius: that is one prism (see :class:`Shanks`), and the tubes and
+  wedges carry the end alone, up SHANK_OVERLAP into the prism; a flat end mill's level run is
+  its prism alone, however jagged its path.
 * A *run of a radial ball* (turn-mill: the axis runs from the C axis through the tip): moves
   that travel across the axis rather than along it, level or ramping along the bar.  Its tube
   carries the tip-side half of the ball's great circle square to the move and the shank's two
@@ -34,7 +38,9 @@ Runs that add nothing are left out: a level run that another run along the same 
 from deeper down (an upright tool lower on the same vertical lines: the layers of a pocket with
 vertical walls; a radial tool nearer the C axis on the same rays: roughing rings and pocket
 layers on the side of a bar; see :class:`Repeats`), any stretch lying wholly over ground
-that deeper level runs have cleared to the top (see :class:`_Floors`), and moves between runs
+that deeper level runs have cleared to the top (see :class:`Floors`), the moves of a level run
+that a deeper level run of the tool repeats (a pocket layer whose rings follow, in part, a deeper
+layer's; the tool below holds the tool at the ends of what is left), and moves between runs
 that a level run holds from below (a ramp entry along its contour; see :class:`LevelPaths`).
 
 Budget of a tube: the section's facets a quarter of the tolerance (either side), the
@@ -42,7 +48,8 @@ joints a quarter (at a vertex turning by d the section stands full size across t
 the tube lies W (1/cos(d/2) - 1) inside the sweep on the inner side), the section shrunk by an
 eighth so the path can be thinned to within an eighth (a quarter in all), and on a slope the
 upright section up to a quarter (on a level path, that quarter goes to the joints too).  A
-straight run needs no thinning room: its section is not shrunk.
+straight run needs no thinning room: its section is not shrunk.  A prism's facets (its round
+ends and joins) lie inside the offset within a quarter; it has no other error.
 
 Budget of a level staircase: facets a half, the tool shrunk by a quarter (for a row's dip and
 straightness, or a run of moves merged into one hull), and a quarter for each move it leaves
@@ -50,13 +57,14 @@ out (its dip plus its distance from paths already held; see :func:`_level_stairc
 """
 from __future__ import annotations
 
-import bisect
 import math
 
 import numpy as np
-from manifold3d import CrossSection, Error, FillRule, JoinType, Manifold, Mesh64, OpType
+from manifold3d import CrossSection, Error, Manifold, Mesh64, OpType
 
 from ..ir.program import Tool
+from .facets import area_scale, outside, polygon_sides, segments_for, tool_points, tool_rings  # noqa: F401 (the engine's names)
+from .floors import Floors, Shanks
 from .repeats import Level, LevelPaths, RadialLevel, Repeats
 
 MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
@@ -72,92 +80,8 @@ ROW_STRAIGHTNESS = 0.02          # of the tolerance: how far the vertices of one
 # the stock (in a bar, every tool's shank reaches out of it, and far-reaching unions grow slow),
 # large enough that the solid is not rebuilt too often
 CHUNK_TRIANGLES = 25_000
+SHANK_OVERLAP = 0.5              # mm: a level run's tubes reach this far up its shank's prism (see :class:`Shanks`)
 LEVEL = 1e-6                     # mm: a run whose height varies less than this is level (posts round to 1e-4)
-
-
-def segments_for(radius: float, tolerance: float) -> int:
-    """Polygon sides (a multiple of 4) so a faceted sphere of this radius stays within
-    ``tolerance`` of the true one (a facet's centre sags about twice the edge's sagitta)."""
-    ratio = max(-1.0, 1.0 - tolerance / (2.0 * radius))
-    n = math.ceil(math.pi / max(math.acos(ratio), 1e-6))
-    return int(min(max(4 * math.ceil(n / 4), 8), 720))
-
-
-def _polygon_sides(radius: float, sagitta: float) -> int:
-    """Sides (a multiple of 4) of a polygon inscribed in a circle of this radius whose edges sag
-    at most ``sagitta`` from it (a 2-D outline; see :func:`segments_for` for spheres)."""
-    return 4 * math.ceil(math.pi / math.acos(max(-1.0, 1.0 - sagitta / radius)) / 4)
-
-
-def area_scale(steps: int) -> float:
-    """Radius factor k for the inner vertices of a polygon along a quarter circle in ``steps``
-    edges, its two ends kept on the circle, so it has the quarter's area: the two end
-    triangles k R^2 sin(a) / 2 and the others (k R)^2 sin(a) / 2 add up to the sectors
-    steps R^2 a / 2, a = (pi / 2) / steps.  Its inner vertices lie R (k - 1) outside the circle
-    (~ R a^2 / 12, two thirds of the inscribed polygon's sagitta R a^2 / 8), its edges'
-    middles up to ~ a third of that sagitta inside."""
-    if steps < 2:
-        return 1.0
-    a = math.pi / 2 / steps
-    ratio = steps * a / math.sin(a)
-    if steps == 2:
-        return ratio / 2
-    return (-2.0 + math.sqrt(4.0 + 4.0 * (steps - 2) * ratio)) / (2.0 * (steps - 2))
-
-
-def tool_rings(tool: Tool, tolerance: float, inset: float = 0.0) -> list:
-    """The tool's end from the tip up, as (radius, height above the tip) rings on the surface of
-    the tool shrunk by ``inset`` all round; the last ring is where the end meets the shank.
-
-    Ball, flat and bull are a flat disc rounded by a corner radius; shrinking by ``inset``
-    lifts the bottom by ``inset`` and takes ``inset`` off the corner radius (a corner sharper
-    than ``inset`` becomes square on a disc ``inset`` smaller).  The corner's arc is an
-    area-equal polygon from the bottom ring to the equator, both on it (see
-    :func:`area_scale`): its inner vertices lie up to two thirds of its sagitta outside the
-    arc, so a sweep of it is not biased to material left."""
-    r = tool.radius
-    if tool.shape.pointed:
-        return [(0.0, 0.0), (r, r / tool.shape.tip_tan)]
-    rc = max(tool.corner_radius - inset, 0.0)
-    flat = r - inset - rc
-    rings = [(flat, inset)]
-    steps = max(1, segments_for(rc, tolerance) // 4) if rc > 0 else 0
-    k = area_scale(steps)
-    for i, beta in enumerate(np.arange(1, steps + 1) * (math.pi / 2 / max(steps, 1)), 1):
-        radius = rc if i == steps else k * rc
-        rings.append((flat + radius * math.sin(beta), inset + rc - radius * math.cos(beta)))
-    return rings
-
-
-def tool_points(tool: Tool, tolerance: float, height: float, inset: float = 0.0) -> np.ndarray:
-    """Vertices of the tool, tip at the origin, up to ``height`` above the tip (at least 1 mm above
-    its end), on the surface of the tool shrunk by ``inset``: inscribed polygons round its axis
-    (a hull of the tool at two places is as wide as those polygons across the move, which is the
-    true width when a vertex points across it), the area-equal one along its corner (see
-    :func:`tool_rings`).  Their hull lies within the tolerance of the shrunk tool, beyond it by
-    at most :func:`outside`."""
-    rings = tool_rings(tool, tolerance, inset)
-    rings.append((rings[-1][0], max(height, rings[-1][1] + 1.0)))
-    n = segments_for(tool.radius, tolerance)
-    around = np.arange(n) * (2 * math.pi / n)
-    pts = []
-    for radius, z in rings:
-        if radius < 1e-12:
-            pts.append(np.array([[0.0, 0.0, z]]))
-        else:
-            pts.append(np.column_stack([radius * np.cos(around), radius * np.sin(around), np.full(n, z)]))
-    return np.vstack(pts)
-
-
-def outside(tool: Tool, tolerance: float) -> float:
-    """How far the vertices of :func:`tool_points` and :func:`tool_rings` (and so the pieces
-    built of them) reach beyond the tool shrunk by ``inset``: the area-equal corner's
-    rc (k - 1), at most two thirds of its sagitta (a sixth of ``tolerance`` where the facets
-    are given half of it, as in :func:`segments_for`)."""
-    rc = tool.corner_radius
-    if tool.shape.pointed or rc <= 0:
-        return 0.0
-    return rc * (area_scale(max(1, segments_for(rc, tolerance) // 4)) - 1)
 
 
 def straight_runs(points: np.ndarray, deviation: float) -> list:
@@ -211,18 +135,19 @@ def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = CHUNK_TRIA
     triangles, and subtracted; ``progress(fraction)`` is called after each chunk (it may raise
     to cancel)."""
     bounds = stock.bounding_box()
-    floors = _Floors([chain for chain in chains if not chain.radial], tolerance)
+    levels = level_runs(chains)
+    floors = Floors(levels, tolerance)
     repeats, paths = Repeats(), LevelPaths()
+    for tool, run in levels:
+        paths.add(tool, run)
+    pieces, shanks = [], Shanks(tolerance)
     for chain in chains:
-        for i, j in ([] if chain.radial else _gentle_runs(chain.points, 0.0)):
-            paths.add(chain.tool, chain.points[i:j + 1])
-    pieces = []
-    for chain in chains:
-        pieces += _chain_pieces(chain, tolerance, bounds, floors, repeats, paths)
+        pieces += _chain_pieces(chain, tolerance, bounds, floors, repeats, paths, shanks)
     # each run kept from the repeats is one piece: its own tubes unioned first (near each other,
     # they go fast)
     pieces += [lambda made=made: Manifold.batch_boolean([m() for m in made], OpType.Add)
                for made in repeats.kept() if made]
+    pieces += shanks.pieces(bounds[5])       # after every run is planned (repeats.kept plans the level ones)
     solid = stock
     swept, size = [], 0
     for done, make in enumerate(pieces, 1):
@@ -237,7 +162,13 @@ def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = CHUNK_TRIA
     return solid
 
 
-def _chain_pieces(chain, tolerance: float, bounds, floors, repeats, paths=None) -> list:
+def level_runs(chains: list) -> list:
+    """(tool, points) of every level run of an upright tool (see :func:`_gentle_runs`)."""
+    return [(chain.tool, chain.points[i:j + 1]) for chain in chains if not chain.radial
+            for i, j in _gentle_runs(chain.points, 0.0)]
+
+
+def _chain_pieces(chain, tolerance: float, bounds, floors, repeats, paths=None, shanks=None) -> list:
     """The chain as pieces, each a function that builds its solid: its gentle runs as tubes, and
     hulls for the moves between them but those a level run holds from below (``paths``, a
     LevelPaths: a ramp entry along the contour it then cuts).  Level runs (radial ones: at one height) go to
@@ -276,12 +207,16 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats, paths=None) 
                 pieces += make()
         elif level:
             # a pocket with vertical walls repeats its path at every depth: the same tool lower
-            # down contains it
-            repeats.add((chain.tool, np.round(run[:, :2], 6).tobytes()), Level(run),
-                        lambda run=run, closed=closed: _axial_run(chain, run, whole, height, tolerance, bounds,
-                                                                  floors, closed))
+            # down contains it, the whole run (see Repeats) or some of its moves (see LevelPaths,
+            # and there the tool lower down holds the whole tool at the ends of what is left)
+            for a, b in [(0, len(run) - 1)] if paths is None else paths.not_held_below(chain.tool, run):
+                part = run[a:b + 1]
+                held = (closed[0] if a == 0 else True, closed[1] if b == len(run) - 1 else True)
+                repeats.add((chain.tool, np.round(part[:, :2], 6).tobytes()), Level(part),
+                            lambda part=part, held=held: _axial_run(chain, part, whole, height, tolerance, bounds,
+                                                                    floors, held, shanks))
         else:
-            pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors, closed)
+            pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors, closed, shanks)
     for i, j in zip(starts, ends):
         ranges = ([] if j <= i else [(0, j - i)] if paths is None or chain.radial
                   else paths.needed(chain.tool, p[i:j + 1]))
@@ -350,11 +285,11 @@ def _hull_pieces(chain, p, axes, whole, height, tolerance, bounds) -> list:
 
 
 def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance: float, bounds, floors,
-               closed: tuple = (False, False)) -> list:
+               closed: tuple = (False, False), shanks: Shanks | None = None) -> list:
     """path (+) tool for an upright tool along a gentle run: the tool's section through its axis
     (end and shank, up to above the stock) carried along the path as tubes, upright and across
     the path, with wedges of the tool at sharp corners and at both ends; stretches that deeper
-    level runs have already cleared (see :class:`_Floors`) are left out.  A run too jagged for
+    level runs have already cleared (see :class:`Floors`) are left out.  A run too jagged for
     tubes (see :func:`_tube_pieces`) is cut as hulls, or if it is a level staircase of a ball or
     flat end mill, as rows of tool places (see :func:`_level_staircase`).  ``closed``: whether
     other pieces already hold the whole tool at the run's first and last point."""
@@ -367,17 +302,27 @@ def _axial_run(chain, p: np.ndarray, whole: np.ndarray, height: float, tolerance
     facets, inset = _section_budget(r, tolerance)
     if len(straight_runs(p, LEVEL)) == 2:
         inset = 0.0         # a straight run is followed exactly: no room needed to thin it
-    section = _section(tool_rings(tool, 2 * facets, inset), r - inset, top + 1.0 - lo[2])
+    rings = tool_rings(tool, 2 * facets, inset)
+    reach = top + 1.0 - lo[2]
+    # a level run's shank sweeps its footprint: a prism, and the tubes carry the end alone
+    prism = np.ptp(p[:, 2]) <= LEVEL and reach > rings[-1][1] + SHANK_OVERLAP
+    section = _section(rings, r - inset, rings[-1][1] + SHANK_OVERLAP if prism else reach)
     pieces = []
+    own = Shanks(tolerance) if shanks is None else shanks
     for a, b in floors.needed(p, r):
+        if prism and not tool.corner_radius and not tool.shape.pointed:
+            own.add(p[a:b + 1], r, float(p[0, 2]))       # a flat end mill: the prism is all
+            continue
         tubes = _tube_pieces(p[a:b + 1], section, tolerance, (closed[0] and a == 0, closed[1] and b == len(p) - 1))
         if tubes is not None:
             pieces += tubes
+            if prism:
+                own.add(p[a:b + 1], r, float(p[0, 2]) + rings[-1][1] + SHANK_OVERLAP / 2)
         elif tool.shape.staircase and np.ptp(p[a:b + 1, 2]) <= LEVEL:
             pieces += _level_staircase(chain, p[a:b + 1], height, tolerance, bounds)
         else:
             pieces += _hull_pieces(chain, p[a:b + 1], None, whole, height, tolerance, bounds)
-    return pieces
+    return pieces + (own.pieces(top) if shanks is None else [])
 
 
 def _level_staircase(chain, p: np.ndarray, height: float, tolerance: float, bounds) -> list:
@@ -477,7 +422,7 @@ def _radial_run(tool: Tool, p: np.ndarray, axes: np.ndarray, whole: np.ndarray, 
         return []
     facets, inset = _section_budget(r, tolerance)
     ball = r - inset
-    n = _polygon_sides(ball, facets)
+    n = polygon_sides(ball, facets)
     inner = np.linspace(math.pi / 2, 3 * math.pi / 2, n // 2 + 1)
     length = bar_radius + 1.0 - float(reach.min()) + r          # out beyond the bar from any depth
     # thinned so both the centre and the far end of the shank stay within the inset of their path
@@ -624,7 +569,7 @@ def _tube_pieces(path: np.ndarray, section: np.ndarray, tolerance: float, closed
     right = section[section[:, 0] > 1e-9 * half_width]
     outer = np.vstack([[0.0, section[:, 1].min()], right[np.argsort(right[:, 1], kind="stable")],
                        [0.0, section[:, 1].max()]])
-    segments = _polygon_sides(half_width, tolerance / 4)
+    segments = polygon_sides(half_width, tolerance / 4)
     last = len(path) - 1
     for k, i in enumerate(breaks):
         if (i == 0 and closed[0]) or (i == last and closed[1]):
@@ -700,84 +645,3 @@ def _tube_mesh(rings: np.ndarray) -> Manifold:
         return Manifold.batch_boolean([Manifold.hull_points(np.vstack([rings[i], rings[i + 1]]))
                                        for i in range(m - 1)], OpType.Add)
     return tube
-
-
-class _Floors:
-    """Where upright tools have cleared everything: above the height where a tool's end meets its
-    shank, over the footprint of each level run (its path offset by the tool radius).  A piece of
-    a run higher up that lies wholly inside such a footprint adds nothing to the cut (the deeper
-    run is always cut itself, so leaving the piece out keeps the union the same); in a pocket
-    with many layers that is most of every layer but the deepest."""
-
-    def __init__(self, chains: list, tolerance: float):
-        floors = []
-        for chain in chains:
-            end = tool_rings(chain.tool, tolerance)[-1][1]
-            for i, j in _gentle_runs(chain.points, 0.0):
-                floors.append((float(chain.points[i, 2]) + end, chain.points[i:j + 1, :2], chain.tool.radius))
-        floors.sort(key=lambda floor: floor[0])
-        self.heights = [height for height, _, _ in floors]
-        self.footprints = [(path, radius) for _, path, radius in floors]
-        self.tolerance = tolerance
-        self.cleared = [CrossSection()]      # cleared[k]: the union of the k lowest footprints
-
-    def below(self, z: float) -> CrossSection:
-        """The area cleared all the way down to ``z`` by runs below it."""
-        k = bisect.bisect_right(self.heights, z - 1e-9)   # strictly deeper: a run never clears itself
-        while len(self.cleared) <= k:
-            path, radius = self.footprints[len(self.cleared) - 1]
-            self.cleared.append(self.cleared[-1] + _footprint(path, radius, self.tolerance))
-        return self.cleared[k]
-
-    def needed(self, run: np.ndarray, radius: float) -> list:
-        """(first, last) vertex ranges of the run that are not wholly inside cleared area."""
-        whole = [(0, len(run) - 1)]
-        cleared = self.below(float(run[:, 2].min()))
-        if cleared.is_empty():
-            return whole
-        core = cleared.offset(-radius, JoinType.Round)
-        if core.is_empty():
-            return whole
-        inside = _inside(run[:, :2], core.to_polygons())
-        keep = ~(inside[:-1] & inside[1:])      # per move
-        edges = np.flatnonzero(np.diff(np.concatenate([[1], keep.astype(np.int8), [1]])))
-        for a, b in zip(edges[::2], edges[1::2]):
-            # moves a..b-1 have both ends in the core; the footprint decides
-            rest = _footprint(run[a:b + 1, :2], radius + self.tolerance / 4, self.tolerance / 8) - cleared
-            if rest.area() > 1e-6:
-                keep[a:b] = True
-        edges = np.flatnonzero(np.diff(np.concatenate([[0], keep.astype(np.int8), [0]])))
-        return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]
-
-
-def _footprint(path: np.ndarray, radius: float, tolerance: float) -> CrossSection:
-    """The 2-D polyline offset by ``radius`` (round ends and joins; facets inside the circle
-    within ``tolerance``): a ribbon 1e-4 mm wide on each side, one polygon per stretch without a
-    turn over 90 degrees so its sides cannot fold, offset by the rest of the radius."""
-    thin = 1e-4
-    d = np.diff(path, axis=0)
-    t = d / np.linalg.norm(d, axis=1)[:, None]
-    folds = np.flatnonzero(np.einsum("ij,ij->i", t[:-1], t[1:]) <= 0.0) + 1
-    ribbons = []
-    for a, b in zip(np.concatenate([[0], folds]), np.concatenate([folds, [len(path) - 1]])):
-        along = np.vstack([t[a:a + 1], t[a:b - 1] + t[a + 1:b], t[b - 1:b]])
-        across = np.column_stack([-along[:, 1], along[:, 0]])
-        across *= thin / np.maximum(np.linalg.norm(across, axis=1), 1e-12)[:, None]
-        ribbons.append(np.vstack([path[a:b + 1] + across, (path[a:b + 1] - across)[::-1]]))
-    segments = _polygon_sides(radius, tolerance)
-    return CrossSection(ribbons, FillRule.NonZero).offset(radius - thin, JoinType.Round, 2.0, segments)
-
-
-def _inside(points: np.ndarray, polygons: list) -> np.ndarray:
-    """Which points lie inside the polygons (even-odd over all their edges)."""
-    inside = np.zeros(len(points), bool)
-    x, y = points[:, 0, None], points[:, 1, None]
-    for polygon in polygons:
-        a = np.asarray(polygon, float)
-        b = np.roll(a, -1, axis=0)
-        for s in range(0, len(a), 2048):
-            ax, ay, bx, by = a[s:s + 2048, 0], a[s:s + 2048, 1], b[s:s + 2048, 0], b[s:s + 2048, 1]
-            straddles = (ay > y) != (by > y)
-            cross_x = ax + (y - ay) * (bx - ax) / np.where(by != ay, by - ay, 1.0)
-            inside ^= (np.count_nonzero(straddles & (x < cross_x), axis=1) % 2).astype(bool)
-    return inside
