@@ -63,6 +63,8 @@ def batch(args) -> dict:
         if not limit.allows(value):
             raise core.SimulationError(f"--tool {args.tool!r}: {label} {value:g} mm is outside the allowed range "
                                        f"{limit.text(label)}")
+    stock = parse_stock(args.stock)
+    core.check_cell(stock, args.cell)       # before reading: a 1e7-line file took its whole read to be refused
     text = read_text(args.nc)
     from ..toolpath import workload
     workload.nc_program(args.nc, workload.nc_lines(text))    # before reading: 1e7 lines is about 4 GB and 40 s
@@ -87,7 +89,7 @@ def batch(args) -> dict:
     if args.design:
         design = load_design(args.design)
     # one operation per spindle state (the reader's runs): a cut with the spindle stopped is named by its line
-    result = core.simulate([run for run, _ in runs], parse_stock(args.stock), engine=args.engine, cell=args.cell, design=design,
+    result = core.simulate([run for run, _ in runs], stock, engine=args.engine, cell=args.cell, design=design,
                            design_name=os.path.basename(args.design or ""),
                            progress=lambda f: progress(0.3 + 0.7 * f, "cutting"))
     report = simview.report_of(result)

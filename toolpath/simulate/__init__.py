@@ -59,12 +59,12 @@ that repeat), api.py (:func:`simulate` and :func:`check`).
 """
 from __future__ import annotations
 
-from .api import check, simulate
+from .api import check, check_cell, simulate
 from .checks import BLOCKING_KINDS, blocking
 from .paths import can_plunge
 from .stock import (CHORD_TOLERANCE, ENGINES, GOUGE_TOLERANCE, KERNELS, MAX_CELLS, TOUCH_TOLERANCE, BoxStock, SurfaceStock, CellError, CellTooFine, CylinderStock, Finding, HeightField, SimulationCancelled, SimulationError, as_stock)
 from .result import SimulationResult
 
-__all__ = ["simulate", "check", "blocking", "BLOCKING_KINDS", "can_plunge", "as_stock", "BoxStock", "SurfaceStock", "CylinderStock", "Finding", "HeightField",
+__all__ = ["simulate", "check", "check_cell", "blocking", "BLOCKING_KINDS", "can_plunge", "as_stock", "BoxStock", "SurfaceStock", "CylinderStock", "Finding", "HeightField",
            "SimulationResult", "SimulationError", "CellError", "CellTooFine", "SimulationCancelled", "ENGINES", "KERNELS", "CHORD_TOLERANCE",
            "TOUCH_TOLERANCE", "GOUGE_TOLERANCE", "MAX_CELLS"]

@@ -13,7 +13,7 @@ from ..ir.program import FEED, RAPID
 from . import radiusmap as rmap
 from . import sweep
 from .checks import (design_heights, cut_findings, floor_findings, spindle_findings, travel_findings, check_design_mesh)
-from .heightfield import Simulation, compiled_kernels, stock_grid
+from .heightfield import Simulation, compiled_kernels, grid_of, stock_grid
 from .meshes import solid_of
 from .result import SimulationResult
 from .paths import chains_of, operations_of, can_plunge
@@ -108,6 +108,15 @@ def simulate(program_or_operations, stock, *, engine: str = "heightfield", cell:
     result = _result(stock, tolerance, findings, kernels, solid, design, hf, rm, chains, started)
     result.warnings = warnings
     return result
+
+
+def check_cell(stock, cell: float) -> None:
+    """Refuse a height-field ``cell`` for ``stock`` as :func:`simulate` would, before any program
+    is read or cell made: too coarse (:class:`CellError`), or more columns than the memory
+    allows (:class:`CellTooFine`), with the same messages."""
+    stock = as_stock(stock)
+    _check_cell(stock, float(cell))
+    grid_of(stock, float(cell))
 
 
 def _check_cell(stock, cell: float) -> None:

@@ -18,9 +18,10 @@ _CELL_CHUNK = 1 << 17      # cells per evaluation chunk, in reused buffers
 _COMMON_RUNS = 1024        # runs of one length this many get a chunk without padding
 
 
-def stock_grid(stock, cell: float) -> HeightField:
-    """The uncut stock as a height field of ``cell`` mm columns (a curved plate's top read from its
-    surface mesh; outside a bar's circle no material)."""
+def grid_of(stock, cell: float) -> tuple:
+    """(x0, y0, x1, y1, nx, ny): the area the stock's height field covers and its columns of
+    ``cell`` mm, counted without making any; more than :data:`MAX_CELLS` raises
+    :class:`CellTooFine` (so a caller can refuse a cell before reading a long program)."""
     if isinstance(stock, BoxStock):
         x0, y0, x1, y1 = stock.x0, stock.y0, stock.x1, stock.y1
     else:
@@ -31,6 +32,13 @@ def stock_grid(stock, cell: float) -> HeightField:
     if nx * ny > MAX_CELLS:     # counts as :.4g: a 1e-300 mm cell gave a message of 600 digits
         raise CellTooFine(f"a {cell:g} mm cell gives {nx:.4g} x {ny:.4g} cells over the stock (more than "
                               f"{MAX_CELLS}); use a coarser cell")
+    return x0, y0, x1, y1, nx, ny
+
+
+def stock_grid(stock, cell: float) -> HeightField:
+    """The uncut stock as a height field of ``cell`` mm columns (a curved plate's top read from its
+    surface mesh; outside a bar's circle no material)."""
+    x0, y0, x1, y1, nx, ny = grid_of(stock, cell)
     hf = HeightField(x0, y0, (x1 - x0) / nx, (y1 - y0) / ny, np.full((nx, ny), stock.top, np.float32),
                      np.ones((nx, ny), bool), stock.top, stock.bottom)
     if getattr(stock, "surface", None):
