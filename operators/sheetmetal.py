@@ -1,263 +1,37 @@
 """W5 in Blender: twisted quads and pipe elbows unfolded, turret-punch NC, DXF and SVG.
 
 The quad's corners live in ``scene.kezuri.sheet.corners`` (mm): typed in the panel, taken from a
-selected quad face, or imported from a CADKEY .CDL file.  ``run_unfold`` and ``run_elbow`` are the
-job functions the operators, batch.py and the tests share.
+selected quad face, or imported from a CADKEY .CDL file.  ``run_unfold`` and ``run_elbow``
+(sheetjobs.py) are the job functions the operators, batch.py and the tests share.  The exports run
+in steps (progress, Esc to cancel) and write all their files or none.
 """
 from __future__ import annotations
 
 import os
-import time
-from dataclasses import dataclass
+from types import SimpleNamespace
 
 import bpy
 import numpy as np
 from bpy.props import BoolProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
-from .. import post as posts
-from ..post import flat_export, write_atomic
-from ..toolpath.ir import machine
-from ..toolpath.job import Job, JobOperation, Setup, plan_job
-from ..toolpath.operations.sheetmetal import nibbling, placement, punch
-from ..toolpath.operations.sheetmetal.kind import PunchGeometry, PunchSettings
 from ..toolpath.operations.sheetmetal import unfold as core
-from ..toolpath.ir.errors import InputError
 from ..toolpath.engines.textfile import read_text
 from . import convert, gate
-from .common import run_reported
-from .limits import SettingError, check_group
+from .common import SteppedOperator, run_reported
+from .limits import check_group
 from .properties import ELBOW_SETTINGS, UNFOLD_SETTINGS, copies
+from .sheetjobs import (ELBOW_NAMES, GAP_MM, POST_FAMILIES, UNFOLD_NAMES, UnfoldJob, check_pitch,
+                        corners_mm, elbow_files, elbow_layout, elbow_punching, elbow_texts, parse_clamps,
+                        placement_report, punch_gate, punch_profile, punch_report, punch_warnings, run_elbow,
+                        run_unfold, share, unfold_files, unfold_texts, write_all)
 from .translations import translate_message
 from .workflow import BatchCommand, Workflow
 
 PREFIX = "Kezuri Sheet"
 ELBOW_PREFIX = "Kezuri Elbow"
-GAP_MM = 20.0   # flat patterns are laid out this far beside the part
-POST_FAMILIES = ("punch",)
-PUNCH_POST = "amada-04p"
 ALLOW_DESCRIPTION = ("Write the programs even if the punching simulation finds a part that stays in the sheet "
                      "or a hit biting into the part")
-
-
-SETUP_NAMES = {"sheet_origin": "G92 Origin", "sheet_size": "Sheet", "clamps": "Clamps", "joints": "Micro-Joints",
-               "joint_width": "Joint Width"}
-
-
-def parse_clamps(text: str, width: float, depth: float, name: str = "Clamps") -> tuple:
-    """Clamps from their centres along the clamped edge, "200, 700" (mm); none from an empty text."""
-    found = []
-    for item in str(text).replace(";", ",").split(","):
-        if not item.strip():
-            continue
-        try:
-            x = float(item)
-        except ValueError:
-            raise SettingError(f"{name}: {item.strip()!r} is not a number of mm (give clamp centres like "
-                               f"\"200, 700\")") from None
-        if not (abs(x) < 1e5):
-            raise SettingError(f"{name}: {item.strip()!r} is not a position on the sheet")
-        found.append(machine.Clamp(x, width, depth))
-    return tuple(found)
-
-
-def punch_profile(props, names: dict = SETUP_NAMES) -> machine.MachineProfile:
-    """The Amada 04P preset with the sheet, G92 origin and clamps the panel (or batch) gives."""
-    check_group(props, "sheet", ["sheet_origin", "sheet_size", "clamp_width", "clamp_depth", "joints", "joint_width"])
-    clamps = parse_clamps(props.clamps, props.clamp_width, props.clamp_depth, names["clamps"])
-    return machine.preset(PUNCH_POST).replace(sheet_origin=tuple(props.sheet_origin), clamps=clamps,
-                                              sheet_max=tuple(props.sheet_size))
-
-
-@dataclass
-class PunchJob:
-    """One part's program on the sheet: where it sits, its nibbling lines and their simulation."""
-
-    nc: str
-    punched: punch.PunchResult
-    placement: placement.Placement
-    nibbling: nibbling.Nibbling
-    offset: np.ndarray          # added to the pattern's coordinates to put it on the sheet
-
-
-def punch_settings(props) -> PunchSettings:
-    """The punch program's settings from the sheet panel (or batch's options)."""
-    return PunchSettings(props.station, props.tool_diameter, props.pitch, props.thickness, props.joints,
-                         props.joint_width)
-
-
-def punch_job(pattern, props, profile=None) -> PunchJob:
-    """Plan the flat ``pattern`` as a job of one punching operation (its tool-centre contour placed
-    on the sheet clear of the clamps, nibbled round: merged lines, micro-joints, each hit once),
-    write the program and punch it out of the sheet."""
-    profile = punch_profile(props) if profile is None else profile
-    setup = Setup(name="punch", post=PUNCH_POST, machine=profile)
-    operation = JobOperation("punch", "punch", punch_settings(props), PunchGeometry(np.asarray(pattern)))
-    plan = plan_job(Job(setup, (operation,))).parts[0].result
-    nc = posts.create(POST_FAMILIES, PUNCH_POST).to_text(plan.program)
-    punched = punch.simulate_punching(nc, punch_diameter=props.tool_diameter, pattern=plan.pattern,
-                                      joints=plan.nibbling.joints)
-    return PunchJob(nc, punched, plan.placement, plan.nibbling, plan.offset)
-
-
-def placement_report(jobs: list) -> dict:
-    """The report's ``sheet`` entry: where each part sits, the clamps, the joints."""
-    first = jobs[0].placement
-    return {
-        "sheet_mm": list(first.sheet),
-        "clamp_zones": [[round(v, 3) for v in z] for z in first.zones],
-        "parts": [{"where": j.placement.where, "offset": [round(v, 3) for v in j.placement.offset],
-                   "hits_within": [round(v, 3) for v in j.placement.envelope],
-                   "lines": len(j.nibbling.lines), "merged_points": j.nibbling.merged,
-                   "joints": len(j.nibbling.joints), "joint_width_mm": round(j.nibbling.joint_width, 4),
-                   "joint_webs_mm": j.punched.joint_widths_mm} for j in jobs],
-    }
-
-
-@dataclass
-class UnfoldJob:
-    quad: core.TwistedQuad
-    contour: np.ndarray        # tool-centre contour around the flat pattern (mm)
-    nc: str                    # the turret-punch program
-    punched: punch.PunchResult  # that program read back and punched out of the sheet
-    punching: PunchJob = None  # where it sits on the sheet, its lines and joints
-
-
-def corners_mm(props) -> np.ndarray:
-    check_group(props, "sheet", ["corners"])
-    return np.array(props.corners, float).reshape(4, 3)
-
-
-# How messages name the settings: the panel and its labels, or batch's command and options.
-PANEL_NAMES = {"where": "Sheet Metal", "pitch": "Nibbling Pitch", "tool_diameter": "Tool Diameter",
-               "corners": "Quad corners (mm)", "diameter": "Pipe Diameter"}
-UNFOLD_NAMES = {"where": "unfold", "pitch": "--pitch", "tool_diameter": "--tool-diameter",
-                "corners": "--corners, --cdl or --blend"}
-ELBOW_NAMES = {"where": "elbow", "pitch": "Nibbling Pitch", "tool_diameter": "Tool Diameter", "diameter": "--diameter"}
-
-
-def check_pitch(props, names: dict = PANEL_NAMES) -> None:
-    """The nibbling pitch against the punch: hits a diameter or more apart leave webs between
-    them, and the part never falls out of the sheet."""
-    if props.pitch >= props.tool_diameter:
-        raise SettingError(f"{names['where']}: {names['pitch']} = {props.pitch:g} mm must be less than "
-                           f"{names['tool_diameter']} = {props.tool_diameter:g} mm: hits a diameter or more apart "
-                           f"leave webs, and the part stays in the sheet")
-
-
-def check_contour(contour: np.ndarray, props, what: str, names: dict = PANEL_NAMES) -> None:
-    """A cut contour the turret punch can run, before its program is written: within the
-    coordinates the control addresses, and within the hits one program may have.  ``what``:
-    the setting that made the contour, as the user gave it."""
-    reach = posts.find(POST_FAMILIES, PUNCH_POST).limits.coordinate
-    extent = float(np.abs(contour).max())
-    if extent > reach:
-        size = np.ptp(contour, axis=0)
-        raise SettingError(f"{names['where']}: {what}: the cut contour is {size[0]:.1f} x {size[1]:.1f} mm and "
-                           f"reaches {extent:.1f} mm from the program's origin, beyond the {reach:.2f} mm the "
-                           f"turret punch control addresses")
-    hits = punch.hit_count(contour, props.pitch)
-    if hits > punch.MAX_HITS:
-        raise SettingError(f"{names['where']}: {names['pitch']} = {props.pitch:g} mm: {what} takes {hits} hits, "
-                           f"more than the {punch.MAX_HITS} one program may have; raise the pitch")
-
-
-def word_error(resolution: float, line_mm: float) -> float:
-    """How far the NC words alone can put a hit of a line ``line_mm`` long off its exact place:
-    its start (X, Y) rounded to ``resolution`` mm and its direction (J) to ``resolution`` degrees."""
-    return resolution / 2 * 2 ** 0.5 + line_mm * np.sin(np.radians(resolution / 2))
-
-
-def punch_gate(results: list, allow: bool) -> dict:
-    """The export gate of a punching job: a part that stays in the sheet other than by the
-    micro-joints the job left (held by them is the intended result), a part that falls free
-    though joints were asked for, or a hit biting into
-    the part deeper than the simulation's tolerance and what the NC words' two decimals can put
-    it off by (:func:`word_error`), is not written unless ``allow``.  Returns the report's
-    ``gate`` entry; raises :class:`gate.GateRefused`."""
-    started = time.perf_counter()
-    resolution = posts.find(POST_FAMILIES, PUNCH_POST).limits.resolution
-    findings = []
-    for index, result in enumerate(results, start=1):
-        which = f"piece {index}: " if len(results) > 1 else ""
-        if result.joints and result.part_separated:
-            findings.append({"kind": "joints do not hold", "piece": index, "line": None, "depth_mm": None,
-                             "message": f"{which}the part falls free: its {result.joints} micro-joint(s) leave no web"})
-        elif not result.part_separated and not result.held_by_joints:
-            findings.append({"kind": "part in sheet", "piece": index, "line": None, "depth_mm": None,
-                             "message": f"{which}the part stays in the sheet (webs between the hits)"})
-        findings += [{"kind": "gouge", "piece": index, "line": g.line, "depth_mm": round(g.depth_mm, 4),
-                      "message": which + g.message}
-                     for g in result.gouges if g.depth_mm > result.tolerance + word_error(resolution, g.line_mm)]
-    report = {"findings": findings, "overridden": False, "seconds": round(time.perf_counter() - started, 3)}
-    if findings:
-        if not allow:
-            listed = "; ".join(f["message"] for f in findings[:5])
-            more = f" (and {len(findings) - 5} more)" if len(findings) > 5 else ""
-            raise gate.GateRefused(f"not written: the punching simulation found {len(findings)} fault(s): "
-                                   f"{listed}{more}. Fix the job, or override knowingly (batch: --allow-findings; "
-                                   f"panel: Write Despite Findings in the export's file browser)", findings)
-        report["overridden"] = True
-    return report
-
-
-def run_unfold(corners, props, names: dict = PANEL_NAMES) -> UnfoldJob:
-    check_group(props, "sheet", list(UNFOLD_SETTINGS))
-    check_pitch(props, names)
-    quad = core.unfold_twisted_quad(corners, props.divisions, props.direction)
-    contour = core.compensate_outline(quad.pattern.outline, props.tool_diameter)
-    check_contour(contour, props, f"the flat pattern of {names['corners']}", names)
-    job = punch_job(quad.pattern.outline, props)
-    return UnfoldJob(quad, contour, job.nc, job.punched, job)
-
-
-def punch_report(results: list, thickness: float) -> dict:
-    """The ``simulation`` entry of a batch report for one or more punched parts."""
-    gouges = [{"line": g.line, "depth_mm": round(g.depth_mm, 4), "xy": [round(v, 3) for v in g.xy],
-               "message": g.message, "part": index + 1}
-              for index, result in enumerate(results) for g in result.gouges]
-    removed = sum(r.removed_area_mm2 for r in results)
-    return {
-        "engine": "crosssection",
-        "tolerance_mm": results[0].tolerance,
-        "seconds": round(sum(r.seconds for r in results), 3),
-        "hits": sum(r.hits for r in results),
-        "parts_separated": [r.part_separated for r in results],
-        "held_by_joints": [r.held_by_joints for r in results],
-        "part_area_mm2": [round(r.part_area_mm2, 2) for r in results],
-        "pattern_area_mm2": [round(r.pattern_area_mm2, 2) for r in results],
-        "removed_area_mm2": round(removed, 2),
-        "removed_volume_mm3": round(removed * thickness, 1),
-        "max_scallop_mm": round(max(r.max_scallop_mm or 0.0 for r in results), 4),
-        "gouges": gouges,
-        "max_gouge_mm": round(max(r.max_gouge_mm for r in results), 4),
-        "rapid_collisions": [],
-    }
-
-
-def punch_warnings(results: list) -> list:
-    """What the punching simulation found that the shop must hear about."""
-    warnings = []
-    for index, result in enumerate(results):
-        which = f"part {index + 1}: " if len(results) > 1 else ""
-        if result.joints and result.part_separated:
-            warnings.append(f"{which}the part falls free: its micro-joints leave no web")
-        elif not result.part_separated and not result.held_by_joints:
-            warnings.append(f"{which}the part stays in the sheet: hits further apart than the punch leave webs "
-                            f"(lower the pitch below the {result.punch_diameter:g} mm punch)")
-        warnings += [f"{which}{g.message}" for g in result.gouges]
-    return warnings
-
-
-def unfold_files(job: UnfoldJob, base_path: str) -> list:
-    """NC (.nc), DXF and SVG beside each other; each written atomically."""
-    outline = job.quad.pattern.outline
-    bends = job.quad.pattern.bend_lines()
-    stem = os.path.splitext(base_path)[0]
-    files = [write_atomic(stem + posts.extension(POST_FAMILIES, PUNCH_POST), job.nc),
-             write_atomic(stem + ".dxf", flat_export.to_dxf([outline], punch_paths=[job.contour], bend_lines=bends)),
-             write_atomic(stem + ".svg", flat_export.to_svg([outline], punch_paths=[job.contour], bend_lines=bends))]
-    return files
 
 
 def _frame_beside(scene, part_max_x_mm: float, pattern_min_x_mm: float) -> convert.WorkFrame:
@@ -295,60 +69,6 @@ def show_unfold(scene, job: UnfoldJob) -> list:
             pieces.append(convert.mesh_object(scene, f"{PREFIX} {name}", np.asarray(mesh.vert_properties)[:, :3],
                                               np.asarray(mesh.tri_verts), punched_frame, color=colour))
     return [part, flat_obj, cut_obj, *pieces]
-
-
-def run_elbow(props, names: dict = PANEL_NAMES) -> core.Elbow:
-    check_group(props, "sheet", [*ELBOW_SETTINGS, "tool_diameter", "thickness", "pitch", "station"])
-    check_pitch(props, names)
-    return core.unfold_elbow(props.elbow_angle, props.elbow_radius, props.elbow_diameter, props.elbow_pieces)
-
-
-def elbow_layout(elbow: core.Elbow) -> list:
-    """Each piece's flat outline (mm), placed one above the other with a gap."""
-    placed, y = [], 0.0
-    for piece in elbow.pieces:
-        outline = np.asarray(piece.outline, float)
-        outline = outline - [0.0, outline[:, 1].min() - y]
-        placed.append(outline)
-        y = outline[:, 1].max() + GAP_MM / 2
-    return placed
-
-
-def elbow_punching(elbow: core.Elbow, props, names: dict = PANEL_NAMES) -> list:
-    """Per piece: (turret-punch program, its punching simulation), with the sheet panel's punch.
-    Each piece is punched from a sheet of its own, its pattern's lower left corner at the
-    program's origin (as the first piece of the layout)."""
-    contours = []
-    for index, piece in enumerate(elbow.pieces, start=1):
-        outline = np.asarray(piece.outline, float)
-        outline = outline - outline.min(axis=0)
-        contour = core.compensate_outline(outline, props.tool_diameter)
-        check_contour(contour, props, f"piece {index} of {names['diameter']} = {elbow.diameter:g} mm", names)
-        contours.append((outline, contour))
-    jobs = []
-    profile = punch_profile(props)
-    for index, (outline, contour) in enumerate(contours, start=1):
-        try:
-            job = punch_job(outline, props, profile)
-        except InputError as error:     # which piece's program: the message's line is that program's
-            raise core.UnfoldError(f"elbow piece {index} of {len(elbow.pieces)}: {error}") from None
-        jobs.append((job.nc, job.punched, job))
-    return jobs
-
-
-def elbow_files(elbow: core.Elbow, base_path: str, props, punching: list | None = None) -> list:
-    """DXF and SVG of all the pieces, and one turret-punch program per piece (<stem>-1.nc ...).
-    Every text is made (and every piece's program punched, unless ``punching`` from
-    :func:`elbow_punching` is given) before the first file is written."""
-    stem = os.path.splitext(base_path)[0]
-    outlines = elbow_layout(elbow)
-    punch_paths = [core.compensate_outline(outline, props.tool_diameter) for outline in outlines]
-    punching = elbow_punching(elbow, props) if punching is None else punching
-    extension = posts.extension(POST_FAMILIES, PUNCH_POST)
-    texts = [(stem + ".dxf", flat_export.to_dxf(outlines, punch_paths=punch_paths)),
-             (stem + ".svg", flat_export.to_svg(outlines, punch_paths=punch_paths))]
-    texts += [(f"{stem}-{index}{extension}", nc) for index, (nc, *_) in enumerate(punching, start=1)]
-    return [write_atomic(path, text) for path, text in texts]
 
 
 def show_elbow(scene, elbow: core.Elbow) -> list:
@@ -465,7 +185,77 @@ class KEZURI_OT_import_cdl(bpy.types.Operator, ImportHelper):
         return run_reported(self, work)
 
 
-class KEZURI_OT_sheet_export(bpy.types.Operator, ExportHelper):
+def settings_of(props) -> SimpleNamespace:
+    """A copy of the sheet settings' values (arrays as tuples), for work that runs away from the
+    scene (an export in steps touches no Blender data)."""
+    return SimpleNamespace(**{prop.identifier: (tuple(value) if getattr(prop, "is_array", False) else value)
+                              for prop in props.bl_rna.properties if prop.identifier != "rna_type"
+                              for value in [getattr(props, prop.identifier)]})
+
+
+def sheet_export_request(scene, target: str, allow: bool):
+    """The Sheet panel's export: the settings checked (by their panel names) and copied here, on
+    the main thread; ``work(progress) -> [paths]`` unfolds, plans, punches the program out of the
+    sheet, gates it and writes the NC, DXF and SVG, all or none, after its last progress call (so
+    Esc writes nothing)."""
+    props = scene.kezuri.sheet
+    corners = corners_mm(props)
+    check_group(props, "sheet", list(UNFOLD_SETTINGS))
+    check_pitch(props)
+    punch_profile(props)            # the sheet, origin and clamps, named as the panel names them
+    settings = settings_of(props)
+
+    def work(progress=None) -> list:
+        report = progress or (lambda fraction, text="": None)
+        report(0.0, "unfolding")
+        job = run_unfold(corners, settings, progress=share(progress, 0.05, 0.9))
+        report(0.9, "checking")
+        punch_gate([job.punched], allow)
+        texts = unfold_texts(job, target)
+        report(1.0, "writing")
+        return write_all(texts)
+    return work
+
+
+def elbow_export_request(scene, target: str, allow: bool):
+    """The Elbow panel's export, as :func:`sheet_export_request`: the elbow unfolded here (checked,
+    quick), every piece's program punched in ``work(progress) -> [paths]``, then DXF, SVG and one
+    program a piece written, all or none."""
+    props = scene.kezuri.sheet
+    elbow = run_elbow(props)
+    punch_profile(props)
+    settings = settings_of(props)
+
+    def work(progress=None) -> list:
+        report = progress or (lambda fraction, text="": None)
+        report(0.0, "punching")
+        punching = elbow_punching(elbow, settings, progress=share(progress, 0.05, 0.9))
+        report(0.9, "checking")
+        punch_gate([punched for _, punched, _ in punching], allow)
+        texts = elbow_texts(elbow, target, settings, punching)
+        report(1.0, "writing")
+        return write_all(texts)
+    return work
+
+
+class SheetExport(SteppedOperator, ExportHelper):
+    """The Sheet and Elbow exports: after the file browser the work runs in steps with a progress
+    bar and Esc to cancel, as every NC export does; from a script or in background mode at once."""
+
+    progress_label = "export"
+
+    def invoke(self, context, event):
+        return ExportHelper.invoke(self, context, event)
+
+    def execute(self, context):
+        return self.start_stepped(context)
+
+    def finish(self, context, files: list):
+        self.report({"INFO"}, translate_message("Wrote " + ", ".join(os.path.basename(f) for f in files)))
+        return {"FINISHED"}
+
+
+class KEZURI_OT_sheet_export(SheetExport, bpy.types.Operator):
     """Write the turret-punch program (.nc) with the flat pattern as DXF and SVG beside it"""
 
     bl_idname = "kezuri.sheet_export"
@@ -476,14 +266,8 @@ class KEZURI_OT_sheet_export(bpy.types.Operator, ExportHelper):
     filter_glob: StringProperty(default="*.nc", options={"HIDDEN"})
     allow_findings: BoolProperty(name="Write Despite Findings", default=False, description=ALLOW_DESCRIPTION)
 
-    def execute(self, context):
-        def work():
-            job = run_unfold(corners_mm(context.scene.kezuri.sheet), context.scene.kezuri.sheet)
-            punch_gate([job.punched], self.allow_findings)
-            files = unfold_files(job, self.filepath)
-            self.report({"INFO"}, translate_message("Wrote " + ", ".join(os.path.basename(f) for f in files)))
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def prepare(self, context):
+        return sheet_export_request(context.scene, self.filepath, self.allow_findings)
 
 
 class KEZURI_OT_add_elbow(bpy.types.Operator):
@@ -514,7 +298,7 @@ class KEZURI_OT_add_elbow(bpy.types.Operator):
         return run_reported(self, work)
 
 
-class KEZURI_OT_elbow_export(bpy.types.Operator, ExportHelper):
+class KEZURI_OT_elbow_export(SheetExport, bpy.types.Operator):
     """Write the elbow pieces' flat patterns as DXF and SVG, and a turret-punch program per piece"""
 
     bl_idname = "kezuri.elbow_export"
@@ -525,16 +309,8 @@ class KEZURI_OT_elbow_export(bpy.types.Operator, ExportHelper):
     filter_glob: StringProperty(default="*.dxf;*.svg", options={"HIDDEN"})
     allow_findings: BoolProperty(name="Write Despite Findings", default=False, description=ALLOW_DESCRIPTION)
 
-    def execute(self, context):
-        def work():
-            sheet = context.scene.kezuri.sheet
-            elbow = run_elbow(sheet)
-            punching = elbow_punching(elbow, sheet)
-            punch_gate([punched for _, punched, _ in punching], self.allow_findings)
-            files = elbow_files(elbow, self.filepath, sheet, punching)
-            self.report({"INFO"}, translate_message("Wrote " + ", ".join(os.path.basename(f) for f in files)))
-            return {"FINISHED"}
-        return run_reported(self, work)
+    def prepare(self, context):
+        return elbow_export_request(context.scene, self.filepath, self.allow_findings)
 
 
 def menu_import(self, context):

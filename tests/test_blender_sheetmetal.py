@@ -204,7 +204,7 @@ def test_the_punch_gate_refuses_a_bite_and_a_part_left_in_the_sheet():
     as overridden.  Bites within what the NC words' two decimals explain pass."""
     from test_punch import RECT, rectangle_program
 
-    from kezuri.operators import gate, sheetmetal
+    from kezuri.operators import gate, sheetjobs
     from kezuri.toolpath.operations.sheetmetal import punch
     text = rectangle_program(2.0, 1.0)
     bigger = RECT + np.array([[-1.0, 0], [0, 0], [0, 0], [-1.0, 0]])
@@ -213,16 +213,16 @@ def test_the_punch_gate_refuses_a_bite_and_a_part_left_in_the_sheet():
     clean = punch.simulate_punching(text, punch_diameter=2.0, pattern=RECT)
     with pytest.raises(gate.GateRefused, match=r"not written: the punching simulation found 1 fault\(s\): line 9: "
                                                r"a hit bites 1\.000 mm"):
-        sheetmetal.punch_gate([bitten], False)
+        sheetjobs.punch_gate([bitten], False)
     with pytest.raises(gate.GateRefused, match="piece 2: the part stays in the sheet"):
-        sheetmetal.punch_gate([clean, webbed], False)
-    report = sheetmetal.punch_gate([bitten, webbed], True)
+        sheetjobs.punch_gate([clean, webbed], False)
+    report = sheetjobs.punch_gate([bitten, webbed], True)
     assert report["overridden"] and [f["kind"] for f in report["findings"]] == ["gouge", "part in sheet"]
-    assert sheetmetal.punch_gate([clean], False)["findings"] == []
+    assert sheetjobs.punch_gate([clean], False)["findings"] == []
     # the allowance: the simulation's tolerance, half the 0.01 mm increment both ways, and a line's
     # direction off by half of 0.01 degree along its length
-    assert sheetmetal.word_error(0.01, 0.0) == pytest.approx(0.005 * np.sqrt(2))
-    assert sheetmetal.word_error(0.01, 1000.0) == pytest.approx(0.005 * np.sqrt(2) + 1000 * np.sin(np.radians(0.005)))
+    assert sheetjobs.word_error(0.01, 0.0) == pytest.approx(0.005 * np.sqrt(2))
+    assert sheetjobs.word_error(0.01, 1000.0) == pytest.approx(0.005 * np.sqrt(2) + 1000 * np.sin(np.radians(0.005)))
 
 
 def test_the_export_operators_refuse_what_the_machine_cannot_run(scene, tmp_path):

@@ -254,18 +254,18 @@ def test_joints_that_do_not_fit_are_refused():
 
 
 def test_the_gate_takes_a_part_held_by_its_joints_and_refuses_joints_that_do_not_hold():
-    from kezuri.operators import gate, sheetmetal
+    from kezuri.operators import gate, sheetjobs
     outline, contour = quad_contour()
     text, lines, where = program(contour, joints=2)
     pattern = outline + where.offset
     held = punch.simulate_punching(text, punch_diameter=10.0, pattern=pattern, joints=lines.joints)
-    assert sheetmetal.punch_gate([held], False)["findings"] == []
+    assert sheetjobs.punch_gate([held], False)["findings"] == []
     free_text = program(contour, joints=0)[0]
     free = punch.simulate_punching(free_text, punch_diameter=10.0, pattern=pattern)
-    assert sheetmetal.punch_gate([free], False)["findings"] == []            # as today: falls free, fine
+    assert sheetjobs.punch_gate([free], False)["findings"] == []            # as today: falls free, fine
     fake = punch.simulate_punching(free_text, punch_diameter=10.0, pattern=pattern, joints=lines.joints)
     with pytest.raises(gate.GateRefused, match="the part falls free: its 2 micro-joint"):
-        sheetmetal.punch_gate([fake], False)
+        sheetjobs.punch_gate([fake], False)
     unknown = punch.simulate_punching(text, punch_diameter=10.0, pattern=pattern)   # joints not said
     with pytest.raises(gate.GateRefused, match="the part stays in the sheet"):
-        sheetmetal.punch_gate([unknown], False)
+        sheetjobs.punch_gate([unknown], False)
