@@ -96,8 +96,12 @@ def test_a_row_added_or_loaded_with_a_material_starts_with_the_computed_feeds(pl
     scene.kezuri.stock.material = "hardwood"
     assert bpy.ops.kezuri.job_add(kind="drill") == {"FINISHED"}
     listed = scene.kezuri.job_list
-    rpm = round(M_MIN * 1000 / (math.pi * 5.0))                    # the drilling's 5 mm drill: 15524 rpm
-    feed = round(rpm * 2 * hardwood_chip_mm(5.0))
+    # the drilling's 5 mm drill, fed per revolution (issue 31 follow-up): wood's drill speed 300 - 400 sfm doubled
+    # for carbide, 700 sfm = 213.36 m/min / (pi x 5 mm) = 13,582.9 -> 13583 rpm; the 1/8 - 1/4 in row's
+    # .002 - .004 in/rev, middle .003 in = 0.0762 mm: 13583 x 0.0762 = 1035.0 -> 1035 mm/min
+    rpm = round(700 * 0.3048 * 1000 / (math.pi * 5.0))
+    feed = round(rpm * 0.003 * 25.4)
+    assert (rpm, feed) == (13583, 1035)
     settings = json.loads(listed.rows[2].settings)
     assert (settings["rpm"], settings["feed"], settings["peck"]) == (rpm, feed, 5.0)
     assert scene.kezuri.drill.rpm == pytest.approx(rpm)            # the panel shows what runs
