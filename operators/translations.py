@@ -2574,6 +2574,8 @@ DRILL_FEEDS_TEMPLATES = {
     "feed per revolution; the chart's low end in a harder material": "1回転あたりの送り。硬い材料なので表の下限",
     "feed per revolution ({}); the chart's low end in a harder material": "1回転あたりの送り（{0}）。硬い材料なので表の下限",
     "--material {}: {}": "オプション --material {0}：{1}",
+    "T{}: {} rpm, feed {} mm/min, feed per revolution {} mm (band {} - {} mm)":
+        "T{0}：{1} rpm、送り {2} mm/min、1回転あたりの送り {3} mm（範囲 {4}〜{5} mm）",
     "the chart's row up to {} mm": "表の {0} mm までの行",
     "above the chart's largest diameter ({} mm): its band used": "表の最大径（{0} mm）を超えるため、その範囲を使用",
 }
