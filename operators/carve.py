@@ -285,6 +285,7 @@ CLASSES = (KEZURI_OT_carve_generate, KEZURI_OT_carve_sample, KEZURI_OT_carve_exp
 # ----- batch: ``batch.py carve`` -------------------------------------------------------------
 
 def batch_arguments(p):
+    from . import workflowfeeds
     import argparse
 
     source = p.add_mutually_exclusive_group()
@@ -308,6 +309,7 @@ def batch_arguments(p):
     p.add_argument("--wall-pass", action=argparse.BooleanOptionalAction, default=None,
                    help="finish the walls no raster finishes (vertical, or steeper than the max slope across both "
                         "rasters) by waterlines (default: the scene's setting, on)")
+    workflowfeeds.material_argument(p)
     gate.allow_findings_argument(p)
 
 
@@ -341,10 +343,12 @@ def wall_report(result: core.CarveResult, props) -> dict:
 
 
 def batch(args) -> dict:
+    from . import workflowfeeds
     from . import batchio, preview, simview
     from .common import Progress
 
     scene = batchio.open_blend(args.blend)
+    workflowfeeds.batch_material(args, scene)      # a bad --material refused before planning
     props = scene.kezuri.carve
     if args.scallop is not None:
         batchio.set_exactly(props, "scallop", args.scallop, "--scallop")
@@ -430,6 +434,7 @@ def batch(args) -> dict:
         "cycle_time_s": round(result.program.cycle_time(), 1),
         "warnings": result.warnings,
     }
+    workflowfeeds.check(args, scene, job.result.program, profile, report, findings)
     warn(findings, report)
     return report
 

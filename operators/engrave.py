@@ -303,6 +303,7 @@ CLASSES = (KEZURI_OT_engrave_generate, KEZURI_OT_engrave_export)
 # ----- batch: ``batch.py engrave`` ---------------------------------------------------------
 
 def batch_arguments(p):
+    from . import workflowfeeds
     p.add_argument("--blend", help="a .blend whose scene has the Kezuri plate and letters set")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
     orient_spindle_argument(p)
@@ -317,6 +318,7 @@ def batch_arguments(p):
     p.add_argument("--surface", help="the plate's curved top: " + ", ".join(surface_engrave.SURFACES)
                    + " (built in, over the plate) or an STL/OBJ/PLY mesh in work mm (Z 0: the plate's top); "
                    "default: flat")
+    workflowfeeds.material_argument(p)
     gate.allow_findings_argument(p)
 
 
@@ -351,12 +353,14 @@ def uncut_marks(result) -> list:
 
 
 def batch(args) -> dict:
+    from . import workflowfeeds
     from . import batchio, preview, samples, simview
     from .common import Progress
 
     scene = batchio.open_blend(args.blend)
     if not args.blend:
         samples.name_plate(scene)
+    workflowfeeds.batch_material(args, scene)      # a bad --material refused before planning
     props = scene.kezuri
     if args.seed is not None:
         batchio.set_exactly(props.engrave, "seed", args.seed, "--seed")
@@ -408,6 +412,7 @@ def batch(args) -> dict:
         "skipped": job.result.skipped,
         "too_fine": job.result.too_fine,
     }
+    workflowfeeds.check(args, scene, program_for_post(job, post_name), machine, report, findings)
     warn(findings, report)
     return report
 

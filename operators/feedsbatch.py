@@ -42,7 +42,7 @@ def tool_spec(text: str) -> tuple:
             try:
                 flutes = int(parts[2])
             except ValueError:
-                raise calculator.FeedsError(f"flutes = {parts[2]!r}: must be a whole number 1..12") from None
+                raise calculator.FeedsError(f"flutes = {parts[2]!r}: must be a whole number 1..{calculator.MAX_FLUTES}") from None
             calculator.flute_count(flutes)
     except InputError as error:
         raise FeedsOptionError(f"batch.py feeds --tool {text!r}: {error}") from None

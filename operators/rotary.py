@@ -251,19 +251,23 @@ CLASSES = (KEZURI_OT_rotary_generate, KEZURI_OT_rotary_export, KEZURI_OT_mark_po
 # ----- batch: ``batch.py rotary`` ----------------------------------------------------------
 
 def batch_arguments(p):
+    from . import workflowfeeds
     p.add_argument("--blend", help="a .blend with the block as Kezuri stock and pocket outlines marked")
     p.add_argument("--post", choices=posts.choices(POST_FAMILIES))
     machine_arguments(p)
+    workflowfeeds.material_argument(p)
     gate.allow_findings_argument(p)
 
 
 def batch(args) -> dict:
+    from . import workflowfeeds
     from . import batchio, preview, samples, simview
     from .common import Progress
 
     scene = batchio.open_blend(args.blend)
     if not args.blend:
         samples.rotary_block(scene)
+    workflowfeeds.batch_material(args, scene)      # a bad --material refused before planning
     post_name = args.post or scene.kezuri.rotary.post
     machine = batch_machine(args, scene, POST_FAMILIES, post_name)
     started = time.perf_counter()
@@ -293,6 +297,7 @@ def batch(args) -> dict:
         "operations": job.result.program.summary(),
         "pockets": job.result.reports,
     }
+    workflowfeeds.check(args, scene, job.result.program, machine, report, findings)
     warn(findings, report)
     return report
 

@@ -7,7 +7,9 @@ bounding box grown by ``--margin`` and ``--thickness`` deep below Z 0, work zero
 top corner (``--work-zero CENTER``: the centre); the operation's object is the drawing's layer
 (``--layer`` picks one when the file has several with closed outlines); ``--set KEY=VALUE`` sets
 one of the kind's settings by its job-file name (the value read as TOML: ``--set depth=3``,
-``--set side=\"inside\"`` or ``--set side=inside``).  ``report.json`` keeps the job file's text.
+``--set side=\"inside\"`` or ``--set side=inside``); ``--material`` gives the job its material (the
+feeds computed where the settings leave them out and checked, as a job file's).  ``report.json``
+keeps the job file's text.
 """
 from __future__ import annotations
 
@@ -39,7 +41,7 @@ def text_arguments(p) -> None:
 
 
 def arguments(p) -> None:
-    from . import gate
+    from . import gate, workflowfeeds
     from .batchio import number
     from .designfile import design_arguments
 
@@ -52,6 +54,7 @@ def arguments(p) -> None:
                    help="work zero at the board's top front-left corner (default) or its top centre")
     p.add_argument("--post", help="the post (default: the preferences')")
     p.add_argument("--machine", help="a machine preset (default: the post's own machine)")
+    workflowfeeds.material_argument(p)
     p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                    help="one of the operation's settings by its job-file name (repeat for several)")
     gate.allow_findings_argument(p)
@@ -104,7 +107,9 @@ def job_text(kind: str, args) -> str:
 
 def board_job(kind: str, board, args, operation: dict) -> str:
     """The job file of a shorthand: the board ``(x0, y0, x1, y1)`` (mm) as the stock, ``args.thickness``
-    thick, the post and machine when given, and the one operation."""
+    thick, the post, machine and material when given, and the one operation."""
+    from .workflowfeeds import material_option
+
     x0, y0, x1, y1 = board
     setup = {"name": kind, "stock": [float(x0), float(y0), -float(args.thickness), float(x1), float(y1), 0.0],
              "work_zero": args.work_zero}
@@ -112,6 +117,8 @@ def board_job(kind: str, board, args, operation: dict) -> str:
         setup["post"] = args.post
     if args.machine:
         setup["machine"] = args.machine
+    if getattr(args, "material", None) is not None:       # the job's feeds: computed where left out, checked
+        setup["material"] = material_option(args.material) or "none"
     return f"[setup]\n{toml_table(setup)}\n[[operations]]\n{toml_table(operation)}"
 
 

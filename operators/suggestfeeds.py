@@ -61,6 +61,9 @@ def suggest(scene) -> list:
 def tool_line(record: dict) -> str:
     values = {v["what"]: v["value"] for v in record["values"].values()}
     low, high = record["band_mm"]
+    if record.get("chip_load_per") == "revolution":         # a drill: fed per revolution
+        return (f"T{record['tool_number']}: {values['rpm']:g} rpm, feed {values['feed']:g} mm/min, feed per "
+                f"revolution {record['chip_load_mm']:.4f} mm (band {low:.4f} - {high:.4f} mm)")
     return (f"T{record['tool_number']}: {values['rpm']:g} rpm, feed {values['feed']:g} mm/min, chip load "
             f"{record['chip_load_mm']:.4f} mm per tooth (band {low:.4f} - {high:.4f} mm)")
 

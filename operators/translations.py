@@ -2549,7 +2549,7 @@ FEEDS_TEMPLATES = {
     "job file {}: [setup] material: {}": "ジョブファイル {0}：[setup] material：{1}",
     "{} = {}: must be a positive number": "{0} = {1}：正の数にしてください",
     "unknown tool kind {}: the kinds are {}": "工具の種類 {0} は不明です（種類は {1}）",
-    "flutes = {}: must be a whole number 1..12": "刃数 = {0}：1〜12 の整数にしてください",
+    "flutes = {}: must be a whole number 1..{}": "刃数 = {0}：1〜{1} の整数にしてください",
     "unknown operation kind {}: the kinds are {}": "加工の種類 {0} は不明です（種類は {1}）",
     "unknown material {}: the materials are {}": "材料 {0} は不明です（材料は {1}）",
     "unknown tool material {}: the tool materials are {}": "工具材質 {0} は不明です（工具材質は {1}）",
@@ -2557,6 +2557,30 @@ FEEDS_TEMPLATES = {
 PROPERTY_TEXTS.update(FEEDS_TEXTS)
 MESSAGE_TEMPLATES.update(FEEDS_TEMPLATES)
 NESTED.update(FEEDS_NESTED)
+# drills fed per revolution; the single-workflow batch runs' --material (feeds follow-up)
+DRILL_FEEDS_NESTED = {"--material {}: {}": (1,), "feed per revolution ({})": (0,),
+                      "feed per revolution ({}); the chart's low end in a harder material": (0,)}
+DRILL_FEEDS_TEMPLATES = {
+    "feed per revolution {} mm per revolution is below the safe band {} - {} mm: the tool rubs (heat, burning, a "
+    "dull edge); raise the feed or lower the spindle speed":
+        "1回転あたりの送り {0} mm が安全範囲 {1}〜{2} mm を下回っています：工具がこすれます（発熱、焦げ、刃先の摩耗）。"
+        "送りを上げるか主軸回転数を下げてください",
+    "feed per revolution {} mm per revolution is above the safe band {} - {} mm: the tool is overloaded (breakage "
+    "risk); lower the feed or raise the spindle speed":
+        "1回転あたりの送り {0} mm が安全範囲 {1}〜{2} mm を超えています：工具に過負荷（折損のおそれ）。送りを下げるか"
+        "主軸回転数を上げてください",
+    "feed per revolution": "1回転あたりの送り",
+    "feed per revolution ({})": "1回転あたりの送り（{0}）",
+    "feed per revolution; the chart's low end in a harder material": "1回転あたりの送り。硬い材料なので表の下限",
+    "feed per revolution ({}); the chart's low end in a harder material": "1回転あたりの送り（{0}）。硬い材料なので表の下限",
+    "--material {}: {}": "オプション --material {0}：{1}",
+    "T{}: {} rpm, feed {} mm/min, feed per revolution {} mm (band {} - {} mm)":
+        "T{0}：{1} rpm、送り {2} mm/min、1回転あたりの送り {3} mm（範囲 {4}〜{5} mm）",
+    "the chart's row up to {} mm": "表の {0} mm までの行",
+    "above the chart's largest diameter ({} mm): its band used": "表の最大径（{0} mm）を超えるため、その範囲を使用",
+}
+MESSAGE_TEMPLATES.update(DRILL_FEEDS_TEMPLATES)
+NESTED.update(DRILL_FEEDS_NESTED)
 # the tool library (toolpath/tooling, operators/jobtools.py, operators/toolbatch.py)
 TOOLLIB_OPERATORS = {
     "Load Tool Library": "工具ライブラリを読み込み", "Save Tool Library": "工具ライブラリを保存",

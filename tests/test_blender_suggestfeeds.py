@@ -86,9 +86,24 @@ def test_the_messages_are_in_japanese():
     assert ja == "T5：12936 rpm、送り 3726 mm/min、1刃送り 0.1440 mm（範囲 0.1186〜0.1694 mm）"
     table = translations.TRANSLATIONS["ja_JP"]
     assert table[("Operator", "Suggest Feeds")] == "送り・回転数を提案"
-    ja = translations.japanese_message("job file a.toml: operation 2 ('cut'): feeds: flutes = 16: must be a whole "
-                                       "number 1..12")
-    assert ja is not None and "刃数" in ja
+    ja = translations.japanese_message("job file a.toml: operation 2 ('cut'): feeds: flutes = 26: must be a whole "
+                                       "number 1..20")
+    assert ja is not None and "刃数" in ja and "1〜20" in ja
+    ja = translations.japanese_message("T4: 13583 rpm, feed 1035 mm/min, feed per revolution 0.0762 mm "
+                                       "(band 0.0508 - 0.1016 mm)")
+    assert ja == "T4：13583 rpm、送り 1035 mm/min、1回転あたりの送り 0.0762 mm（範囲 0.0508〜0.1016 mm）"
+
+
+def test_suggest_feeds_on_a_drilling_row_reports_the_feed_per_revolution(plate, capfd):
+    scene = plate
+    scene.kezuri.stock.material = "hardwood"
+    assert bpy.ops.kezuri.job_add(kind="drill") == {"FINISHED"}
+    scene.kezuri.job_list.active = 2
+    capfd.readouterr()
+    assert bpy.ops.kezuri.job_suggest_feeds() == {"FINISHED"}
+    # 13583 rpm x 0.0762 mm/rev = 1035 mm/min (worked in the test above); 1035 / 13583 = 0.0762 mm/rev
+    assert ("T4: 13583 rpm, feed 1035 mm/min, feed per revolution 0.0762 mm (band 0.0508 - 0.1016 mm)"
+            in capfd.readouterr().out)
 
 
 def test_a_row_added_or_loaded_with_a_material_starts_with_the_computed_feeds(plate, tmp_path):
@@ -96,8 +111,12 @@ def test_a_row_added_or_loaded_with_a_material_starts_with_the_computed_feeds(pl
     scene.kezuri.stock.material = "hardwood"
     assert bpy.ops.kezuri.job_add(kind="drill") == {"FINISHED"}
     listed = scene.kezuri.job_list
-    rpm = round(M_MIN * 1000 / (math.pi * 5.0))                    # the drilling's 5 mm drill: 15524 rpm
-    feed = round(rpm * 2 * hardwood_chip_mm(5.0))
+    # the drilling's 5 mm drill, fed per revolution (issue 31 follow-up): wood's drill speed 300 - 400 sfm doubled
+    # for carbide, 700 sfm = 213.36 m/min / (pi x 5 mm) = 13,582.9 -> 13583 rpm; the 1/8 - 1/4 in row's
+    # .002 - .004 in/rev, middle .003 in = 0.0762 mm: 13583 x 0.0762 = 1035.0 -> 1035 mm/min
+    rpm = round(700 * 0.3048 * 1000 / (math.pi * 5.0))
+    feed = round(rpm * 0.003 * 25.4)
+    assert (rpm, feed) == (13583, 1035)
     settings = json.loads(listed.rows[2].settings)
     assert (settings["rpm"], settings["feed"], settings["peck"]) == (rpm, feed, 5.0)
     assert scene.kezuri.drill.rpm == pytest.approx(rpm)            # the panel shows what runs

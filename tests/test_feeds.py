@@ -105,6 +105,74 @@ def test_plunge_is_the_feed_over_the_flutes_and_steps_follow_the_operation_kind(
     assert drill.plunge_feed == drill.feed and drill.step_down == pytest.approx(5.0)
 
 
+# ----- drills: fed per revolution -------------------------------------------------------------------------
+
+NAVY_IPR = [(0.125, 0.001, 0.002), (0.25, 0.002, 0.004), (0.5, 0.004, 0.007), (1.0, 0.007, 0.015)]
+
+
+def test_a_quarter_inch_hss_drill_in_hardwood_from_the_drilling_charts_by_hand():
+    """Worked by hand: wood 300 - 400 sfm for HSS drills (bestdrillbit.com), the middle 350 sfm x
+    0.3048 = 106.68 m/min; 106,680 mm/min / (pi x 6.35 mm) = 5,347.6 -> 5348 rpm.  Feed per
+    revolution for a 1/8 - 1/4 in drill .002 - .004 in (the US Navy manual), the middle .003 in =
+    0.0762 mm; 5348 x 0.0762 = 407.5 -> 408 mm/min, and it plunges at that (not the end mill's
+    3,726 mm/min of the router chart)."""
+    result = calculator.compute("drill", 6.35, "hardwood", None, "drill", tool_material="hss")
+    assert result.rpm == 5348 and result.feed == 408 and result.plunge_feed == 408
+    assert result.per == "revolution" and result.chip_load == pytest.approx(408 / 5348)
+    assert result.band == pytest.approx((0.002 * IN, 0.004 * IN)) and result.flags == ()
+    assert "tpub.com" in result.sources["chip_load"] and "bestdrillbit" in result.sources["surface_speed"]
+    assert result.as_dict()["chip_load_per"] == "revolution"
+    end_mill = calculator.compute("flat", 6.35, "hardwood", 2, "drill")     # a helix-milled hole: the router chart
+    assert (end_mill.rpm, end_mill.feed) == (12223, 3726)
+
+
+def test_a_drills_feed_per_revolution_does_not_depend_on_its_flutes_and_harder_materials_take_the_low_end():
+    one, two = (calculator.compute("drill", 10.0, "mdf", f, "drill", tool_material="hss") for f in (1, 2))
+    assert (one.rpm, one.feed) == (two.rpm, two.feed)
+    # 10 mm: the 1/4 - 1/2 in row, .004 - .007 in/rev; MDF (wood) the middle .0055 in
+    assert one.feed == round(one.rpm * 0.0055 * IN)
+    # aluminium, HSS: 200 - 300 fpm (Navy) -> 250 x 0.3048 = 76.2 m/min / (pi x 10) = 2425.5 -> 2426 rpm;
+    # the row's low end .004 in = 0.1016 mm: 2426 x 0.1016 = 246.5 -> 246 mm/min
+    alu = calculator.compute("drill", 10.0, "aluminium", None, "drill", tool_material="hss")
+    assert (alu.rpm, alu.feed) == (2426, 246)
+    # carbide: the HSS speed doubled (500 fpm): 152.4 m/min / (pi x 10) = 4851 rpm
+    assert calculator.compute("drill", 10.0, "aluminium", None, "drill").rpm == 4851
+    # plastics 150 - 250 sfm (MachinistPost), 200 x 0.3048 / (pi x 3.175 mm) = 6112 rpm; under 1/8 in .001 - .002
+    small = calculator.compute("drill", 3.175, "acrylic", None, "drill", tool_material="hss")
+    assert small.rpm == 6112 and small.feed == round(6112 * 0.0015 * IN)
+    for inch, low, high in NAVY_IPR:
+        band = calculator.band("hardwood", "drill", inch * IN)
+        assert band[:2] == pytest.approx((low * IN, high * IN))
+
+
+def test_a_drill_fed_like_an_end_mill_is_flagged_as_overload_per_revolution():
+    found = calculator.check("drill", 6.35, "hardwood", 12223, 3726, 2, "hss")
+    (flag,) = found.flags
+    # 3726 / 12223 = 0.3048 mm per revolution against .002 - .004 in (0.0508 - 0.1016 mm)
+    assert flag.kind == "overload" and flag.value == pytest.approx(0.3048, abs=1e-4)
+    assert "0.3048 mm per revolution" in flag.message and "0.0508 - 0.1016" in flag.message
+    slow = calculator.check("drill", 6.35, "hardwood", 5348, 100, 2, "hss")
+    assert [f.kind for f in slow.flags] == ["rubbing"]                    # 0.0187 mm/rev
+
+
+def test_every_material_has_drill_speeds_citing_a_source():
+    for row in materials.table():
+        assert set(row["drill_speed_sfm"]) == {"carbide", "hss"}
+        assert all("http" in source for source in row["drill_speed_source"].values())
+        assert "http" in row["drill_feed_source"]
+        hss, carbide = row["drill_speed_sfm"]["hss"], row["drill_speed_sfm"]["carbide"]
+        assert carbide == [2 * hss[0], 2 * hss[1]]
+
+
+def test_the_calculator_takes_every_flute_count_the_tool_library_takes():
+    from kezuri.toolpath.tooling import library
+    assert library.MAX_FLUTES == calculator.MAX_FLUTES == 20
+    assert calculator.compute("flat", 25.0, "mdf", 20).flutes == 20
+    with pytest.raises(InputError, match="flutes = 21: must be a whole number 1..20"):
+        calculator.compute("flat", 25.0, "mdf", 21)
+    assert library.LibraryTool(1, "flat", 25.0, flutes=20).flutes == 20
+
+
 # ----- the machine ----------------------------------------------------------------------------------------
 
 def small_machine(spindle=10000.0, feed=1000.0):

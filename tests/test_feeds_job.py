@@ -36,12 +36,11 @@ def test_the_report_checks_each_operation_against_the_material(hardwood_run):
     assert report["material"] == "hardwood"
     (entry,) = report["feeds"]
     assert entry["checked"] and entry["tool_number"] == 4
-    # 150 mm/min at 3000 rpm with 2 flutes: 0.025 mm per tooth
+    # a drill is fed per revolution: 150 mm/min at 3000 rpm = 0.05 mm/rev, whatever its flutes
     assert entry["spindle_rpm"] == 3000 and entry["feed_mm_min"] == 150
-    assert entry["chip_load_mm"] == pytest.approx(0.025)
-    # AST hardwood, 5 mm between the 1/8 in (.002 - .004) and 1/4 in (.005 - .007) rows
-    t = (5.0 / IN - 0.125) / 0.125
-    assert entry["band_mm"] == pytest.approx([round((0.002 + t * 0.003) * IN, 4), round((0.004 + t * 0.003) * IN, 4)])
+    assert entry["chip_load_mm"] == pytest.approx(0.05) and entry["chip_load_per"] == "revolution"
+    # the US Navy manual's drilling feeds: a 5 mm (0.197 in) drill is in the 1/8 - 1/4 in row, .002 - .004 in/rev
+    assert entry["band_mm"] == pytest.approx([round(0.002 * IN, 4), round(0.004 * IN, 4)])
     assert [f["kind"] for f in entry["flags"]] == ["rubbing"]
     assert any(w.startswith("feeds: operation") and "below the safe band" in w for w in report["warnings"])
     assert os.path.isfile(report["files"][0])            # written: feeds warn, they never refuse
@@ -51,7 +50,7 @@ def test_the_setup_sheet_shows_the_chip_load_each_tool_runs_at(hardwood_run):
     out, report = hardwood_run
     page = read_sheet(open(report["setup_sheet"], encoding="utf-8").read())
     (tool,) = page.rows("tools")
-    assert tool["Tool"] == "T4" and tool["Chip load (mm/tooth)"] == "0.0250"
+    assert tool["Tool"] == "T4" and tool["Chip load (mm/tooth)"] == "0.0500/rev"      # a drill: per revolution
 
 
 def test_a_job_without_material_is_not_checked(tmp_path):
@@ -66,11 +65,12 @@ def test_a_job_without_material_is_not_checked(tmp_path):
 
 def test_feeds_inside_the_band_give_no_warning(tmp_path):
     job = tmp_path / "holes.toml"
-    job.write_text(job_text('material = "hardwood"', rpm=10000, feed=2500), encoding="utf-8")   # 0.125 mm
+    job.write_text(job_text('material = "hardwood"', rpm=5000, feed=400), encoding="utf-8")   # 0.08 mm/rev
     status, message, out = run("job", str(job))
     assert status == 0, message[-2000:]
     report = json.loads(open(os.path.join(out, "report.json")).read())
-    assert report["feeds"][0]["flags"] == [] and report["feeds"][0]["chip_load_mm"] == pytest.approx(0.125)
+    assert report["feeds"][0]["flags"] == [] and report["feeds"][0]["chip_load_mm"] == pytest.approx(0.08)
+    assert not any(str(w).startswith("feeds:") for w in report["warnings"])
 
 
 @pytest.mark.parametrize("value", ['"oak"', '""x', "3", '"NONE "'])

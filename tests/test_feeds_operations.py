@@ -110,12 +110,17 @@ def test_a_v_carve_aims_at_amanas_v_groove_chip_load_and_its_clearing_end_mill_a
 
 
 def test_a_drill_pecks_one_diameter_unless_it_dwells_and_its_helix_mill_only_when_switched_on():
+    # the drill (make unknown: carbide) is fed per revolution (the Navy manual's 1/8 - 1/4 in row,
+    # .002 - .004 in/rev, middle .003 in = 0.0762 mm) at wood's 300 - 400 sfm doubled for carbide:
+    # 700 sfm = 213.36 m/min / (pi x 6.35 mm) = 10,695.3 -> 10695 rpm; x 0.0762 = 814.96 -> 815 mm/min
     tools = {"drill": of.ToolMake(4, "drill", 6.35), "mill": of.ToolMake(5, "flat", 6.35)}
     added, records = of.operation_feeds("drill", {}, tools, "hardwood", None)
-    assert added == {"rpm": 12223, "feed": 3726, "peck": 6.35} and [r["slot"] for r in records] == ["drill"]
+    assert added == {"rpm": 10695, "feed": 815, "peck": 6.35} and [r["slot"] for r in records] == ["drill"]
+    assert records[0]["band_mm"] == [round(0.002 * IN, 4), round(0.004 * IN, 4)]
     added, _ = of.operation_feeds("drill", {"dwell": 0.5, "peck": 0.0}, tools, "hardwood", None)
     assert "peck" not in added
     added, records = of.operation_feeds("drill", {"helix": True}, tools, "hardwood", None)
+    # the helix end mill keeps the router chart: 12223 rpm x 2 x 0.1524 mm = 3726 mm/min
     assert added["mill_rpm"] == 12223 and added["mill_feed"] == 3726 and len(records) == 2
 
 

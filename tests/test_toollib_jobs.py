@@ -130,8 +130,9 @@ def test_a_library_v_bit_gives_a_v_carve_its_angle(tmp_path):
 
 
 def test_the_feeds_check_takes_flutes_and_tool_material_from_the_library(tmp_path, monkeypatch):
-    """A job in hardwood drilling with T13, a 1-flute HSS drill in the library: the feeds entry runs
-    at feed / (rpm x 1) per tooth, not the 2-flute carbide it assumes without the library."""
+    """A job in hardwood drilling with T13, a 1-flute HSS drill in the library: the feeds entry takes
+    its flutes and material from the library; a drill's chip load is its feed per revolution,
+    feed / rpm, whatever its flutes (the 2-flute carbide assumed without the library too)."""
     import json
 
     path = tmp_path / "config" / "tools.toml"
@@ -155,4 +156,5 @@ def test_the_feeds_check_takes_flutes_and_tool_material_from_the_library(tmp_pat
     assert status == 0, message
     entry = json.load(open(os.path.join(out, "report.json")))["feeds"][0]
     assert entry["flutes"] == 2 and set(entry["assumed"]) == {"flutes", "tool material"}
-    assert entry["chip_load_mm"] == pytest.approx(150.0 / 3000.0 / 2, abs=1e-4)
+    assert entry["chip_load_mm"] == pytest.approx(150.0 / 3000.0, abs=1e-4)       # per revolution
+    assert entry["chip_load_per"] == "revolution"

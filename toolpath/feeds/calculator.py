@@ -9,6 +9,10 @@ program runs at) against the material's safe band.
   the machine's fastest feed; the chip load shown is the one the feed then gives;
 * plunge feed: the feed divided by the flutes (Amana Tool's "Ramp Down = Feed Rate / # of
   flutes"); a drill plunges at its feed;
+* a drill (tool kind ``drill``) is fed per revolution, not per tooth: spindle from the material's
+  drill surface speed, feed = feed per revolution (the drilling chart's middle at the diameter, its
+  low end in the harder materials) x rpm, plunge = feed; its band is the chart's feed per revolution
+  (:data:`.materials.DRILL_FEED`).  An end mill milling a hole (helix) keeps the router chart;
 * step-down and step-over: per operation kind, as fractions of the diameter (:data:`OPERATIONS`).
 
 The safe band is the chart's chip-load band at the diameter (:mod:`.materials`).  A chip load below
@@ -26,6 +30,12 @@ from . import materials as mt
 TOOL_KINDS = ("flat", "ball", "bull", "vbit", "drill", "engraver")
 TIPPED = ("vbit", "engraver")          # cut with their tip: the chart's smallest row
 DEFAULT_FLUTES = 2                     # the router-bit charts' tools (2-flute) when a tool does not say
+# Router bits and end mills: 1 (O-flute, single-flute plastic bits) to 8 flutes is what the makers sell for
+# routers and small mills; the charts' chip loads are per tooth, so any count is read the same way.  20
+# is the tool library's bound (a flute count a library file may hold, e.g. a face mill's inserts) and the
+# calculator's: one constant, so a tool the library holds is one the calculator takes.
+MAX_FLUTES = 20
+FEED_PER_REV = "revolution"             # what a drill's chip load is counted per (a router bit's: "tooth")
 AMANA_RAMP = ("Amana Tool chart notes: 'To find Ramp Down: Feed Rate IPM / # of flutes', "
               "https://cdn.shopify.com/s/files/1/1558/5651/files/Solid-Carbide-Spiral-Plunge-Solid-Wood-v5.pdf")
 AMANA_DOC = ("Amana Tool chart notes: 'Depth of Cut: 1 x D use recommended chip load; 2 x D reduce chip load by "
@@ -98,13 +108,14 @@ class Feeds:
     flags: tuple = ()
     notes: tuple = ()
     sources: dict = field(default_factory=dict)
+    per: str = "tooth"                  # the chip load's unit: per tooth, or per revolution (a drill)
 
     def as_dict(self) -> dict:
         return {"material": self.material, "tool": {"kind": self.tool_kind, "diameter_mm": self.diameter,
                                                    "flutes": self.flutes, "material": self.tool_material},
                 "operation": self.operation, "spindle_rpm": _r(self.rpm), "feed_mm_min": _r(self.feed),
                 "plunge_feed_mm_min": _r(self.plunge_feed), "step_down_mm": _r(self.step_down),
-                "step_over_mm": _r(self.step_over), "chip_load_mm": _r(self.chip_load, 4),
+                "step_over_mm": _r(self.step_over), "chip_load_mm": _r(self.chip_load, 4), "chip_load_per": self.per,
                 "band_mm": [_r(v, 4) for v in self.band], "surface_speed_m_min": _r(self.surface_speed),
                 "flags": [f.as_dict() for f in self.flags], "notes": list(self.notes), "sources": dict(self.sources)}
 
@@ -129,8 +140,8 @@ def tool_kind(value) -> str:
 
 
 def flute_count(value) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 12:
-        raise FeedsError(f"flutes = {value!r}: must be a whole number 1..12")
+    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= MAX_FLUTES:
+        raise FeedsError(f"flutes = {value!r}: must be a whole number 1..{MAX_FLUTES}")
     return value
 
 
@@ -147,6 +158,13 @@ def band(material, kind: str, diameter: float, tool_material: str = "carbide") -
     ``kind`` and ``diameter`` in the material, and the chip load the calculator aims at."""
     m = material if isinstance(material, mt.Material) else mt.material(material)
     kind, diameter = tool_kind(kind), positive(diameter, "tool diameter")
+    if kind == "drill":
+        low, high, note = mt.DRILL_FEED.band_mm(diameter)
+        aim = low if m.key in mt.HARD_DRILLING else (low + high) / 2
+        note = f"feed per revolution ({note})" if note else "feed per revolution"
+        if m.key in mt.HARD_DRILLING:
+            note += "; the chart's low end in a harder material"
+        return low, high, aim, note, mt.DRILL_FEED.source
     chart = m.chart(mt.tool_material(tool_material))
     source = m.chip_source(tool_material)
     if kind in TIPPED:
@@ -160,16 +178,25 @@ def band(material, kind: str, diameter: float, tool_material: str = "carbide") -
     return low, high, (low + high) / 2, note, source
 
 
-def flags_for(rpm: float, feed: float, flutes: int, low: float, high: float, machine=None) -> tuple:
-    """The flags of running at ``rpm`` and ``feed`` with ``flutes`` against the band and the machine."""
+def teeth(kind: str, flutes: int) -> int:
+    """What a feed is divided by besides the rpm to give the chip the band holds: a drill's feed is
+    per revolution (1), a router bit's per tooth (its flutes)."""
+    return 1 if kind == "drill" else flutes
+
+
+def flags_for(rpm: float, feed: float, flutes: int, low: float, high: float, machine=None, per: str = "tooth") -> tuple:
+    """The flags of running at ``rpm`` and ``feed`` with ``flutes`` against the band and the machine;
+    ``per``: "tooth" (``flutes`` cut) or :data:`FEED_PER_REV` (a drill: the feed per revolution)."""
     found = []
     chip = feed / (rpm * flutes)
+    what = "feed per revolution" if per == FEED_PER_REV else "chip load"
+    unit = "mm per revolution" if per == FEED_PER_REV else "mm per tooth"
     if chip < low - 1e-12:
-        found.append(Flag("rubbing", f"chip load {chip:.4f} mm per tooth is below the safe band {low:.4f} - "
+        found.append(Flag("rubbing", f"{what} {chip:.4f} {unit} is below the safe band {low:.4f} - "
                                      f"{high:.4f} mm: the tool rubs (heat, burning, a dull edge); raise the feed "
                                      f"or lower the spindle speed", chip, (low, high)))
     elif chip > high + 1e-12:
-        found.append(Flag("overload", f"chip load {chip:.4f} mm per tooth is above the safe band {low:.4f} - "
+        found.append(Flag("overload", f"{what} {chip:.4f} {unit} is above the safe band {low:.4f} - "
                                       f"{high:.4f} mm: the tool is overloaded (breakage risk); lower the feed or "
                                       f"raise the spindle speed", chip, (low, high)))
     if machine is not None:
@@ -201,11 +228,15 @@ def compute(kind, diameter, material, flutes=None, operation="profile", machine=
     flutes = DEFAULT_FLUTES if assumed else flute_count(flutes)
     tool_material, operation = mt.tool_material(tool_material), operation_kind(operation)
     low, high, aim, band_note, chip_source = band(m, kind, diameter, tool_material)
-    speed = m.speed[tool_material]
+    drilling = kind == "drill"
+    speed = m.drill_speed[tool_material] if drilling and m.drill_speed else m.speed[tool_material]
+    per = FEED_PER_REV if drilling else "tooth"
+    cut = teeth(kind, flutes)
     notes = [band_note] if band_note else []
-    if assumed:
+    if assumed and not drilling:
         notes.append(f"flutes not given: {DEFAULT_FLUTES} assumed (the charts' router bits)")
-    sources = {"chip_load": chip_source, "surface_speed": speed.source, "plunge_feed": AMANA_RAMP,
+    sources = {"chip_load": chip_source, "surface_speed": speed.source,
+               "plunge_feed": "a drill plunges at its feed (feed per revolution x rpm)" if drilling else AMANA_RAMP,
                "steps": OPERATIONS[operation].source}
     if rpm is None:
         wanted = speed.target_m_min * 1000 / (math.pi * diameter)
@@ -222,12 +253,12 @@ def compute(kind, diameter, material, flutes=None, operation="profile", machine=
         rpm = positive(rpm, "spindle rpm")
         notes.append("spindle speed as given")
     if feed is None:
-        wanted = rpm * flutes * aim
+        wanted = rpm * cut * aim
         feed = wanted
         if machine is not None and wanted > machine.max_feed:
             feed = float(machine.max_feed)
             notes.append(f"feed {wanted:.0f} mm/min capped at the machine's {feed:g} mm/min: chip load "
-                         f"{feed / (rpm * flutes):.4f} mm")
+                         f"{feed / (rpm * cut):.4f} mm")
         feed = float(round(feed))
     else:
         feed = positive(feed, "feed")
@@ -246,8 +277,8 @@ def compute(kind, diameter, material, flutes=None, operation="profile", machine=
     else:
         step_over = None if rule.step_over is None else rule.step_over * diameter
     return Feeds(m.key, kind, diameter, flutes, tool_material, operation, rpm, feed, plunge_feed, step_down,
-                 step_over, feed / (rpm * flutes), (low, high), math.pi * diameter * rpm / 1000,
-                 flags_for(rpm, feed, flutes, low, high, machine), tuple(notes), sources)
+                 step_over, feed / (rpm * cut), (low, high), math.pi * diameter * rpm / 1000,
+                 flags_for(rpm, feed, cut, low, high, machine, per), tuple(notes), sources, per)
 
 
 def check(kind, diameter, material, rpm, feed, flutes=None, tool_material="carbide", machine=None) -> Feeds:

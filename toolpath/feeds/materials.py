@@ -11,7 +11,9 @@ minute as the charts print them and read in m/min.
 The router-bit charts give one chip-load range for carbide router bits; no chart of HSS router
 bits in wood or plastic was found, so an HSS tool reads the same chip-load chart (chip load is a
 matter of the cutter's flutes and diameter) and differs by its surface speed (the HSS table), as
-the rows' ``source`` say.  A V-bit or engraver cuts with its tip: its band is the chart's smallest
+the rows' ``source`` say.  Drills are fed per revolution, not per tooth: :data:`DRILL_FEED` (inches
+per revolution by drill diameter, one chart for every material, its lower half for the harder
+ones) and each material's drill surface speed (``drill_speed``, HSS and carbide).  A V-bit or engraver cuts with its tip: its band is the chart's smallest
 row (a 1/8 in cutter), its recommended chip load the V-groove chart's where one is published.
 """
 from __future__ import annotations
@@ -50,6 +52,16 @@ GRIZZLY = ("Grizzly G0619 manual, Cutting Speeds for High Speed Steel (HSS) Cutt
            "https://manualshive.com/en/manual/grizzly/g0619/2266130?page=26")
 TORBIDE = ("Torbide Tooling, Feeds & Speeds, Copper / Yellow Brass, High Lead Brass, Red Brass (carbide end "
            "mills, SFM 800 - 1500), http://torbidetooling.com/feeds-speeds?chapter=0")
+NAVY = ("US Navy training manual (Engine Mechanics), Holding the Work: feed rates for drilling in thousandths of "
+        "an inch per revolution (ipr) by drill diameter; cutting speeds for high-speed steel twist drills, 'carbide "
+        "may be run at two to three times these speeds', "
+        "https://enginemechanics.tpub.com/14345/Holding-The-Work-93.html")
+BESTDRILL = ("bestdrillbit.com, Defining Drilling Speed, Drilling Speed (HSS, for carbide up the speeds by 2 to 3 "
+             "times): wood 300-400 sfm, "
+             "https://bestdrillbit.com/drilling-reference-guide/defining-drilling-speed/")
+MACHINISTPOST = ("MachinistPost, Speeds and Feeds, SFM (HSS) for drilling: Plastics (nylon, HDPE) 150-250, "
+                 "https://machinistpost.com/blog/speeds-and-feeds.php")
+CARBIDE_DRILL = "carbide: the HSS drill speed doubled (the low end of the Navy manual's 'two to three times')"
 HSS_CHIP = "no HSS chart found: the carbide chart's chip loads (chip load follows the cutter's size and flutes)"
 
 
@@ -123,6 +135,7 @@ class Material:
     speed: dict                         # tool material -> SurfaceSpeed
     vbit_chip_in: float | None = None   # the V-groove chart's chip load (inches per tooth), where published
     hss_chip: ChipChart | None = None   # an HSS chart of its own, where one is published
+    drill_speed: dict | None = None     # tool material -> SurfaceSpeed of a twist drill (None: none published)
 
     def chart(self, tool_material: str) -> ChipChart:
         if tool_material == "hss" and self.hss_chip is not None:
@@ -133,6 +146,20 @@ class Material:
         if tool_material == "hss" and self.hss_chip is None:
             return f"{self.chip.source} ({HSS_CHIP})"
         return self.chart(tool_material).source
+
+
+# Feed per revolution (inches) of a twist drill by its diameter (inches), the rows "up to" a diameter:
+# No. 80 to 1/8 in, 1/8 to 1/4 in, 1/4 to 1/2 in, 1/2 to 1 in (the manual's "greater than 1 inch",
+# 0.015 - 0.025, is not kept: a larger drill reads the 1 in row, the slower)
+DRILL_FEED = ChipChart(((0.125, 0.001, 0.002), (0.25, 0.002, 0.004), (0.5, 0.004, 0.007), (1.0, 0.007, 0.015)),
+                       NAVY + ": feed per revolution", up_to=True)
+HARD_DRILLING = ("aluminium", "brass")      # "use the lower feed rate ... for the harder materials" (NAVY)
+
+
+def drill_speeds(low_sfm: float, high_sfm: float, source: str) -> dict:
+    """A twist drill's surface speeds: HSS as the chart gives them, carbide doubled (:data:`CARBIDE_DRILL`)."""
+    return {"hss": SurfaceSpeed(low_sfm, high_sfm, source),
+            "carbide": SurfaceSpeed(2 * low_sfm, 2 * high_sfm, f"{source}; {CARBIDE_DRILL}")}
 
 
 def _wood_speeds() -> dict:
@@ -150,37 +177,39 @@ MATERIALS = {m.key: m for m in (
     Material("softwood", "Softwood", "pine, spruce, cedar, Japanese cedar (sugi), cypress (hinoki)",
              ChipChart(((0.125, 0.003, 0.005), (0.25, 0.006, 0.008), (0.375, 0.015, 0.017), (0.5, 0.019, 0.021)),
                        AST + ": Softwood"),
-             _wood_speeds(), vbit_chip_in=0.0024),
+             _wood_speeds(), vbit_chip_in=0.0024, drill_speed=drill_speeds(300, 400, BESTDRILL)),
     Material("hardwood", "Hardwood",
              "Japanese magnolia (hoonoki: the gouge-texture paper's name plate), oak, maple, walnut, cherry, beech",
              ChipChart(((0.125, 0.002, 0.004), (0.25, 0.005, 0.007), (0.375, 0.013, 0.015), (0.5, 0.017, 0.019)),
                        AST + ": Hardwood"),
-             _wood_speeds(), vbit_chip_in=0.0024),
+             _wood_speeds(), vbit_chip_in=0.0024, drill_speed=drill_speeds(300, 400, BESTDRILL)),
     Material("mdf", "MDF", "medium-density fibreboard, particle board",
              ChipChart(((0.125, 0.004, 0.007), (0.25, 0.012, 0.015), (0.375, 0.017, 0.019), (0.5, 0.020, 0.025)),
                        AST + ": MDF / Particle Board"),
-             _wood_speeds(), vbit_chip_in=0.0048),
+             _wood_speeds(), vbit_chip_in=0.0048, drill_speed=drill_speeds(300, 400, BESTDRILL)),
     Material("plywood", "Plywood", "birch, lauan and softwood plywood",
              ChipChart(((0.125, 0.003, 0.005), (0.25, 0.006, 0.009), (0.375, 0.015, 0.018), (0.5, 0.018, 0.021)),
                        AST + ": Plywood"),
-             _wood_speeds(), vbit_chip_in=0.0024),
+             _wood_speeds(), vbit_chip_in=0.0024, drill_speed=drill_speeds(300, 400, BESTDRILL)),
     Material("acrylic", "Acrylic", "cast acrylic (PMMA), polycarbonate: the chart's hard plastics",
              ChipChart(((0.125, 0.002, 0.004), (0.25, 0.005, 0.008), (0.375, 0.008, 0.010), (0.5, 0.010, 0.013)),
                        AST + ": Hard Plastic"),
-             _plastic_speeds(), vbit_chip_in=0.0024),
+             _plastic_speeds(), vbit_chip_in=0.0024, drill_speed=drill_speeds(150, 250, MACHINISTPOST)),
     Material("hdpe", "HDPE", "HDPE, UHMW, polypropylene: the chart's soft plastics",
              ChipChart(((0.125, 0.003, 0.005), (0.25, 0.006, 0.009), (0.375, 0.009, 0.011), (0.5, 0.011, 0.014)),
                        AST + ": Soft Plastic"),
-             _plastic_speeds(), vbit_chip_in=0.0024),
+             _plastic_speeds(), vbit_chip_in=0.0024, drill_speed=drill_speeds(150, 250, MACHINISTPOST)),
     Material("aluminium", "Aluminium", "6061 and similar wrought alloys",
              ChipChart(((0.125, 0.0005, 0.0012), (0.1875, 0.0008, 0.0018), (0.25, 0.001, 0.0022),
                         (0.375, 0.0015, 0.0035), (0.5, 0.002, 0.0045)), HIT),
              {"hss": SurfaceSpeed(300, 300, GRIZZLY + ": aluminum & alloys 300 sfm"),
-              "carbide": SurfaceSpeed(800, 2200, HIT + ": 800 - 2200 sfm")}),
+              "carbide": SurfaceSpeed(800, 2200, HIT + ": 800 - 2200 sfm")},
+             drill_speed=drill_speeds(200, 300, NAVY + ": aluminum 200-300 fpm")),
     Material("brass", "Brass", "yellow brass, free-cutting brass, soft bronze",
              ChipChart(((0.25, 0.0005, 0.002), (0.5, 0.002, 0.003)), ITI, up_to=True),
              {"hss": SurfaceSpeed(150, 150, GRIZZLY + ": brass & bronze 150 sfm"),
-              "carbide": SurfaceSpeed(800, 1500, TORBIDE)}),
+              "carbide": SurfaceSpeed(800, 1500, TORBIDE)},
+             drill_speed=drill_speeds(200, 300, NAVY + ": brass 200-300 fpm")),
 )}
 # The gouge-texture paper's name plate is Japanese magnolia (hoonoki), a hardwood.
 PAPER_MATERIAL = "hardwood"
@@ -210,5 +239,8 @@ def table() -> list:
                      "chip_load_in": [list(row) for row in m.chip.rows], "chip_source": m.chip.source,
                      "surface_speed_sfm": {k: [s.low_sfm, s.high_sfm] for k, s in m.speed.items()},
                      "speed_source": {k: s.source for k, s in m.speed.items()},
-                     "vbit_chip_in": m.vbit_chip_in})
+                     "vbit_chip_in": m.vbit_chip_in,
+                     "drill_feed_in_per_rev": [list(row) for row in DRILL_FEED.rows], "drill_feed_source": DRILL_FEED.source,
+                     "drill_speed_sfm": {k: [s.low_sfm, s.high_sfm] for k, s in (m.drill_speed or {}).items()},
+                     "drill_speed_source": {k: s.source for k, s in (m.drill_speed or {}).items()}})
     return rows

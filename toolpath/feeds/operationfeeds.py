@@ -118,7 +118,8 @@ def operation_feeds(kind: str, typed: dict, tools: dict, material, machine=None,
                                  "assumed": [name for name, v in (("flutes", tool.flutes),
                                                                   ("tool material", tool.material)) if v is None]},
                         "operation": slot.operation, "material": found.material, "values": values,
-                        "chip_load_mm": round(found.chip_load, 4), "band_mm": [round(v, 4) for v in found.band],
+                        "chip_load_mm": round(found.chip_load, 4), "chip_load_per": found.per,
+                        "band_mm": [round(v, 4) for v in found.band],
                         "flags": [f.as_dict() for f in found.flags], "notes": list(found.notes),
                         "sources": dict(found.sources)})
     return added, records

@@ -59,13 +59,14 @@ def check_program(operations, material: str, machine=None, tool_material: str = 
         found = calculator.check(kind, tool.diameter, m, rpm, main, flutes, t_material, machine)
         flags = list(found.flags)
         if fastest > main:
-            extra = calculator.flags_for(rpm, fastest, found.flutes, *found.band, None)
+            extra = calculator.flags_for(rpm, fastest, calculator.teeth(kind, found.flutes), *found.band, None,
+                                         found.per)
             flags += [f for f in extra if f.kind == "overload"]
         entry.update({"checked": True, "spindle_rpm": rpm, "feed_mm_min": main, "fastest_feed_mm_min": fastest,
                       "flutes": found.flutes, "tool_material": found.tool_material,
                       "assumed": [name for name, given in (("flutes", flutes), ("tool material", given_material))
                                   if given is None],
-                      "chip_load_mm": round(found.chip_load, 4), "band_mm": [round(v, 4) for v in found.band],
+                      "chip_load_mm": round(found.chip_load, 4), "chip_load_per": found.per, "band_mm": [round(v, 4) for v in found.band],
                       "flags": [f.as_dict() for f in flags], "notes": list(found.notes),
                       "source": found.sources["chip_load"]})
         entries.append(entry)

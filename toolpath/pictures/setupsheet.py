@@ -133,8 +133,13 @@ def rate(value: float | None) -> str:
 
 
 def chip_text(values) -> str:
-    """The chip loads a tool runs at (mm per tooth, 4 decimals), each once; a dash when not checked."""
-    shown = list(dict.fromkeys(f"{float(v):.4f}" for v in values if _number(v) is not None))
+    """The chip loads a tool runs at (mm per tooth, 4 decimals), each once; a dash when not checked.
+    A value given as (value, "revolution") is a drill's feed per revolution, shown with "/rev"."""
+    def text(v):
+        if isinstance(v, tuple):
+            return None if _number(v[0]) is None else f"{float(v[0]):.4f}/rev"
+        return None if _number(v) is None else f"{float(v):.4f}"
+    shown = list(dict.fromkeys(t for t in map(text, values) if t is not None))
     return ", ".join(shown) if shown else DASH
 
 
@@ -446,7 +451,9 @@ def sheet_from(program, report: dict | None = None, machine=None, post=None, pic
     chips = {}
     for entry in report.get("feeds") or ():       # the check before export: each operation's chip load
         if isinstance(entry, dict) and entry.get("checked") and entry.get("tool_number") is not None:
-            chips.setdefault(entry["tool_number"], []).append(entry.get("chip_load_mm"))
+            value = entry.get("chip_load_mm")
+            chips.setdefault(entry["tool_number"], []).append(
+                (value, "revolution") if entry.get("chip_load_per") == "revolution" else value)
     if chips:
         tools = tuple(SheetTool(t.number, t.kind, t.diameter, t.corner_radius, t.flute_length, t.stick_out,
                                 t.description, tuple(chips.get(t.number, ()))) for t in tools)

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 from ..ir.errors import InputError
 from ..ir.program import ProgramError, Tool
 from ..ir.tools import TIP_ANGLE_DEG
+from ..feeds import calculator
 
 KINDS = ("flat", "ball", "bull", "vbit", "drill", "engraver")
 KIND_LABELS = {"flat": "flat end mill", "ball": "ball end mill", "bull": "bull nose end mill",
@@ -36,7 +37,7 @@ MATERIALS = ("carbide", "hss")
 ANGLED = ("vbit", "engraver", "drill")
 DRILL_POINT_DEG = 118.0          # the common twist-drill point angle, used when a drill gives none
 MAX_NUMBER = 999                 # what the posts write (ir.program.Tool)
-MAX_FLUTES = 20
+MAX_FLUTES = calculator.MAX_FLUTES     # one bound with the feeds calculator (see there why 20)
 FIELDS = ("number", "kind", "diameter", "corner_radius", "angle", "flutes", "flute_length", "stick_out",
           "holder_diameter", "material", "vendor", "product_id", "name")
 LENGTHS = ("diameter", "corner_radius", "flute_length", "stick_out", "holder_diameter")
