@@ -193,6 +193,22 @@ def settings_of(props) -> SimpleNamespace:
                               for value in [getattr(props, prop.identifier)]})
 
 
+def export_work(first: str, punch, allow: bool):
+    """``work(progress) -> [paths]`` of a sheet-metal export: ``punch(progress) -> (punched
+    programs, texts())`` (its progress the first 5-90 %), the gate over every program, then the
+    texts made and written, all or none, after the last progress call (so Esc writes nothing)."""
+    def work(progress=None) -> list:
+        report = progress or (lambda fraction, text="": None)
+        report(0.0, first)
+        punched, texts = punch(share(progress, 0.05, 0.9))
+        report(0.9, "checking")
+        punch_gate(punched, allow)
+        made = texts()
+        report(1.0, "writing")
+        return write_all(made)
+    return work
+
+
 def sheet_export_request(scene, target: str, allow: bool):
     """The Sheet panel's export: the settings checked (by their panel names) and copied here, on
     the main thread; ``work(progress) -> [paths]`` unfolds, plans, punches the program out of the
@@ -205,16 +221,10 @@ def sheet_export_request(scene, target: str, allow: bool):
     punch_profile(props)            # the sheet, origin and clamps, named as the panel names them
     settings = settings_of(props)
 
-    def work(progress=None) -> list:
-        report = progress or (lambda fraction, text="": None)
-        report(0.0, "unfolding")
-        job = run_unfold(corners, settings, progress=share(progress, 0.05, 0.9))
-        report(0.9, "checking")
-        punch_gate([job.punched], allow)
-        texts = unfold_texts(job, target)
-        report(1.0, "writing")
-        return write_all(texts)
-    return work
+    def punch(progress):
+        job = run_unfold(corners, settings, progress=progress)
+        return [job.punched], lambda: unfold_texts(job, target)
+    return export_work("unfolding", punch, allow)
 
 
 def elbow_export_request(scene, target: str, allow: bool):
@@ -226,16 +236,10 @@ def elbow_export_request(scene, target: str, allow: bool):
     punch_profile(props)
     settings = settings_of(props)
 
-    def work(progress=None) -> list:
-        report = progress or (lambda fraction, text="": None)
-        report(0.0, "punching")
-        punching = elbow_punching(elbow, settings, progress=share(progress, 0.05, 0.9))
-        report(0.9, "checking")
-        punch_gate([punched for _, punched, _ in punching], allow)
-        texts = elbow_texts(elbow, target, settings, punching)
-        report(1.0, "writing")
-        return write_all(texts)
-    return work
+    def punch(progress):
+        punching = elbow_punching(elbow, settings, progress=progress)
+        return [punched for _, punched, _ in punching], lambda: elbow_texts(elbow, target, settings, punching)
+    return export_work("punching", punch, allow)
 
 
 class SheetExport(SteppedOperator, ExportHelper):
