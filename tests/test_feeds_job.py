@@ -50,7 +50,7 @@ def test_the_setup_sheet_shows_the_chip_load_each_tool_runs_at(hardwood_run):
     out, report = hardwood_run
     page = read_sheet(open(report["setup_sheet"], encoding="utf-8").read())
     (tool,) = page.rows("tools")
-    assert tool["Tool"] == "T4" and tool["Chip load (mm/tooth)"] == "0.0500/rev"      # a drill: per revolution
+    assert tool["Tool"] == "T4" and tool["Chip load (mm)"] == "0.0500/rev"      # a drill: per revolution
 
 
 def test_a_job_without_material_is_not_checked(tmp_path):

@@ -165,3 +165,20 @@ def test_operation_summaries_carry_the_tool_and_feeds():
         [(t.number, t.kind, t.diameter) for t in from_program.tools]
     assert [(o.name, o.feed, o.plunge_feed) for o in from_report.operations] == \
         [(o.name, o.feed, o.plunge_feed) for o in from_program.operations]
+
+
+def test_the_chip_load_column_says_per_what_in_every_cell():
+    """The header gives the unit (mm) and each cell says per what: a router bit's chip load per
+    tooth, a drill's feed per revolution (report.json's ``chip_load_per``), so a drill's "/rev"
+    does not stand under a header that says per tooth.  A tool not checked shows a dash."""
+    report = {"feeds": [{"checked": True, "tool_number": 5, "chip_load_mm": 0.05, "chip_load_per": "tooth"},
+                        {"checked": True, "tool_number": 5, "chip_load_mm": 0.0833, "chip_load_per": "tooth"},
+                        {"checked": True, "tool_number": 12, "chip_load_mm": 0.0762,
+                         "chip_load_per": "revolution"}]}
+    page = read_sheet(setupsheet.setup_sheet(setupsheet.sheet_from(two_tool_program(), report)))
+    tools = page.rows("tools")
+    assert [(t["Tool"], t["Chip load (mm)"]) for t in tools] == \
+        [("T5", "0.0500/tooth, 0.0833/tooth"), ("T12", "0.0762/rev")]
+    assert not any("tooth" in name for name in tools[0])            # the header names the unit only
+    unchecked = read_sheet(setupsheet.setup_sheet(setupsheet.sheet_from(two_tool_program(), {})))
+    assert [t["Chip load (mm)"] for t in unchecked.rows("tools")] == ["\u2014", "\u2014"]

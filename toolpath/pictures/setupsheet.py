@@ -38,7 +38,7 @@ class SheetTool:
     flute_length: float | None = None
     stick_out: float | None = None      # how far the tool stands out of the holder (None: not known)
     description: str = ""
-    chip_loads: tuple = ()              # the chip loads (mm per tooth) it runs at: report.json's ``feeds``
+    chip_loads: tuple = ()              # the chip loads (mm a tooth; a drill's (mm, "revolution")): report.json's ``feeds``
 
 
 @dataclass(frozen=True)
@@ -133,12 +133,13 @@ def rate(value: float | None) -> str:
 
 
 def chip_text(values) -> str:
-    """The chip loads a tool runs at (mm per tooth, 4 decimals), each once; a dash when not checked.
-    A value given as (value, "revolution") is a drill's feed per revolution, shown with "/rev"."""
+    """The chip loads a tool runs at (mm, 4 decimals), each once and each with what it is per: "/tooth",
+    or "/rev" for a value given as (value, "revolution") (a drill's feed per revolution); a dash when
+    not checked.  The column's header says only "(mm)": a tool's cells say per what."""
     def text(v):
         if isinstance(v, tuple):
             return None if _number(v[0]) is None else f"{float(v[0]):.4f}/rev"
-        return None if _number(v) is None else f"{float(v):.4f}"
+        return None if _number(v) is None else f"{float(v):.4f}/tooth"
     shown = list(dict.fromkeys(t for t in map(text, values) if t is not None))
     return ", ".join(shown) if shown else DASH
 
@@ -297,7 +298,7 @@ def _tools_table(tools) -> str:
     rows = [_row((f"T{t.number}", t.kind, mm(t.diameter), mm(t.corner_radius), mm(t.flute_length), mm(t.stick_out),
                   chip_text(t.chip_loads), t.description), numeric) for t in tools]
     return ('<table id="tools">' + _head(("Tool", "Kind", "Diameter (mm)", "Corner R (mm)", "Flute length (mm)",
-                                          "Stick-out (mm)", "Chip load (mm/tooth)", "Description"), numeric)
+                                          "Stick-out (mm)", "Chip load (mm)", "Description"), numeric)
             + "<tbody>" + "".join(rows) + "</tbody></table>")
 
 
