@@ -246,12 +246,8 @@ class SteppedOperator:
         return run_reported(self, lambda: self.finish(context, job.result()))
 
     def _status(self, context):
-        from bpy.app.translations import pgettext_iface as iface
-
         if context.workspace is not None:
-            context.workspace.status_text_set(
-                f"{iface(self.bl_label)}: {int(self._job.fraction * 100)}%  {self._job.text}   "
-                f"({iface('Esc to cancel')})")
+            context.workspace.status_text_set(status_line(self.bl_label, self._job.fraction, self._job.text))
 
     def _end(self, context):
         wm = context.window_manager
@@ -262,6 +258,15 @@ class SteppedOperator:
         if context.workspace is not None:
             context.workspace.status_text_set(None)
         SteppedOperator.running.discard(self.bl_idname)
+
+
+def status_line(label: str, fraction: float, text: str) -> str:
+    """The status bar's line of a stepped job: its operator's label, the percent done and the
+    stage its work reports ("planning", "checking" ...), each in the interface language."""
+    from bpy.app.translations import pgettext_iface as iface
+
+    stage = translate_message(text) if text else ""
+    return f"{iface(label)}: {int(fraction * 100)}%  {stage}   ({iface('Esc to cancel')})"
 
 
 class CoreCall:

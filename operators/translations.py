@@ -822,8 +822,8 @@ def japanese_message(text: str) -> str | None:
         match = pattern.match(text)
         if match:
             values = list(match.groups())
-            for index in nested:
-                values[index] = japanese_message(values[index]) or values[index]
+            for index in nested:         # a message with a template of its own, or a fixed one
+                values[index] = japanese_message(values[index]) or _interface_name(values[index])
             for index in names:         # a panel's name or a property's label, wherever it appears
                 english = _NAMED.match(values[index]).group(1)
                 if not english:
@@ -838,7 +838,7 @@ _NAMED = re.compile(r"(.*?)(?: '.*'| \[\d+\])?$")   # "Tool Library 'T1'" / "Cor
 
 
 def _interface_name(english: str) -> str:
-    """A panel name or property label as the Japanese interface shows it (else unchanged)."""
+    """A panel name, property label or fixed message as the Japanese interface shows it (else unchanged)."""
     return TRANSLATIONS[LOCALE].get((DEFAULT, english), english)
 
 
@@ -3095,6 +3095,43 @@ INTERFACE_NAMES["Suggested feeds for {} in {}"] = (1,)
 # compilenotice.py: batch's line when a first run compiles the numba kernels
 MESSAGES["compiling the numba kernels (first run after an install only, about 2-5 s; later runs load them "
          "from numba's cache)"] = "numbaカーネルをコンパイル中です（インストール後の初回のみ、約2～5秒。以降はnumbaのキャッシュから読み込みます）"
+# the status bar's progress texts of the stepped operators (the NC exports, Export Job, Simulate, the Sheet
+# and Elbow exports): SteppedOperator shows each through translate_message
+PROGRESS_TEXTS = {
+    "planning": "経路を計算中", "checking": "シミュレーションで検査中", "writing": "書き出し中",
+    "unfolding": "展開中", "punching": "パンチング中", "reading": "読み込み中", "cutting": "切削中",
+    "done": "完了", "roughing": "荒加工", "finishing": "仕上げ加工", "steep cleanup": "急斜面の追加仕上げ",
+    "walls": "壁の等高線仕上げ", "roughing raster": "荒加工のラスター", "band finishing": "帯仕上げ",
+    "fine text": "細かすぎる文字の確認", "burr contour": "バリ取り輪郭", "roughing (gouge texture)": "荒加工（彫刻刀跡）",
+    "surface": "曲面の確認", "letters on the surface": "曲面上の文字", "radial layers": "半径方向の層",
+    "axial layers": "軸方向の層", "operations": "加工工程", "casting radial rays": "半径方向の光線を投射中",
+    "casting axial rays": "軸方向の光線を投射中",
+}
+PROGRESS_NESTED = {"following the surface: {}": (0,)}
+PROGRESS_TEMPLATES = {
+    "pocket {}": "ポケット {0}",
+    "workingstep #{}": "ワーキングステップ #{0}",
+    "following the surface: {}": "曲面に沿わせています：{0}",
+    "casting {} rays": "{0} 方向の光線を投射中",
+}
+MESSAGES.update(PROGRESS_TEXTS)
+MESSAGE_TEMPLATES.update(PROGRESS_TEMPLATES)
+NESTED.update(PROGRESS_NESTED)
+# the feeds calculator's notes (how the band was read, what was capped or given): report.json, the reports
+FEEDS_NOTES_TEXTS = {
+    "a V-bit cuts with its tip: the chart's smallest row": "V ビットは先端で削るため、表の最小径の行",
+    "a V-bit cuts with its tip: the chart's smallest row; recommended: the V-groove chart's":
+        "V ビットは先端で削るため、表の最小径の行。推奨値は V 溝の表",
+    "spindle speed as given": "主軸回転数は指定どおり",
+    "feed as given": "送りは指定どおり",
+}
+FEEDS_NOTES_TEMPLATES = {
+    "below the chart's smallest diameter ({} mm): its band scaled by {} / {}":
+        "表の最小径（{0} mm）未満のため、その範囲を {1} / {2} 倍に縮小",
+    "interpolated between the chart's {} and {} mm rows": "表の {0} mm と {1} mm の行の間を補間",
+}
+MESSAGES.update(FEEDS_NOTES_TEXTS)
+MESSAGE_TEMPLATES.update(FEEDS_NOTES_TEMPLATES)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 
