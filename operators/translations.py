@@ -3043,8 +3043,10 @@ MERGED_TEMPLATES = {
     "spindle {} rpm for {} m/min capped at the machine's {} rpm":
         "{1} m/min に要る主軸 {0} rpm を機械の {2} rpm に制限しました",
     "spindle raised to the machine's slowest, {} rpm": "主軸を機械の最低回転数 {0} rpm に上げました",
-    "feed {} mm/min capped at the machine's {} mm/min: chip load {} mm":
+    "feed {} mm/min capped at the machine's {} mm/min: chip load per tooth {} mm":
         "送り {0} mm/min を機械の {1} mm/min に制限しました：1刃送り {2} mm",
+    "feed {} mm/min capped at the machine's {} mm/min: feed per revolution {} mm":
+        "送り {0} mm/min を機械の {1} mm/min に制限しました：1回転送り {2} mm",
     "the band finishing's {} mm tool is too big for {} of letters {}: {} mm^2 between its strokes is left uncut":
         "帯仕上げの {0} mm 工具は文字 {2} の {1} には太すぎます：線の間の {3} mm² が削り残ります",
     "{}; no text up to {} times as tall lets the tool in: use a smaller tool":

@@ -48,6 +48,7 @@ def test_the_runs_reach_every_kind_of_note():
     for part in ("interpolated between", "below the chart's smallest", "above the chart's largest",
                  "the chart's row up to", "a V-bit cuts with its tip", "recommended: the V-groove", "feed per revolution",
                  "low end in a harder material", "flutes not given", "capped at the machine's", "raised to the machine",
+                 "mm/min: feed per revolution", "mm/min: chip load per tooth",
                  "spindle speed as given", "feed as given"):
         assert any(part in note for note in notes), part
 

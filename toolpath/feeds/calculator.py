@@ -257,8 +257,12 @@ def compute(kind, diameter, material, flutes=None, operation="profile", machine=
         feed = wanted
         if machine is not None and wanted > machine.max_feed:
             feed = float(machine.max_feed)
-            notes.append(f"feed {wanted:.0f} mm/min capped at the machine's {feed:g} mm/min: chip load "
-                         f"{feed / (rpm * cut):.4f} mm")
+            if drilling:
+                notes.append(f"feed {wanted:.0f} mm/min capped at the machine's {feed:g} mm/min: feed per "
+                             f"revolution {feed / (rpm * cut):.4f} mm")
+            else:
+                notes.append(f"feed {wanted:.0f} mm/min capped at the machine's {feed:g} mm/min: chip load per "
+                             f"tooth {feed / (rpm * cut):.4f} mm")
         feed = float(round(feed))
     else:
         feed = positive(feed, "feed")
