@@ -7,6 +7,7 @@ import pytest
 from manifold3d import CrossSection, Manifold, OpType
 
 from kezuri.toolpath import simulate as sim
+from sweep_checks import depth_outside_ball_sweep, surface_samples
 from kezuri.toolpath.simulate import sweep
 from kezuri.toolpath.simulate.paths import Chain
 from kezuri.toolpath.simulate.stock import stock_solid
@@ -42,21 +43,18 @@ def pieces_of(tool, points, tolerance=0.01, stock=None, radial=False):
     return [make() for make in makers + [m for made in repeats.kept() for m in made]]
 
 
-def depth_outside_ball_sweep(vertices, tips, r):
-    """How far each vertex lies outside ball + shank swept along the level tip polyline (exact:
-    distance to the centre segments, and the shank above them)."""
-    centres = tips + [0, 0, r]
-    a, b = centres[:-1], centres[1:]
-    worst = np.zeros(len(vertices))
-    for start in range(0, len(vertices), 2000):
-        v = vertices[start:start + 2000, None, :]
-        d = b - a
-        t = np.clip(np.einsum("vsk,sk->vs", v - a, d) / np.einsum("sk,sk->s", d, d), 0, 1)
-        near = a + t[..., None] * d
-        ball = np.linalg.norm(v - near, axis=2) - r
-        shank = np.where(v[..., 2] >= near[..., 2], np.linalg.norm((v - near)[..., :2], axis=2) - r, np.inf)
-        worst[start:start + 2000] = np.min(np.minimum(ball, shank), axis=1)
-    return worst
+def assert_the_ball_sweep(pieces, tips, tolerance, shank):
+    """The 6 mm ball's pieces along the level ``tips``: every sampled surface point below the stock
+    top within the engine's allowance of the exact sweep, and the sweep of the tool shrunk by the
+    tolerance (exact hulls per move, its shank ``shank`` mm long) held inside them."""
+    swept = Manifold.batch_boolean(pieces, OpType.Add)
+    samples = surface_samples(swept)
+    assert depth_outside_ball_sweep(samples[samples[:, 2] < BOX[5]], tips, 3.0).max() < sweep.outside(BALL6, tolerance) + 1e-6
+    shrunk = sweep.tool_points(BALL6, 0.005, shank, inset=tolerance)
+    inner = Manifold.batch_boolean([Manifold.hull_points(sweep.placed(shrunk, tips[k:k + 2], None))
+                                    for k in range(len(tips) - 1)], OpType.Add)
+    stock = stock_solid(sim.as_stock(BOX), tolerance)
+    assert ((inner ^ stock) - swept).volume() < 1e-6
 
 
 def test_ball_along_a_level_circle_is_pappus_of_its_section():
@@ -126,14 +124,7 @@ def test_a_level_path_with_bends_corners_and_a_reversal_is_within_the_tolerance_
         tips = circle(5.0, -2.0, n=26)
     pieces = pieces_of(BALL6, tips, tolerance=tolerance)
     assert len(pieces) <= (31 if corners else 16)    # tubes (breaking every 60 degrees), not hulls
-    swept = Manifold.batch_boolean(pieces, OpType.Add)
-    samples = surface_samples(swept)
-    assert depth_outside_ball_sweep(samples[samples[:, 2] < BOX[5]], tips, 3.0).max() < sweep.outside(BALL6, tolerance) + 1e-6
-    shrunk = sweep.tool_points(BALL6, 0.005, 5.0, inset=tolerance)
-    inner = Manifold.batch_boolean([Manifold.hull_points(sweep.placed(shrunk, tips[k:k + 2], None))
-                                    for k in range(len(tips) - 1)], OpType.Add)
-    stock = stock_solid(sim.as_stock(BOX), tolerance)
-    assert ((inner ^ stock) - swept).volume() < 1e-6
+    assert_the_ball_sweep(pieces, tips, tolerance, 5.0)
 
 
 def test_a_layer_wholly_inside_a_deeper_ones_footprint_is_left_out():
@@ -157,15 +148,6 @@ def test_a_staircase_of_short_moves_is_cut_as_hulls():
     field, exact = (sim.simulate(level_op(BALL6, steps), BOX, engine=engine, tolerance=0.01, cell=0.05)
                     for engine in ("heightfield", "manifold"))
     assert exact.removed_volume_mm3 == pytest.approx(field.removed_volume_mm3, rel=0.01)
-
-
-def surface_samples(solid, per_triangle=3, seed=1):
-    """Random points on every triangle of the solid (and its vertices)."""
-    mesh = solid.to_mesh()
-    v = np.asarray(mesh.vert_properties, float)[:, :3]
-    t = v[np.asarray(mesh.tri_verts)]
-    w = np.random.default_rng(seed).dirichlet(np.ones(3), size=(len(t), per_triangle))
-    return np.vstack([v, np.einsum("tsk,tkd->tsd", w, t).reshape(-1, 3)])
 
 
 def test_a_level_staircase_on_a_grid_is_cut_along_its_rows():
@@ -421,14 +403,7 @@ def test_a_ball_level_run_carries_its_end_in_tubes_and_its_shank_in_a_prism():
     pieces = pieces_of(BALL6, tips, tolerance=tolerance)
     tops = sorted(p.bounding_box()[5] for p in pieces)
     assert tops[-1] > BOX[5] and tops[-2] < -4.0 + 3.0 + sweep.SHANK_OVERLAP + 0.5 + 1e-9
-    swept = Manifold.batch_boolean(pieces, OpType.Add)
-    samples = surface_samples(swept)
-    assert depth_outside_ball_sweep(samples[samples[:, 2] < BOX[5]], tips, 3.0).max() < sweep.outside(BALL6, tolerance) + 1e-6
-    shrunk = sweep.tool_points(BALL6, 0.005, 8.0, inset=tolerance)
-    inner = Manifold.batch_boolean([Manifold.hull_points(sweep.placed(shrunk, tips[k:k + 2], None))
-                                    for k in range(len(tips) - 1)], OpType.Add)
-    stock = stock_solid(sim.as_stock(BOX), tolerance)
-    assert ((inner ^ stock) - swept).volume() < 1e-6
+    assert_the_ball_sweep(pieces, tips, tolerance, 8.0)
 
 
 def test_the_moves_of_a_layer_that_a_deeper_layer_repeats_are_left_out():

@@ -7,6 +7,7 @@ import pytest
 from manifold3d import Manifold, OpType
 
 from kezuri.toolpath import simulate as sim
+from sweep_checks import depth_outside_ball_sweep, surface_samples
 from kezuri.toolpath.ir.program import FEED, Operation, Tool
 from kezuri.toolpath.simulate import sweep
 from kezuri.toolpath.simulate.paths import Chain
@@ -62,32 +63,6 @@ def test_a_ball_groove_round_a_circle_is_pappus_within_a_thousandth(depth, toler
     result = sim.simulate(loop_op(circle(radius, -depth, 360)), BOX, engine="manifold", tolerance=tolerance)
     expected = 2 * math.pi * radius * groove_section(3.0, depth)
     assert result.removed_volume_mm3 == pytest.approx(expected, rel=1e-3)
-
-
-def depth_outside_ball_sweep(vertices, tips, r):
-    """How far each point lies outside ball + shank swept along the level tip polyline (exact:
-    distance to the centre segments, and the shank above them)."""
-    centres = tips + [0, 0, r]
-    a, b = centres[:-1], centres[1:]
-    worst = np.zeros(len(vertices))
-    for start in range(0, len(vertices), 2000):
-        v = vertices[start:start + 2000, None, :]
-        d = b - a
-        t = np.clip(np.einsum("vsk,sk->vs", v - a, d) / np.einsum("sk,sk->s", d, d), 0, 1)
-        near = a + t[..., None] * d
-        ball = np.linalg.norm(v - near, axis=2) - r
-        shank = np.where(v[..., 2] >= near[..., 2], np.linalg.norm((v - near)[..., :2], axis=2) - r, np.inf)
-        worst[start:start + 2000] = np.min(np.minimum(ball, shank), axis=1)
-    return worst
-
-
-def surface_samples(solid, per_triangle=3, seed=1):
-    """Random points on every triangle of the solid (and its vertices)."""
-    mesh = solid.to_mesh()
-    v = np.asarray(mesh.vert_properties, float)[:, :3]
-    t = v[np.asarray(mesh.tri_verts)]
-    w = np.random.default_rng(seed).dirichlet(np.ones(3), size=(len(t), per_triangle))
-    return np.vstack([v, np.einsum("tsk,tkd->tsd", w, t).reshape(-1, 3)])
 
 
 LOOPS = {
