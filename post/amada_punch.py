@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.ir import PunchProgram
+from ..toolpath.ir.program import PunchProgram
 from .gcode import PostError
 from .registry import ControllerLimits, Post
 

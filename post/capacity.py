@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import re
 
-from ..toolpath.ir import MachineProfile
+from ..toolpath.ir.program import MachineProfile
 
 WORD = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
 COMMENT = re.compile(r"\([^)]*\)|;.*$")

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.ir import FEED, RAPID, Operation, Program, TurnMillOperation
+from ..toolpath.ir.program import FEED, RAPID, Operation, Program, TurnMillOperation
 from . import words
 from .gcode import PostError, comment_text, format_duration
 from .registry import ControllerLimits, Post

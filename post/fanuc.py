@@ -49,7 +49,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.ir import FEED, RAPID, GougeTexture
+from ..toolpath.ir.program import FEED, RAPID, GougeTexture
 
 from .gcode import GcodePost, PostError, fmt
 from .registry import ControllerLimits

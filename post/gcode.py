@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.ir import FEED, RAPID, MachineProfile, Operation, Program, fit_program
+from ..toolpath.ir.program import FEED, RAPID, MachineProfile, Operation, Program, fit_program
 from . import words
 from .registry import ControllerLimits, Post, PostError, default_machine
 

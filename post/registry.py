@@ -26,7 +26,7 @@ from __future__ import annotations
 import zlib
 from dataclasses import dataclass
 
-from ..toolpath.ir import DEFAULT_FOR_FAMILY, preset
+from ..toolpath.ir.program import DEFAULT_FOR_FAMILY, preset
 from ..toolpath.ir.errors import InputError
 
 # Machine families: the kind of machine a post's program runs on.

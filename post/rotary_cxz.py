@@ -27,8 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.ir import kinematics
-from ..toolpath.ir import FEED, RAPID, Operation, Program
+from ..toolpath.ir.kinematics import DEFAULT_MAX_TABLE_RPM, cycle_time, inverse_time_feed
+from ..toolpath.ir.program import FEED, RAPID, Operation, Program
 from .fanuc import FANUC_MILL_LIMITS, FanucPost
 from .gcode import GcodePost, PostError, comment_text, fmt
 from .linuxcnc import LINUXCNC_LIMITS, LinuxCNCPost
@@ -41,7 +41,7 @@ class RotaryCXZPost(GcodePost):
     angle_decimals = 4
     feed_decimals = 4
 
-    def __init__(self, work_offset: str | None = None, max_table_rpm: float = kinematics.DEFAULT_MAX_TABLE_RPM,
+    def __init__(self, work_offset: str | None = None, max_table_rpm: float = DEFAULT_MAX_TABLE_RPM,
                  machine=None):
         super().__init__(work_offset, machine=machine)
         self.max_table_rpm = max_table_rpm
@@ -69,7 +69,7 @@ class RotaryCXZPost(GcodePost):
 
     def operation_seconds(self, op: Operation, rapid_rate: float) -> float:
         """The table's speed limit counts too."""
-        return kinematics.cycle_time(op, rapid_rate, self.max_table_rpm)
+        return cycle_time(op, rapid_rate, self.max_table_rpm)
 
     def to_text(self, program: Program) -> str:
         work_offset = self.frame_offset = self.work_offset or program.work_offset
@@ -94,7 +94,7 @@ class RotaryCXZPost(GcodePost):
 
     def rotary_moves(self, op: Operation) -> list:
         """Modal X C Z blocks; every G01 carries its inverse-time F; unchanged blocks dropped."""
-        inverse_time = kinematics.inverse_time_feed(op, self.max_table_rpm)
+        inverse_time = inverse_time_feed(op, self.max_table_rpm)
         self.check_limits(op, inverse_time)
         last = {"X": self.n(op.start[0]), "C": self.a(op.rotary["c"][0]), "Z": self.n(op.start[2])}
         lines, mode = [], None

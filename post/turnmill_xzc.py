@@ -52,8 +52,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..toolpath.ir import kinematics
-from ..toolpath.ir import FEED, RAPID, Operation, Program, TurnMillOperation
+from ..toolpath.ir.kinematics import block_minutes
+from ..toolpath.ir.program import FEED, RAPID, Operation, Program, TurnMillOperation
 from . import words
 from .gcode import GcodePost, PostError, comment_text, fmt
 from .linuxcnc import LINUXCNC_LIMITS
@@ -183,7 +183,7 @@ class TurnMillXZCPost(GcodePost):
             lines.append(self.codes.inverse_time)
         lengths = op.move_lengths()
         cutting = op.kind == FEED
-        inverse_time = np.where(cutting, 1.0 / kinematics.block_minutes(lengths, np.where(cutting, op.feed, 1.0)),
+        inverse_time = np.where(cutting, 1.0 / block_minutes(lengths, np.where(cutting, op.feed, 1.0)),
                                 np.nan)
         scaled = op.replace(xyz=op.xyz * [scale, 1.0, 1.0], start=op.start * [scale, 1.0, 1.0])
         self.check_limits(scaled, inverse_time if self.inverse_time else None)

@@ -9,7 +9,7 @@ from kezuri.post.rotary_cxz import RotaryCXZPost
 from kezuri.post.turnmill_xzc import TurnMillXZCPost
 from kezuri.toolpath.ir import kinematics as kin
 from kezuri.toolpath.ir.program import FEED, RAPID, Operation, Program, Tool
-from kezuri.toolpath.ir.xzc import TurnMillOperation
+from kezuri.toolpath.ir.program import TurnMillOperation
 
 RNG = np.random.default_rng(20261125)
 

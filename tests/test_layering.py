@@ -5,9 +5,10 @@ import os
 import pytest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-# What a post may take from toolpath/: the names the IR package's front lists (toolpath/ir/__init__.py),
-# and its kinematics and errors modules (DESIGN.md: posts import only the IR, kinematics and errors).
-POST_MAY_IMPORT = ("ir.kinematics", "ir.errors")
+# What a post may take from toolpath/: names of the IR module (toolpath/ir/program.py: the Program and
+# all a post needs with it), and of the kinematics and errors modules (DESIGN.md: posts import only the
+# IR, kinematics and errors).  A module reached is "ir.program.FEED": its module path comes first.
+POST_MAY_IMPORT = ("ir.program.", "ir.kinematics.", "ir.errors.")
 BLENDER = {"bpy", "bmesh", "mathutils", "gpu", "blf"}
 
 
@@ -56,24 +57,20 @@ def test_the_checks_see_the_import_forms():
 
 @pytest.mark.parametrize("path", list(python_files("post")))
 def test_posts_import_only_the_ir_kinematics_and_errors(path):
-    from kezuri.toolpath import ir
-
-    front = {f"ir.{name}" for name in ir.__all__}
     reached = {m for statement in imports(path) for m in toolpath_modules_of_post(*statement)}
-    outside = sorted(m for m in reached if m not in front and not m.startswith(POST_MAY_IMPORT))
-    assert not outside, f"{path} imports toolpath modules outside the IR's front, kinematics and errors: {outside}"
+    outside = sorted(m for m in reached if not m.startswith(POST_MAY_IMPORT))
+    assert not outside, f"{path} imports toolpath modules other than the IR, kinematics and errors: {outside}"
 
 
-def test_the_posts_rule_refuses_an_ir_module_behind_the_front():
-    from kezuri.toolpath import ir
-
-    front = {f"ir.{name}" for name in ir.__all__}
+def test_the_posts_rule_refuses_the_ir_package_and_its_other_modules():
     for module, names in (("toolpath.ir.punch", ["PunchProgram"]), ("toolpath.ir", ["machine"]),
-                          ("toolpath.ir.program", ["FEED"])):
+                          ("toolpath.ir", ["Program"]), ("toolpath.ir", ["kinematics"]),
+                          ("toolpath.ir.arcfit", ["fit_program"]), ("toolpath.ir.programs", ["X"])):
         reached = toolpath_modules_of_post(module, 2, names)
-        assert all(m not in front and not m.startswith(POST_MAY_IMPORT) for m in reached), reached
-    assert toolpath_modules_of_post("toolpath.ir", 2, ["Program"])[0] in front
-    assert toolpath_modules_of_post("toolpath.ir", 2, ["kinematics"])[0].startswith(POST_MAY_IMPORT)
+        assert not any(m.startswith(POST_MAY_IMPORT) for m in reached), reached
+    for module, names in (("toolpath.ir.program", ["FEED"]), ("toolpath.ir.kinematics", ["block_minutes"]),
+                          ("toolpath.ir.errors", ["InputError"])):
+        assert all(m.startswith(POST_MAY_IMPORT) for m in toolpath_modules_of_post(module, 2, names))
 
 
 @pytest.mark.parametrize("path", list(python_files("toolpath")) + list(python_files("post")))
@@ -116,6 +113,6 @@ def test_the_engines_import_no_operation_kind(path):
 
 
 def test_the_import_reader_resolves_relative_imports():
-    assert list(reached_packages("toolpath/ir/xzc.py")) == ["ir", "ir.program"]      # from . import kinematics
+    assert list(reached_packages("toolpath/ir/arcfit.py")) == ["ir", "ir.errors", "ir.moves"]   # from . import arcfit_kernel
     assert "operations.turnmill.errors" in reached_packages("toolpath/operations/turnmill/turnjoin.py")
     assert "engines.meshdata" in reached_packages("toolpath/engines/meshrays.py")

@@ -17,7 +17,7 @@ import numpy as np
 
 from .meshdata import prism, triangulated
 from ..ir.program import ARC_CCW, FEED, RAPID, Operation, Tool
-from ..ir.xzc import TurnMillOperation
+from ..ir.program import TurnMillOperation
 from ..ir.tools import KINDS
 
 

@@ -38,11 +38,13 @@ from its centre, and the path keeps its direction.
 """
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from . import arcfit_kernel
 from .errors import InputError
-from .program import ARC_CCW, ARC_CW, FEED, Operation, Program, arc_sweep
+from .moves import ARC_CCW, ARC_CW, FEED, arc_sweep
 
 # mm: the chord error the planners flatten curves with (engines.region.ARC_TOLERANCE, Clipper's round
 # joins; the IR imports no engine, a test keeps the two equal), so the arcs of an offset outline are
@@ -56,11 +58,11 @@ class ArcFitError(InputError):
     """Settings the arc filter cannot work with."""
 
 
-def fit_arcs(op: Operation, tolerance: float = DEFAULT_TOLERANCE, min_segments: int = MIN_SEGMENTS,
+def fit_arcs(op, tolerance: float = DEFAULT_TOLERANCE, min_segments: int = MIN_SEGMENTS,
              max_radius: float = MAX_RADIUS, end_tolerance: float | None = None, written=None,
-             step: float = 0.0) -> Operation:
-    """``op`` with its circular stretches of feed moves as arcs (a new Operation; ``op`` is kept,
-    and returned itself where nothing changes).  ``written``: the post's number format, a function
+             step: float = 0.0):
+    """``op`` (an :class:`~.program.Operation`) with its circular stretches of feed moves as arcs (a
+    new Operation; ``op`` is kept, and returned itself where nothing changes).  ``written``: the post's number format, a function
     of an array of values giving the numbers the written words read as (None: exact numbers), and
     ``step`` its least increment (mm); ``end_tolerance``: the most the written start and end radii
     of an arc may differ (mm; None: no limit beyond the fit).  See the module's docstring."""
@@ -115,12 +117,12 @@ def fit_arcs(op: Operation, tolerance: float = DEFAULT_TOLERANCE, min_segments: 
                       links=op.links[keep] if op.links is not None else None)
 
 
-def fit_program(program: Program, tolerance: float = DEFAULT_TOLERANCE, end_tolerance: float | None = None,
-                written=None, step: float = 0.0) -> Program:
-    """Every operation of ``program`` through :func:`fit_arcs` (a new Program)."""
-    return Program(program.name, [fit_arcs(op, tolerance, end_tolerance=end_tolerance, written=written, step=step)
-                                  for op in program.operations], program.units,
-                   program.work_offset, program.rapid_rate, list(program.notes))
+def fit_program(program, tolerance: float = DEFAULT_TOLERANCE, end_tolerance: float | None = None,
+                written=None, step: float = 0.0):
+    """Every operation of ``program`` (a :class:`~.program.Program`) through :func:`fit_arcs`: a new
+    Program, its other fields as they were."""
+    return replace(program, operations=[fit_arcs(op, tolerance, end_tolerance=end_tolerance, written=written,
+                                                 step=step) for op in program.operations], notes=list(program.notes))
 
 
 def _as_written(start: np.ndarray, end: np.ndarray, centre: np.ndarray, clockwise: np.ndarray, written,
@@ -156,7 +158,7 @@ def _as_written(start: np.ndarray, end: np.ndarray, centre: np.ndarray, clockwis
 SLOPE_TOLERANCE = 1e-6
 
 
-def _even_runs(op: Operation, min_segments: int) -> list:
+def _even_runs(op, min_segments: int) -> list:
     """(first, last) move indices of every stretch of at least ``min_segments`` feed moves that
     keep their slope (0: one height), feed and link flag.  A move with no XY length that changes
     Z (a plunge) belongs to no stretch."""
@@ -183,7 +185,7 @@ def _even_runs(op: Operation, min_segments: int) -> list:
     return runs
 
 
-def _helix_holds(op: Operation, starts: np.ndarray, first_move: np.ndarray, last_move: np.ndarray,
+def _helix_holds(op, starts: np.ndarray, first_move: np.ndarray, last_move: np.ndarray,
                  centres: np.ndarray, clockwise: np.ndarray, tolerance: float) -> np.ndarray:
     """Which fitted arcs keep every old vertex's Z within ``tolerance`` of the arc's Z at that
     vertex's angle (a control moves Z in proportion to the angle swept).  Plane arcs always do."""

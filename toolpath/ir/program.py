@@ -5,7 +5,12 @@ spindle and feeds, its clearance heights and its moves, kept as numpy arrays bec
 texture job has 10^5 moves.  Every coordinate is in millimetres in the work coordinate
 system; Z is the tool tip (the point a G43 tool-length offset refers to).
 
-Posts (``post/``) read this and alone decide which controller words to write.
+Posts (``post/``) read this and alone decide which controller words to write.  It is all a post
+takes from the core, with :mod:`.kinematics` and :mod:`.errors` (``tests/test_layering.py`` holds
+them to it): the Program and its Operations (move kinds from :mod:`.moves`), the X-Z-C turn-mill's
+:class:`TurnMillOperation`, and, from the IR's other modules, the turret punch's program, the
+gouge-texture request, the machine profile a program runs on with its presets, and the arc filter
+:func:`fit_program`.
 """
 from __future__ import annotations
 
@@ -16,16 +21,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import kinematics, tools
-from .errors import InputError
+from .errors import InputError, ProgramError
+from .moves import ARC_CCW, ARC_CW, FEED, RAPID, arc_sweep
 from .cycles import DrillCycle
+from .machine import DEFAULT_FOR_FAMILY, MachineProfile, preset  # noqa: F401 (the machine a program runs on, for the posts)
+from .punch import PunchProgram  # noqa: F401 (the turret punch's program, for its post)
 from .texture import GougeTexture
 from .tools import KINDS as TOOL_KINDS, TIP_ANGLE_DEG  # noqa: F401 (re-exported)
-
-RAPID, FEED, ARC_CW, ARC_CCW = 0, 1, 2, 3
-
-
-class ProgramError(InputError):
-    """A tool or a move that cannot be machined (no feed, NaN, a tool that does not exist)."""
 
 
 class MoveKind(enum.IntEnum):
@@ -290,17 +292,6 @@ def _weighted_mode(values: np.ndarray, weights: np.ndarray) -> float | None:
     return float(unique[int(np.argmax(np.bincount(index.ravel(), weights=weights)))])
 
 
-def arc_sweep(a: np.ndarray, b: np.ndarray, c: np.ndarray, clockwise: np.ndarray) -> np.ndarray:
-    """Signed sweep angle (radians) from a to b about c; a full circle when a == b."""
-    ang_a = np.arctan2(a[:, 1] - c[:, 1], a[:, 0] - c[:, 0])
-    ang_b = np.arctan2(b[:, 1] - c[:, 1], b[:, 0] - c[:, 0])
-    ccw = np.mod(ang_b - ang_a, 2 * np.pi)
-    cw = np.mod(ang_a - ang_b, 2 * np.pi)
-    ccw = np.where(ccw < 1e-12, 2 * np.pi, ccw)
-    cw = np.where(cw < 1e-12, 2 * np.pi, cw)
-    return np.where(clockwise, -cw, ccw)
-
-
 def walked(op: "Operation", arc_step: float = np.radians(6.0)) -> tuple:
     """(kind (m,), points (m + 1, 3)): the operation's path with every arc walked in pieces of at
     most ``arc_step`` radians (helical arcs climbing evenly), each piece keeping its arc's kind;
@@ -535,3 +526,61 @@ def merge_short_moves(op: Operation, tolerance: float, min_minutes: float = kine
     if op.rotary:
         changes["rotary"] = {axis: values[moves] for axis, values in op.rotary.items()}
     return op.replace(**changes)
+
+
+# The X-Z-C machine family's operation (was xzc.py): The X-Z-C machine family's operation: a turn-mill centre turning the part on C, its turret's
+TOOL_DIRECTIONS = ("radial", "axial")   # the turret tools of an X-Z-C turn-mill centre
+
+
+@dataclass
+class TurnMillOperation(Operation):
+    """An X-Z-C operation: ``xyz`` = (X, 0, Z) of the tool tip, X the radius from the axis,
+    ``rotary = {"c": degrees}``.  ``direction`` is the turret tool: "radial" (along machine X,
+    pointing at the axis) or "axial" (along Z, pointing down).  Lengths and cycle times are
+    measured in part coordinates, where the tool actually cuts, along the curve the tool tip traces
+    (:func:`kinematics.traced_lengths`, the one convention of every C move)."""
+
+    direction: str = "radial"
+
+    def validate(self):
+        super().validate()
+        if self.direction not in TOOL_DIRECTIONS:
+            raise ProgramError(f"operation {self.name!r}: direction must be one of {TOOL_DIRECTIONS}")
+        if set(self.rotary) != {"c"}:
+            raise ProgramError(f"operation {self.name!r}: an X-Z-C operation moves exactly the C axis")
+        if np.any(self.xyz[:, 1] != 0):
+            raise ProgramError(f"operation {self.name!r}: the machine has no Y axis (Y must be 0)")
+
+    def part_start(self) -> np.ndarray:
+        """Where the tool tip is before the first move, in part coordinates (3,)."""
+        return kinematics.machine_to_part(self.start, self.rotary["c"][:1])[0]
+
+    def part_points(self) -> np.ndarray:
+        """Tool-tip positions in part coordinates."""
+        return kinematics.part_points(self)
+
+    def tool_axes(self) -> np.ndarray:
+        """Unit tool-axis vectors (tip towards holder) in part coordinates."""
+        if self.direction == "axial":
+            return np.tile([0.0, 0.0, 1.0], (len(self), 1))
+        return kinematics.radial_axes(self.rotary["c"])
+
+    def ball_centres(self) -> np.ndarray:
+        return self.part_points() + self.tool.radius * self.tool_axes()
+
+    def cycle_time(self, rapid_rate: float) -> float:
+        """Estimated seconds: cutting blocks timed as the post's G93 F words time them
+        (:func:`kinematics.block_minutes`), rapids at ``rapid_rate`` mm/min."""
+        lengths = self.move_lengths()
+        cutting = self.kind != RAPID
+        minutes = kinematics.block_minutes(lengths[cutting], self.feed[cutting]).sum()
+        return float(minutes * 60.0 + lengths[~cutting].sum() / rapid_rate * 60.0)
+
+
+def fit_program(program: Program, **settings) -> Program:
+    """Arcs out, the filter every milling post runs before writing: :func:`.arcfit.fit_program`
+    (``tolerance``, ``end_tolerance``, ``written``, ``step``), imported at the first call, as it
+    brings numba, which the IR and the posts do not load before a program is written."""
+    from . import arcfit
+
+    return arcfit.fit_program(program, **settings)

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .program import ProgramError
+from .errors import ProgramError
 
 COMPENSATIONS = ("none", "left", "right")
 

@@ -73,7 +73,7 @@ from ...engines.facets import planning_mesh
 from ...engines.meshrays import (PAIR_BUDGET, BoxGrid, RayEngine, Triangles, TrimeshRayEngine, check_mesh, checked_mesh,
                                  face_normals, face_samples)
 from ...ir.program import FEED, RAPID, Program, Tool, merge_short_moves
-from ...ir.xzc import TurnMillOperation
+from ...ir.program import TurnMillOperation
 from .errors import TurnMillError
 from .turnreach import AXIAL, BOTH, DIRECTIONS, LABEL_NAMES, NEITHER, RADIAL, classify_faces, path_faces
 from .turnjoin import (CHORD_DIP, MAX_BALL_POSITIONS, TurnMillCancelled, count_positions, join_layers, merged_move_clear,

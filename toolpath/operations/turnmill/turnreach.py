@@ -14,7 +14,7 @@ import math
 import numpy as np
 
 from ...engines.meshrays import RayEngine, TrimeshRayEngine, check_mesh, face_normals, face_samples
-from ...ir.xzc import TOOL_DIRECTIONS
+from ...ir.program import TOOL_DIRECTIONS
 from .errors import TurnMillError
 
 NEITHER, RADIAL, AXIAL, BOTH = 0, 1, 2, 3      # face labels: bit 1 = radial, bit 2 = axial
