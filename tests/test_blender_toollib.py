@@ -29,6 +29,14 @@ def rows():
     return bpy.context.window_manager.kezuri_tool_library.tools
 
 
+def fixture_library():
+    """The library panel loaded with the Kezuri-format fixture: (its state, the tool numbers in row order)."""
+    bpy.ops.kezuri.toollib_load()
+    assert bpy.ops.kezuri.toollib_import(filepath=os.path.join(FIXTURES, "kezuri-tools.toml"),
+                                         replace=True) == {"FINISHED"}
+    return bpy.context.window_manager.kezuri_tool_library, [r.number for r in rows()]
+
+
 def test_load_edit_save_add_remove(library):
     assert bpy.ops.kezuri.toollib_load() == {"FINISHED"}
     assert [r.number for r in rows()] == list(range(1, 12))
@@ -96,10 +104,7 @@ def test_every_text_of_the_panel_fits(library, language):
 
 def test_a_library_tool_goes_on_the_picked_jobs_panel(library):
     scene = bpy.context.scene
-    bpy.ops.kezuri.toollib_load()
-    bpy.ops.kezuri.toollib_import(filepath=os.path.join(FIXTURES, "kezuri-tools.toml"), replace=True)
-    state = bpy.context.window_manager.kezuri_tool_library
-    numbers = [r.number for r in rows()]
+    state, numbers = fixture_library()
     scene.kezuri.job = "ENGRAVE"
     state.index = numbers.index(2)                          # 6 mm ball: the engraving's roughing ball
     assert bpy.ops.kezuri.toollib_use(slot="rough") == {"FINISHED"}
@@ -175,10 +180,7 @@ def test_a_library_tool_goes_on_the_job_lists_selected_row(library):
     import json
 
     scene = bpy.context.scene
-    bpy.ops.kezuri.toollib_load()
-    bpy.ops.kezuri.toollib_import(filepath=os.path.join(FIXTURES, "kezuri-tools.toml"), replace=True)
-    state = bpy.context.window_manager.kezuri_tool_library
-    numbers = [r.number for r in rows()]
+    state, numbers = fixture_library()
     scene.kezuri.job = "ENGRAVE"
     assert bpy.ops.kezuri.job_add(kind="vcarve") == {"FINISHED"}
     state.index = numbers.index(17)
