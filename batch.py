@@ -10,11 +10,14 @@ Commands (``python batch.py <command> --help`` for the options):
     turnmill  4.5-axis turn-mill: radial/axial classification and paths, X-Z-C (W4)
     unfold    twisted quad -> flat pattern, turret-punch NC, DXF, SVG (W5)
     elbow     segmented pipe elbow -> flat patterns, DXF, SVG (W5)
+    carve     3-D surface carving of a mesh: Z-level roughing, ball finishing raster
     simulate  material removal and safety checks of any NC file we can read (W6)
-    profile, pocket, drill, chamfer   one router operation on an SVG or DXF drawing (--svg / --dxf)
+    profile, pocket, drill, chamfer, vcarve   one router operation on an SVG or DXF drawing (--svg /
+              --dxf; vcarve also --text)
     job       a job file (TOML): several operations on one stock, one program, one check;
               --each rows.csv runs it as a template once per row (--jobs N side by side)
     demo      every workflow on its built-in sample part, each into a sub-folder of --out
+    feeds     feeds and speeds of a tool in a material for an operation (JSON out; no --out)
     tools     the tool library: list, import FILE, export FILE (JSON out; no --out)
 
 Each command writes its output files, ``report.json``, a preview PNG and ``setup-sheet.html`` (the
@@ -119,6 +122,9 @@ def parser() -> argparse.ArgumentParser:
     from kezuri.operators import feedsbatch
     p = subparsers.add_parser(feedsbatch.NAME, help=feedsbatch.HELP)      # prints; writes nothing (no --out)
     feedsbatch.arguments(p)
+    # listed for --help only: main() hands "tools" to operators/toolbatch.py before this parser runs
+    subparsers.add_parser("tools", help="the tool library: list, import FILE, export FILE (printed as JSON; "
+                                        "no --out)", add_help=False)
     return main
 
 

@@ -83,3 +83,19 @@ def test_a_freecad_library_out_and_back(tmp_path):
     tools(other, "list")
     status, out, err = tools(other, "import", str(target), "--replace")
     assert status == 0 and json.loads(out)["unchanged"] == list(range(1, 12)), err   # the same tools came back
+
+
+def test_the_tools_command_is_listed_in_batch_help():
+    """``batch.py --help`` names every command the README gives, ``tools`` too (main() runs it
+    before the parser, so it was missing from the list), and ``tools --help`` is its own."""
+    done = subprocess.run([sys.executable, os.path.join(ROOT, "batch.py"), "--help"], capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 0
+    listed = done.stdout.split("{", 1)[1].split("}", 1)[0].split(",")
+    for command in ("engrave", "rotary", "stepnc", "turnmill", "unfold", "elbow", "carve", "simulate", "job",
+                    "profile", "pocket", "drill", "chamfer", "vcarve", "demo", "feeds", "tools"):
+        assert command in listed
+    assert "the tool library: list, import FILE, export FILE" in " ".join(done.stdout.split())
+    done = subprocess.run([sys.executable, os.path.join(ROOT, "batch.py"), "tools", "--help"], capture_output=True,
+                          text=True, timeout=300)
+    assert done.returncode == 0 and "{list,import,export}" in done.stdout
