@@ -125,13 +125,16 @@ def baseline() -> dict:
 
 def run() -> list:
     before = baseline()
+    # without KEZURI_BENCH_BASE the "before" figures are the ones recorded in batch_baseline.json, in
+    # another session (the shared machine's speed varies 2-3x from day to day): the notes say so
+    when = "this run" if os.environ.get("KEZURI_BENCH_BASE") else "recorded in batch_baseline.json, not this run"
     rows = []
     with tempfile.TemporaryDirectory() as out:
         for name in WORKFLOWS:
             seconds = batch_cpu(ROOT, name, out)
             was = before["cpu_s"].get(name)
             rows.append(dict(name=f"batch {name} (CPU s)", seconds=seconds, target_s=TARGET_S,
-                             notes=f"before: {was} s CPU (Workbench pictures, {before['commit'][:7]})"))
+                             notes=f"before: {was} s CPU (Workbench pictures, {before['commit'][:7]}, {when})"))
     cold, warm = first_simulate(False), first_simulate(True)
     rows.append(dict(name="first simulate, cold cache", seconds=cold[0], target_s=None,
                      notes=f"later: {cold[1]:.3f} s (compiles the numba kernels)"))
