@@ -57,8 +57,12 @@ def batch_orient_spindle(args, scene, families, post_name: str) -> None:
 
 def write_program(path: str, text: str, post, findings: list | None = None) -> str:
     """Write the NC text (atomically); what the machine cannot take of it (``post.capacity``: a
-    program larger than its memory, blocks shorter than its block time) is added to ``findings``."""
-    if findings is not None:
+    program larger than its memory, blocks shorter than its block time) is added to ``findings``.
+    Only a program the control stores is measured, one with a program number (O0001): a program
+    streamed from disk (LinuxCNC, GRBL) is not, as the turn-mill workflow's own exports do
+    (:func:`.turnmill.machine_findings`); the LinuxCNC turn-mill post on its default machine, the
+    Fanuc 0i-T, was told its program passes the 0i-T's 512 kB."""
+    if findings is not None and getattr(post, "program_number", None):
         findings += program_findings(text, post.machine, f"the {post.name} program")
     return write_atomic(path, text)
 

@@ -91,3 +91,21 @@ def test_a_milling_program_larger_than_the_control_memory_is_flagged(tmp_path):
     report = (out / "report.json").read_text()
     expected = f"is {size_kb:,.1f} kB, larger than the 512 kB program memory"
     assert expected in message and expected in report
+
+
+def test_an_export_measures_only_the_program_the_control_stores(tmp_path, sample_texts):
+    """A job's export (operators/exporting.write_program, what ``batch.py job`` and the job list
+    write through) flags the Fanuc turn-mill program on the 0i-T, and not the LinuxCNC variant of
+    the same plan on the same machine, which is streamed (the turn-mill workflow's own rule)."""
+    pytest.importorskip("bpy")
+    from kezuri.operators.exporting import write_program
+
+    xzc, linuxcnc = turnmill_xzc.TurnMillXZCPost(), turnmill_xzc.TurnMillLinuxCNCPost()
+    assert xzc.machine == TURNMILL and linuxcnc.machine == TURNMILL     # both posts' default machine
+    text = sample_texts[7.5]
+    assert len(text.encode()) / 1024 > TURNMILL.memory_kb          # past the 0i-T's 512 kB
+    stored, streamed = [], []
+    write_program(str(tmp_path / "bar.nc"), text, xzc, stored)
+    write_program(str(tmp_path / "bar.ngc"), text, linuxcnc, streamed)
+    assert any("larger than the 512 kB program memory" in f for f in stored)
+    assert streamed == [] and (tmp_path / "bar.ngc").read_text() == text
