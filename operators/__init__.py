@@ -3,12 +3,13 @@ from __future__ import annotations
 
 import bpy
 
-from . import designfile, joblist, panels, preferences, properties, simulate, suggestfeeds, toollib, translations
+from . import (designfile, joblist, panels, preferences, properties, simulate, suggestfeeds, toollib, toolmenu,
+               translations)
 from .workflows import WORKFLOWS, job_items, settings_groups
 
 CLASSES = (*preferences.CLASSES, *(cls for workflow in WORKFLOWS for cls in workflow.classes), *simulate.CLASSES,
            *joblist.CLASSES, *designfile.CLASSES, *panels.CLASSES,
-           *toollib.CLASSES, *suggestfeeds.CLASSES)
+           *toollib.CLASSES, *toolmenu.CLASSES, *suggestfeeds.CLASSES)
 MENUS = (*(menu for workflow in WORKFLOWS for menu in workflow.menus), *designfile.MENUS)
 
 
@@ -17,10 +18,19 @@ def register():
     for cls in CLASSES:
         bpy.utils.register_class(cls)
     toollib.register_properties()
+    if not bpy.app.background:          # batch runs and tests read the library when they need it
+        bpy.app.timers.register(start_tool_library, first_interval=0.5)
     for menu, draw in MENUS:
         menu.append(draw)
     translations.register()
     warm_kernels_in_background()
+
+
+def start_tool_library():
+    """Once Blender's window is up (a timer: registering cannot touch data): move the preferences'
+    old tool list into the tool library file, then read the library for the CAM tab's panel."""
+    preferences.move_at_startup()
+    return toollib.load_when_ready()
 
 
 _WARMUP = {"job": None}

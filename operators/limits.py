@@ -127,7 +127,7 @@ RANGES: dict = {
     "simulation": {"cell": mm(0.0, lo_open=True)},
 }
 
-# A tool of the shop's library (the extension's preferences): checked when a job takes it.
+# A tool's ranges: the soft limits of the preferences' old tool list (oldtools) and an NC file's tools.
 LIBRARY = {"number": TOOL_NUMBER, "diameter": DIAMETER, "corner_radius": mm(0.0, 50.0),
            "flute_length": mm(0.1, 1000.0)}
 
@@ -177,14 +177,5 @@ def check_group(props, group: str, names=None, where: str = "") -> None:
         label = prop.name if prop is not None else name
         value = getattr(props, name)
         message = problem(group, name, label, tuple(value) if hasattr(value, "__len__") else value, where)
-        if message:
-            raise SettingError(message)
-
-
-def check_library_tool(tool) -> None:
-    """Refuse a library tool (``KezuriLibraryTool``) with a number outside :data:`LIBRARY`."""
-    for name, limit in LIBRARY.items():
-        prop = tool.bl_rna.properties[name]
-        message = problem("", name, prop.name, getattr(tool, name), f"Tool Library '{tool.name}'", limit)
         if message:
             raise SettingError(message)

@@ -411,8 +411,6 @@ def load_when_ready():
 
 def register_properties():
     bpy.types.WindowManager.kezuri_tool_library = bpy.props.PointerProperty(type=KezuriToolLibraryState)
-    if not bpy.app.background:          # batch runs and tests read the library when they need it
-        bpy.app.timers.register(load_when_ready, first_interval=0.5)
 
 
 def unregister_properties():

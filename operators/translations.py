@@ -157,8 +157,8 @@ PANEL_TEXTS = {
     "Tool Library": "工具ライブラリ",
     "Quad corners (mm)": "四辺形の頂点 (mm)",
     "Pockets: objects marked as pockets": "ポケット：ポケット指定の輪郭",
-    "The tool library is empty (Preferences > Add-ons > Kezuri CAM)":
-        "工具ライブラリが空です（プリファレンス > アドオン > Kezuri CAM）",
+    "The tool library has no ball or flat end mill (CAM > Tool Library)":
+        "工具ライブラリにボールエンドミルもフラットエンドミルもありません（CAM > 工具ライブラリ）",
     # CAM tab (issue #21): parts of composed labels, finding kinds, a workingstep's operation word
     "Pockets": "ポケット",
     "Findings": "指摘",
@@ -651,7 +651,6 @@ MESSAGES = {
     "pick the design (a mesh) in the Carve panel": "曲面加工パネルで設計形状（メッシュ）を選んでください",
     "Corners taken from the selected face": "選択した面から頂点を取得しました",
     "Kezuri preferences are not available": "Kezuriのプリファレンスを利用できません",
-    "No such tool in the library": "その工具は工具ライブラリにありません",
     "no file given: the file path is empty": "ファイルが指定されていません：ファイルパスが空です",
     "no plate: pick the stock object (a mesh) in the CAM panel":
         "板材がありません：CAMパネルで素材のオブジェクト（メッシュ）を選んでください",
@@ -3134,6 +3133,30 @@ FEEDS_NOTES_TEMPLATES = {
 }
 MESSAGES.update(FEEDS_NOTES_TEXTS)
 MESSAGE_TEMPLATES.update(FEEDS_NOTES_TEMPLATES)
+# One tool library: the preferences point at it, their old list moves into it (operators/oldtools.py).
+TOOLLIB_OPERATORS["Move Old Preference Tools"] = "プリファレンスの旧工具を移動"
+ONE_LIBRARY_TEXTS = {
+    "Edit it in the 3D Viewport's sidebar: CAM > Tool Library": "3D ビューポートのサイドバー「CAM > 工具ライブラリ」で編集します",
+    "Move the tools of the preferences' old tool list into the tool library file":
+        "プリファレンスの旧工具一覧の工具を工具ライブラリのファイルに移します",
+    "The library tool's number (T word)": "ライブラリ工具の番号（T ワード）",
+}
+ONE_LIBRARY_TEMPLATES = {
+    "The preferences' tool {} is no tool and was not moved: {}; type it in CAM > Tool Library":
+        "プリファレンスの工具 {0} は工具として使えないため移しませんでした：{1}。CAM > 工具ライブラリで入力し直してください",
+    "The preferences' tool {} was not moved: the tool library has T{} as {}, which was kept":
+        "プリファレンスの工具 {0} は移しませんでした：工具ライブラリの T{1} は {2} で、そちらを残しました",
+    "T{} '{}': the preferences' list held no V-bit angle; it came in as {}°, check it in CAM > Tool Library":
+        "T{0} '{1}'：プリファレンスの一覧に V ビットの角度がなかったため {2}° として取り込みました。"
+        "CAM > 工具ライブラリで確認してください",
+    "The tools not moved are in {} (import it with Replace Same Numbers, or renumber)":
+        "移さなかった工具は {0} にあります（「同じ番号を置き換え」で読み込むか、番号を変えてください）",
+    "Moved {} tools ({}) from the add-on preferences into the tool library {}; {} were there already":
+        "アドオンのプリファレンスから {0} 本の工具（{1}）を工具ライブラリ {2} に移しました。{3} 本はすでにありました",
+}
+NESTED["The preferences' tool {} is no tool and was not moved: {}; type it in CAM > Tool Library"] = (1,)
+MESSAGES.update(ONE_LIBRARY_TEXTS)
+MESSAGE_TEMPLATES.update(ONE_LIBRARY_TEMPLATES)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

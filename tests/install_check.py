@@ -73,25 +73,26 @@ job = common.ProcessJob(common.CoreCall("toolpath.simulate", "simulate", {
 while not job.step():
     pass
 result["process_job_volume"] = job.result().solid.volume()
-# Preferences: the tool library and the default post.
+# Preferences: an old preference file's tool list moves into the one tool library (tools.toml in the
+# user config folder under BLENDER_USER_RESOURCES); the Engrave menu's operator takes tools from there.
 prefs = bpy.context.preferences.addons[package].preferences
-bpy.ops.kezuri.tool_add()
-tool = prefs.tools[-1]
-tool.kind, tool.diameter, tool.number = "ball", 8.0, 7
-bpy.ops.kezuri.use_library_tool(slot="rough", index=len(prefs.tools) - 1)
+old = prefs.tools.add()
+old.name, old.kind, old.diameter, old.number = "8 mm ball", "ball", 8.0, 17
+result["move_old_tools"] = sorted(bpy.ops.kezuri.move_old_tools())
+result["old_tools_after"] = len(prefs.tools)
+toolstore = importlib.import_module(package + ".operators.toolstore")
+result["library_path"] = toolstore.library_path()
+moved = toolstore.load().get(17)
+result["moved_tool"] = [moved.kind, moved.diameter, moved.name]
+bpy.ops.kezuri.use_library_tool(slot="rough", number=17)
 result["rough_from_library"] = [scene.kezuri.engrave.rough_diameter, scene.kezuri.engrave.rough_tool_number]
-# A library tool with a number that means nothing is refused, not clamped into another tool.
-bad = prefs.tools.add()
-bad.name, bad.kind, bad.diameter, bad.number = "Broken", "ball", 0.0, 7
+# A library tool the roughing cannot use is refused, naming it, and nothing is taken.
 try:
-    bpy.ops.kezuri.use_library_tool(slot="rough", index=len(prefs.tools) - 1)
+    bpy.ops.kezuri.use_library_tool(slot="rough", number=7)          # the presets' 90 degree V-bit
     result["bad_library_tool"] = "FINISHED"
 except RuntimeError as error:               # bpy.ops raises on an ERROR report
     result["bad_library_tool"] = str(error)
-result["bad_library_diameter"] = bad.diameter
 result["rough_after_bad"] = [scene.kezuri.engrave.rough_diameter, scene.kezuri.engrave.rough_tool_number]
-bad.number = 1000
-result["bad_library_number"] = bad.number
 prefs.default_post = "grbl"
 preferences_module = importlib.import_module(package + ".operators.preferences")
 result["scene_post"] = preferences_module.scene_post(scene)

@@ -30,6 +30,7 @@ def test_manifest_passes_blenders_validator():
 
 def test_installed_zip_runs_on_its_bundled_wheels_and_disables_cleanly(linux_zip, tmp_path):
     env = dict(os.environ, BLENDER_USER_RESOURCES=str(tmp_path / "user"))
+    env.pop("KEZURI_TOOL_LIBRARY", None)                # the library is the one in the user config folder
     done = subprocess.run([sys.executable, os.path.join(ROOT, "tests", "install_check.py"), linux_zip],
                           capture_output=True, text=True, env=env, timeout=600)
     lines = [line for line in done.stdout.splitlines() if line.startswith("RESULT ")]
@@ -47,10 +48,12 @@ def test_installed_zip_runs_on_its_bundled_wheels_and_disables_cleanly(linux_zip
     assert result["process_job_volume"] == pytest.approx(500.0 - (12.0 + 3.14159), abs=0.15)   # 1 % of the cut
     assert result["registered"] is True
     assert result["engrave_generate"] == ["FINISHED"] and result["kezuri_objects"] >= 3
-    assert result["rough_from_library"] == [8.0, 7]
-    assert "Tool Library 'Broken': Diameter = 0 is outside the allowed range 0.1 <= Diameter <= 100 mm" \
-        in result["bad_library_tool"]
-    assert result["bad_library_diameter"] == 0.0 and result["bad_library_number"] == 1000   # not clamped
-    assert result["rough_after_bad"] == [8.0, 7]                                            # nothing taken
+    assert result["move_old_tools"] == ["FINISHED"] and result["old_tools_after"] == 0
+    assert result["library_path"].startswith(str(tmp_path / "user"))          # the user config folder
+    assert result["moved_tool"] == ["ball", 8.0, "8 mm ball"]
+    assert result["rough_from_library"] == [8.0, 17]
+    assert "T7 12 mm 90° V-bit" in result["bad_library_tool"]
+    assert "the engrave's rough tool must be a ball end mill" in result["bad_library_tool"]
+    assert result["rough_after_bad"] == [8.0, 17]                                           # nothing taken
     assert result["scene_post"] == "grbl"      # "Preferences Default" resolves to the preferences' post
     assert result["registered_after_disable"] is False
