@@ -7,9 +7,11 @@ import bpy
 from bpy.props import EnumProperty, IntProperty
 
 from ..toolpath.ir.errors import InputError
+from .jobtools import SLOTS
 from .translations import iface, translate_message
 
-SLOT_KINDS = {"rough": "ball", "finish": "flat"}       # jobtools.SLOTS["engrave"]: the kind each slot takes
+# the kind each of the engraving's slots takes (a job file's tools table reads the same)
+SLOT_KINDS = {slot: kinds[0] for slot, (_, _, _, kinds, _) in SLOTS["engrave"].items()}
 
 
 class KEZURI_OT_use_library_tool(bpy.types.Operator):
