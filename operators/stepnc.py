@@ -20,6 +20,7 @@ from ..toolpath.operations import stepnc
 from ..toolpath.engines.meshdata import prism
 from ..toolpath.engines.textfile import read_text
 from ..toolpath.job import Job, JobOperation, Setup, plan_job
+from ..toolpath.ir.errors import InputError
 from ..toolpath.ir.program import Tool
 from ..toolpath.operations.stepnc.kind import StepncGeometry, StepncSettings
 from ..toolpath.operations.stepnc.loaded import workplan_from_text
@@ -263,6 +264,16 @@ def pockets_part21(scene, depsgraph) -> str:
                                     spindle_rpm=props.spindle_rpm, name=scene.name.upper())
 
 
+def read_workplan(path: str):
+    """(text, workplan) of an ISO 14649 file; an error in it (its syntax, or its data) names the
+    file as the user gave it before the line, column or instance the reader names."""
+    try:
+        text = read_text(path)
+        return text, workplan_from_text(text)
+    except InputError as error:
+        raise InputError(f"{path}: {error}") from error
+
+
 class KEZURI_OT_import_stepnc(bpy.types.Operator, ImportHelper):
     """Import an ISO 14649 (STEP-NC) Part 21 file: stock, features and the workplan"""
 
@@ -275,7 +286,7 @@ class KEZURI_OT_import_stepnc(bpy.types.Operator, ImportHelper):
 
     def execute(self, context):
         def work():
-            loaded = stepnc.load_workplan(self.filepath)
+            loaded = read_workplan(self.filepath)[1]
             fill_workplan_list(context.scene, self.filepath, loaded)
             show_workplan(context.scene, loaded)
             for warning in loaded.warnings:
@@ -464,10 +475,11 @@ def batch(args) -> dict:
     profile = batch_machine(args, scene, POST_FAMILIES, post_name)
     findings = []
     try:
+        if os.path.isdir(path):
+            raise InputError(f"{path} is a folder, not an ISO 14649 file")
         if not os.path.isfile(path):
             raise FileNotFoundError(f"no such ISO 14649 file: {path}")
-        text = read_text(path)
-        loaded = workplan_from_text(text)       # read once: the plan takes it (a big file reads in seconds)
+        text, loaded = read_workplan(path)      # read once: the plan takes it (a big file reads in seconds)
         fill_workplan_list(scene, os.path.abspath(path), loaded)
         if args.order:
             apply_order(scene, args.order, path if staging is None else "the built-in sample")

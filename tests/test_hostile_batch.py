@@ -544,3 +544,26 @@ def test_a_dense_turned_part_is_counted_not_listed_in_the_report(tmp_path):
     assert isinstance(report["faces"], str) and "counted" in report["faces"]
     assert sum(report["face_counts"].values()) == len(part.faces)
     assert report["face_counts"]["radial"] > 0 and os.path.getsize(out / "report.json") < 200_000
+
+
+@pytest.mark.parametrize("text, named", [
+    ("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1=WORKPLAN(,;\nENDSEC;\nEND-ISO-10303-21;\n",
+     ": line 5, column 13 (#1): expected a parameter value, found ','"),
+    ("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1=FOO(1.0);\nENDSEC;\nEND-ISO-10303-21;\n",
+     ": an ISO 14649 file needs exactly one PROJECT, this one has 0"),
+])
+def test_an_error_in_a_stepnc_file_names_the_file_as_typed(tmp_path, monkeypatch, text, named):
+    """The reader names the line, column and instance; the user also needs to know which file (a
+    shop runs batches over folders of them), as given on the command line."""
+    (tmp_path / "parts").mkdir()
+    (tmp_path / "parts" / "plate 7.stp").write_text(text)
+    monkeypatch.chdir(tmp_path)
+    status, message, written = run("stepnc", "--input", os.path.join("parts", "plate 7.stp"))
+    refused(status, message, written, os.path.join("parts", "plate 7.stp") + named)
+
+
+def test_a_folder_given_as_the_stepnc_file_is_named_as_a_folder(tmp_path):
+    folder = tmp_path / "plate.stp"
+    folder.mkdir()
+    status, message, written = run("stepnc", "--input", str(folder))
+    refused(status, message, written, f"{folder} is a folder, not an ISO 14649 file")
