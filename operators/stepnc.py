@@ -139,7 +139,10 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     path = entry.table.get("file")
     if not isinstance(path, str) or not path:
         raise JobFileError(f"{entry.where}: no file: give file = \"part.stp\" (an ISO 14649 Part 21 file)")
-    path = os.path.join(entry.base_dir, path)
+    typed, path = path, os.path.join(entry.base_dir, path)
+    if not os.path.isfile(path):
+        what = "is a folder, not an ISO 14649 file" if os.path.isdir(path) else "no such file"
+        raise JobFileError(f"{entry.where}: file = {typed!r}: {what} ({path})")
     unknown = sorted(set(entry.settings) - {"order", "enabled"})
     if unknown:
         raise JobFileError(f"{entry.where}: settings.{unknown[0]} is not a STEP-NC setting; they are order, enabled")
@@ -154,7 +157,13 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     machine = scene.kezuri.machine
     setup = Setup(name=scene.name, post=post_name, work_offset=machine.work_offset, rapid_rate=machine.rapid_rate)
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
-    return JobOperation("stepnc", entry.name, settings, StepncGeometry(read_text(path)), entry.enabled), setup, frame
+    try:
+        text, loaded = read_workplan(path)      # read here, so that an error names the job file's entry too
+    except InputError as error:
+        raise JobFileError(f"{entry.where}: {error}") from error
+    except OSError as error:
+        raise JobFileError(f"{entry.where}: file = {typed!r}: {error.strerror or error} ({path})") from error
+    return JobOperation("stepnc", entry.name, settings, StepncGeometry(text, loaded), entry.enabled), setup, frame
 
 
 def plan_workplan(scene, machine=None, post_name: str = "", progress=None) -> WorkplanJob:

@@ -132,6 +132,13 @@ BAD_JOBS = {
                                      "deeper than"),
     "stock and sample": ('[setup]\nsample = "name_plate"\nstock = [0.0, 0.0, -5.0, 10.0, 10.0, 0.0]\n[[operations]]\n'
                          'kind = "drill"\nname = "b"\nholes = [[5.0, 5.0]]\n', "more than one of blend, sample and stock"),
+    # a STEP-NC operation's file: named as typed in the job file, beside the entry that gives it
+    "stepnc file missing": ('[[operations]]\nkind = "stepnc"\nname = "wp"\nfile = "parts/none.stp"\n',
+                            "operation 1 ('wp'): file = 'parts/none.stp': no such file"),
+    "stepnc file a folder": ('[[operations]]\nkind = "stepnc"\nname = "wp"\nfile = "."\n',
+                             "operation 1 ('wp'): file = '.': is a folder, not an ISO 14649 file"),
+    "stepnc file bad": ('[[operations]]\nkind = "stepnc"\nname = "wp"\nfile = "bad.toml"\n',
+                        "operation 1 ('wp'): " + "{job}: line 1, column 1"),
     "stock upside down": ('[setup]\nstock = [0.0, 0.0, 5.0, 10.0, 10.0, 0.0]\n[[operations]]\nkind = "drill"\nname = "b"\n'
                           'holes = [[5.0, 5.0]]\n', "each lower corner value must lie below the upper one"),
 }
@@ -145,7 +152,7 @@ def test_a_bad_job_file_is_refused_by_name_and_nothing_is_written(tmp_path, case
     status, message, out = run("job", str(job))
     assert status == 2, message[-2000:]
     assert "Traceback" not in message
-    assert words in message, message[-2000:]
+    assert words.format(job=job) in message, message[-2000:]
     assert not os.path.exists(out)
 
 
