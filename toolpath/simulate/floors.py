@@ -57,6 +57,21 @@ class Floors:
         edges = np.flatnonzero(np.diff(np.concatenate([[0], keep.astype(np.int8), [0]])))
         return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]
 
+    def holds(self, points: np.ndarray, radius: float) -> bool:
+        """Whether a hull of the tool at ``points`` (a plunge, ramp or link between runs: its
+        shape seen from above is the convex hull of the points widened by ``radius``) lies wholly
+        in what deeper level runs have cleared: that outline, widened as :meth:`needed` widens a
+        run's footprint, inside the area cleared down to the lowest point."""
+        cleared = self.below(float(points[:, 2].min()))
+        if cleared.is_empty():
+            return False
+        wide = radius + self.tolerance / 4
+        n = polygon_sides(wide, self.tolerance / 8)
+        around = np.arange(n) * (2 * np.pi / n)
+        circle = wide * np.column_stack([np.cos(around), np.sin(around)])
+        outline = CrossSection.hull_points((points[:, None, :2] + circle[None]).reshape(-1, 2))
+        return (outline - cleared).area() <= 1e-6
+
 
 class Shanks:
     """The sweep of the shank (a cylinder of the tool's radius from where its end meets it up to

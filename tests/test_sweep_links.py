@@ -1,0 +1,111 @@
+"""W6: the manifold engine's links between runs (toolpath/simulate/sweep.py): hulls of plunges and
+ramps over ground deeper level runs cleared are left out (Floors.holds), and moves of a few 1e-7 mm
+(noise between two arcs) no longer split a level run (paths.without_short_moves)."""
+import math
+
+import numpy as np
+import pytest
+
+from kezuri.toolpath import simulate as sim
+from kezuri.toolpath.ir.program import FEED, Operation, Tool
+from kezuri.toolpath.simulate import sweep
+from kezuri.toolpath.simulate.paths import Chain, without_short_moves
+from kezuri.toolpath.simulate.stock import stock_solid
+
+FLAT6 = Tool(1, "flat", 6.0)
+BOX = (-30, -30, -20, 30, 30, 0)
+
+
+def chain(tool, points):
+    return Chain(0, tool, np.asarray(points, float), np.zeros(len(points) - 1, int),
+                 np.zeros(len(points) - 1, bool), np.zeros(len(points) - 1, bool))
+
+
+def op(points, name="op"):
+    points = np.asarray(points, float)
+    n = len(points) - 1
+    return Operation(name, FLAT6, 10000, np.full(n, FEED), points[1:], np.full(n, 500.0), start=points[0])
+
+
+def zigzag(z):
+    """Rows y = -6, -3, 0, 3, 6 from x = -10 to 10, joined at alternate ends, at height z: a flat
+    6 mm clears the rectangle [-13, 13] x [-9, 9] with corners rounded by 3 mm and a notch on
+    each side where two rows end unjoined (see POCKET_AREA)."""
+    points = []
+    for k, y in enumerate((-6.0, -3.0, 0.0, 3.0, 6.0)):
+        xs = np.linspace(-10, 10, 21) * (1 if k % 2 == 0 else -1)
+        points += [[x, y, z] for x in xs]
+    return np.array(points)
+
+
+# each rounded corner leaves 9 - 9 pi / 4; each notch (3 mm deep, between two circles of 3 mm
+# 3 mm apart) leaves 2 * integral over 0..1.5 of (3 - sqrt(9 - y^2)) dy
+NOTCH = 2 * (4.5 - (1.5 * math.sqrt(6.75) + 9 * math.asin(0.5)) / 2)
+POCKET_AREA = 26 * 18 - 4 * (9 - 9 * math.pi / 4) - 4 * NOTCH
+
+
+def test_a_ramp_over_a_deeper_layers_floor_is_held_and_one_beside_it_is_not():
+    deep = zigzag(-3.0)
+    floors = sweep.Floors(sweep.level_runs([chain(FLAT6, deep)]), 0.05)
+    inside = np.array([[-5.0, 0.0, 0.0], [5.0, 0.0, -1.5]])
+    assert floors.holds(inside, 3.0)
+    # the tool's circle at x = 10 + 0.1 pokes 0.1 mm out of the cleared end (x = 13)
+    assert not floors.holds(np.array([[0.0, 0.0, 0.0], [10.1, 0.0, -1.5]]), 3.0)
+    # nothing is cleared below the deep layer itself, nor below a point under it
+    assert not floors.holds(inside - [0, 0, 1.5], 3.0)
+    # a plunge straight down over the floor: the tool's circle
+    assert floors.holds(np.array([[0.0, 0.0, 5.0], [0.0, 0.0, -1.0]]), 3.0)
+    assert not floors.holds(np.array([[0.0, 7.0, 5.0], [0.0, 7.0, -1.0]]), 3.0)
+
+
+def test_a_pocket_entered_by_ramps_over_its_floor_cuts_its_closed_form_without_the_ramps():
+    # the upper layer at -1.5, ramped into over the middle; the lower at -3, entered by a plunge
+    # beside the pocket (so it is cut): the ramp adds no piece, and the pocket is its closed form
+    upper = np.vstack([[[-5.0, 0.0, 5.0], [-5.0, 0.0, 0.0], [5.0, 0.0, -1.5]], zigzag(-1.5)])
+    lower = np.vstack([[[-10.0, -6.0, 5.0]], zigzag(-3.0)])
+    chains = [chain(FLAT6, upper), chain(FLAT6, lower)]
+    stock = stock_solid(sim.as_stock(BOX), 0.05)
+    floors = sweep.Floors(sweep.level_runs(chains), 0.05)
+    ramp = upper[:3]
+    with_floors = sweep._hull_pieces(chains[0], ramp, None, sweep.tool_points(FLAT6, 0.05, 10.0), 10.0, 0.05,
+                                     stock.bounding_box(), floors)
+    without = sweep._hull_pieces(chains[0], ramp, None, sweep.tool_points(FLAT6, 0.05, 10.0), 10.0, 0.05,
+                                 stock.bounding_box())
+    # the plunge down to 0 is above the stock; the ramp lies over the floor at -3
+    assert len(without) == 1 and len(with_floors) == 0
+    result = sim.simulate([op(upper, "upper"), op(lower, "lower")], BOX, engine="manifold", tolerance=0.05)
+    expected = POCKET_AREA * 3.0
+    assert result.removed_volume_mm3 == pytest.approx(expected, rel=1e-3)
+    assert result.removed_volume_mm3 <= expected * 1.001
+
+
+def test_moves_of_a_few_tenths_of_a_micrometre_are_merged_into_the_next():
+    rng = np.random.default_rng(3)
+    path = np.cumsum(rng.normal(size=(60, 3)), axis=0)
+    noisy = [path[0]]
+    for point in path[1:]:
+        noisy.append(point)
+        for _ in range(rng.integers(0, 3)):
+            noisy.append(noisy[-1] + rng.normal(size=3) * 2e-7)
+    noisy = np.array(noisy)
+    clean = without_short_moves(noisy, 1e-6)
+    assert np.linalg.norm(np.diff(clean, axis=0), axis=1).min() >= 1e-6
+    assert np.array_equal(clean[0], noisy[0]) and np.array_equal(clean[-1], noisy[-1])
+    # every point left out lies within 1e-6 mm of a point kept
+    distance = np.linalg.norm(noisy[:, None, :] - clean[None, :, :], axis=2).min(axis=1)
+    assert distance.max() < 1e-6
+    assert len(clean) == len(path)
+    assert without_short_moves(path, 1e-6) is path
+
+
+def test_a_level_loop_with_a_noise_move_is_one_run_and_cuts_what_the_clean_loop_cuts():
+    angle = np.linspace(0, 2 * math.pi, 121)
+    loop = np.column_stack([10 * np.cos(angle), 10 * np.sin(angle), np.full(121, -2.0)])
+    noisy = np.insert(loop, 60, loop[60] + [1.2e-7, -0.8e-7, 0.0], axis=0)
+    assert len(sweep._gentle_runs(noisy, 0.0)) == 2            # the noise move splits the loop
+    assert sweep._gentle_runs(without_short_moves(noisy, sweep.SHORT_MOVE), 0.0) == [(0, 120)]
+    clean, dirty = (sim.simulate(op(points), BOX, engine="manifold", tolerance=0.05).removed_volume_mm3
+                    for points in (loop, noisy))
+    # a 6 mm ring about r = 10: Pappus, 2 pi 10 * 6 * 2 mm deep
+    assert dirty == pytest.approx(clean, rel=1e-9)
+    assert clean == pytest.approx(2 * math.pi * 10 * 6 * 2, rel=2e-3)
