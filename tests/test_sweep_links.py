@@ -109,3 +109,51 @@ def test_a_level_loop_with_a_noise_move_is_one_run_and_cuts_what_the_clean_loop_
     # a 6 mm ring about r = 10: Pappus, 2 pi 10 * 6 * 2 mm deep
     assert dirty == pytest.approx(clean, rel=1e-9)
     assert clean == pytest.approx(2 * math.pi * 10 * 6 * 2, rel=2e-3)
+
+
+def zigzag_ramp(legs=6, depth=3.0):
+    """A flat 6 mm ramping down along y = 0 between x = -10 and 10, ``legs`` legs to ``depth``."""
+    x = np.where(np.arange(legs + 1) % 2 == 0, -10.0, 10.0)
+    return np.column_stack([x, np.zeros(legs + 1), -np.arange(legs + 1) * depth / legs])
+
+
+def test_a_zigzag_ramp_cuts_only_its_last_leg_each_earlier_one_lies_over_a_later_one():
+    from kezuri.toolpath.simulate.repeats import without_repeated_moves
+
+    ramp = zigzag_ramp()
+    # leg k (from x = +-10 at -k/2 to -(k+1)/2) lies over leg k + 2 at both ends; leg 5 over leg 6
+    # (equal at x = -10, lower at 10): only the last leg is cut
+    assert without_repeated_moves(ramp, [(0, 6)]) == [(5, 6)]
+    # up the same legs: each leg lies over the one before it, and the first is cut
+    assert without_repeated_moves(ramp[::-1].copy(), [(0, 6)]) == [(0, 1)]
+    # moves outside the ranges given are neither cut nor holders
+    assert without_repeated_moves(ramp, [(0, 4)]) == [(3, 4)]
+    # a leg at the same heights twice: the first holds the second
+    twice = np.array([[-10.0, 0, -1], [10.0, 0, -2], [-10.0, 0, -1], [10.0, 0, -2], [10.0, 0, -3]])
+    assert without_repeated_moves(twice, [(0, 4)]) == [(0, 1), (3, 4)]
+    # plunges and retracts on one vertical line: the one reaching lowest holds every other
+    plunges = np.array([[0.0, 0, 5], [0.0, 0, -1], [0.0, 0, 5], [0.0, 0, -2], [0.0, 0, -4]])
+    assert without_repeated_moves(plunges, [(0, 4)]) == [(3, 4)]
+    # a holder is kept apart from the straight move after it (so it is cut as the whole tool,
+    # never merged with it into a hull of a shrunk tool)
+    back = np.array([[0.0, 0, 0], [10.0, 0, -1], [0.0, 0, -2], [-10.0, 0, -3]])
+    assert without_repeated_moves(back, [(0, 3)]) == [(1, 2), (2, 3)]
+    # nothing held: the ranges as given
+    line = np.column_stack([np.linspace(0, 10, 6), np.zeros(6), -np.linspace(0, 1, 6)])
+    assert without_repeated_moves(line, [(0, 2), (3, 5)]) == [(0, 2), (3, 5)]
+
+
+def test_a_zigzag_ramp_into_a_slot_cuts_what_the_height_field_cuts():
+    # the ramp alone: the sweep of its last leg (from -2.5 at x = -10 to -3 at 10) holds every
+    # other; if it were left out, the slot would be half a millimetre shallower at one end (8 %)
+    ramp = zigzag_ramp()
+    stock = stock_solid(sim.as_stock(BOX), 0.05)
+    floors, paths = sweep.Floors([], 0.05), sweep.LevelPaths()
+    pieces = sweep._chain_pieces(chain(FLAT6, ramp), 0.05, stock.bounding_box(), floors, sweep.Repeats(), paths)
+    assert len(pieces) == 1
+    field, exact = (sim.simulate(op(ramp), BOX, engine=engine, tolerance=0.05, cell=0.05)
+                    for engine in ("heightfield", "manifold"))
+    assert exact.removed_volume_mm3 == pytest.approx(field.removed_volume_mm3, rel=0.005)
+    # the slot's stadium (20 x 6 and two half discs) at least 2.5 and at most 3 mm deep
+    stadium = 20 * 6 + math.pi * 9
+    assert 2.5 * stadium < exact.removed_volume_mm3 < 3.0 * stadium

@@ -41,7 +41,10 @@ layers on the side of a bar; see :class:`Repeats`), any stretch lying wholly ove
 that deeper level runs have cleared to the top (see :class:`Floors`), the moves of a level run
 that a deeper level run of the tool repeats (a pocket layer whose rings follow, in part, a deeper
 layer's; the tool below holds the tool at the ends of what is left), and moves between runs
-that a level run holds from below (a ramp entry along its contour; see :class:`LevelPaths`).
+that a level run holds from below (a ramp entry along its contour; see :class:`LevelPaths`), that
+another such move holds from below (a ramp zigzagging down one line; see
+:func:`without_repeated_moves`) or whose hull lies over cleared ground (see :meth:`Floors.holds`).
+Moves shorter than SHORT_MOVE are merged into the next first.
 
 Budget of a tube: the section's facets a quarter of the tolerance (either side), the
 joints a quarter (at a vertex turning by d the section stands full size across the bisector, so
@@ -82,7 +85,7 @@ from ..ir.program import Tool
 from .facets import area_scale, outside, polygon_sides, segments_for, tool_points, tool_rings  # noqa: F401 (the engine's names)
 from .floors import Floors, Shanks
 from .paths import without_short_moves
-from .repeats import Level, LevelPaths, RadialLevel, Repeats
+from .repeats import Level, LevelPaths, RadialLevel, Repeats, without_repeated_moves
 
 MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
 MAX_STRETCH_TURN = math.pi / 3   # a tube turns at most this much in all (it cannot fold back onto itself)
@@ -239,7 +242,7 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats, paths=None, 
             pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors, closed, shanks)
     for i, j in zip(starts, ends):
         ranges = ([] if j <= i else [(0, j - i)] if paths is None or chain.radial
-                  else paths.needed(chain.tool, p[i:j + 1]))
+                  else without_repeated_moves(p[i:j + 1], paths.needed(chain.tool, p[i:j + 1])))
         for a, b in ranges:
             pieces += _hull_pieces(chain, p[i + a:i + b + 1], None if axes is None else axes[i + a:i + b + 1], whole,
                                    height, tolerance, bounds, floors)
