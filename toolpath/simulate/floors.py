@@ -29,6 +29,7 @@ class Floors:
         self.tolerance = tolerance
         self.cleared = [CrossSection()]      # cleared[k]: the union of the k lowest footprints
         self.shapes = {}                     # k: the k-th lowest footprint
+        self.unions = {}                     # footprints' indices: their union
         self.boxes = np.array([[*(path.min(axis=0) - radius), *(path.max(axis=0) + radius)]
                                for path, radius in self.footprints]).reshape(-1, 4)
 
@@ -79,7 +80,10 @@ class Floors:
         near = np.flatnonzero((boxes[:, 0] < hi[0]) & (boxes[:, 2] > lo[0]) & (boxes[:, 1] < hi[1]) & (boxes[:, 3] > lo[1]))
         if not len(near):
             return False
-        cleared = CrossSection.batch_boolean([self.shape(int(i)) for i in near], OpType.Add)
+        key = tuple(near.tolist())
+        if key not in self.unions:
+            self.unions[key] = CrossSection.batch_boolean([self.shape(int(i)) for i in near], OpType.Add)
+        cleared = self.unions[key]
         n = polygon_sides(wide, self.tolerance / 8)
         around = np.arange(n) * (2 * np.pi / n)
         circle = wide * np.column_stack([np.cos(around), np.sin(around)])
