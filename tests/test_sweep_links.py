@@ -1,10 +1,14 @@
 """W6: the manifold engine's links between runs (toolpath/simulate/sweep.py): hulls of plunges and
-ramps over ground deeper level runs cleared are left out (Floors.holds), and moves of a few 1e-7 mm
-(noise between two arcs) no longer split a level run (paths.without_short_moves)."""
+ramps over ground deeper level runs cleared are left out (Floors.holds), so are moves another move
+holds from below (a zigzag ramp's legs: repeats.without_repeated_moves), and moves of a few 1e-7 mm
+(noise between two arcs) no longer split a level run (paths.without_short_moves).  What is left out
+is checked against closed forms, the height field, and the sweep of the shrunk tool."""
 import math
 
 import numpy as np
 import pytest
+
+from manifold3d import Manifold, OpType
 
 from kezuri.toolpath import simulate as sim
 from kezuri.toolpath.ir.program import FEED, Operation, Tool
@@ -157,3 +161,29 @@ def test_a_zigzag_ramp_into_a_slot_cuts_what_the_height_field_cuts():
     # the slot's stadium (20 x 6 and two half discs) at least 2.5 and at most 3 mm deep
     stadium = 20 * 6 + math.pi * 9
     assert 2.5 * stadium < exact.removed_volume_mm3 < 3.0 * stadium
+
+
+def shrunk_sweep(points, tolerance, shank=30.0):
+    """The flat 6 mm shrunk by ``tolerance`` swept along every move (exact hulls per move)."""
+    shrunk = sweep.tool_points(FLAT6, 0.005, shank, inset=tolerance)
+    return Manifold.batch_boolean([Manifold.hull_points(sweep.placed(shrunk, points[k:k + 2], None))
+                                   for k in range(len(points) - 1)], OpType.Add)
+
+
+@pytest.mark.parametrize("case", ["zigzag", "pocket"])
+def test_what_is_left_out_still_lies_in_the_cut(case):
+    # the cut holds the sweep of the tool shrunk by the tolerance along every move, the moves
+    # whose hulls were left out included
+    stock = stock_solid(sim.as_stock(BOX), 0.05)
+    if case == "zigzag":
+        paths_ = [zigzag_ramp()]
+    else:
+        # a ramp beside the pocket (kept), a ramp over its floor (left out), the layers
+        paths_ = [np.vstack([[[-20.0, -12.0, 5.0], [-20.0, -12.0, 0.0], [-20.0, 12.0, -1.0], [-5.0, 0.0, 0.0],
+                              [5.0, 0.0, -1.5]], zigzag(-1.5)]),
+                  np.vstack([[[-10.0, -6.0, 5.0]], zigzag(-3.0)])]
+    solid = sweep.cut(stock, [chain(FLAT6, points) for points in paths_], 0.05)
+    removed = stock - solid
+    for points in paths_:
+        inner = shrunk_sweep(points, 0.05) ^ stock
+        assert (inner - removed).volume() < 1e-6
