@@ -28,13 +28,23 @@ class Floors:
         self.footprints = [(path, radius) for _, path, radius in floors]
         self.tolerance = tolerance
         self.cleared = [CrossSection()]      # cleared[k]: the union of the k lowest footprints
+        self.shapes = {}                     # k: the k-th lowest footprint
+        self.unions = {}                     # footprints' indices: their union
+        self.boxes = np.array([[*(path.min(axis=0) - radius), *(path.max(axis=0) + radius)]
+                               for path, radius in self.footprints]).reshape(-1, 4)
+
+    def shape(self, k: int) -> CrossSection:
+        """The footprint of the k-th lowest level run."""
+        if k not in self.shapes:
+            path, radius = self.footprints[k]
+            self.shapes[k] = footprint(path, radius, self.tolerance)
+        return self.shapes[k]
 
     def below(self, z: float) -> CrossSection:
         """The area cleared all the way down to ``z`` by runs below it."""
         k = bisect.bisect_right(self.heights, z - 1e-9)   # strictly deeper: a run never clears itself
         while len(self.cleared) <= k:
-            path, radius = self.footprints[len(self.cleared) - 1]
-            self.cleared.append(self.cleared[-1] + footprint(path, radius, self.tolerance))
+            self.cleared.append(self.cleared[-1] + self.shape(len(self.cleared) - 1))
         return self.cleared[k]
 
     def needed(self, run: np.ndarray, radius: float) -> list:
@@ -56,6 +66,29 @@ class Floors:
                 keep[a:b] = True
         edges = np.flatnonzero(np.diff(np.concatenate([[0], keep.astype(np.int8), [0]])))
         return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]
+
+    def holds(self, points: np.ndarray, radius: float) -> bool:
+        """Whether a hull of the tool at ``points`` (a plunge, ramp or link between runs: its
+        shape seen from above is the convex hull of the points widened by ``radius``) lies wholly
+        in what deeper level runs have cleared: that outline, widened as :meth:`needed` widens a
+        run's footprint, inside the area cleared down to the lowest point (only the footprints
+        whose bounds meet the outline's are unioned)."""
+        k = bisect.bisect_right(self.heights, float(points[:, 2].min()) - 1e-9)
+        wide = radius + self.tolerance / 4
+        lo, hi = points[:, :2].min(axis=0) - wide, points[:, :2].max(axis=0) + wide
+        boxes = self.boxes[:k]
+        near = np.flatnonzero((boxes[:, 0] < hi[0]) & (boxes[:, 2] > lo[0]) & (boxes[:, 1] < hi[1]) & (boxes[:, 3] > lo[1]))
+        if not len(near):
+            return False
+        key = tuple(near.tolist())
+        if key not in self.unions:
+            self.unions[key] = CrossSection.batch_boolean([self.shape(int(i)) for i in near], OpType.Add)
+        cleared = self.unions[key]
+        n = polygon_sides(wide, self.tolerance / 8)
+        around = np.arange(n) * (2 * np.pi / n)
+        circle = wide * np.column_stack([np.cos(around), np.sin(around)])
+        outline = CrossSection.hull_points((points[:, None, :2] + circle[None]).reshape(-1, 2))
+        return (outline - cleared).area() <= 1e-6
 
 
 class Shanks:

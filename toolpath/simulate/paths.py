@@ -141,3 +141,24 @@ def chains_of(ops: list, no_plunge_tools) -> list:
         chains.append(Chain(index, op.tool, points, seg_move, rapid, checked,
                              getattr(op, "direction", None) == "radial"))
     return chains
+
+
+def without_short_moves(points: np.ndarray, length: float) -> np.ndarray:
+    """The polyline with every move shorter than ``length`` merged into the next: a point within
+    ``length`` of the last point kept is left out (the last point stays, in place of the one kept
+    before it if need be).  Numerical noise of a few 1e-7 mm between two arcs no longer splits a
+    level run in two; the path moves by less than ``length``."""
+    short = np.flatnonzero(np.linalg.norm(np.diff(points, axis=0), axis=1) < length)
+    if not len(short):
+        return points
+    keep = np.ones(len(points), bool)
+    for k in short + 1:
+        last = k - 1
+        while not keep[last]:
+            last -= 1
+        if np.linalg.norm(points[k] - points[last]) < length:
+            if k < len(points) - 1 or last == 0:
+                keep[k] = False
+            else:
+                keep[last] = False        # the path still ends where it ends
+    return points[keep] if keep.sum() >= 2 else points[[0, -1]]

@@ -1,6 +1,7 @@
 """Level runs of the manifold engine that repeat one another (see sweep.py): the pocket's layers
 along one path, a radial tool's rings at one height.  A run that another run of its group covers
-from deeper down adds nothing to the cut and is left out."""
+from deeper down adds nothing to the cut and is left out; so does a move between runs that
+another one holds from below (a zigzag ramp's legs)."""
 from __future__ import annotations
 
 import math
@@ -140,3 +141,61 @@ class LevelPaths:
         keep[0] = keep[-1] = True
         edges = np.flatnonzero(np.diff(np.concatenate([[0], keep.astype(np.int8), [0]])))
         return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]
+
+
+
+def without_repeated_moves(points: np.ndarray, ranges: list) -> list:
+    """The (first, last) point ranges of the polyline's moves to cut as hulls (``ranges``: all
+    moves in them are), less the moves another of them holds from below: the same two ends seen
+    from above (rounded to 1e-6 mm), each at or below this move's (a ramp that zigzags down along
+    one line: each leg lies over the leg after next).  Each move that holds another is a range of
+    its own, so it is cut as a hull of the whole tool, never merged with its neighbours.
+
+    The hull of the tool at both ends of a move is the tool swept along it; the tool lower on the
+    same vertical line contains it up to above the stock (see :class:`Repeats`), so the sweep along
+    a move that lies over another at every point is contained in the other's.  Of moves at the
+    same heights the first holds; a holder left out is itself held by a lower one."""
+    cut = np.zeros(len(points) - 1, bool)
+    for a, b in ranges:
+        cut[a:b] = True
+    ends = np.round(points[:, :2], 6).tolist()
+    z = points[:, 2].tolist()
+    groups = {}
+    for k in np.flatnonzero(cut).tolist():
+        a, b = ends[k], ends[k + 1]
+        if a == b:        # straight up or down: its lower end decides
+            key, heights = (a[0], a[1], a[0], a[1]), (min(z[k], z[k + 1]), min(z[k], z[k + 1]))
+        elif a < b:
+            key, heights = (a[0], a[1], b[0], b[1]), (z[k], z[k + 1])
+        else:
+            key, heights = (b[0], b[1], a[0], a[1]), (z[k + 1], z[k])
+        groups.setdefault(key, []).append((k, heights))
+    holder = np.full(len(cut), -1)
+    for moves in groups.values():
+        for k, (low, high) in moves:
+            for m, (lo, hi) in moves:
+                if m != k and lo <= low and hi <= high and (lo + hi < low + high or m < k):
+                    holder[k] = m
+                    break
+    if np.all(holder < 0):
+        return ranges
+    alone = np.zeros(len(cut), bool)
+    alone[holder[holder >= 0]] = True
+    cut &= holder < 0
+    out = []
+    for a, b in _edges(cut):
+        start = a
+        for k in np.flatnonzero(alone[a:b]) + a:
+            if k > start:
+                out.append((start, int(k)))
+            out.append((int(k), int(k) + 1))
+            start = int(k) + 1
+        if b > start:
+            out.append((start, b))
+    return out
+
+
+def _edges(mask: np.ndarray) -> list:
+    """(first, last) point ranges of the runs of True moves."""
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(np.int8), [0]])))
+    return [(int(a), int(b)) for a, b in zip(edges[::2], edges[1::2])]

@@ -10,7 +10,7 @@ from manifold3d import Manifold
 
 from ..engines.compiled import KERNELS
 from ..ir.errors import InputError
-from . import sweep
+from .facets import segments_for
 
 ENGINES = ("heightfield", "manifold")
 CHORD_TOLERANCE = 0.01     # mm: arcs and rotary moves are cut into chords this close to the path
@@ -191,7 +191,7 @@ def stock_solid(stock, tolerance: float) -> Manifold:
     if isinstance(stock, BoxStock):
         return Manifold.cube([stock.x1 - stock.x0, stock.y1 - stock.y0, stock.z1 - stock.z0]).translate(
             [stock.x0, stock.y0, stock.z0])
-    n = sweep.segments_for(stock.radius, tolerance / 2)
+    n = segments_for(stock.radius, tolerance / 2)
     return Manifold.cylinder(stock.height, stock.radius, stock.radius, n).translate([0, 0, stock.bottom])
 
 

@@ -41,7 +41,10 @@ layers on the side of a bar; see :class:`Repeats`), any stretch lying wholly ove
 that deeper level runs have cleared to the top (see :class:`Floors`), the moves of a level run
 that a deeper level run of the tool repeats (a pocket layer whose rings follow, in part, a deeper
 layer's; the tool below holds the tool at the ends of what is left), and moves between runs
-that a level run holds from below (a ramp entry along its contour; see :class:`LevelPaths`).
+that a level run holds from below (a ramp entry along its contour; see :class:`LevelPaths`), that
+another such move holds from below (a ramp zigzagging down one line; see
+:func:`without_repeated_moves`) or whose hull lies over cleared ground (see :meth:`Floors.holds`).
+Moves shorter than SHORT_MOVE are merged into the next first.
 
 Budget of a tube: the section's facets a quarter of the tolerance (either side), the
 joints a quarter (at a vertex turning by d the section stands full size across the bisector, so
@@ -73,6 +76,7 @@ out (its dip plus its distance from paths already held; see :func:`_level_stairc
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 from manifold3d import CrossSection, Error, Manifold, Mesh64, OpType
@@ -80,7 +84,8 @@ from manifold3d import CrossSection, Error, Manifold, Mesh64, OpType
 from ..ir.program import Tool
 from .facets import area_scale, outside, polygon_sides, segments_for, tool_points, tool_rings  # noqa: F401 (the engine's names)
 from .floors import Floors, Shanks
-from .repeats import Level, LevelPaths, RadialLevel, Repeats
+from .paths import without_short_moves
+from .repeats import Level, LevelPaths, RadialLevel, Repeats, without_repeated_moves
 
 MIN_RUN_MOVES = 3                # a run of at least this many gentle moves is swept as tubes
 MAX_STRETCH_TURN = math.pi / 3   # a tube turns at most this much in all (it cannot fold back onto itself)
@@ -97,6 +102,7 @@ ROW_STRAIGHTNESS = 0.02          # of the tolerance: how far the vertices of one
 CHUNK_TRIANGLES = 25_000
 SHANK_OVERLAP = 0.5              # mm: a level run's tubes reach this far up its shank's prism (see :class:`Shanks`)
 LEVEL = 1e-6                     # mm: a run whose height varies less than this is level (posts round to 1e-4)
+SHORT_MOVE = 1e-6                # mm: shorter moves (noise between two arcs) are merged into the next
 
 
 def straight_runs(points: np.ndarray, deviation: float) -> list:
@@ -148,7 +154,9 @@ def cut(stock: Manifold, chains: list, tolerance: float, chunk: int = CHUNK_TRIA
     and ``radial`` (the tool axis runs from the Z axis through the tip, as in radial turn-mill
     work; otherwise it is +Z).  Pieces are unioned in path order until they hold ``chunk``
     triangles, and subtracted; ``progress(fraction)`` is called after each chunk (it may raise
-    to cancel)."""
+    to cancel).  Moves shorter than SHORT_MOVE are merged into the next (see :func:`without_short_moves`)."""
+    chains = [SimpleNamespace(tool=chain.tool, points=without_short_moves(chain.points, SHORT_MOVE), radial=chain.radial)
+              for chain in chains]
     bounds = stock.bounding_box()
     levels = level_runs(chains)
     floors = Floors(levels, tolerance)
@@ -234,10 +242,10 @@ def _chain_pieces(chain, tolerance: float, bounds, floors, repeats, paths=None, 
             pieces += _axial_run(chain, run, whole, height, tolerance, bounds, floors, closed, shanks)
     for i, j in zip(starts, ends):
         ranges = ([] if j <= i else [(0, j - i)] if paths is None or chain.radial
-                  else paths.needed(chain.tool, p[i:j + 1]))
+                  else without_repeated_moves(p[i:j + 1], paths.needed(chain.tool, p[i:j + 1])))
         for a, b in ranges:
             pieces += _hull_pieces(chain, p[i + a:i + b + 1], None if axes is None else axes[i + a:i + b + 1], whole,
-                                   height, tolerance, bounds)
+                                   height, tolerance, bounds, floors)
     return pieces
 
 
@@ -267,10 +275,12 @@ def _gentle_runs(p: np.ndarray, max_slope: float) -> list:
     return [(int(i), int(j)) for i, j in zip(edges[::2], edges[1::2]) if j - i >= MIN_RUN_MOVES]
 
 
-def _hull_pieces(chain, p, axes, whole, height, tolerance, bounds) -> list:
+def _hull_pieces(chain, p, axes, whole, height, tolerance, bounds, floors=None) -> list:
     """One hull of the tool at both ends of each move, or of a slightly shrunk tool along a nearly
     straight run of moves (within a sixth of ``tolerance`` of its chord, so the hull of its
-    points is within a third of the path); the facets take the other two thirds."""
+    points is within a third of the path); the facets take the other two thirds.  With ``floors``,
+    an upright tool's hulls that lie wholly over ground deeper level runs cleared are left out
+    (see :meth:`Floors.holds`: plunges, ramps and retracts inside a pocket)."""
     x0, y0, bottom, x1, y1, top = bounds
     bar_radius = max(-x0, x1, -y0, y1)
     merge = tolerance / 3
@@ -293,6 +303,7 @@ def _hull_pieces(chain, p, axes, whole, height, tolerance, bounds) -> list:
             inside = reach[i:j + 1].min() < bar_radius and hi[2] + r > bottom and lo[2] - r < top
         else:
             inside = lo[2] < top and hi[0] + r > x0 and lo[0] - r < x1 and hi[1] + r > y0 and lo[1] - r < y1
+            inside = inside and (floors is None or not floors.holds(run, r))
         if inside:
             points = placed(whole if j == i + 1 else shrunk, run, None if axes is None else axes[i:j + 1])
             pieces.append(lambda points=points: Manifold.hull_points(points))
