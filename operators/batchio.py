@@ -137,10 +137,15 @@ def machine_label(machine):
     return machine
 
 
-def write_setup_sheet(out_dir: str, report: dict) -> dict:
+def sheet_language(args, report: dict) -> str:
+    """The setup sheet's language: ``--language``, else the job file's [setup] language, else English."""
+    return getattr(args, "language", None) or report.get("setup_sheet_language") or "en"
+
+
+def write_setup_sheet(out_dir: str, report: dict, language: str = "en") -> dict:
     """Write ``setup-sheet.html`` into ``out_dir`` (the staging folder) from a batch run's
-    ``report`` and the files it lists (programs, pictures); returns the report with its
-    ``setup_sheet`` entry.  Every batch command's report goes through here once (batch.py)."""
+    ``report`` and the files it lists (programs, pictures), in ``language`` (en, ja); returns the
+    report with its ``setup_sheet`` entry.  Every batch command's report goes through here once (batch.py)."""
     from ..post.output import write_atomic
     from ..toolpath.pictures import setupsheet
 
@@ -166,5 +171,9 @@ def write_setup_sheet(out_dir: str, report: dict) -> dict:
     sheet = setupsheet.sheet_from(None, report, machine_label(report.get("machine")), post_label(report) or None,
                                   pictures, programs=programs, job_name=name,
                                   stick_out=stick_outs(report.get("operations")))
-    path = write_atomic(os.path.join(out_dir, SHEET_NAME), setupsheet.setup_sheet(sheet).encode("utf-8"))
+    translate = None
+    if language == "ja":
+        from .translations import sheet_text as translate
+    text = setupsheet.setup_sheet(sheet, language, translate)
+    path = write_atomic(os.path.join(out_dir, SHEET_NAME), text.encode("utf-8"))
     return {**report, "setup_sheet": path}

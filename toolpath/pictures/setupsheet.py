@@ -113,8 +113,10 @@ class SetupSheet:
         return sum(times) if times else None
 
 
-def english(text: str, *values) -> str:
-    """A sheet text in English: the template with its values put in (the default ``translate``)."""
+def english(text: str, *values, context: str = "") -> str:
+    """A sheet text in English: the template with its values put in (the default ``translate``).
+    ``context`` tells apart one English word of two meanings (a tool kind "drill", an operation
+    "drill"), as Blender's translation contexts do."""
     return text.format(*values) if values else text
 
 
@@ -330,7 +332,7 @@ def _tools_table(tools, say) -> str:
     if not tools:
         return f"<p>{_text(say('No tools in this job.'))}</p>"
     numeric = (0, 2, 3, 4, 5, 6)
-    rows = [_row((f"T{t.number}", say(t.kind), mm(t.diameter), mm(t.corner_radius), mm(t.flute_length),
+    rows = [_row((f"T{t.number}", say(t.kind, context="tool kind"), mm(t.diameter), mm(t.corner_radius), mm(t.flute_length),
                   mm(t.stick_out), chip_text(t.chip_loads, say), t.description), numeric) for t in tools]
     return ('<table id="tools">' + _head([say(h) for h in ("Tool", "Kind", "Diameter (mm)", "Corner R (mm)",
                                                           "Flute length (mm)", "Stick-out (mm)", "Chip load (mm)",
@@ -377,7 +379,7 @@ def _pictures(pictures, say) -> str:
 
 def setup_sheet(sheet: SetupSheet, language: str = "en", translate=None) -> str:
     """The setup sheet as one HTML document (a str; write it as UTF-8).  ``language``: one of
-    :data:`LANGUAGES`, the page's ``lang``; ``translate(text, *values)``: the sheet's words, the
+    :data:`LANGUAGES`, the page's ``lang``; ``translate(text, *values, context="")``: the sheet's words, the
     gate's findings, the notes and the operation names in that language (default: English)."""
     if language not in LANGUAGES:
         raise SetupSheetError(f"setup sheet language {language!r}: one of {', '.join(LANGUAGES)}")
