@@ -385,7 +385,8 @@ def setup_sheet(sheet: SetupSheet, language: str = "en", translate=None) -> str:
         raise SetupSheetError(f"setup sheet language {language!r}: one of {', '.join(LANGUAGES)}")
     say = translate or english
     work_zero = (work_zero_text(sheet.stock, sheet.work_offset, say)
-                 if sheet.work_zero == work_zero_text(sheet.stock, sheet.work_offset) else say(sheet.work_zero))
+                 if sheet.work_zero == work_zero_text(sheet.stock, sheet.work_offset)
+                 else sheet.work_zero and say(sheet.work_zero))
     facts = (("Machine", sheet.machine_label or DASH), ("Post", sheet.post_label or DASH),
              ("Work offset", sheet.work_offset or DASH), ("Stock", describe_stock(sheet.stock, say)),
              ("Work zero", work_zero or DASH), ("Total time", hms(sheet.shown_total_s())))
