@@ -137,6 +137,23 @@ def machine_label(machine):
     return machine
 
 
+def write_program_sheet(nc_path: str, program, report: dict, machine, post: str, language: str = "en") -> str:
+    """The panel's export: the setup sheet of ``program`` (an IR Program, written to ``nc_path``)
+    beside it as ``<program>-setup-sheet.html``, from the gate's ``report`` entries (``gate``,
+    ``feeds``, ``warnings``), in ``language``; its path."""
+    from ..post.output import write_atomic
+    from ..toolpath.pictures import setupsheet
+
+    with open(nc_path, "rb") as stream:
+        programs = [setupsheet.program_file(os.path.basename(nc_path), stream.read())]
+    sheet = setupsheet.sheet_from(program, report, machine, post, programs=programs)
+    translate = None
+    if language == "ja":
+        from .translations import sheet_text as translate
+    path = os.path.splitext(nc_path)[0] + "-" + SHEET_NAME
+    return write_atomic(path, setupsheet.setup_sheet(sheet, language, translate).encode("utf-8"))
+
+
 def sheet_language(args, report: dict) -> str:
     """The setup sheet's language: ``--language``, else the job file's [setup] language, else English."""
     return getattr(args, "language", None) or report.get("setup_sheet_language") or "en"

@@ -3218,6 +3218,13 @@ TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 
 
+def interface_language() -> str:
+    """The setup sheet's language from the panel: "ja" when Blender shows the interface in Japanese
+    (as it shows this add-on's labels), else "en"."""
+    probe = next(iter(PANEL_TEXTS))
+    return "ja" if bpy.app.translations.pgettext_iface(probe) != probe else "en"
+
+
 def sheet_text(text: str, *values, context: str = "") -> str:
     """A setup sheet's text in Japanese (the sheet's ``translate``, toolpath/pictures/setupsheet.py):
     a template of the sheet with its values put in, a word of the sheet or of the interface, or a
