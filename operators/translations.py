@@ -3179,6 +3179,9 @@ SHEET_TEXTS = {
         "指摘があるまま書き出し：承知のうえで強制書き出しが指定されました。",
     "Not run: the export gate did not check this program.": "未実施：書き出しゲートはこのプログラムを検査していません。",
     "Toolpaths": "工具経路", "Result": "加工結果",
+    # operations the planners name (turn-mill's); the job's own names stay as typed
+    "radial roughing": "径方向の荒加工", "radial finishing": "径方向の仕上げ加工", "axial roughing": "軸方向の荒加工",
+    "axial finishing": "軸方向の仕上げ加工",
     # where the work zero sits (setupsheet.work_zero_text)
     "X0 Y0 at the centre of the stock": "X0 Y0 は素材の中心",
     "X0 Y0 at the front-left corner of the stock": "X0 Y0 は素材の左手前の角",
