@@ -84,11 +84,11 @@ def commands() -> dict:
 
 def finished(command, args) -> dict:
     """Run one batch command into ``args.out``; its report, with the setup sheet written beside it."""
-    from kezuri.operators.batchio import write_setup_sheet
+    from kezuri.operators.batchio import sheet_language, write_setup_sheet
     report = command.run(args)
     if "rows" in report:            # a template's summary: each row's folder has its own sheet
         return report
-    return write_setup_sheet(args.out, report)
+    return write_setup_sheet(args.out, report, sheet_language(args, report))
 
 
 def demo(args, final=lambda value: value) -> dict:
@@ -98,7 +98,8 @@ def demo(args, final=lambda value: value) -> dict:
     for name, command in commands().items():
         runs = ([(name, command.demo)] if command.demo is not None else []) + list(command.more_demos)
         for folder, line in runs:
-            sub = parser().parse_args([name, *line, "--out", os.path.join(args.out, folder)])
+            language = ["--language", args.language] if args.language else []
+            sub = parser().parse_args([name, *line, *language, "--out", os.path.join(args.out, folder)])
             sub.final = final
             report = final(finished(command, sub))
             write_report(sub.out, report)
@@ -106,6 +107,13 @@ def demo(args, final=lambda value: value) -> dict:
                                "setup_sheet": report.get("setup_sheet")}
             print(f"{folder}: wrote {', '.join(report['files'])}")
     return {"workflow": "demo", "files": [f for r in results.values() for f in r["files"]], "workflows": results}
+
+
+def language_argument(p) -> None:
+    """``--language``, the setup sheet's, on every command that writes one (those with --out)."""
+    from kezuri.toolpath.pictures.setupsheet import LANGUAGES
+    p.add_argument("--language", choices=LANGUAGES, help="the setup sheet's language (default en, or a job file's "
+                                                         "[setup] language)")
 
 
 def parser() -> argparse.ArgumentParser:
@@ -117,8 +125,10 @@ def parser() -> argparse.ArgumentParser:
         p = subparsers.add_parser(name, help=command.help)
         command.arguments(p)
         p.add_argument("--out", required=True, help="output folder")
+        language_argument(p)
     p = subparsers.add_parser("demo", help="every workflow on its built-in sample")
     p.add_argument("--out", required=True, help="output folder")
+    language_argument(p)
     from kezuri.operators import feedsbatch
     p = subparsers.add_parser(feedsbatch.NAME, help=feedsbatch.HELP)      # prints; writes nothing (no --out)
     feedsbatch.arguments(p)

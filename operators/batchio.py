@@ -137,10 +137,32 @@ def machine_label(machine):
     return machine
 
 
-def write_setup_sheet(out_dir: str, report: dict) -> dict:
+def write_program_sheet(nc_path: str, program, report: dict, machine, post: str, language: str = "en") -> str:
+    """The panel's export: the setup sheet of ``program`` (an IR Program, written to ``nc_path``)
+    beside it as ``<program>-setup-sheet.html``, from the gate's ``report`` entries (``gate``,
+    ``feeds``, ``warnings``), in ``language``; its path."""
+    from ..post.output import write_atomic
+    from ..toolpath.pictures import setupsheet
+
+    with open(nc_path, "rb") as stream:
+        programs = [setupsheet.program_file(os.path.basename(nc_path), stream.read())]
+    sheet = setupsheet.sheet_from(program, report, machine, post, programs=programs)
+    translate = None
+    if language == "ja":
+        from .translations import sheet_text as translate
+    path = os.path.splitext(nc_path)[0] + "-" + SHEET_NAME
+    return write_atomic(path, setupsheet.setup_sheet(sheet, language, translate).encode("utf-8"))
+
+
+def sheet_language(args, report: dict) -> str:
+    """The setup sheet's language: ``--language``, else the job file's [setup] language, else English."""
+    return getattr(args, "language", None) or report.get("setup_sheet_language") or "en"
+
+
+def write_setup_sheet(out_dir: str, report: dict, language: str = "en") -> dict:
     """Write ``setup-sheet.html`` into ``out_dir`` (the staging folder) from a batch run's
-    ``report`` and the files it lists (programs, pictures); returns the report with its
-    ``setup_sheet`` entry.  Every batch command's report goes through here once (batch.py)."""
+    ``report`` and the files it lists (programs, pictures), in ``language`` (en, ja); returns the
+    report with its ``setup_sheet`` entry.  Every batch command's report goes through here once (batch.py)."""
     from ..post.output import write_atomic
     from ..toolpath.pictures import setupsheet
 
@@ -166,5 +188,9 @@ def write_setup_sheet(out_dir: str, report: dict) -> dict:
     sheet = setupsheet.sheet_from(None, report, machine_label(report.get("machine")), post_label(report) or None,
                                   pictures, programs=programs, job_name=name,
                                   stick_out=stick_outs(report.get("operations")))
-    path = write_atomic(os.path.join(out_dir, SHEET_NAME), setupsheet.setup_sheet(sheet).encode("utf-8"))
+    translate = None
+    if language == "ja":
+        from .translations import sheet_text as translate
+    text = setupsheet.setup_sheet(sheet, language, translate)
+    path = write_atomic(os.path.join(out_dir, SHEET_NAME), text.encode("utf-8"))
     return {**report, "setup_sheet": path}

@@ -16,6 +16,7 @@ A job file (TOML)::
                                 # a profile's, pocket's, drilling's, chamfer's or V-carve's spindle
                                 # speed, feeds and steps left out of its settings are computed
                                 # (operators/jobfeeds.py)
+    language = "ja"             # the setup sheet's language: en (default) or ja; batch --language wins
 
     [[operations]]              # in the order they are cut
     kind = "engrave"            # an operation kind (toolpath/operations/<kind>)
@@ -42,10 +43,11 @@ import tomllib
 
 from ..toolpath.feeds import programcheck
 from ..toolpath.job import Job, Setup, plan_job
+from ..toolpath.pictures.setupsheet import LANGUAGES
 from .jobentry import JobEntry, JobFileError
 
 SETUP_KEYS = {"name", "sample", "blend", "text", "post", "machine", "work_offset", "allow_findings", "arcs", "stock",
-              "work_zero", "material"}
+              "work_zero", "material", "language"}
 OPERATION_KEYS = {"kind", "name", "enabled", "objects", "settings", "holes", "tabs", "file", "design", "outline", "text", "tool", "tools"}
 
 
@@ -77,6 +79,9 @@ def read(path: str, text: str | None = None) -> dict:
     if unknown:
         raise JobFileError(f"job file {path}: [setup] has an unknown key {unknown[0]!r}; the keys are "
                            f"{', '.join(sorted(SETUP_KEYS))}")
+    if "language" in setup and setup["language"] not in LANGUAGES:
+        raise JobFileError(f"job file {path}: [setup] language = {setup['language']!r} is not one of "
+                           f"{', '.join(LANGUAGES)}")
     operations = data.get("operations")
     if not isinstance(operations, list) or not operations:
         raise JobFileError(f"job file {path}: no [[operations]]; a job needs at least one")
@@ -376,5 +381,8 @@ def write_job(path: str, out: str, post_name: str | None = None, allow_findings:
         "material": setup.material or None,
         "feeds": feeds,
     }
+    language = read(path, text).get("setup", {}).get("language")
+    if language is not None:            # the setup sheet's, when the job file gives one (batch.py finished)
+        report["setup_sheet_language"] = language
     warn(findings, report)
     return report

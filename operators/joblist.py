@@ -177,17 +177,25 @@ def export_job_request(scene, path: str, post_name: str, allow=False):
     library = library_or_none() if setup.material else None     # read here: compute may run off the main thread
     post = machine_post(families, setup.post, setup.work_offset, scene.kezuri.machine.orient_spindle, setup.machine)
     macro = posts.find(families, setup.post).needs_texture
+    from .batchio import write_program_sheet
+    from .translations import interface_language
+    language, post_label = interface_language(), posts.find(families, setup.post).label
 
     def compute(progress=None):
         planning, checking = stages(progress)
         planned = plan_job(job, cache, planning)
         keep(cache, planned)
         cut, stock, limits = planned.simulation()
-        gate.check(SimulationSetup(cut, stock, limits, frame, setup.name), allow, checking, machine=setup.machine)
+        _, checked = gate.check(SimulationSetup(cut, stock, limits, frame, setup.name), allow, checking,
+                                machine=setup.machine)
         findings = []
         program = planned.program(macro=macro)
         written = write_program(path, post.to_text(program), post, findings)
-        findings += programcheck.warnings(feeds_check(planned, program, library))   # the feeds: warnings only
+        feeds = feeds_check(planned, program, library)
+        findings += programcheck.warnings(feeds)   # the feeds: warnings only
+        # the setup sheet beside the program, in the interface's language (read above, on the main thread)
+        write_program_sheet(written, program, {"gate": checked, "feeds": feeds, "warnings": list(findings)},
+                            setup.machine, post_label, language)
         return Exported(written, planned.replanned(), findings,
                         lambda scene: record(scene, planned))
     return compute

@@ -193,7 +193,7 @@ def run_here(args, base_dir, index, folder, text) -> dict:
     """One row in this process, all its files or none (its own staging inside --out)."""
     from ..post.output import Staging
     from . import jobfile
-    from .batchio import write_setup_sheet
+    from .batchio import sheet_language, write_setup_sheet
     from .common import user_errors
     from .gate import GateRefused
 
@@ -202,7 +202,7 @@ def run_here(args, base_dir, index, folder, text) -> dict:
     try:
         report = jobfile.write_job(args.file, staging.folder, args.post, args.allow_findings, text=text,
                                    base_dir=base_dir)
-        report = staging.final(write_setup_sheet(staging.folder, report))
+        report = staging.final(write_setup_sheet(staging.folder, report, sheet_language(args, report)))
         write_row_report(staging.folder, report)
         staging.commit()
     except GateRefused as error:
@@ -235,6 +235,8 @@ def run_child(args, rows_dir, base_dir, index, folder, text) -> dict:
         command += ["--post", args.post]
     if args.allow_findings:
         command.append("--allow-findings")
+    if getattr(args, "language", None):
+        command += ["--language", args.language]
     done = subprocess.run(command, capture_output=True, text=True)
     if done.returncode == 0:
         with open(os.path.join(out, "report.json"), encoding="utf-8") as stream:

@@ -3157,8 +3157,87 @@ ONE_LIBRARY_TEMPLATES = {
 NESTED["The preferences' tool {} is no tool and was not moved: {}; type it in CAM > Tool Library"] = (1,)
 MESSAGES.update(ONE_LIBRARY_TEXTS)
 MESSAGE_TEMPLATES.update(ONE_LIBRARY_TEMPLATES)
+# The setup sheet (toolpath/pictures/setupsheet.py) in Japanese: its own words, looked up by
+# :func:`sheet_text` only (not registered with Blender: the sheet is a file, not the interface).
+# Words the interface already has ("Machine", "Tools", "Kind" ...) are taken from there, and the
+# gate's findings and the notes are messages of the tables above: nothing is listed twice.
+SHEET_TEXTS = {
+    "Setup": "段取り", "Operations": "加工工程", "Export gate": "書き出しゲート", "Program": "プログラム",
+    "Notes": "注記", "Pictures": "図", "Work offset": "ワーク座標系", "Stock": "素材", "Work zero": "ワーク原点",
+    "Total time": "合計時間", "Diameter (mm)": "直径 (mm)", "Corner R (mm)": "コーナー R (mm)",
+    "Flute length (mm)": "刃長 (mm)", "Stick-out (mm)": "突き出し (mm)", "Chip load (mm)": "チップロード (mm)",
+    "Description": "説明", "Spindle (rpm)": "主軸回転数 (rpm)", "Feed (mm/min)": "送り (mm/min)",
+    "Plunge (mm/min)": "突込み送り (mm/min)", "Moves": "移動数", "Time (h:mm:ss)": "時間 (h:mm:ss)",
+    "Total": "合計", "File": "ファイル", "Size (bytes)": "サイズ (バイト)", "Lines": "行数",
+    "No tools in this job.": "このジョブには工具がありません。",
+    "No operations in this report.": "このレポートには加工工程がありません。",
+    "No program file.": "プログラムファイルはありません。",
+    "Passed: the simulation found nothing that stops the program.":
+        "合格：シミュレーションでプログラムを止める問題は見つかりませんでした。",
+    "Refused: the program was not written.": "拒否：プログラムは書き出されませんでした。",
+    "Written despite findings: the override was given knowingly.":
+        "指摘があるまま書き出し：承知のうえで強制書き出しが指定されました。",
+    "Not run: the export gate did not check this program.": "未実施：書き出しゲートはこのプログラムを検査していません。",
+    "Toolpaths": "工具経路", "Result": "加工結果",
+    # operations the planners name (turn-mill's); the job's own names stay as typed
+    "radial roughing": "径方向の荒加工", "radial finishing": "径方向の仕上げ加工", "axial roughing": "軸方向の荒加工",
+    "axial finishing": "軸方向の仕上げ加工",
+    # where the work zero sits (setupsheet.work_zero_text)
+    "X0 Y0 at the centre of the stock": "X0 Y0 は素材の中心",
+    "X0 Y0 at the front-left corner of the stock": "X0 Y0 は素材の左手前の角",
+    "X0 Y0 at the front-right corner of the stock": "X0 Y0 は素材の右手前の角",
+    "X0 Y0 at the back-left corner of the stock": "X0 Y0 は素材の左奥の角",
+    "X0 Y0 at the back-right corner of the stock": "X0 Y0 は素材の右奥の角",
+    "left side": "左端", "middle": "中央", "right side": "右端", "front": "手前", "back": "奥",
+    "Z0 on the stock top": "Z0 は素材の上面", "Z0 on the stock bottom": "Z0 は素材の下面",
+    "X0 Y0 on the axis of rotation": "X0 Y0 は回転軸上",
+    "Z0 on the top end face": "Z0 は上端面", "Z0 on the bottom end": "Z0 は下端",
+    "the punch's sheet origin (see the program header)": "パンチの板材原点（プログラムのヘッダーを参照）",
+}
+SHEET_TEMPLATES = {
+    "Setup sheet: {}": "段取りシート：{0}",
+    "block {} \u00d7 {} \u00d7 {} mm (X {} \u2026 {}, Y {} \u2026 {}, Z {} \u2026 {})":
+        "直方体 {0} \u00d7 {1} \u00d7 {2} mm（X {3} \u2026 {4}、Y {5} \u2026 {6}、Z {7} \u2026 {8}）",
+    "{}; its top is a curved surface": "{0}。上面は曲面",
+    "round \u00d8{} \u00d7 {} mm, axis along Z (Z {} \u2026 {})": "丸材 \u00d8{0} \u00d7 {1} mm、軸は Z 方向（Z {2} \u2026 {3}）",
+    "sheet {} mm": "板材 {0} mm", "sheet {} mm, {} mm thick": "板材 {0} mm、板厚 {1} mm",
+    "{}/tooth": "{0}/刃", "{}/rev": "{0}/回転",
+    "X0 at the stock's {}, Y0 at its {}": "X0 は素材の{0}、Y0 は{1}",
+    "Z0 {}": "Z0 は{0}", "{}; {}": "{0}、{1}",
+    "{} mm from the left side": "左端から {0} mm", "{} mm left of the left side": "左端の {0} mm 左",
+    "{} mm right of the right side": "右端の {0} mm 右", "{} mm from the front": "手前から {0} mm",
+    "{} mm in front of the front": "手前の端の {0} mm 手前", "{} mm behind the back": "奥の端の {0} mm 奥",
+    "{} mm from the bottom": "下面から {0} mm", "{} mm below the bottom": "下面の {0} mm 下",
+    "{} mm above the top": "上面の {0} mm 上", "{} mm from the bottom end": "下端から {0} mm",
+    "{} mm below the bottom end": "下端の {0} mm 下", "{} mm above the top end face": "上端面の {0} mm 上",
+}
+# a tool's kind (the sheet's Kind column): "drill" the tool, not "drill" the operation (穴あけ)
+SHEET_CONTEXTS = {"tool kind": {"ball": "ボールエンドミル", "flat": "フラットエンドミル", "bull": "ブルノーズエンドミル",
+                                "drill": "ドリル", "vbit": "V ビット"}}
+MESSAGE_TEMPLATES["setup sheet language {}: one of {}"] = "段取りシートの言語 {0}：{1} のいずれかです"
+MESSAGE_TEMPLATES["job file {}: [setup] language = {} is not one of {}"] = \
+    "ジョブファイル {0}：[setup] の language = {1} は {2} のいずれでもありません"
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
+
+
+def interface_language() -> str:
+    """The setup sheet's language from the panel: "ja" when Blender shows the interface in Japanese
+    (as it shows this add-on's labels), else "en"."""
+    probe = next(iter(PANEL_TEXTS))
+    return "ja" if bpy.app.translations.pgettext_iface(probe) != probe else "en"
+
+
+def sheet_text(text: str, *values, context: str = "") -> str:
+    """A setup sheet's text in Japanese (the sheet's ``translate``, toolpath/pictures/setupsheet.py):
+    a template of the sheet with its values put in, a word of the sheet or of the interface, or a
+    message (a finding, a note: fixed or filled into its template); as it is when none has one."""
+    if values:
+        template = SHEET_TEMPLATES.get(text) or MESSAGE_TEMPLATES.get(text)
+        return (template or text).format(*values)
+    if context:
+        return SHEET_CONTEXTS.get(context, {}).get(text, text)
+    return SHEET_TEXTS.get(text) or TRANSLATIONS[LOCALE].get((DEFAULT, text)) or japanese_message(text) or text
 
 
 def register():

@@ -10,6 +10,11 @@ is UTF-8 (Japanese job names and messages come out as written).
 :class:`SetupSheet` is the input; :func:`setup_sheet` turns it into the HTML text;
 :func:`sheet_from` fills one from a :class:`~toolpath.ir.program.Program` and a batch run's report.
 Lengths are shown in mm as the program has them, times as h:mm:ss.
+
+Language: the sheet's own words are English templates (``{}`` for each value) put through a
+``translate(template, *values)`` function the caller gives (the shell's ``translations.sheet_text``
+for Japanese); without one they are English as written.  Names, numbers and codes (T2, G54, file
+names) are shown as they are; only the ``<html lang>`` and the words change.
 """
 from __future__ import annotations
 
@@ -22,6 +27,7 @@ from ..ir.errors import InputError
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 GATE_STATUSES = ("passed", "refused", "written despite findings", "not run")
+LANGUAGES = ("en", "ja")        # the languages a sheet can be written in (batch --language, a job's [setup])
 DASH = "\u2014"
 
 
@@ -107,6 +113,13 @@ class SetupSheet:
         return sum(times) if times else None
 
 
+def english(text: str, *values, context: str = "") -> str:
+    """A sheet text in English: the template with its values put in (the default ``translate``).
+    ``context`` tells apart one English word of two meanings (a tool kind "drill", an operation
+    "drill"), as Blender's translation contexts do."""
+    return text.format(*values) if values else text
+
+
 # ----- numbers as the sheet writes them -----------------------------------------------------------
 
 def hms(seconds: float | None) -> str:
@@ -132,14 +145,14 @@ def rate(value: float | None) -> str:
     return f"{value:.1f}".rstrip("0").rstrip(".")
 
 
-def chip_text(values) -> str:
+def chip_text(values, translate=english) -> str:
     """The chip loads a tool runs at (mm, 4 decimals), each once and each with what it is per: "/tooth",
     or "/rev" for a value given as (value, "revolution") (a drill's feed per revolution); a dash when
     not checked.  The column's header says only "(mm)": a tool's cells say per what."""
     def text(v):
         if isinstance(v, tuple):
-            return None if _number(v[0]) is None else f"{float(v[0]):.4f}/rev"
-        return None if _number(v) is None else f"{float(v):.4f}/tooth"
+            return None if _number(v[0]) is None else translate("{}/rev", f"{float(v[0]):.4f}")
+        return None if _number(v) is None else translate("{}/tooth", f"{float(v):.4f}")
     shown = list(dict.fromkeys(t for t in map(text, values) if t is not None))
     return ", ".join(shown) if shown else DASH
 
@@ -171,69 +184,93 @@ def stock_entry(stock) -> dict | None:
     raise SetupSheetError(f"setup sheet: a stock of type {type(stock).__name__} is neither a box nor a cylinder")
 
 
-def describe_stock(stock: dict | None) -> str:
+def describe_stock(stock: dict | None, translate=english) -> str:
     if not stock:
         return DASH
     kind = stock.get("kind")
     if kind == "box":
         x0, y0, z0, x1, y1, z1 = (stock[k] for k in ("x0", "y0", "z0", "x1", "y1", "z1"))
-        text = (f"block {mm(x1 - x0)} \u00d7 {mm(y1 - y0)} \u00d7 {mm(z1 - z0)} mm (X {mm(x0)} \u2026 {mm(x1)}, "
-                f"Y {mm(y0)} \u2026 {mm(y1)}, Z {mm(z0)} \u2026 {mm(z1)})")
-        return text + ("; its top is a curved surface" if stock.get("surface") else "")
+        text = translate("block {} \u00d7 {} \u00d7 {} mm (X {} \u2026 {}, Y {} \u2026 {}, Z {} \u2026 {})",
+                         mm(x1 - x0), mm(y1 - y0), mm(z1 - z0), mm(x0), mm(x1), mm(y0), mm(y1), mm(z0), mm(z1))
+        return translate("{}; its top is a curved surface", text) if stock.get("surface") else text
     if kind == "cylinder":
         top = stock["z_top"]
-        return (f"round \u00d8{mm(2 * stock['radius'])} \u00d7 {mm(stock['height'])} mm, axis along Z "
-                f"(Z {mm(top - stock['height'])} \u2026 {mm(top)})")
+        return translate("round \u00d8{} \u00d7 {} mm, axis along Z (Z {} \u2026 {})", mm(2 * stock["radius"]),
+                         mm(stock["height"]), mm(top - stock["height"]), mm(top))
     if kind == "sheet":
         size = " \u00d7 ".join(mm(v) for v in stock["size"])
         thickness = stock.get("thickness")
-        return f"sheet {size} mm" + (f", {mm(thickness)} mm thick" if thickness is not None else "")
+        return (translate("sheet {} mm", size) if thickness is None
+                else translate("sheet {} mm, {} mm thick", size, mm(thickness)))
     return DASH
 
 
 PLACE_TOLERANCE = 0.001   # mm: the least increment a control reads; a zero this close is on the face
 
 
-def _place(value: float, low: float, high: float, names: tuple, beyond: tuple) -> str:
+def _place(value: float, low: float, high: float, names: tuple, beyond: tuple, translate=english) -> str:
     """Where ``value`` lies on low..high: at one end, the middle, how far in from the low end, or
-    how far beyond an end (``beyond``: the words for below low and above high)."""
+    how far beyond an end (``beyond``: the words for below low and above high); each phrase is one
+    template of its own (e.g. "{} mm left of the left side"), so a language may order it its way."""
     if abs(value - low) <= PLACE_TOLERANCE:
-        return names[0]
+        return translate(names[0])
     if abs(value - high) <= PLACE_TOLERANCE:
-        return names[2]
+        return translate(names[2])
     if abs(value - (low + high) / 2) <= PLACE_TOLERANCE:
-        return names[1]
+        return translate(names[1])
     if value < low:
-        return f"{mm(low - value)} mm {beyond[0]} the {names[0]}"
+        return translate("{} mm " + beyond[0] + " the " + names[0], mm(low - value))
     if value > high:
-        return f"{mm(value - high)} mm {beyond[1]} the {names[2]}"
-    return f"{mm(value - low)} mm from the {names[0]}"
+        return translate("{} mm " + beyond[1] + " the " + names[2], mm(value - high))
+    return translate("{} mm from the " + names[0], mm(value - low))
 
 
-def work_zero_text(stock: dict | None, work_offset: str = "") -> str:
+def _end(value: float, low: float, high: float) -> str | None:
+    """"low" or "high" when ``value`` is at that end of low..high, "middle" in the middle, else None."""
+    for name, at in (("low", low), ("high", high), ("middle", (low + high) / 2)):
+        if abs(value - at) <= PLACE_TOLERANCE:
+            return name
+    return None
+
+
+def work_zero_text(stock: dict | None, work_offset: str = "", translate=english) -> str:
     """Where the program's zero sits on the stock, in words (from the stock's numbers)."""
     where = f"{work_offset}: " if work_offset else ""
     if not stock:
         return where + DASH
     kind = stock.get("kind")
     if kind == "box":
-        x = _place(0.0, stock["x0"], stock["x1"], ("left side", "middle", "right side"), ("left of", "right of"))
-        y = _place(0.0, stock["y0"], stock["y1"], ("front", "middle", "back"), ("in front of", "behind"))
-        z = _place(0.0, stock["z0"], stock["z1"], ("bottom", "middle", "top"), ("below", "above"))
+        x = _end(0.0, stock["x0"], stock["x1"])
+        y = _end(0.0, stock["y0"], stock["y1"])
+        z = _end(0.0, stock["z0"], stock["z1"])
         if x == y == "middle":
-            xy = "X0 Y0 at the centre of the stock"
-        elif x in ("left side", "right side") and y in ("front", "back"):
-            xy = f"X0 Y0 at the {y}-{x.split()[0]} corner of the stock"
+            xy = translate("X0 Y0 at the centre of the stock")
+        elif x in ("low", "high") and y in ("low", "high"):
+            xy = translate(f"X0 Y0 at the {('front', 'back')[y == 'high']}-{('left', 'right')[x == 'high']} "
+                           "corner of the stock")
         else:
-            xy = f"X0 at the stock's {x}, Y0 at its {y}"
-        return f"{where}{xy}; Z0 on the stock {z}" if z in ("top", "bottom") else f"{where}{xy}; Z0 {z}"
+            xy = translate("X0 at the stock's {}, Y0 at its {}",
+                           _place(0.0, stock["x0"], stock["x1"], ("left side", "middle", "right side"),
+                                  ("left of", "right of"), translate),
+                           _place(0.0, stock["y0"], stock["y1"], ("front", "middle", "back"), ("in front of", "behind"),
+                                  translate))
+        if z in ("low", "high"):
+            zero = translate("Z0 on the stock top" if z == "high" else "Z0 on the stock bottom")
+        else:
+            zero = translate("Z0 {}", _place(0.0, stock["z0"], stock["z1"], ("bottom", "middle", "top"), ("below", "above"),
+                                             translate))
+        return where + translate("{}; {}", xy, zero)
     if kind == "cylinder":
         top, bottom = stock["z_top"], stock["z_top"] - stock["height"]
-        z = _place(0.0, bottom, top, ("bottom end", "middle", "top end face"), ("below", "above"))
-        return f"{where}X0 Y0 on the axis of rotation; Z0 " + (f"on the {z}" if z in ("bottom end", "top end face")
-                                                             else z)
+        z = _end(0.0, bottom, top)
+        if z in ("low", "high"):
+            zero = translate("Z0 on the top end face" if z == "high" else "Z0 on the bottom end")
+        else:
+            zero = translate("Z0 {}", _place(0.0, bottom, top, ("bottom end", "middle", "top end face"), ("below", "above"),
+                                             translate))
+        return where + translate("{}; {}", translate("X0 Y0 on the axis of rotation"), zero)
     if kind == "sheet":
-        return where + (stock.get("origin") or "the punch's sheet origin (see the program header)")
+        return where + translate(stock.get("origin") or "the punch's sheet origin (see the program header)")
     return where + DASH
 
 
@@ -291,72 +328,86 @@ def _head(names, numeric=()) -> str:
                                    for i, n in enumerate(names)) + "</tr></thead>"
 
 
-def _tools_table(tools) -> str:
+def _tools_table(tools, say) -> str:
     if not tools:
-        return "<p>No tools in this job.</p>"
+        return f"<p>{_text(say('No tools in this job.'))}</p>"
     numeric = (0, 2, 3, 4, 5, 6)
-    rows = [_row((f"T{t.number}", t.kind, mm(t.diameter), mm(t.corner_radius), mm(t.flute_length), mm(t.stick_out),
-                  chip_text(t.chip_loads), t.description), numeric) for t in tools]
-    return ('<table id="tools">' + _head(("Tool", "Kind", "Diameter (mm)", "Corner R (mm)", "Flute length (mm)",
-                                          "Stick-out (mm)", "Chip load (mm)", "Description"), numeric)
+    rows = [_row((f"T{t.number}", say(t.kind, context="tool kind"), mm(t.diameter), mm(t.corner_radius), mm(t.flute_length),
+                  mm(t.stick_out), chip_text(t.chip_loads, say), t.description), numeric) for t in tools]
+    return ('<table id="tools">' + _head([say(h) for h in ("Tool", "Kind", "Diameter (mm)", "Corner R (mm)",
+                                                          "Flute length (mm)", "Stick-out (mm)", "Chip load (mm)",
+                                                          "Description")], numeric)
             + "<tbody>" + "".join(rows) + "</tbody></table>")
 
 
-def _operations_table(sheet: SetupSheet) -> str:
+def _operations_table(sheet: SetupSheet, say) -> str:
     if not sheet.operations:
-        return "<p>No operations in this report.</p>"
+        return f"<p>{_text(say('No operations in this report.'))}</p>"
     numeric = (0, 3, 4, 5, 6, 7)
-    rows = [_row((index, op.name, DASH if op.tool_number is None else f"T{op.tool_number}", rate(op.spindle_rpm),
+    rows = [_row((index, say(op.name), DASH if op.tool_number is None else f"T{op.tool_number}", rate(op.spindle_rpm),
                   rate(op.feed), rate(op.plunge_feed), DASH if op.moves is None else op.moves, hms(op.cycle_time_s)),
                  numeric) for index, op in enumerate(sheet.operations, start=1)]
-    total = (f'<tfoot><tr id="total"><td colspan="7">Total</td><td class="n">{_text(hms(sheet.shown_total_s()))}'
-             "</td></tr></tfoot>")
-    return ('<table id="operations">' + _head(("#", "Operation", "Tool", "Spindle (rpm)", "Feed (mm/min)",
-                                               "Plunge (mm/min)", "Moves", "Time (h:mm:ss)"), numeric)
+    total = (f'<tfoot><tr id="total"><td colspan="7">{_text(say("Total"))}</td>'
+             f'<td class="n">{_text(hms(sheet.shown_total_s()))}</td></tr></tfoot>')
+    return ('<table id="operations">' + _head([say(h) for h in ("#", "Operation", "Tool", "Spindle (rpm)",
+                                                               "Feed (mm/min)", "Plunge (mm/min)", "Moves",
+                                                               "Time (h:mm:ss)")], numeric)
             + "<tbody>" + "".join(rows) + "</tbody>" + total + "</table>")
 
 
-def _programs_table(programs) -> str:
+def _programs_table(programs, say) -> str:
     if not programs:
-        return "<p>No program file.</p>"
+        return f"<p>{_text(say('No program file.'))}</p>"
     numeric = (1, 2)
     rows = [_row((p.name, f"{p.size_bytes:,}", f"{p.lines:,}"), numeric) for p in programs]
-    return ('<table id="programs">' + _head(("File", "Size (bytes)", "Lines"), numeric) + "<tbody>" + "".join(rows)
-            + "</tbody></table>")
+    return ('<table id="programs">' + _head([say(h) for h in ("File", "Size (bytes)", "Lines")], numeric)
+            + "<tbody>" + "".join(rows) + "</tbody></table>")
 
 
-def _gate(sheet: SetupSheet) -> str:
-    findings = "".join(f"<li>{_text(f)}</li>" for f in sheet.gate_findings)
+def _gate(sheet: SetupSheet, say) -> str:
+    findings = "".join(f"<li>{_text(say(f))}</li>" for f in sheet.gate_findings)
     return (f'<div class="gate {GATE_CLASSES[sheet.gate_status]}" id="gate" data-status="{_text(sheet.gate_status)}">'
-            f"<strong>{_text(GATE_WORDS[sheet.gate_status])}</strong>"
+            f"<strong>{_text(say(GATE_WORDS[sheet.gate_status]))}</strong>"
             + (f"<ul>{findings}</ul>" if findings else "") + "</div>")
 
 
-def _pictures(pictures) -> str:
-    return "".join(f'<figure><img alt="{_text(p.caption)}" src="data:image/png;base64,'
-                   f'{base64.b64encode(bytes(p.png)).decode("ascii")}"><figcaption>{_text(p.caption)}</figcaption>'
+def _pictures(pictures, say) -> str:
+    return "".join(f'<figure><img alt="{_text(say(p.caption))}" src="data:image/png;base64,'
+                   f'{base64.b64encode(bytes(p.png)).decode("ascii")}"><figcaption>{_text(say(p.caption))}</figcaption>'
                    "</figure>" for p in pictures)
 
 
-def setup_sheet(sheet: SetupSheet) -> str:
-    """The setup sheet as one HTML document (a str; write it as UTF-8)."""
+def setup_sheet(sheet: SetupSheet, language: str = "en", translate=None) -> str:
+    """The setup sheet as one HTML document (a str; write it as UTF-8).  ``language``: one of
+    :data:`LANGUAGES`, the page's ``lang``; ``translate(text, *values, context="")``: the sheet's words, the
+    gate's findings, the notes and the operation names in that language (default: English)."""
+    if language not in LANGUAGES:
+        raise SetupSheetError(f"setup sheet language {language!r}: one of {', '.join(LANGUAGES)}")
+    say = translate or english
+    work_zero = (work_zero_text(sheet.stock, sheet.work_offset, say)
+                 if sheet.work_zero == work_zero_text(sheet.stock, sheet.work_offset)
+                 else sheet.work_zero and say(sheet.work_zero))
     facts = (("Machine", sheet.machine_label or DASH), ("Post", sheet.post_label or DASH),
-             ("Work offset", sheet.work_offset or DASH), ("Stock", describe_stock(sheet.stock)),
-             ("Work zero", sheet.work_zero or DASH), ("Total time", hms(sheet.shown_total_s())))
-    setup = "<dl id=\"setup\">" + "".join(f"<dt>{_text(k)}</dt><dd>{_text(v)}</dd>" for k, v in facts) + "</dl>"
-    notes = ("<h2>Notes</h2><ul id=\"notes\">" + "".join(f"<li>{_text(n)}</li>" for n in sheet.notes) + "</ul>"
-             if sheet.notes else "")
-    pictures = f"<h2>Pictures</h2>{_pictures(sheet.pictures)}" if sheet.pictures else ""
+             ("Work offset", sheet.work_offset or DASH), ("Stock", describe_stock(sheet.stock, say)),
+             ("Work zero", work_zero or DASH), ("Total time", hms(sheet.shown_total_s())))
+    setup = ("<dl id=\"setup\">" + "".join(f"<dt>{_text(say(k))}</dt><dd>{_text(v)}</dd>" for k, v in facts)
+             + "</dl>")
+    notes = (f"<h2>{_text(say('Notes'))}</h2><ul id=\"notes\">" + "".join(f"<li>{_text(say(n))}</li>" for n in sheet.notes)
+             + "</ul>" if sheet.notes else "")
+    pictures = f"<h2>{_text(say('Pictures'))}</h2>{_pictures(sheet.pictures, say)}" if sheet.pictures else ""
+    title = _text(say("Setup sheet: {}", sheet.job_name))
+    heading = {name: f"<h2>{_text(say(name))}</h2>" for name in ("Setup", "Tools", "Operations", "Export gate",
+                                                                "Program")}
     return ("<!DOCTYPE html>\n"
-            '<html lang="en"><head><meta charset="utf-8">'
+            f'<html lang="{language}"><head><meta charset="utf-8">'
             '<meta name="viewport" content="width=device-width, initial-scale=1">'
-            f"<title>Setup sheet: {_text(sheet.job_name)}</title><style>{STYLE}</style></head>\n<body>"
-            f'<h1 id="job">Setup sheet: {_text(sheet.job_name)}</h1>'
-            f"<h2>Setup</h2>{setup}"
-            f"<h2>Tools</h2>{_tools_table(sheet.tools)}"
-            f"<h2>Operations</h2>{_operations_table(sheet)}"
-            f"<h2>Export gate</h2>{_gate(sheet)}"
-            f"<h2>Program</h2>{_programs_table(sheet.programs)}"
+            f"<title>{title}</title><style>{STYLE}</style></head>\n<body>"
+            f'<h1 id="job">{title}</h1>'
+            f"{heading['Setup']}{setup}"
+            f"{heading['Tools']}{_tools_table(sheet.tools, say)}"
+            f"{heading['Operations']}{_operations_table(sheet, say)}"
+            f"{heading['Export gate']}{_gate(sheet, say)}"
+            f"{heading['Program']}{_programs_table(sheet.programs, say)}"
             f"{notes}{pictures}</body></html>\n")
 
 
