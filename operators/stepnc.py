@@ -140,9 +140,10 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     if not isinstance(path, str) or not path:
         raise JobFileError(f"{entry.where}: no file: give file = \"part.stp\" (an ISO 14649 Part 21 file)")
     typed, path = path, os.path.join(entry.base_dir, path)
+    if os.path.isdir(path):
+        raise JobFileError(f"{entry.where}: file = {typed!r}: is a folder, not an ISO 14649 file ({path})")
     if not os.path.isfile(path):
-        what = "is a folder, not an ISO 14649 file" if os.path.isdir(path) else "no such file"
-        raise JobFileError(f"{entry.where}: file = {typed!r}: {what} ({path})")
+        raise JobFileError(f"{entry.where}: file = {typed!r}: no such file ({path})")
     unknown = sorted(set(entry.settings) - {"order", "enabled"})
     if unknown:
         raise JobFileError(f"{entry.where}: settings.{unknown[0]} is not a STEP-NC setting; they are order, enabled")
@@ -157,12 +158,13 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     machine = scene.kezuri.machine
     setup = Setup(name=scene.name, post=post_name, work_offset=machine.work_offset, rapid_rate=machine.rapid_rate)
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
-    try:
-        text, loaded = read_workplan(path)      # read here, so that an error names the job file's entry too
+    try:                                        # read here, so that an error names the job file's entry too
+        text = read_text(path)
+        loaded = workplan_from_text(text)
     except InputError as error:
-        raise JobFileError(f"{entry.where}: {error}") from error
+        raise JobFileError(f"{entry.where}: ISO 14649 file {typed!r}: {error}") from error
     except OSError as error:
-        raise JobFileError(f"{entry.where}: file = {typed!r}: {error.strerror or error} ({path})") from error
+        raise JobFileError(f"{entry.where}: file = {typed!r}: cannot be read: {error.strerror or error} ({path})") from error
     return JobOperation("stepnc", entry.name, settings, StepncGeometry(text, loaded), entry.enabled), setup, frame
 
 
@@ -275,12 +277,13 @@ def pockets_part21(scene, depsgraph) -> str:
 
 def read_workplan(path: str):
     """(text, workplan) of an ISO 14649 file; an error in it (its syntax, or its data) names the
-    file as the user gave it before the line, column or instance the reader names."""
+    file as the user gave it before the line, column or instance the reader names (the reader's
+    message stays whole after it, so its Japanese is found as it is)."""
     try:
         text = read_text(path)
         return text, workplan_from_text(text)
     except InputError as error:
-        raise InputError(f"{path}: {error}") from error
+        raise InputError(f"ISO 14649 file {path}: {error}") from error
 
 
 class KEZURI_OT_import_stepnc(bpy.types.Operator, ImportHelper):

@@ -851,7 +851,8 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1),
                    "mm the turret punch control addresses": (0,),
                    "the flat pattern of {}": (0,), "piece {} of {} = {} mm": (1,)}
 # Templates one of whose values is itself a message with a template of its own (its position).
-NESTED = {"{}: {} = {} mm: {} takes {} hits, more than the {} one program may have; raise the pitch": (3,),
+NESTED = {"ISO 14649 file {}: {}": (1,), "{}: ISO 14649 file {}: {}": (2,),
+          "{}: {} = {} mm: {} takes {} hits, more than the {} one program may have; raise the pitch": (3,),
           "{}: {}: the cut contour is {} x {} mm and reaches {} mm from the program's origin, beyond the {} "
           "mm the turret punch control addresses": (1,)}
 
@@ -1986,6 +1987,13 @@ MESSAGE_TEMPLATES = {
         '{0}：STEP-NC のワークプランはオブジェクトではなく file = "..." から読みます',
     '{}: no file: give file = "part.stp" (an ISO 14649 Part 21 file)':
         '{0}：ファイルがありません：file = "part.stp"（ISO 14649 Part 21 ファイル）を指定してください',
+    '{}: file = {}: is a folder, not an ISO 14649 file ({})': '{0}：file = {1} は ISO 14649 ファイルではなくフォルダーです（{2}）',
+    '{}: file = {}: no such file ({})': '{0}：file = {1}：ファイルがありません（{2}）',
+    '{}: file = {}: cannot be read: {} ({})': '{0}：file = {1} を読めません：{2}（{3}）',
+    '{} is a folder, not an ISO 14649 file': '{0} は ISO 14649 ファイルではなくフォルダーです',
+    # a file's name before a message of the reader's own (its line, column or instance)
+    'ISO 14649 file {}: {}': 'ISO 14649 ファイル {0}：{1}',
+    '{}: ISO 14649 file {}: {}': '{0}：ISO 14649 ファイル {1}：{2}',
     '{}: settings.{} is not a STEP-NC setting; they are order, enabled': '{0}：settings.{1} は STEP-NC の設定ではありません（設定は order、enabled）',
     '{}: settings.{} = {} is not a list of instance ids': '{0}：settings.{1} = {2} はインスタンス ID のリストではありません',
     '{}: objects.{}: a turn-mill operation takes objects.part': '{0}：objects.{1}：複合旋盤加工は objects.part を取ります',
