@@ -780,10 +780,19 @@ MESSAGES = {
 }
 
 
+# A value: a quoted name (``{name!r}``) whole where one stands there, so a name holding the text
+# that follows it in the template ("'roughing (gouge texture)' (T2 ...") is not cut at it; else
+# the shortest text that lets the rest match.
+_VALUE = r"('(?:[^'\\\n]|\\.)*'(?=%s)|.*?)"
+
+
 def _template_pattern(template: str):
     """An anchored regex for an English template: literal text escaped, each ``{}`` a group."""
     parts = [re.escape(part.replace("{{", "{").replace("}}", "}")) for part in template.split("{}")]
-    return re.compile("(.*?)".join(parts) + r"\Z", re.DOTALL)
+    pattern = parts[0]
+    for following in parts[1:]:
+        pattern += (_VALUE % following if following else "(.*?)") + following
+    return re.compile(pattern + r"\Z", re.DOTALL)
 
 
 def _compiled_templates() -> list:

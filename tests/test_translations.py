@@ -442,3 +442,16 @@ def test_every_formatted_warning_has_a_japanese_template():
     missing = sorted(f"{where}: {template!r}" for template, where in found.items()
                      if template not in translations.MESSAGE_TEMPLATES)
     assert not missing, f"{len(missing)} f-string warnings without a ja_JP template:\n" + "\n".join(missing)
+
+
+def test_a_quoted_name_holding_the_templates_next_words_is_kept_whole():
+    """An operation named 'roughing (gouge texture)' before ' (T2 ...)': the name was cut at its own
+    ' (' and the Japanese read 'roughing（gouge texture)' (T2 ...）."""
+    message = ("feeds: operation 'roughing (gouge texture)' (T2 6 mm ball end mill (roughing ball)) in hardwood: "
+               "chip load 0.1000 mm per tooth is below the safe band 0.1186 - 0.1694 mm: the tool rubs (heat, "
+               "burning, a dull edge); raise the feed or lower the spindle speed")
+    japanese = translations.japanese_message(message)
+    assert japanese.startswith("送り：工程 'roughing (gouge texture)'（T2 6 mm ball end mill (roughing ball)）、材料 hardwood：")
+    # a name with a quote escaped inside it, and a plain (unquoted) value, as before
+    assert translations.japanese_message("job file {}: no such file".replace("{}", "'a (b)\\'s.toml'")) == \
+        "ジョブファイル 'a (b)\\'s.toml'：ファイルがありません"
