@@ -449,6 +449,7 @@ def batch(args) -> dict:
         "operations": job.plan.program.summary(),
         "cycle_time_s": round(job.plan.program.cycle_time(), 1),
         "machine": job.profile.name,
+        "post": ", ".join(texts),               # every program written (the setup sheet's Post)
         "not_machined": {"faces": int(sum(len(f.faces) for f in job.plan.skipped)),
                          "area_mm2": round(float(sum(f.area for f in job.plan.skipped)), 3),
                          "features": [feature.as_dict() for feature in job.plan.skipped]},

@@ -104,3 +104,14 @@ def test_a_punching_job_without_a_program_gets_a_sheet_too(tmp_path):
     width, height = report["sheet"]["sheet_mm"]
     assert f"sheet {width:g} \u00d7 {height:g} mm" in page.texts["setup"]
     assert page.picture_bytes() == [(out / "unfold.png").read_bytes()]
+
+
+def test_the_turn_mill_sheet_names_every_program_it_wrote(tmp_path):
+    """The turn-mill writes a program per post (default: all of them); the sheet's Post said '—'."""
+    out = tmp_path / "turnmill"
+    status, message = run("turnmill", "--post", "xzc", "--post", "cldata", "--out", str(out))
+    assert status == 0, message[-2000:]
+    written = sorted(p.suffix for p in out.iterdir() if p.suffix in (".nc", ".ngc", ".cls"))
+    assert written == [".cls", ".nc"]
+    page = read_sheet((out / "setup-sheet.html").read_text(encoding="utf-8"))
+    assert re.search(r"Postxzc, cldataWork offset", page.texts["setup"]), page.texts["setup"][:300]
