@@ -7,7 +7,6 @@ same job stays what it was before the sheet could be translated (the page as mai
 tests/fixtures/setupsheet/ with the pictures' base64 left out).
 """
 import contextlib
-import importlib.util
 import io
 import json
 import os
@@ -34,14 +33,8 @@ ENGLISH_WORDS = {"Setup", "Tools", "Operations", "Export gate", "Program", "Note
                  "Size (bytes)", "Lines", "Toolpaths", "Result", "drill", "ball", "flat"}
 
 
-def load_batch():
-    spec = importlib.util.spec_from_file_location("kezuri_batch_sheet_language", os.path.join(ROOT, "batch.py"))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-BATCH = load_batch()
+from blender_language import japanese_interface  # noqa: E402
+from test_hostile_batch import BATCH  # noqa: E402  (batch.py loaded once for the in-process suites)
 
 
 @pytest.fixture()
@@ -344,16 +337,9 @@ def test_the_job_lists_export_writes_the_sheet_beside_the_program(plate_job, tmp
                    reason="the bpy wheel is built without translations: its interface cannot be Japanese")
 def test_the_job_lists_export_writes_the_sheet_in_the_interface_language(plate_job, tmp_path):
     from kezuri.operators import translations
-    translations.register()
-    view = bpy.context.preferences.view
-    saved = view.language, view.use_translate_interface
-    try:
-        view.language = "ja_JP"
-        view.use_translate_interface = True
+    with japanese_interface():
         assert translations.interface_language() == "ja"
         page = export_sheet(plate_job, tmp_path / "ja")
-    finally:
-        view.language, view.use_translate_interface = saved
     assert page.lang == "ja"
     assert [n for t, n in page.nodes if t == "h2"] == ["段取り", "工具", "加工工程", "書き出しゲート", "プログラム"]
     assert not {n for _, n in page.nodes} & ENGLISH_WORDS

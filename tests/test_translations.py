@@ -17,6 +17,7 @@ bpy = pytest.importorskip("bpy")
 import kezuri  # noqa: E402  (loaded by conftest from the repository root)
 from kezuri import operators  # noqa: E402
 from kezuri.operators import preferences, properties, translations  # noqa: E402
+from blender_language import japanese_interface  # noqa: E402
 
 JA = translations.TRANSLATIONS["ja_JP"]
 DEFAULT = bpy.app.translations.contexts.default            # "*"
@@ -275,16 +276,9 @@ def test_translation_register_and_unregister_twice_cleanly():
                           "'DEFAULT' (no locale files), so preferences.view.language cannot be set to ja_JP and "
                           "pgettext_iface returns the English")
 def test_blender_shows_japanese_when_the_interface_language_is_japanese():
-    translations.register()
-    view = bpy.context.preferences.view
-    saved = view.language, view.use_translate_interface
-    try:
-        view.language = "ja_JP"
-        view.use_translate_interface = True
+    with japanese_interface():
         assert bpy.app.translations.pgettext_iface("Machine & Stock") == "機械と素材"
         assert bpy.app.translations.pgettext_iface("Generate Engraving", OPERATOR) == "彫刻パスを生成"
-    finally:
-        view.language, view.use_translate_interface = saved
 
 
 def test_the_formatted_message_collector_finds_the_known_ones():
