@@ -137,16 +137,19 @@ def machine_label(machine):
     return machine
 
 
-def write_program_sheet(nc_path: str, program, report: dict, machine, post: str, language: str = "en") -> str:
-    """The panel's export: the setup sheet of ``program`` (an IR Program, written to ``nc_path``)
+def write_program_sheet(nc_path: str, program, report: dict, machine, post: str, language: str = "en", *,
+                        job_name: str | None = None, stick_out: dict | None = None) -> str:
+    """A panel's export: the setup sheet of ``program`` (an IR Program, written to ``nc_path``)
     beside it as ``<program>-setup-sheet.html``, from the gate's ``report`` entries (``gate``,
-    ``feeds``, ``warnings``), in ``language``; its path."""
+    ``feeds``, ``warnings``), in ``language``, titled ``job_name`` (None: the program's name),
+    with the tools' ``stick_out`` ({tool number: mm}); its path."""
     from ..post.output import write_atomic
     from ..toolpath.pictures import setupsheet
 
     with open(nc_path, "rb") as stream:
         programs = [setupsheet.program_file(os.path.basename(nc_path), stream.read())]
-    sheet = setupsheet.sheet_from(program, report, machine, post, programs=programs)
+    sheet = setupsheet.sheet_from(program, report, machine, post, programs=programs, job_name=job_name,
+                                  stick_out=stick_out)
     translate = None
     if language == "ja":
         from .translations import sheet_text as translate
