@@ -3227,6 +3227,7 @@ SHEET_TEMPLATES = {
 SHEET_CONTEXTS = {"tool kind": {"ball": "ボールエンドミル", "flat": "フラットエンドミル", "bull": "ブルノーズエンドミル",
                                 "drill": "ドリル", "vbit": "V ビット"}}
 MESSAGE_TEMPLATES["setup sheet language {}: one of {}"] = "段取りシートの言語 {0}：{1} のいずれかです"
+MESSAGE_TEMPLATES["the export wrote {}, not {}"] = "書き出しが {1} ではなく {0} に書き込みました"
 MESSAGE_TEMPLATES["job file {}: [setup] language = {} is not one of {}"] = \
     "ジョブファイル {0}：[setup] の language = {1} は {2} のいずれでもありません"
 TRANSLATIONS = _build()

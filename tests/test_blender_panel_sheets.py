@@ -1,6 +1,6 @@
 """Every panel export writes the setup sheet beside its program (``<program>-setup-sheet.html``), as
-every batch command writes its sheet: engrave, carve, rotary, turn-mill, STEP-NC workplan and the
-job list's Export.  The program and the sheet are written both or neither: a folder in the way of
+every batch command writes its sheet: engrave, carve, rotary, turn-mill, STEP-NC workplan, the
+job list's Export, and sheet metal's Sheet and Elbow exports (one sheet for all the elbow's pieces).  The program and the sheet are written both or neither: a folder in the way of
 the sheet's path leaves no program behind (nor the hidden staging folder), and the error names the
 path.  The sheet names the program file and its size as written (read back with
 tests/sheet_reader.py, an independent html.parser reader).  The English sheet of a panel export is
@@ -184,3 +184,47 @@ def test_the_panel_sheet_is_the_batch_sheet_but_its_pictures(empty_scene, tmp_pa
     assert panel_page.rows("programs")[0]["File"] == program_name
     if name.endswith("-hardwood"):      # the feeds were checked: a chip load for every tool
         assert all(row["Chip load (mm)"] != "\u2014" for row in panel_page.rows("tools"))
+
+
+def test_the_sheet_metal_exports_write_their_sheet_with_the_programs(empty_scene, tmp_path):
+    quad = tmp_path / "quad" / "unfold.nc"
+    elbow = tmp_path / "elbow" / "elbow.dxf"
+    quad.parent.mkdir()
+    elbow.parent.mkdir()
+    assert bpy.ops.kezuri.sheet_export(filepath=str(quad)) == {"FINISHED"}
+    assert bpy.ops.kezuri.elbow_export(filepath=str(elbow)) == {"FINISHED"}
+    pieces = empty_scene.kezuri.sheet.elbow_pieces
+    assert sorted(os.listdir(quad.parent)) == ["unfold-setup-sheet.html", "unfold.dxf", "unfold.nc", "unfold.svg"]
+    assert sorted(os.listdir(elbow.parent)) == sorted(["elbow-setup-sheet.html", "elbow.dxf", "elbow.svg",
+                                                       *[f"elbow-{i}.nc" for i in range(1, pieces + 1)]])
+    for folder, names in ((quad.parent, ["unfold.nc"]), (elbow.parent, [f"elbow-{i}.nc" for i in range(1, pieces + 1)])):
+        page = sheet_of(folder / (names[0].split("-")[0].split(".")[0] + "-setup-sheet.html"))
+        assert [(row["File"], row["Size (bytes)"]) for row in page.rows("programs")] == \
+            [(name, f"{os.path.getsize(folder / name):,}") for name in names]
+        assert page.attrs["gate"]["data-status"] == "passed"
+    # the option off: the files as before the sheet
+    off = tmp_path / "off" / "unfold.nc"
+    off.parent.mkdir()
+    assert bpy.ops.kezuri.sheet_export(filepath=str(off), setup_sheet=False) == {"FINISHED"}
+    assert sorted(os.listdir(off.parent)) == ["unfold.dxf", "unfold.nc", "unfold.svg"]
+    # a folder in the way of the sheet: none of the four files
+    blocked = tmp_path / "blocked" / "unfold.nc"
+    (blocked.parent / "unfold-setup-sheet.html").mkdir(parents=True)
+    with pytest.raises(RuntimeError, match="unfold-setup-sheet.html: a folder of that name is in the way"):
+        bpy.ops.kezuri.sheet_export(filepath=str(blocked))
+    assert os.listdir(blocked.parent) == ["unfold-setup-sheet.html"]
+
+
+@pytest.mark.parametrize("command, target", [("unfold", "unfold.nc"), ("elbow", "elbow.dxf")])
+def test_the_sheet_metal_panel_sheet_is_the_batch_sheet_but_its_picture(empty_scene, tmp_path, command, target):
+    run_batch(tmp_path / "batch", command)
+    panel = tmp_path / "panel" / target
+    panel.parent.mkdir()
+    operator = bpy.ops.kezuri.sheet_export if command == "unfold" else bpy.ops.kezuri.elbow_export
+    assert operator(filepath=str(panel)) == {"FINISHED"}
+    batch_page = sheet_of(tmp_path / "batch" / "setup-sheet.html")
+    panel_page = sheet_of(panel.parent / f"{command}-setup-sheet.html")
+    assert panel_page.tables == batch_page.tables
+    for ident in ("job", "setup", "gate", "notes"):
+        assert panel_page.texts.get(ident) == batch_page.texts.get(ident), ident
+    assert batch_page.images() and not panel_page.images()
