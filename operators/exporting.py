@@ -269,6 +269,10 @@ class NCExport(SteppedOperator, ExportHelper):
         if exported.then is not None:
             exported.then(context.scene)
         self.report({"INFO"}, translate_message(f"Wrote {exported.path}"))
+        if self.setup_sheet and exported.sheet is not None:
+            from .batchio import SHEET_NAME
+            sheet = os.path.splitext(exported.path)[0] + "-" + SHEET_NAME
+            self.report({"INFO"}, translate_message(f"Wrote {sheet}"))
         if exported.replanned is not None:
             self.report({"INFO"}, translate_message(replanned_message(list(exported.replanned))))
         report_findings(self, exported.findings)
