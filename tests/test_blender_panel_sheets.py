@@ -228,3 +228,51 @@ def test_the_sheet_metal_panel_sheet_is_the_batch_sheet_but_its_picture(empty_sc
     for ident in ("job", "setup", "gate", "notes"):
         assert panel_page.texts.get(ident) == batch_page.texts.get(ident), ident
     assert batch_page.images() and not panel_page.images()
+
+
+def test_esc_half_way_leaves_neither_file_nor_the_staging_folder(empty_scene, tmp_path):
+    """The export's work as the operator runs it (through exporting.program_and_sheet), driven a
+    step at a time as the modal operator drives it: cancelled half way it leaves the folder empty;
+    run to the end it writes the program and its sheet, the program byte for byte the one the
+    operator writes at once."""
+    from test_blender_export_steps import cancelled_half_way, stepped
+
+    from kezuri.operators import engrave as engrave_shell
+    from kezuri.operators import exporting
+
+    engrave_scene(empty_scene)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+
+    def work(path):
+        plancache.cache_of(empty_scene).clear()
+        return exporting.program_and_sheet(
+            lambda staged: engrave_shell.nc_export_request(empty_scene, depsgraph, "linuxcnc", staged), path, "en")
+    target = tmp_path / "plate.ngc"
+    cancelled_half_way(work(str(target)))
+    assert os.listdir(tmp_path) == []
+    done = stepped(work(str(target))).result()
+    assert done.path == str(target)
+    assert sorted(os.listdir(tmp_path)) == ["plate-setup-sheet.html", "plate.ngc"]
+    whole = tmp_path / "whole" / "plate.ngc"
+    whole.parent.mkdir()
+    assert export("engrave", whole) == {"FINISHED"}
+    assert whole.read_bytes() == target.read_bytes()
+
+
+@pytest.mark.xfail(not bpy.app.build_options.international, strict=True,
+                   reason="the bpy wheel is built without translations: its interface cannot be Japanese")
+def test_a_panel_export_writes_the_sheet_in_the_interface_language(empty_scene, tmp_path):
+    from kezuri.operators import translations
+    translations.register()
+    engrave_scene(empty_scene)
+    view = bpy.context.preferences.view
+    saved = view.language, view.use_translate_interface
+    try:
+        view.language = "ja_JP"
+        view.use_translate_interface = True
+        assert translations.interface_language() == "ja"
+        assert export("engrave", tmp_path / "plate.ngc") == {"FINISHED"}
+    finally:
+        view.language, view.use_translate_interface = saved
+    text = (tmp_path / "plate-setup-sheet.html").read_text(encoding="utf-8")
+    assert '<html lang="ja">' in text and "段取り" in text
