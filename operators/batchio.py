@@ -137,16 +137,19 @@ def machine_label(machine):
     return machine
 
 
-def write_program_sheet(nc_path: str, program, report: dict, machine, post: str, language: str = "en") -> str:
-    """The panel's export: the setup sheet of ``program`` (an IR Program, written to ``nc_path``)
+def write_program_sheet(nc_path: str, program, report: dict, machine, post: str, language: str = "en", *,
+                        job_name: str | None = None, stick_out: dict | None = None) -> str:
+    """A panel's export: the setup sheet of ``program`` (an IR Program, written to ``nc_path``)
     beside it as ``<program>-setup-sheet.html``, from the gate's ``report`` entries (``gate``,
-    ``feeds``, ``warnings``), in ``language``; its path."""
+    ``feeds``, ``warnings``), in ``language``, titled ``job_name`` (None: the program's name),
+    with the tools' ``stick_out`` ({tool number: mm}); its path."""
     from ..post.output import write_atomic
     from ..toolpath.pictures import setupsheet
 
     with open(nc_path, "rb") as stream:
         programs = [setupsheet.program_file(os.path.basename(nc_path), stream.read())]
-    sheet = setupsheet.sheet_from(program, report, machine, post, programs=programs)
+    sheet = setupsheet.sheet_from(program, report, machine, post, programs=programs, job_name=job_name,
+                                  stick_out=stick_out)
     translate = None
     if language == "ja":
         from .translations import sheet_text as translate
@@ -164,6 +167,15 @@ def write_setup_sheet(out_dir: str, report: dict, language: str = "en") -> dict:
     ``report`` and the files it lists (programs, pictures), in ``language`` (en, ja); returns the
     report with its ``setup_sheet`` entry.  Every batch command's report goes through here once (batch.py)."""
     from ..post.output import write_atomic
+
+    path = write_atomic(os.path.join(out_dir, SHEET_NAME), report_sheet(report, language).encode("utf-8"))
+    return {**report, "setup_sheet": path}
+
+
+def report_sheet(report: dict, language: str = "en", programs=None) -> str:
+    """The setup sheet's HTML of a batch run's ``report``, in ``language``: its programs the files
+    the report lists (``programs``: :func:`setupsheet.program_file` entries given instead, as a
+    panel's export has them before it writes them), its pictures the PNGs the report names."""
     from ..toolpath.pictures import setupsheet
 
     def read(path) -> bytes | None:
@@ -172,12 +184,14 @@ def write_setup_sheet(out_dir: str, report: dict, language: str = "en") -> dict:
         with open(path, "rb") as stream:
             return stream.read()
 
-    extensions = program_extensions()
-    listed = [path for path in report.get("files") or () if os.path.splitext(str(path))[1].lower() in extensions]
-    if isinstance(report.get("nc"), str):          # the simulate command: the program it read
-        listed.append(report["nc"])
-    programs = [setupsheet.program_file(os.path.basename(path), data) for path in listed
-                if (data := read(path)) is not None]
+    if programs is None:
+        extensions = program_extensions()
+        listed = [path for path in report.get("files") or ()
+                  if os.path.splitext(str(path))[1].lower() in extensions]
+        if isinstance(report.get("nc"), str):          # the simulate command: the program it read
+            listed.append(report["nc"])
+        programs = [setupsheet.program_file(os.path.basename(path), data) for path in listed
+                    if (data := read(path)) is not None]
     pictures = [(caption, data) for key, caption in SHEET_PICTURES
                 if (data := read(report.get(key))) is not None and data.startswith(setupsheet.PNG_SIGNATURE)]
     workflow, program = report.get("workflow"), (report.get("gate") or {}).get("program")
@@ -187,10 +201,8 @@ def write_setup_sheet(out_dir: str, report: dict, language: str = "en") -> dict:
     from .toolstore import stick_outs
     sheet = setupsheet.sheet_from(None, report, machine_label(report.get("machine")), post_label(report) or None,
                                   pictures, programs=programs, job_name=name,
-                                  stick_out=stick_outs(report.get("operations")))
+                                  stick_out=stick_outs(report["operations"]) if report.get("operations") else {})
     translate = None
     if language == "ja":
         from .translations import sheet_text as translate
-    text = setupsheet.setup_sheet(sheet, language, translate)
-    path = write_atomic(os.path.join(out_dir, SHEET_NAME), text.encode("utf-8"))
-    return {**report, "setup_sheet": path}
+    return setupsheet.setup_sheet(sheet, language, translate)

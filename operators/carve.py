@@ -144,21 +144,25 @@ def show_carve(scene, job: CarveJob) -> list:
 
 def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | None = None,
                  allow: bool | str = False, checked: bool = False, orient_spindle: bool = False,
-                 machine=None, findings: list | None = None, progress=None) -> str:
+                 machine=None, findings: list | None = None, progress=None, sheet: dict | None = None) -> str:
     """Write the program; the export gate simulates it first unless the caller has (``checked``);
     ``orient_spindle``: M19 before each tool change (Fanuc posts only); ``machine``: the machine
-    profile (None: the post's own); ``progress``: the gate's (returning False cancels)."""
+    profile (None: the post's own); ``progress``: the gate's (returning False cancels); ``sheet``:
+    filled with what the setup sheet shows (:func:`.exporting.milling_export_request`)."""
     post = machine_post(POST_FAMILIES, post_name, work_offset, orient_spindle, machine)
     text = post.to_text(job.result.program)
-    if not checked:
-        gate.check(simulation(job), allow, progress, machine=post.machine)
+    report = None if checked else gate.check(simulation(job), allow, progress, machine=post.machine)[1]
+    if sheet is not None:
+        sheet.update(program=job.result.program, gate=report, machine=post.machine,
+                     warnings=list(job.result.warnings))
     return write_program(path, text, post, findings)
 
 
 def nc_export_request(scene, depsgraph, post_name: str, target: str):
     """The panel's export: read the scene here; ``work(progress) -> Exported`` plans, checks and
     writes ``target`` without touching Blender data (so it runs in steps, Esc cancelling)."""
-    return milling_export_request(scene, post_name, target, POST_FAMILIES, carve_request(scene, depsgraph), export_carve)
+    return milling_export_request(scene, post_name, target, POST_FAMILIES, carve_request(scene, depsgraph),
+                                  export_carve, "carve")
 
 
 def extension_for(post_name: str) -> str:
@@ -275,8 +279,8 @@ class KEZURI_OT_carve_export(NCExport, bpy.types.Operator):
 
     file_suffix = "-carve"
 
-    def export_request(self, context):
-        return nc_export_request(context.scene, context.evaluated_depsgraph_get(), self.post, self.filepath)
+    def export_request(self, context, path):
+        return nc_export_request(context.scene, context.evaluated_depsgraph_get(), self.post, path)
 
 
 CLASSES = (KEZURI_OT_carve_generate, KEZURI_OT_carve_sample, KEZURI_OT_carve_export)

@@ -4,20 +4,23 @@ the output folder, the scene and the post's extension, and the export (through t
 panel's override) reported back."""
 from __future__ import annotations
 
+import dataclasses
 import inspect
 import os
+import secrets
 from dataclasses import dataclass, field
 
 import bpy
+from bpy.props import BoolProperty
 from bpy_extras.io_utils import ExportHelper
 
 from .. import post as posts
 from ..post.capacity import program_findings
-from ..post.output import write_atomic
+from ..post.output import OutputError, Staging, write_atomic
 from .common import SteppedOperator
 from .preferences import scene_output_dir, scene_post
 from .plancache import replanned_message
-from .translations import translate_message
+from .translations import interface_language, translate_message
 
 
 def spindle_options(families, post_name: str, orient: bool, given_as: str = "Orient Spindle (M19)") -> dict:
@@ -84,16 +87,34 @@ def report_findings(operator, findings) -> None:
 
 
 @dataclass
+class ProgramSheet:
+    """What the setup sheet beside a panel's program shows, as the workflow's batch sheet does:
+    the IR ``program`` written, the gate's ``gate`` report, the ``machine`` profile (None: the
+    post's own), the post's ``post`` label, the batch report's ``workflow`` name (the sheet's
+    title "<workflow>: <program>"), the workflow's ``warnings`` (before the findings on the
+    written program) and the feeds check's ``feeds`` entries ([] with no material)."""
+
+    program: object
+    gate: dict | None
+    machine: object
+    post: str
+    workflow: str
+    warnings: list = field(default_factory=list)
+    feeds: list = field(default_factory=list)
+
+
+@dataclass
 class Exported:
     """What an export's work returns: the written ``path``, the operation names re-planned (None:
     the export does not plan through the scene's plans), what the machine cannot take of the
     program (``findings``), and ``then(scene)``: what to record in the scene afterwards (on the
-    main thread), or None."""
+    main thread), or None; ``sheet``: what its setup sheet shows (None: it writes none)."""
 
     path: str
     replanned: list | None = None
     findings: list = field(default_factory=list)
     then: object = None
+    sheet: ProgramSheet | None = None
 
 
 def stages(progress, share: float = 0.5) -> tuple:
@@ -105,35 +126,101 @@ def stages(progress, share: float = 0.5) -> tuple:
             lambda f, text="": progress(share + (1 - share) * f, text or "checking"))
 
 
-def milling_export_request(scene, post_name: str, target: str, families, compute, export):
+def milling_export_request(scene, post_name: str, target: str, families, compute, export, workflow: str):
     """A milling workflow's panel export (engrave, carve): the Machine & Stock settings read here
     (main thread); ``work(progress) -> Exported`` runs ``compute(planning)`` (the workflow's plan)
     and ``export(job, post_name, target, work_offset, allow=, orient_spindle=, machine=, findings=,
-    progress=)`` without touching Blender data."""
+    progress=, sheet=)`` without touching Blender data; ``export`` fills the ``sheet`` dict with the
+    ``program`` written, the ``gate`` report, the ``machine`` and the workflow's ``warnings``, and
+    the feeds are checked here in the scene's material, as batch ``workflow`` checks them."""
     from .machines import scene_machine
+    from .workflowfeeds import panel_check
 
     machine = scene.kezuri.machine
     offset, orient = machine.work_offset, machine.orient_spindle
     allow, profile = scene.kezuri.simulation.acknowledged, scene_machine(machine, families, post_name)
+    feeds_check, label = panel_check(scene), posts.find(families, post_name).label
 
     def work(progress=None) -> Exported:
         planning, checking = stages(progress)
-        job, findings = compute(planning), []
+        job, findings, sheet = compute(planning), [], {}
         written = export(job, post_name, target, offset, allow=allow, orient_spindle=orient, machine=profile,
-                         findings=findings, progress=checking)
-        return Exported(written, job.replanned, findings)
+                         findings=findings, progress=checking, sheet=sheet)
+        feeds = feeds_check(sheet["program"], sheet["machine"], findings)
+        return Exported(written, job.replanned, findings,
+                        sheet=ProgramSheet(sheet["program"], sheet["gate"], sheet["machine"], label, workflow,
+                                           sheet["warnings"], feeds))
     return work
+
+
+class BesideStaging(Staging):
+    """:class:`~..post.output.Staging` for one panel export: a hidden folder beside ``target``,
+    named here and made by the first file written into it (so an export cancelled before its work
+    starts leaves nothing behind)."""
+
+    def __init__(self, target: str):
+        self.out = os.path.dirname(os.path.abspath(target))
+        self.folder = os.path.join(self.out, f".kezuri-staging-{secrets.token_hex(4)}")
+
+
+def program_and_sheet(request, target: str, language: str | None):
+    """A panel export's work, its program and its setup sheet written all or none.
+
+    ``request(path)`` is the workflow's ``work(progress) -> Exported`` writing its program to
+    ``path``; here ``path`` lies in a hidden folder beside ``target``.  The work writes the program
+    there, the sheet (``<program>-setup-sheet.html``, in ``language``: "en", "ja"; None: no sheet)
+    is written there from the program as written, and only then are both moved beside each other
+    at ``target`` (a folder in the way of either is found before the first moves).  A failure, a
+    refusal by the gate or Esc removes the folder and leaves ``target``'s folder as it was.  Runs
+    ``request`` and reads the tool library (for the tools' stick-out) here, on the main thread."""
+    from .batchio import write_program_sheet
+    from .toolstore import library_or_none, stick_outs
+
+    target = os.path.abspath(target)
+    staging = BesideStaging(target)
+    staged = os.path.join(staging.folder, os.path.basename(target))
+    work = request(staged)
+    library = library_or_none() if language else None
+
+    def run(progress=None) -> Exported:
+        try:
+            exported = work(progress)
+            if os.path.abspath(exported.path) != staged:
+                raise RuntimeError(f"the export wrote {exported.path}, not {staged}")
+            sheet = exported.sheet
+            if language and sheet is not None:
+                report = {"gate": sheet.gate, "feeds": list(sheet.feeds),
+                          "warnings": list(sheet.warnings) + list(exported.findings)}
+                program = (sheet.gate or {}).get("program") or sheet.program.name
+                write_program_sheet(staged, sheet.program, report, sheet.machine, sheet.post, language,
+                                    job_name=f"{sheet.workflow}: {program}",
+                                    stick_out=stick_outs(sheet.program.summary(), library))
+            staging.commit()
+        except OutputError as error:        # named by the paths the user gave, not the hidden folder's
+            raise OutputError(staging.final(str(error))) from None
+        finally:
+            staging.discard()
+        return dataclasses.replace(exported, path=target, findings=staging.final(list(exported.findings)))
+    return run
+
+
+SHEET_DESCRIPTION = ("Also write <program>-setup-sheet.html beside the program, in the interface language: the "
+                     "machine, stock and work zero, tools, operations, feeds and the export gate's result")
 
 
 class NCExport(SteppedOperator, ExportHelper):
     """Mixed into an ExportHelper operator with a ``post`` enum of ``post_families``.  The operator
-    sets ``file_suffix`` and implements ``export_request(context)``: it reads the scene (main thread)
-    and returns ``compute(progress) -> Exported``, which plans, checks through the gate and writes
-    the file without touching Blender data.  After the file browser (or from the job list's button)
+    sets ``file_suffix`` and implements ``export_request(context, path)``: it reads the scene (main
+    thread) and returns ``compute(progress) -> Exported``, which plans, checks through the gate and
+    writes the program to ``path`` without touching Blender data.  ``path`` is a staged one
+    (:func:`program_and_sheet`): the program and its setup sheet (``setup_sheet``, on by default)
+    are moved beside each other at ``filepath`` together.  After the file browser (or from the job list's button)
     the work runs in steps with a progress bar and Esc to cancel, as Generate does; a cancelled
     export writes nothing (the file is written after the last progress call).  From a script or in
     background mode it runs at once.  ``preferred_post`` names the post the file browser starts
     with (None: the enum's own default)."""
+
+    setup_sheet: BoolProperty(name="Setup Sheet", default=True, description=SHEET_DESCRIPTION)
 
     file_suffix = ""
     post_families: tuple = ("milling",)
@@ -162,7 +249,7 @@ class NCExport(SteppedOperator, ExportHelper):
         self.filename_ext = self.extension_for(self.post)
         return ExportHelper.check(self, context)
 
-    def export_request(self, context):
+    def export_request(self, context, path: str):
         raise NotImplementedError
 
     def prepare(self, context):
@@ -172,7 +259,8 @@ class NCExport(SteppedOperator, ExportHelper):
             preferred = self.preferred_post(context)
             if preferred is not None:
                 self.post = preferred
-        return self.export_request(context)
+        language = interface_language() if self.setup_sheet else None
+        return program_and_sheet(lambda path: self.export_request(context, path), self.filepath, language)
 
     def execute(self, context):
         return self.start_stepped(context)
@@ -181,6 +269,10 @@ class NCExport(SteppedOperator, ExportHelper):
         if exported.then is not None:
             exported.then(context.scene)
         self.report({"INFO"}, translate_message(f"Wrote {exported.path}"))
+        if self.setup_sheet and exported.sheet is not None:
+            from .batchio import SHEET_NAME
+            sheet = os.path.splitext(exported.path)[0] + "-" + SHEET_NAME
+            self.report({"INFO"}, translate_message(f"Wrote {sheet}"))
         if exported.replanned is not None:
             self.report({"INFO"}, translate_message(replanned_message(list(exported.replanned))))
         report_findings(self, exported.findings)

@@ -24,7 +24,7 @@ from ..toolpath.ir.errors import InputError
 from ..toolpath.job import fingerprint, plan_job
 from . import convert, pathview, simview
 from .common import SteppedOperator, run_reported
-from .exporting import Exported, NCExport, stages, machine_post, write_program
+from .exporting import Exported, NCExport, ProgramSheet, stages, machine_post, write_program
 from .jobentry import JobFileError
 from .plancache import cache_of, keep, replanned_message
 from .jobrows import (active_row, job_list, read_back, row_by_uid, row_entry, select_row, show_row,
@@ -152,8 +152,14 @@ def operation_rows(planned) -> list:
 
 def export_job(scene, path: str, post_name: str, allow=False, findings: list | None = None, progress=None):
     """Plan what is stale (the rest from the scene's kept plans), check the whole job through the
-    export gate and write one program: (the written path, the names re-planned)."""
-    exported = export_job_request(scene, path, post_name, allow)(progress)
+    export gate and write one program with its setup sheet beside it, in the interface language,
+    both or neither (as the Export button): (the written path, the names re-planned)."""
+    from .exporting import program_and_sheet
+    from .translations import interface_language
+
+    work = program_and_sheet(lambda staged: export_job_request(scene, staged, post_name, allow), path,
+                             interface_language())
+    exported = work(progress)
     exported.then(scene)
     if findings is not None:
         findings += exported.findings
@@ -177,9 +183,7 @@ def export_job_request(scene, path: str, post_name: str, allow=False):
     library = library_or_none() if setup.material else None     # read here: compute may run off the main thread
     post = machine_post(families, setup.post, setup.work_offset, scene.kezuri.machine.orient_spindle, setup.machine)
     macro = posts.find(families, setup.post).needs_texture
-    from .batchio import write_program_sheet
-    from .translations import interface_language
-    language, post_label = interface_language(), posts.find(families, setup.post).label
+    post_label = posts.find(families, setup.post).label
 
     def compute(progress=None):
         planning, checking = stages(progress)
@@ -193,11 +197,9 @@ def export_job_request(scene, path: str, post_name: str, allow=False):
         written = write_program(path, post.to_text(program), post, findings)
         feeds = feeds_check(planned, program, library)
         findings += programcheck.warnings(feeds)   # the feeds: warnings only
-        # the setup sheet beside the program, in the interface's language (read above, on the main thread)
-        write_program_sheet(written, program, {"gate": checked, "feeds": feeds, "warnings": list(findings)},
-                            setup.machine, post_label, language)
-        return Exported(written, planned.replanned(), findings,
-                        lambda scene: record(scene, planned))
+        # the setup sheet beside the program (NCExport writes both): as batch job's
+        sheet = ProgramSheet(program, checked, setup.machine, post_label, "job", list(planned.warnings), feeds)
+        return Exported(written, planned.replanned(), findings, lambda scene: record(scene, planned), sheet)
     return compute
 
 
@@ -503,8 +505,8 @@ class KEZURI_OT_job_export(NCExport, bpy.types.Operator):
     def poll(cls, context):
         return JobListOperator.poll.__func__(cls, context)
 
-    def export_request(self, context):
-        return export_job_request(context.scene, self.filepath, self.post,
+    def export_request(self, context, path):
+        return export_job_request(context.scene, path, self.post,
                                   allow=context.scene.kezuri.simulation.acknowledged)
 
 

@@ -25,7 +25,7 @@ from . import convert
 from . import gate
 from . import pathview
 from .common import SteppedOperator
-from .exporting import Exported, NCExport, stages, warn, write_program
+from .exporting import Exported, NCExport, ProgramSheet, stages, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
 from .plancache import cache_of, keep
@@ -136,30 +136,38 @@ def extension_for(post_name: str) -> str:
 
 
 def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str = False, checked: bool = False,
-                  machine=None, findings: list | None = None, progress=None) -> str:
+                  machine=None, findings: list | None = None, progress=None, sheet: dict | None = None) -> str:
     """Write the program; the export gate simulates it first unless the caller has (``checked``);
-    ``machine``: the machine profile (None: the post's own); ``progress``: the gate's."""
+    ``machine``: the machine profile (None: the post's own); ``progress``: the gate's; ``sheet``:
+    filled with the gate's ``gate`` report and the ``machine`` (the setup sheet's)."""
     post = posts.create(POST_FAMILIES, post_name, work_offset=job.result.program.work_offset,
                         max_table_rpm=job.settings.max_table_rpm, **({} if machine is None else {"machine": machine}))
     text = post.to_text(job.result.program)
-    if not checked:
-        gate.check(simulation(job), allow, progress, machine=post.machine)
+    report = None if checked else gate.check(simulation(job), allow, progress, machine=post.machine)[1]
+    if sheet is not None:
+        sheet.update(gate=report, machine=post.machine)
     return write_program(path, text, post, findings)
 
 
 def nc_export_request(scene, depsgraph, post_name: str, target: str):
     """The panel's export: read the scene here; ``work(progress) -> Exported`` plans, checks and
     writes ``target`` without touching Blender data (so it runs in steps, Esc cancelling)."""
+    from .workflowfeeds import panel_check
+
     compute = rotary_request(scene, depsgraph)
     allow = scene.kezuri.simulation.acknowledged
     profile = scene_machine(scene.kezuri.machine, POST_FAMILIES, post_name)
+    feeds_check, label = panel_check(scene), posts.find(POST_FAMILIES, post_name).label
 
     def work(progress=None) -> Exported:
         planning, checking = stages(progress)
-        job, findings = compute(planning), []
+        job, findings, sheet = compute(planning), [], {}
         written = export_rotary(job, post_name, target, allow=allow, machine=profile, findings=findings,
-                                progress=checking)
-        return Exported(written, job.replanned, findings)
+                                progress=checking, sheet=sheet)
+        feeds = feeds_check(job.result.program, sheet["machine"], findings)
+        return Exported(written, job.replanned, findings,
+                        sheet=ProgramSheet(job.result.program, sheet["gate"], sheet["machine"], label, "rotary",
+                                           [], feeds))
     return work
 
 
@@ -214,8 +222,8 @@ class KEZURI_OT_rotary_export(NCExport, bpy.types.Operator):
     def preferred_post(self, context):
         return context.scene.kezuri.rotary.post          # the Rotary Pockets panel's post
 
-    def export_request(self, context):
-        return nc_export_request(context.scene, context.evaluated_depsgraph_get(), self.post, self.filepath)
+    def export_request(self, context, path):
+        return nc_export_request(context.scene, context.evaluated_depsgraph_get(), self.post, path)
 
 
 class KEZURI_OT_mark_pocket(bpy.types.Operator):

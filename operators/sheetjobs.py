@@ -317,13 +317,19 @@ def elbow_files(elbow: core.Elbow, base_path: str, props, punching: list | None 
 
 def write_all(texts: list) -> list:
     """Write every (path, text) or none (the panel's exports; batch stages its own ``--out``): each
-    text goes to a temporary file beside its path, and only once all are written are they renamed
-    onto their paths, so a failure (a full disk, a folder in the way) writes none of them."""
+    text (ASCII, or bytes as they are: a setup sheet's UTF-8) goes to a temporary file beside its
+    path, and only once all are written are they renamed onto their paths, so a failure (a full
+    disk, a folder in the way) writes none of them."""
+    for path, _ in texts:           # found before anything is written or renamed
+        if os.path.isdir(path):
+            raise OutputError(f"cannot write {os.path.abspath(path)}: a folder of that name is in the way")
     with contextlib.ExitStack() as stack:
         temps = [(path, stack.enter_context(atomic_path(path)), text) for path, text in texts]
         for path, temp, text in temps:
             try:
-                with open(temp, "w", encoding="ascii", newline="\n") as stream:
+                binary = isinstance(text, bytes)
+                with open(temp, "wb" if binary else "w",
+                          **({} if binary else {"encoding": "ascii", "newline": "\n"})) as stream:
                     stream.write(text)
                     stream.flush()
                     os.fsync(stream.fileno())

@@ -19,13 +19,14 @@ from ..toolpath.operations.sheetmetal import unfold as core
 from ..toolpath.engines.textfile import read_text
 from . import convert, gate
 from .common import SteppedOperator, run_reported
+from .exporting import SHEET_DESCRIPTION
 from .limits import check_group
 from .properties import ELBOW_SETTINGS, UNFOLD_SETTINGS, copies
 from .sheetjobs import (ELBOW_NAMES, GAP_MM, POST_FAMILIES, UNFOLD_NAMES, UnfoldJob, check_pitch,
                         corners_mm, elbow_files, elbow_layout, elbow_punching, elbow_texts, parse_clamps,
                         placement_report, punch_gate, punch_profile, punch_report, punch_warnings, run_elbow,
                         run_unfold, share, unfold_files, unfold_texts, write_all)
-from .translations import translate_message
+from .translations import interface_language, translate_message
 from .workflow import BatchCommand, Workflow
 
 PREFIX = "Kezuri Sheet"
@@ -193,27 +194,43 @@ def settings_of(props) -> SimpleNamespace:
                               for value in [getattr(props, prop.identifier)]})
 
 
-def export_work(first: str, punch, allow: bool):
+def export_work(first: str, punch, allow: bool, workflow: str, sheet_path: str, language: str | None):
     """``work(progress) -> [paths]`` of a sheet-metal export: ``punch(progress) -> (punched
-    programs, texts())`` (its progress the first 5-90 %), the gate over every program, then the
-    texts made and written, all or none, after the last progress call (so Esc writes nothing)."""
+    programs, texts(), placed jobs)`` (its progress the first 5-90 %), the gate over every program,
+    then the texts made and, with a ``language`` ("en", "ja"; None: none), the setup sheet of the
+    programs at ``sheet_path`` (as batch ``workflow``'s: the sheet, the gate, the programs), all
+    written or none, after the last progress call (so Esc writes nothing)."""
+    from .batchio import program_extensions, report_sheet
+    from ..toolpath.pictures.setupsheet import program_file
+
     def work(progress=None) -> list:
         report = progress or (lambda fraction, text="": None)
         report(0.0, first)
-        punched, texts = punch(share(progress, 0.05, 0.9))
+        punched, texts, placed = punch(share(progress, 0.05, 0.9))
         report(0.9, "checking")
-        punch_gate(punched, allow)
+        gate_report = punch_gate(punched, allow)
         made = texts()
+        if language:
+            programs = [program_file(os.path.basename(path), text.encode("ascii")) for path, text in made
+                        if os.path.splitext(path)[1].lower() in program_extensions()]
+            entries = {"workflow": workflow, "gate": gate_report, "sheet": placement_report(placed)}
+            made.append((sheet_path, report_sheet(entries, language, programs).encode("utf-8")))
         report(1.0, "writing")
         return write_all(made)
     return work
 
 
-def sheet_export_request(scene, target: str, allow: bool):
+def sheet_path_of(target: str) -> str:
+    """Where a sheet-metal export's setup sheet goes: ``<target without extension>-setup-sheet.html``."""
+    from .batchio import SHEET_NAME
+    return os.path.splitext(os.path.abspath(target))[0] + "-" + SHEET_NAME
+
+
+def sheet_export_request(scene, target: str, allow: bool, language: str | None = None):
     """The Sheet panel's export: the settings checked (by their panel names) and copied here, on
     the main thread; ``work(progress) -> [paths]`` unfolds, plans, punches the program out of the
-    sheet, gates it and writes the NC, DXF and SVG, all or none, after its last progress call (so
-    Esc writes nothing)."""
+    sheet, gates it and writes the NC, DXF and SVG (and the setup sheet, in ``language``), all or
+    none, after its last progress call (so Esc writes nothing)."""
     props = scene.kezuri.sheet
     corners = corners_mm(props)
     check_group(props, "sheet", list(UNFOLD_SETTINGS))
@@ -223,14 +240,14 @@ def sheet_export_request(scene, target: str, allow: bool):
 
     def punch(progress):
         job = run_unfold(corners, settings, progress=progress)
-        return [job.punched], lambda: unfold_texts(job, target)
-    return export_work("unfolding", punch, allow)
+        return [job.punched], lambda: unfold_texts(job, target), [job.punching]
+    return export_work("unfolding", punch, allow, "unfold", sheet_path_of(target), language)
 
 
-def elbow_export_request(scene, target: str, allow: bool):
+def elbow_export_request(scene, target: str, allow: bool, language: str | None = None):
     """The Elbow panel's export, as :func:`sheet_export_request`: the elbow unfolded here (checked,
-    quick), every piece's program punched in ``work(progress) -> [paths]``, then DXF, SVG and one
-    program a piece written, all or none."""
+    quick), every piece's program punched in ``work(progress) -> [paths]``, then DXF, SVG, one
+    program a piece and their setup sheet written, all or none."""
     props = scene.kezuri.sheet
     elbow = run_elbow(props)
     punch_profile(props)
@@ -238,8 +255,9 @@ def elbow_export_request(scene, target: str, allow: bool):
 
     def punch(progress):
         punching = elbow_punching(elbow, settings, progress=progress)
-        return [punched for _, punched, _ in punching], lambda: elbow_texts(elbow, target, settings, punching)
-    return export_work("punching", punch, allow)
+        return ([punched for _, punched, _ in punching], lambda: elbow_texts(elbow, target, settings, punching),
+                [job for *_, job in punching])
+    return export_work("punching", punch, allow, "elbow", sheet_path_of(target), language)
 
 
 class SheetExport(SteppedOperator, ExportHelper):
@@ -247,9 +265,14 @@ class SheetExport(SteppedOperator, ExportHelper):
     bar and Esc to cancel, as every NC export does; from a script or in background mode at once."""
 
     progress_label = "export"
+    setup_sheet: BoolProperty(name="Setup Sheet", default=True, description=SHEET_DESCRIPTION)
 
     def invoke(self, context, event):
         return ExportHelper.invoke(self, context, event)
+
+    def sheet_language(self) -> str | None:
+        """The setup sheet's language (the interface's, read on the main thread); None: no sheet."""
+        return interface_language() if self.setup_sheet else None
 
     def execute(self, context):
         return self.start_stepped(context)
@@ -271,7 +294,7 @@ class KEZURI_OT_sheet_export(SheetExport, bpy.types.Operator):
     allow_findings: BoolProperty(name="Write Despite Findings", default=False, description=ALLOW_DESCRIPTION)
 
     def prepare(self, context):
-        return sheet_export_request(context.scene, self.filepath, self.allow_findings)
+        return sheet_export_request(context.scene, self.filepath, self.allow_findings, self.sheet_language())
 
 
 class KEZURI_OT_add_elbow(bpy.types.Operator):
@@ -314,7 +337,7 @@ class KEZURI_OT_elbow_export(SheetExport, bpy.types.Operator):
     allow_findings: BoolProperty(name="Write Despite Findings", default=False, description=ALLOW_DESCRIPTION)
 
     def prepare(self, context):
-        return elbow_export_request(context.scene, self.filepath, self.allow_findings)
+        return elbow_export_request(context.scene, self.filepath, self.allow_findings, self.sheet_language())
 
 
 def menu_import(self, context):

@@ -30,7 +30,7 @@ from . import convert
 from . import gate
 from . import pathview
 from .common import SteppedOperator, run_reported
-from .exporting import Exported, NCExport, stages, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
+from .exporting import Exported, NCExport, ProgramSheet, stages, batch_orient_spindle, machine_post, orient_spindle_argument, warn, write_program
 from .machines import batch_machine, machine_arguments, scene_machine
 from .limits import check_group
 from .properties import post_items, post_number
@@ -354,11 +354,20 @@ class KEZURI_OT_stepnc_export(NCExport, bpy.types.Operator):
     def poll(cls, context):
         return KEZURI_OT_stepnc_generate.poll(context)
 
-    def export_request(self, context):
+    def export_request(self, context, path):
         findings = []
-        compute = export_nc_request(context.scene, self.post, self.filepath,
-                                    allow=context.scene.kezuri.simulation.acknowledged, findings=findings)
-        return lambda progress=None: Exported(compute(progress)[0], None, findings)
+        profile = scene_machine(context.scene.kezuri.machine, POST_FAMILIES, self.post)
+        compute = export_nc_request(context.scene, self.post, path, allow=context.scene.kezuri.simulation.acknowledged,
+                                    profile=profile, findings=findings)
+        label = posts.find(POST_FAMILIES, self.post).label
+
+        def work(progress=None) -> Exported:
+            written, planned, _, report = compute(progress)
+            program = planned.program
+            # the sheet as batch stepnc's: its notes are the program's (the workingsteps left out ...)
+            return Exported(written, None, findings,
+                            sheet=ProgramSheet(program, report, profile, label, "stepnc", list(program.notes)))
+        return work
 
 
 class KEZURI_OT_export_stepnc(bpy.types.Operator, ExportHelper):

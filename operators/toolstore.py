@@ -58,17 +58,15 @@ def tool_makes(tools, library=False) -> dict:
     return found
 
 
-def stick_outs(entries) -> dict:
+def stick_outs(entries, library=False) -> dict:
     """{tool number: stick-out (mm)} for a report's ``operations`` whose tool the user's library has
     as the same tool (its number, kind and diameter) with a measured stick-out; for the setup sheet.
     Nothing when there is no library file yet (nothing is written here) or it cannot be read (the
-    sheet then shows the stick-out as not known, as before)."""
-    path = library_path()
-    if not os.path.isfile(path):
-        return {}
-    try:
-        library = store.load(path)
-    except ToolLibraryError:
+    sheet then shows the stick-out as not known, as before).  ``library``: the library already
+    read (None: there is none), else it is read here."""
+    if library is False:
+        library = library_or_none()
+    if library is None:
         return {}
     found = {}
     for entry in entries or ():

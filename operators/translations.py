@@ -182,6 +182,10 @@ PROPERTY_TEXTS = {
     "Colour": "色分け",
     "Blocks Export": "書き出しを止める",
     "Write Despite Findings": "指摘があっても書き出す",
+    "Setup Sheet": "段取りシート",
+    "Also write <program>-setup-sheet.html beside the program, in the interface language: the machine, stock and "
+    "work zero, tools, operations, feeds and the export gate's result":
+        "プログラムの横に <program>-setup-sheet.html も書き出します（表示言語で）：機械、素材と原点、工具、工程、送り、書き出しゲートの結果",
     "Write the programs even if the punching simulation finds a part that stays in the sheet or a hit biting "
     "into the part":
         "パンチングのシミュレーションで、製品が板から外れない、または製品に食い込むヒットが見つかっても、プログラムを書き出します",
@@ -3232,6 +3236,7 @@ SHEET_TEMPLATES = {
 SHEET_CONTEXTS = {"tool kind": {"ball": "ボールエンドミル", "flat": "フラットエンドミル", "bull": "ブルノーズエンドミル",
                                 "drill": "ドリル", "vbit": "V ビット"}}
 MESSAGE_TEMPLATES["setup sheet language {}: one of {}"] = "段取りシートの言語 {0}：{1} のいずれかです"
+MESSAGE_TEMPLATES["the export wrote {}, not {}"] = "書き出しが {1} ではなく {0} に書き込みました"
 MESSAGE_TEMPLATES["job file {}: [setup] language = {} is not one of {}"] = \
     "ジョブファイル {0}：[setup] の language = {1} は {2} のいずれでもありません"
 TRANSLATIONS = _build()

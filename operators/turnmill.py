@@ -29,7 +29,7 @@ from . import convert
 from . import gate
 from . import pathview
 from .common import SteppedOperator
-from .exporting import Exported, NCExport, stages, report_findings
+from .exporting import Exported, NCExport, ProgramSheet, stages, report_findings
 from .limits import check_group
 from .plancache import cache_of, keep
 from .properties import post_items, post_number
@@ -223,14 +223,15 @@ def unmachined_warnings(job: TurnMillJob) -> list:
 
 
 def export_turnmill(job: TurnMillJob, post_name: str, path: str, allow: bool | str = False,
-                    checked: bool = False, progress=None) -> tuple:
+                    checked: bool = False, progress=None, sheet: dict | None = None) -> tuple:
     """Write the program; the export gate simulates it first unless the caller has (``checked``;
     ``progress``: the gate's).  Returns the path and the machine's findings on the program
-    (:func:`machine_findings`)."""
+    (:func:`machine_findings`); ``sheet``: filled with the gate's ``gate`` report (the setup sheet's)."""
     post = posts.create(POST_FAMILIES, post_name)
     text = post.to_text(job.plan.program)
-    if not checked:
-        gate.check(simulation(job), allow, progress)
+    report = None if checked else gate.check(simulation(job), allow, progress)[1]
+    if sheet is not None:
+        sheet.update(gate=report)
     return write_atomic(path, text), machine_findings(job, post, text)
 
 
@@ -240,11 +241,15 @@ def nc_export_request(scene, depsgraph, post_name: str, target: str):
     compute = turnmill_request(scene, depsgraph)
     allow = scene.kezuri.simulation.acknowledged
 
+    label = posts.find(POST_FAMILIES, post_name).label
+
     def work(progress=None) -> Exported:
         planning, checking = stages(progress)
-        job = compute(planning)
-        written, findings = export_turnmill(job, post_name, target, allow=allow, progress=checking)
-        return Exported(written, job.replanned, unmachined_warnings(job) + findings)
+        job, sheet = compute(planning), {}
+        written, findings = export_turnmill(job, post_name, target, allow=allow, progress=checking, sheet=sheet)
+        # the sheet's notes as batch's report has them: the unmachined features, then the machine's findings
+        return Exported(written, job.replanned, unmachined_warnings(job) + findings,
+                        sheet=ProgramSheet(job.plan.program, sheet["gate"], job.profile, label, "turnmill"))
     return work
 
 
@@ -352,8 +357,8 @@ class KEZURI_OT_turnmill_export(NCExport, bpy.types.Operator):
     def preferred_post(self, context):
         return None                                       # the turn-mill has no post setting: X-Z-C
 
-    def export_request(self, context):
-        return nc_export_request(context.scene, context.evaluated_depsgraph_get(), self.post, self.filepath)
+    def export_request(self, context, path):
+        return nc_export_request(context.scene, context.evaluated_depsgraph_get(), self.post, path)
 
 
 CLASSES = (KEZURI_OT_turnmill_classify, KEZURI_OT_turnmill_generate, KEZURI_OT_turnmill_export)

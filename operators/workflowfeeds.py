@@ -49,14 +49,41 @@ def check(args, scene, program, machine, report: dict, findings: list) -> list:
     """Check ``program`` (an IR Program, or its operations) in the run's material on ``machine``:
     report["feeds"] gets the entries, ``findings`` one warning per flag; the entries ([] when no
     material is known)."""
-    from .toolstore import tool_makes
-
     material = batch_material(args, scene)
     if material is None:
         return []
-    operations = getattr(program, "operations", program)
-    tools = {op.tool.number: op.tool for op in operations}.values()
-    entries = programcheck.check_program(operations, material, machine, known=tool_makes(tools))
+    entries = checked(program, material, machine, False)
     report["feeds"] = entries
     findings += programcheck.warnings(entries)
     return entries
+
+
+def checked(program, material: str, machine, library=False) -> list:
+    """The feeds check's entries of ``program`` (or its operations) in ``material`` on ``machine``,
+    the flutes and tool material from the tool ``library`` where it holds the same tool (False:
+    read here)."""
+    from .toolstore import tool_makes
+
+    operations = getattr(program, "operations", program)
+    tools = {op.tool.number: op.tool for op in operations}.values()
+    return programcheck.check_program(operations, material, machine, known=tool_makes(tools, library))
+
+
+def panel_check(scene):
+    """A panel export's feeds check, as :func:`check` is batch's: the scene's material (Machine &
+    Stock > Material) and the tool library are read here, on the main thread; returns
+    ``check(program, machine, findings) -> entries``, which adds a warning to ``findings`` for each
+    flag ([] and nothing checked with no material)."""
+    from .toolstore import library_or_none
+
+    key = scene.kezuri.stock.material
+    material = None if key == "NONE" else key
+    library = library_or_none() if material else None
+
+    def check_program(program, machine, findings: list) -> list:
+        if material is None:
+            return []
+        entries = checked(program, material, machine, library)
+        findings += programcheck.warnings(entries)
+        return entries
+    return check_program

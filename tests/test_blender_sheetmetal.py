@@ -244,4 +244,5 @@ def test_the_export_operators_refuse_what_the_machine_cannot_run(scene, tmp_path
     assert bpy.ops.kezuri.elbow_export(filepath=str(tmp_path / "elbow.dxf")) == {"FINISHED"}
     assert bpy.ops.kezuri.sheet_export(filepath=str(tmp_path / "quad.nc")) == {"FINISHED"}
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
-        ["elbow.dxf", "elbow.svg", *[f"elbow-{i}.nc" for i in range(1, 6)], "quad.nc", "quad.dxf", "quad.svg"])
+        ["elbow.dxf", "elbow.svg", *[f"elbow-{i}.nc" for i in range(1, 6)], "quad.nc", "quad.dxf", "quad.svg",
+         "elbow-setup-sheet.html", "quad-setup-sheet.html"])

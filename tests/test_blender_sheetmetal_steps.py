@@ -93,7 +93,8 @@ def test_all_files_or_none(empty_scene, tmp_path, idname, names):
     assert os.listdir(tmp_path) == [names[-1]] and os.listdir(tmp_path / names[-1]) == []
     os.rmdir(tmp_path / names[-1])
     assert operator(filepath=str(tmp_path / names[0])) == {"FINISHED"}
-    assert sorted(os.listdir(tmp_path)) == sorted(names)
+    sheet = os.path.splitext(names[0])[0].split("-")[0] + "-setup-sheet.html"      # and its setup sheet
+    assert sorted(os.listdir(tmp_path)) == sorted([*names, sheet])
 
 
 def test_a_refusal_in_the_work_writes_nothing(empty_scene, tmp_path):
