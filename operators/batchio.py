@@ -111,19 +111,23 @@ def program_extensions() -> set:
 
 
 def post_label(report: dict) -> str:
-    """The label of the report's post (the registry's, within the machine's family where known)."""
+    """The label of the report's post (the registry's, within the machine's family where known);
+    of each, where the run wrote several ("xzc, cldata": the turn-mill's)."""
     from ..post import registry
     choice = report.get("post")
     if not isinstance(choice, str):
         return ""
     machine = report.get("machine")
     family = machine.get("family") if isinstance(machine, dict) else None
-    for families in ((family,) if family else (), None):
-        try:
-            return registry.find(families, choice).label
-        except registry.UnknownPostError:
-            continue
-    return choice
+
+    def label(name: str) -> str:
+        for families in ((family,) if family else (), None):
+            try:
+                return registry.find(families, name).label
+            except registry.UnknownPostError:
+                continue
+        return name
+    return ", ".join(label(name.strip()) for name in choice.split(","))
 
 
 def machine_label(machine):

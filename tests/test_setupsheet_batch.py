@@ -114,4 +114,4 @@ def test_the_turn_mill_sheet_names_every_program_it_wrote(tmp_path):
     written = sorted(p.suffix for p in out.iterdir() if p.suffix in (".nc", ".ngc", ".cls"))
     assert written == [".cls", ".nc"]
     page = read_sheet((out / "setup-sheet.html").read_text(encoding="utf-8"))
-    assert re.search(r"Postxzc, cldataWork offset", page.texts["setup"]), page.texts["setup"][:300]
+    assert re.search(r"PostTurn-Mill X-Z-C, APT CL DataWork offset", page.texts["setup"]), page.texts["setup"][:300]
