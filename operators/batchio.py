@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import os
 
+from ..toolpath.engines.textfile import file_problem, named
 from .convert import SceneInputError
 
 
@@ -12,8 +13,11 @@ def open_blend(path: str | None):
 
     from . import samples
     if path:
-        if not os.path.isfile(path):
+        problem = file_problem(path, "a .blend file")
+        if problem == "no such file":
             raise FileNotFoundError(f"--blend {path}: no such .blend file")
+        if problem:
+            raise SceneInputError(named(f"--blend {path}", problem))
         try:
             bpy.ops.wm.open_mainfile(filepath=os.path.abspath(path))
         except RuntimeError as error:

@@ -830,6 +830,11 @@ def japanese_message(text: str) -> str | None:
                 shown = _interface_name(english)
                 values = [value.replace(english, shown) for value in values]
             return japanese.format(*values)
+    name, colon, rest = text.partition(": ")       # a message under the name of the file it is about
+    if colon:                                      # (textfile.named: "--cdl q.cdl: CDL line 7: ...")
+        inner = japanese_message(rest) or TRANSLATIONS[LOCALE].get((DEFAULT, rest))
+        if inner:
+            return f"{name}：{inner}"
     return None
 
 
@@ -3157,6 +3162,36 @@ ONE_LIBRARY_TEMPLATES = {
 NESTED["The preferences' tool {} is no tool and was not moved: {}; type it in CAM > Tool Library"] = (1,)
 MESSAGES.update(ONE_LIBRARY_TEXTS)
 MESSAGE_TEMPLATES.update(ONE_LIBRARY_TEMPLATES)
+# a file the user gave that cannot be read (textfile.file_problem), named by its option or key
+FILE_PROBLEM_TEXTS = {
+    "no such file": "ファイルがありません",
+    "no such file (a part of the path is a file, not a folder)": "ファイルがありません（パスの途中がフォルダーではなくファイルです）",
+    "a symbolic link that leads round in a loop, to no file": "シンボリックリンクが循環していて、ファイルに行き着きません",
+    "the path is too long for the file system": "パスがファイルシステムの扱える長さを超えています",
+    "not readable (permission denied)": "読み取れません（権限がありません）",
+    "not a path (it holds a NUL character)": "パスではありません（NUL 文字を含みます）",
+    "a folder, not a file": "ファイルではなくフォルダーです",
+    "a file": "ファイル", "a drawing file": "図面ファイル", "a mesh file": "メッシュファイル", "an NC file": "NC ファイル",
+    "a CDL file": "CDL ファイル", "an ISO 14649 file": "ISO 14649 ファイル", "a font file": "フォントファイル",
+    "a .blend file": ".blend ファイル",
+}
+FILE_PROBLEM_TEMPLATES = {
+    "a folder, not {}": "フォルダーです（{0}ではありません）",
+    "not a regular file (a device or a pipe), not {}": "通常のファイルではありません（デバイスかパイプです。{0}ではありません）",
+    "cannot be read ({})": "読み取れません（{0}）",
+    "{}: file = {}: is a folder, not an ISO 14649 file ({})": "{0}：file = {1}：ISO 14649 ファイルではなくフォルダーです（{2}）",
+    "{} is a folder, not an ISO 14649 file": "{0} はフォルダーです。ISO 14649 ファイルではありません",
+    "{}: no tools in it: nothing to import": "{0}：工具が入っていません。取り込むものはありません",
+    "{} (and {} more row(s) refused)": "{0}（ほかに {1} 行も拒否されました）",
+}
+for _english, _japanese in FILE_PROBLEM_TEXTS.items():      # a job file's file = "...": the path it came to
+    FILE_PROBLEM_TEMPLATES[_english + " ({})"] = _japanese + "（{0}）"
+NESTED["a folder, not {}"] = (0,)
+NESTED["--nc {}: {}"] = (1,)
+NESTED["not a regular file (a device or a pipe), not {}"] = (0,)
+NESTED["{} (and {} more row(s) refused)"] = (0,)
+MESSAGES.update(FILE_PROBLEM_TEXTS)
+MESSAGE_TEMPLATES.update(FILE_PROBLEM_TEMPLATES)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 
