@@ -41,6 +41,7 @@ import time
 import tomllib
 
 from ..toolpath.feeds import programcheck
+from ..toolpath.engines.textfile import named, os_reason
 from ..toolpath.job import Job, Setup, plan_job
 from .jobentry import JobEntry, JobFileError
 
@@ -57,11 +58,13 @@ def read(path: str, text: str | None = None) -> dict:
             data = tomllib.loads(text)
         else:
             with open(path, "rb") as stream:
-                data = tomllib.load(stream)
+                data = tomllib.loads(stream.read().decode("utf-8-sig"))     # a BOM (Notepad's UTF-8) dropped
     except FileNotFoundError:
         raise JobFileError(f"job file {path}: no such file") from None
     except IsADirectoryError:
         raise JobFileError(f"job file {path}: a folder, not a job file") from None
+    except OSError as error:
+        raise JobFileError(named(f"job file {path}", os_reason(error))) from None
     except UnicodeDecodeError:
         raise JobFileError(f"job file {path}: not UTF-8 text") from None
     except tomllib.TOMLDecodeError as error:
