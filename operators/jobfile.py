@@ -219,6 +219,10 @@ def apply_setup(scene, setup_table: dict, path: str) -> None:
     """The [setup] table's machine preset and work offset into the scene's Machine & Stock."""
     if "machine" in setup_table:
         from . import machines
+        known = [item.identifier for item in scene.kezuri.machine.bl_rna.properties["preset"].enum_items]
+        if setup_table["machine"] not in known:         # Blender's enum raised a TypeError (a traceback)
+            raise JobFileError(f"job file {path}: [setup] machine = {setup_table['machine']!r} is not a machine "
+                               f"preset; they are {', '.join(known)}")
         scene.kezuri.machine.preset = str(setup_table["machine"])
         machines.fill_machine(scene.kezuri.machine, str(setup_table["machine"]))
     if "arcs" in setup_table:

@@ -3182,6 +3182,8 @@ FILE_PROBLEM_TEMPLATES = {
     "{}: file = {}: is a folder, not an ISO 14649 file ({})": "{0}：file = {1}：ISO 14649 ファイルではなくフォルダーです（{2}）",
     "{} is a folder, not an ISO 14649 file": "{0} はフォルダーです。ISO 14649 ファイルではありません",
     "{}: no tools in it: nothing to import": "{0}：工具が入っていません。取り込むものはありません",
+    "job file {}: [setup] machine = {} is not a machine preset; they are {}":
+        "ジョブファイル {0}：[setup] machine = {1} は機械プリセットではありません。プリセットは {2} です",
     "{} (and {} more row(s) refused)": "{0}（ほかに {1} 行も拒否されました）",
 }
 for _english, _japanese in FILE_PROBLEM_TEXTS.items():      # a job file's file = "...": the path it came to

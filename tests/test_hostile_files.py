@@ -366,3 +366,32 @@ def test_the_suite_counts_its_cases():
         pytest.skip("run with the whole module to count")
     print(f"\n{COUNT['cases']} hostile file cases")
     assert COUNT["cases"] >= 250, COUNT
+
+
+# ----- names the user gives where a file or a table entry is meant (material, machine, post, font) -----
+
+NAMES = [
+    (("engrave", "--material", "soft wood"), "--material 'soft wood'"),
+    (("pocket", "--svg", "SVG", "--machine", "no-such-mill"), "no-such-mill"),
+    (("pocket", "--svg", "SVG", "--post", "no-such-post"), "no-such-post"),
+    (("vcarve", "--text", "A", "--font", "NoSuchFont.ttf"), "text.font = 'NoSuchFont.ttf': no such font file"),
+    (("job", "JOB:machine = \"no-such-mill\""), "[setup] machine = 'no-such-mill' is not a machine preset"),
+    (("job", "JOB:post = \"no-such-post\""), "no-such-post"),
+]
+
+
+@pytest.mark.parametrize("argv, named", NAMES)
+def test_a_name_that_names_nothing_is_refused_by_name(argv, named, tmp_path):
+    """--machine xx on a drawing command and machine = "xx" in a job file's [setup] ended in
+    Blender's TypeError (a traceback): now refused naming the value and the presets."""
+    tmp = str(tmp_path)
+    args = []
+    for arg in argv:
+        if arg == "SVG":
+            arg = put(tmp, "d.svg", SVG)
+        elif arg.startswith("JOB:"):
+            arg = put(tmp, "j.toml", JOB.replace(b"{{name}}", b"h").replace(b'post = "linuxcnc"', arg[4:].encode()))
+        args.append(arg)
+    status, message, written = run(tmp, args)
+    assert status == 2 and "Traceback" not in message and not written, message[-3000:]
+    assert named in message, message[-3000:]
