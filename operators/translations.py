@@ -3182,6 +3182,8 @@ FILE_PROBLEM_TEMPLATES = {
     "{}: file = {}: is a folder, not an ISO 14649 file ({})": "{0}：file = {1}：ISO 14649 ファイルではなくフォルダーです（{2}）",
     "{} is a folder, not an ISO 14649 file": "{0} はフォルダーです。ISO 14649 ファイルではありません",
     "{}: no tools in it: nothing to import": "{0}：工具が入っていません。取り込むものはありません",
+    "line {} is {} characters long, more than the {} this reader takes (an NC block is a few dozen): is it an NC "
+    "program?": "{0} 行目は {1} 文字あり、読める {2} 文字を超えています（NC のブロックは数十文字です）。NC プログラムですか？",
     "job file {}: [setup] machine = {} is not a machine preset; they are {}":
         "ジョブファイル {0}：[setup] machine = {1} は機械プリセットではありません。プリセットは {2} です",
     "{} (and {} more row(s) refused)": "{0}（ほかに {1} 行も拒否されました）",
