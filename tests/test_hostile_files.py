@@ -108,6 +108,15 @@ def font() -> bytes:
         return stream.read()
 
 
+def blend() -> bytes:
+    """A .blend of an empty scene (its Sheet Metal settings at their defaults: a quad to unfold)."""
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "sheet.blend")
+        bpy.ops.wm.save_as_mainfile(filepath=path, copy=True)
+        with open(path, "rb") as stream:
+            return stream.read()
+
+
 # ----- entry points -----------------------------------------------------------------------------------
 # name: (file name, good bytes or None (no good case here), a text format?, cut short is detectable?,
 #        size limit or None, argv of the batch command for a path)
@@ -148,7 +157,7 @@ ENTRIES = {
                                                                     'design = { file = "PATH" }\n'
                                                                     'objects = { shape = "STEM" }'
                                                                     .replace("STEM", stem(p)))]),
-    "turnmill --blend": ("part.blend", None, False, True, None, lambda tmp, p: ["turnmill", "--blend", p]),
+    "unfold --blend": ("sheet.blend", blend(), False, True, None, lambda tmp, p: ["unfold", "--blend", p]),
     "tools import (.toml)": ("tools.toml", TOOLS, True, True, 20_000_000, lambda tmp, p: ["tools", "import", p, "--replace"]),
     "tools import (.tbl)": ("shop.tbl", TABLE, True, False, 20_000_000, lambda tmp, p: ["tools", "import", p, "--replace"]),
 }
