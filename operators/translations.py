@@ -1414,7 +1414,7 @@ MESSAGE_TEMPLATES = {
     "plate surface {} is not a mesh: pick a mesh object whose top is the plate's top":
         '板材の曲面 {0} はメッシュではありません：上面が板材の上面になるメッシュオブジェクトを選んでください',
     'plate surface {} has no faces': '板材の曲面 {0} に面がありません',
-    '--surface {}: neither a built-in surface ({}) nor a mesh file': '--surface {0}：組み込みの曲面（{1}）でもメッシュファイルでもありません',
+    '--surface {}: no such file, nor a built-in surface ({})': '--surface {0}：ファイルがなく、組み込みの曲面（{1}）でもありません',
     'operation {}: texture marks need a texture and one (flag, fraction) pair per move':
         '工程 {0}：テクスチャの印にはテクスチャと、移動ごとに1組の（開始印, 割合）が必要です',
     'operation {}: links must mark feed moves, one flag per move':

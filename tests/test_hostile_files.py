@@ -64,6 +64,17 @@ def box_stl(lo, hi) -> bytes:
     return "\n".join(lines).encode()
 
 
+def box_obj(lo, hi) -> bytes:
+    """The box lo..hi as a Wavefront OBJ (quads, 1-based corners), with a comment in Japanese."""
+    (x0, y0, z0), (x1, y1, z1) = lo, hi
+    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0), (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
+    quads = [(1, 4, 3, 2), (5, 6, 7, 8), (1, 2, 6, 5), (2, 3, 7, 6), (3, 4, 8, 7), (4, 1, 5, 8)]
+    return ("# 彫刻の箱 café\n" + "".join(f"v {x} {y} {z}\n" for x, y, z in v)
+            + "".join("f " + " ".join(map(str, q)) + "\n" for q in quads)).encode()
+
+
+OBJ = box_obj((-20, -20, -3), (20, 20, 0))
+SURFACE = box_stl((-150, -100, -2), (150, 100, 0))
 TURNED = box_stl((-10, -10, 0), (10, 10, 30))
 CARVED = box_stl((-20, -20, -3), (20, 20, 0))
 NC = b"%\n(a square, kanji comment: \xe5\x88\x87\xe5\x89\x8a caf\xc3\xa9)\nG21 G90 G17\nG0 Z5\nG0 X0 Y0\nG1 Z-1 F200\n" \
@@ -136,6 +147,8 @@ ENTRIES = {
     "turnmill --mesh": ("part.stl", TURNED, False, True, None,
                         lambda tmp, p: ["turnmill", "--mesh", p]),
     "carve --mesh": ("design.stl", CARVED, False, True, None, lambda tmp, p: ["carve", "--mesh", p]),
+    "carve --mesh (.obj)": ("design.obj", OBJ, True, True, None, lambda tmp, p: ["carve", "--mesh", p]),
+    "engrave --surface": ("surface.stl", SURFACE, False, True, None, lambda tmp, p: ["engrave", "--surface", p]),
     "simulate --nc": ("job.ngc", NC, True, False, None,
                       lambda tmp, p: ["simulate", "--nc", p, "--tool", "flat:3", "--stock", "box:-5,-5,-5,15,15,0"]),
     "simulate --design": ("part.stl", CARVED, False, True, None,
