@@ -113,7 +113,7 @@ def scene_for(setup: dict, path: str, base_dir: str | None = None):
         return stock_scene(setup, path)
     if "blend" in setup:
         blend = os.path.join(base_dir or os.path.dirname(os.path.abspath(path)), str(setup["blend"]))
-        return batchio.open_blend(blend)
+        return batchio.open_blend(blend, f"job file {path}: [setup] blend = {setup['blend']!r}")
     scene = batchio.open_blend(None)
     sample = setup.get("sample", "name_plate")
     if sample not in samples.SCENES:

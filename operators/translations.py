@@ -1381,8 +1381,8 @@ MESSAGE_TEMPLATES = {
     '{} {}: the setting would hold {} instead; give a value the setting allows':
         '{0} {1}：設定には代わりに {2} が入ってしまいます。設定が受け付ける値を指定してください',
     '--corners: every coordinate must be a finite number of mm, got {}': '--corners：座標はすべて有限の数 (mm) にしてください（指定：{0}）',
-    '--blend {}: no such .blend file': '--blend {0}：.blend ファイルがありません',
-    '--blend {}: not a .blend file Blender can open ({})': '--blend {0}：Blender で開ける .blend ファイルではありません（{1}）',
+    '{}: no such .blend file': '{0}：.blend ファイルがありません',
+    '{}: not a .blend file Blender can open ({})': '{0}：Blender で開ける .blend ファイルではありません（{1}）',
     '--stock {}: not numbers': '--stock {0}：数値ではありません',
     '--stock {}: give box:x0,y0,z0,x1,y1,z1 or cylinder:R,H': '--stock {0}：box:x0,y0,z0,x1,y1,z1 か cylinder:R,H で指定してください',
     'no such NC file: {}': 'NC ファイルがありません：{0}',

@@ -106,6 +106,7 @@ name = "{{name}}"
 holes = [[-10.0, -10.0], [10.0, 10.0]]
 settings = { tool_number = 4, diameter = 5.0, depth = 5.0, peck = 2.0, rpm = 3000, feed = 150 }
 """
+BLEND_JOB = JOB.replace(b"stock = [-20.0, -20.0, -10.0, 20.0, 20.0, 0.0]", b'blend = "PATH"').replace(b"{{name}}", b"h")
 ROWS = "name\nJosé\n鈴木\n".encode()
 with open(os.path.join(FIXTURES, "tools", "kezuri-tools.toml"), "rb") as _stream:
     TOOLS = _stream.read()
@@ -170,6 +171,9 @@ ENTRIES = {
                                                                     'design = { file = "PATH" }\n'
                                                                     'objects = { shape = "STEM" }'
                                                                     .replace("STEM", stem(p)))]),
+    # its good .blend is read by unfold --blend below (a job needs a plate in it to run)
+    "job: [setup] blend =": ("plate.blend", None, False, True, None,
+                             lambda tmp, p: ["job", put(tmp, "job.toml", BLEND_JOB.replace(b"PATH", toml_path(p)))]),
     "unfold --blend": ("sheet.blend", blend(), False, True, None, lambda tmp, p: ["unfold", "--blend", p]),
     "tools import (.toml)": ("tools.toml", TOOLS, True, True, 20_000_000, lambda tmp, p: ["tools", "import", p, "--replace"]),
     "tools import (.tbl)": ("shop.tbl", TABLE, True, False, 20_000_000, lambda tmp, p: ["tools", "import", p, "--replace"]),
@@ -179,6 +183,10 @@ ENTRIES = {
 def stem(path: str) -> str:
     """The name of the object a design file's curves are made as (its file's name)."""
     return os.path.splitext(os.path.basename(path))[0]
+
+
+def toml_path(path: str) -> bytes:
+    return path.replace("\\", "\\\\").replace('"', '\\"').encode()
 
 
 def put(folder, name, data: bytes) -> str:
@@ -275,6 +283,11 @@ CLASS_WORDS = {"missing": "no such", "folder": "folder", "symlink loop": "loop",
                "under a file": "not a folder", "huge": "bytes"}
 
 
+# the key of a job file that names the file (the Part 21 reader's own errors name the file's path)
+JOB_KEYS = {"job: file = (stepnc)": "operation 1 ('wp'): file = ", "job: design = (svg)": "design.file = ",
+            "job: [setup] blend =": "[setup] blend = "}
+
+
 def check(status, message, written, path, case, expect, where):
     if expect == "works" or (expect == "works or refused" and status == 0):
         assert status == 0, (where, message[-3000:])
@@ -309,6 +322,9 @@ def test_a_hostile_file_through_batch(entry, case, tmp_path, library, monkeypatc
     before = library.read_bytes() if library.exists() else None
     status, message, written = run(tmp, argv)
     check(status, message, written, path, case, expect, (entry, case))
+    key = JOB_KEYS.get(entry)
+    if status and key and (entry != "job: file = (stepnc)" or case in CLASS_WORDS):
+        assert key in message, (entry, case, message[-2000:])       # the job file's key, not a batch option
     if status and argv[0] == "tools":
         assert (library.read_bytes() if library.exists() else None) == before
 
