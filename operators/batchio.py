@@ -3,22 +3,28 @@ from __future__ import annotations
 
 import os
 
+from ..toolpath.engines.textfile import file_problem, named
 from .convert import SceneInputError
 
 
-def open_blend(path: str | None):
-    """The scene to work on: the given .blend's, or a fresh empty one in millimetres."""
+def open_blend(path: str | None, shown: str | None = None):
+    """The scene to work on: the given .blend's, or a fresh empty one in millimetres.  An error
+    names the file as ``shown`` (default ``--blend path``; a job file: its ``blend =``)."""
     import bpy
 
     from . import samples
     if path:
-        if not os.path.isfile(path):
-            raise FileNotFoundError(f"--blend {path}: no such .blend file")
+        shown = shown or f"--blend {path}"
+        problem = file_problem(path, "a .blend file")
+        if problem == "no such file":
+            raise SceneInputError(f"{shown}: no such .blend file")
+        if problem:
+            raise SceneInputError(named(shown, problem))
         try:
             bpy.ops.wm.open_mainfile(filepath=os.path.abspath(path))
         except RuntimeError as error:
             reason = str(error).strip().removeprefix("Error:").strip()
-            raise SceneInputError(f"--blend {path}: not a .blend file Blender can open ({reason})") from None
+            raise SceneInputError(f"{shown}: not a .blend file Blender can open ({reason})") from None
         return bpy.context.scene
     scene = bpy.context.scene
     samples.clear_scene(scene)

@@ -20,6 +20,7 @@ from bpy_extras.io_utils import ImportHelper
 
 from ..toolpath.engines import dxffile, svgfile
 from ..toolpath.engines.designshapes import Design, DesignFileError
+from ..toolpath.engines.textfile import named
 from . import convert
 from .common import run_reported
 from .translations import translate_message
@@ -27,17 +28,25 @@ from .translations import translate_message
 READERS = {".svg": "--svg", ".dxf": "--dxf"}
 
 
-def read_design(path: str, option: str | None = None, scale: float | None = None) -> Design:
+def read_design(path: str, option: str | None = None, scale: float | None = None, shown: str | None = None) -> Design:
     """The drawing file, read by its kind (``option``: "--svg" or "--dxf"; default: by its
-    extension); ``scale``: mm per drawing unit of a DXF without units."""
-    option = option or READERS.get(os.path.splitext(path)[1].lower())
-    if option is None:
-        raise DesignFileError(f"{path}: not a design file: give an .svg or .dxf file")
-    if option == "--svg":
-        if scale is not None:
-            raise DesignFileError(f"--scale {scale:g}: a scale is for a DXF file without units; an SVG gives its size")
-        return svgfile.read_svg(path)
-    return dxffile.read_dxf(path, scale=scale)
+    extension); ``scale``: mm per drawing unit of a DXF without units.  An error in the file
+    names it as the user gave it (``shown``; default: ``option path``, or the path): the readers
+    name the file by its base name before the line and element."""
+    kind = option or READERS.get(os.path.splitext(path)[1].lower())
+    if kind is None:
+        raise DesignFileError(f"{shown or path}: not a design file: give an .svg or .dxf file")
+    if kind == "--svg" and scale is not None:
+        raise DesignFileError(f"--scale {scale:g}: a scale is for a DXF file without units; an SVG gives its size")
+    try:
+        return svgfile.read_svg(path) if kind == "--svg" else dxffile.read_dxf(path, scale=scale)
+    except DesignFileError as error:
+        message = str(error)
+        for name in (path, os.path.basename(path)):          # the reader's name for the file, replaced
+            if message.startswith(f"{name}: "):
+                message = message[len(name) + 2:]
+                break
+        raise DesignFileError(named(shown or (f"{option} {path}" if option else path), message)) from None
 
 
 def by_layer(design: Design, layers=None) -> list:
@@ -154,10 +163,10 @@ def job_design(scene, value, where: str, base_dir: str) -> list:
         raise JobFileError(f"{where}: design.at = {at!r} is not [x, y] in mm")
     path = os.path.join(base_dir, table["file"])
     try:
-        design = read_design(path, None, None if scale is None else float(scale))
+        design = read_design(path, None, None if scale is None else float(scale), f"design.file = {table['file']!r}")
         return design_objects(scene, design, layers=None if layer is None else [layer], at=tuple(map(float, at)))
     except DesignFileError as error:
-        raise JobFileError(f"{where}: design: {error}") from None
+        raise JobFileError(named(where, str(error))) from None
 
 
 class KEZURI_OT_import_design(bpy.types.Operator, ImportHelper):

@@ -17,6 +17,7 @@ from bpy.props import EnumProperty, StringProperty
 from .. import post as posts
 from ..toolpath.operations.engrave import engrave as core
 from ..toolpath.engines import meshdata
+from ..toolpath.engines.textfile import file_problem
 from ..toolpath.operations.engrave import surface_engrave
 from ..toolpath.ir.program import Tool
 from ..toolpath.job import Job, JobOperation, Setup, plan_job
@@ -336,9 +337,9 @@ def add_surface(scene, which: str):
         points = np.vstack(plate.outline)
         (x0, y0), (x1, y1) = points.min(axis=0), points.max(axis=0)
         vertices, faces = surface_engrave.SURFACES[which](x0 - 1, y0 - 1, x1 + 1, y1 + 1, -float(plate.size[2]))
-    elif not os.path.isfile(which):
-        raise convert.SceneInputError(f"--surface {which}: neither a built-in surface "
-                                      f"({', '.join(surface_engrave.SURFACES)}) nor a mesh file")
+    elif file_problem(which) == "no such file":
+        raise convert.SceneInputError(f"--surface {which}: no such file, nor a built-in surface "
+                                      f"({', '.join(surface_engrave.SURFACES)})")
     else:
         from .carve import read_mesh_file
         vertices, faces = read_mesh_file(which, "--surface")

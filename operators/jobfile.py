@@ -42,6 +42,7 @@ import time
 import tomllib
 
 from ..toolpath.feeds import programcheck
+from ..toolpath.engines.textfile import named, os_reason
 from ..toolpath.job import Job, Setup, plan_job
 from ..toolpath.pictures.setupsheet import LANGUAGES
 from .jobentry import JobEntry, JobFileError
@@ -59,11 +60,13 @@ def read(path: str, text: str | None = None) -> dict:
             data = tomllib.loads(text)
         else:
             with open(path, "rb") as stream:
-                data = tomllib.load(stream)
+                data = tomllib.loads(stream.read().decode("utf-8-sig"))     # a BOM (Notepad's UTF-8) dropped
     except FileNotFoundError:
         raise JobFileError(f"job file {path}: no such file") from None
     except IsADirectoryError:
         raise JobFileError(f"job file {path}: a folder, not a job file") from None
+    except OSError as error:
+        raise JobFileError(named(f"job file {path}", os_reason(error))) from None
     except UnicodeDecodeError:
         raise JobFileError(f"job file {path}: not UTF-8 text") from None
     except tomllib.TOMLDecodeError as error:
@@ -115,7 +118,7 @@ def scene_for(setup: dict, path: str, base_dir: str | None = None):
         return stock_scene(setup, path)
     if "blend" in setup:
         blend = os.path.join(base_dir or os.path.dirname(os.path.abspath(path)), str(setup["blend"]))
-        return batchio.open_blend(blend)
+        return batchio.open_blend(blend, f"job file {path}: [setup] blend = {setup['blend']!r}")
     scene = batchio.open_blend(None)
     sample = setup.get("sample", "name_plate")
     if sample not in samples.SCENES:
@@ -221,6 +224,10 @@ def apply_setup(scene, setup_table: dict, path: str) -> None:
     """The [setup] table's machine preset and work offset into the scene's Machine & Stock."""
     if "machine" in setup_table:
         from . import machines
+        known = [item.identifier for item in scene.kezuri.machine.bl_rna.properties["preset"].enum_items]
+        if setup_table["machine"] not in known:         # Blender's enum raised a TypeError (a traceback)
+            raise JobFileError(f"job file {path}: [setup] machine = {setup_table['machine']!r} is not a machine "
+                               f"preset; they are {', '.join(known)}")
         scene.kezuri.machine.preset = str(setup_table["machine"])
         machines.fill_machine(scene.kezuri.machine, str(setup_table["machine"]))
     if "arcs" in setup_table:

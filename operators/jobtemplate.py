@@ -19,6 +19,7 @@ import sys
 import tempfile
 import time
 
+from ..toolpath.engines.textfile import named, os_reason
 from .jobentry import JobFileError
 
 PLACEHOLDER = re.compile(r"\{\{\s*([^{}\s]+)\s*\}\}")
@@ -37,6 +38,8 @@ def read_rows(path: str) -> tuple:
         raise JobFileError(f"--each {path}: no such file") from None
     except IsADirectoryError:
         raise JobFileError(f"--each {path}: a folder, not a CSV file") from None
+    except OSError as error:
+        raise JobFileError(named(f"--each {path}", os_reason(error))) from None
     except UnicodeDecodeError:
         raise JobFileError(f"--each {path}: not UTF-8 text (save the CSV as UTF-8)") from None
     except csv.Error as error:
@@ -119,10 +122,14 @@ def batch_rows(args) -> dict:
     from . import jobfile
 
     try:
-        with open(args.file, encoding="utf-8") as stream:
+        with open(args.file, encoding="utf-8-sig") as stream:     # a BOM (Notepad's UTF-8) dropped
             template = stream.read()
     except FileNotFoundError:
         raise JobFileError(f"job file {args.file}: no such file") from None
+    except IsADirectoryError:
+        raise JobFileError(f"job file {args.file}: a folder, not a job file") from None
+    except OSError as error:
+        raise JobFileError(named(f"job file {args.file}", os_reason(error))) from None
     except UnicodeDecodeError:
         raise JobFileError(f"job file {args.file}: not UTF-8 text") from None
     columns, rows = read_rows(args.each)
@@ -142,9 +149,15 @@ def batch_rows(args) -> dict:
     started = time.perf_counter()
     results = {}
     runnable = [item for item in work if item[2] is not None]
+    if not runnable:        # a template no row can run (not TOML, say): refused, nothing written
+        message = work[0][3]
+        if len(work) > 1:
+            message = f"{message} (and {len(work) - 1} more row(s) refused)"
+        raise JobFileError(message)
     for index, folder, _, message in work:
         if message is not None:
             results[index] = {"row": index, "folder": None, "status": "bad input", "message": message}
+            print_row(results[index], len(rows))        # its reason on stderr too, not only in report.json
     if args.jobs > 1 and len(runnable) > 1:
         with tempfile.TemporaryDirectory(prefix="kezuri-rows-") as rows_dir, \
                 concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:

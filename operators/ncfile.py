@@ -7,7 +7,7 @@ from types import SimpleNamespace
 
 from ..toolpath import simulate as core
 from ..toolpath.engines import meshfile
-from ..toolpath.engines.textfile import read_text
+from ..toolpath.engines.textfile import read_text, refusal
 from .workflow import BatchCommand, Workflow
 
 
@@ -52,8 +52,9 @@ def batch(args) -> dict:
     from . import batchio, convert, preview, simview
     from .common import Progress
 
-    if not os.path.isfile(args.nc):
-        raise FileNotFoundError(f"no such NC file: {args.nc}")
+    problem = refusal(f"--nc {args.nc}", args.nc, "an NC file")
+    if problem:
+        raise core.SimulationError(problem)
     tool = ncread.parse_tool(args.tool)
     from .limits import DIAMETER, LIBRARY
     # the one table of ranges: before, flat:1e6 (a 1 km end mill) and flat:1e-9 were simulated

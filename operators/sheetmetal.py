@@ -16,7 +16,8 @@ from bpy.props import BoolProperty, StringProperty
 from bpy_extras.io_utils import ExportHelper, ImportHelper
 
 from ..toolpath.operations.sheetmetal import unfold as core
-from ..toolpath.engines.textfile import read_text
+from ..toolpath.engines.textfile import named, read_text, refusal
+from ..toolpath.ir.errors import InputError
 from . import convert, gate
 from .common import SteppedOperator, run_reported
 from .exporting import SHEET_DESCRIPTION
@@ -413,9 +414,17 @@ def apply_sheet_arguments(args, sheet) -> None:
             batchio.set_exactly(sheet, option, getattr(args, option), "--" + option.replace("_", "-"))
 
 
-def read_cdl_file(path: str):
-    """The quad's corners of a CDL file (:func:`textfile.read_text`: UTF-8 or latin-1)."""
-    return core.read_cdl(read_text(path))
+def read_cdl_file(path: str, shown: str | None = None):
+    """The quad's corners of a CDL file (:func:`textfile.read_text`: UTF-8, UTF-16 or latin-1); an
+    error names the file as the user gave it (``shown``, default the path) before the reader's line."""
+    shown = shown or path
+    problem = refusal(shown, path, "a CDL file")
+    if problem:
+        raise core.UnfoldError(problem)
+    try:
+        return core.read_cdl(read_text(path))
+    except InputError as error:
+        raise core.UnfoldError(named(shown, str(error))) from None
 
 
 def check_corners(corners, where: str):
@@ -452,9 +461,7 @@ def unfold_batch(args) -> dict:
             batchio.set_exactly(sheet, option, getattr(args, option), "--" + option.replace("_", "-"))
     apply_sheet_arguments(args, sheet)
     if args.cdl:
-        if not os.path.isfile(args.cdl):
-            raise FileNotFoundError(f"no such CDL file: {args.cdl}")
-        corners = check_corners(read_cdl_file(args.cdl), f"--cdl {args.cdl}")
+        corners = check_corners(read_cdl_file(args.cdl, f"--cdl {args.cdl}"), f"--cdl {args.cdl}")
     elif args.corners:
         corners = check_corners(parse_corners(args.corners), "--corners")
     else:

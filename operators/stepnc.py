@@ -18,7 +18,7 @@ from .. import post as posts
 from ..post import write_atomic
 from ..toolpath.operations import stepnc
 from ..toolpath.engines.meshdata import prism
-from ..toolpath.engines.textfile import read_text
+from ..toolpath.engines.textfile import file_problem, named, os_reason, read_text, refusal
 from ..toolpath.job import Job, JobOperation, Setup, plan_job
 from ..toolpath.ir.errors import InputError
 from ..toolpath.ir.program import Tool
@@ -140,10 +140,9 @@ def job_operation(scene, depsgraph, entry, post_name: str):
     if not isinstance(path, str) or not path:
         raise JobFileError(f"{entry.where}: no file: give file = \"part.stp\" (an ISO 14649 Part 21 file)")
     typed, path = path, os.path.join(entry.base_dir, path)
-    if os.path.isdir(path):
-        raise JobFileError(f"{entry.where}: file = {typed!r}: is a folder, not an ISO 14649 file ({path})")
-    if not os.path.isfile(path):
-        raise JobFileError(f"{entry.where}: file = {typed!r}: no such file ({path})")
+    problem = file_problem(path, "an ISO 14649 file")
+    if problem:
+        raise JobFileError(named(f"{entry.where}: file = {typed!r}", f"{problem} ({path})"))
     unknown = sorted(set(entry.settings) - {"order", "enabled"})
     if unknown:
         raise JobFileError(f"{entry.where}: settings.{unknown[0]} is not a STEP-NC setting; they are order, enabled")
@@ -162,9 +161,9 @@ def job_operation(scene, depsgraph, entry, post_name: str):
         text = read_text(path)
         loaded = workplan_from_text(text)
     except InputError as error:
-        raise JobFileError(f"{entry.where}: ISO 14649 file {typed!r}: {error}") from error
+        raise JobFileError(named(f"{entry.where}: file = {typed!r}", str(error))) from error
     except OSError as error:
-        raise JobFileError(f"{entry.where}: file = {typed!r}: cannot be read: {error.strerror or error} ({path})") from error
+        raise JobFileError(named(f"{entry.where}: file = {typed!r}", f"{os_reason(error)} ({path})")) from error
     return JobOperation("stepnc", entry.name, settings, StepncGeometry(text, loaded), entry.enabled), setup, frame
 
 
@@ -277,13 +276,15 @@ def pockets_part21(scene, depsgraph) -> str:
 
 def read_workplan(path: str):
     """(text, workplan) of an ISO 14649 file; an error in it (its syntax, or its data) names the
-    file as the user gave it before the line, column or instance the reader names (the reader's
-    message stays whole after it, so its Japanese is found as it is)."""
+    file as the user gave it before the line, column or instance the reader names."""
+    problem = refusal(path, path, "an ISO 14649 file")
+    if problem:
+        raise InputError(problem)
     try:
         text = read_text(path)
         return text, workplan_from_text(text)
     except InputError as error:
-        raise InputError(f"ISO 14649 file {path}: {error}") from error
+        raise InputError(named(path, str(error))) from error
 
 
 class KEZURI_OT_import_stepnc(bpy.types.Operator, ImportHelper):
@@ -496,10 +497,9 @@ def batch(args) -> dict:
     profile = batch_machine(args, scene, POST_FAMILIES, post_name)
     findings = []
     try:
-        if os.path.isdir(path):
-            raise InputError(f"{path} is a folder, not an ISO 14649 file")
-        if not os.path.isfile(path):
-            raise FileNotFoundError(f"no such ISO 14649 file: {path}")
+        problem = refusal(f"--input {path}", path)
+        if problem:
+            raise InputError(problem)
         text, loaded = read_workplan(path)      # read once: the plan takes it (a big file reads in seconds)
         fill_workplan_list(scene, os.path.abspath(path), loaded)
         if args.order:

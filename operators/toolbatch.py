@@ -49,7 +49,7 @@ def run(args) -> dict:
         return listing(library, path)
     target = os.path.abspath(args.file)
     if args.action == "import":
-        incoming, notes = formats.read_path(args.file, args.format, args.units)
+        incoming, notes = formats.read_import(args.file, args.format, args.units)
         merged, added, replaced = library.merged(incoming, args.replace, source=args.file)
         if merged != library:
             store.save(path, merged)

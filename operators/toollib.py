@@ -234,7 +234,7 @@ class KEZURI_OT_toollib_import(ToolLibraryOperator, bpy.types.Operator):
         from .common import blender_path
 
         path = blender_path(self.filepath)
-        incoming, notes = formats.read_path(path, None if self.file_format == "AUTO" else self.file_format,
+        incoming, notes = formats.read_import(path, None if self.file_format == "AUTO" else self.file_format,
                                             self.units)
         merged, added, replaced = shown_library(context).merged(incoming, self.replace, source=path)
         toolstore.save(merged)

@@ -843,6 +843,11 @@ def japanese_message(text: str) -> str | None:
                 shown = _interface_name(english)
                 values = [value.replace(english, shown) for value in values]
             return japanese.format(*values)
+    name, colon, rest = text.partition(": ")       # a message under the name of the file it is about
+    if colon:                                      # (textfile.named: "--cdl q.cdl: CDL line 7: ...")
+        inner = japanese_message(rest) or TRANSLATIONS[LOCALE].get((DEFAULT, rest))
+        if inner:
+            return f"{name}：{inner}"
     return None
 
 
@@ -864,8 +869,7 @@ INTERFACE_NAMES = {"{}: {} = {} is outside the allowed range {}": (0, 1),
                    "mm the turret punch control addresses": (0,),
                    "the flat pattern of {}": (0,), "piece {} of {} = {} mm": (1,)}
 # Templates one of whose values is itself a message with a template of its own (its position).
-NESTED = {"ISO 14649 file {}: {}": (1,), "{}: ISO 14649 file {}: {}": (2,),
-          "{}: {} = {} mm: {} takes {} hits, more than the {} one program may have; raise the pitch": (3,),
+NESTED = {"{}: {} = {} mm: {} takes {} hits, more than the {} one program may have; raise the pitch": (3,),
           "{}: {}: the cut contour is {} x {} mm and reaches {} mm from the program's origin, beyond the {} "
           "mm the turret punch control addresses": (1,)}
 
@@ -1390,8 +1394,8 @@ MESSAGE_TEMPLATES = {
     '{} {}: the setting would hold {} instead; give a value the setting allows':
         '{0} {1}：設定には代わりに {2} が入ってしまいます。設定が受け付ける値を指定してください',
     '--corners: every coordinate must be a finite number of mm, got {}': '--corners：座標はすべて有限の数 (mm) にしてください（指定：{0}）',
-    '--blend {}: no such .blend file': '--blend {0}：.blend ファイルがありません',
-    '--blend {}: not a .blend file Blender can open ({})': '--blend {0}：Blender で開ける .blend ファイルではありません（{1}）',
+    '{}: no such .blend file': '{0}：.blend ファイルがありません',
+    '{}: not a .blend file Blender can open ({})': '{0}：Blender で開ける .blend ファイルではありません（{1}）',
     '--stock {}: not numbers': '--stock {0}：数値ではありません',
     '--stock {}: give box:x0,y0,z0,x1,y1,z1 or cylinder:R,H': '--stock {0}：box:x0,y0,z0,x1,y1,z1 か cylinder:R,H で指定してください',
     'no such NC file: {}': 'NC ファイルがありません：{0}',
@@ -1423,7 +1427,7 @@ MESSAGE_TEMPLATES = {
     "plate surface {} is not a mesh: pick a mesh object whose top is the plate's top":
         '板材の曲面 {0} はメッシュではありません：上面が板材の上面になるメッシュオブジェクトを選んでください',
     'plate surface {} has no faces': '板材の曲面 {0} に面がありません',
-    '--surface {}: neither a built-in surface ({}) nor a mesh file': '--surface {0}：組み込みの曲面（{1}）でもメッシュファイルでもありません',
+    '--surface {}: no such file, nor a built-in surface ({})': '--surface {0}：ファイルがなく、組み込みの曲面（{1}）でもありません',
     'operation {}: texture marks need a texture and one (flag, fraction) pair per move':
         '工程 {0}：テクスチャの印にはテクスチャと、移動ごとに1組の（開始印, 割合）が必要です',
     'operation {}: links must mark feed moves, one flag per move':
@@ -2000,13 +2004,6 @@ MESSAGE_TEMPLATES = {
         '{0}：STEP-NC のワークプランはオブジェクトではなく file = "..." から読みます',
     '{}: no file: give file = "part.stp" (an ISO 14649 Part 21 file)':
         '{0}：ファイルがありません：file = "part.stp"（ISO 14649 Part 21 ファイル）を指定してください',
-    '{}: file = {}: is a folder, not an ISO 14649 file ({})': '{0}：file = {1} は ISO 14649 ファイルではなくフォルダーです（{2}）',
-    '{}: file = {}: no such file ({})': '{0}：file = {1}：ファイルがありません（{2}）',
-    '{}: file = {}: cannot be read: {} ({})': '{0}：file = {1} を読めません：{2}（{3}）',
-    '{} is a folder, not an ISO 14649 file': '{0} は ISO 14649 ファイルではなくフォルダーです',
-    # a file's name before a message of the reader's own (its line, column or instance)
-    'ISO 14649 file {}: {}': 'ISO 14649 ファイル {0}：{1}',
-    '{}: ISO 14649 file {}: {}': '{0}：ISO 14649 ファイル {1}：{2}',
     '{}: settings.{} is not a STEP-NC setting; they are order, enabled': '{0}：settings.{1} は STEP-NC の設定ではありません（設定は order、enabled）',
     '{}: settings.{} = {} is not a list of instance ids': '{0}：settings.{1} = {2} はインスタンス ID のリストではありません',
     '{}: objects.{}: a turn-mill operation takes objects.part': '{0}：objects.{1}：複合旋盤加工は objects.part を取ります',
@@ -3239,6 +3236,38 @@ MESSAGE_TEMPLATES["setup sheet language {}: one of {}"] = "段取りシートの
 MESSAGE_TEMPLATES["the export wrote {}, not {}"] = "書き出しが {1} ではなく {0} に書き込みました"
 MESSAGE_TEMPLATES["job file {}: [setup] language = {} is not one of {}"] = \
     "ジョブファイル {0}：[setup] の language = {1} は {2} のいずれでもありません"
+# a file the user gave that cannot be read (textfile.file_problem), named by its option or key
+FILE_PROBLEM_TEXTS = {
+    "no such file": "ファイルがありません",
+    "no such file (a part of the path is a file, not a folder)": "ファイルがありません（パスの途中がフォルダーではなくファイルです）",
+    "a symbolic link that leads round in a loop, to no file": "シンボリックリンクが循環していて、ファイルに行き着きません",
+    "the path is too long for the file system": "パスがファイルシステムの扱える長さを超えています",
+    "not readable (permission denied)": "読み取れません（権限がありません）",
+    "not a path (it holds a NUL character)": "パスではありません（NUL 文字を含みます）",
+    "a folder, not a file": "ファイルではなくフォルダーです",
+    "a file": "ファイル", "a drawing file": "図面ファイル", "a mesh file": "メッシュファイル", "an NC file": "NC ファイル",
+    "a CDL file": "CDL ファイル", "an ISO 14649 file": "ISO 14649 ファイル", "a font file": "フォントファイル",
+    "a .blend file": ".blend ファイル",
+}
+FILE_PROBLEM_TEMPLATES = {
+    "a folder, not {}": "フォルダーです（{0}ではありません）",
+    "not a regular file (a device or a pipe), not {}": "通常のファイルではありません（デバイスかパイプです。{0}ではありません）",
+    "cannot be read ({})": "読み取れません（{0}）",
+    "{}: no tools in it: nothing to import": "{0}：工具が入っていません。取り込むものはありません",
+    "line {} is {} characters long, more than the {} this reader takes (an NC block is a few dozen): is it an NC "
+    "program?": "{0} 行目は {1} 文字あり、読める {2} 文字を超えています（NC のブロックは数十文字です）。NC プログラムですか？",
+    "job file {}: [setup] machine = {} is not a machine preset; they are {}":
+        "ジョブファイル {0}：[setup] machine = {1} は機械プリセットではありません。プリセットは {2} です",
+    "{} (and {} more row(s) refused)": "{0}（ほかに {1} 行も拒否されました）",
+}
+for _english, _japanese in FILE_PROBLEM_TEXTS.items():      # a job file's file = "...": the path it came to
+    FILE_PROBLEM_TEMPLATES[_english + " ({})"] = _japanese + "（{0}）"
+NESTED["a folder, not {}"] = (0,)
+NESTED["--nc {}: {}"] = (1,)
+NESTED["not a regular file (a device or a pipe), not {}"] = (0,)
+NESTED["{} (and {} more row(s) refused)"] = (0,)
+MESSAGES.update(FILE_PROBLEM_TEXTS)
+MESSAGE_TEMPLATES.update(FILE_PROBLEM_TEMPLATES)
 TRANSLATIONS = _build()
 _COMPILED = _compiled_templates()
 

@@ -16,6 +16,7 @@ import os
 import numpy as np
 
 from ..toolpath.engines import region as rg
+from ..toolpath.engines.textfile import file_problem, named
 from ..toolpath.ir.program import ProgramError
 from ..toolpath.job import JobOperation, Setup
 from ..toolpath.operations.pocket import pocket as pocket_core
@@ -81,6 +82,9 @@ def font_path(font: str, base_dir: str, where: str) -> str:
     bundled = os.path.join(bpy.utils.system_resource("DATAFILES", path="fonts") or "", os.path.basename(font))
     if os.path.isfile(bundled):
         return bundled
+    problem = file_problem(given, "a font file")
+    if problem not in (None, "no such file"):          # a folder, a link loop, a path too long ...
+        raise JobFileError(named(f"{where}: text.font = {font!r}", problem))
     raise JobFileError(f"{where}: text.font = {font!r}: no such font file (beside the job file, or among "
                        "Blender's fonts)")
 

@@ -136,9 +136,9 @@ BAD_JOBS = {
     "stepnc file missing": ('[[operations]]\nkind = "stepnc"\nname = "wp"\nfile = "parts/none.stp"\n',
                             "operation 1 ('wp'): file = 'parts/none.stp': no such file"),
     "stepnc file a folder": ('[[operations]]\nkind = "stepnc"\nname = "wp"\nfile = "."\n',
-                             "operation 1 ('wp'): file = '.': is a folder, not an ISO 14649 file"),
+                             "operation 1 ('wp'): file = '.': a folder, not an ISO 14649 file"),
     "stepnc file bad": ('[[operations]]\nkind = "stepnc"\nname = "wp"\nfile = "bad.toml"\n',
-                        "operation 1 ('wp'): ISO 14649 file 'bad.toml': line 1, column 1"),
+                        "operation 1 ('wp'): file = 'bad.toml': line 1, column 1"),
     "stock upside down": ('[setup]\nstock = [0.0, 0.0, 5.0, 10.0, 10.0, 0.0]\n[[operations]]\nkind = "drill"\nname = "b"\n'
                           'holes = [[5.0, 5.0]]\n', "each lower corner value must lie below the upper one"),
 }

@@ -170,8 +170,8 @@ def test_batch_job_with_a_design_writes_the_program_and_refuses_a_bad_design_by_
     (tmp_path / "sign.svg").write_text(SIGN.replace('r="8"', 'r="1e999"'))
     status, message = run_batch("job", str(path), "--out", str(tmp_path / "out2"))
     assert status == 2
-    assert "job file sign.toml: operation 1 ('sign letters'): design: sign.svg: <circle id='dot'> (line 6): " \
-           "r='1e999' is not a finite number" in message
+    assert "job file sign.toml: operation 1 ('sign letters'): design.file = 'sign.svg': <circle id='dot'> " \
+           "(line 6): r='1e999' is not a finite number" in message
     path.write_text(JOB.format(letters="sign Letters").replace('layer = "Letters", ', "wrong = 1, "))
     status, message = run_batch("job", str(path), "--out", str(tmp_path / "out3"))
     assert status == 2 and "design.wrong is not a key of a design" in message

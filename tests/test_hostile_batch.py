@@ -559,11 +559,11 @@ def test_an_error_in_a_stepnc_file_names_the_file_as_typed(tmp_path, monkeypatch
     (tmp_path / "parts" / "plate 7.stp").write_text(text)
     monkeypatch.chdir(tmp_path)
     status, message, written = run("stepnc", "--input", os.path.join("parts", "plate 7.stp"))
-    refused(status, message, written, "ISO 14649 file " + os.path.join("parts", "plate 7.stp") + named)
+    refused(status, message, written, os.path.join("parts", "plate 7.stp") + named)
 
 
 def test_a_folder_given_as_the_stepnc_file_is_named_as_a_folder(tmp_path):
     folder = tmp_path / "plate.stp"
     folder.mkdir()
     status, message, written = run("stepnc", "--input", str(folder))
-    refused(status, message, written, f"{folder} is a folder, not an ISO 14649 file")
+    refused(status, message, written, f"--input {folder}: a folder, not a file")

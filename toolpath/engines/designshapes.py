@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..ir.errors import MAX_REACH_MM, InputError
+from .textfile import refusal
 
 # Pieces whose ends lie this close (mm) are one point: a laser shop's LINEs meet to 1e-6 mm, a
 # drawing rounded to 0.01 mm on export still closes.
@@ -36,8 +37,9 @@ class DesignFileError(InputError):
 def checked_file(path: str) -> str:
     """The file's name, once it is a file of at most MAX_FILE_BYTES (else DesignFileError)."""
     name = os.path.basename(path)
-    if not os.path.isfile(path):
-        raise DesignFileError(f"{path}: no such file")
+    problem = refusal(path, path, "a drawing file")
+    if problem:
+        raise DesignFileError(problem)
     if os.path.getsize(path) > MAX_FILE_BYTES:
         raise DesignFileError(f"{name}: {os.path.getsize(path)} bytes, more than a drawing of "
                               f"{MAX_FILE_BYTES} bytes is refused")

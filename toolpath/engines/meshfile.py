@@ -11,11 +11,10 @@ mesh, outward normals, a design that is not flat) it checks itself.  Every error
 """
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
 from ..ir.errors import MAX_REACH_MM, InputError
+from .textfile import refusal
 
 
 class MeshFileError(InputError):
@@ -29,8 +28,9 @@ def read_mesh(path: str, option: str = "--mesh") -> tuple[np.ndarray, np.ndarray
     of the file; then coincident vertices are merged."""
     import trimesh
 
-    if not os.path.isfile(path):
-        raise MeshFileError(f"{option} {path}: no such file")
+    problem = refusal(f"{option} {path}", path, "a mesh file")
+    if problem:
+        raise MeshFileError(problem)
     try:
         loaded = trimesh.load(path, force="mesh", process=False)
     except Exception as error:  # noqa: BLE001 - trimesh raises many kinds for a bad file

@@ -109,6 +109,11 @@ AXES = ("X", "Y", "Z", "C")
 WORD_USE = {"F": "feed", "T": "tool number", "H": "tool length offset number"}
 
 
+# The longest line read (characters): 50 MB of NULs as one line took 10 s and 830 MB to refuse.
+# A line of a megabyte of words is still read, and refused for what is wrong in it (test_hostile).
+MAX_LINE_CHARS = 4_000_000
+
+
 class NCReadError(InputError):
     """A line of the NC file the reader cannot follow; the message names it."""
 
@@ -251,6 +256,9 @@ class _Reader:
 
     def block(self, number: int, raw: str) -> bool:
         """Follow line ``number``; True when it ends the program."""
+        if len(raw) > MAX_LINE_CHARS:     # a binary file as one line: its comments were stripped a character at a time
+            raise NCReadError(f"line {number} is {len(raw)} characters long, more than the {MAX_LINE_CHARS} this reader "
+                              "takes (an NC block is a few dozen): is it an NC program?")
         line = _strip_comments(raw, number, self.comments)
         if line.startswith("%"):
             if self.started:     # the closing %: the end of the program (LinuxCNC, and the end of the tape on a Fanuc)

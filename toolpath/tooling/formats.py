@@ -63,6 +63,15 @@ def read_path(path: str, fmt: str | None = None, units: str = "mm") -> tuple:
     return parse(read_text_file(path), path, fmt, units)
 
 
+def read_import(path: str, fmt: str | None = None, units: str = "mm") -> tuple:
+    """:func:`read_path` of a file to merge into the library: one without a tool (an empty table,
+    say) is refused naming it, not imported as nothing."""
+    incoming, notes = read_path(path, fmt, units)
+    if not len(incoming):
+        raise ToolLibraryError(f"{path}: no tools in it: nothing to import")
+    return incoming, notes
+
+
 def files_for(path: str, library: ToolLibrary, fmt: str | None = None, units: str = "mm") -> list:
     """[(file, text)] an export to ``path`` writes (a FreeCAD library writes its bit files too)."""
     fmt = format_of(path, fmt)

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import os
 
+from ..engines.textfile import named, os_reason
 from .library import ToolLibraryError
 
 MAX_BYTES = 20_000_000      # a tool library is kilobytes; more is not one
@@ -21,7 +22,7 @@ def read_text_file(path: str) -> str:
     except IsADirectoryError:
         raise ToolLibraryError(f"{path}: a folder, not a tool library file") from None
     except OSError as error:
-        raise ToolLibraryError(f"{path}: cannot be read ({error.strerror})") from None
+        raise ToolLibraryError(named(path, os_reason(error))) from None
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as error:
