@@ -7,7 +7,6 @@ tests/sheet_reader.py, an independent html.parser reader).  The English sheet of
 the batch sheet of the same job (batch run in this process on the same scene, same post) in every
 part but the pictures, which the panel does not draw (README "Setup sheet")."""
 import contextlib
-import importlib.util
 import io
 import os
 
@@ -24,14 +23,7 @@ FIXTURES = os.environ.get("KEZURI_FIXTURES", os.path.join(os.path.dirname(__file
 EX1 = os.path.join(FIXTURES, "iso14649", "ex1.stp")
 
 
-def load_batch():
-    spec = importlib.util.spec_from_file_location("kezuri_batch_panel_sheets", os.path.join(ROOT, "batch.py"))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-BATCH = load_batch()
+from test_hostile_batch import BATCH  # noqa: E402  (batch.py loaded once for the in-process suites)
 
 
 def run_batch(out, *argv) -> None:

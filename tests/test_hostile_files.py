@@ -22,6 +22,7 @@ import pytest
 bpy = pytest.importorskip("bpy")
 from test_hostile import time_limit  # noqa: E402
 from test_hostile_batch import BATCH  # noqa: E402
+from test_unfold import PAPER_CDL  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FIXTURES = os.path.join(ROOT, "tests", "fixtures")
@@ -34,19 +35,7 @@ JAPANESE = "部品 フォルダ"          # a folder name with a space and Japan
 with open(os.path.join(FIXTURES, "iso14649", "ex1.stp"), "rb") as _stream:
     STEP = _stream.read().replace(b"HEADER;", "HEADER;\n/* 切削 café */".encode(), 1)   # non-ASCII in a comment
 
-CDL = b"""LINE 0.0000000000, 0.0000000000, 0.0000000000,
-0.0000000000, 30.0000000000, 100.0000000000, 1, 1, 1,
-0, 0, 1, 1
-LINE 0.0000000000, 30.0000000000, 100.0000000000,
-100.0000000000, 50.0000000000, 100.0000000000, 1, 1,
-1, 0, 0, 1, 1
-LINE 100.0000000000, 50.0000000000, 100.0000000000,
-100.0000000000, 40.0000000000, 0.0000000000, 1, 1, 1,
-0, 0, 1, 1
-LINE 100.0000000000, 40.0000000000, 0.0000000000,
-0.0000000000, 0.0000000000, 0.0000000000, 1, 1, 1, 0,
-0, 1, 1
-"""
+CDL = PAPER_CDL.encode()                 # the seed paper's quad (tests/test_unfold.py)
 
 
 def box_stl(lo, hi) -> bytes:
