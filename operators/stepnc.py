@@ -509,7 +509,9 @@ def batch(args) -> dict:
             Progress(None, "check"), profile, findings, (text, loaded))
         if staging is not None:
             path = sample_file(args.out)
-            scene.kezuri.stepnc.filepath = os.path.abspath(path)    # the scene points at the kept copy
+            # the scene points at the kept copy where it will be once the run's files move into --out
+            final = getattr(args, "final", None)
+            scene.kezuri.stepnc.filepath = os.path.abspath(final(path) if final is not None else path)
     finally:
         if staging is not None:
             shutil.rmtree(staging, ignore_errors=True)

@@ -153,8 +153,8 @@ def test_the_panel_sheet_is_the_batch_sheet_but_its_pictures(empty_scene, tmp_pa
     argv, program_name = BATCH_RUNS[name]
     run_batch(tmp_path / "batch", *argv)
     scene = bpy.context.scene
-    if name == "stepnc":        # batch's scene names its sample where batch staged it; the copy it kept is in --out
-        scene.kezuri.stepnc.filepath = str(tmp_path / "batch" / "sample.stp")
+    if name == "stepnc":        # batch's scene names the sample it converted where batch kept it, in --out
+        assert scene.kezuri.stepnc.filepath == str(tmp_path / "batch" / "sample.stp")
     panel = tmp_path / "panel" / program_name
     panel.parent.mkdir()
     _, operator, post, _ = EXPORTS[name.split("-")[0]]
