@@ -148,17 +148,17 @@ def machine_label(machine):
 
 
 def write_program_sheet(nc_path: str, program, report: dict, machine, post: str, language: str = "en", *,
-                        job_name: str | None = None, stick_out: dict | None = None) -> str:
+                        job_name: str | None = None, stick_out: dict | None = None, pictures=()) -> str:
     """A panel's export: the setup sheet of ``program`` (an IR Program, written to ``nc_path``)
     beside it as ``<program>-setup-sheet.html``, from the gate's ``report`` entries (``gate``,
     ``feeds``, ``warnings``), in ``language``, titled ``job_name`` (None: the program's name),
-    with the tools' ``stick_out`` ({tool number: mm}); its path."""
+    with the tools' ``stick_out`` ({tool number: mm}) and ``pictures`` ([(caption, PNG bytes)]); its path."""
     from ..post.output import write_atomic
     from ..toolpath.pictures import setupsheet
 
     with open(nc_path, "rb") as stream:
         programs = [setupsheet.program_file(os.path.basename(nc_path), stream.read())]
-    sheet = setupsheet.sheet_from(program, report, machine, post, programs=programs, job_name=job_name,
+    sheet = setupsheet.sheet_from(program, report, machine, post, list(pictures), programs=programs, job_name=job_name,
                                   stick_out=stick_out)
     translate = None
     if language == "ja":

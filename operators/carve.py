@@ -142,6 +142,15 @@ def show_carve(scene, job: CarveJob) -> list:
                                    tube_mm=0.15)
 
 
+def toolpaths_bytes(job: CarveJob) -> bytes:
+    """The toolpaths picture batch ``carve`` draws (``carve-toolpaths.png``), as PNG bytes."""
+    from . import preview
+
+    return preview.toolpath_bytes(job.result.program.operations, simulation(job).stock,
+                                  [(job.vertices, job.faces, preview.picture_jobs.PART_COLOUR)],
+                                  "CARVING: TOOLPATHS OVER THE DESIGN")
+
+
 def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | None = None,
                  allow: bool | str = False, checked: bool = False, orient_spindle: bool = False,
                  machine=None, findings: list | None = None, progress=None, sheet: dict | None = None) -> str:
@@ -154,7 +163,7 @@ def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | No
     report = None if checked else gate.check(simulation(job), allow, progress, machine=post.machine)[1]
     if sheet is not None:
         sheet.update(program=job.result.program, gate=report, machine=post.machine,
-                     warnings=list(job.result.warnings))
+                     warnings=list(job.result.warnings), pictures=lambda: [("Toolpaths", toolpaths_bytes(job))])
     return write_program(path, text, post, findings)
 
 
@@ -387,10 +396,8 @@ def batch(args) -> dict:
     if batchio.shown():
         show_carve(scene, job)
         convert.mesh_object(scene, f"{PREFIX} design", job.vertices, job.faces, job.frame)
-    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "carve-toolpaths.png"), job.result.program.operations,
-                                         simulation(job).stock,
-                                         [(job.vertices, job.faces, preview.picture_jobs.PART_COLOUR)],
-                                         "CARVING: TOOLPATHS OVER THE DESIGN")
+    from ..post.output import write_atomic
+    toolpaths_png = write_atomic(os.path.join(args.out, "carve-toolpaths.png"), toolpaths_bytes(job))
     mesh = simulated.result.mesh(250_000)
     if batchio.shown():
         simview.show_simulation(scene, simulated, mesh=mesh)

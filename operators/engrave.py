@@ -193,7 +193,8 @@ def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str 
     text = post.to_text(program)
     report = None if checked else gate.check(simulation(job), allow, progress, machine=post.machine)[1]
     if sheet is not None:
-        sheet.update(program=program, gate=report, machine=post.machine, warnings=list(job.result.warnings))
+        sheet.update(program=program, gate=report, machine=post.machine, warnings=list(job.result.warnings),
+                     pictures=lambda: [("Toolpaths", toolpaths_bytes(job))])
     return write_program(path, text, post, findings)
 
 
@@ -346,6 +347,19 @@ def add_surface(scene, which: str):
     obj = convert.mesh_object(scene, "Plate Surface", vertices, faces, plate.frame)
     settings.engrave.surface = obj
     return obj
+
+
+def toolpaths_bytes(job: EngraveJob) -> bytes:
+    """The toolpaths picture batch ``engrave`` draws (``engrave-toolpaths.png``), as PNG bytes."""
+    from . import preview
+
+    setup = simulation(job)
+    solids = []
+    if job.surface is not None:
+        design = setup.extra["design"]
+        solids = [(design.vertices, design.faces, preview.picture_jobs.PART_COLOUR)]
+    return preview.toolpath_bytes(job.baked.operations, setup.stock, solids, "ENGRAVING: TOOLPATHS",
+                                  marks=uncut_marks(job.result))
 
 
 def uncut_marks(result) -> list:

@@ -92,7 +92,9 @@ class ProgramSheet:
     the IR ``program`` written, the gate's ``gate`` report, the ``machine`` profile (None: the
     post's own), the post's ``post`` label, the batch report's ``workflow`` name (the sheet's
     title "<workflow>: <program>"), the workflow's ``warnings`` (before the findings on the
-    written program) and the feeds check's ``feeds`` entries ([] with no material)."""
+    written program), the feeds check's ``feeds`` entries ([] with no material) and
+    ``pictures() -> [(caption, PNG bytes)]``: the pictures as batch draws them (the toolpaths),
+    called only when the sheet is written, on the export's worker (None: no pictures)."""
 
     program: object
     gate: dict | None
@@ -101,6 +103,7 @@ class ProgramSheet:
     workflow: str
     warnings: list = field(default_factory=list)
     feeds: list = field(default_factory=list)
+    pictures: object = None
 
 
 @dataclass
@@ -149,7 +152,7 @@ def milling_export_request(scene, post_name: str, target: str, families, compute
         feeds = feeds_check(sheet["program"], sheet["machine"], findings)
         return Exported(written, job.replanned, findings,
                         sheet=ProgramSheet(sheet["program"], sheet["gate"], sheet["machine"], label, workflow,
-                                           sheet["warnings"], feeds))
+                                           sheet["warnings"], feeds, sheet.get("pictures")))
     return work
 
 
@@ -194,7 +197,8 @@ def program_and_sheet(request, target: str, language: str | None):
                 program = (sheet.gate or {}).get("program") or sheet.program.name
                 write_program_sheet(staged, sheet.program, report, sheet.machine, sheet.post, language,
                                     job_name=f"{sheet.workflow}: {program}",
-                                    stick_out=stick_outs(sheet.program.summary(), library))
+                                    stick_out=stick_outs(sheet.program.summary(), library),
+                                    pictures=sheet.pictures() if sheet.pictures is not None else ())
             staging.commit()
         except OutputError as error:        # named by the paths the user gave, not the hidden folder's
             raise OutputError(staging.final(str(error))) from None

@@ -171,6 +171,7 @@ def export_job_request(scene, path: str, post_name: str, allow=False):
     without touching Blender data; its ``then`` records the rows' states in the scene."""
     from .. import post as posts
     from . import gate
+    from .preview import toolpath_bytes
     from .workflow import SimulationSetup
 
     job, frame, families = build(scene, post_name)
@@ -198,7 +199,9 @@ def export_job_request(scene, path: str, post_name: str, allow=False):
         feeds = feeds_check(planned, program, library)
         findings += programcheck.warnings(feeds)   # the feeds: warnings only
         # the setup sheet beside the program (NCExport writes both): as batch job's
-        sheet = ProgramSheet(program, checked, setup.machine, post_label, "job", list(planned.warnings), feeds)
+        sheet = ProgramSheet(program, checked, setup.machine, post_label, "job", list(planned.warnings), feeds,
+                             lambda: [("Toolpaths", toolpath_bytes(cut.operations, stock, [],
+                                                                   f"JOB {setup.name.upper()}: TOOLPATHS"))])
         return Exported(written, planned.replanned(), findings, lambda scene: record(scene, planned), sheet)
     return compute
 

@@ -45,9 +45,16 @@ def toolpath_png(path: str, operations, stock, solids=(), title: str = "", tilt_
     ``caption``: a line under the title (what was not cut); ``marks``: places left uncut,
     [(x, y, z, label)]; ``highlights``: [(vertices, faces, rgb, legend label)] drawn over the
     solids, each in the legend."""
+    return write_atomic(path, toolpath_bytes(operations, stock, solids, title, tilt_deg, caption, marks, highlights))
+
+
+def toolpath_bytes(operations, stock, solids=(), title: str = "", tilt_deg: float = 35.0,
+                   caption: str = "", marks=(), highlights=()) -> bytes:
+    """:func:`toolpath_png`'s picture as PNG bytes, in memory (a panel export's setup sheet draws
+    it on the export's worker: the core's rasteriser only, no Blender data)."""
     picture = picture_jobs.toolpath_picture(list(operations), stock, list(solids), title, SIZE, tilt_deg,
                                             caption=caption, marks=marks, highlights=list(highlights))
-    return write_atomic(path, picture.png())
+    return picture.png()
 
 
 def simulation_png(path: str, result, title: str = "", tilt_deg: float = 35.0, mesh=None, marks=()) -> str:

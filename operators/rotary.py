@@ -135,6 +135,14 @@ def extension_for(post_name: str) -> str:
     return posts.extension(POST_FAMILIES, post_name)
 
 
+def toolpaths_bytes(job: RotaryJob) -> bytes:
+    """The toolpaths picture batch ``rotary`` draws (``rotary-toolpaths.png``), as PNG bytes."""
+    from . import preview
+
+    return preview.toolpath_bytes(job.result.program.operations, simulation(job).stock, [],
+                                  "ROTARY TABLE C-X-Z: TOOLPATHS (PART FRAME)")
+
+
 def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str = False, checked: bool = False,
                   machine=None, findings: list | None = None, progress=None, sheet: dict | None = None) -> str:
     """Write the program; the export gate simulates it first unless the caller has (``checked``);
@@ -145,7 +153,7 @@ def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str =
     text = post.to_text(job.result.program)
     report = None if checked else gate.check(simulation(job), allow, progress, machine=post.machine)[1]
     if sheet is not None:
-        sheet.update(gate=report, machine=post.machine)
+        sheet.update(gate=report, machine=post.machine, pictures=lambda: [("Toolpaths", toolpaths_bytes(job))])
     return write_program(path, text, post, findings)
 
 
@@ -167,7 +175,7 @@ def nc_export_request(scene, depsgraph, post_name: str, target: str):
         feeds = feeds_check(job.result.program, sheet["machine"], findings)
         return Exported(written, job.replanned, findings,
                         sheet=ProgramSheet(job.result.program, sheet["gate"], sheet["machine"], label, "rotary",
-                                           [], feeds))
+                                           [], feeds, sheet["pictures"]))
     return work
 
 
@@ -287,9 +295,8 @@ def batch(args) -> dict:
                             machine=machine, findings=findings)
     if batchio.shown():
         show_rotary(scene, job)
-    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "rotary-toolpaths.png"),
-                                         job.result.program.operations, simulation(job).stock, [],
-                                         "ROTARY TABLE C-X-Z: TOOLPATHS (PART FRAME)")
+    from ..post.output import write_atomic
+    toolpaths_png = write_atomic(os.path.join(args.out, "rotary-toolpaths.png"), toolpaths_bytes(job))
     simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "rotary", checked)
     report = {
         "gate": gate_report,

@@ -222,6 +222,16 @@ def unmachined_warnings(job: TurnMillJob) -> list:
     return turnmill_kind.unmachined_warnings(job.plan)
 
 
+def toolpaths_bytes(job: TurnMillJob) -> bytes:
+    """The toolpaths picture batch ``turnmill`` draws (``turnmill-toolpaths.png``), as PNG bytes."""
+    from . import preview
+
+    return preview.toolpath_bytes(job.plan.program.operations, job.stock,
+                                  [(job.vertices, job.faces, preview.picture_jobs.PART_COLOUR)],
+                                  "TURN-MILL X-Z-C: TOOLPATHS ON THE PART", tilt_deg=preview.SIDE_VIEW_DEG,
+                                  highlights=skipped_highlight(job))
+
+
 def export_turnmill(job: TurnMillJob, post_name: str, path: str, allow: bool | str = False,
                     checked: bool = False, progress=None, sheet: dict | None = None) -> tuple:
     """Write the program; the export gate simulates it first unless the caller has (``checked``;
@@ -231,7 +241,7 @@ def export_turnmill(job: TurnMillJob, post_name: str, path: str, allow: bool | s
     text = post.to_text(job.plan.program)
     report = None if checked else gate.check(simulation(job), allow, progress)[1]
     if sheet is not None:
-        sheet.update(gate=report)
+        sheet.update(gate=report, pictures=lambda: [("Toolpaths", toolpaths_bytes(job))])
     return write_atomic(path, text), machine_findings(job, post, text)
 
 
@@ -249,7 +259,8 @@ def nc_export_request(scene, depsgraph, post_name: str, target: str):
         written, findings = export_turnmill(job, post_name, target, allow=allow, progress=checking, sheet=sheet)
         # the sheet's notes as batch's report has them: the unmachined features, then the machine's findings
         return Exported(written, job.replanned, unmachined_warnings(job) + findings,
-                        sheet=ProgramSheet(job.plan.program, sheet["gate"], job.profile, label, "turnmill"))
+                        sheet=ProgramSheet(job.plan.program, sheet["gate"], job.profile, label, "turnmill",
+                                           pictures=sheet["pictures"]))
     return work
 
 
@@ -431,10 +442,7 @@ def batch(args) -> dict:
         print(f"kezuri: warning: {warning}", file=sys.stderr)
     if batchio.shown():
         show_turnmill(scene, job)
-    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "turnmill-toolpaths.png"), job.plan.program.operations,
-                                         job.stock, [(job.vertices, job.faces, preview.picture_jobs.PART_COLOUR)],
-                                         "TURN-MILL X-Z-C: TOOLPATHS ON THE PART", tilt_deg=preview.SIDE_VIEW_DEG,
-                                         highlights=skipped_highlight(job))
+    toolpaths_png = write_atomic(os.path.join(args.out, "turnmill-toolpaths.png"), toolpaths_bytes(job))
     simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "turnmill", checked)
     return {
         "gate": gate_report,
