@@ -151,6 +151,18 @@ def toolpaths_bytes(job: CarveJob) -> bytes:
                                   "CARVING: TOOLPATHS OVER THE DESIGN")
 
 
+def sheet_pictures(job: CarveJob, simulated=None) -> list:
+    """The setup sheet's pictures as batch ``carve`` draws them: [(caption, PNG bytes)], the
+    toolpaths and, with the gate's ``simulated`` job, the simulated stock."""
+    from . import preview
+
+    pictures = [("Toolpaths", toolpaths_bytes(job))]
+    if simulated is not None:
+        pictures.append(("Result", preview.simulation_bytes(simulated.result, "CARVING: SIMULATED STOCK",
+                                                            mesh=simulated.result.mesh(250_000))))
+    return pictures
+
+
 def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | None = None,
                  allow: bool | str = False, checked: bool = False, orient_spindle: bool = False,
                  machine=None, findings: list | None = None, progress=None, sheet: dict | None = None) -> str:
@@ -160,10 +172,12 @@ def export_carve(job: CarveJob, post_name: str, path: str, work_offset: str | No
     filled with what the setup sheet shows (:func:`.exporting.milling_export_request`)."""
     post = machine_post(POST_FAMILIES, post_name, work_offset, orient_spindle, machine)
     text = post.to_text(job.result.program)
-    report = None if checked else gate.check(simulation(job), allow, progress, machine=post.machine)[1]
+    simulated, report = None, None
+    if not checked:
+        simulated, report = gate.check(simulation(job), allow, progress, machine=post.machine)
     if sheet is not None:
         sheet.update(program=job.result.program, gate=report, machine=post.machine,
-                     warnings=list(job.result.warnings), pictures=lambda: [("Toolpaths", toolpaths_bytes(job))])
+                     warnings=list(job.result.warnings), pictures=lambda: sheet_pictures(job, simulated))
     return write_program(path, text, post, findings)
 
 

@@ -191,10 +191,12 @@ def export_engrave(job: EngraveJob, post_name: str, path: str, work_offset: str 
     post = machine_post(POST_FAMILIES, post_name, work_offset, orient_spindle, machine)
     program = program_for_post(job, post_name)
     text = post.to_text(program)
-    report = None if checked else gate.check(simulation(job), allow, progress, machine=post.machine)[1]
+    simulated, report = None, None
+    if not checked:
+        simulated, report = gate.check(simulation(job), allow, progress, machine=post.machine)
     if sheet is not None:
         sheet.update(program=program, gate=report, machine=post.machine, warnings=list(job.result.warnings),
-                     pictures=lambda: [("Toolpaths", toolpaths_bytes(job))])
+                     pictures=lambda: sheet_pictures(job, simulated))
     return write_program(path, text, post, findings)
 
 
@@ -360,6 +362,17 @@ def toolpaths_bytes(job: EngraveJob) -> bytes:
         solids = [(design.vertices, design.faces, preview.picture_jobs.PART_COLOUR)]
     return preview.toolpath_bytes(job.baked.operations, setup.stock, solids, "ENGRAVING: TOOLPATHS",
                                   marks=uncut_marks(job.result))
+
+
+def sheet_pictures(job: EngraveJob, simulated=None) -> list:
+    """The setup sheet's pictures as batch ``engrave`` draws them: [(caption, PNG bytes)], the
+    toolpaths and, with the gate's ``simulated`` job, the simulated result."""
+    from . import simview
+
+    pictures = [("Toolpaths", toolpaths_bytes(job))]
+    if simulated is not None:
+        pictures.append(("Result", simview.result_bytes(simulated, "engrave", uncut_marks(job.result))))
+    return pictures
 
 
 def uncut_marks(result) -> list:

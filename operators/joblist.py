@@ -172,6 +172,7 @@ def export_job_request(scene, path: str, post_name: str, allow=False):
     from .. import post as posts
     from . import gate
     from .preview import toolpath_bytes
+    from .simview import result_bytes
     from .workflow import SimulationSetup
 
     job, frame, families = build(scene, post_name)
@@ -191,8 +192,8 @@ def export_job_request(scene, path: str, post_name: str, allow=False):
         planned = plan_job(job, cache, planning)
         keep(cache, planned)
         cut, stock, limits = planned.simulation()
-        _, checked = gate.check(SimulationSetup(cut, stock, limits, frame, setup.name), allow, checking,
-                                machine=setup.machine)
+        simulated, checked = gate.check(SimulationSetup(cut, stock, limits, frame, setup.name), allow, checking,
+                                        machine=setup.machine)
         findings = []
         program = planned.program(macro=macro)
         written = write_program(path, post.to_text(program), post, findings)
@@ -201,7 +202,8 @@ def export_job_request(scene, path: str, post_name: str, allow=False):
         # the setup sheet beside the program (NCExport writes both): as batch job's
         sheet = ProgramSheet(program, checked, setup.machine, post_label, "job", list(planned.warnings), feeds,
                              lambda: [("Toolpaths", toolpath_bytes(cut.operations, stock, [],
-                                                                   f"JOB {setup.name.upper()}: TOOLPATHS"))])
+                                                                   f"JOB {setup.name.upper()}: TOOLPATHS")),
+                                      ("Result", result_bytes(simulated, "job"))])
         return Exported(written, planned.replanned(), findings, lambda scene: record(scene, planned), sheet)
     return compute
 

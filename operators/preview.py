@@ -60,8 +60,12 @@ def toolpath_bytes(operations, stock, solids=(), title: str = "", tilt_deg: floa
 def simulation_png(path: str, result, title: str = "", tilt_deg: float = 35.0, mesh=None, marks=()) -> str:
     """The simulated stock coloured by depth over the job's own depth range (``mesh``: the
     stock's (vertices, faces) if already built; ``marks``: places left uncut)."""
-    picture = picture_jobs.simulation_picture(result, title, SIZE, tilt_deg, mesh=mesh, marks=marks)
-    return write_atomic(path, picture.png())
+    return write_atomic(path, simulation_bytes(result, title, tilt_deg, mesh, marks))
+
+
+def simulation_bytes(result, title: str = "", tilt_deg: float = 35.0, mesh=None, marks=()) -> bytes:
+    """:func:`simulation_png`'s picture as PNG bytes, in memory."""
+    return picture_jobs.simulation_picture(result, title, SIZE, tilt_deg, mesh=mesh, marks=marks).png()
 
 
 def sheet_png(path: str, patterns, title: str = "") -> str:

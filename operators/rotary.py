@@ -143,6 +143,17 @@ def toolpaths_bytes(job: RotaryJob) -> bytes:
                                   "ROTARY TABLE C-X-Z: TOOLPATHS (PART FRAME)")
 
 
+def sheet_pictures(job: RotaryJob, simulated=None) -> list:
+    """The setup sheet's pictures as batch ``rotary`` draws them: [(caption, PNG bytes)], the
+    toolpaths and, with the gate's ``simulated`` job, the simulated stock."""
+    from . import simview
+
+    pictures = [("Toolpaths", toolpaths_bytes(job))]
+    if simulated is not None:
+        pictures.append(("Result", simview.result_bytes(simulated, "rotary")))
+    return pictures
+
+
 def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str = False, checked: bool = False,
                   machine=None, findings: list | None = None, progress=None, sheet: dict | None = None) -> str:
     """Write the program; the export gate simulates it first unless the caller has (``checked``);
@@ -151,9 +162,11 @@ def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str =
     post = posts.create(POST_FAMILIES, post_name, work_offset=job.result.program.work_offset,
                         max_table_rpm=job.settings.max_table_rpm, **({} if machine is None else {"machine": machine}))
     text = post.to_text(job.result.program)
-    report = None if checked else gate.check(simulation(job), allow, progress, machine=post.machine)[1]
+    simulated, report = None, None
+    if not checked:
+        simulated, report = gate.check(simulation(job), allow, progress, machine=post.machine)
     if sheet is not None:
-        sheet.update(gate=report, machine=post.machine, pictures=lambda: [("Toolpaths", toolpaths_bytes(job))])
+        sheet.update(gate=report, machine=post.machine, pictures=lambda: sheet_pictures(job, simulated))
     return write_program(path, text, post, findings)
 
 

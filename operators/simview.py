@@ -137,19 +137,26 @@ def batch_simulation(scene, setup, out_dir: str, stem: str, job: SimulationJob |
     on it): (report entry, png path)."""
     import os
 
-    from . import preview
+    from ..post.output import write_atomic
+    from .batchio import shown
     from .common import Progress
 
     if job is None:
         job = run_setup(setup, "heightfield", 0.1, Progress(None, "simulate"))
-    from .batchio import shown
-
     if shown():      # the scene's object is the closed solid; the picture needs only its look
         mesh = job.result.mesh(250_000)
         show_simulation(scene, job, mesh=mesh)
     else:
-        mesh = job.result.surface(250_000)
-    png = preview.simulation_png(os.path.join(out_dir, f"{stem}.png"), job.result,
-                                 f"{stem.upper()}: SIMULATED STOCK", preview.SIDE_VIEW_DEG if stem == "turnmill" else 35.0,
-                                 mesh, marks)
+        mesh = None
+    png = write_atomic(os.path.join(out_dir, f"{stem}.png"), result_bytes(job, stem, marks, mesh))
     return report_of(job.result), png
+
+
+def result_bytes(job: SimulationJob, stem: str, marks=(), mesh=None) -> bytes:
+    """The simulated stock's picture :func:`batch_simulation` draws (``<stem>.png``), as PNG bytes
+    (``mesh``: the stock's look if already built; None: its top surface, built here)."""
+    from . import preview
+
+    mesh = job.result.surface(250_000) if mesh is None else mesh
+    return preview.simulation_bytes(job.result, f"{stem.upper()}: SIMULATED STOCK",
+                                    preview.SIDE_VIEW_DEG if stem == "turnmill" else 35.0, mesh, marks)

@@ -356,6 +356,8 @@ class KEZURI_OT_stepnc_export(NCExport, bpy.types.Operator):
         return KEZURI_OT_stepnc_generate.poll(context)
 
     def export_request(self, context, path):
+        from .simview import result_bytes
+
         findings = []
         profile = scene_machine(context.scene.kezuri.machine, POST_FAMILIES, self.post)
         compute = export_nc_request(context.scene, self.post, path, allow=context.scene.kezuri.simulation.acknowledged,
@@ -363,11 +365,13 @@ class KEZURI_OT_stepnc_export(NCExport, bpy.types.Operator):
         label = posts.find(POST_FAMILIES, self.post).label
 
         def work(progress=None) -> Exported:
-            written, planned, _, report = compute(progress)
+            written, planned, simulated, report = compute(progress)
             program = planned.program
-            # the sheet as batch stepnc's: its notes are the program's (the workingsteps left out ...)
+            # the sheet as batch stepnc's: its notes are the program's (the workingsteps left out ...); its
+            # picture the simulated stock (batch's toolpaths picture draws the shown workplan's solids)
             return Exported(written, None, findings,
-                            sheet=ProgramSheet(program, report, profile, label, "stepnc", list(program.notes)))
+                            sheet=ProgramSheet(program, report, profile, label, "stepnc", list(program.notes),
+                                               pictures=lambda: [("Result", result_bytes(simulated, "stepnc"))]))
         return work
 
 

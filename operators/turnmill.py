@@ -232,6 +232,17 @@ def toolpaths_bytes(job: TurnMillJob) -> bytes:
                                   highlights=skipped_highlight(job))
 
 
+def sheet_pictures(job: TurnMillJob, simulated=None) -> list:
+    """The setup sheet's pictures as batch ``turnmill`` draws them: [(caption, PNG bytes)], the
+    toolpaths and, with the gate's ``simulated`` job, the simulated stock."""
+    from . import simview
+
+    pictures = [("Toolpaths", toolpaths_bytes(job))]
+    if simulated is not None:
+        pictures.append(("Result", simview.result_bytes(simulated, "turnmill")))
+    return pictures
+
+
 def export_turnmill(job: TurnMillJob, post_name: str, path: str, allow: bool | str = False,
                     checked: bool = False, progress=None, sheet: dict | None = None) -> tuple:
     """Write the program; the export gate simulates it first unless the caller has (``checked``;
@@ -239,9 +250,11 @@ def export_turnmill(job: TurnMillJob, post_name: str, path: str, allow: bool | s
     (:func:`machine_findings`); ``sheet``: filled with the gate's ``gate`` report (the setup sheet's)."""
     post = posts.create(POST_FAMILIES, post_name)
     text = post.to_text(job.plan.program)
-    report = None if checked else gate.check(simulation(job), allow, progress)[1]
+    simulated, report = None, None
+    if not checked:
+        simulated, report = gate.check(simulation(job), allow, progress)
     if sheet is not None:
-        sheet.update(gate=report, pictures=lambda: [("Toolpaths", toolpaths_bytes(job))])
+        sheet.update(gate=report, pictures=lambda: sheet_pictures(job, simulated))
     return write_atomic(path, text), machine_findings(job, post, text)
 
 

@@ -5,8 +5,8 @@ the sheet's path leaves no program behind (nor the hidden staging folder), and t
 path.  The sheet names the program file and its size as written (read back with
 tests/sheet_reader.py, an independent html.parser reader).  The English sheet of a panel export is
 the batch sheet of the same job (batch run in this process on the same scene, same post) in every
-part but the pictures: the panel's sheet has batch's toolpaths picture, the same PNG bytes, and
-not the simulated result (nor, for STEP-NC, any picture) (README "Setup sheet")."""
+part, the pictures too: the panel's sheet has batch's toolpaths and simulated-result pictures, the
+same PNG bytes (STEP-NC: the result only), the sheet-metal sheets none (README "Setup sheet")."""
 import contextlib
 import io
 import os
@@ -99,8 +99,9 @@ def test_each_panel_export_writes_the_sheet_beside_the_program(empty_scene, tmp_
     assert page.attrs["gate"]["data-status"] == "passed"
     assert len(page.rows("operations")) >= 1 and len(page.rows("tools")) >= 1
     assert page.texts["job"].startswith(f"Setup sheet: {name}: ")      # titled as batch titles it: "<workflow>: <program>"
-    pictures = page.picture_bytes()     # the toolpaths as batch draws them (1200 x 800 PNG); none for STEP-NC
-    assert len(pictures) == (0 if name == "stepnc" else 1)
+    pictures = page.picture_bytes()     # the toolpaths and the result as batch draws them (1200 x 800 PNGs)
+    assert [image["alt"] for image in page.images()] == (["Result"] if name == "stepnc" else ["Toolpaths", "Result"])
+    assert len(pictures) == len(page.images())
     for png in pictures:
         assert png[:8] == b"\x89PNG\r\n\x1a\n" and png[16:24] == (1200).to_bytes(4, "big") + (800).to_bytes(4, "big")
     # the option off: the program alone, the sheet of the run before replaced by nothing new
@@ -173,14 +174,19 @@ def test_the_panel_sheet_is_the_batch_sheet_but_its_pictures(empty_scene, tmp_pa
         assert panel_page.texts.get(ident) == batch_page.texts.get(ident), ident
     assert panel_page.texts["setup"] == batch_page.texts["setup"]
     assert panel_page.title == batch_page.title
+    # batch's pictures, byte for byte the PNGs batch wrote: the toolpaths and the simulated result
+    # (STEP-NC: the result only; batch's toolpaths picture draws the shown workplan's solids)
     workflow = name.split("-")[0]
-    if workflow == "stepnc":        # batch's picture draws the shown workplan's solids: the panel draws none
-        assert batch_page.images() and not panel_page.images()
-    else:   # the toolpaths picture, byte for byte the PNG batch wrote; batch's simulated result left out
-        drawn = (tmp_path / "batch" / f"{workflow}-toolpaths.png").read_bytes()
-        assert panel_page.picture_bytes() == [drawn]
-        assert [image["alt"] for image in panel_page.images()] == ["Toolpaths"]
-        assert [image["alt"] for image in batch_page.images()] == ["Toolpaths", "Result"]
+    batch_pngs = [(tmp_path / "batch" / f"{workflow}-toolpaths.png").read_bytes(),
+                  (tmp_path / "batch" / f"{workflow}.png").read_bytes()]
+    assert [image["alt"] for image in batch_page.images()] == ["Toolpaths", "Result"]
+    assert batch_page.picture_bytes() == batch_pngs
+    if workflow == "stepnc":
+        assert [image["alt"] for image in panel_page.images()] == ["Result"]
+        assert panel_page.picture_bytes() == batch_pngs[1:]
+    else:
+        assert [image["alt"] for image in panel_page.images()] == ["Toolpaths", "Result"]
+        assert panel_page.picture_bytes() == batch_pngs
     assert panel_page.rows("programs")[0]["File"] == program_name
     if name.endswith("-hardwood"):      # the feeds were checked: a chip load for every tool
         assert all(row["Chip load (mm)"] != "\u2014" for row in panel_page.rows("tools"))
