@@ -182,10 +182,11 @@ def write_setup_sheet(out_dir: str, report: dict, language: str = "en") -> dict:
     return {**report, "setup_sheet": path}
 
 
-def report_sheet(report: dict, language: str = "en", programs=None) -> str:
+def report_sheet(report: dict, language: str = "en", programs=None, pictures=None) -> str:
     """The setup sheet's HTML of a batch run's ``report``, in ``language``: its programs the files
     the report lists (``programs``: :func:`setupsheet.program_file` entries given instead, as a
-    panel's export has them before it writes them), its pictures the PNGs the report names."""
+    panel's export has them before it writes them), its pictures the PNGs the report names
+    (``pictures``: [(caption, PNG bytes)] given instead, drawn in memory)."""
     from ..toolpath.pictures import setupsheet
 
     def read(path) -> bytes | None:
@@ -202,8 +203,9 @@ def report_sheet(report: dict, language: str = "en", programs=None) -> str:
             listed.append(report["nc"])
         programs = [setupsheet.program_file(os.path.basename(path), data) for path in listed
                     if (data := read(path)) is not None]
-    pictures = [(caption, data) for key, caption in SHEET_PICTURES
-                if (data := read(report.get(key))) is not None and data.startswith(setupsheet.PNG_SIGNATURE)]
+    if pictures is None:
+        pictures = [(caption, data) for key, caption in SHEET_PICTURES
+                    if (data := read(report.get(key))) is not None and data.startswith(setupsheet.PNG_SIGNATURE)]
     workflow, program = report.get("workflow"), (report.get("gate") or {}).get("program")
     if program is None and isinstance(report.get("nc"), str):
         program = os.path.basename(report["nc"])

@@ -70,4 +70,9 @@ def simulation_bytes(result, title: str = "", tilt_deg: float = 35.0, mesh=None,
 
 def sheet_png(path: str, patterns, title: str = "") -> str:
     """Flat patterns from above: filled faces, dashed bend lines, cut contours."""
-    return write_atomic(path, picture_jobs.sheet_picture(patterns, title, SIZE).png())
+    return write_atomic(path, sheet_bytes(patterns, title))
+
+
+def sheet_bytes(patterns, title: str = "") -> bytes:
+    """:func:`sheet_png`'s picture as PNG bytes, in memory."""
+    return picture_jobs.sheet_picture(patterns, title, SIZE).png()

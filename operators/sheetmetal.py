@@ -197,7 +197,8 @@ def settings_of(props) -> SimpleNamespace:
 
 def export_work(first: str, punch, allow: bool, workflow: str, sheet_path: str, language: str | None):
     """``work(progress) -> [paths]`` of a sheet-metal export: ``punch(progress) -> (punched
-    programs, texts(), placed jobs)`` (its progress the first 5-90 %), the gate over every program,
+    programs, texts(), placed jobs, picture() -> PNG bytes)`` (its progress the first 5-90 %), the
+    gate over every program,
     then the texts made and, with a ``language`` ("en", "ja"; None: none), the setup sheet of the
     programs at ``sheet_path`` (as batch ``workflow``'s: the sheet, the gate, the programs), all
     written or none, after the last progress call (so Esc writes nothing)."""
@@ -207,7 +208,7 @@ def export_work(first: str, punch, allow: bool, workflow: str, sheet_path: str, 
     def work(progress=None) -> list:
         report = progress or (lambda fraction, text="": None)
         report(0.0, first)
-        punched, texts, placed = punch(share(progress, 0.05, 0.9))
+        punched, texts, placed, picture = punch(share(progress, 0.05, 0.9))
         report(0.9, "checking")
         gate_report = punch_gate(punched, allow)
         made = texts()
@@ -215,10 +216,30 @@ def export_work(first: str, punch, allow: bool, workflow: str, sheet_path: str, 
             programs = [program_file(os.path.basename(path), text.encode("ascii")) for path, text in made
                         if os.path.splitext(path)[1].lower() in program_extensions()]
             entries = {"workflow": workflow, "gate": gate_report, "sheet": placement_report(placed)}
-            made.append((sheet_path, report_sheet(entries, language, programs).encode("utf-8")))
+            pictures = [("Result", picture())]      # batch's picture (its report's "preview")
+            made.append((sheet_path, report_sheet(entries, language, programs, pictures).encode("utf-8")))
         report(1.0, "writing")
         return write_all(made)
     return work
+
+
+def unfold_picture(job) -> bytes:
+    """Batch ``unfold``'s picture (``unfold.png``) as PNG bytes: the flat pattern, its bend lines, the punch path."""
+    from . import preview
+
+    pattern = job.quad.pattern
+    return preview.sheet_bytes([dict(outline=pattern.outline, bends=[(s[0], s[1]) for s in pattern.bend_lines()],
+                                     contour=job.contour, name="FLAT PATTERN")],
+                               "UNFOLD: FLAT PATTERN, BEND LINES, PUNCH PATH")
+
+
+def elbow_picture(result, settings) -> bytes:
+    """Batch ``elbow``'s picture (``elbow.png``) as PNG bytes: every piece's flat pattern and punch path."""
+    from . import preview
+
+    return preview.sheet_bytes([dict(outline=outline, contour=core.compensate_outline(outline, settings.tool_diameter),
+                                     name=f"PIECE {index}") for index, outline in enumerate(elbow_layout(result), 1)],
+                               "ELBOW: FLAT PATTERNS AND PUNCH PATHS")
 
 
 def sheet_path_of(target: str) -> str:
@@ -241,7 +262,7 @@ def sheet_export_request(scene, target: str, allow: bool, language: str | None =
 
     def punch(progress):
         job = run_unfold(corners, settings, progress=progress)
-        return [job.punched], lambda: unfold_texts(job, target), [job.punching]
+        return [job.punched], lambda: unfold_texts(job, target), [job.punching], lambda: unfold_picture(job)
     return export_work("unfolding", punch, allow, "unfold", sheet_path_of(target), language)
 
 
@@ -257,7 +278,7 @@ def elbow_export_request(scene, target: str, allow: bool, language: str | None =
     def punch(progress):
         punching = elbow_punching(elbow, settings, progress=progress)
         return ([punched for _, punched, _ in punching], lambda: elbow_texts(elbow, target, settings, punching),
-                [job for *_, job in punching])
+                [job for *_, job in punching], lambda: elbow_picture(elbow, settings))
     return export_work("punching", punch, allow, "elbow", sheet_path_of(target), language)
 
 
@@ -452,7 +473,8 @@ def parse_corners(text: str):
 
 
 def unfold_batch(args) -> dict:
-    from . import batchio, preview
+    from ..post.output import write_atomic
+    from . import batchio
 
     scene = batchio.open_blend(args.blend)
     sheet = scene.kezuri.sheet
@@ -471,10 +493,8 @@ def unfold_batch(args) -> dict:
     files = unfold_files(job, os.path.join(args.out, "unfold.nc"))
     if batchio.shown():
         show_unfold(scene, job)
+    png = write_atomic(os.path.join(args.out, "unfold.png"), unfold_picture(job))
     pattern = job.quad.pattern
-    png = preview.sheet_png(os.path.join(args.out, "unfold.png"),
-                            [dict(outline=pattern.outline, bends=[(s[0], s[1]) for s in pattern.bend_lines()], contour=job.contour,
-                                  name="FLAT PATTERN")], "UNFOLD: FLAT PATTERN, BEND LINES, PUNCH PATH")
     rounded = batchio.rounded
     return {
         "workflow": "unfold",
@@ -507,7 +527,8 @@ def elbow_arguments(p):
 
 
 def elbow_batch(args) -> dict:
-    from . import batchio, preview
+    from ..post.output import write_atomic
+    from . import batchio
 
     scene = batchio.open_blend(None)
     sheet = scene.kezuri.sheet
@@ -522,10 +543,7 @@ def elbow_batch(args) -> dict:
     files = elbow_files(result, os.path.join(args.out, "elbow.dxf"), sheet, punching)
     if batchio.shown():
         show_elbow(scene, result)
-    png = preview.sheet_png(os.path.join(args.out, "elbow.png"),
-                            [dict(outline=outline, contour=core.compensate_outline(outline, sheet.tool_diameter),
-                                  name=f"PIECE {index}") for index, outline in enumerate(elbow_layout(result), 1)],
-                            "ELBOW: FLAT PATTERNS AND PUNCH PATHS")
+    png = write_atomic(os.path.join(args.out, "elbow.png"), elbow_picture(result, sheet))
     rounded = batchio.rounded
     return {
         "workflow": "elbow",

@@ -6,7 +6,8 @@ path.  The sheet names the program file and its size as written (read back with
 tests/sheet_reader.py, an independent html.parser reader).  The English sheet of a panel export is
 the batch sheet of the same job (batch run in this process on the same scene, same post) in every
 part, the pictures too: the panel's sheet has batch's toolpaths and simulated-result pictures, the
-same PNG bytes (STEP-NC: the result only), the sheet-metal sheets none (README "Setup sheet")."""
+same PNG bytes (STEP-NC: the result only; Sheet and Elbow: batch's flat-pattern picture) (README
+"Setup sheet")."""
 import contextlib
 import io
 import os
@@ -100,7 +101,8 @@ def test_each_panel_export_writes_the_sheet_beside_the_program(empty_scene, tmp_
     assert len(page.rows("operations")) >= 1 and len(page.rows("tools")) >= 1
     assert page.texts["job"].startswith(f"Setup sheet: {name}: ")      # titled as batch titles it: "<workflow>: <program>"
     pictures = page.picture_bytes()     # the toolpaths and the result as batch draws them (1200 x 800 PNGs)
-    assert [image["alt"] for image in page.images()] == (["Result"] if name == "stepnc" else ["Toolpaths", "Result"])
+    assert [image["alt"] for image in page.images()] == (["Result"] if name == "stepnc"
+                                                         else ["Toolpaths", "Result"])
     assert len(pictures) == len(page.images())
     for png in pictures:
         assert png[:8] == b"\x89PNG\r\n\x1a\n" and png[16:24] == (1200).to_bytes(4, "big") + (800).to_bytes(4, "big")
@@ -222,7 +224,7 @@ def test_the_sheet_metal_exports_write_their_sheet_with_the_programs(empty_scene
 
 
 @pytest.mark.parametrize("command, target", [("unfold", "unfold.nc"), ("elbow", "elbow.dxf")])
-def test_the_sheet_metal_panel_sheet_is_the_batch_sheet_but_its_picture(empty_scene, tmp_path, command, target):
+def test_the_sheet_metal_panel_sheet_is_the_batch_sheet(empty_scene, tmp_path, command, target):
     run_batch(tmp_path / "batch", command)
     panel = tmp_path / "panel" / target
     panel.parent.mkdir()
@@ -233,7 +235,11 @@ def test_the_sheet_metal_panel_sheet_is_the_batch_sheet_but_its_picture(empty_sc
     assert panel_page.tables == batch_page.tables
     for ident in ("job", "setup", "gate", "notes"):
         assert panel_page.texts.get(ident) == batch_page.texts.get(ident), ident
-    assert batch_page.images() and not panel_page.images()
+    # batch's picture of the flat pattern(s), the same PNG bytes
+    drawn = (tmp_path / "batch" / f"{command}.png").read_bytes()
+    assert [image["alt"] for image in panel_page.images()] == [image["alt"] for image in batch_page.images()]
+    assert [image["alt"] for image in panel_page.images()] == ["Result"]
+    assert panel_page.picture_bytes() == batch_page.picture_bytes() == [drawn]
 
 
 def test_esc_half_way_leaves_neither_file_nor_the_staging_folder(empty_scene, tmp_path):

@@ -330,7 +330,9 @@ def test_the_job_lists_export_writes_the_sheet_beside_the_program(plate_job, tmp
     assert translations.interface_language() == "en"
     page = export_sheet(plate_job, tmp_path / "en")
     assert page.lang == "en"
-    assert [n for t, n in page.nodes if t == "h2"] == ["Setup", "Tools", "Operations", "Export gate", "Program"]
+    # the pictures batch job draws: the toolpaths and the simulated result
+    assert [n for t, n in page.nodes if t == "h2"] == ["Setup", "Tools", "Operations", "Export gate", "Program",
+                                                       "Pictures"]
 
 
 @pytest.mark.xfail(not bpy.app.build_options.international, strict=True,
@@ -341,5 +343,5 @@ def test_the_job_lists_export_writes_the_sheet_in_the_interface_language(plate_j
         assert translations.interface_language() == "ja"
         page = export_sheet(plate_job, tmp_path / "ja")
     assert page.lang == "ja"
-    assert [n for t, n in page.nodes if t == "h2"] == ["段取り", "工具", "加工工程", "書き出しゲート", "プログラム"]
+    assert [n for t, n in page.nodes if t == "h2"] == ["段取り", "工具", "加工工程", "書き出しゲート", "プログラム", "図"]
     assert not {n for _, n in page.nodes} & ENGLISH_WORDS
