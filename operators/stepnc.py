@@ -198,6 +198,27 @@ def show_workplan(scene, loaded, program=None) -> list:
     return objects
 
 
+def shown_solids(scene, frame, depsgraph=None) -> dict:
+    """The workplan's solids as shown in the scene (not the wire stock), read here on the main
+    thread: {object name: (vertices in work mm, triangles, colour)}."""
+    from . import preview
+
+    return {o.name: preview.object_solid(o, frame, depsgraph) for o in scene.objects
+            if o.name.startswith(PREFIX + " ") and o.type == "MESH" and o.display_type != "WIRE"}
+
+
+def toolpaths_bytes(job: WorkplanJob, shown: dict) -> bytes:
+    """Batch ``stepnc``'s toolpaths picture (``stepnc-toolpaths.png``) as PNG bytes: the program over
+    the features' solids ``shown`` (:func:`shown_solids`), in the workplan's order."""
+    from . import preview
+
+    names = dict.fromkeys(f"{PREFIX} {step.its_feature.its_id}" for step in job.loaded.workingsteps)
+    skipped = list(job.part.skipped)
+    caption = ("NOT CUT: " + ", ".join(f"#{s['id']} {s['name']}" for s in skipped)) if skipped else ""
+    return preview.toolpath_bytes(job.program.operations, job.part.stock, [shown[n] for n in names if n in shown],
+                                  "STEP-NC: FEATURES AND TOOLPATHS", caption=caption)
+
+
 def show_paths(scene, loaded, program) -> list:
     """The program's toolpaths as curve objects (one per operation and move kind)."""
     frame = convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0))
@@ -358,6 +379,8 @@ class KEZURI_OT_stepnc_export(NCExport, bpy.types.Operator):
     def export_request(self, context, path):
         from .simview import result_bytes
 
+        scene = context.scene       # the workplan's solids as shown, for the toolpaths picture (main thread)
+        shown = shown_solids(scene, convert.WorkFrame(convert.mm_per_unit(scene), (0.0, 0.0, 0.0)))
         findings = []
         profile = scene_machine(context.scene.kezuri.machine, POST_FAMILIES, self.post)
         compute = export_nc_request(context.scene, self.post, path, allow=context.scene.kezuri.simulation.acknowledged,
@@ -367,11 +390,13 @@ class KEZURI_OT_stepnc_export(NCExport, bpy.types.Operator):
         def work(progress=None) -> Exported:
             written, planned, simulated, report = compute(progress)
             program = planned.program
-            # the sheet as batch stepnc's: its notes are the program's (the workingsteps left out ...); its
-            # picture the simulated stock (batch's toolpaths picture draws the shown workplan's solids)
+            # the sheet as batch stepnc's: its notes are the program's (the workingsteps left out ...), its
+            # pictures the toolpaths over the workplan's solids as shown and the simulated stock
+            pictures = lambda: [("Toolpaths", toolpaths_bytes(planned, shown)),  # noqa: E731
+                                ("Result", result_bytes(simulated, "stepnc"))]
             return Exported(written, None, findings,
                             sheet=ProgramSheet(program, report, profile, label, "stepnc", list(program.notes),
-                                               pictures=lambda: [("Result", result_bytes(simulated, "stepnc"))]))
+                                               pictures=pictures))
         return work
 
 
@@ -483,7 +508,7 @@ def apply_order(scene, text: str, path: str) -> None:
 
 
 def batch(args) -> dict:
-    from . import batchio, preview, simview
+    from . import batchio, simview
 
     scene = batchio.open_blend(None)
     import shutil
@@ -520,15 +545,10 @@ def batch(args) -> dict:
         if staging is not None:
             shutil.rmtree(staging, ignore_errors=True)
     program = job.program
-    objects = show_workplan(scene, job.loaded)
-    depsgraph = bpy.context.evaluated_depsgraph_get()       # before the paths: their tubes are not evaluated
-    solids = [preview.object_solid(o, job.frame, depsgraph) for o in objects
-              if o.type == "MESH" and o.display_type != "WIRE"]
+    show_workplan(scene, job.loaded)
+    shown = shown_solids(scene, job.frame, bpy.context.evaluated_depsgraph_get())   # before the paths' tubes
     show_paths(scene, job.loaded, program)
-    skipped = list(job.part.skipped)
-    caption = ("NOT CUT: " + ", ".join(f"#{s['id']} {s['name']}" for s in skipped)) if skipped else ""
-    toolpaths_png = preview.toolpath_png(os.path.join(args.out, "stepnc-toolpaths.png"), program.operations,
-                                         job.part.stock, solids, "STEP-NC: FEATURES AND TOOLPATHS", caption=caption)
+    toolpaths_png = write_atomic(os.path.join(args.out, "stepnc-toolpaths.png"), toolpaths_bytes(job, shown))
     simulation_report, png = simview.batch_simulation(scene, simulation(job), args.out, "stepnc", checked)
     steps = {step.id: step for step in job.loaded.workingsteps}
     workingsteps = []
@@ -547,7 +567,7 @@ def batch(args) -> dict:
         "files": [nc_path],
         "preview": png,
         "workingsteps": workingsteps,
-        "skipped_workingsteps": skipped,
+        "skipped_workingsteps": list(job.part.skipped),
         "operations": program.summary(),
         "warnings": list(program.notes),
         "cycle_time_s": round(program.cycle_time(), 1),

@@ -6,8 +6,8 @@ path.  The sheet names the program file and its size as written (read back with
 tests/sheet_reader.py, an independent html.parser reader).  The English sheet of a panel export is
 the batch sheet of the same job (batch run in this process on the same scene, same post) in every
 part, the pictures too: the panel's sheet has batch's toolpaths and simulated-result pictures, the
-same PNG bytes (STEP-NC: the result only; Sheet and Elbow: batch's flat-pattern picture) (README
-"Setup sheet")."""
+same PNG bytes (Sheet and Elbow: batch's flat-pattern picture) (README "Setup sheet").  STEP-NC's
+toolpaths picture draws the workplan's solids as shown in the scene, as batch draws them."""
 import contextlib
 import io
 import os
@@ -101,8 +101,7 @@ def test_each_panel_export_writes_the_sheet_beside_the_program(empty_scene, tmp_
     assert len(page.rows("operations")) >= 1 and len(page.rows("tools")) >= 1
     assert page.texts["job"].startswith(f"Setup sheet: {name}: ")      # titled as batch titles it: "<workflow>: <program>"
     pictures = page.picture_bytes()     # the toolpaths and the result as batch draws them (1200 x 800 PNGs)
-    assert [image["alt"] for image in page.images()] == (["Result"] if name == "stepnc"
-                                                         else ["Toolpaths", "Result"])
+    assert [image["alt"] for image in page.images()] == ["Toolpaths", "Result"]
     assert len(pictures) == len(page.images())
     for png in pictures:
         assert png[:8] == b"\x89PNG\r\n\x1a\n" and png[16:24] == (1200).to_bytes(4, "big") + (800).to_bytes(4, "big")
@@ -177,18 +176,14 @@ def test_the_panel_sheet_is_the_batch_sheet_but_its_pictures(empty_scene, tmp_pa
     assert panel_page.texts["setup"] == batch_page.texts["setup"]
     assert panel_page.title == batch_page.title
     # batch's pictures, byte for byte the PNGs batch wrote: the toolpaths and the simulated result
-    # (STEP-NC: the result only; batch's toolpaths picture draws the shown workplan's solids)
+    # (STEP-NC's toolpaths over the workplan's solids batch showed in the scene)
     workflow = name.split("-")[0]
     batch_pngs = [(tmp_path / "batch" / f"{workflow}-toolpaths.png").read_bytes(),
                   (tmp_path / "batch" / f"{workflow}.png").read_bytes()]
     assert [image["alt"] for image in batch_page.images()] == ["Toolpaths", "Result"]
     assert batch_page.picture_bytes() == batch_pngs
-    if workflow == "stepnc":
-        assert [image["alt"] for image in panel_page.images()] == ["Result"]
-        assert panel_page.picture_bytes() == batch_pngs[1:]
-    else:
-        assert [image["alt"] for image in panel_page.images()] == ["Toolpaths", "Result"]
-        assert panel_page.picture_bytes() == batch_pngs
+    assert [image["alt"] for image in panel_page.images()] == ["Toolpaths", "Result"]
+    assert panel_page.picture_bytes() == batch_pngs
     assert panel_page.rows("programs")[0]["File"] == program_name
     if name.endswith("-hardwood"):      # the feeds were checked: a chip load for every tool
         assert all(row["Chip load (mm)"] != "\u2014" for row in panel_page.rows("tools"))
