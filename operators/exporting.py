@@ -204,7 +204,9 @@ def program_and_sheet(request, target: str, language: str | None):
             raise OutputError(staging.final(str(error))) from None
         finally:
             staging.discard()
-        return dataclasses.replace(exported, path=target, findings=staging.final(list(exported.findings)))
+        # the pictures' drawing let go (it holds the gate's height field) once the sheet is written
+        sheet = exported.sheet and dataclasses.replace(exported.sheet, pictures=None)
+        return dataclasses.replace(exported, path=target, findings=staging.final(list(exported.findings)), sheet=sheet)
     return run
 
 
