@@ -369,10 +369,7 @@ def sheet_pictures(job: EngraveJob, simulated=None) -> list:
     toolpaths and, with the gate's ``simulated`` job, the simulated result."""
     from . import simview
 
-    pictures = [("Toolpaths", toolpaths_bytes(job))]
-    if simulated is not None:
-        pictures.append(("Result", simview.result_bytes(simulated, "engrave", uncut_marks(job.result))))
-    return pictures
+    return simview.sheet_pictures(toolpaths_bytes(job), simulated, "engrave", uncut_marks(job.result))
 
 
 def uncut_marks(result) -> list:

@@ -148,10 +148,7 @@ def sheet_pictures(job: RotaryJob, simulated=None) -> list:
     toolpaths and, with the gate's ``simulated`` job, the simulated stock."""
     from . import simview
 
-    pictures = [("Toolpaths", toolpaths_bytes(job))]
-    if simulated is not None:
-        pictures.append(("Result", simview.result_bytes(simulated, "rotary")))
-    return pictures
+    return simview.sheet_pictures(toolpaths_bytes(job), simulated, "rotary")
 
 
 def export_rotary(job: RotaryJob, post_name: str, path: str, allow: bool | str = False, checked: bool = False,

@@ -152,6 +152,15 @@ def batch_simulation(scene, setup, out_dir: str, stem: str, job: SimulationJob |
     return report_of(job.result), png
 
 
+def sheet_pictures(toolpaths: bytes, simulated, stem: str, marks=()) -> list:
+    """A setup sheet's pictures as batch draws them: [(caption, PNG bytes)], the ``toolpaths``
+    picture and, with the gate's ``simulated`` job, the simulated stock (:func:`result_bytes`)."""
+    pictures = [("Toolpaths", toolpaths)]
+    if simulated is not None:
+        pictures.append(("Result", result_bytes(simulated, stem, marks)))
+    return pictures
+
+
 def result_bytes(job: SimulationJob, stem: str, marks=(), mesh=None) -> bytes:
     """The simulated stock's picture :func:`batch_simulation` draws (``<stem>.png``), as PNG bytes
     (``mesh``: the stock's look if already built; None: its top surface, built here)."""

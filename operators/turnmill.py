@@ -237,10 +237,7 @@ def sheet_pictures(job: TurnMillJob, simulated=None) -> list:
     toolpaths and, with the gate's ``simulated`` job, the simulated stock."""
     from . import simview
 
-    pictures = [("Toolpaths", toolpaths_bytes(job))]
-    if simulated is not None:
-        pictures.append(("Result", simview.result_bytes(simulated, "turnmill")))
-    return pictures
+    return simview.sheet_pictures(toolpaths_bytes(job), simulated, "turnmill")
 
 
 def export_turnmill(job: TurnMillJob, post_name: str, path: str, allow: bool | str = False,
