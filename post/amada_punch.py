@@ -19,7 +19,7 @@ suppressed leading zero in the paper, "X .93", are N88-BASIC PRINT artefacts, no
 sequence numbers N000..N999.  The angle comes from atan2, so all four quadrants and vertical segments
 are right (the seed's ATN(dy/dx) loses the quadrant and divides by zero on vertical segments).
 
-The post writes a :class:`~..toolpath.ir.punch.PunchProgram`: each line of its operations (made by
+The post writes a :class:`~..toolpath.ir.program.PunchProgram`: each line of its operations (made by
 ``toolpath/operations/sheetmetal/nibbling.py``: collinear pieces merged, each hit once, gaps at the
 micro-joints) as one G72 + G69/G79 pair, P from the operation's compensation (0: the lines are the
 punch centre's path), and the program's notes as comment lines after the G92 block (where the part's

@@ -19,8 +19,6 @@ from __future__ import annotations
 
 import re
 
-from ..toolpath.ir.program import MachineProfile
-
 WORD = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
 COMMENT = re.compile(r"\([^)]*\)|;.*$")
 MOTION = {"0", "00", "1", "01", "2", "02", "3", "03"}
@@ -58,7 +56,7 @@ def short_blocks(text: str, block_ms: float) -> list:
     return [number for number, minutes in inverse_time_blocks(text) if minutes * 60000.0 < block_ms]
 
 
-def program_findings(text: str, profile: MachineProfile | None, what: str = "the program") -> list:
+def program_findings(text: str, profile, what: str = "the program") -> list:
     """Sentences for what the machine of ``profile`` cannot take of ``text``: a size past its
     program memory, blocks shorter than its block processing time (an empty list: none, or no
     profile)."""

@@ -31,10 +31,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.ir.program import FEED, RAPID, Operation, Program, TurnMillOperation
+from ..toolpath.ir.program import MoveKind, Operation, Program, TurnMillOperation
 from . import words
 from .gcode import PostError, comment_text, format_duration
 from .registry import ControllerLimits, Post
+
+RAPID, FEED = int(MoveKind.RAPID), int(MoveKind.FEED)     # the IR's move kinds
 
 
 def _num(value: float, decimals: int) -> str:

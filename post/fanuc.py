@@ -49,10 +49,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.ir.program import FEED, RAPID, GougeTexture
+from ..toolpath.ir.program import GougeTexture, MoveKind
 
 from .gcode import GcodePost, PostError, fmt
 from .registry import ControllerLimits
+
+RAPID, FEED = int(MoveKind.RAPID), int(MoveKind.FEED)     # the IR's move kinds
 
 # Fanuc 0i / 16 / 18 -M (machining centre), metric input, increment system IS-B (0.001 mm).
 FANUC_MILL_SOURCE = (

@@ -9,9 +9,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..toolpath.ir.program import FEED, RAPID, MachineProfile, Operation, Program, fit_program
+from ..toolpath.ir.program import MoveKind, Operation, Program, fit_program
 from . import words
 from .registry import ControllerLimits, Post, PostError, default_machine
+
+RAPID, FEED = int(MoveKind.RAPID), int(MoveKind.FEED)     # the IR's move kinds
 
 
 def fmt(value: float, decimals: int) -> str:
@@ -96,7 +98,7 @@ class GcodePost(Post):
     retracts: tuple = ("machine", "clearance")
     tool_changes: tuple = ("atc", "manual")
 
-    def __init__(self, work_offset: str | None = None, machine: MachineProfile | None = None):
+    def __init__(self, work_offset: str | None = None, machine=None):
         self.work_offset = work_offset
         self.machine = machine if machine is not None else default_machine(type(self))
         self.frame_offset = work_offset or "G54"     # the work offset of the program being written

@@ -26,7 +26,7 @@ from __future__ import annotations
 import zlib
 from dataclasses import dataclass
 
-from ..toolpath.ir.program import DEFAULT_FOR_FAMILY, preset
+from ..toolpath.ir.program import default_machine as family_machine
 from ..toolpath.ir.errors import InputError
 
 # Machine families: the kind of machine a post's program runs on.
@@ -180,8 +180,7 @@ def find(families, choice: str, *, texture: bool | None = None):
 def default_machine(cls):
     """The machine profile a post's program assumes when the user picks only the post (None for a
     family without machines, e.g. CL data)."""
-    name = cls.default_machine or DEFAULT_FOR_FAMILY.get(cls.family)
-    return preset(name) if name else None
+    return family_machine(cls.family, cls.default_machine)
 
 
 def create(families, choice: str, **options):

@@ -28,10 +28,12 @@ from __future__ import annotations
 import numpy as np
 
 from ..toolpath.ir.kinematics import DEFAULT_MAX_TABLE_RPM, cycle_time, inverse_time_feed
-from ..toolpath.ir.program import FEED, RAPID, Operation, Program
+from ..toolpath.ir.program import MoveKind, Operation, Program
 from .fanuc import FANUC_MILL_LIMITS, FanucPost
 from .gcode import GcodePost, PostError, comment_text, fmt
 from .linuxcnc import LINUXCNC_LIMITS, LinuxCNCPost
+
+RAPID, FEED = int(MoveKind.RAPID), int(MoveKind.FEED)     # the IR's move kinds
 
 
 class RotaryCXZPost(GcodePost):

@@ -53,11 +53,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..toolpath.ir.kinematics import block_minutes
-from ..toolpath.ir.program import FEED, RAPID, Operation, Program, TurnMillOperation
+from ..toolpath.ir.program import MoveKind, Operation, Program, TurnMillOperation
 from . import words
 from .gcode import GcodePost, PostError, comment_text, fmt
 from .linuxcnc import LINUXCNC_LIMITS
 from .registry import ControllerLimits
+
+RAPID, FEED = int(MoveKind.RAPID), int(MoveKind.FEED)     # the IR's move kinds
 
 # Fanuc 0i-T / 16/18-T style lathe control, metric, IS-B; the turn-mill codes (M154, M133 ...) are the
 # machine builder's, not Fanuc's, and the G93 range is that of the Fanuc inverse-time option.

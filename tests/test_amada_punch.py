@@ -12,7 +12,7 @@ from kezuri.post.amada_punch import AmadaPunchPost
 from kezuri.post.gcode import PostError
 from kezuri.post.flat_export import ExportError, to_dxf, to_svg
 from kezuri.toolpath.ir.program import ProgramError
-from kezuri.toolpath.ir.punch import PunchOperation, PunchProgram
+from kezuri.toolpath.ir.program import PunchOperation, PunchProgram
 from kezuri.toolpath.operations.sheetmetal.nibbling import NibblingError, offset_side, segment_lines
 from kezuri.toolpath.operations.sheetmetal.unfold import (compensate_outline, signed_area, unfold_elbow, unfold_twisted_quad)
 

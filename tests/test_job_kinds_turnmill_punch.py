@@ -18,7 +18,7 @@ from kezuri.toolpath import job
 from kezuri.toolpath.engines.meshrays import TrimeshRayEngine
 from kezuri.toolpath.ir import machine
 from kezuri.toolpath.operations.sheetmetal import nibbling, placement, punch, unfold
-from kezuri.toolpath.ir.punch import PunchOperation
+from kezuri.toolpath.ir.program import PunchOperation
 from kezuri.toolpath.operations.sheetmetal.kind import PunchGeometry, PunchKind, PunchSettings
 from kezuri.toolpath.operations.turnmill import turnmill as tm
 from kezuri.toolpath.operations.turnmill.kind import TurnMillGeometry, TurnMillKind

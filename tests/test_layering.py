@@ -62,6 +62,32 @@ def test_posts_import_only_the_ir_kinematics_and_errors(path):
     assert not outside, f"{path} imports toolpath modules other than the IR, kinematics and errors: {outside}"
 
 
+def defined_names(path: str) -> set:
+    """The names a module defines at its top level (classes, functions, assignments), not those it imports."""
+    tree = ast.parse(open(path, encoding="utf-8").read())
+    names = set()
+    for node in tree.body:
+        if isinstance(node, (ast.ClassDef, ast.FunctionDef)):
+            names.add(node.name)
+        elif isinstance(node, (ast.Assign, ast.AnnAssign)):
+            for target in (node.targets if isinstance(node, ast.Assign) else [node.target]):
+                names |= {n.id for n in ast.walk(target) if isinstance(n, ast.Name)}
+    return names
+
+
+@pytest.mark.parametrize("path", list(python_files("post")))
+def test_what_a_post_takes_from_the_core_is_defined_there_not_passed_on(path):
+    """A name re-exported by the IR module (defined in another of the core's modules) would let a
+    post reach that module after all: every name a post imports is defined where it imports it."""
+    for module, level, names in imports(path):
+        for reached in toolpath_modules_of_post(module, level, names):
+            parts = reached.split(".")
+            if parts[0] != "ir" or len(parts) < 3:
+                continue
+            source = os.path.join(ROOT, "toolpath", "ir", parts[1] + ".py")
+            assert parts[2] in defined_names(source), f"{path}: {parts[2]} is not defined in toolpath/ir/{parts[1]}.py"
+
+
 def test_the_posts_rule_refuses_the_ir_package_and_its_other_modules():
     for module, names in (("toolpath.ir.punch", ["PunchProgram"]), ("toolpath.ir", ["machine"]),
                           ("toolpath.ir", ["Program"]), ("toolpath.ir", ["kinematics"]),

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from kezuri.post.amada_punch import AmadaPunchPost
-from kezuri.toolpath.ir.punch import PunchOperation, PunchProgram
+from kezuri.toolpath.ir.program import PunchOperation, PunchProgram
 from kezuri.toolpath.operations.sheetmetal import punch, unfold
 from kezuri.toolpath.operations.sheetmetal.nibbling import offset_side, segment_lines
 

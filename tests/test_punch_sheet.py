@@ -15,7 +15,7 @@ import pytest
 
 import controller_rules as rules
 from kezuri.post.amada_punch import AmadaPunchPost
-from kezuri.toolpath.ir.punch import PunchOperation, PunchProgram
+from kezuri.toolpath.ir.program import PunchOperation, PunchProgram
 from kezuri.toolpath.ir import machine
 from kezuri.toolpath.operations.sheetmetal import nibbling, placement, punch, unfold
 

@@ -31,7 +31,7 @@ from kezuri.toolpath.operations.rotary import rotary
 from kezuri.toolpath.operations.rotary.kind import RotaryGeometry
 from kezuri.toolpath.operations.turnmill import turnmill as tm
 from kezuri.toolpath.operations.turnmill.kind import TurnMillGeometry
-from kezuri.toolpath.ir.texture import GougeTexture
+from kezuri.toolpath.ir.program import GougeTexture
 from test_hostile import time_limit
 
 HERE = os.path.dirname(os.path.abspath(__file__))

@@ -7,15 +7,17 @@ system; Z is the tool tip (the point a G43 tool-length offset refers to).
 
 Posts (``post/``) read this and alone decide which controller words to write.  It is all a post
 takes from the core, with :mod:`.kinematics` and :mod:`.errors` (``tests/test_layering.py`` holds
-them to it): the Program and its Operations (move kinds from :mod:`.moves`), the X-Z-C turn-mill's
-:class:`TurnMillOperation`, and, from the IR's other modules, the turret punch's program, the
-gouge-texture request, the machine profile a program runs on with its presets, and the arc filter
-:func:`fit_program`.
+them to it), and every name a post takes is defined here: the Program and its Operations with
+their :class:`MoveKind`, the X-Z-C turn-mill's :class:`TurnMillOperation`, the gouge-texture
+request (:class:`GougeTexture`, an Operation's ``texture``), the turret punch's
+:class:`PunchProgram`, the machine a post assumes (:func:`default_machine`) and the arc filter
+(:func:`fit_program`).
 """
 from __future__ import annotations
 
 import dataclasses
 import enum
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -24,10 +26,69 @@ from . import kinematics, tools
 from .errors import InputError, ProgramError
 from .moves import ARC_CCW, ARC_CW, FEED, RAPID, arc_sweep
 from .cycles import DrillCycle
-from .machine import DEFAULT_FOR_FAMILY, MachineProfile, preset  # noqa: F401 (the machine a program runs on, for the posts)
-from .punch import PunchProgram  # noqa: F401 (the turret punch's program, for its post)
-from .texture import GougeTexture
+from .machine import DEFAULT_FOR_FAMILY, preset
 from .tools import KINDS as TOOL_KINDS, TIP_ANGLE_DEG  # noqa: F401 (re-exported)
+
+
+# ----- the gouge texture request: an Operation's ``texture`` (the engrave workflow plans it untextured;
+# ``engrave.bake`` applies it, the controller-macro post writes a macro that draws it on the control)
+
+class EngraveError(InputError):
+    """Input the engrave workflow cannot use; the message names what is wrong."""
+
+
+GOUGE_MOTIONS = ("ramp", "scoop")
+
+
+@dataclass(frozen=True)
+class GougeTexture:
+    """Random chisel-mark depths applied along the raster (paper defaults)."""
+
+    base_depth: float = -2.0
+    quantum: float = 0.2
+    amplitude: float = 0.8
+    spacing: float = 20.0
+    motion: str = "ramp"          # "ramp": straight lines between depths; "scoop": dive, then push up
+    scoop_dive: float = 0.25      # scoop: fraction of a gouge spent diving
+    spacing_jitter: float = 0.0   # 0..0.5: each gouge length varies by +/- this fraction (baked only)
+    raster_angle: float = 0.0     # degrees from +X; gouges are spaced along the raster
+    seed: int = 0
+
+    def __post_init__(self):
+        for name in ("base_depth", "quantum", "amplitude", "spacing", "scoop_dive", "spacing_jitter", "raster_angle"):
+            if not math.isfinite(getattr(self, name)):
+                raise EngraveError(f"texture {name} must be a finite number")
+        if self.quantum <= 0 or self.amplitude < 0 or self.spacing <= 0:
+            raise EngraveError("texture quantum and gouge spacing must be > 0, amplitude >= 0")
+        if self.motion not in GOUGE_MOTIONS:
+            raise EngraveError(f"gouge motion must be one of {GOUGE_MOTIONS}, got {self.motion!r}")
+        if not 0 < self.scoop_dive < 1:
+            raise EngraveError("scoop dive fraction must be between 0 and 1")
+        if not 0 <= self.spacing_jitter <= 0.5:
+            raise EngraveError("spacing jitter must be between 0 and 0.5")
+        if self.base_depth + self.amplitude > 0:
+            raise EngraveError("the shallowest gouge (base depth + amplitude) would lie above the plate top")
+
+    def level(self, k):
+        """Depth offset (mm, >= 0) for level k in 0..4."""
+        return self.quantum * np.round(np.asarray(k) * self.amplitude / (4 * self.quantum) + 1e-9)
+
+    def depth(self, digit):
+        """Target Z for a digit 0..9 (vectorised)."""
+        d = np.asarray(digit)
+        if np.any((d < 0) | (d > 9)):
+            raise EngraveError("gouge digits must be 0..9")
+        shallow = d <= 4
+        k = np.where(shallow, d, d - 5)
+        return np.where(shallow, self.base_depth + self.level(k), self.base_depth - self.level(k))
+
+    @property
+    def shallowest(self) -> float:
+        return self.base_depth + float(self.level(4))
+
+    @property
+    def deepest(self) -> float:
+        return self.base_depth - float(self.level(4))
 
 
 class MoveKind(enum.IntEnum):
@@ -577,6 +638,14 @@ class TurnMillOperation(Operation):
         return float(minutes * 60.0 + lengths[~cutting].sum() / rapid_rate * 60.0)
 
 
+def default_machine(family: str, name: str = ""):
+    """The machine profile a program of ``family`` assumes when the user picks only the post:
+    the preset ``name`` (a post's own), else the family's default; None for a family without
+    machines (CL data)."""
+    name = name or DEFAULT_FOR_FAMILY.get(family)
+    return preset(name) if name else None
+
+
 def fit_program(program: Program, **settings) -> Program:
     """Arcs out, the filter every milling post runs before writing: :func:`.arcfit.fit_program`
     (``tolerance``, ``end_tolerance``, ``written``, ``step``), imported at the first call, as it
@@ -584,3 +653,100 @@ def fit_program(program: Program, **settings) -> Program:
     from . import arcfit
 
     return arcfit.fit_program(program, **settings)
+
+
+# ----- the turret-punch family's program: lines of hits a round punch makes in a sheet (see PunchProgram)
+
+COMPENSATIONS = ("none", "left", "right")
+
+
+def _number(value, what: str) -> float:
+    """``value`` as a finite number > 0, or a :class:`ProgramError` naming ``what``."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ProgramError(f"{what} must be a number, got {value!r}") from None
+    if not math.isfinite(number) or number <= 0:
+        raise ProgramError(f"{what} must be a finite number > 0, got {value!r}")
+    return number
+
+
+@dataclass
+class PunchOperation:
+    """One turret station's hits: ``lines`` (k, 2, 2), the first and the last hit of each line, in
+    the order they are punched.  ``punch_diameter`` the round punch's size, ``pitch`` the largest
+    spacing between hits (the G69 Q word), ``thickness`` the sheet's, all in mm."""
+
+    name: str
+    station: int
+    punch_diameter: float
+    pitch: float
+    thickness: float
+    lines: np.ndarray
+    compensation: str = "none"
+
+    def __post_init__(self):
+        try:
+            self.lines = np.array(self.lines, dtype=float)       # a copy: the caller's may change
+        except (TypeError, ValueError):
+            raise ProgramError(f"operation {self.name!r}: lines must be (first hit, last hit) pairs of (x, y)") from None
+        self.validate()
+
+    def validate(self):
+        station_ok = isinstance(self.station, (int, np.integer)) and not isinstance(self.station, bool)
+        if not station_ok or not 1 <= self.station <= 999:
+            raise ProgramError(f"turret station must be an integer 1..999, got {self.station!r}")
+        self.punch_diameter = _number(self.punch_diameter, "punch diameter")
+        self.pitch = _number(self.pitch, "nibbling pitch Q")
+        self.thickness = _number(self.thickness, "sheet thickness")
+        if self.lines.ndim != 3 or self.lines.shape[1:] != (2, 2) or len(self.lines) == 0:
+            raise ProgramError(f"lines must be (first hit, last hit) pairs of (x, y), got shape {self.lines.shape}")
+        if not np.all(np.isfinite(self.lines)):
+            raise ProgramError("a line has a non-finite coordinate (NaN or infinity)")
+        if self.compensation not in COMPENSATIONS:
+            raise ProgramError(f"operation {self.name!r}: compensation must be one of {COMPENSATIONS}, "
+                               f"got {self.compensation!r}")
+
+    def __len__(self):
+        return len(self.lines)
+
+    def lengths(self) -> np.ndarray:
+        """Each line's length, first hit to last (mm)."""
+        delta = self.lines[:, 1] - self.lines[:, 0]
+        return np.hypot(delta[:, 0], delta[:, 1])
+
+    def angles(self) -> np.ndarray:
+        """Each line's direction in degrees from +X, counter-clockwise positive (-180..180)."""
+        delta = self.lines[:, 1] - self.lines[:, 0]
+        return np.degrees(np.arctan2(delta[:, 1], delta[:, 0]))
+
+
+@dataclass
+class PunchProgram:
+    """What a punch post turns into one NC file: ``operations`` (:class:`PunchOperation`) in order,
+    ``origin`` the sheet origin the program sets (machine X, Y in mm: the Amada G92), ``notes`` lines
+    the post writes as comments at the start (where the part sits on the sheet, the clamps, the joints)."""
+
+    name: str
+    operations: list
+    origin: tuple = (1000.0, 1040.0)
+    notes: list = field(default_factory=list)
+
+    def __post_init__(self):
+        self.validate()
+
+    def validate(self):
+        if not self.operations or not all(isinstance(op, PunchOperation) for op in self.operations):
+            raise ProgramError(f"punch program {self.name!r}: its operations must be one or more PunchOperations")
+        try:
+            x, y = (float(v) for v in self.origin)
+        except (TypeError, ValueError):
+            raise ProgramError(f"G92 origin must be two numbers (x, y), got {self.origin!r}") from None
+        if not (math.isfinite(x) and math.isfinite(y)):
+            raise ProgramError("G92 origin must be finite")
+        self.origin = (x, y)
+        for op in self.operations:
+            op.validate()
+
+    def line_count(self) -> int:
+        return sum(len(op) for op in self.operations)

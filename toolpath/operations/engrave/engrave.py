@@ -35,7 +35,7 @@ from . import glyphs
 from ...engines import finetext, ramp
 from ...engines import region as rg
 from ...ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, PathBuilder, Program, Tool
-from ...ir.texture import GOUGE_MOTIONS, EngraveError, GougeTexture  # noqa: F401  (the texture lives in the IR)
+from ...ir.program import GOUGE_MOTIONS, EngraveError, GougeTexture  # noqa: F401  (the texture lives in the IR)
 
 
 # A row whose length is a whole number of gouges to within this (mm) gets its last gouge:

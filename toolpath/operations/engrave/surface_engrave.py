@@ -36,7 +36,7 @@ from . import engrave as flat
 from ...engines import region as rg
 from ...engines.dropcutter import DropCutter, DropCutterError
 from ...ir.program import ARC_CCW, ARC_CW, FEED, RAPID, Operation, Program, Tool
-from ...ir.texture import EngraveError
+from ...ir.program import EngraveError
 
 STEP = 1.0            # mm: longest piece of a followed cutting move
 TOLERANCE = 5e-4      # mm: the tool between two points may stand this far above the chord

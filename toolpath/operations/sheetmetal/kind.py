@@ -2,7 +2,7 @@
 turret punch, placed clear of the clamps (:mod:`.placement`), its outline cut as merged nibbling
 lines with micro-joints (:mod:`.nibbling`).
 
-The part's operations are the IR's punch operations (:mod:`...ir.punch`); its result keeps the
+The part's operations are the IR's punch operations (:class:`...ir.program.PunchOperation`); its result keeps the
 whole PunchProgram (with the G92 origin and the notes) the punch post writes; the shell punches
 the written program out of the sheet (:func:`.punch.simulate_punching`) for the export gate.
 """
@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...ir import machine
-from ...ir.punch import PunchProgram
+from ...ir.program import PunchProgram
 from ...job import DesignLayer, OperationKind, Part
 from ...simulate import BoxStock
 from . import nibbling, placement, punch

@@ -21,7 +21,7 @@ separate lines with a double hit at every joint.  Here:
   diameter apart, centre to centre, so their discs leave a web ``joint_width`` wide.
 
 Everything is in the contour's coordinates (the tool-centre path, mm).  :meth:`Nibbling.operation`
-gives the lines as the IR's :class:`~...ir.punch.PunchOperation`, which a punch post writes.
+gives the lines as the IR's :class:`~...ir.program.PunchOperation`, which a punch post writes.
 
 :func:`segment_lines` is the seed paper's layout instead: one line per contour segment, every
 corner punched twice; with :func:`offset_side` the control may offset the punch off the contour.
@@ -34,7 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...ir.errors import InputError
-from ...ir.punch import PunchOperation
+from ...ir.program import PunchOperation
 from .punch import line_steps
 
 COLLINEAR_TOL = 0.005      # mm: half the 0.01 mm the NC words resolve

@@ -22,7 +22,7 @@ import numpy as np
 
 from ...ir.errors import InputError
 from ...ir.machine import MachineProfile
-from ...ir.punch import PunchProgram
+from ...ir.program import PunchProgram
 
 
 class PlacementError(InputError):
